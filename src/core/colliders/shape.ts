@@ -1,0 +1,22 @@
+/**
+ * A static collider as the contact phase sees it. New shapes (box, capsule, mesh) implement this interface and
+ * register a factory in colliders/index.ts; the solvers never name a shape.
+ */
+export interface ColliderShape {
+  readonly type: string;
+  /**
+   * Signed distance of point p from the surface [m] (negative inside), and the outward unit normal of the
+   * closest surface point written to `normal[0..2]`.
+   */
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array): number;
+  /**
+   * Deepest point of triangle (a, b, c) with respect to this shape, for shapes whose surface can poke through a
+   * triangle between its vertices (a sphere can; a half-space cannot, so it leaves this undefined).
+   * Writes the barycentric weights of that point to `bary[0..2]` and the outward normal to `normal[0..2]`;
+   * returns its signed distance [m].
+   */
+  triangleDeepest?(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array,
+  ): number;
+}

@@ -1,0 +1,83 @@
+import type { ColliderShape } from './shape.js';
+
+/**
+ * Closest point of triangle (a, b, c) to point p, as barycentric weights written to `bary`.
+ * Region tests on the triangle's Voronoi regions (vertex, edge, face), as in Ericson, Real-Time Collision
+ * Detection (2005), §5.1.5.
+ */
+export function closestPointOnTriangle(
+  px: number, py: number, pz: number,
+  ax: number, ay: number, az: number,
+  bx: number, by: number, bz: number,
+  cx: number, cy: number, cz: number,
+  bary: Float64Array,
+): void {
+  const abx = bx - ax, aby = by - ay, abz = bz - az;
+  const acx = cx - ax, acy = cy - ay, acz = cz - az;
+  const apx = px - ax, apy = py - ay, apz = pz - az;
+  const d1 = abx * apx + aby * apy + abz * apz;
+  const d2 = acx * apx + acy * apy + acz * apz;
+  if (d1 <= 0 && d2 <= 0) { bary[0] = 1; bary[1] = 0; bary[2] = 0; return; }
+  const bpx = px - bx, bpy = py - by, bpz = pz - bz;
+  const d3 = abx * bpx + aby * bpy + abz * bpz;
+  const d4 = acx * bpx + acy * bpy + acz * bpz;
+  if (d3 >= 0 && d4 <= d3) { bary[0] = 0; bary[1] = 1; bary[2] = 0; return; }
+  const vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const v = d1 / (d1 - d3);
+    bary[0] = 1 - v; bary[1] = v; bary[2] = 0; return;
+  }
+  const cpx = px - cx, cpy = py - cy, cpz = pz - cz;
+  const d5 = abx * cpx + aby * cpy + abz * cpz;
+  const d6 = acx * cpx + acy * cpy + acz * cpz;
+  if (d6 >= 0 && d5 <= d6) { bary[0] = 0; bary[1] = 0; bary[2] = 1; return; }
+  const vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const w = d2 / (d2 - d6);
+    bary[0] = 1 - w; bary[1] = 0; bary[2] = w; return;
+  }
+  const va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    const w = (d4 - d3) / (d4 - d3 + (d5 - d6));
+    bary[0] = 0; bary[1] = 1 - w; bary[2] = w; return;
+  }
+  const denom = 1 / (va + vb + vc);
+  const v = vb * denom, w = vc * denom;
+  bary[0] = 1 - v - w; bary[1] = v; bary[2] = w;
+}
+
+export class SphereCollider implements ColliderShape {
+  readonly type = 'sphere';
+  constructor(
+    /** centre x [m] */ readonly cx: number,
+    /** centre y [m] */ readonly cy: number,
+    /** centre z [m] */ readonly cz: number,
+    /** radius [m] */ readonly radius: number,
+  ) {}
+
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array): number {
+    const dx = px - this.cx, dy = py - this.cy, dz = pz - this.cz;
+    const d = Math.sqrt(dx * dx + dy * dy + dz * dz);
+    if (d > 1e-12) {
+      normal[0] = dx / d; normal[1] = dy / d; normal[2] = dz / d;
+    } else {
+      normal[0] = 0; normal[1] = 1; normal[2] = 0;
+    }
+    return d - this.radius;
+  }
+
+  triangleDeepest(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array,
+  ): number {
+    closestPointOnTriangle(
+      this.cx, this.cy, this.cz,
+      a[ia], a[ia + 1], a[ia + 2], b[ib], b[ib + 1], b[ib + 2], c[ic], c[ic + 1], c[ic + 2],
+      bary,
+    );
+    const qx = bary[0] * a[ia] + bary[1] * b[ib] + bary[2] * c[ic];
+    const qy = bary[0] * a[ia + 1] + bary[1] * b[ib + 1] + bary[2] * c[ic + 1];
+    const qz = bary[0] * a[ia + 2] + bary[1] * b[ib + 2] + bary[2] * c[ic + 2];
+    return this.signedDistance(qx, qy, qz, normal);
+  }
+}

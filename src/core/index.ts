@@ -1,0 +1,14 @@
+/** Drape's simulation core: pure TypeScript, no DOM, runs in Node and the browser. */
+export * from './model.js';
+export * from './state.js';
+export * from './params.js';
+export * from './scene.js';
+export { sceneSchema, PIN_PRESETS } from './scene-schema.js';
+export { SCENE_NAMES, builtinScene } from './scenes.js';
+export * from './metrics.js';
+export * from './pins.js';
+export * from './pick.js';
+export { windVelocity } from './wind.js';
+export { SOLVERS, step, type StepFn } from './solvers/index.js';
+export * from './colliders/index.js';
+export { Simulation, modelFor, type Report } from './simulation.js';

@@ -1,0 +1,319 @@
+/**
+ * The immutable description of a cloth: particles, springs by kind, rest lengths, triangles, UVs and the
+ * constraint colouring used for parallel solving. Built once; a change of resolution builds a new one.
+ * Everything that may change while the cloth runs (pins, stiffness, wind...) lives elsewhere.
+ */
+
+/** The three spring kinds of the seed design. */
+export const SPRING_KINDS = ['structural', 'shear', 'bend'] as const;
+export type SpringKind = (typeof SPRING_KINDS)[number];
+export const STRUCTURAL = 0;
+export const SHEAR = 1;
+export const BEND = 2;
+
+/** A run of springs of one kind and one colour: no two springs in it share a particle. */
+export interface SpringBatch {
+  /** index into SPRING_KINDS */
+  readonly kind: number;
+  /** first spring of the batch */
+  readonly start: number;
+  /** one past the last spring of the batch */
+  readonly end: number;
+}
+
+/** Grid topology of a rectangular cloth: particle (i, j) has index j * nx + i. */
+export interface GridInfo {
+  /** particles along the width (columns), = resolution + 1 */
+  readonly nx: number;
+  /** particles along the height (rows), = resolution + 1 */
+  readonly ny: number;
+}
+
+export interface ClothModel {
+  /** number of particles */
+  readonly particleCount: number;
+  /** rest positions [m], xyz interleaved (stride 3); also the start pose */
+  readonly restPositions: Float32Array;
+  /** texture coordinates, uv interleaved (stride 2), in [0, 1] */
+  readonly uvs: Float32Array;
+  /** each particle's share of the cloth's mass (lumped Voronoi area / total area); sums to 1 */
+  readonly massWeights: Float32Array;
+  /** spring end points, pairs (a, b), sorted by kind then colour */
+  readonly springs: Uint32Array;
+  /** spring rest lengths [m], one per spring */
+  readonly restLengths: Float32Array;
+  /**
+   * per-spring geometric factor that makes a stiffness in continuum units act the same at every resolution
+   * (see docs/physics.md, "Resolution independence"); 1 for square cells except bend springs
+   */
+  readonly stiffnessScales: Float32Array;
+  /** kind of each spring (index into SPRING_KINDS) */
+  readonly springKinds: Uint8Array;
+  /** colour batches in solve order; springs of a batch share no particle */
+  readonly batches: readonly SpringBatch[];
+  /** number of springs of each kind, indexed like SPRING_KINDS */
+  readonly springCounts: readonly [number, number, number];
+  /** triangle vertex indices, triples, counter-clockwise seen from the +normal side */
+  readonly triangles: Uint32Array;
+  /** longest rest edge of any triangle [m]; bounds the reach of triangle contact */
+  readonly maxTriangleEdge: number;
+  /** total rest area of the cloth [m²] */
+  readonly area: number;
+  /** grid layout when the cloth is a rectangular grid */
+  readonly grid?: GridInfo;
+  /** largest extent of the rest shape [m]; the size used by sanity bounds */
+  readonly size: number;
+}
+
+export interface ModelInput {
+  restPositions: Float32Array;
+  uvs?: Float32Array;
+  triangles: Uint32Array;
+  /** springs per kind as index pairs */
+  springs: readonly [Uint32Array, Uint32Array, Uint32Array];
+  /** optional per-spring stiffness factors per kind (default 1) */
+  stiffnessScales?: readonly [Float32Array, Float32Array, Float32Array];
+  grid?: GridInfo;
+}
+
+const MAX_COLOURS = 32;
+
+/**
+ * Greedy edge colouring of one kind's springs: each spring gets the lowest colour not yet used at either end.
+ * Returns the colour of each spring. Grid springs generated row by row come out with 2 colours per direction.
+ */
+function colourSprings(pairs: Uint32Array, particleCount: number): { colours: Uint8Array; count: number } {
+  const used = new Uint32Array(particleCount);
+  const m = pairs.length / 2;
+  const colours = new Uint8Array(m);
+  let count = 0;
+  for (let s = 0; s < m; s++) {
+    const a = pairs[2 * s];
+    const b = pairs[2 * s + 1];
+    const free = ~(used[a] | used[b]) >>> 0;
+    if (free === 0) throw new Error(`constraint colouring needs more than ${MAX_COLOURS} colours`);
+    const c = 31 - Math.clz32(free & -free);
+    colours[s] = c;
+    used[a] |= 1 << c;
+    used[b] |= 1 << c;
+    if (c + 1 > count) count = c + 1;
+  }
+  return { colours, count };
+}
+
+function distance(p: Float32Array, a: number, b: number): number {
+  const dx = p[3 * a] - p[3 * b];
+  const dy = p[3 * a + 1] - p[3 * b + 1];
+  const dz = p[3 * a + 2] - p[3 * b + 2];
+  return Math.sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/** Builds a model from any particle/spring/triangle set (the grid builder and tests use it). */
+export function buildModel(input: ModelInput): ClothModel {
+  const { restPositions, triangles } = input;
+  const n = restPositions.length / 3;
+  if (!Number.isInteger(n) || n < 1) throw new Error('model: restPositions must hold 3 floats per particle');
+
+  // lumped masses: a third of each triangle's area to each of its vertices
+  const massWeights = new Float32Array(n);
+  let area = 0;
+  let maxTriangleEdge = 0;
+  for (let t = 0; t < triangles.length; t += 3) {
+    const a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+    const ux = restPositions[3 * b] - restPositions[3 * a];
+    const uy = restPositions[3 * b + 1] - restPositions[3 * a + 1];
+    const uz = restPositions[3 * b + 2] - restPositions[3 * a + 2];
+    const vx = restPositions[3 * c] - restPositions[3 * a];
+    const vy = restPositions[3 * c + 1] - restPositions[3 * a + 1];
+    const vz = restPositions[3 * c + 2] - restPositions[3 * a + 2];
+    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    const ta = 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
+    area += ta;
+    massWeights[a] += ta / 3;
+    massWeights[b] += ta / 3;
+    massWeights[c] += ta / 3;
+    maxTriangleEdge = Math.max(maxTriangleEdge, distance(restPositions, a, b), distance(restPositions, b, c), distance(restPositions, c, a));
+  }
+  if (area > 0) {
+    for (let i = 0; i < n; i++) massWeights[i] /= area;
+  } else {
+    massWeights.fill(1 / n);
+  }
+  // a particle that belongs to no triangle still needs mass
+  for (let i = 0; i < n; i++) if (massWeights[i] === 0) massWeights[i] = 1 / n;
+
+  // sort springs by kind, then colour
+  let total = 0;
+  for (const k of input.springs) total += k.length / 2;
+  const springs = new Uint32Array(2 * total);
+  const restLengths = new Float32Array(total);
+  const stiffnessScales = new Float32Array(total);
+  const springKinds = new Uint8Array(total);
+  const batches: SpringBatch[] = [];
+  const counts: [number, number, number] = [0, 0, 0];
+  let at = 0;
+  for (let kind = 0; kind < 3; kind++) {
+    const pairs = input.springs[kind];
+    const scales = input.stiffnessScales?.[kind];
+    const m = pairs.length / 2;
+    counts[kind] = m;
+    if (m === 0) continue;
+    const { colours, count } = colourSprings(pairs, n);
+    // counting sort by colour
+    const offsets = new Uint32Array(count + 1);
+    for (let s = 0; s < m; s++) offsets[colours[s] + 1]++;
+    for (let c = 0; c < count; c++) offsets[c + 1] += offsets[c];
+    for (let c = 0; c < count; c++) batches.push({ kind, start: at + offsets[c], end: at + offsets[c + 1] });
+    const fill = offsets.slice(0, count);
+    for (let s = 0; s < m; s++) {
+      const dst = at + fill[colours[s]]++;
+      const a = pairs[2 * s], b = pairs[2 * s + 1];
+      springs[2 * dst] = a;
+      springs[2 * dst + 1] = b;
+      restLengths[dst] = distance(restPositions, a, b);
+      stiffnessScales[dst] = scales ? scales[s] : 1;
+      springKinds[dst] = kind;
+    }
+    at += m;
+  }
+
+  let uvs = input.uvs;
+  if (!uvs) uvs = new Float32Array(2 * n);
+  let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < n; i++) {
+    for (let k = 0; k < 3; k++) {
+      lo[k] = Math.min(lo[k], restPositions[3 * i + k]);
+      hi[k] = Math.max(hi[k], restPositions[3 * i + k]);
+    }
+  }
+  const size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-3);
+
+  return {
+    particleCount: n,
+    restPositions,
+    uvs,
+    massWeights,
+    springs,
+    restLengths,
+    stiffnessScales,
+    springKinds,
+    batches,
+    springCounts: counts,
+    triangles,
+    maxTriangleEdge,
+    area,
+    grid: input.grid,
+    size,
+  };
+}
+
+/** How a grid cloth is laid out at the start. */
+export interface GridClothSpec {
+  /** faces per side, 1 … 1024 */
+  resolution: number;
+  /** extent along the cloth's u axis [m] */
+  width: number;
+  /** extent along the cloth's v axis [m] */
+  height: number;
+  /** 'horizontal': lies in the xz plane, row 0 at -z; 'hanging': in the xy plane, row 0 at the top */
+  orientation: 'horizontal' | 'hanging';
+  /** centre of the cloth [m] */
+  position: readonly [number, number, number];
+  /** extra rotation applied about the centre, Euler XYZ [degrees] */
+  rotation: readonly [number, number, number];
+  /** bend and stretch stiffness scaling to keep continuum behaviour (true) or the seed's per-spring one (false) */
+  scaleWithResolution: boolean;
+}
+
+/** Spacing at which material stiffnesses are given: a 1 m cloth at 32 faces per side [m]. */
+export const REFERENCE_SPACING = 1 / 32;
+
+/** Rotation matrix (row-major 3×3) for Euler XYZ angles in degrees. */
+function eulerXYZ(deg: readonly [number, number, number]): number[] {
+  const [x, y, z] = deg.map((d) => (d * Math.PI) / 180);
+  const cx = Math.cos(x), sx = Math.sin(x), cy = Math.cos(y), sy = Math.sin(y), cz = Math.cos(z), sz = Math.sin(z);
+  // R = Rz * Ry * Rx  (rotate about X first)
+  return [
+    cy * cz, sx * sy * cz - cx * sz, cx * sy * cz + sx * sz,
+    cy * sz, sx * sy * sz + cx * cz, cx * sy * sz - sx * cz,
+    -sy, sx * cy, cx * cy,
+  ];
+}
+
+/**
+ * The seed's cloth: a grid of (resolution + 1)² particles at the corners of each face; structural springs between
+ * horizontal/vertical neighbours, shear springs on both diagonals, bend springs between skip-one neighbours;
+ * two triangles per face.
+ */
+export function buildGridModel(spec: GridClothSpec): ClothModel {
+  const r = spec.resolution;
+  if (!Number.isInteger(r) || r < 1 || r > 1024) throw new Error(`cloth.resolution must be an integer in 1…1024, got ${r}`);
+  const nx = r + 1, ny = r + 1;
+  const n = nx * ny;
+  const dx = spec.width / r, dy = spec.height / r;
+  const R = eulerXYZ(spec.rotation);
+  const [px, py, pz] = spec.position;
+  const pos = new Float32Array(3 * n);
+  const uvs = new Float32Array(2 * n);
+  for (let j = 0; j < ny; j++) {
+    for (let i = 0; i < nx; i++) {
+      const p = j * nx + i;
+      const u = i * dx - spec.width / 2; // along +x
+      const v = j * dy - spec.height / 2; // row index grows away from row 0
+      let lx: number, ly: number, lz: number;
+      if (spec.orientation === 'horizontal') {
+        lx = u; ly = 0; lz = v; // row 0 at -z
+      } else {
+        lx = u; ly = -v; lz = 0; // row 0 at the top
+      }
+      pos[3 * p] = px + R[0] * lx + R[1] * ly + R[2] * lz;
+      pos[3 * p + 1] = py + R[3] * lx + R[4] * ly + R[5] * lz;
+      pos[3 * p + 2] = pz + R[6] * lx + R[7] * ly + R[8] * lz;
+      uvs[2 * p] = i / r;
+      uvs[2 * p + 1] = 1 - j / r;
+    }
+  }
+  const id = (i: number, j: number) => j * nx + i;
+
+  // structural: all horizontal edges first, then all vertical ones (keeps the greedy colouring at 2 + 2)
+  const structural = new Uint32Array(2 * (2 * r * (r + 1)));
+  const sScale = new Float32Array(structural.length / 2);
+  let s = 0;
+  for (let j = 0; j < ny; j++) for (let i = 0; i < r; i++) { structural[2 * s] = id(i, j); structural[2 * s + 1] = id(i + 1, j); sScale[s++] = dy / dx; }
+  for (let i = 0; i < nx; i++) for (let j = 0; j < r; j++) { structural[2 * s] = id(i, j); structural[2 * s + 1] = id(i, j + 1); sScale[s++] = dx / dy; }
+
+  const shear = new Uint32Array(2 * (2 * r * r));
+  s = 0;
+  for (let j = 0; j < r; j++) for (let i = 0; i < r; i++) { shear[2 * s] = id(i, j); shear[2 * s + 1] = id(i + 1, j + 1); s++; }
+  for (let j = 0; j < r; j++) for (let i = 0; i < r; i++) { shear[2 * s] = id(i + 1, j); shear[2 * s + 1] = id(i, j + 1); s++; }
+
+  const bendCount = r >= 2 ? 2 * (r - 1) * (r + 1) : 0;
+  const bend = new Uint32Array(2 * bendCount);
+  const bScale = new Float32Array(bendCount);
+  s = 0;
+  // bend energy of a spring over two cells is quartic in curvature: E ∝ k·l⁴·κ⁴ per unit area (docs/physics.md)
+  const bx = Math.pow(REFERENCE_SPACING / dx, 4) * (dy / dx);
+  const by = Math.pow(REFERENCE_SPACING / dy, 4) * (dx / dy);
+  for (let j = 0; j < ny; j++) for (let i = 0; i + 2 < nx; i++) { bend[2 * s] = id(i, j); bend[2 * s + 1] = id(i + 2, j); bScale[s++] = bx; }
+  for (let i = 0; i < nx; i++) for (let j = 0; j + 2 < ny; j++) { bend[2 * s] = id(i, j); bend[2 * s + 1] = id(i, j + 2); bScale[s++] = by; }
+
+  const triangles = new Uint32Array(6 * r * r);
+  let t = 0;
+  for (let j = 0; j < r; j++) {
+    for (let i = 0; i < r; i++) {
+      const a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      // counter-clockwise seen from +y for a horizontal cloth (row 0 at -z): a, d, c and a, c, b
+      triangles[t++] = a; triangles[t++] = d; triangles[t++] = c;
+      triangles[t++] = a; triangles[t++] = c; triangles[t++] = b;
+    }
+  }
+  const ones = (m: number) => new Float32Array(m).fill(1);
+  return buildModel({
+    restPositions: pos,
+    uvs,
+    triangles,
+    springs: [structural, shear, bend],
+    stiffnessScales: spec.scaleWithResolution ? [sScale, ones(shear.length / 2), bScale] : undefined,
+    grid: { nx, ny },
+  });
+}

@@ -1,0 +1,149 @@
+import { createColliders, type ColliderShape } from './colliders/index.js';
+import { SPRING_KINDS, type ClothModel } from './model.js';
+import type { Scene, SolverType } from './scene.js';
+
+/** Length of one simulated frame [s]: frames are 1/60 s everywhere (CLI, app, benchmarks). */
+export const FRAME_DT = 1 / 60;
+
+/**
+ * What a solver step reads: the scene's numbers turned into per-spring values for one model. Derived, never
+ * stored physics: rebuild it (cheap, O(springs)) whenever a parameter changes; the model and state stay.
+ */
+export interface SimParams {
+  solver: SolverType;
+  /** substeps per frame [-] */
+  substeps: number;
+  /** constraint passes per substep [-] */
+  iterations: number;
+  /** gravitational acceleration [m/s²] */
+  gravity: Float64Array;
+  /** mass of the whole cloth [kg] */
+  mass: number;
+  /** inverse mass of each particle when free [1/kg] */
+  particleInvMass: Float32Array;
+  /** effective Hooke constant of each spring [N/m] (after resolution scaling and any stability clamp) */
+  stiffness: Float32Array;
+  /** XPBD compliance of each spring, 1/stiffness [m/N]; Infinity for a spring with no stiffness */
+  compliance: Float32Array;
+  /** spring damping on relative velocity [N·s/m] (after any stability clamp) */
+  damping: number;
+  /** mass-spring stretch limit: max length / rest length of structural and shear springs [-] */
+  stretchFactor: number;
+  /** kinetic friction coefficient [-] */
+  friction: number;
+  /** static friction coefficient, at least the kinetic one [-] */
+  staticFriction: number;
+  /** contact thickness [m] */
+  thickness: number;
+  wind: {
+    enabled: boolean;
+    /** wind speed [m/s] */
+    strength: number;
+    /** unit direction (zero when the scene's direction is zero) */
+    direction: Float64Array;
+    /** air density [kg/m³] */
+    airDensity: number;
+    gusts: { enabled: boolean; amplitude: number; frequency: number; seed: number };
+  };
+  colliders: ColliderShape[];
+  /** one line per value that had to be clamped, for the UI and CLI to show; empty when none */
+  clamps: string[];
+}
+
+/** Safety margin of the explicit mass-spring step: h²·max_i(w_i·Σk) ≤ this (Verlet is stable below 2). */
+const MASS_SPRING_STIFFNESS_MARGIN = 1;
+/** and h·max_i(w_i·Σc) ≤ this for the explicit spring damping (stable below 1). */
+const MASS_SPRING_DAMPING_MARGIN = 0.5;
+
+const fmt = (v: number) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
+
+export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): SimParams {
+  const m = scene.material;
+  const n = model.particleCount;
+  const springCount = model.restLengths.length;
+  const kindK = [m.structuralStiffness, m.shearStiffness, m.bendStiffness];
+  const clamps: string[] = [];
+
+  const particleInvMass = new Float32Array(n);
+  for (let i = 0; i < n; i++) particleInvMass[i] = 1 / (m.mass * model.massWeights[i]);
+
+  const stiffness = new Float32Array(springCount);
+  for (let s = 0; s < springCount; s++) stiffness[s] = kindK[model.springKinds[s]] * model.stiffnessScales[s];
+
+  const substeps = scene.solver.substeps;
+  const h = dt / substeps;
+  let damping = m.damping;
+
+  if (scene.solver.type === 'mass-spring') {
+    // Explicit integration is stable only while h·ω stays small. Gershgorin bounds the largest eigenvalue of
+    // M⁻¹K by 2·max_i(w_i·Σ_springs k): scale all stiffnesses down together if the step cannot carry them.
+    const kSum = new Float64Array(n);
+    for (let s = 0; s < springCount; s++) {
+      kSum[model.springs[2 * s]] += stiffness[s];
+      kSum[model.springs[2 * s + 1]] += stiffness[s];
+    }
+    let worst = 0;
+    let springsAtWorst = 0;
+    const count = new Uint16Array(n);
+    for (let s = 0; s < 2 * springCount; s++) count[model.springs[s]]++;
+    for (let i = 0; i < n; i++) {
+      const v = particleInvMass[i] * kSum[i];
+      if (v > worst) worst = v;
+      if (particleInvMass[i] * count[i] > springsAtWorst) springsAtWorst = particleInvMass[i] * count[i];
+    }
+    const limit = MASS_SPRING_STIFFNESS_MARGIN / (h * h);
+    if (worst > limit) {
+      const f = limit / worst;
+      for (let s = 0; s < springCount; s++) stiffness[s] *= f;
+      clamps.push(
+        `mass-spring: stiffness scaled by ${fmt(f)} for stability at ${substeps} substeps ` +
+        `(structural ${fmt(m.structuralStiffness * f)} N/m); raise solver.substeps or use xpbd for the full value`,
+      );
+    }
+    const dLimit = MASS_SPRING_DAMPING_MARGIN / (h * springsAtWorst);
+    if (damping > dLimit) {
+      clamps.push(`mass-spring: damping limited to ${fmt(dLimit)} N·s/m for stability (asked ${fmt(damping)})`);
+      damping = dLimit;
+    }
+  }
+
+  const compliance = new Float32Array(springCount);
+  for (let s = 0; s < springCount; s++) compliance[s] = stiffness[s] > 0 ? 1 / stiffness[s] : Infinity;
+
+  const d = scene.wind.direction;
+  const len = Math.hypot(d[0], d[1], d[2]);
+  const direction = new Float64Array(len > 0 ? [d[0] / len, d[1] / len, d[2] / len] : [0, 0, 0]);
+
+  return {
+    solver: scene.solver.type,
+    substeps,
+    iterations: scene.solver.iterations,
+    gravity: new Float64Array(scene.gravity),
+    mass: m.mass,
+    particleInvMass,
+    stiffness,
+    compliance,
+    damping,
+    stretchFactor: m.stretchFactor,
+    friction: m.friction,
+    staticFriction: Math.max(m.staticFriction, m.friction),
+    thickness: scene.cloth.thickness,
+    wind: {
+      enabled: scene.wind.enabled && len > 0 && scene.wind.strength > 0,
+      strength: scene.wind.strength,
+      direction,
+      airDensity: scene.wind.airDensity,
+      gusts: { ...scene.wind.gusts },
+    },
+    colliders: createColliders(scene.colliders),
+    clamps,
+  };
+}
+
+/** Effective per-kind stiffness summary (mean over a kind's springs) [N/m], for HUDs and reports. */
+export function kindStiffness(model: ClothModel, params: SimParams): Record<(typeof SPRING_KINDS)[number], number> {
+  const sum = [0, 0, 0];
+  for (let s = 0; s < params.stiffness.length; s++) sum[model.springKinds[s]] += params.stiffness[s];
+  const c = model.springCounts;
+  return { structural: c[0] ? sum[0] / c[0] : 0, shear: c[1] ? sum[1] / c[1] : 0, bend: c[2] ? sum[2] / c[2] : 0 };
+}

@@ -1,0 +1,167 @@
+/**
+ * Solver phases shared by every CPU solver, one phase per function: inverse masses, external forces (wind),
+ * integration, the grab, contact, velocity update. A solver's `step` strings these together with its own
+ * constraint phases. None of them allocates.
+ */
+import type { ClothModel } from './model.js';
+import type { SimParams } from './params.js';
+import type { ClothState } from './state.js';
+import { windVelocity } from './wind.js';
+
+const wind = new Float64Array(3);
+const normal = new Float64Array(3);
+const bary = new Float64Array(3);
+
+/** Effective inverse masses for this step: 0 for pinned and grabbed particles. */
+export function refreshInverseMasses(state: ClothState, params: SimParams): void {
+  const w = state.invMass;
+  w.set(params.particleInvMass);
+  const pinned = state.pinned;
+  for (let i = 0; i < w.length; i++) if (pinned[i]) w[i] = 0;
+  if (state.grabbed >= 0) w[state.grabbed] = 0;
+}
+
+/**
+ * Wind forces [N] into state.forces (zeroed first). Per triangle, as in the seed but on the velocity of the air
+ * relative to the triangle: F = ½ρ·|v|·(v·n)·area·n, shared equally by its three particles.
+ * Returns false (and leaves forces untouched) when there is no wind.
+ */
+export function accumulateWind(model: ClothModel, state: ClothState, params: SimParams, t: number): boolean {
+  if (!params.wind.enabled) return false;
+  const f = state.forces;
+  f.fill(0);
+  windVelocity(params, t, wind);
+  const x = state.positions, v = state.velocities, tri = model.triangles;
+  const k = (0.25 * params.wind.airDensity) / 3; // ¼ρ from (v·N)N/(2|N|)·½ρ, then shared by 3 particles
+  for (let t3 = 0; t3 < tri.length; t3 += 3) {
+    const a = 3 * tri[t3], b = 3 * tri[t3 + 1], c = 3 * tri[t3 + 2];
+    const ux = x[b] - x[a], uy = x[b + 1] - x[a + 1], uz = x[b + 2] - x[a + 2];
+    const wx = x[c] - x[a], wy = x[c + 1] - x[a + 1], wz = x[c + 2] - x[a + 2];
+    const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx; // |N| = 2·area
+    const nl = Math.sqrt(nx * nx + ny * ny + nz * nz);
+    if (nl < 1e-20) continue;
+    const rx = wind[0] - (v[a] + v[b] + v[c]) / 3;
+    const ry = wind[1] - (v[a + 1] + v[b + 1] + v[c + 1]) / 3;
+    const rz = wind[2] - (v[a + 2] + v[b + 2] + v[c + 2]) / 3;
+    const speed = Math.sqrt(rx * rx + ry * ry + rz * rz);
+    const s = (k * speed * (rx * nx + ry * ny + rz * nz)) / nl;
+    const fx = s * nx, fy = s * ny, fz = s * nz;
+    f[a] += fx; f[a + 1] += fy; f[a + 2] += fz;
+    f[b] += fx; f[b + 1] += fy; f[b + 2] += fz;
+    f[c] += fx; f[c + 1] += fy; f[c + 2] += fz;
+  }
+  return true;
+}
+
+/**
+ * Position Verlet written with velocities: x ← x + h·v + c·h²·a, with a = g + w·f, previous ← x.
+ * With v = (x − x_prev)/h this is x(t+h) = 2x(t) − x(t−h) + a·h². The very first substep starts from rest with
+ * the Taylor term c = ½, which makes the integrator exact for constant acceleration (x = x₀ + ½at²).
+ * Particles with zero inverse mass do not move.
+ */
+export function integrate(state: ClothState, params: SimParams, h: number, withForces: boolean): void {
+  const x = state.positions, xp = state.previousPositions, v = state.velocities, w = state.invMass, f = state.forces;
+  const c = state.substeps === 0 ? 0.5 : 1;
+  const h2 = c * h * h;
+  const gx = params.gravity[0] * h2, gy = params.gravity[1] * h2, gz = params.gravity[2] * h2;
+  xp.set(x);
+  const n = w.length;
+  for (let i = 0; i < n; i++) {
+    const wi = w[i];
+    if (wi === 0) continue;
+    const j = 3 * i;
+    let ax = gx, ay = gy, az = gz;
+    if (withForces) {
+      const s = wi * h2;
+      ax += f[j] * s; ay += f[j + 1] * s; az += f[j + 2] * s;
+    }
+    x[j] += h * v[j] + ax;
+    x[j + 1] += h * v[j + 1] + ay;
+    x[j + 2] += h * v[j + 2] + az;
+  }
+}
+
+/** Moves the grabbed particle a fraction of the way from `from` to the grab target (kinematic). */
+export function moveGrabbed(state: ClothState, fx: number, fy: number, fz: number, fraction: number): void {
+  const g = state.grabbed;
+  if (g < 0) return;
+  const x = state.positions, t = state.grabTarget;
+  x[3 * g] = fx + (t[0] - fx) * fraction;
+  x[3 * g + 1] = fy + (t[1] - fy) * fraction;
+  x[3 * g + 2] = fz + (t[2] - fz) * fraction;
+}
+
+/**
+ * Position-based Coulomb friction (Macklin et al. 2014, "Unified Particle Physics for Real-Time Applications",
+ * §6.1): the tangential displacement `d` of a contact over this substep is removed while it is within the static
+ * cone (|d| < μs·depth), else reduced by μk·depth. Returns the scale to apply to d (subtract scale·d).
+ */
+function frictionScale(tangential: number, depth: number, params: SimParams): number {
+  if (tangential < 1e-12) return 0;
+  if (tangential < params.staticFriction * depth) return 1;
+  return Math.min((params.friction * depth) / tangential, 1);
+}
+
+/**
+ * Contact against every collider: particles first (pushed out to the contact thickness along the surface normal,
+ * with friction), then triangles for shapes whose surface can poke between vertices (the deepest point of the
+ * triangle is pushed out, its correction shared by barycentric weight and inverse mass).
+ */
+export function collide(model: ClothModel, state: ClothState, params: SimParams): void {
+  const x = state.positions, xp = state.previousPositions, w = state.invMass;
+  const th = params.thickness;
+  const n = model.particleCount;
+  for (const shape of params.colliders) {
+    for (let i = 0; i < n; i++) {
+      if (w[i] === 0) continue;
+      const j = 3 * i;
+      const d = shape.signedDistance(x[j], x[j + 1], x[j + 2], normal);
+      if (d >= th) continue;
+      const depth = th - d;
+      x[j] += depth * normal[0];
+      x[j + 1] += depth * normal[1];
+      x[j + 2] += depth * normal[2];
+      // tangential motion over the substep
+      const mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
+      const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
+      const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
+      const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params);
+      x[j] -= s * tx; x[j + 1] -= s * ty; x[j + 2] -= s * tz;
+    }
+    if (!shape.triangleDeepest) continue;
+    const tri = model.triangles;
+    const reach = th + 2 * model.maxTriangleEdge;
+    for (let t = 0; t < tri.length; t += 3) {
+      const a = tri[t], b = tri[t + 1], c = tri[t + 2];
+      // every point of a triangle stretched at most 2× lies within `reach` of vertex a
+      if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal) > reach) continue;
+      const d = shape.triangleDeepest(x, 3 * a, x, 3 * b, x, 3 * c, bary, normal);
+      if (d >= th) continue;
+      const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
+      const denom = wa * bary[0] + wb * bary[1] + wc * bary[2];
+      if (denom === 0) continue;
+      const depth = th - d;
+      // tangential motion of the contact point over the substep, removed by friction as for particles
+      const mx = bary[0] * (x[3 * a] - xp[3 * a]) + bary[1] * (x[3 * b] - xp[3 * b]) + bary[2] * (x[3 * c] - xp[3 * c]);
+      const my = bary[0] * (x[3 * a + 1] - xp[3 * a + 1]) + bary[1] * (x[3 * b + 1] - xp[3 * b + 1]) + bary[2] * (x[3 * c + 1] - xp[3 * c + 1]);
+      const mz = bary[0] * (x[3 * a + 2] - xp[3 * a + 2]) + bary[1] * (x[3 * b + 2] - xp[3 * b + 2]) + bary[2] * (x[3 * c + 2] - xp[3 * c + 2]);
+      const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
+      const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
+      const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params);
+      // desired displacement of the contact point, spread so that Σ bary_i·Δx_i equals it
+      const dx = (depth * normal[0] - fs * tx) / denom;
+      const dy = (depth * normal[1] - fs * ty) / denom;
+      const dz = (depth * normal[2] - fs * tz) / denom;
+      x[3 * a] += wa * dx; x[3 * a + 1] += wa * dy; x[3 * a + 2] += wa * dz;
+      x[3 * b] += wb * dx; x[3 * b + 1] += wb * dy; x[3 * b + 2] += wb * dz;
+      x[3 * c] += wc * dx; x[3 * c + 1] += wc * dy; x[3 * c + 2] += wc * dz;
+    }
+  }
+}
+
+/** v = (x − x_prev) / h for every particle (pinned ones get 0, a grabbed one the velocity it is carried with). */
+export function updateVelocities(state: ClothState, h: number): void {
+  const x = state.positions, xp = state.previousPositions, v = state.velocities;
+  const inv = 1 / h;
+  for (let j = 0; j < x.length; j++) v[j] = (x[j] - xp[j]) * inv;
+}

@@ -1,0 +1,149 @@
+/**
+ * The one schema of a Drape scene (JSON Schema draft-07). Defaults, ranges and units live here and nowhere else:
+ * the validator fills in defaults, the UI reads ranges from here for its sliders, and `scene.schema.json` at the
+ * repository root is generated from this object (`npm run schema`; a test checks it is current).
+ */
+
+const vec3 = (description: string, min: number, max: number, dflt: readonly number[]) => ({
+  description,
+  type: 'array',
+  items: { type: 'number', minimum: min, maximum: max },
+  minItems: 3,
+  maxItems: 3,
+  default: dflt,
+});
+
+export const PIN_PRESETS = [
+  'top-left', 'top-right', 'bottom-left', 'bottom-right', 'center',
+  'top-edge', 'bottom-edge', 'left-edge', 'right-edge',
+] as const;
+
+export const sceneSchema = {
+  $schema: 'http://json-schema.org/draft-07/schema#',
+  $id: 'https://drape.dev/scene.schema.json',
+  title: 'Drape scene',
+  description: 'A cloth, its material, the solver, forces, colliders and pins. Every field is optional; missing ones take the defaults shown.',
+  type: 'object',
+  additionalProperties: false,
+  properties: {
+    $schema: { type: 'string', description: 'URL or path of this schema, for editors' },
+    name: { type: 'string', maxLength: 100, description: 'Scene name shown in the UI and CLI', default: 'custom' },
+    description: { type: 'string', maxLength: 1000, description: 'One line on what the scene shows' },
+    cloth: {
+      type: 'object',
+      additionalProperties: false,
+      default: {},
+      properties: {
+        resolution: { type: 'integer', minimum: 1, maximum: 1024, default: 32, description: 'faces per side [-]: 1 is one quad of 4 particles, 64 is 4096 faces (65² particles)' },
+        width: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along x [m]' },
+        height: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along the second axis (z when horizontal, y when hanging) [m]' },
+        orientation: { enum: ['horizontal', 'hanging'], default: 'horizontal', description: "start pose: 'horizontal' lies in the xz plane (row 0 at -z); 'hanging' lies in the xy plane (row 0 at the top)" },
+        position: vec3('centre of the cloth at the start [m]', -1000, 1000, [0, 1.2, 0]),
+        rotation: vec3('extra rotation about the centre, Euler XYZ [degrees]', -360, 360, [0, 0, 0]),
+        thickness: { type: 'number', minimum: 0, maximum: 0.1, default: 0.005, description: 'contact thickness: how far the cloth surface is kept from colliders [m]' },
+      },
+    },
+    material: {
+      type: 'object',
+      additionalProperties: false,
+      default: {},
+      properties: {
+        structuralStiffness: { type: 'number', minimum: 1, maximum: 1e6, default: 8600, description: 'tensile stiffness of the sheet (force per unit width per unit strain) = per-spring Hooke constant of structural springs on square cells [N/m]' },
+        shearStiffness: { type: 'number', minimum: 0, maximum: 1e6, default: 56, description: 'in-plane shear stiffness: per-spring Hooke constant of the diagonal springs [N/m]' },
+        bendStiffness: { type: 'number', minimum: 0, maximum: 1e5, default: 0.74, description: 'Hooke constant of the skip-one bend springs at the reference spacing of 1/32 m; scaled to other spacings when scaleWithResolution is on [N/m]' },
+        damping: { type: 'number', minimum: 0, maximum: 10, default: 0.1, description: 'damping along every spring on the relative velocity of its ends [N·s/m]' },
+        mass: { type: 'number', minimum: 0.001, maximum: 100, default: 0.12, description: 'mass of the whole cloth [kg]' },
+        stretchFactor: { type: 'number', minimum: 1, maximum: 2, default: 1.05, description: 'longest a structural or shear spring may get, as a multiple of its rest length (mass-spring stretch limiting) [-]' },
+        friction: { type: 'number', minimum: 0, maximum: 2, default: 0.3, description: 'kinetic Coulomb friction coefficient against colliders [-]' },
+        staticFriction: { type: 'number', minimum: 0, maximum: 2, default: 0.4, description: 'static Coulomb friction coefficient against colliders (at least the kinetic one is used) [-]' },
+        scaleWithResolution: { type: 'boolean', default: true, description: 'true: parameters mean the same fabric at every resolution; false: the seed\'s per-spring constants (finer meshes bend more easily)' },
+      },
+    },
+    solver: {
+      type: 'object',
+      additionalProperties: false,
+      default: {},
+      properties: {
+        type: { enum: ['xpbd', 'mass-spring'], default: 'xpbd', description: "'xpbd' (Macklin et al. 2016, small steps 2019) or 'mass-spring' (the seed: Verlet, Hooke springs, stretch limiting)" },
+        substeps: { type: 'integer', minimum: 1, maximum: 200, default: 10, description: 'substeps per 1/60 s frame [-]' },
+        iterations: { type: 'integer', minimum: 1, maximum: 20, default: 1, description: 'constraint passes per substep (XPBD: Gauss–Seidel sweeps; mass-spring: stretch-limiting passes) [-]' },
+      },
+    },
+    gravity: vec3('gravitational acceleration [m/s²]', -50, 50, [0, -9.81, 0]),
+    wind: {
+      type: 'object',
+      additionalProperties: false,
+      default: {},
+      properties: {
+        enabled: { type: 'boolean', default: false, description: 'wind on or off' },
+        strength: { type: 'number', minimum: 0, maximum: 30, default: 5, description: 'wind speed [m/s]' },
+        direction: vec3('direction the wind blows towards (normalised; a zero vector means no wind) [-]', -100, 100, [1, 0, 0]),
+        airDensity: { type: 'number', minimum: 0, maximum: 10, default: 1.225, description: 'air density ρ in F = ½ρ·|v|(v·n)·area·n [kg/m³]' },
+        gusts: {
+          type: 'object',
+          additionalProperties: false,
+          default: {},
+          properties: {
+            enabled: { type: 'boolean', default: false, description: 'smoothly varying strength and direction' },
+            amplitude: { type: 'number', minimum: 0, maximum: 1, default: 0.5, description: 'relative strength swing (and direction swing, as a fraction of 45°) [-]' },
+            frequency: { type: 'number', minimum: 0.01, maximum: 10, default: 0.5, description: 'typical gust frequency [Hz]' },
+            seed: { type: 'integer', minimum: 0, maximum: 2147483647, default: 1, description: 'random seed: the same seed gives the same gusts' },
+          },
+        },
+      },
+    },
+    colliders: {
+      type: 'array',
+      maxItems: 64,
+      description: 'static colliders the cloth rests on',
+      default: [
+        { type: 'sphere', center: [0, 0.5, 0], radius: 0.3 },
+        { type: 'floor', height: 0 },
+      ],
+      items: {
+        type: 'object',
+        required: ['type'],
+        discriminator: { propertyName: 'type' },
+        oneOf: [
+          {
+            type: 'object',
+            additionalProperties: false,
+            required: ['type'],
+            properties: {
+              type: { const: 'sphere' },
+              center: vec3('centre [m]', -1000, 1000, [0, 0.5, 0]),
+              radius: { type: 'number', minimum: 0.001, maximum: 100, default: 0.3, description: 'radius [m]' },
+            },
+          },
+          {
+            type: 'object',
+            additionalProperties: false,
+            required: ['type'],
+            properties: {
+              type: { const: 'floor' },
+              height: { type: 'number', minimum: -1000, maximum: 1000, default: 0, description: 'height of the floor plane y = height [m]' },
+            },
+          },
+        ],
+      },
+    },
+    resolutionSweep: {
+      type: 'array',
+      maxItems: 16,
+      items: { type: 'integer', minimum: 1, maximum: 1024 },
+      description: 'optional: run the scene once per resolution listed (faces per side), e.g. the seed\'s 1 → 4096 faces demo',
+    },
+    pins: {
+      type: 'array',
+      default: [],
+      maxItems: 1050625,
+      description: `pinned particles: presets (${PIN_PRESETS.join(', ')}) or particle indices (row-major, row 0 first)`,
+      items: {
+        anyOf: [
+          { enum: [...PIN_PRESETS] },
+          { type: 'integer', minimum: 0 },
+        ],
+      },
+    },
+  },
+} as const;

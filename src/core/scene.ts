@@ -1,0 +1,185 @@
+import { Ajv, type ErrorObject } from 'ajv';
+import { PIN_PRESETS, sceneSchema } from './scene-schema.js';
+
+export type Vec3 = [number, number, number];
+export type PinPreset = (typeof PIN_PRESETS)[number];
+
+/** Field meanings, units and defaults: see scene-schema.ts (the one source). */
+export interface Scene {
+  $schema?: string;
+  name: string;
+  description?: string;
+  cloth: {
+    resolution: number;
+    width: number;
+    height: number;
+    orientation: 'horizontal' | 'hanging';
+    position: Vec3;
+    rotation: Vec3;
+    thickness: number;
+  };
+  material: Material;
+  solver: { type: SolverType; substeps: number; iterations: number };
+  gravity: Vec3;
+  wind: Wind;
+  colliders: ColliderSpec[];
+  pins: (PinPreset | number)[];
+  /** optional list of resolutions (faces per side) to run the scene at, one after another */
+  resolutionSweep?: number[];
+}
+
+export type SolverType = 'xpbd' | 'mass-spring';
+
+export interface Material {
+  structuralStiffness: number;
+  shearStiffness: number;
+  bendStiffness: number;
+  damping: number;
+  mass: number;
+  stretchFactor: number;
+  friction: number;
+  staticFriction: number;
+  scaleWithResolution: boolean;
+}
+
+export interface Wind {
+  enabled: boolean;
+  strength: number;
+  direction: Vec3;
+  airDensity: number;
+  gusts: { enabled: boolean; amplitude: number; frequency: number; seed: number };
+}
+
+export type ColliderSpec =
+  | { type: 'sphere'; center: Vec3; radius: number }
+  | { type: 'floor'; height: number };
+
+/** Bad scene input: the message is one line and names the field. */
+export class SceneError extends Error {
+  constructor(message: string) {
+    super(message);
+    this.name = 'SceneError';
+  }
+}
+
+const ajv = new Ajv({ allErrors: true, useDefaults: true, discriminator: true, strict: false });
+const validateFn = ajv.compile(sceneSchema);
+
+/** 'material/bendStiffness' → 'material.bendStiffness', '/colliders/0/radius' → 'colliders[0].radius' */
+function fieldName(instancePath: string, extra?: string): string {
+  const parts = instancePath.split('/').filter(Boolean);
+  if (extra !== undefined) parts.push(extra);
+  let out = '';
+  for (const p of parts) out += /^\d+$/.test(p) ? `[${p}]` : out ? `.${p}` : p;
+  return out || '(scene)';
+}
+
+function describe(e: ErrorObject): string {
+  const field = fieldName(e.instancePath);
+  const p = e.params as Record<string, unknown>;
+  switch (e.keyword) {
+    case 'additionalProperties':
+      return `${fieldName(e.instancePath, String(p.additionalProperty))}: unknown key`;
+    case 'required':
+      return `${fieldName(e.instancePath, String(p.missingProperty))}: required`;
+    case 'enum':
+      return `${field}: must be one of ${(p.allowedValues as unknown[]).map((v) => JSON.stringify(v)).join(', ')}`;
+    case 'const':
+      return `${field}: must be ${JSON.stringify(p.allowedValue)}`;
+    case 'minimum': case 'maximum': case 'exclusiveMinimum': case 'exclusiveMaximum':
+      return `${field}: must be ${p.comparison} ${p.limit}`;
+    case 'minItems': case 'maxItems':
+      return `${field}: ${e.message}`;
+    case 'discriminator':
+      return p.error === 'mapping'
+        ? `${field}.type: must be one of "sphere", "floor"`
+        : `${field}.type: required`;
+    default:
+      return `${field}: ${e.message ?? 'invalid'}`;
+  }
+}
+
+/** Picks the most useful error: the deepest one, preferring concrete ones to anyOf/oneOf summaries. */
+function pickError(errors: ErrorObject[]): ErrorObject {
+  const concrete = errors.filter((e) => e.keyword !== 'anyOf' && e.keyword !== 'oneOf' && e.keyword !== 'if');
+  const pool = concrete.length ? concrete : errors;
+  // pins items are "preset or integer": say both
+  return pool.reduce((best, e) => (e.instancePath.length > best.instancePath.length ? e : best), pool[0]);
+}
+
+/**
+ * Validates a scene document and fills in defaults. Returns a new object; the input is not changed.
+ * Throws SceneError with one line naming the field.
+ */
+export function validateScene(input: unknown, source = 'scene'): Scene {
+  if (input === null || typeof input !== 'object' || Array.isArray(input)) {
+    throw new SceneError(`${source}: must be a JSON object`);
+  }
+  const doc = structuredClone(input) as Record<string, unknown>;
+  if (!validateFn(doc)) {
+    const errors = validateFn.errors ?? [];
+    const pinErr = errors.find((e) => e.instancePath.startsWith('/pins/'));
+    if (pinErr && !errors.some((e) => !e.instancePath.startsWith('/pins/'))) {
+      throw new SceneError(`${source}: ${fieldName(pinErr.instancePath)}: must be one of ${PIN_PRESETS.join(', ')} or a particle index (integer ≥ 0)`);
+    }
+    throw new SceneError(`${source}: ${describe(pickError(errors))}`);
+  }
+  const scene = doc as unknown as Scene;
+  const n = (scene.cloth.resolution + 1) ** 2;
+  scene.pins.forEach((p, k) => {
+    if (typeof p === 'number' && p >= n) {
+      throw new SceneError(`${source}: pins[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
+    }
+  });
+  return scene;
+}
+
+/** Parses JSON text into a validated scene; malformed JSON gives a SceneError with the position. */
+export function parseScene(text: string, source = 'scene'): Scene {
+  let doc: unknown;
+  try {
+    doc = JSON.parse(text);
+  } catch (e) {
+    throw new SceneError(`${source}: malformed JSON (${(e as Error).message.split('\n')[0]})`);
+  }
+  return validateScene(doc, source);
+}
+
+/** The scene with every field at its default. */
+export function defaultScene(): Scene {
+  return validateScene({});
+}
+
+/**
+ * Reads a `--set` value: JSON when it parses (numbers, booleans, arrays, objects, null), otherwise the raw string.
+ */
+export function parseSetValue(raw: string): unknown {
+  try {
+    return JSON.parse(raw);
+  } catch {
+    return raw;
+  }
+}
+
+/**
+ * Sets a dotted path (`material.bendStiffness`, `colliders[0].radius`, `colliders.0.radius`) on a plain scene
+ * document and re-validates it. Unknown paths and invalid values throw SceneError naming the path.
+ */
+export function setScenePath(scene: Scene | Record<string, unknown>, path: string, value: unknown): Scene {
+  const keys = path.replace(/\[(\d+)\]/g, '.$1').split('.').filter(Boolean);
+  if (keys.length === 0 || keys.some((k) => k === '__proto__' || k === 'constructor' || k === 'prototype')) {
+    throw new SceneError(`--set ${path}: not a scene path`);
+  }
+  const doc = structuredClone(scene) as Record<string, unknown>;
+  let node: Record<string, unknown> | unknown[] = doc;
+  for (let i = 0; i < keys.length - 1; i++) {
+    const k = keys[i];
+    const next = (node as Record<string, unknown>)[k];
+    if (next === null || typeof next !== 'object') {
+      throw new SceneError(`--set ${path}: ${keys.slice(0, i + 1).join('.')} is not an object in this scene`);
+    }
+    node = next as Record<string, unknown>;
+  }
+  (node as Record<string, unknown>)[keys[keys.length - 1]] = value;
+  return validateScene(doc, `--set ${path}`);
+}

@@ -1,0 +1,79 @@
+/**
+ * The seed's solver: a mass-spring cloth integrated with position Verlet, Hooke springs with damping along each
+ * spring, then position-based stretch limiting (Provot 1995, "Deformation constraints in a mass-spring model to
+ * describe rigid cloth behavior"): a structural or shear spring longer than stretchFactor × rest is projected back,
+ * the correction split by inverse mass. Explicit, so stiffness is clamped to what the substep can carry
+ * (params.ts reports it).
+ */
+import { BEND, type ClothModel } from '../model.js';
+import type { SimParams } from '../params.js';
+import { accumulateWind, collide, integrate, moveGrabbed, refreshInverseMasses, updateVelocities } from '../phases.js';
+import type { ClothState } from '../state.js';
+
+/**
+ * Spring forces [N] added to state.forces: F_a = −(k·(|d| − L) + c·(v_a − v_b)·d̂)·d̂, F_b = −F_a with d = x_a − x_b.
+ */
+export function accumulateSpringForces(model: ClothModel, state: ClothState, params: SimParams): void {
+  const x = state.positions, v = state.velocities, f = state.forces;
+  const springs = model.springs, rest = model.restLengths, k = params.stiffness;
+  const c = params.damping;
+  const m = rest.length;
+  for (let s = 0; s < m; s++) {
+    const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+    const dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+    const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
+    if (len < 1e-12) continue;
+    const inv = 1 / len;
+    const nx = dx * inv, ny = dy * inv, nz = dz * inv;
+    const rv = (v[a] - v[b]) * nx + (v[a + 1] - v[b + 1]) * ny + (v[a + 2] - v[b + 2]) * nz;
+    const mag = -(k[s] * (len - rest[s]) + c * rv);
+    const fx = mag * nx, fy = mag * ny, fz = mag * nz;
+    f[a] += fx; f[a + 1] += fy; f[a + 2] += fz;
+    f[b] -= fx; f[b + 1] -= fy; f[b + 2] -= fz;
+  }
+}
+
+/** Stretch limiting: structural and shear springs longer than stretchFactor × rest are projected back. */
+export function limitStretch(model: ClothModel, state: ClothState, params: SimParams): void {
+  const x = state.positions, w = state.invMass;
+  const springs = model.springs, rest = model.restLengths;
+  const sf = params.stretchFactor;
+  for (const batch of model.batches) {
+    if (batch.kind === BEND) continue;
+    for (let s = batch.start; s < batch.end; s++) {
+      const pa = springs[2 * s], pb = springs[2 * s + 1];
+      const wa = w[pa], wb = w[pb];
+      const wsum = wa + wb;
+      if (wsum === 0) continue;
+      const a = 3 * pa, b = 3 * pb;
+      const dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+      const len2 = dx * dx + dy * dy + dz * dz;
+      const max = sf * rest[s];
+      if (len2 <= max * max) continue;
+      const len = Math.sqrt(len2);
+      const scale = (len - max) / (len * wsum);
+      x[a] -= wa * scale * dx; x[a + 1] -= wa * scale * dy; x[a + 2] -= wa * scale * dz;
+      x[b] += wb * scale * dx; x[b + 1] += wb * scale * dy; x[b + 2] += wb * scale * dz;
+    }
+  }
+}
+
+/** Advances the cloth by dt [s] (one frame) in params.substeps substeps. */
+export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
+  const n = params.substeps;
+  const h = dt / n;
+  refreshInverseMasses(state, params);
+  const g = state.grabbed, x = state.positions;
+  const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
+  for (let sub = 0; sub < n; sub++) {
+    if (!accumulateWind(model, state, params, state.time)) state.forces.fill(0);
+    accumulateSpringForces(model, state, params);
+    integrate(state, params, h, true);
+    moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
+    for (let it = 0; it < params.iterations; it++) limitStretch(model, state, params);
+    collide(model, state, params);
+    updateVelocities(state, h);
+    state.time += h;
+    state.substeps++;
+  }
+}

@@ -1,0 +1,93 @@
+import type { ClothModel } from './model.js';
+
+/**
+ * Everything about a cloth that changes while it runs: flat typed arrays, one entry per particle (vec3 data with
+ * stride 3), plus the interaction state (pins, grab) and scratch space so that a step never allocates.
+ */
+export interface ClothState {
+  /** positions [m], stride 3 */
+  readonly positions: Float32Array;
+  /** positions at the start of the last substep [m], stride 3 */
+  readonly previousPositions: Float32Array;
+  /** velocities [m/s], stride 3 */
+  readonly velocities: Float32Array;
+  /** 1 where a particle is pinned (does not move), else 0 */
+  readonly pinned: Uint8Array;
+  /** effective inverse masses of the current step [1/kg]; 0 for pinned and grabbed particles (solver scratch) */
+  readonly invMass: Float32Array;
+  /** external force accumulator [N], stride 3 (solver scratch) */
+  readonly forces: Float32Array;
+  /** grabbed particle index, -1 when nothing is grabbed */
+  grabbed: number;
+  /** where the grabbed particle is being moved to [m] */
+  readonly grabTarget: Float64Array;
+  /** simulated time since the start [s] */
+  time: number;
+  /** substeps taken since the start (0 means the next one is the very first) */
+  substeps: number;
+}
+
+export function createState(model: ClothModel): ClothState {
+  const n = model.particleCount;
+  const state: ClothState = {
+    positions: new Float32Array(3 * n),
+    previousPositions: new Float32Array(3 * n),
+    velocities: new Float32Array(3 * n),
+    pinned: new Uint8Array(n),
+    invMass: new Float32Array(n),
+    forces: new Float32Array(3 * n),
+    grabbed: -1,
+    grabTarget: new Float64Array(3),
+    time: 0,
+    substeps: 0,
+  };
+  resetState(model, state);
+  return state;
+}
+
+/** Puts the cloth back at its start pose, at rest; pins are kept, a grab is released. */
+export function resetState(model: ClothModel, state: ClothState): void {
+  state.positions.set(model.restPositions);
+  state.previousPositions.set(model.restPositions);
+  state.velocities.fill(0);
+  state.grabbed = -1;
+  state.time = 0;
+  state.substeps = 0;
+}
+
+/** Pins or unpins one particle; takes effect on the next step. */
+export function setPinned(state: ClothState, particle: number, pinned: boolean): void {
+  if (!(particle >= 0 && particle < state.pinned.length)) throw new RangeError(`particle ${particle} out of range`);
+  state.pinned[particle] = pinned ? 1 : 0;
+  if (pinned) {
+    state.velocities[3 * particle] = 0;
+    state.velocities[3 * particle + 1] = 0;
+    state.velocities[3 * particle + 2] = 0;
+  }
+}
+
+/** Starts (or moves) a grab: the particle is carried to `target` over the next step and held there. */
+export function grab(state: ClothState, particle: number, target: readonly [number, number, number]): void {
+  if (!(particle >= 0 && particle < state.pinned.length)) throw new RangeError(`particle ${particle} out of range`);
+  state.grabbed = particle;
+  state.grabTarget[0] = target[0];
+  state.grabTarget[1] = target[1];
+  state.grabTarget[2] = target[2];
+}
+
+/** Lets the grabbed particle go; it keeps the velocity it was moved with. */
+export function release(state: ClothState): void {
+  state.grabbed = -1;
+}
+
+/** Copies positions and velocities from one state to another of the same model (e.g. a backend switch). */
+export function copyState(from: ClothState, to: ClothState): void {
+  to.positions.set(from.positions);
+  to.previousPositions.set(from.previousPositions);
+  to.velocities.set(from.velocities);
+  to.pinned.set(from.pinned);
+  to.grabbed = from.grabbed;
+  to.grabTarget.set(from.grabTarget);
+  to.time = from.time;
+  to.substeps = from.substeps;
+}
