@@ -3,14 +3,22 @@
  * integration, the grab, contact, velocity update. A solver's `step` strings these together with its own
  * constraint phases. None of them allocates.
  */
+import type { ColliderShape } from './colliders/shape.js';
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
+import { updateTethers } from './tethers.js';
 import { windVelocity } from './wind.js';
 
 const wind = new Float64Array(3);
 const normal = new Float64Array(3);
 const bary = new Float64Array(3);
+
+/** Start of a step: effective inverse masses, and tethers if the pins changed. */
+export function beginStep(model: ClothModel, state: ClothState, params: SimParams): void {
+  refreshInverseMasses(state, params);
+  if (state.tethersStale) updateTethers(model, state);
+}
 
 /** Effective inverse masses for this step: 0 for pinned and grabbed particles. */
 export function refreshInverseMasses(state: ClothState, params: SimParams): void {
@@ -103,6 +111,17 @@ function frictionScale(tangential: number, depth: number, params: SimParams): nu
 }
 
 /**
+ * Whether the surface can poke between a triangle's vertices by more than half the contact thickness when the
+ * vertices themselves are kept outside: the sag of a surface of curvature radius r under an edge e is
+ * e²/(8(r + th)); edges are allowed to stretch to twice their rest length.
+ */
+export function needsTriangleContact(model: ClothModel, shape: ColliderShape, thickness: number): boolean {
+  if (!shape.triangleDeepest) return false;
+  const e = 2 * model.maxTriangleEdge;
+  return (e * e) / (8 * (shape.minCurvatureRadius + thickness)) > 0.5 * thickness;
+}
+
+/**
  * Contact against every collider: particles first (pushed out to the contact thickness along the surface normal,
  * with friction), then triangles for shapes whose surface can poke between vertices (the deepest point of the
  * triangle is pushed out, its correction shared by barycentric weight and inverse mass).
@@ -128,14 +147,15 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams)
       const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params);
       x[j] -= s * tx; x[j + 1] -= s * ty; x[j + 2] -= s * tz;
     }
-    if (!shape.triangleDeepest) continue;
+    const triangleDeepest = shape.triangleDeepest;
+    if (!triangleDeepest || !needsTriangleContact(model, shape, th)) continue;
     const tri = model.triangles;
     const reach = th + 2 * model.maxTriangleEdge;
     for (let t = 0; t < tri.length; t += 3) {
       const a = tri[t], b = tri[t + 1], c = tri[t + 2];
       // every point of a triangle stretched at most 2× lies within `reach` of vertex a
       if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal) > reach) continue;
-      const d = shape.triangleDeepest(x, 3 * a, x, 3 * b, x, 3 * c, bary, normal);
+      const d = triangleDeepest.call(shape, x, 3 * a, x, 3 * b, x, 3 * c, bary, normal);
       if (d >= th) continue;
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
       const denom = wa * bary[0] + wb * bary[1] + wc * bary[2];

@@ -44,4 +44,5 @@ export function resolvePins(model: ClothModel, pins: readonly (PinPreset | numbe
 export function applyPins(state: ClothState, particles: readonly number[]): void {
   state.pinned.fill(0);
   for (const i of particles) state.pinned[i] = 1;
+  state.tethersStale = true;
 }

@@ -65,7 +65,7 @@ export const sceneSchema = {
       default: {},
       properties: {
         type: { enum: ['xpbd', 'mass-spring'], default: 'xpbd', description: "'xpbd' (Macklin et al. 2016, small steps 2019) or 'mass-spring' (the seed: Verlet, Hooke springs, stretch limiting)" },
-        substeps: { type: 'integer', minimum: 1, maximum: 200, default: 10, description: 'substeps per 1/60 s frame [-]' },
+        substeps: { type: 'integer', minimum: 1, maximum: 200, default: 20, description: 'substeps per 1/60 s frame [-]' },
         iterations: { type: 'integer', minimum: 1, maximum: 20, default: 1, description: 'constraint passes per substep (XPBD: Gauss–Seidel sweeps; mass-spring: stretch-limiting passes) [-]' },
       },
     },

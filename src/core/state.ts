@@ -17,6 +17,17 @@ export interface ClothState {
   readonly invMass: Float32Array;
   /** external force accumulator [N], stride 3 (solver scratch) */
   readonly forces: Float32Array;
+  /** accumulated XPBD Lagrange multipliers of the current substep, one per spring (solver scratch) */
+  readonly lambdas: Float32Array;
+  /**
+   * long-range attachment of each particle: the nearest pinned particle, or -1 (derived from `pinned` by
+   * updateTethers when `tethersStale` is set)
+   */
+  readonly tetherAnchors: Int32Array;
+  /** rest distance from each particle to its tether anchor [m] */
+  readonly tetherLengths: Float32Array;
+  /** true when pins changed since the tethers were computed */
+  tethersStale: boolean;
   /** grabbed particle index, -1 when nothing is grabbed */
   grabbed: number;
   /** where the grabbed particle is being moved to [m] */
@@ -36,6 +47,10 @@ export function createState(model: ClothModel): ClothState {
     pinned: new Uint8Array(n),
     invMass: new Float32Array(n),
     forces: new Float32Array(3 * n),
+    lambdas: new Float32Array(model.restLengths.length),
+    tetherAnchors: new Int32Array(n).fill(-1),
+    tetherLengths: new Float32Array(n),
+    tethersStale: true,
     grabbed: -1,
     grabTarget: new Float64Array(3),
     time: 0,
@@ -59,6 +74,7 @@ export function resetState(model: ClothModel, state: ClothState): void {
 export function setPinned(state: ClothState, particle: number, pinned: boolean): void {
   if (!(particle >= 0 && particle < state.pinned.length)) throw new RangeError(`particle ${particle} out of range`);
   state.pinned[particle] = pinned ? 1 : 0;
+  state.tethersStale = true;
   if (pinned) {
     state.velocities[3 * particle] = 0;
     state.velocities[3 * particle + 1] = 0;
@@ -86,6 +102,7 @@ export function copyState(from: ClothState, to: ClothState): void {
   to.previousPositions.set(from.previousPositions);
   to.velocities.set(from.velocities);
   to.pinned.set(from.pinned);
+  to.tethersStale = true;
   to.grabbed = from.grabbed;
   to.grabTarget.set(from.grabTarget);
   to.time = from.time;

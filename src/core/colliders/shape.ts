@@ -5,6 +5,11 @@
 export interface ColliderShape {
   readonly type: string;
   /**
+   * Smallest radius of curvature of the surface [m]: Infinity for a plane, the radius for a sphere or capsule,
+   * 0 for shapes with sharp edges. Decides whether triangle contact is needed for a given mesh size.
+   */
+  readonly minCurvatureRadius: number;
+  /**
    * Signed distance of point p from the surface [m] (negative inside), and the outward unit normal of the
    * closest surface point written to `normal[0..2]`.
    */

@@ -48,6 +48,9 @@ export function closestPointOnTriangle(
 
 export class SphereCollider implements ColliderShape {
   readonly type = 'sphere';
+  get minCurvatureRadius(): number {
+    return this.radius;
+  }
   constructor(
     /** centre x [m] */ readonly cx: number,
     /** centre y [m] */ readonly cy: number,

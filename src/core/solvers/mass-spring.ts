@@ -2,13 +2,14 @@
  * The seed's solver: a mass-spring cloth integrated with position Verlet, Hooke springs with damping along each
  * spring, then position-based stretch limiting (Provot 1995, "Deformation constraints in a mass-spring model to
  * describe rigid cloth behavior"): a structural or shear spring longer than stretchFactor × rest is projected back,
- * the correction split by inverse mass. Explicit, so stiffness is clamped to what the substep can carry
+ * the correction split by inverse mass; free particles are also tethered to their nearest pin (tethers.ts). Explicit, so stiffness is clamped to what the substep can carry
  * (params.ts reports it).
  */
 import { BEND, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
-import { accumulateWind, collide, integrate, moveGrabbed, refreshInverseMasses, updateVelocities } from '../phases.js';
+import { accumulateWind, beginStep, collide, integrate, moveGrabbed, updateVelocities } from '../phases.js';
 import type { ClothState } from '../state.js';
+import { solveTethers } from '../tethers.js';
 
 /**
  * Spring forces [N] added to state.forces: F_a = −(k·(|d| − L) + c·(v_a − v_b)·d̂)·d̂, F_b = −F_a with d = x_a − x_b.
@@ -62,7 +63,7 @@ export function limitStretch(model: ClothModel, state: ClothState, params: SimPa
 export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
   const n = params.substeps;
   const h = dt / n;
-  refreshInverseMasses(state, params);
+  beginStep(model, state, params);
   const g = state.grabbed, x = state.positions;
   const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
   for (let sub = 0; sub < n; sub++) {
@@ -71,6 +72,7 @@ export function step(model: ClothModel, state: ClothState, params: SimParams, dt
     integrate(state, params, h, true);
     moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
     for (let it = 0; it < params.iterations; it++) limitStretch(model, state, params);
+    solveTethers(state, params);
     collide(model, state, params);
     updateVelocities(state, h);
     state.time += h;

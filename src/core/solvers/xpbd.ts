@@ -8,23 +8,30 @@
  * depend on the substep count. Damping uses the paper's constraint damping with β = material.damping [N·s/m]:
  *   α̃ = α/h²,  γ = α̃·β̃/h = α·β/h,
  *   Δλ = (−C − α̃·λ − γ·∇C·(x − x_prev)) / ((1 + γ)·(w_a + w_b) + α̃),   Δx_a = w_a·Δλ·∇C,  Δx_b = −w_b·Δλ·∇C.
+ * Structural and shear springs are also capped at stretchFactor × rest inside the same projection (a hard limit
+ * as in Provot 1995), and free particles are tethered to their nearest pin (tethers.ts): one Gauss–Seidel pass
+ * per substep propagates an impact only a few springs, and these keep a fine cloth from overstretching meanwhile.
  */
-import type { ClothModel } from '../model.js';
+import { BEND, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
-import { accumulateWind, collide, integrate, moveGrabbed, refreshInverseMasses, updateVelocities } from '../phases.js';
+import { accumulateWind, beginStep, collide, integrate, moveGrabbed, updateVelocities } from '../phases.js';
 import type { ClothState } from '../state.js';
+import { solveTethers } from '../tethers.js';
 
 /**
  * One Gauss–Seidel pass over every distance constraint, batch by batch (colour order: springs of a batch share no
- * particle, which is what a parallel backend relies on; here it only fixes the order).
+ * particle, which is what a parallel backend relies on; here it only fixes the order). With `accumulate`, λ is
+ * read from and added to state.lambdas (several iterations per substep); otherwise it starts from zero.
  */
-export function solveDistanceConstraints(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
-  const x = state.positions, xp = state.previousPositions, w = state.invMass;
+export function solveDistanceConstraints(
+  model: ClothModel, state: ClothState, params: SimParams, h: number, accumulate: boolean,
+): void {
+  const x = state.positions, xp = state.previousPositions, w = state.invMass, lambdas = state.lambdas;
   const springs = model.springs, rest = model.restLengths, compliance = params.compliance;
   const invH2 = 1 / (h * h);
   const betaOverH = params.damping / h;
-  const damped = betaOverH > 0;
   for (const batch of model.batches) {
+    const cap = batch.kind === BEND ? Infinity : params.stretchFactor;
     for (let s = batch.start; s < batch.end; s++) {
       const alpha = compliance[s];
       if (alpha === Infinity) continue;
@@ -38,19 +45,21 @@ export function solveDistanceConstraints(model: ClothModel, state: ClothState, p
       if (len < 1e-12) continue;
       const inv = 1 / len;
       const nx = dx * inv, ny = dy * inv, nz = dz * inv;
-      const C = len - rest[s];
       const alphaT = alpha * invH2;
-      let dl: number;
-      if (damped) {
-        const gamma = alpha * betaOverH;
-        const vn =
+      const gamma = alpha * betaOverH;
+      let num = rest[s] - len;
+      if (gamma > 0) {
+        num -= gamma * (
           (x[a] - xp[a] - x[b] + xp[b]) * nx +
           (x[a + 1] - xp[a + 1] - x[b + 1] + xp[b + 1]) * ny +
-          (x[a + 2] - xp[a + 2] - x[b + 2] + xp[b + 2]) * nz;
-        dl = (-C - gamma * vn) / ((1 + gamma) * wsum + alphaT);
-      } else {
-        dl = -C / (wsum + alphaT);
+          (x[a + 2] - xp[a + 2] - x[b + 2] + xp[b + 2]) * nz);
       }
+      const lambda = accumulate ? lambdas[s] : 0;
+      let dl = (num - alphaT * lambda) / ((1 + gamma) * wsum + alphaT);
+      // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest
+      const over = len + wsum * dl - cap * rest[s];
+      if (over > 0) dl -= over / wsum;
+      if (accumulate) lambdas[s] = lambda + dl;
       const sa = wa * dl, sb = wb * dl;
       x[a] += sa * nx; x[a + 1] += sa * ny; x[a + 2] += sa * nz;
       x[b] -= sb * nx; x[b + 1] -= sb * ny; x[b + 2] -= sb * nz;
@@ -62,14 +71,17 @@ export function solveDistanceConstraints(model: ClothModel, state: ClothState, p
 export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
   const n = params.substeps;
   const h = dt / n;
-  refreshInverseMasses(state, params);
+  beginStep(model, state, params);
   const g = state.grabbed, x = state.positions;
   const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
   for (let sub = 0; sub < n; sub++) {
     const windy = accumulateWind(model, state, params, state.time);
     integrate(state, params, h, windy);
     moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
-    for (let it = 0; it < params.iterations; it++) solveDistanceConstraints(model, state, params, h);
+    const accumulate = params.iterations > 1;
+    if (accumulate) state.lambdas.fill(0);
+    for (let it = 0; it < params.iterations; it++) solveDistanceConstraints(model, state, params, h, accumulate);
+    solveTethers(state, params);
     collide(model, state, params);
     updateVelocities(state, h);
     state.time += h;
