@@ -1,6 +1,6 @@
 /** Read-only measurements of a running cloth: energy, strain, penetration, extent. */
 import { STRUCTURAL, type ClothModel } from './model.js';
-import type { SimParams } from './params.js';
+import { FRAME_DT, type SimParams } from './params.js';
 import type { ClothState } from './state.js';
 
 export interface Energy {
@@ -8,11 +8,16 @@ export interface Energy {
   kinetic: number;
   /** Σ −m·(g · x) [J], zero at the origin */
   gravitational: number;
-  /** Σ ½·k·(|d| − L)² over all springs, with the effective stiffness [J] */
+  /**
+   * elastic energy of the springs [J]: mass-spring Σ ½·k·(|d| − L)²; XPBD Σ ½·α·f² with the force the solver
+   * applied in the last substep, f = λ/h² (the same thing once the constraints converge; while they have not, the
+   * length error of a stiff spring is solver lag, not stored energy)
+   */
   elastic: number;
 }
 
-export function energy(model: ClothModel, state: ClothState, params: SimParams): Energy {
+/** Energy of the cloth; `dt` is the frame length the state was stepped with (for XPBD's f = λ/h²). */
+export function energy(model: ClothModel, state: ClothState, params: SimParams, dt = FRAME_DT): Energy {
   const x = state.positions, v = state.velocities, mw = model.massWeights;
   const g = params.gravity;
   let kinetic = 0, gravitational = 0, elastic = 0;
@@ -21,6 +26,15 @@ export function energy(model: ClothModel, state: ClothState, params: SimParams):
     const j = 3 * i;
     if (!state.pinned[i]) kinetic += 0.5 * m * (v[j] * v[j] + v[j + 1] * v[j + 1] + v[j + 2] * v[j + 2]);
     gravitational -= m * (g[0] * x[j] + g[1] * x[j + 1] + g[2] * x[j + 2]);
+  }
+  if (params.solver === 'xpbd') {
+    const h = dt / params.substeps;
+    const lambdas = state.lambdas, compliance = params.compliance;
+    for (let s = 0; s < lambdas.length; s++) {
+      const f = lambdas[s] / (h * h);
+      if (compliance[s] !== Infinity) elastic += 0.5 * compliance[s] * f * f;
+    }
+    return { kinetic, gravitational, elastic };
   }
   const sp = model.springs, rest = model.restLengths, k = params.stiffness;
   for (let s = 0; s < rest.length; s++) {

@@ -32,15 +32,21 @@ export function refreshInverseMasses(state: ClothState, params: SimParams): void
 /**
  * Wind forces [N] into state.forces (zeroed first). Per triangle, as in the seed but on the velocity of the air
  * relative to the triangle: F = ½ρ·|v|·(v·n)·area·n, shared equally by its three particles.
+ * Being a drag on the relative velocity, the force is explicit and would overshoot for a light cloth in strong
+ * wind; it is capped at m̄·|v·n|/(2h) (m̄: mean particle mass of the triangle), so that a particle, which shares
+ * about six triangles, never gains more normal velocity in one substep than the air has relative to it.
  * Returns false (and leaves forces untouched) when there is no wind.
  */
-export function accumulateWind(model: ClothModel, state: ClothState, params: SimParams, t: number): boolean {
+export function accumulateWind(model: ClothModel, state: ClothState, params: SimParams, t: number, h: number): boolean {
   if (!params.wind.enabled) return false;
   const f = state.forces;
   f.fill(0);
   windVelocity(params, t, wind);
   const x = state.positions, v = state.velocities, tri = model.triangles;
-  const k = (0.25 * params.wind.airDensity) / 3; // ¼ρ from (v·N)N/(2|N|)·½ρ, then shared by 3 particles
+  const k = (0.25 * params.wind.airDensity) / 3; // ½ρ·|v|·(v·n)·area, area = |N|/2, shared by 3 particles
+  const im = params.particleInvMass;
+  // cap per particle share: m̄·|v·n|/(2h)/3 with m̄ ≈ 3/Σw (harmonic mean of the three masses)
+  const capScale = 1 / (2 * h);
   for (let t3 = 0; t3 < tri.length; t3 += 3) {
     const a = 3 * tri[t3], b = 3 * tri[t3 + 1], c = 3 * tri[t3 + 2];
     const ux = x[b] - x[a], uy = x[b + 1] - x[a + 1], uz = x[b + 2] - x[a + 2];
@@ -52,7 +58,12 @@ export function accumulateWind(model: ClothModel, state: ClothState, params: Sim
     const ry = wind[1] - (v[a + 1] + v[b + 1] + v[c + 1]) / 3;
     const rz = wind[2] - (v[a + 2] + v[b + 2] + v[c + 2]) / 3;
     const speed = Math.sqrt(rx * rx + ry * ry + rz * rz);
-    const s = (k * speed * (rx * nx + ry * ny + rz * nz)) / nl;
+    const vn = (rx * nx + ry * ny + rz * nz) / nl; // relative air speed along the unit normal
+    // per-particle force along the unit normal, and its cap
+    let fn = (k * speed * vn * nl);
+    const cap = (Math.abs(vn) * capScale) / (im[tri[t3]] + im[tri[t3 + 1]] + im[tri[t3 + 2]]);
+    if (fn > cap) fn = cap; else if (fn < -cap) fn = -cap;
+    const s = fn / nl;
     const fx = s * nx, fy = s * ny, fz = s * nz;
     f[a] += fx; f[a + 1] += fy; f[a + 2] += fz;
     f[b] += fx; f[b + 1] += fy; f[b + 2] += fz;

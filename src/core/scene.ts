@@ -172,7 +172,11 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
   }
   const doc = structuredClone(scene) as Record<string, unknown>;
   let node: Record<string, unknown> | unknown[] = doc;
-  for (let i = 0; i < keys.length - 1; i++) {
+  for (let i = 0; i < keys.length; i++) {
+    if (Array.isArray(node) && !/^\d+$/.test(keys[i])) {
+      throw new SceneError(`--set ${path}: ${keys.slice(0, i).join('.')} is a list; use an index such as ${keys.slice(0, i).join('.')}[0]`);
+    }
+    if (i === keys.length - 1) break;
     const k = keys[i];
     const next = (node as Record<string, unknown>)[k];
     if (next === null || typeof next !== 'object') {

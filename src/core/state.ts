@@ -17,7 +17,7 @@ export interface ClothState {
   readonly invMass: Float32Array;
   /** external force accumulator [N], stride 3 (solver scratch) */
   readonly forces: Float32Array;
-  /** accumulated XPBD Lagrange multipliers of the current substep, one per spring (solver scratch) */
+  /** XPBD Lagrange multipliers (compliant part) of the last substep, one per spring [N·s²]; f = λ/h² */
   readonly lambdas: Float32Array;
   /**
    * long-range attachment of each particle: the nearest pinned particle, or -1 (derived from `pinned` by
@@ -65,6 +65,7 @@ export function resetState(model: ClothModel, state: ClothState): void {
   state.positions.set(model.restPositions);
   state.previousPositions.set(model.restPositions);
   state.velocities.fill(0);
+  state.lambdas.fill(0);
   state.grabbed = -1;
   state.time = 0;
   state.substeps = 0;

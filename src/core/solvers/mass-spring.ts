@@ -67,12 +67,12 @@ export function step(model: ClothModel, state: ClothState, params: SimParams, dt
   const g = state.grabbed, x = state.positions;
   const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
   for (let sub = 0; sub < n; sub++) {
-    if (!accumulateWind(model, state, params, state.time)) state.forces.fill(0);
+    if (!accumulateWind(model, state, params, state.time, h)) state.forces.fill(0);
     accumulateSpringForces(model, state, params);
     integrate(state, params, h, true);
     moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
-    for (let it = 0; it < params.iterations; it++) limitStretch(model, state, params);
     solveTethers(state, params);
+    for (let it = 0; it < params.iterations; it++) limitStretch(model, state, params);
     collide(model, state, params);
     updateVelocities(state, h);
     state.time += h;

@@ -17,11 +17,13 @@ import type { SimParams } from '../params.js';
 import { accumulateWind, beginStep, collide, integrate, moveGrabbed, updateVelocities } from '../phases.js';
 import type { ClothState } from '../state.js';
 import { solveTethers } from '../tethers.js';
+import { limitStretch } from './mass-spring.js';
 
 /**
  * One Gauss–Seidel pass over every distance constraint, batch by batch (colour order: springs of a batch share no
  * particle, which is what a parallel backend relies on; here it only fixes the order). With `accumulate`, λ is
- * read from and added to state.lambdas (several iterations per substep); otherwise it starts from zero.
+ * read from state.lambdas (several iterations per substep); otherwise it starts from zero. The elastic part of
+ * λ (not damping, not the hard stretch cap) is written back: the spring force applied, f = λ/h², used for energy.
  */
 export function solveDistanceConstraints(
   model: ClothModel, state: ClothState, params: SimParams, h: number, accumulate: boolean,
@@ -47,19 +49,20 @@ export function solveDistanceConstraints(
       const nx = dx * inv, ny = dy * inv, nz = dz * inv;
       const alphaT = alpha * invH2;
       const gamma = alpha * betaOverH;
-      let num = rest[s] - len;
+      const lambda = accumulate ? lambdas[s] : 0;
+      const denom = 1 / ((1 + gamma) * wsum + alphaT);
+      const dlElastic = (rest[s] - len - alphaT * lambda) * denom;
+      let dl = dlElastic;
       if (gamma > 0) {
-        num -= gamma * (
+        dl -= gamma * denom * (
           (x[a] - xp[a] - x[b] + xp[b]) * nx +
           (x[a + 1] - xp[a + 1] - x[b + 1] + xp[b + 1]) * ny +
           (x[a + 2] - xp[a + 2] - x[b + 2] + xp[b + 2]) * nz);
       }
-      const lambda = accumulate ? lambdas[s] : 0;
-      let dl = (num - alphaT * lambda) / ((1 + gamma) * wsum + alphaT);
+      lambdas[s] = lambda + dlElastic;
       // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest
       const over = len + wsum * dl - cap * rest[s];
       if (over > 0) dl -= over / wsum;
-      if (accumulate) lambdas[s] = lambda + dl;
       const sa = wa * dl, sb = wb * dl;
       x[a] += sa * nx; x[a + 1] += sa * ny; x[a + 2] += sa * nz;
       x[b] -= sb * nx; x[b + 1] -= sb * ny; x[b + 2] -= sb * nz;
@@ -75,13 +78,14 @@ export function step(model: ClothModel, state: ClothState, params: SimParams, dt
   const g = state.grabbed, x = state.positions;
   const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
   for (let sub = 0; sub < n; sub++) {
-    const windy = accumulateWind(model, state, params, state.time);
+    const windy = accumulateWind(model, state, params, state.time, h);
     integrate(state, params, h, windy);
     moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
     const accumulate = params.iterations > 1;
     if (accumulate) state.lambdas.fill(0);
     for (let it = 0; it < params.iterations; it++) solveDistanceConstraints(model, state, params, h, accumulate);
     solveTethers(state, params);
+    limitStretch(model, state, params);
     collide(model, state, params);
     updateVelocities(state, h);
     state.time += h;

@@ -1,0 +1,11 @@
+#!/usr/bin/env node
+// The CLI entry: the TypeScript sources are compiled to dist/ by `npm install` (prepare) or `npm run build`.
+import { existsSync } from 'node:fs';
+
+const entry = new URL('../dist/cli/main.js', import.meta.url);
+if (!existsSync(entry)) {
+  console.error('drape: not built yet; run `npm run build` in the package directory');
+  process.exit(2);
+}
+const { main } = await import(entry.href);
+process.exitCode = await main(process.argv.slice(2));

@@ -1,0 +1,148 @@
+/**
+ * `drape bench`: ms per 60 Hz frame for the CPU solvers on a cloth dropped on a sphere and a floor, and
+ * JoltPhysics.js on the very same cloth (same particles, masses, constraints and compliances) in the same run.
+ */
+import { cpus } from 'node:os';
+import { builtinScene, Simulation, type Scene } from '../core/index.js';
+import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
+
+export interface BenchOptions {
+  /** particles per side */
+  sizes: number[];
+  /** XPBD substeps per frame (Jolt iterations) */
+  substeps: number;
+  frames: number;
+  warmup: number;
+  /** run JoltPhysics.js beside Drape */
+  peer: boolean;
+  json: boolean;
+}
+
+interface Timing {
+  msPerFrame: number;
+  /** particles × substeps per second of wall time */
+  particleSubstepsPerSecond: number;
+  finite: boolean;
+  centroid: number[];
+}
+
+interface Row {
+  particlesPerSide: number;
+  particles: number;
+  constraints: number;
+  xpbd: Timing;
+  massSpring: Timing;
+  jolt?: Timing & { name: string };
+  /** Drape XPBD ms / Jolt ms (lower is better) */
+  ratio?: number;
+  peerError?: string;
+}
+
+function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-spring'): Scene {
+  const scene = builtinScene('cotton-basic')!;
+  scene.cloth.resolution = side - 1;
+  scene.solver = { type: solver, substeps, iterations: 1 };
+  return scene;
+}
+
+function timeDrape(scene: Scene, frames: number, warmup: number): Timing & { sim: Simulation } {
+  const sim = new Simulation(scene);
+  sim.advance(warmup);
+  const t0 = performance.now();
+  sim.advance(frames);
+  const ms = (performance.now() - t0) / frames;
+  const r = sim.report();
+  return {
+    msPerFrame: ms,
+    particleSubstepsPerSecond: (r.particles * scene.solver.substeps * 1000) / ms,
+    finite: r.finite,
+    centroid: r.centroid,
+    sim,
+  };
+}
+
+function peerSpec(sim: Simulation): PeerClothSpec {
+  const { model, params, scene } = sim;
+  const sphere = scene.colliders.find((c) => c.type === 'sphere');
+  const floor = scene.colliders.find((c) => c.type === 'floor');
+  if (!sphere || sphere.type !== 'sphere' || !floor || floor.type !== 'floor') throw new Error('bench scene needs a sphere and a floor');
+  return {
+    positions: model.restPositions,
+    invMass: params.particleInvMass,
+    edges: model.springs,
+    compliance: params.compliance,
+    triangles: model.triangles,
+    sphere: { center: sphere.center, radius: sphere.radius },
+    floorY: floor.height,
+    gravity: scene.gravity,
+    iterations: params.substeps,
+    friction: params.friction,
+    vertexRadius: params.thickness,
+  };
+}
+
+const fmt = (v: number, d = 2) => v.toFixed(d);
+const sci = (v: number) => v.toExponential(2);
+
+export async function runBench(opts: BenchOptions, out: (s: string) => void): Promise<Row[]> {
+  let runJolt: ((spec: PeerClothSpec, frames: number, warmup: number) => Promise<PeerResult>) | undefined;
+  let peerError: string | undefined;
+  if (opts.peer) {
+    try {
+      ({ runJoltCloth: runJolt } = await import('./peers/jolt.js'));
+    } catch (e) {
+      peerError = (e as Error).message.split('\n')[0];
+    }
+  }
+  const rows: Row[] = [];
+  for (const side of opts.sizes) {
+    const xpbd = timeDrape(benchScene(side, opts.substeps, 'xpbd'), opts.frames, opts.warmup);
+    const ms = timeDrape(benchScene(side, opts.substeps, 'mass-spring'), opts.frames, opts.warmup);
+    const row: Row = {
+      particlesPerSide: side,
+      particles: xpbd.sim.model.particleCount,
+      constraints: xpbd.sim.model.restLengths.length,
+      xpbd: { msPerFrame: xpbd.msPerFrame, particleSubstepsPerSecond: xpbd.particleSubstepsPerSecond, finite: xpbd.finite, centroid: xpbd.centroid },
+      massSpring: { msPerFrame: ms.msPerFrame, particleSubstepsPerSecond: ms.particleSubstepsPerSecond, finite: ms.finite, centroid: ms.centroid },
+    };
+    if (runJolt) {
+      try {
+        const j = await runJolt(peerSpec(xpbd.sim), opts.frames, opts.warmup);
+        row.jolt = {
+          name: j.name,
+          msPerFrame: j.msPerFrame,
+          particleSubstepsPerSecond: (row.particles * opts.substeps * 1000) / j.msPerFrame,
+          finite: j.finite,
+          centroid: j.centroid,
+        };
+        row.ratio = xpbd.msPerFrame / j.msPerFrame;
+      } catch (e) {
+        row.peerError = (e as Error).message.split('\n')[0];
+      }
+    } else if (peerError) {
+      row.peerError = peerError;
+    }
+    rows.push(row);
+  }
+
+  const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  if (opts.json) {
+    out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, warmup: opts.warmup, rows }));
+    return rows;
+  }
+  out(`drape bench — cotton dropped on sphere + floor, XPBD ${opts.substeps} substeps (Jolt: ${opts.substeps} iterations),`);
+  out(`structural + shear + bend constraints; ${opts.frames} timed frames after ${opts.warmup}; ${machine}`);
+  out('');
+  out('| particles | constraints | Drape XPBD ms/frame | particle-substeps/s | Jolt ms/frame | Drape/Jolt | Drape mass-spring ms/frame | finite (Drape / Jolt) | centroid y (Drape / Jolt) |');
+  out('|---|---|---|---|---|---|---|---|---|');
+  for (const r of rows) {
+    const j = r.jolt;
+    out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${r.constraints} | ${fmt(r.xpbd.msPerFrame)} | ${sci(r.xpbd.particleSubstepsPerSecond)} | ` +
+      `${j ? fmt(j.msPerFrame) : 'n/a'} | ${r.ratio !== undefined ? fmt(r.ratio) : 'n/a'} | ${fmt(r.massSpring.msPerFrame)} | ` +
+      `${r.xpbd.finite ? 'yes' : 'NO'} / ${j ? (j.finite ? 'yes' : 'NO (NaN)') : 'n/a'} | ` +
+      `${fmt(r.xpbd.centroid[1], 3)} / ${j ? (j.finite ? fmt(j.centroid[1], 3) : 'NaN') : 'n/a'} |`);
+  }
+  const errs = [...new Set(rows.map((r) => r.peerError).filter(Boolean))];
+  for (const e of errs) out(`peer: ${e}`);
+  return rows;
+}

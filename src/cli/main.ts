@@ -1,0 +1,242 @@
+/**
+ * `drape`: the headless front end over the same core and scenes as the app.
+ *   drape run [SCENE|file.json] [--frames N] [--solver S] [--backend cpu] [--set PATH=VALUE]… [--json] [--export out.obj]
+ *   drape scenes | drape bench [...] | drape schema
+ * Bad input exits with code 2 and one line on stderr; nothing prints a stack trace.
+ */
+import { readFileSync, writeFileSync } from 'node:fs';
+import { parseArgs } from 'node:util';
+import { builtinScene, parseScene, parseSetValue, SCENE_NAMES, sceneSchema, setScenePath, Simulation, type Scene } from '../core/index.js';
+import { runBench } from './bench.js';
+import { toOBJ } from './obj.js';
+
+/** An error the user caused: printed as one line, exit code 2. */
+export class UsageError extends Error {}
+
+const HELP: Record<string, string> = {
+  main: `drape — real-time cloth simulation, headless
+
+Usage:
+  drape run [SCENE|file.json] [options]   simulate a scene and print a summary
+  drape scenes                            list the built-in scenes
+  drape bench [options]                   speed benchmark (CPU solvers against JoltPhysics.js)
+  drape schema                            print the scene JSON schema
+  drape <command> --help                  options of a command
+
+Built-in scenes: ${SCENE_NAMES.join(', ')}`,
+  run: `drape run [SCENE|file.json] [options]
+
+Simulates a built-in scene (default: custom) or a scene file for N frames of 1/60 s.
+  --frames N            frames to simulate (default 180; 0 reports the start state)
+  --solver S            xpbd | mass-spring (same as --set solver.type=S)
+  --backend B           cpu (gpu is not available in this build)
+  --set PATH=VALUE      change any scene path, e.g. material.bendStiffness=2, wind.direction=[1,0,0],
+                        colliders=[] ; VALUE is JSON when it parses, else a string (repeatable)
+  --json                print exactly one JSON object
+  --export FILE.obj     write the cloth at the last frame as Wavefront OBJ
+A scene with a resolutionSweep (e.g. 'resolution') runs once per resolution unless cloth.resolution is set.`,
+  scenes: `drape scenes [--json]\n\nLists the built-in scenes with their descriptions.`,
+  bench: `drape bench [options]
+
+Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysics.js on the same cloth.
+  --sizes A,B,…         particles per side (default 64,128)
+  --substeps N          XPBD substeps per 1/60 s frame; Jolt iterations (default 10)
+  --frames N            timed frames per run (default 120), after --warmup N frames (default 30)
+  --backend B           cpu (gpu is not available in this build)
+  --no-peer             skip JoltPhysics.js
+  --json                print exactly one JSON object`,
+  schema: `drape schema\n\nPrints the JSON schema every scene file is validated against (also published as scene.schema.json).`,
+};
+
+function intArg(name: string, raw: string | undefined, fallback: number, min: number, max: number): number {
+  if (raw === undefined) return fallback;
+  const v = Number(raw);
+  if (!Number.isInteger(v) || v < min || v > max) throw new UsageError(`--${name}: must be an integer in ${min}…${max}, got '${raw}'`);
+  return v;
+}
+
+function checkBackend(raw: string | undefined): 'cpu' {
+  if (raw === undefined || raw === 'cpu') return 'cpu';
+  if (raw === 'gpu') throw new UsageError(`--backend gpu: the WebGPU backend is not available in this build; use --backend cpu`);
+  throw new UsageError(`--backend: must be cpu or gpu, got '${raw}'`);
+}
+
+export function loadScene(arg: string | undefined): Scene {
+  const name = arg ?? 'custom';
+  if (name.endsWith('.json') || name.includes('/') || name.includes('\\')) {
+    let text: string;
+    try {
+      text = readFileSync(name, 'utf8');
+    } catch (e) {
+      const code = (e as NodeJS.ErrnoException).code;
+      throw new UsageError(`${name}: ${code === 'ENOENT' ? 'no such file' : `cannot read (${code ?? (e as Error).message})`}`);
+    }
+    return parseScene(text, name);
+  }
+  const scene = builtinScene(name);
+  if (!scene) throw new UsageError(`unknown scene '${name}' (built-in scenes: ${SCENE_NAMES.join(', ')}; or give a .json file)`);
+  return scene;
+}
+
+function applySets(scene: Scene, sets: string[]): Scene {
+  for (const s of sets) {
+    const eq = s.indexOf('=');
+    if (eq <= 0) throw new UsageError(`--set ${s}: expected PATH=VALUE`);
+    scene = setScenePath(scene, s.slice(0, eq), parseSetValue(s.slice(eq + 1)));
+  }
+  return scene;
+}
+
+const round = (v: number, digits = 6) => Number(v.toPrecision(digits));
+const vec = (v: readonly number[]) => v.map((x) => round(x));
+
+interface RunResult {
+  resolution: number;
+  particles: number;
+  triangles: number;
+  constraints: number;
+  msPerFrame: number;
+  finite: boolean;
+  maxStrain: number;
+  maxPenetration: number;
+  centroid: number[];
+  bounds: { min: number[]; max: number[] };
+  energy: { kinetic: number; gravitational: number; elastic: number };
+  clamps: string[];
+  sim: Simulation;
+}
+
+function simulate(scene: Scene, frames: number): RunResult {
+  const sim = new Simulation(scene);
+  const t0 = performance.now();
+  sim.advance(frames);
+  const ms = frames > 0 ? (performance.now() - t0) / frames : 0;
+  const r = sim.report();
+  return {
+    resolution: scene.cloth.resolution,
+    particles: r.particles,
+    triangles: r.triangles,
+    constraints: r.constraints,
+    msPerFrame: round(ms, 4),
+    finite: r.finite,
+    maxStrain: round(r.maxStrain),
+    maxPenetration: round(r.maxPenetration),
+    centroid: vec(r.centroid),
+    bounds: { min: vec(r.bounds.min), max: vec(r.bounds.max) },
+    energy: { kinetic: round(r.energy.kinetic), gravitational: round(r.energy.gravitational), elastic: round(r.energy.elastic) },
+    clamps: sim.params.clamps,
+    sim,
+  };
+}
+
+function cmdRun(argv: string[], out: (s: string) => void, err: (s: string) => void): number {
+  const { values, positionals } = parseArgs({
+    args: argv,
+    allowPositionals: true,
+    options: {
+      frames: { type: 'string' }, solver: { type: 'string' }, backend: { type: 'string' },
+      set: { type: 'string', multiple: true }, json: { type: 'boolean' }, export: { type: 'string' }, help: { type: 'boolean', short: 'h' },
+    },
+  });
+  if (values.help) { out(HELP.run); return 0; }
+  if (positionals.length > 1) throw new UsageError(`run: one scene at a time, got ${positionals.join(', ')}`);
+  const frames = intArg('frames', values.frames, 180, 0, 1_000_000);
+  const backend = checkBackend(values.backend);
+  if (values.export !== undefined && !values.export.toLowerCase().endsWith('.obj')) throw new UsageError(`--export: only .obj files are supported, got '${values.export}'`);
+  let scene = loadScene(positionals[0]);
+  const sets = values.set ?? [];
+  if (values.solver !== undefined) sets.unshift(`solver.type=${values.solver}`);
+  scene = applySets(scene, sets);
+
+  const sweep = scene.resolutionSweep && !sets.some((s) => s.startsWith('cloth.resolution=') || s.startsWith('cloth=')) ? scene.resolutionSweep : undefined;
+  const main = simulate(scene, frames);
+  const sweepRuns = sweep?.map((resolution) => simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames));
+
+  if (values.export) writeFileSync(values.export, toOBJ(main.sim.model, main.sim.state, scene.name));
+  const { sim: _sim, resolution: _r, clamps, ...fields } = main;
+  if (values.json) {
+    out(JSON.stringify({
+      scene: scene.name, solver: scene.solver.type, backend, frames, substeps: scene.solver.substeps, ...fields, clamps,
+      ...(sweepRuns ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.resolution ** 2, ...r })) } : {}),
+      ...(values.export ? { exported: values.export } : {}),
+    }));
+    return 0;
+  }
+  for (const c of clamps) err(`drape: note: ${c}`);
+  const f = (v: number) => (Math.abs(v) < 1e-3 && v !== 0 ? v.toExponential(2) : v.toFixed(4));
+  out(`scene ${scene.name}: ${scene.solver.type} on ${backend}, ${scene.solver.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
+  out(`  cloth        ${main.particles} particles, ${main.triangles} triangles, ${main.constraints} springs`);
+  out(`  speed        ${main.msPerFrame.toFixed(3)} ms per frame`);
+  out(`  finite       ${main.finite ? 'yes' : 'NO'}`);
+  out(`  max strain   ${(main.maxStrain * 100).toFixed(2)} % (structural)`);
+  out(`  penetration  ${(main.maxPenetration * 1000).toFixed(3)} mm`);
+  out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
+  out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J`);
+  if (sweepRuns) {
+    out(`  resolution sweep (faces → resting height of the centroid):`);
+    for (const r of sweepRuns) out(`    ${String(r.resolution ** 2).padStart(5)} faces  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);
+  }
+  if (values.export) out(`  exported     ${values.export}`);
+  return 0;
+}
+
+function cmdScenes(argv: string[], out: (s: string) => void): number {
+  const { values } = parseArgs({ args: argv, options: { json: { type: 'boolean' }, help: { type: 'boolean', short: 'h' } } });
+  if (values.help) { out(HELP.scenes); return 0; }
+  const list = SCENE_NAMES.map((name) => ({ name, description: builtinScene(name)!.description ?? '' }));
+  if (values.json) out(JSON.stringify(list));
+  else for (const s of list) out(`${s.name.padEnd(16)}${s.description}`);
+  return 0;
+}
+
+async function cmdBench(argv: string[], out: (s: string) => void): Promise<number> {
+  const { values } = parseArgs({
+    args: argv,
+    options: {
+      sizes: { type: 'string' }, substeps: { type: 'string' }, frames: { type: 'string' }, warmup: { type: 'string' },
+      backend: { type: 'string' }, 'no-peer': { type: 'boolean' }, json: { type: 'boolean' }, help: { type: 'boolean', short: 'h' },
+    },
+  });
+  if (values.help) { out(HELP.bench); return 0; }
+  checkBackend(values.backend);
+  const sizes = (values.sizes ?? '64,128').split(',').map((s) => intArg('sizes', s.trim(), 0, 2, 1025));
+  await runBench({
+    sizes,
+    substeps: intArg('substeps', values.substeps, 10, 1, 200),
+    frames: intArg('frames', values.frames, 120, 1, 100_000),
+    warmup: intArg('warmup', values.warmup, 30, 0, 100_000),
+    peer: !values['no-peer'],
+    json: values.json ?? false,
+  }, out);
+  return 0;
+}
+
+/** Runs the CLI; returns the exit code. Output goes through `out`/`err` so tests can capture it. */
+export async function main(argv: string[], out: (s: string) => void = console.log, err: (s: string) => void = console.error): Promise<number> {
+  const [cmd, ...rest] = argv;
+  try {
+    switch (cmd) {
+      case undefined: case 'help': case '--help': case '-h': out(HELP.main); return 0;
+      case '--version': case '-v': out(JSON.parse(readFileSync(new URL('../../package.json', import.meta.url), 'utf8')).version); return 0;
+      case 'run': return cmdRun(rest, out, err);
+      case 'scenes': return cmdScenes(rest, out);
+      case 'bench': return await cmdBench(rest, out);
+      case 'schema':
+        if (rest.includes('--help') || rest.includes('-h')) { out(HELP.schema); return 0; }
+        if (rest.length) throw new UsageError(`schema: takes no arguments, got ${rest.join(' ')}`);
+        out(JSON.stringify(sceneSchema, null, 2)); return 0;
+      default: throw new UsageError(`unknown command '${cmd}' (commands: run, scenes, bench, schema; try drape --help)`);
+    }
+  } catch (e) {
+    const error = e as Error & { code?: string };
+    // parseArgs' own errors (unknown option, missing value) and ours are the user's to fix: one line, exit 2
+    if (e instanceof UsageError || error.name === 'SceneError' || error.code?.startsWith('ERR_PARSE_ARGS')) {
+      // parseArgs appends advice after the first sentence; the first sentence names the problem
+      const line = error.message.split('\n')[0];
+      err(`drape: ${error.code?.startsWith('ERR_PARSE_ARGS') ? line.split('. ')[0] : line}`);
+      return 2;
+    }
+    err(`drape: internal error: ${error.message.split('\n')[0]}`);
+    return 1;
+  }
+}

@@ -1,0 +1,58 @@
+import { describe, expect, it } from 'vitest';
+import { pickParticle } from './pick.js';
+import { presetParticles, resolvePins } from './pins.js';
+import { builtinScene } from './scenes.js';
+import { Simulation } from './simulation.js';
+import { setPinned } from './state.js';
+
+describe('picking, pins and live changes', () => {
+  const sim = () => new Simulation(builtinScene('custom')!); // 33×33 horizontal cloth at y = 1.2
+
+  it('a ray from above picks the particle under it; a ray beside the cloth misses', () => {
+    const s = sim();
+    const p = 17 * 33 + 5;
+    const [x, , z] = s.state.positions.subarray(3 * p, 3 * p + 3);
+    const hit = pickParticle(s.model, s.state, [x + 0.004, 5, z - 0.003], [0, -1, 0])!;
+    expect(hit.particle).toBe(p);
+    expect(hit.point[1]).toBeCloseTo(1.2, 5);
+    expect(hit.t).toBeCloseTo(3.8, 5);
+    expect(pickParticle(s.model, s.state, [2, 5, 0], [0, -1, 0])).toBeNull();
+    expect(pickParticle(s.model, s.state, [x, 5, z], [0, 1, 0])).toBeNull(); // pointing away
+  });
+
+  it('pin presets name the corners, the centre and the edges', () => {
+    const s = sim();
+    expect(presetParticles(s.model, 'top-left')).toEqual([0]);
+    expect(presetParticles(s.model, 'bottom-right')).toEqual([33 * 33 - 1]);
+    expect(presetParticles(s.model, 'center')).toEqual([16 * 33 + 16]);
+    expect(presetParticles(s.model, 'left-edge')).toHaveLength(33);
+    expect(resolvePins(s.model, ['top-left', 0, 'top-right'])).toEqual([0, 32]);
+  });
+
+  it('a particle pinned at run time stops, and moves again when unpinned', () => {
+    const s = sim();
+    s.advance(5);
+    setPinned(s.state, 100, true);
+    const y = s.state.positions[301];
+    s.advance(10);
+    expect(s.state.positions[301]).toBe(y);
+    setPinned(s.state, 100, false);
+    s.advance(10);
+    expect(s.state.positions[301]).toBeLessThan(y);
+  });
+
+  it('stiffness, wind and pins change on the next step; resolution rebuilds the cloth', () => {
+    const s = sim();
+    const model = s.model;
+    expect(s.set('material.bendStiffness', 5)).toBe(false);
+    expect(s.set('wind.enabled', true)).toBe(false);
+    expect(s.set('pins', ['center'])).toBe(false);
+    expect(s.model).toBe(model);
+    expect(s.state.pinned[16 * 33 + 16]).toBe(1);
+    expect(s.set('cloth.resolution', 8)).toBe(true);
+    expect(s.model.particleCount).toBe(81);
+    expect(s.state.pinned[40]).toBe(1); // the centre pin follows the new grid
+    expect(() => s.set('material.mass', -1)).toThrow(/material\.mass: must be >= 0\.001/);
+    expect(s.scene.material.mass).toBeGreaterThan(0); // a rejected change leaves the scene as it was
+  });
+});

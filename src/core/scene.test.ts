@@ -1,0 +1,81 @@
+import { readFileSync } from 'node:fs';
+import { describe, expect, it } from 'vitest';
+import { defaultScene, parseScene, parseSetValue, SceneError, setScenePath, validateScene } from './scene.js';
+import { sceneSchema } from './scene-schema.js';
+import { builtinScene, SCENE_NAMES } from './scenes.js';
+
+const rejects = (doc: unknown, field: RegExp) => {
+  expect(() => validateScene(doc)).toThrow(SceneError);
+  expect(() => validateScene(doc)).toThrow(field);
+};
+
+describe('scenes', () => {
+  it('every built-in scene validates, with the seed presets among them', () => {
+    for (const name of ['cotton-basic', 'silk-drape', 'leather-stiff', 'rubber-stretch', 'custom', 'wind', 'pins', 'resolution']) {
+      expect(SCENE_NAMES).toContain(name);
+      expect(builtinScene(name)!.name).toBe(name);
+    }
+    expect(builtinScene('nope')).toBeUndefined();
+  });
+
+  it('an empty document is a full scene with every default from the schema', () => {
+    const s = defaultScene();
+    expect(s.cloth.resolution).toBe(sceneSchema.properties.cloth.properties.resolution.default);
+    expect(s.material.mass).toBe(sceneSchema.properties.material.properties.mass.default);
+    expect(s.solver.type).toBe('xpbd');
+    expect(s.colliders.map((c) => c.type)).toEqual(['sphere', 'floor']);
+    expect(s.wind.gusts.enabled).toBe(false);
+  });
+
+  it('the paths the CLI documents for --set all exist', () => {
+    const s = defaultScene() as unknown as Record<string, Record<string, unknown>>;
+    for (const path of ['cloth.resolution', 'cloth.width', 'cloth.height', 'material.structuralStiffness', 'material.shearStiffness',
+      'material.bendStiffness', 'material.damping', 'material.mass', 'material.stretchFactor', 'material.friction', 'solver.type',
+      'solver.substeps', 'wind.enabled', 'wind.strength', 'wind.direction', 'gravity', 'colliders', 'pins']) {
+      const [a, b] = path.split('.');
+      expect(b === undefined ? s[a] : s[a][b], path).not.toBeUndefined();
+    }
+  });
+
+  it('bad scenes are rejected with the field named', () => {
+    rejects({ material: { bendStifness: 1 } }, /material\.bendStifness: unknown key/);
+    rejects({ cloth: { resolution: 2000 } }, /cloth\.resolution: must be <= 1024/);
+    rejects({ cloth: { resolution: 2.5 } }, /cloth\.resolution: must be integer/);
+    rejects({ material: { mass: 'heavy' } }, /material\.mass: must be number/);
+    rejects({ solver: { type: 'euler' } }, /solver\.type: must be one of "xpbd", "mass-spring"/);
+    rejects({ gravity: [0, -9.81] }, /gravity: must NOT have fewer than 3 items/);
+    rejects({ colliders: [{ type: 'sphere', radius: -1 }] }, /colliders\[0\]\.radius: must be >= 0\.001/);
+    rejects({ colliders: [{ type: 'cube' }] }, /colliders\[0\]\.type: must be one of/);
+    rejects({ pins: ['middle'] }, /pins\[0\]: must be one of top-left/);
+    rejects({ pins: [5000] }, /pins\[0\]: particle 5000 does not exist/);
+    rejects({ wat: 1 }, /wat: unknown key/);
+    rejects([1, 2], /must be a JSON object/);
+  });
+
+  it('malformed JSON is a one-line error, not a stack trace', () => {
+    expect(() => parseScene('{"cloth": {', 'my.json')).toThrow(/^my\.json: malformed JSON/);
+    const e = (() => { try { parseScene('{ nope }'); } catch (err) { return err as Error; } })()!;
+    expect(e.message.split('\n')).toHaveLength(1);
+  });
+
+  it('--set values are JSON when they parse and strings otherwise; paths are validated', () => {
+    expect(parseSetValue('3')).toBe(3);
+    expect(parseSetValue('[1,0,0]')).toEqual([1, 0, 0]);
+    expect(parseSetValue('true')).toBe(true);
+    expect(parseSetValue('mass-spring')).toBe('mass-spring');
+    const s = defaultScene();
+    expect(setScenePath(s, 'material.bendStiffness', 2).material.bendStiffness).toBe(2);
+    expect(setScenePath(s, 'colliders[0].radius', 0.5).colliders[0]).toMatchObject({ radius: 0.5 });
+    expect(setScenePath(s, 'colliders', []).colliders).toEqual([]);
+    expect(s.material.bendStiffness).not.toBe(2); // the input is not changed
+    expect(() => setScenePath(s, 'material.nope', 1)).toThrow(/material\.nope: unknown key/);
+    expect(() => setScenePath(s, 'cloth.resolution', 'fine')).toThrow(/cloth\.resolution: must be integer/);
+    expect(() => setScenePath(s, 'gravity.x', 1)).toThrow(SceneError);
+    expect(() => setScenePath(s, '__proto__.x', 1)).toThrow(/not a scene path/);
+  });
+
+  it('scene.schema.json at the repository root is the schema in the code', () => {
+    const file = JSON.parse(readFileSync(new URL('../../scene.schema.json', import.meta.url), 'utf8'));
+    expect(file).toEqual(JSON.parse(JSON.stringify(sceneSchema)));
+  });
+});

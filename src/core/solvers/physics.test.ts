@@ -1,0 +1,213 @@
+/**
+ * Physics tests, run for every CPU solver. Each asserts a physical law or an invariant of the model, with a
+ * tolerance that comes from the numbers (float32 round-off, discretisation), not from what the code happens to do.
+ */
+import { describe, expect, it } from 'vitest';
+import { buildModel } from '../model.js';
+import { FRAME_DT, resolveParams } from '../params.js';
+import { validateScene, type Scene, type SolverType } from '../scene.js';
+import { builtinScene, SCENE_NAMES } from '../scenes.js';
+import { Simulation } from '../simulation.js';
+import { createState, grab, release, setPinned } from '../state.js';
+import { step } from './index.js';
+import { sceneSchema } from '../scene-schema.js';
+
+const SOLVER_TYPES: SolverType[] = ['xpbd', 'mass-spring'];
+
+function scene(name: string, edit: (s: Scene) => void = () => {}): Scene {
+  const s = builtinScene(name)!;
+  edit(s);
+  return s;
+}
+
+describe.each(SOLVER_TYPES)('%s solver', (solver) => {
+  it('free fall matches y0 − ½gt² (Verlet with a Taylor start is exact for constant acceleration)', () => {
+    // one substep per frame keeps float32 round-off (~ε·N^1.5) near 1e-4 m, while a wrong start would be off by
+    // ½·g·h·t = 8 cm after 1 s
+    const sim = new Simulation(scene('custom', (s) => { s.colliders = []; s.solver = { type: solver, substeps: 1, iterations: 1 }; s.cloth.resolution = 2; }));
+    const y0 = sim.state.positions[1];
+    sim.advance(60);
+    const exact = y0 - 0.5 * 9.81 * 1 * 1;
+    for (let i = 0; i < sim.model.particleCount; i++) expect(Math.abs(sim.state.positions[3 * i + 1] - exact)).toBeLessThan(2e-4);
+  });
+
+  it('free fall with 20 substeps stays within the float32 round-off bound', () => {
+    const sim = new Simulation(scene('custom', (s) => { s.colliders = []; s.solver.type = solver; s.cloth.resolution = 2; }));
+    const y0 = sim.state.positions[1];
+    sim.advance(60);
+    const n = 60 * sim.params.substeps;
+    const bound = 4 * 2 ** -24 * Math.pow(n, 1.5); // ~ulp(4 m)·N^1.5
+    expect(Math.abs(sim.state.positions[1] - (y0 - 0.5 * 9.81))).toBeLessThan(bound);
+    expect(bound).toBeLessThan(0.02);
+  });
+
+  it.each([[100, 1], [2000, 0.2], [50, 4]])('a mass on a spring (k=%d N/m, M=%d kg) keeps its period 2π√(m/k) within 1%%', (k, M) => {
+    // two particles joined by one structural spring; particle 0 pinned, so the free one has m = M/2
+    const model = buildModel({
+      restPositions: new Float32Array([0, 0, 0, 1, 0, 0]),
+      triangles: new Uint32Array(0),
+      springs: [new Uint32Array([0, 1]), new Uint32Array(0), new Uint32Array(0)],
+    });
+    // step one substep of h = 1/1200 s at a time so zero crossings are sampled finely
+    const h = FRAME_DT / 20;
+    const sc = validateScene({ solver: { type: solver, substeps: 1 }, gravity: [0, 0, 0], colliders: [], material: { structuralStiffness: k, mass: M, damping: 0, stretchFactor: 2 } });
+    const params = resolveParams(model, sc, h);
+    expect(params.clamps).toEqual([]);
+    const state = createState(model);
+    setPinned(state, 0, true);
+    state.positions[3] = state.previousPositions[3] = 1.05;
+    // XPBD is implicit-Euler-like and damps a stiff oscillator within a few periods, so time the first four
+    const expected = 2 * Math.PI * Math.sqrt(M / 2 / k);
+    const crossings: number[] = [];
+    let prev = 0.05, t = 0;
+    while (crossings.length < 9) {
+      step(model, state, params, h);
+      t += h;
+      const d = state.positions[3] - 1;
+      if ((prev > 0 && d <= 0) || (prev < 0 && d >= 0)) crossings.push(t - (h * d) / (d - prev));
+      prev = d;
+      expect(t).toBeLessThan(10 * expected); // it does oscillate
+    }
+    const period = (2 * (crossings[crossings.length - 1] - crossings[0])) / (crossings.length - 1);
+    expect(Math.abs(period / expected - 1)).toBeLessThan(0.01);
+  });
+
+  it('pinned particles never move', () => {
+    const sim = new Simulation(scene('pins', (s) => { s.solver.type = solver; s.cloth.resolution = 16; s.wind.enabled = true; }));
+    const pinned = [...sim.state.pinned.keys()].filter((i) => sim.state.pinned[i]);
+    expect(pinned.length).toBe(4);
+    const before = pinned.map((i) => [...sim.state.positions.subarray(3 * i, 3 * i + 3)]);
+    sim.advance(120);
+    pinned.forEach((i, k) => expect([...sim.state.positions.subarray(3 * i, 3 * i + 3)]).toEqual(before[k]));
+  });
+
+  it("a hanging cotton cloth's structural strain stays under its stretch factor", () => {
+    const sim = new Simulation(scene('cotton-basic', (s) => {
+      s.solver.type = solver;
+      s.cloth = { ...s.cloth, orientation: 'hanging', position: [0, 1.5, 0], resolution: 24 };
+      s.colliders = [];
+      s.pins = ['top-left', 'top-right'];
+    }));
+    let worst = 0;
+    for (let f = 0; f < 180; f++) {
+      sim.advance(1);
+      if (f > 30) worst = Math.max(worst, sim.report().maxStrain);
+    }
+    expect(sim.report().finite).toBe(true);
+    // the limit is enforced by Gauss–Seidel projection: allow 0.1 percentage point of residual
+    expect(worst).toBeLessThan(sim.scene.material.stretchFactor - 1 + 1e-3);
+  });
+
+  it('a cloth dropped on the sphere comes to rest on it: penetration ≤ 1 mm, kinetic energy decaying', () => {
+    const sim = new Simulation(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 20; }));
+    const ke: number[] = [];
+    for (let second = 0; second < 4; second++) {
+      sim.advance(60);
+      ke.push(sim.report().energy.kinetic);
+    }
+    const r = sim.report();
+    expect(r.maxPenetration).toBeLessThanOrEqual(1e-3);
+    expect(ke[3]).toBeLessThan(ke[1]);
+    expect(ke[3]).toBeLessThan(1e-3 * 0.12 * 9.81); // < 0.1% of m·g·(1 m)
+    expect(r.centroid[1]).toBeGreaterThan(0.4); // on the sphere (top at 0.8 m), not on the floor
+  });
+
+  it('a 1-face cloth dropped centred on the sphere rests on it (triangle contact, not only particles)', () => {
+    const sim = new Simulation(scene('resolution', (s) => { s.solver.type = solver; s.cloth.resolution = 1; }));
+    sim.advance(180);
+    const r = sim.report();
+    expect(r.maxPenetration).toBeLessThanOrEqual(1e-3);
+    expect(r.centroid[1]).toBeGreaterThan(0.75); // sphere top at 0.8 m; falling through would end near the floor
+  });
+
+  it('wind pushes the cloth along the wind', () => {
+    for (const dir of [1, -1]) {
+      const sim = new Simulation(scene('wind', (s) => {
+        s.solver.type = solver;
+        s.cloth.resolution = 12;
+        s.pins = ['top-edge'];
+        s.wind = { ...s.wind, direction: [0, 0, dir], gusts: { ...s.wind.gusts, enabled: false } };
+      }));
+      const z0 = sim.report().centroid[2];
+      sim.advance(90);
+      expect(dir * (sim.report().centroid[2] - z0)).toBeGreaterThan(0.1);
+    }
+  });
+
+  it('total energy never grows without wind or grabbing', () => {
+    const sim = new Simulation(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 16; }));
+    const total = () => { const e = sim.report().energy; return e.kinetic + e.gravitational + e.elastic; };
+    const e0 = total();
+    let prev = e0;
+    for (let f = 0; f < 240; f++) {
+      sim.advance(1);
+      const e = total();
+      // slack: contact push-out can lift a particle by what it sank within one substep (measured ≤ 1e-5·E0)
+      expect(e).toBeLessThanOrEqual(prev + 1e-4 * Math.abs(e0));
+      prev = e;
+    }
+    expect(prev).toBeLessThan(e0);
+  });
+
+  it('a grabbed particle follows its target, and the cloth keeps its momentum when released', () => {
+    // weightless free cloth: grab the middle particle and carry it up 2 cm per frame for 10 frames
+    const sim = new Simulation(scene('custom', (s) => { s.solver.type = solver; s.cloth.resolution = 8; s.gravity = [0, 0, 0]; s.colliders = []; }));
+    const p = 40; // the middle particle of the 9×9 grid
+    const target: [number, number, number] = [...sim.state.positions.subarray(3 * p, 3 * p + 3)] as [number, number, number];
+    for (let f = 0; f < 10; f++) {
+      target[1] += 0.02;
+      grab(sim.state, p, target);
+      sim.advance(1);
+      [0, 1, 2].forEach((k) => expect(sim.state.positions[3 * p + k]).toBeCloseTo(target[k], 5));
+    }
+    expect(sim.state.velocities[3 * p + 1]).toBeCloseTo(0.02 / FRAME_DT, 1); // carried at 1.2 m/s
+    release(sim.state);
+    const y0 = sim.report().centroid[1];
+    sim.advance(10);
+    expect(sim.report().centroid[1] - y0).toBeGreaterThan(0.05); // still moving up after release
+    expect(sim.state.pinned[p]).toBe(0);
+  });
+
+  it('200 random parameter sets from the documented ranges stay finite and bounded', () => {
+    let seed = 12345;
+    const rnd = () => ((seed = (Math.imul(seed, 1664525) + 1013904223) >>> 0) / 2 ** 32);
+    const range = (lo: number, hi: number, log = false) => (log ? Math.exp(Math.log(lo) + rnd() * (Math.log(hi) - Math.log(lo))) : lo + rnd() * (hi - lo));
+    const mat = sceneSchema.properties.material.properties;
+    for (let trial = 0; trial < 200; trial++) {
+      const sc = builtinScene(SCENE_NAMES[trial % SCENE_NAMES.length])!;
+      sc.solver = { type: solver, substeps: Math.round(range(1, 40)), iterations: Math.round(range(1, 3)) };
+      sc.cloth.resolution = Math.round(range(1, 12));
+      sc.material = {
+        structuralStiffness: range(mat.structuralStiffness.minimum, mat.structuralStiffness.maximum, true),
+        shearStiffness: range(0.01, mat.shearStiffness.maximum, true),
+        bendStiffness: range(0.001, mat.bendStiffness.maximum, true),
+        damping: range(0, mat.damping.maximum),
+        mass: range(mat.mass.minimum, mat.mass.maximum, true),
+        stretchFactor: range(1, 2),
+        friction: range(0, 2),
+        staticFriction: range(0, 2),
+        scaleWithResolution: rnd() < 0.5,
+      };
+      sc.gravity = [range(-50, 50) * 0.2, range(-50, 50), range(-50, 50) * 0.2];
+      sc.wind = { ...sc.wind, enabled: rnd() < 0.5, strength: range(0, 30), direction: [range(-1, 1), range(-1, 1), range(-1, 1)] };
+      const sim = new Simulation(sc);
+      const start = sim.report().centroid;
+      sim.advance(30);
+      const r = sim.report();
+      const label = JSON.stringify({ trial, solver: sc.solver, res: sc.cloth.resolution, material: sc.material });
+      expect(r.finite, label).toBe(true);
+      const size = sim.model.size;
+      for (const b of [r.bounds.min, r.bounds.max]) for (let k = 0; k < 3; k++) expect(Math.abs(b[k] - start[k]), label).toBeLessThan(50 * size);
+    }
+  });
+});
+
+describe('scene behaviour shared by both solvers', () => {
+  it('every built-in scene runs finite with both solvers', () => {
+    for (const name of SCENE_NAMES) for (const solver of SOLVER_TYPES) {
+      const sim = new Simulation(scene(name, (s) => { s.solver.type = solver; s.cloth.resolution = Math.min(s.cloth.resolution, 12); }));
+      sim.advance(30);
+      expect(sim.report().finite, `${name}/${solver}`).toBe(true);
+    }
+  });
+});
