@@ -14,10 +14,16 @@ const wind = new Float64Array(3);
 const normal = new Float64Array(3);
 const bary = new Float64Array(3);
 
-/** Start of a step: effective inverse masses, and tethers if the pins changed. */
-export function beginStep(model: ClothModel, state: ClothState, params: SimParams): void {
+/**
+ * Start of a step of substep length h: effective inverse masses, tethers if the pins changed, and previous
+ * positions x − h·v so that the substeps can run position Verlet from the stored velocities (whatever the last
+ * step's substep length was).
+ */
+export function beginStep(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
   refreshInverseMasses(state, params);
   if (state.tethersStale) updateTethers(model, state);
+  const x = state.positions, xp = state.previousPositions, v = state.velocities;
+  for (let j = 0; j < x.length; j++) xp[j] = x[j] - h * v[j];
 }
 
 /** Effective inverse masses for this step: 0 for pinned and grabbed particles. */
@@ -42,7 +48,8 @@ export function accumulateWind(model: ClothModel, state: ClothState, params: Sim
   const f = state.forces;
   f.fill(0);
   windVelocity(params, t, wind);
-  const x = state.positions, v = state.velocities, tri = model.triangles;
+  const x = state.positions, xp = state.previousPositions, tri = model.triangles;
+  const inv3h = 1 / (3 * h);
   const k = (0.25 * params.wind.airDensity) / 3; // ½ρ·|v|·(v·n)·area, area = |N|/2, shared by 3 particles
   const im = params.particleInvMass;
   // cap per particle share: m̄·|v·n|/(2h)/3 with m̄ ≈ 3/Σw (harmonic mean of the three masses)
@@ -54,9 +61,10 @@ export function accumulateWind(model: ClothModel, state: ClothState, params: Sim
     const nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx; // |N| = 2·area
     const nl = Math.sqrt(nx * nx + ny * ny + nz * nz);
     if (nl < 1e-20) continue;
-    const rx = wind[0] - (v[a] + v[b] + v[c]) / 3;
-    const ry = wind[1] - (v[a + 1] + v[b + 1] + v[c + 1]) / 3;
-    const rz = wind[2] - (v[a + 2] + v[b + 2] + v[c + 2]) / 3;
+    // triangle velocity over the last substep: (Σ (x − x_prev))/(3h)
+    const rx = wind[0] - (x[a] - xp[a] + x[b] - xp[b] + x[c] - xp[c]) * inv3h;
+    const ry = wind[1] - (x[a + 1] - xp[a + 1] + x[b + 1] - xp[b + 1] + x[c + 1] - xp[c + 1]) * inv3h;
+    const rz = wind[2] - (x[a + 2] - xp[a + 2] + x[b + 2] - xp[b + 2] + x[c + 2] - xp[c + 2]) * inv3h;
     const speed = Math.sqrt(rx * rx + ry * ry + rz * rz);
     const vn = (rx * nx + ry * ny + rz * nz) / nl; // relative air speed along the unit normal
     // per-particle force along the unit normal, and its cap
@@ -73,30 +81,31 @@ export function accumulateWind(model: ClothModel, state: ClothState, params: Sim
 }
 
 /**
- * Position Verlet written with velocities: x ← x + h·v + c·h²·a, with a = g + w·f, previous ← x.
- * With v = (x − x_prev)/h this is x(t+h) = 2x(t) − x(t−h) + a·h². The very first substep starts from rest with
- * the Taylor term c = ½, which makes the integrator exact for constant acceleration (x = x₀ + ½at²).
- * Particles with zero inverse mass do not move.
+ * Position Verlet: x(t+h) = 2x(t) − x(t−h) + c·h²·a with a = g + w·f, and previous ← x(t). The very first substep
+ * starts from rest with the Taylor term c = ½, which makes the integrator exact for constant acceleration
+ * (x = x₀ + ½at²). Particles with zero inverse mass do not move (and get zero velocity).
  */
 export function integrate(state: ClothState, params: SimParams, h: number, withForces: boolean): void {
-  const x = state.positions, xp = state.previousPositions, v = state.velocities, w = state.invMass, f = state.forces;
+  const x = state.positions, xp = state.previousPositions, w = state.invMass, f = state.forces;
   const c = state.substeps === 0 ? 0.5 : 1;
   const h2 = c * h * h;
   const gx = params.gravity[0] * h2, gy = params.gravity[1] * h2, gz = params.gravity[2] * h2;
-  xp.set(x);
   const n = w.length;
   for (let i = 0; i < n; i++) {
-    const wi = w[i];
-    if (wi === 0) continue;
     const j = 3 * i;
-    let ax = gx, ay = gy, az = gz;
-    if (withForces) {
-      const s = wi * h2;
-      ax += f[j] * s; ay += f[j + 1] * s; az += f[j + 2] * s;
+    const x0 = x[j], y0 = x[j + 1], z0 = x[j + 2];
+    const wi = w[i];
+    if (wi !== 0) {
+      let ax = gx, ay = gy, az = gz;
+      if (withForces) {
+        const s = wi * h2;
+        ax += f[j] * s; ay += f[j + 1] * s; az += f[j + 2] * s;
+      }
+      x[j] = x0 + (x0 - xp[j]) + ax;
+      x[j + 1] = y0 + (y0 - xp[j + 1]) + ay;
+      x[j + 2] = z0 + (z0 - xp[j + 2]) + az;
     }
-    x[j] += h * v[j] + ax;
-    x[j + 1] += h * v[j + 1] + ay;
-    x[j + 2] += h * v[j + 2] + az;
+    xp[j] = x0; xp[j + 1] = y0; xp[j + 2] = z0;
   }
 }
 
@@ -145,7 +154,7 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams)
     for (let i = 0; i < n; i++) {
       if (w[i] === 0) continue;
       const j = 3 * i;
-      const d = shape.signedDistance(x[j], x[j + 1], x[j + 2], normal);
+      const d = shape.signedDistance(x[j], x[j + 1], x[j + 2], normal, th);
       if (d >= th) continue;
       const depth = th - d;
       x[j] += depth * normal[0];
@@ -165,7 +174,7 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams)
     for (let t = 0; t < tri.length; t += 3) {
       const a = tri[t], b = tri[t + 1], c = tri[t + 2];
       // every point of a triangle stretched at most 2× lies within `reach` of vertex a
-      if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal) > reach) continue;
+      if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal, reach) > reach) continue;
       const d = triangleDeepest.call(shape, x, 3 * a, x, 3 * b, x, 3 * c, bary, normal);
       if (d >= th) continue;
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
@@ -190,7 +199,10 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams)
   }
 }
 
-/** v = (x − x_prev) / h for every particle (pinned ones get 0, a grabbed one the velocity it is carried with). */
+/**
+ * End of a step: v = (x − x_prev)/h of the last substep for every particle (pinned ones get 0, a grabbed one the
+ * velocity it is carried with).
+ */
 export function updateVelocities(state: ClothState, h: number): void {
   const x = state.positions, xp = state.previousPositions, v = state.velocities;
   const inv = 1 / h;

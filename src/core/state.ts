@@ -9,7 +9,7 @@ export interface ClothState {
   readonly positions: Float32Array;
   /** positions at the start of the last substep [m], stride 3 */
   readonly previousPositions: Float32Array;
-  /** velocities [m/s], stride 3 */
+  /** velocities at the end of the last step [m/s], stride 3 (a step derives them from positions) */
   readonly velocities: Float32Array;
   /** 1 where a particle is pinned (does not move), else 0 */
   readonly pinned: Uint8Array;

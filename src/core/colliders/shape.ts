@@ -11,9 +11,10 @@ export interface ColliderShape {
   readonly minCurvatureRadius: number;
   /**
    * Signed distance of point p from the surface [m] (negative inside), and the outward unit normal of the
-   * closest surface point written to `normal[0..2]`.
+   * closest surface point written to `normal[0..2]`. With `within`, a shape may return any value ≥ `within`
+   * without writing the normal when the point is at least that far away (the contact loop's early out).
    */
-  signedDistance(px: number, py: number, pz: number, normal: Float64Array): number;
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array, within?: number): number;
   /**
    * Deepest point of triangle (a, b, c) with respect to this shape, for shapes whose surface can poke through a
    * triangle between its vertices (a sphere can; a half-space cannot, so it leaves this undefined).

@@ -58,9 +58,12 @@ export class SphereCollider implements ColliderShape {
     /** radius [m] */ readonly radius: number,
   ) {}
 
-  signedDistance(px: number, py: number, pz: number, normal: Float64Array): number {
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
     const dx = px - this.cx, dy = py - this.cy, dz = pz - this.cz;
-    const d = Math.sqrt(dx * dx + dy * dy + dz * dz);
+    const d2 = dx * dx + dy * dy + dz * dz;
+    const far = this.radius + within;
+    if (far > 0 && d2 >= far * far) return within;
+    const d = Math.sqrt(d2);
     if (d > 1e-12) {
       normal[0] = dx / d; normal[1] = dy / d; normal[2] = dz / d;
     } else {

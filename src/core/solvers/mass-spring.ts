@@ -12,12 +12,13 @@ import type { ClothState } from '../state.js';
 import { solveTethers } from '../tethers.js';
 
 /**
- * Spring forces [N] added to state.forces: F_a = −(k·(|d| − L) + c·(v_a − v_b)·d̂)·d̂, F_b = −F_a with d = x_a − x_b.
+ * Spring forces [N] added to state.forces: F_a = −(k·(|d| − L) + c·(v_a − v_b)·d̂)·d̂, F_b = −F_a with d = x_a − x_b,
+ * velocities v = (x − x_prev)/h of the last substep.
  */
-export function accumulateSpringForces(model: ClothModel, state: ClothState, params: SimParams): void {
-  const x = state.positions, v = state.velocities, f = state.forces;
+export function accumulateSpringForces(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
+  const x = state.positions, xp = state.previousPositions, f = state.forces;
   const springs = model.springs, rest = model.restLengths, k = params.stiffness;
-  const c = params.damping;
+  const c = params.damping / h;
   const m = rest.length;
   for (let s = 0; s < m; s++) {
     const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
@@ -26,7 +27,7 @@ export function accumulateSpringForces(model: ClothModel, state: ClothState, par
     if (len < 1e-12) continue;
     const inv = 1 / len;
     const nx = dx * inv, ny = dy * inv, nz = dz * inv;
-    const rv = (v[a] - v[b]) * nx + (v[a + 1] - v[b + 1]) * ny + (v[a + 2] - v[b + 2]) * nz;
+    const rv = (x[a] - xp[a] - x[b] + xp[b]) * nx + (x[a + 1] - xp[a + 1] - x[b + 1] + xp[b + 1]) * ny + (x[a + 2] - xp[a + 2] - x[b + 2] + xp[b + 2]) * nz;
     const mag = -(k[s] * (len - rest[s]) + c * rv);
     const fx = mag * nx, fy = mag * ny, fz = mag * nz;
     f[a] += fx; f[a + 1] += fy; f[a + 2] += fz;
@@ -63,19 +64,19 @@ export function limitStretch(model: ClothModel, state: ClothState, params: SimPa
 export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
   const n = params.substeps;
   const h = dt / n;
-  beginStep(model, state, params);
+  beginStep(model, state, params, h);
   const g = state.grabbed, x = state.positions;
   const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
   for (let sub = 0; sub < n; sub++) {
     if (!accumulateWind(model, state, params, state.time, h)) state.forces.fill(0);
-    accumulateSpringForces(model, state, params);
+    accumulateSpringForces(model, state, params, h);
     integrate(state, params, h, true);
     moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
     solveTethers(state, params);
     for (let it = 0; it < params.iterations; it++) limitStretch(model, state, params);
     collide(model, state, params);
-    updateVelocities(state, h);
     state.time += h;
     state.substeps++;
   }
+  updateVelocities(state, h);
 }

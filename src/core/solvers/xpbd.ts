@@ -45,24 +45,26 @@ export function solveDistanceConstraints(
       const dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
       const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
       if (len < 1e-12) continue;
-      const inv = 1 / len;
-      const nx = dx * inv, ny = dy * inv, nz = dz * inv;
       const alphaT = alpha * invH2;
       const gamma = alpha * betaOverH;
+      // one division: q = 1/(len·D) gives both 1/D = len·q and 1/len = D·q
+      const D = (1 + gamma) * wsum + alphaT;
+      const q = 1 / (len * D);
       const lambda = accumulate ? lambdas[s] : 0;
-      const denom = 1 / ((1 + gamma) * wsum + alphaT);
-      const dlElastic = (rest[s] - len - alphaT * lambda) * denom;
+      const dlElastic = (rest[s] - len - alphaT * lambda) * len * q;
       let dl = dlElastic;
       if (gamma > 0) {
-        dl -= gamma * denom * (
-          (x[a] - xp[a] - x[b] + xp[b]) * nx +
-          (x[a + 1] - xp[a + 1] - x[b + 1] + xp[b + 1]) * ny +
-          (x[a + 2] - xp[a + 2] - x[b + 2] + xp[b + 2]) * nz);
+        dl -= gamma * q * (
+          (x[a] - xp[a] - x[b] + xp[b]) * dx +
+          (x[a + 1] - xp[a + 1] - x[b + 1] + xp[b + 1]) * dy +
+          (x[a + 2] - xp[a + 2] - x[b + 2] + xp[b + 2]) * dz);
       }
       lambdas[s] = lambda + dlElastic;
       // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest
       const over = len + wsum * dl - cap * rest[s];
       if (over > 0) dl -= over / wsum;
+      const invLen = D * q;
+      const nx = dx * invLen, ny = dy * invLen, nz = dz * invLen;
       const sa = wa * dl, sb = wb * dl;
       x[a] += sa * nx; x[a + 1] += sa * ny; x[a + 2] += sa * nz;
       x[b] -= sb * nx; x[b + 1] -= sb * ny; x[b + 2] -= sb * nz;
@@ -74,7 +76,7 @@ export function solveDistanceConstraints(
 export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
   const n = params.substeps;
   const h = dt / n;
-  beginStep(model, state, params);
+  beginStep(model, state, params, h);
   const g = state.grabbed, x = state.positions;
   const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
   for (let sub = 0; sub < n; sub++) {
@@ -87,8 +89,8 @@ export function step(model: ClothModel, state: ClothState, params: SimParams, dt
     solveTethers(state, params);
     limitStretch(model, state, params);
     collide(model, state, params);
-    updateVelocities(state, h);
     state.time += h;
     state.substeps++;
   }
+  updateVelocities(state, h);
 }
