@@ -1,0 +1,87 @@
+/** GPU-free checks of the GPU backend: generated shaders up to date, layouts, mesh tables. */
+import { readFileSync } from 'node:fs';
+import { describe, expect, test } from 'vitest';
+import { buildGridModel, builtinScene, modelFor } from '../core/index.js';
+import { GENERATED_FILE, generateShaderModule } from './gen-shaders.mjs';
+import { BUFFERS, GLOBALS, KERNELS, PASS, RECORD_STRIDE, SUBSTEP, type KernelName } from './layout.js';
+import { kernelSource } from './shaders.js';
+import { WGSL_SOURCES } from './shaders.generated.js';
+import { colourTriangles, triangleAdjacency, withColourSortedTriangles } from './topology.js';
+
+describe('shaders', () => {
+  test('shaders.generated.ts matches src/gpu/shaders/*.wgsl (else run: node src/gpu/gen-shaders.mjs)', () => {
+    expect(readFileSync(GENERATED_FILE, 'utf8')).toBe(generateShaderModule());
+  });
+
+  test('every kernel has its .wgsl, at most 8 storage buffers, and declares what it binds', () => {
+    for (const kernel of Object.keys(KERNELS) as KernelName[]) {
+      expect(WGSL_SOURCES[kernel], kernel).toBeTypeOf('string');
+      const spec = KERNELS[kernel];
+      expect(spec.bindings.length).toBeLessThanOrEqual(8);
+      const src = kernelSource(kernel);
+      expect(src).toMatch(/@compute @workgroup_size\(WG\)\s*fn main/);
+      // each bound buffer is used by the kernel body (or a library it includes)
+      const body = src.slice(src.indexOf(`// ---- bindings of ${kernel} ----`));
+      for (const [name] of spec.bindings) {
+        expect(body.split(`${name}[`).length - 1, `${kernel} uses ${name}`).toBeGreaterThan(0);
+      }
+      // and uses no storage buffer it does not bind
+      for (const name of Object.keys(BUFFERS)) {
+        if (spec.bindings.some(([b]) => b === name)) continue;
+        expect(WGSL_SOURCES[kernel].includes(`${name}[`), `${kernel} does not bind ${name}`).toBe(false);
+      }
+    }
+  });
+
+  test('uniform layouts fit their records', () => {
+    expect(SUBSTEP.size).toBeLessThanOrEqual(RECORD_STRIDE);
+    expect(PASS.size).toBeLessThanOrEqual(RECORD_STRIDE);
+    expect(GLOBALS.size % 16).toBe(0);
+    expect(GLOBALS.grabTarget % 16).toBe(0);
+    expect(GLOBALS.colliders % 16).toBe(0);
+  });
+});
+
+describe('mesh tables', () => {
+  const model = buildGridModel({
+    resolution: 5, width: 1, height: 1, orientation: 'horizontal', position: [0, 0, 0], rotation: [0, 0, 0], scaleWithResolution: true,
+  });
+
+  test('adjacency lists each triangle under each of its vertices', () => {
+    const adj = triangleAdjacency(model);
+    const n = model.particleCount;
+    expect(adj[0]).toBe(n + 1);
+    expect(adj[n]).toBe(adj.length);
+    for (let i = 0; i < n; i++) {
+      for (let k = adj[i]; k < adj[i + 1]; k++) {
+        const t = adj[k];
+        expect([model.triangles[3 * t], model.triangles[3 * t + 1], model.triangles[3 * t + 2]]).toContain(i);
+      }
+    }
+  });
+
+  test('triangle colours share no vertex; a grid needs 6–8', () => {
+    const { order, starts } = colourTriangles(model);
+    expect(starts.length - 1).toBeGreaterThanOrEqual(6);
+    expect(starts.length - 1).toBeLessThanOrEqual(8);
+    expect([...order].sort((a, b) => a - b)).toEqual(Array.from({ length: order.length }, (_, k) => k));
+    for (let c = 0; c + 1 < starts.length; c++) {
+      const seen = new Set<number>();
+      for (let k = starts[c]; k < starts[c + 1]; k++) {
+        for (let j = 0; j < 3; j++) {
+          const v = model.triangles[3 * order[k] + j];
+          expect(seen.has(v)).toBe(false);
+          seen.add(v);
+        }
+      }
+    }
+  });
+
+  test('colour-sorted triangles colour to the identity order (GPU order = CPU order)', () => {
+    const sc = builtinScene('cotton-basic')!;
+    sc.cloth.resolution = 12;
+    const sorted = withColourSortedTriangles(modelFor(sc));
+    const { order } = colourTriangles(sorted);
+    expect([...order]).toEqual(Array.from({ length: order.length }, (_, k) => k));
+  });
+});

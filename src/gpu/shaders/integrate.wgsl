@@ -1,0 +1,29 @@
+// integrate + moveGrabbed (phases.ts): x ← x + h·v + c·h²·(g + w·f), previous ← x. c = ½ on the very first
+// substep (Taylor start, exact for constant acceleration), else 1 (folded into sub.h2). Particles with zero
+// inverse mass stay, except the grabbed one, which is carried from its frame-start position to the grab target.
+
+@compute @workgroup_size(WG)
+fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
+  let i = flatIndex(gid, nwg);
+  if (i >= globals.particleCount) { return; }
+  let x = positions[i].xyz;
+  previous[i] = vec4f(x, 0.0);
+  let w = invMass[i];
+  if (w == 0.0) {
+    if (i32(i) == globals.grabbed) {
+      let x0 = grabStart[0].xyz;
+      positions[i] = vec4f(x0 + (globals.grabTarget - x0) * sub.grabFraction, 0.0);
+    }
+    return;
+  }
+  var a = globals.gravity * sub.h2;
+  if (sub.windOn != 0u) {
+    var f = vec3f(0.0);
+    let hi = adjacency[i + 1u];
+    for (var k = adjacency[i]; k < hi; k++) {
+      f += triForces[adjacency[k]].xyz;
+    }
+    a += f * (w * sub.h2);
+  }
+  positions[i] = vec4f(x + sub.h * velocities[i].xyz + a, 0.0);
+}
