@@ -31,9 +31,9 @@ export const PASS_READ_LAMBDA = 2; // start from the accumulated λ (second and 
 export const BUFFERS = {
   /** x, y, z, 0 [m] per particle; also a vertex buffer for renderers */
   positions: { type: 'vec4f', bytes: 16 },
-  /** positions at the start of the current substep [m] */
+  /** positions at the start of the current substep [m] (x − h·v at the start of a frame) */
   previous: { type: 'vec4f', bytes: 16 },
-  /** [m/s] per particle */
+  /** [m/s] per particle, of the last substep of the last frame */
   velocities: { type: 'vec4f', bytes: 16 },
   /** effective inverse mass of this frame [1/kg]: 0 for pinned and grabbed particles (written by `prepare`) */
   invMass: { type: 'f32', bytes: 4 },
@@ -75,20 +75,25 @@ export interface KernelSpec {
 
 /** Every kernel. At most 8 storage buffers each (the default maxStorageBuffersPerShaderStage). */
 export const KERNELS = {
-  /** beginStep: effective inverse masses (pins, grab) */
-  prepare: { bindings: [['baseInvMass', 'read'], ['pinned', 'read'], ['invMass', 'read_write']] },
+  /** beginStep: effective inverse masses (pins, grab), previous = x − h·v */
+  prepare: {
+    bindings: [
+      ['baseInvMass', 'read'], ['pinned', 'read'], ['invMass', 'read_write'], ['positions', 'read'],
+      ['previous', 'read_write'], ['velocities', 'read'],
+    ],
+  },
   /** accumulateWind, per triangle: F = ½ρ|v|(v·n)·area·n on the relative air velocity */
   wind: {
     bindings: [
-      ['positions', 'read'], ['velocities', 'read'], ['triangles', 'read'], ['baseInvMass', 'read'],
+      ['positions', 'read'], ['previous', 'read'], ['triangles', 'read'], ['baseInvMass', 'read'],
       ['triForces', 'read_write'],
     ],
   },
   /** integrate + moveGrabbed: gathers the wind of incident triangles (no atomics) */
   integrate: {
     bindings: [
-      ['positions', 'read_write'], ['previous', 'read_write'], ['velocities', 'read'], ['invMass', 'read'],
-      ['triForces', 'read'], ['adjacency', 'read'], ['grabStart', 'read'],
+      ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['triForces', 'read'],
+      ['adjacency', 'read'], ['grabStart', 'read'],
     ],
   },
   /** solveDistanceConstraints for one colour batch */
@@ -117,7 +122,7 @@ export const KERNELS = {
     ],
     libs: ['colliders'],
   },
-  /** updateVelocities */
+  /** updateVelocities, once per frame */
   velocities: { bindings: [['positions', 'read'], ['previous', 'read'], ['velocities', 'read_write']] },
   /** vertex normals for rendering */
   normals: {

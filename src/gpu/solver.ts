@@ -4,10 +4,10 @@
  * one submit; the CPU keeps the bookkeeping (`state.time`, `state.substeps`, tethers, gust wind) so that the
  * Taylor start and the gusts match the CPU solver exactly.
  *
- * Per substep: wind (per triangle) → integrate (+ grab, gathers the wind) → one dispatch per constraint colour
- * batch × iterations → tethers → stretch limit (per structural/shear batch) → contact (particles, then per
- * triangle colour for spheres that need it) →
- * velocities. Per frame: `prepare` (effective inverse masses) first and vertex normals last.
+ * Per frame: `prepare` (effective inverse masses, previous = x − h·v), then per substep: wind (per triangle) →
+ * integrate (position Verlet + grab, gathers the wind) → one dispatch per constraint colour batch × iterations →
+ * tethers → stretch limit (per structural/shear batch) → contact (particles, then per triangle colour for spheres
+ * that need it); then velocities from the last substep and vertex normals.
  */
 import type {} from 'webgpu'; // WebGPU types (@webgpu/types through the webgpu package); erased at runtime
 import { FloorCollider, SphereCollider, type ColliderShape } from '../core/colliders/index.js';
@@ -387,7 +387,7 @@ export class GpuClothSolver {
     if (grabbed >= 0) encoder.copyBufferToBuffer(b.positions, grabbed * 16, b.grabStart, 0, 16);
     const pass = encoder.beginComputePass(timestampWrites ? { label: 'drape step', timestampWrites } : { label: 'drape step' });
     const particles = this.model.particleCount, triangles = this.model.triangles.length / 3;
-    this.dispatch(pass, 'prepare', particles, 0, 0);
+    this.dispatch(pass, 'prepare', particles, 0, 0); // substep 0's record: h
     for (let sub = 0; sub < n; sub++) {
       const so = sub * RECORD_STRIDE;
       if (windOn) this.dispatch(pass, 'wind', triangles, so, 0);
@@ -400,8 +400,8 @@ export class GpuClothSolver {
       if (this.hasTethers) this.dispatch(pass, 'tethers', particles, so, 0);
       for (const r of this.batchRecords) if (r.stretch) this.dispatch(pass, 'limitStretch', r.count, so, r.first * RECORD_STRIDE);
       for (const c of this.collidePasses) this.dispatch(pass, c.kernel, c.count, so, c.record * RECORD_STRIDE);
-      this.dispatch(pass, 'velocities', particles, so, 0);
     }
+    this.dispatch(pass, 'velocities', particles, (n - 1) * RECORD_STRIDE, 0);
     this.dispatch(pass, 'normals', particles, 0, 0);
     pass.end();
     q.submit([encoder.finish()]);
@@ -467,10 +467,10 @@ export class GpuClothSolver {
     const by: Record<string, number> = {};
     const add = (k: string, bytes: number) => { by[k] = (by[k] ?? 0) + bytes; };
     if (params.wind.enabled) {
-      add('wind', T * (12 + 3 * 16 + 3 * 16 + 16));
+      add('wind', T * (12 + 3 * 16 + 3 * 16 + 12 + 16)); // indices, x, x_prev, base w, force
       add('integrate', n * 8 + 3 * T * 20); // adjacency offsets, then index + force per incident triangle
     }
-    add('integrate', n * (16 + 4 + 16 + 16 + 16)); // x, w, v in; previous, x out
+    add('integrate', n * (16 + 16 + 4 + 16 + 16)); // x, x_prev, w in; x_prev, x out
     let solve = S * (8 + 8 + 8 + 32 + 32); // springData, springs, w×2, x×2 in and out
     if (params.damping > 0) solve += S * 32; // previous×2
     solve += S * 4; // λ written
@@ -484,7 +484,7 @@ export class GpuClothSolver {
       if (c.kernel === 'collideParticles') add('collideParticles', n * (4 + 16 + 16 + 16));
       else add('collideTriangles', c.count * (4 + 12 + 48));
     }
-    add('velocities', n * 48);
+    add('perFrame', (n * (4 + 4 + 4 + 16 + 16 + 16) + n * 48) / params.substeps); // prepare + velocities, per substep
     let total = 0;
     for (const v of Object.values(by)) total += v;
     return { total, byKernel: by };
@@ -494,8 +494,8 @@ export class GpuClothSolver {
   dispatchesPerFrame(params: SimParams): number {
     const stretchBatches = this.batchRecords.filter((r) => r.stretch).length;
     const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + params.iterations * this.batchRecords.length + stretchBatches +
-      (this.hasTethers ? 1 : 0) + this.collidePasses.length + 1;
-    return 2 + params.substeps * perSubstep;
+      (this.hasTethers ? 1 : 0) + this.collidePasses.length;
+    return 3 + params.substeps * perSubstep;
   }
 
   /** Frees every GPU buffer. The solver cannot be used afterwards. */

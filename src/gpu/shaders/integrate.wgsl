@@ -1,12 +1,14 @@
-// integrate + moveGrabbed (phases.ts): x ← x + h·v + c·h²·(g + w·f), previous ← x. c = ½ on the very first
-// substep (Taylor start, exact for constant acceleration), else 1 (folded into sub.h2). Particles with zero
-// inverse mass stay, except the grabbed one, which is carried from its frame-start position to the grab target.
+// integrate + moveGrabbed (phases.ts), position Verlet: x ← x + (x − x_prev) + c·h²·(g + w·f), x_prev ← x.
+// c = ½ on the very first substep (Taylor start, exact for constant acceleration), else 1 (folded into sub.h2).
+// Particles with zero inverse mass stay, except the grabbed one, which is carried from its frame-start position
+// to the grab target. The wind force is gathered from the incident triangles (no float atomics).
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
   let i = flatIndex(gid, nwg);
   if (i >= globals.particleCount) { return; }
   let x = positions[i].xyz;
+  let xp = previous[i].xyz;
   previous[i] = vec4f(x, 0.0);
   let w = invMass[i];
   if (w == 0.0) {
@@ -25,5 +27,5 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
     }
     a += f * (w * sub.h2);
   }
-  positions[i] = vec4f(x + sub.h * velocities[i].xyz + a, 0.0);
+  positions[i] = vec4f(x + (x - xp) + a, 0.0);
 }

@@ -1,4 +1,5 @@
-// updateVelocities (phases.ts): v = (x − x_prev)/h for every particle. One thread per particle.
+// updateVelocities (phases.ts), once per frame after the last substep: v = (x − x_prev)/h for every particle.
+// One thread per particle; bound with the last substep's record (sub.invH).
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
