@@ -13,6 +13,7 @@ import {
   type ClothModel, type ClothState, type Scene, type SimParams,
 } from '../core/index.js';
 import { createNodeDevice } from './node.js';
+import { benchGpu } from './bench.js';
 import { GpuClothSolver } from './solver.js';
 import { withColourSortedTriangles } from './topology.js';
 
@@ -113,23 +114,24 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
     expect([...DROPS, 'wind', 'pins'].sort()).toEqual([...SCENE_NAMES].sort());
   });
 
-  // Dropped on the sphere: the cloth touches it around frame 18. Before that only float rounding separates the
-  // two (f32 on the GPU, f64 arithmetic stored as f32 on the CPU): 1e-5 m. After it, contact and friction
-  // thresholds amplify rounding: the CPU itself moves 5e-3 m by frame 25 from a 1e-7 relative nudge of its start.
-  // So: particles within 5 mm at frame 22, the centroid within 5 mm at frame 30.
-  test.each(DROPS)('%s: 1e-5 m before contact, 5 mm just after, centroid 5 mm at frame 30', async (name) => {
+  // Tolerances: a few times the larger of the GPU–CPU difference seen on SwiftShader and the CPU's own spread when
+  // its start is nudged by 1e-7 (relative, f32 rounding): the GPU computes in f32, the CPU in f64 stored as f32, and
+  // contact, friction and the stretch caps amplify rounding like any other nudge (docs/gpu.md, "Parity").
+  //
+  // Dropped on the sphere: the cloth touches it around frame 18. Before: ≤ 4e-9 m seen → 1e-5 m. At frame 30: seen
+  // ≤ 3.4e-3 m (CPU's own spread ≤ 8.8e-3 m) → 1e-2 m; centroid seen ≤ 1.9e-4 m → 1e-3 m.
+  test.each(DROPS)('%s: 1e-5 m before contact, 1 cm and centroid 1 mm at frame 30', async (name) => {
     const p = await pair(scene(name));
     await p.advance(16);
     expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-5);
-    await p.advance(6);
-    expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(5e-3);
-    await p.advance(8);
-    expect(centroidDistance(p.gpu, p.cpu)).toBeLessThan(5e-3);
+    await p.advance(14);
+    expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-2);
+    expect(centroidDistance(p.gpu, p.cpu)).toBeLessThan(1e-3);
     expect(p.gpu.time).toBe(p.cpu.time);
     expect(p.gpu.substeps).toBe(p.cpu.substeps);
   });
 
-  // Four pinned corners (tethers, stretch limit), no contact: observed ≤ 1e-4 m over 30 frames.
+  // Four pinned corners (tethers, stretch limit), no contact: seen ≤ 8e-5 m (CPU spread ≤ 1.4e-4 m) → 1 mm.
   test('pins: 1 mm after 30 frames', async () => {
     const p = await pair(scene('pins'));
     await p.advance(30);
@@ -137,14 +139,14 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
     expect(maxDistance(p.gpu.velocities, p.cpu.velocities)).toBeLessThan(0.1);
   });
 
-  // A flag in gusty wind flaps chaotically (as chaotic on the CPU alone); observed ≤ 7e-3 m, centroid ≤ 5e-4 m.
-  test('wind: 1 mm at frame 10, 2 cm and centroid 2 mm at frame 30', async () => {
+  // A flag flapping in gusts: seen ≤ 1.2e-4 m at frame 10, ≤ 3.2e-3 m up to frame 30, centroid ≤ 1.7e-4 m.
+  test('wind: 1 mm at frame 10, 1 cm and centroid 1 mm at frame 30', async () => {
     const p = await pair(scene('wind'));
     await p.advance(10);
     expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-3);
     await p.advance(20);
-    expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(2e-2);
-    expect(centroidDistance(p.gpu, p.cpu)).toBeLessThan(2e-3);
+    expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-2);
+    expect(centroidDistance(p.gpu, p.cpu)).toBeLessThan(1e-3);
   });
 
   test('resolution scene at its own resolution (1 face, no bend springs)', async () => {
@@ -154,8 +156,8 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
     expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-4);
   });
 
-  // The scene's own model (triangles in grid order): the GPU visits contact triangles by colour, so after
-  // contact the difference is larger than with colour-sorted triangles, but of the same kind.
+  // The scene's own model (triangles in grid order): the GPU visits contact triangles by colour, the CPU by index,
+  // so after contact they part faster (seen ≤ 4e-2 m per particle, ≤ 3.1e-3 m centroid at frame 30).
   test.each(['cotton-basic', 'leather-stiff'])('%s through Simulation (grid-order triangles): centroid 1 cm at frame 30', async (name) => {
     const sim = new Simulation(scene(name));
     const g = createState(sim.model);
@@ -257,7 +259,7 @@ describe.skipIf(!gpu)('GPU physics', () => {
     const sc = scene('cotton-basic', (s) => { s.cloth.resolution = 16; });
     const p = await pair(sc);
     let worst = 0;
-    for (let k = 0; k < 6; k++) {
+    for (let k = 0; k < 4; k++) {
       await p.advance(15);
       worst = Math.max(worst, maxPenetration(p.model, p.gpu, p.params));
     }
@@ -272,8 +274,8 @@ describe.skipIf(!gpu)('GPU physics', () => {
       const setup = (s: Scene) => { s.cloth.resolution = 8; s.wind.gusts.enabled = false; s.wind.direction = [...dir]; };
       const calm = await pair(scene('wind', (s) => { setup(s); s.wind.enabled = false; }));
       const windy = await pair(scene('wind', setup));
-      await calm.advance(20);
-      await windy.advance(20);
+      await calm.advance(15);
+      await windy.advance(15);
       const a = centroid(calm.gpu), b = centroid(windy.gpu);
       expect(b[2] - a[2]).toBeGreaterThan(0.05); // pushed downwind
       expect(maxDistance(windy.gpu.positions, windy.cpu.positions)).toBeLessThan(1e-3);
@@ -311,5 +313,17 @@ describe.skipIf(!gpu)('GPU physics', () => {
     const sc = scene('cotton-basic', (s) => { s.solver.type = 'mass-spring'; });
     const p = await pair(scene('cotton-basic'));
     expect(() => p.solver.setParams(resolveParams(p.model, sc))).toThrow(/only the xpbd solver/);
+  });
+});
+
+describe.skipIf(!gpu)('GPU benchmark hook', () => {
+  test('benchGpu runs at small sizes and reports consistent numbers', async () => {
+    const [r] = await benchGpu(gpu!.device, [6], 4, 3);
+    expect(r.particles).toBe(36);
+    expect(r.msPerFrame).toBeGreaterThan(0);
+    expect(r.bytesPerSubstep).toBeGreaterThan(36 * 100);
+    expect(r.copyBandwidthGBs).toBeGreaterThan(0);
+    expect(r.fractionOfBandwidthFloor).toBeGreaterThan(0);
+    expect(r.particleSubstepsPerSecond).toBeCloseTo((36 * 4) / (r.msPerFrame / 1000), 0);
   });
 });
