@@ -1,5 +1,9 @@
-/** Drape's WebGPU backend: the XPBD solver as compute kernels, a Node device helper and the GPU benchmark. */
+/**
+ * Drape's WebGPU backend: the XPBD solver as compute kernels and the GPU benchmark. Browser-safe; the Node device
+ * helper lives in ./node.js (it imports node: modules and the `webgpu` package).
+ */
 export { GpuClothSolver, type SubstepTraffic } from './solver.js';
-export { benchGpu, type GpuBenchResult } from './bench.js';
+export { benchGpu, measureCopyBandwidth, type GpuBenchResult } from './bench.js';
 export { kernelSource } from './shaders.js';
+export { colourTriangles, triangleAdjacency, withColourSortedTriangles, type TriangleColouring } from './topology.js';
 export * as gpuLayout from './layout.js';

@@ -486,7 +486,7 @@ export class GpuClothSolver {
     }
     add('perFrame', (n * (4 + 4 + 4 + 16 + 16 + 16) + n * 48) / params.substeps); // prepare + velocities, per substep
     let total = 0;
-    for (const v of Object.values(by)) total += v;
+    for (const k of Object.keys(by)) { by[k] = Math.round(by[k]); total += by[k]; }
     return { total, byKernel: by };
   }
 
