@@ -21,6 +21,12 @@ export interface SpringBatch {
   readonly end: number;
 }
 
+/** A run of triangles of one colour: no two share a particle. Offsets count triangles. */
+export interface TriangleBatch {
+  readonly start: number;
+  readonly end: number;
+}
+
 /** Grid topology of a rectangular cloth: particle (i, j) has index j * nx + i. */
 export interface GridInfo {
   /** particles along the width (columns), = resolution + 1 */
@@ -53,8 +59,10 @@ export interface ClothModel {
   readonly batches: readonly SpringBatch[];
   /** number of springs of each kind, indexed like SPRING_KINDS */
   readonly springCounts: readonly [number, number, number];
-  /** triangle vertex indices, triples, counter-clockwise seen from the +normal side */
+  /** triangle vertex indices, triples, sorted by colour (orientation as given to the builder) */
   readonly triangles: Uint32Array;
+  /** colour batches of triangles (in triangles, not indices); triangles of a batch share no particle */
+  readonly triangleBatches: readonly TriangleBatch[];
   /** longest rest edge of any triangle [m]; bounds the reach of triangle contact */
   readonly maxTriangleEdge: number;
   /** total rest area of the cloth [m²] */
@@ -79,26 +87,34 @@ export interface ModelInput {
 const MAX_COLOURS = 32;
 
 /**
- * Greedy edge colouring of one kind's springs: each spring gets the lowest colour not yet used at either end.
- * Returns the colour of each spring. Grid springs generated row by row come out with 2 colours per direction.
+ * Greedy colouring of elements (springs: arity 2, triangles: arity 3): each element gets the lowest colour not
+ * yet used at any of its particles. Returns the colour of each element. Grid springs generated row by row come
+ * out with 2 colours per direction, grid triangles with 6.
  */
-function colourSprings(pairs: Uint32Array, particleCount: number): { colours: Uint8Array; count: number } {
+function colourElements(indices: Uint32Array, arity: number, particleCount: number): { colours: Uint8Array; count: number } {
   const used = new Uint32Array(particleCount);
-  const m = pairs.length / 2;
+  const m = indices.length / arity;
   const colours = new Uint8Array(m);
   let count = 0;
-  for (let s = 0; s < m; s++) {
-    const a = pairs[2 * s];
-    const b = pairs[2 * s + 1];
-    const free = ~(used[a] | used[b]) >>> 0;
+  for (let e = 0; e < m; e++) {
+    let taken = 0;
+    for (let k = 0; k < arity; k++) taken |= used[indices[arity * e + k]];
+    const free = ~taken >>> 0;
     if (free === 0) throw new Error(`constraint colouring needs more than ${MAX_COLOURS} colours`);
     const c = 31 - Math.clz32(free & -free);
-    colours[s] = c;
-    used[a] |= 1 << c;
-    used[b] |= 1 << c;
+    colours[e] = c;
+    for (let k = 0; k < arity; k++) used[indices[arity * e + k]] |= 1 << c;
     if (c + 1 > count) count = c + 1;
   }
   return { colours, count };
+}
+
+/** Start offset of each colour (length count + 1) from element colours: a counting sort's prefix sums. */
+function colourOffsets(colours: Uint8Array, count: number): Uint32Array {
+  const offsets = new Uint32Array(count + 1);
+  for (let e = 0; e < colours.length; e++) offsets[colours[e] + 1]++;
+  for (let c = 0; c < count; c++) offsets[c + 1] += offsets[c];
+  return offsets;
 }
 
 function distance(p: Float32Array, a: number, b: number): number {
@@ -110,7 +126,7 @@ function distance(p: Float32Array, a: number, b: number): number {
 
 /** Builds a model from any particle/spring/triangle set (the grid builder and tests use it). */
 export function buildModel(input: ModelInput): ClothModel {
-  const { restPositions, triangles } = input;
+  const { restPositions } = input;
   const n = restPositions.length / 3;
   if (!Number.isInteger(n) || n < 1) throw new Error('model: restPositions must hold 3 floats per particle');
 
@@ -118,8 +134,8 @@ export function buildModel(input: ModelInput): ClothModel {
   const massWeights = new Float32Array(n);
   let area = 0;
   let maxTriangleEdge = 0;
-  for (let t = 0; t < triangles.length; t += 3) {
-    const a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+  for (let t = 0; t < input.triangles.length; t += 3) {
+    const a = input.triangles[t], b = input.triangles[t + 1], c = input.triangles[t + 2];
     const ux = restPositions[3 * b] - restPositions[3 * a];
     const uy = restPositions[3 * b + 1] - restPositions[3 * a + 1];
     const uz = restPositions[3 * b + 2] - restPositions[3 * a + 2];
@@ -158,11 +174,8 @@ export function buildModel(input: ModelInput): ClothModel {
     const m = pairs.length / 2;
     counts[kind] = m;
     if (m === 0) continue;
-    const { colours, count } = colourSprings(pairs, n);
-    // counting sort by colour
-    const offsets = new Uint32Array(count + 1);
-    for (let s = 0; s < m; s++) offsets[colours[s] + 1]++;
-    for (let c = 0; c < count; c++) offsets[c + 1] += offsets[c];
+    const { colours, count } = colourElements(pairs, 2, n);
+    const offsets = colourOffsets(colours, count);
     for (let c = 0; c < count; c++) batches.push({ kind, start: at + offsets[c], end: at + offsets[c + 1] });
     const fill = offsets.slice(0, count);
     for (let s = 0; s < m; s++) {
@@ -175,6 +188,20 @@ export function buildModel(input: ModelInput): ClothModel {
       springKinds[dst] = kind;
     }
     at += m;
+  }
+
+  // triangles sorted by colour too: contact visits them in this order, and a GPU can take a colour at a time
+  const tc = colourElements(input.triangles, 3, n);
+  const triOffsets = colourOffsets(tc.colours, tc.count);
+  const triangleBatches: TriangleBatch[] = [];
+  for (let c = 0; c < tc.count; c++) triangleBatches.push({ start: triOffsets[c], end: triOffsets[c + 1] });
+  const triangles = new Uint32Array(input.triangles.length);
+  const triFill = triOffsets.slice(0, tc.count);
+  for (let t = 0; t < tc.colours.length; t++) {
+    const dst = triFill[tc.colours[t]]++;
+    triangles[3 * dst] = input.triangles[3 * t];
+    triangles[3 * dst + 1] = input.triangles[3 * t + 1];
+    triangles[3 * dst + 2] = input.triangles[3 * t + 2];
   }
 
   let uvs = input.uvs;
@@ -200,6 +227,7 @@ export function buildModel(input: ModelInput): ClothModel {
     batches,
     springCounts: counts,
     triangles,
+    triangleBatches,
     maxTriangleEdge,
     area,
     grid: input.grid,

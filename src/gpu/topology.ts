@@ -22,57 +22,18 @@ export function triangleAdjacency(model: ClothModel): Uint32Array {
 }
 
 export interface TriangleColouring {
-  /** triangle indices sorted by colour */
+  /** triangle indices in visiting order (the model's triangles are already sorted by colour: 0, 1, 2, …) */
   order: Uint32Array;
   /** colour c holds order[starts[c] .. starts[c + 1]) */
   starts: number[];
 }
 
-const MAX_TRIANGLE_COLOURS = 32;
-
-/**
- * Greedy vertex-disjoint colouring of the triangles in index order: each triangle takes the lowest colour none
- * of its vertices has yet. A regular grid needs 6 (every vertex touches at most 6 triangles).
- */
+/** The model's triangle colouring (core sorts triangles by colour), in the form the contact kernel walks. */
 export function colourTriangles(model: ClothModel): TriangleColouring {
-  const tri = model.triangles;
-  const m = tri.length / 3;
-  const used = new Uint32Array(model.particleCount);
-  const colours = new Uint8Array(m);
-  let count = 0;
-  for (let t = 0; t < m; t++) {
-    const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
-    const free = ~(used[a] | used[b] | used[c]) >>> 0;
-    if (free === 0) throw new Error(`GPU solver: triangle colouring needs more than ${MAX_TRIANGLE_COLOURS} colours`);
-    const col = 31 - Math.clz32(free & -free);
-    colours[t] = col;
-    const bit = (1 << col) >>> 0;
-    used[a] |= bit; used[b] |= bit; used[c] |= bit;
-    if (col + 1 > count) count = col + 1;
-  }
-  const starts = new Array<number>(count + 1).fill(0);
-  for (let t = 0; t < m; t++) starts[colours[t] + 1]++;
-  for (let c = 0; c < count; c++) starts[c + 1] += starts[c];
-  const fill = starts.slice(0, count);
+  const m = model.triangles.length / 3;
   const order = new Uint32Array(m);
-  for (let t = 0; t < m; t++) order[fill[colours[t]]++] = t;
+  for (let t = 0; t < m; t++) order[t] = t;
+  const starts = model.triangleBatches.map((b) => b.start);
+  starts.push(m);
   return { order, starts };
-}
-
-/**
- * The same model with its triangles listed in colour order. Greedy colouring of that list gives the same colours
- * again, so the GPU's colour-by-colour triangle contact then visits triangles in the CPU's order (triangles of one
- * colour commute): CPU and GPU contact agree to rounding. The GPU path does not need it; parity tests do.
- */
-export function withColourSortedTriangles(model: ClothModel): ClothModel {
-  const { order } = colourTriangles(model);
-  const tri = model.triangles;
-  const sorted = new Uint32Array(tri.length);
-  for (let k = 0; k < order.length; k++) {
-    const t = order[k];
-    sorted[3 * k] = tri[3 * t];
-    sorted[3 * k + 1] = tri[3 * t + 1];
-    sorted[3 * k + 2] = tri[3 * t + 2];
-  }
-  return { ...model, triangles: sorted };
 }
