@@ -4,6 +4,7 @@
  */
 import { cpus } from 'node:os';
 import { builtinScene, Simulation, type Scene } from '../core/index.js';
+import type { Gpu } from './gpu.js';
 import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
 
 export interface BenchOptions {
@@ -145,4 +146,39 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
   const errs = [...new Set(rows.map((r) => r.peerError).filter(Boolean))];
   for (const e of errs) out(`peer: ${e}`);
   return rows;
+}
+
+export interface GpuBenchOptions {
+  sizes: number[];
+  substeps: number;
+  frames: number;
+  json: boolean;
+}
+
+/** Largest cloth the CPU solver is timed on beside the GPU (particles per side): beyond it a frame takes seconds. */
+const CPU_PEER_MAX_SIDE = 256;
+
+/**
+ * `drape bench --backend gpu`: the WebGPU XPBD solver at each size (ms per frame, particle-substeps per second, the
+ * bytes a substep moves against the device's measured copy bandwidth), with the CPU XPBD solver in the same run.
+ */
+export async function runGpuBench(gpu: Gpu, opts: GpuBenchOptions, out: (s: string) => void): Promise<void> {
+  const results = await gpu.bench(opts.sizes, opts.substeps, opts.frames);
+  const cpu = results.map((r) =>
+    r.size <= CPU_PEER_MAX_SIDE ? timeDrape(benchScene(r.size, opts.substeps, 'xpbd'), Math.max(5, Math.min(opts.frames, 30)), 5).msPerFrame : undefined);
+  const machine = `${gpu.adapter}; host ${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  if (opts.json) {
+    out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, rows: results.map((r, k) => ({ ...r, cpuMsPerFrame: cpu[k] ?? null })) }));
+    return;
+  }
+  out(`drape bench --backend gpu — cotton on sphere + floor, XPBD ${opts.substeps} substeps, ${opts.frames} timed frames; ${machine}`);
+  out('');
+  out('| particles | springs | dispatches/frame | GPU ms/frame (wall) | GPU ms/frame (timestamps) | particle-substeps/s | MB/substep | copy GB/s | bandwidth floor ms | of floor | CPU XPBD ms/frame | GPU speed-up |');
+  out('|---|---|---|---|---|---|---|---|---|---|---|---|');
+  results.forEach((r, k) => {
+    const c = cpu[k];
+    out(`| ${r.size}×${r.size} | ${r.springs} | ${r.dispatchesPerFrame} | ${fmt(r.msPerFrame)} | ${r.gpuMsPerFrame === null ? 'n/a' : fmt(r.gpuMsPerFrame)} | ` +
+      `${sci(r.particleSubstepsPerSecond)} | ${fmt(r.bytesPerSubstep / 1e6, 1)} | ${fmt(r.copyBandwidthGBs, 0)} | ${fmt(r.bandwidthFloorMs, 3)} | ` +
+      `${fmt(100 * r.fractionOfBandwidthFloor, 1)} % | ${c === undefined ? 'n/a' : fmt(c)} | ${c === undefined ? 'n/a' : `${fmt(c / r.msPerFrame, 1)}×`} |`);
+  });
 }

@@ -56,6 +56,8 @@ describe('drape CLI', () => {
     [['run', '--frames', 'ten'], /--frames: must be an integer/],
     [['run', '--bogus'], /Unknown option '--bogus'$/],
     [['run', '--export', 'x.stl'], /only \.obj/],
+    [['run', '--backend', 'quantum'], /--backend: must be cpu or gpu/],
+    [['run', '--backend', 'gpu', '--solver', 'mass-spring', '--frames', '1'], /only the xpbd solver runs on the GPU/],
     [['bench', '--sizes', '64,x'], /--sizes: must be an integer/],
     [['fly'], /unknown command 'fly'/],
   ])('bad input %j exits 2 with one line naming the problem', async (argv, message) => {
@@ -81,6 +83,14 @@ describe('drape CLI', () => {
       expect(r.code).toBe(0);
       expect(r.out).toMatch(/drape/);
     }
+  });
+
+  it('--backend gpu runs the same scene on WebGPU and agrees with the CPU', async () => {
+    const args = ['run', 'cotton-basic', '--frames', '20', '--set', 'cloth.resolution=8', '--json'];
+    const gpu = JSON.parse((await run(...args, '--backend', 'gpu')).out);
+    const cpu = JSON.parse((await run(...args)).out);
+    expect(gpu).toMatchObject({ backend: 'gpu', finite: true, particles: 81 });
+    gpu.centroid.forEach((c: number, k: number) => expect(Math.abs(c - cpu.centroid[k])).toBeLessThan(1e-4)); // before contact: rounding only
   });
 
   it('the installed bin runs as a process: exit codes and stdout', () => {

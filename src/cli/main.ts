@@ -7,11 +7,10 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { parseArgs } from 'node:util';
 import { builtinScene, parseScene, parseSetValue, SCENE_NAMES, sceneSchema, setScenePath, Simulation, type Scene } from '../core/index.js';
-import { runBench } from './bench.js';
+import { runBench, runGpuBench } from './bench.js';
+import { UsageError } from './errors.js';
+import { openGpu, type Gpu } from './gpu.js';
 import { toOBJ } from './obj.js';
-
-/** An error the user caused: printed as one line, exit code 2. */
-export class UsageError extends Error {}
 
 const HELP: Record<string, string> = {
   main: `drape — real-time cloth simulation, headless
@@ -29,7 +28,7 @@ Built-in scenes: ${SCENE_NAMES.join(', ')}`,
 Simulates a built-in scene (default: custom) or a scene file for N frames of 1/60 s.
   --frames N            frames to simulate (default 180; 0 reports the start state)
   --solver S            xpbd | mass-spring (same as --set solver.type=S)
-  --backend B           cpu (gpu is not available in this build)
+  --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD, sphere and floor colliders)
   --set PATH=VALUE      change any scene path, e.g. material.bendStiffness=2, wind.direction=[1,0,0],
                         colliders=[] ; VALUE is JSON when it parses, else a string (repeatable)
   --json                print exactly one JSON object
@@ -39,10 +38,11 @@ A scene with a resolutionSweep (e.g. 'resolution') runs once per resolution unle
   bench: `drape bench [options]
 
 Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysics.js on the same cloth.
-  --sizes A,B,…         particles per side (default 64,128)
+  --sizes A,B,…         particles per side (default 64,128; with --backend gpu 64,128,256,512,1024)
   --substeps N          XPBD substeps per 1/60 s frame; Jolt iterations (default 10)
   --frames N            timed frames per run (default 120), after --warmup N frames (default 30)
-  --backend B           cpu (gpu is not available in this build)
+  --backend B           cpu (default: both CPU solvers and JoltPhysics.js) or gpu (the WebGPU solver, with
+                        the CPU XPBD solver beside it up to 256 per side, and the memory-bandwidth floor)
   --no-peer             skip JoltPhysics.js
   --json                print exactly one JSON object`,
   schema: `drape schema\n\nPrints the JSON schema every scene file is validated against (also published as scene.schema.json).`,
@@ -55,9 +55,8 @@ function intArg(name: string, raw: string | undefined, fallback: number, min: nu
   return v;
 }
 
-function checkBackend(raw: string | undefined): 'cpu' {
-  if (raw === undefined || raw === 'cpu') return 'cpu';
-  if (raw === 'gpu') throw new UsageError(`--backend gpu: the WebGPU backend is not available in this build; use --backend cpu`);
+function checkBackend(raw: string | undefined): 'cpu' | 'gpu' {
+  if (raw === undefined || raw === 'cpu' || raw === 'gpu') return raw ?? 'cpu';
   throw new UsageError(`--backend: must be cpu or gpu, got '${raw}'`);
 }
 
@@ -106,11 +105,16 @@ interface RunResult {
   sim: Simulation;
 }
 
-function simulate(scene: Scene, frames: number): RunResult {
-  const sim = new Simulation(scene);
-  const t0 = performance.now();
-  sim.advance(frames);
-  const ms = frames > 0 ? (performance.now() - t0) / frames : 0;
+async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined): Promise<RunResult> {
+  let sim: Simulation, ms: number;
+  if (gpu) {
+    ({ sim, msPerFrame: ms } = await gpu.simulate(scene, frames));
+  } else {
+    sim = new Simulation(scene);
+    const t0 = performance.now();
+    sim.advance(frames);
+    ms = frames > 0 ? (performance.now() - t0) / frames : 0;
+  }
   const r = sim.report();
   return {
     resolution: scene.cloth.resolution,
@@ -129,7 +133,7 @@ function simulate(scene: Scene, frames: number): RunResult {
   };
 }
 
-function cmdRun(argv: string[], out: (s: string) => void, err: (s: string) => void): number {
+async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string) => void): Promise<number> {
   const { values, positionals } = parseArgs({
     args: argv,
     allowPositionals: true,
@@ -149,15 +153,22 @@ function cmdRun(argv: string[], out: (s: string) => void, err: (s: string) => vo
   scene = applySets(scene, sets);
 
   const sweep = scene.resolutionSweep && !sets.some((s) => s.startsWith('cloth.resolution=') || s.startsWith('cloth=')) ? scene.resolutionSweep : undefined;
-  const main = simulate(scene, frames);
-  const sweepRuns = sweep?.map((resolution) => simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames));
+  const gpu = backend === 'gpu' ? await openGpu() : undefined;
+  let main: RunResult;
+  const sweepRuns: RunResult[] = [];
+  try {
+    main = await simulate(scene, frames, gpu);
+    for (const resolution of sweep ?? []) sweepRuns.push(await simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames, gpu));
+  } finally {
+    gpu?.device.destroy();
+  }
 
   if (values.export) writeFileSync(values.export, toOBJ(main.sim.model, main.sim.state, scene.name));
   const { sim: _sim, resolution: _r, clamps, ...fields } = main;
   if (values.json) {
     out(JSON.stringify({
       scene: scene.name, solver: scene.solver.type, backend, frames, substeps: scene.solver.substeps, ...fields, clamps,
-      ...(sweepRuns ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.resolution ** 2, ...r })) } : {}),
+      ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.resolution ** 2, ...r })) } : {}),
       ...(values.export ? { exported: values.export } : {}),
     }));
     return 0;
@@ -172,7 +183,7 @@ function cmdRun(argv: string[], out: (s: string) => void, err: (s: string) => vo
   out(`  penetration  ${(main.maxPenetration * 1000).toFixed(3)} mm`);
   out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
   out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J`);
-  if (sweepRuns) {
+  if (sweep) {
     out(`  resolution sweep (faces → resting height of the centroid):`);
     for (const r of sweepRuns) out(`    ${String(r.resolution ** 2).padStart(5)} faces  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);
   }
@@ -198,8 +209,22 @@ async function cmdBench(argv: string[], out: (s: string) => void): Promise<numbe
     },
   });
   if (values.help) { out(HELP.bench); return 0; }
-  checkBackend(values.backend);
-  const sizes = (values.sizes ?? '64,128').split(',').map((s) => intArg('sizes', s.trim(), 0, 2, 1025));
+  const backend = checkBackend(values.backend);
+  const sizes = (values.sizes ?? (backend === 'gpu' ? '64,128,256,512,1024' : '64,128')).split(',').map((s) => intArg('sizes', s.trim(), 0, 2, 1025));
+  if (backend === 'gpu') {
+    const gpu = await openGpu();
+    try {
+      await runGpuBench(gpu, {
+        sizes,
+        substeps: intArg('substeps', values.substeps, 10, 1, 200),
+        frames: intArg('frames', values.frames, 60, 1, 100_000),
+        json: values.json ?? false,
+      }, out);
+    } finally {
+      gpu.device.destroy();
+    }
+    return 0;
+  }
   await runBench({
     sizes,
     substeps: intArg('substeps', values.substeps, 10, 1, 200),
@@ -218,7 +243,7 @@ export async function main(argv: string[], out: (s: string) => void = console.lo
     switch (cmd) {
       case undefined: case 'help': case '--help': case '-h': out(HELP.main); return 0;
       case '--version': case '-v': out(JSON.parse(readFileSync(new URL('../../package.json', import.meta.url), 'utf8')).version); return 0;
-      case 'run': return cmdRun(rest, out, err);
+      case 'run': return await cmdRun(rest, out, err);
       case 'scenes': return cmdScenes(rest, out);
       case 'bench': return await cmdBench(rest, out);
       case 'schema':
