@@ -1,0 +1,397 @@
+/**
+ * The app in Chromium with WebGPU (SwiftShader, presenting flags): every feature of issue 3, through the real UI
+ * (panel, keys, pointer) and checked through window.drape. Cloths are small and runs short: SwiftShader is slow;
+ * the loop is paused and frames are stepped explicitly, so results do not depend on this machine's speed.
+ */
+import { readFileSync } from 'node:fs';
+import type { Page } from 'playwright-core';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { launch, type Browser } from './browser.js';
+import {
+  byId, centroid, choose, hook, loadScene, openApp, pause, press, setChecked, setNumber, shoot, step, viewStats, writeJson,
+} from './helpers.js';
+import { decodePng, imageStats } from './png.js';
+
+let browser: Browser;
+let page: Page;
+let errors: string[];
+
+beforeAll(async () => {
+  browser = await launch('webgpu');
+  const opened = await openApp(browser.context);
+  page = opened.page;
+  errors = opened.errors;
+  writeJson('ready-webgpu', { readyMs: opened.readyMs });
+  console.log(`page ready (first frame) with WebGPU: ${opened.readyMs.toFixed(0)} ms`);
+});
+
+afterAll(async () => {
+  await browser?.close();
+});
+
+const DROP_SCENES: [string, string][] = [
+  ['Cotton Basic', 'cotton-basic'],
+  ['Silk Drape', 'silk-drape'],
+  ['Leather Stiff', 'leather-stiff'],
+  ['Rubber Stretch', 'rubber-stretch'],
+  ['Custom Parameters', 'custom'],
+];
+
+async function yRange(p: Page, slot = 0): Promise<[number, number]> {
+  const pos = await hook<number[][]>(p, 'positions', undefined, slot);
+  const ys = pos.map((q) => q[1]);
+  return [Math.min(...ys), Math.max(...ys)];
+}
+
+describe('WebGPU page', () => {
+  it('starts on WebGPU, draws a non-blank frame, no console errors', async () => {
+    expect(await hook(page, 'backend')).toBe('webgpu');
+    const s = await viewStats(page);
+    expect(s.colours).toBeGreaterThan(20);
+    expect(s.lumaStd).toBeGreaterThan(4);
+    expect(errors).toEqual([]);
+  });
+
+  it('every scene of the dropdown loads and drapes on the sphere (or hangs from its pins)', async () => {
+    for (const [label, name] of DROP_SCENES) {
+      await loadScene(page, label, 16);
+      expect(await hook(page, 'sceneName')).toBe(name);
+      await step(page, 200);
+      const [lo, hi] = await yRange(page);
+      const c = await centroid(page);
+      // resting on the sphere (top at 0.8 m), not on the floor and not floating
+      expect(hi, `${name} top`).toBeGreaterThan(0.74);
+      expect(hi, `${name} top`).toBeLessThan(0.9);
+      expect(c[1], `${name} centroid`).toBeGreaterThan(0.3);
+      expect(c[1], `${name} centroid`).toBeLessThan(0.8);
+      expect(lo, `${name} lowest`).toBeGreaterThan(-0.01);
+      await shoot(page, `scene-${name}`);
+    }
+
+    await loadScene(page, 'Wind', 16);
+    const pinnedWind = await hook<number[]>(page, 'pinned');
+    expect(pinnedWind.length).toBe(17); // the left edge
+    const before = await hook<number[][]>(page, 'positions', pinnedWind);
+    await step(page, 150);
+    expect(await hook<number[][]>(page, 'positions', pinnedWind)).toEqual(before);
+    const [wlo] = await yRange(page);
+    expect(wlo).toBeGreaterThan(0.5); // still flying, not dropped
+    await shoot(page, 'scene-wind');
+
+    await loadScene(page, 'Pins', 16);
+    expect(await hook<number[]>(page, 'pinned')).toEqual([0, 16, 272, 288]);
+    await step(page, 150);
+    const corners = await hook<number[][]>(page, 'positions', [0, 16, 272, 288]);
+    for (const q of corners) expect(q[1]).toBeCloseTo(1.5, 5);
+    const mid = (await hook<number[][]>(page, 'positions', [144]))[0];
+    expect(mid[1]).toBeLessThan(1.45); // the hammock sags
+    expect(mid[1]).toBeGreaterThan(0.5);
+    await shoot(page, 'scene-pins');
+    expect(errors).toEqual([]);
+  });
+
+  it('Mesh Resolution: 1 → 4096 faces one after another and side by side, labelled, with the scaling switch', async () => {
+    await loadScene(page, 'Mesh Resolution');
+    expect(await hook(page, 'slots')).toBe(1);
+    expect((await hook<string[]>(page, 'labels'))[0]).toContain('1 face');
+    expect(await hook(page, 'particleCount')).toBe(4);
+    // one face: the seed's version fell through the sphere (contact at particles only); the core's triangle
+    // contact holds it on top, flat and undeformable
+    await step(page, 180);
+    const one = await centroid(page);
+    expect(one[1]).toBeGreaterThan(0);
+    expect(one[1]).toBeLessThan(0.85);
+    // the sequence moves on once a resolution has had its 3 s (the loop does it, paused or not)
+    await press(page, 'play');
+    await page.waitForFunction(() => (window as any).drape.particleCount() === 9, null, { timeout: 20_000 });
+    expect((await hook<string[]>(page, 'labels'))[0]).toContain('4 faces');
+    await pause(page);
+
+    await choose(page, 'sweep', 'side by side');
+    expect(await hook(page, 'slots')).toBe(7);
+    const labels = await hook<string[]>(page, 'labels');
+    expect(labels.map((l) => l.match(/([\d,]+) faces?/)?.[1])).toEqual(['1', '4', '16', '64', '256', '1,024', '4,096']);
+    await step(page, 100);
+    const fine = await centroid(page, 6); // 4096 faces: draped
+    expect(fine[1]).toBeGreaterThan(0.3);
+    expect(fine[1]).toBeLessThan(0.8);
+    await shoot(page, 'scene-resolution-side-by-side');
+
+    expect(labels[0]).toContain('scaled with resolution');
+    await setChecked(page, 'sweep.scaleWithResolution', false);
+    expect(((await hook<any>(page, 'scene')).material.scaleWithResolution)).toBe(false);
+    expect((await hook<string[]>(page, 'labels'))[6]).toContain('seed constants');
+    await setChecked(page, 'sweep.scaleWithResolution', true);
+    await choose(page, 'sweep', 'one after another');
+    expect(await hook(page, 'slots')).toBe(1);
+  });
+
+  it('a slider change changes the motion, live, without a restart', async () => {
+    await loadScene(page, 'Custom Parameters', 16);
+    await step(page, 5);
+    await step(page, 12);
+    const base = await centroid(page);
+    await press(page, 'reset');
+    await step(page, 5);
+    await setNumber(page, 'gravity.1', -3);
+    expect(await hook(page, 'frame')).toBe(5); // applied live: no restart
+    await step(page, 12);
+    const changed = await centroid(page);
+    expect(changed[1]).toBeGreaterThan(base[1] + 0.05); // weaker gravity: fell less
+    await setNumber(page, 'gravity.1', -9.81);
+
+    // material sliders act live too: much more damping slows the fall's spreading motion
+    const scene = await hook<any>(page, 'scene');
+    expect(scene.gravity[1]).toBeCloseTo(-9.81, 1);
+  });
+
+  it('solver, substeps and resolution controls', async () => {
+    await loadScene(page, 'Custom Parameters', 8);
+    expect(await hook(page, 'particleCount')).toBe(81);
+    await choose(page, 'solver.type', 'mass-spring');
+    await setNumber(page, 'solver.substeps', 30);
+    const s = await hook<any>(page, 'scene');
+    expect(s.solver).toMatchObject({ type: 'mass-spring', substeps: 30 });
+    await step(page, 60);
+    const c = await centroid(page);
+    expect(Number.isFinite(c[1])).toBe(true);
+    await page.waitForTimeout(400);
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('mass-spring, 30 substeps');
+    await choose(page, 'solver.type', 'xpbd');
+  });
+
+  it('V cycles all five views and names each on screen', async () => {
+    await loadScene(page, 'Cotton Basic', 16);
+    await step(page, 120);
+    const names = ['wireframe', 'particles', 'springs', 'strain', 'shaded'];
+    const labels = ['Wireframe mesh', 'Particles', 'Springs by kind', 'Strain heat map', 'Shaded'];
+    for (let k = 0; k < names.length; k++) {
+      await page.keyboard.press('v');
+      expect(await hook(page, 'view')).toBe(names[k]);
+      await expect.poll(() => byId(page, 'toast').innerText()).toBe(labels[k]);
+      await shoot(page, `view-${names[k]}`);
+    }
+  });
+
+  it('dragging the cloth moves the grabbed particle toward the cursor, and never orbits', async () => {
+    await loadScene(page, 'Pins', 16);
+    await step(page, 120);
+    await hook(page, 'step', 0);
+    const cam = await hook<number[]>(page, 'camera');
+    const start = await hook<{ x: number; y: number }>(page, 'screenOf', 144);
+    await page.mouse.move(start.x, start.y);
+    await page.mouse.down();
+    const grabbed = await hook<number>(page, 'grabbed');
+    expect(grabbed).toBeGreaterThanOrEqual(0);
+    const y0 = (await hook<number[][]>(page, 'positions', [grabbed]))[0][1];
+    const target = { x: start.x + 10, y: start.y - 90 };
+    await page.mouse.move(target.x, target.y, { steps: 8 });
+    await step(page, 40);
+    const p1 = await hook<{ x: number; y: number }>(page, 'screenOf', grabbed);
+    expect(Math.hypot(p1.x - target.x, p1.y - target.y)).toBeLessThan(12); // it followed the cursor
+    expect((await hook<number[][]>(page, 'positions', [grabbed]))[0][1]).toBeGreaterThan(y0 + 0.1);
+    expect(await hook<number[]>(page, 'camera')).toEqual(cam); // no orbit while grabbing
+    await page.mouse.up();
+    expect(await hook(page, 'grabbed')).toBe(-1);
+    await step(page, 60);
+    expect((await hook<number[][]>(page, 'positions', [grabbed]))[0][1]).toBeLessThan(y0 + 0.08); // let go: falls back
+
+    // dragging empty space orbits
+    await page.mouse.move(120, 560);
+    await page.mouse.down();
+    await page.mouse.move(220, 540, { steps: 5 });
+    await page.mouse.up();
+    await page.waitForTimeout(300);
+    expect(await hook<number[]>(page, 'camera')).not.toEqual(cam);
+    await page.keyboard.press('4');
+  });
+
+  it('the pin tool pins a clicked particle, which then stays put; a second click unpins it', async () => {
+    await loadScene(page, 'Custom Parameters', 16);
+    await setChecked(page, 'pinTool', true);
+    expect(await hook(page, 'pinTool')).toBe(true);
+    const at = await hook<{ x: number; y: number }>(page, 'screenOf', 5 * 17 + 4);
+    await page.mouse.click(at.x, at.y);
+    const pinned = await hook<number[]>(page, 'pinned');
+    expect(pinned.length).toBe(1);
+    expect((await hook<any>(page, 'scene')).pins).toEqual(pinned);
+    const p0 = await hook<number[][]>(page, 'positions', pinned);
+    const c0 = await centroid(page);
+    await step(page, 60);
+    expect(await hook<number[][]>(page, 'positions', pinned)).toEqual(p0);
+    expect((await centroid(page))[1]).toBeLessThan(c0[1] - 0.1); // the rest fell
+    await shoot(page, 'pin-tool');
+    const again = await hook<{ x: number; y: number }>(page, 'screenOf', pinned[0]);
+    await page.mouse.click(again.x, again.y);
+    expect(await hook<number[]>(page, 'pinned')).toEqual([]);
+    await page.keyboard.press('p'); // key toggles the tool off
+    expect(await hook(page, 'pinTool')).toBe(false);
+  });
+
+  it('corner and centre pin toggles, and clear pins', async () => {
+    await loadScene(page, 'Custom Parameters', 16);
+    await setChecked(page, 'pin.top-left', true);
+    await setChecked(page, 'pin.top-right', true);
+    expect(await hook<number[]>(page, 'pinned')).toEqual([0, 16]);
+    await setChecked(page, 'pin.center', true);
+    expect(await hook<number[]>(page, 'pinned')).toEqual([0, 16, 144]);
+    await setChecked(page, 'pin.center', false);
+    await setChecked(page, 'pin.bottom-left', true);
+    await setChecked(page, 'pin.bottom-right', true);
+    expect(await hook<number[]>(page, 'pinned')).toEqual([0, 16, 272, 288]);
+    await setChecked(page, 'pin.bottom-left', false);
+    await setChecked(page, 'pin.bottom-right', false);
+    await step(page, 90);
+    const [tl, tr] = await hook<number[][]>(page, 'positions', [0, 16]);
+    expect(tl[1]).toBeCloseTo(1.2, 5);
+    expect(tr[1]).toBeCloseTo(1.2, 5);
+    expect((await centroid(page))[1]).toBeLessThan(1.1); // hangs from two corners
+    await shoot(page, 'pins-two-corners');
+    await press(page, 'clearPins');
+    expect(await hook<number[]>(page, 'pinned')).toEqual([]);
+    expect(await byId(page, 'pin.top-left').locator('input').isChecked()).toBe(false);
+  });
+
+  it('wind on moves the cloth along the wind', async () => {
+    await loadScene(page, 'Wind', 16);
+    await setNumber(page, 'wind.heading', 90); // blow along +z, across the flag
+    await setChecked(page, 'wind.enabled', false);
+    await step(page, 90);
+    const still = await centroid(page);
+    await press(page, 'reset');
+    await setChecked(page, 'wind.enabled', true);
+    const dir = (await hook<any>(page, 'scene')).wind.direction;
+    expect(dir[0]).toBeCloseTo(0, 3);
+    expect(dir[2]).toBeGreaterThan(0.9);
+    await step(page, 90);
+    const blown = await centroid(page);
+    expect(blown[2] - still[2]).toBeGreaterThan(0.05);
+    await setNumber(page, 'wind.strength', 15);
+    await setChecked(page, 'wind.gusts.enabled', false);
+    expect((await hook<any>(page, 'scene')).wind).toMatchObject({ strength: 15, gusts: { enabled: false } });
+  });
+
+  it('Reset restores the start; space pauses; R resets; ? shows the shortcuts; 1–4 move the camera', async () => {
+    await loadScene(page, 'Cotton Basic', 16);
+    const rest = await hook<number[][]>(page, 'positions');
+    await step(page, 60);
+    expect(await hook<number[][]>(page, 'positions')).not.toEqual(rest);
+    await press(page, 'reset');
+    expect(await hook(page, 'frame')).toBe(0);
+    expect(await hook<number[][]>(page, 'positions')).toEqual(rest);
+
+    await page.locator('body').click({ position: { x: 5, y: 5 } }).catch(() => undefined);
+    await page.keyboard.press(' ');
+    expect(await hook(page, 'paused')).toBe(false);
+    await page.waitForFunction(() => (window as any).drape.frame() > 2, null, { timeout: 20_000 });
+    await page.keyboard.press(' ');
+    expect(await hook(page, 'paused')).toBe(true);
+    await page.keyboard.press('r');
+    expect(await hook(page, 'frame')).toBe(0);
+
+    await page.keyboard.press('?');
+    await expect.poll(() => byId(page, 'help').isVisible()).toBe(true);
+    expect(await byId(page, 'help').innerText()).toContain('cycle views');
+    await shoot(page, 'help');
+    await page.keyboard.press('Escape');
+    await expect.poll(() => byId(page, 'help').isVisible()).toBe(false);
+
+    const cams: number[][] = [];
+    for (const k of ['1', '2', '3', '4']) {
+      await page.keyboard.press(k);
+      cams.push(await hook<number[]>(page, 'camera'));
+    }
+    expect(new Set(cams.map((c) => c.map((v) => v.toFixed(2)).join())).size).toBe(4);
+  });
+
+  it('an invalid imported scene is refused with a readable message and changes nothing', async () => {
+    await loadScene(page, 'Silk Drape', 16);
+    await step(page, 10);
+    const input = byId(page, 'import-file');
+    await input.setInputFiles({ name: 'bad.json', mimeType: 'application/json', buffer: Buffer.from('{"material": {"damping": 99}}') });
+    await expect.poll(() => byId(page, 'message').innerText()).toContain('material.damping: must be <= 10');
+    expect(await byId(page, 'message').isVisible()).toBe(true);
+    expect(await hook(page, 'sceneName')).toBe('silk-drape');
+    expect(await hook(page, 'frame')).toBe(10);
+    await shoot(page, 'import-refused');
+
+    await input.setInputFiles({ name: 'broken.json', mimeType: 'application/json', buffer: Buffer.from('{"cloth": ') });
+    await expect.poll(() => byId(page, 'message').innerText()).toContain('malformed JSON');
+    expect(await hook(page, 'sceneName')).toBe('silk-drape');
+
+    const good = JSON.stringify({ name: 'my-flag', cloth: { resolution: 6, orientation: 'hanging' }, pins: ['top-edge'] });
+    await input.setInputFiles({ name: 'good.json', mimeType: 'application/json', buffer: Buffer.from(good) });
+    await expect.poll(() => hook(page, 'sceneName')).toBe('my-flag');
+    expect(await hook(page, 'particleCount')).toBe(49);
+    expect(await byId(page, 'scene').locator('select').inputValue()).toContain('Imported: my-flag');
+  });
+
+  it('exports the scene as JSON, a screenshot PNG, and the cloth as OBJ and glTF', async () => {
+    await loadScene(page, 'Leather Stiff', 8);
+    await step(page, 30);
+    const get = async (id: string) => {
+      const [dl] = await Promise.all([page.waitForEvent('download'), press(page, id)]);
+      const path = await dl.path();
+      return { name: dl.suggestedFilename(), data: readFileSync(path) };
+    };
+    const json = await get('exportJson');
+    expect(json.name).toBe('leather-stiff.json');
+    const doc = JSON.parse(json.data.toString());
+    const { $schema, ...scene } = doc;
+    expect($schema).toContain('scene.schema.json');
+    expect(scene).toEqual(await hook(page, 'scene'));
+
+    const obj = await get('exportObj');
+    expect(obj.name).toBe('leather-stiff.obj');
+    const text = obj.data.toString();
+    expect(text.split('\n').filter((l) => l.startsWith('v ')).length).toBe(81);
+    expect(text.split('\n').filter((l) => l.startsWith('f ')).length).toBe(128);
+
+    const glb = await get('exportGltf');
+    expect(glb.name).toBe('leather-stiff.glb');
+    expect(glb.data.toString('ascii', 0, 4)).toBe('glTF');
+
+    const png = await get('screenshot');
+    expect(png.name).toBe('drape-leather-stiff.png');
+    const img = decodePng(png.data);
+    expect(img.width).toBeGreaterThan(100);
+    expect(imageStats(img).colours).toBeGreaterThan(20);
+  });
+
+  it('the URL hash holds the scene: a link reproduces it; a bad link says so and shows the default', async () => {
+    await loadScene(page, 'Silk Drape', 12);
+    await setNumber(page, 'material.damping', 0.3);
+    await setChecked(page, 'wind.enabled', true);
+    await setChecked(page, 'pin.top-left', true);
+    await page.keyboard.press('v');
+    await expect.poll(() => page.evaluate(() => location.hash)).toContain('view=wireframe');
+    const url = page.url();
+    expect(url).toContain('scene=silk-drape');
+    expect(url).toContain('material.damping=0.3');
+    expect(url).toContain('view=wireframe');
+    const scene = await hook(page, 'scene');
+
+    const other = await openApp(browser.context, new URL(url).hash);
+    expect(await hook(other.page, 'scene')).toEqual(scene);
+    expect(await hook(other.page, 'view')).toBe('wireframe');
+    expect(await hook<number[]>(other.page, 'pinned')).toEqual([0]);
+    expect(other.errors).toEqual([]);
+    await other.page.close();
+
+    const bad = await openApp(browser.context, '#scene=nope&material.damping=3');
+    expect((await hook<any>(bad.page, 'lastMessage')).text).toContain("unknown scene 'nope'");
+    expect(await byId(bad.page, 'message').isVisible()).toBe(true);
+    expect(await hook(bad.page, 'sceneName')).toBe('cotton-basic');
+    await shoot(bad.page, 'bad-link');
+    await bad.page.close();
+
+    const badValue = await openApp(browser.context, '#scene=wind&material.damping=99');
+    expect((await hook<any>(badValue.page, 'lastMessage')).text).toContain('material.damping: must be <= 10');
+    expect(await hook(badValue.page, 'sceneName')).toBe('cotton-basic');
+    await badValue.page.close();
+  });
+
+  it('logged no console errors along the way', () => {
+    expect(errors).toEqual([]);
+  });
+});

@@ -1,0 +1,58 @@
+/**
+ * Launches Debian's Chromium through playwright-core with the flags of docs/testing (shared/testing.md):
+ * - 'webgpu': WebGPU on SwiftShader, presenting to a canvas (Vulkan + ANGLE SwiftShader flags);
+ * - 'webgl':  no --enable-unsafe-webgpu: no WebGPU adapter, so three.js falls back to WebGL2 by itself;
+ * - 'lost':   --enable-unsafe-webgpu WITHOUT the presenting flags: the WebGPU device is lost at the first frame and
+ *             Drape must notice and switch to WebGL2.
+ */
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { chromium, type BrowserContext, type Page } from 'playwright-core';
+import { findChromium } from './ensure-chromium.mjs';
+
+export type BrowserKind = 'webgpu' | 'webgl' | 'lost';
+
+const BASE_ARGS = ['--no-sandbox', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+const PRESENT_ARGS = ['--use-angle=swiftshader', '--use-vulkan=swiftshader', '--enable-features=Vulkan'];
+
+export function argsFor(kind: BrowserKind): string[] {
+  switch (kind) {
+    case 'webgpu': return [...BASE_ARGS, '--enable-unsafe-webgpu', ...PRESENT_ARGS];
+    case 'webgl': return [...BASE_ARGS, ...PRESENT_ARGS];
+    case 'lost': return [...BASE_ARGS, '--enable-unsafe-webgpu'];
+  }
+}
+
+export interface Browser {
+  context: BrowserContext;
+  close(): Promise<void>;
+}
+
+export async function launch(kind: BrowserKind): Promise<Browser> {
+  const executablePath = (findChromium() as string | null) ?? undefined;
+  if (!executablePath) throw new Error('no Chromium: run `node e2e/ensure-chromium.mjs`');
+  const dir = mkdtempSync(join(tmpdir(), 'drape-chrome-'));
+  const context = await chromium.launchPersistentContext(dir, {
+    executablePath,
+    headless: true,
+    args: argsFor(kind),
+    viewport: { width: 960, height: 600 },
+    acceptDownloads: true,
+  });
+  return {
+    context,
+    async close() {
+      await context.close();
+      rmSync(dir, { recursive: true, force: true });
+    },
+  };
+}
+
+/** Console errors and uncaught exceptions of a page, collected from the start. */
+export function collectErrors(page: Page): string[] {
+  const errors: string[] = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+  page.on('pageerror', (e) => errors.push(`pageerror: ${e.message}`));
+  return errors;
+}

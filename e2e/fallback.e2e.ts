@@ -1,0 +1,82 @@
+/**
+ * The two ways of not having WebGPU:
+ * - no WebGPU adapter (Chromium without --enable-unsafe-webgpu): three.js falls back to WebGL2 by itself;
+ * - a WebGPU adapter whose device is lost at the first frame (no presenting flags): Drape notices, switches to
+ *   WebGL2 and says so in the page.
+ * Both must draw, simulate and take input, without console errors.
+ */
+import { afterAll, describe, expect, it } from 'vitest';
+import { launch, type Browser } from './browser.js';
+import { byId, centroid, hook, loadScene, openApp, press, setChecked, shoot, step, viewStats, writeJson } from './helpers.js';
+
+const browsers: Browser[] = [];
+afterAll(async () => {
+  for (const b of browsers) await b.close();
+});
+
+describe('without WebGPU (WebGL2 fallback)', () => {
+  it('draws, drapes, drags and pins on WebGL2 with no console errors', async () => {
+    const b = await launch('webgl');
+    browsers.push(b);
+    const { page, errors, readyMs } = await openApp(b.context);
+    writeJson('ready-webgl', { readyMs });
+    console.log(`page ready (first frame) with WebGL2: ${readyMs.toFixed(0)} ms`);
+    expect(await hook(page, 'backend')).toBe('webgl2');
+    const s = await viewStats(page);
+    expect(s.colours).toBeGreaterThan(20);
+
+    await loadScene(page, 'Silk Drape', 16);
+    await step(page, 150);
+    const c = await centroid(page);
+    expect(c[1]).toBeGreaterThan(0.3);
+    expect(c[1]).toBeLessThan(0.8);
+    await shoot(page, 'webgl-silk');
+
+    // drag
+    await loadScene(page, 'Pins', 12);
+    await step(page, 60);
+    const at = await hook<{ x: number; y: number }>(page, 'screenOf', 6 * 13 + 6);
+    await page.mouse.move(at.x, at.y);
+    await page.mouse.down();
+    const grabbed = await hook<number>(page, 'grabbed');
+    expect(grabbed).toBeGreaterThanOrEqual(0);
+    const y0 = (await hook<number[][]>(page, 'positions', [grabbed]))[0][1];
+    await page.mouse.move(at.x, at.y - 70, { steps: 5 });
+    await step(page, 30);
+    expect((await hook<number[][]>(page, 'positions', [grabbed]))[0][1]).toBeGreaterThan(y0 + 0.08);
+    await page.mouse.up();
+
+    // pins and views
+    await setChecked(page, 'pin.center', true);
+    expect((await hook<number[]>(page, 'pinned')).length).toBe(5);
+    for (let k = 0; k < 5; k++) await page.keyboard.press('v');
+    expect(await hook(page, 'view')).toBe('shaded');
+    await press(page, 'reset');
+    expect(await hook(page, 'frame')).toBe(0);
+    expect(errors).toEqual([]);
+  });
+});
+
+describe('WebGPU device lost (no presenting flags)', () => {
+  it('notices the lost device, switches to WebGL2, says so, and keeps working', async () => {
+    const b = await launch('lost');
+    browsers.push(b);
+    const { page, errors } = await openApp(b.context);
+    await page.waitForFunction(() => (window as any).drape.backend() === 'webgl2', null, { timeout: 20_000 });
+    const msg = await hook<{ text: string; kind: string }>(page, 'lastMessage');
+    expect(msg.text).toContain('WebGPU device lost');
+    expect(msg.text).toContain('WebGL2');
+    expect(await byId(page, 'message').isVisible()).toBe(true);
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('WebGL2');
+
+    await loadScene(page, 'Leather Stiff', 12);
+    await step(page, 120);
+    const c = await centroid(page);
+    expect(c[1]).toBeGreaterThan(0.3);
+    expect(c[1]).toBeLessThan(0.85);
+    const s = await viewStats(page);
+    expect(s.colours).toBeGreaterThan(20);
+    await shoot(page, 'lost-device-fallback');
+    expect(errors).toEqual([]);
+  });
+});

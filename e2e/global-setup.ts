@@ -1,0 +1,23 @@
+/** Builds the site once (as users get it from `npm run build`) and serves dist/web on a free localhost port. */
+import type { Server } from 'node:http';
+import { build } from 'vite';
+import type { TestProject } from 'vitest/node';
+import { serve } from './server.js';
+
+let server: Server | undefined;
+
+export default async function setup(project: TestProject): Promise<() => Promise<void>> {
+  const t0 = Date.now();
+  if (!process.env.DRAPE_E2E_NO_BUILD) await build({ configFile: 'vite.config.ts', logLevel: 'warn' });
+  const s = await serve('dist/web');
+  server = s.server;
+  project.provide('baseURL', s.url);
+  console.log(`e2e: built and serving dist/web at ${s.url} (${Date.now() - t0} ms)`);
+  return async () => { await new Promise<void>((r) => server?.close(() => r())); };
+}
+
+declare module 'vitest' {
+  export interface ProvidedContext {
+    baseURL: string;
+  }
+}

@@ -1,0 +1,641 @@
+/**
+ * The app: owns the current scene (what a link or an exported file reproduces), turns it into the cloths on screen
+ * ("slots"), and connects the panel, the keyboard, the pointer, the HUD and the renderer to the simulation worker.
+ * It holds no physics: everything it knows about the cloth comes from the core's model and the worker's frames.
+ */
+import { Box3, Group, Mesh, MeshStandardMaterial, BufferGeometry, BufferAttribute, DoubleSide, Vector3 } from 'three/webgpu';
+import {
+  SCENE_NAMES, SceneError, builtinScene, parseScene, resolvePins, setScenePath, type PinPreset, type Scene,
+} from '../core/index.js';
+import { ClothView, VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
+import { Stage, type CameraPreset } from '../render/stage.js';
+import { fabricFor, fabricLook } from '../render/textures.js';
+import { Hud } from '../ui/hud.js';
+import { Overlay } from '../ui/overlay.js';
+import { CORNER_PINS, Panel, SCENE_LABELS, type PanelHost, type SweepLayout } from '../ui/panel.js';
+import { Interaction, type InteractionHost } from './interaction.js';
+import { SimClient } from './sim-client.js';
+import { decodeHash, encodeHash } from './url-state.js';
+
+/** frames each resolution runs for in the Mesh Resolution sequence (3 s) */
+export const SWEEP_STAGE_FRAMES = 180;
+/** spacing of cloths laid side by side [m] */
+const SIDE_BY_SIDE_SPACING = 1.6;
+
+export interface AppOptions {
+  forceWebGL?: boolean;
+  lite?: boolean;
+}
+
+export class App implements PanelHost, InteractionHost {
+  scene!: Scene;
+  sceneKey = 'cotton-basic';
+  view: ViewName = 'shaded';
+  pinTool = false;
+  sweepLayout: SweepLayout = 'sequence';
+  /** which resolution of the sweep is showing (sequence layout) */
+  sweepIndex = 0;
+  readonly sim = new SimClient();
+  readonly stage: Stage;
+  readonly overlay: Overlay;
+  readonly hud: Hud;
+  readonly panel: Panel;
+  readonly interaction: Interaction;
+  views: ClothView[] = [];
+  private labels: HTMLElement[] = [];
+  private fileInput: HTMLInputElement;
+  private lastTime = 0;
+  private fpsFrames = 0;
+  private fpsTime = 0;
+  fps = 0;
+  /** nothing was drawn in the last half second (paused and untouched) */
+  idle = false;
+  private hudTime = 0;
+  private plotTime = 0;
+  private dirty = true;
+  private hashTimer = 0;
+  /** performance.now() when the first frame was drawn */
+  firstFrameAt = 0;
+  private firstFrameResolve!: () => void;
+  readonly firstFrame = new Promise<void>((r) => { this.firstFrameResolve = r; });
+
+  get camera() { return this.stage.camera; }
+  get paused() { return this.sim.paused; }
+
+  private constructor(readonly root: HTMLElement, stage: Stage) {
+    this.stage = stage;
+    this.overlay = new Overlay(root);
+    this.hud = new Hud(root);
+    this.interaction = new Interaction(stage.container, this);
+    this.sim.onFrame = () => { this.dirty = true; };
+    this.sim.onError = (m) => this.overlay.message(m, 'error');
+
+    // start from the link, or the first built-in scene; a bad link says why and falls back
+    let start: { scene: Scene; base: string; view: Record<string, string | undefined> } | null = null;
+    try {
+      start = decodeHash(location.hash);
+    } catch (e) {
+      this.overlay.message(`${(e as Error).message} — showing the default scene instead`, 'error');
+    }
+    if (start) {
+      if (start.view.sweep === 'side-by-side' || start.view.sweep === 'sequence') this.sweepLayout = start.view.sweep;
+      if (start.view.view && (VIEWS as readonly string[]).includes(start.view.view)) this.view = start.view.view as ViewName;
+      this.applyScene(start.scene, start.base && start.base === start.scene.name ? start.base : SCENE_NAMES.includes(start.base) ? start.base : '');
+    } else {
+      this.applyScene(builtinScene(SCENE_NAMES[0])!, SCENE_NAMES[0]);
+    }
+    this.panel = new Panel(this);
+
+    this.fileInput = document.createElement('input');
+    this.fileInput.type = 'file';
+    this.fileInput.accept = '.json,application/json';
+    this.fileInput.hidden = true;
+    this.fileInput.dataset.testid = 'import-file';
+    this.fileInput.addEventListener('change', () => void this.readImport());
+    root.append(this.fileInput);
+
+    // capture phase: lil-gui stops key events from its controls, and shortcuts should work while one has focus
+    window.addEventListener('keydown', this.onKey, { capture: true });
+    const fit = () => {
+      this.stage.insetRight = this.panel.gui.domElement.getBoundingClientRect().width;
+      this.stage.resize();
+    };
+    fit();
+    window.addEventListener('resize', fit);
+    window.addEventListener('hashchange', () => this.onHashChange());
+    new ResizeObserver(() => this.stage.resize()).observe(stage.container);
+    requestAnimationFrame(this.loop);
+  }
+
+  static async create(root: HTMLElement, viewport: HTMLElement, options: AppOptions = {}): Promise<App> {
+    let app: App | null = null;
+    const stage = await Stage.create(viewport, {
+      forceWebGL: options.forceWebGL,
+      lite: options.lite,
+      onFallback: (reason) => {
+        app?.overlay.message(`WebGPU device lost (${reason}); switched to WebGL2.`, 'notice');
+        app?.afterRendererSwitch();
+      },
+      onFallbackFailed: (message) => app?.overlay.message(`WebGPU device lost: ${message}. Reload the page to try again.`),
+    });
+    app = new App(root, stage);
+    return app;
+  }
+
+  private afterRendererSwitch(): void {
+    this.dirty = true;
+  }
+
+  // ---------------------------------------------------------------- scenes and slots
+
+  /** The scenes of the cloths on screen: one, or one per resolution of a sweep. */
+  private slotScenes(): Scene[] {
+    const s = this.scene;
+    const sweep = s.resolutionSweep;
+    if (!sweep?.length) return [s];
+    const at = (res: number, dx: number): Scene => {
+      const next = structuredClone(s);
+      delete next.resolutionSweep;
+      next.cloth.resolution = res;
+      next.cloth.position = [s.cloth.position[0] + dx, s.cloth.position[1], s.cloth.position[2]];
+      next.colliders = s.colliders.map((c) => (c.type === 'sphere' ? { ...c, center: [c.center[0] + dx, c.center[1], c.center[2]] } : c));
+      next.pins = s.pins.filter((p) => typeof p === 'string');
+      return next;
+    };
+    if (this.sweepLayout === 'sequence') return [at(sweep[this.sweepIndex % sweep.length], 0)];
+    return sweep.map((r, k) => at(r, (k - (sweep.length - 1) / 2) * SIDE_BY_SIDE_SPACING));
+  }
+
+  /** Replaces the scene: new cloths from their start, camera framed, panel and link updated. */
+  private applyScene(scene: Scene, key: string): void {
+    this.interaction?.cancel();
+    this.scene = scene;
+    this.sceneKey = key;
+    this.sweepIndex = 0;
+    this.loadSlots();
+    this.frameCamera(true);
+    this.hud?.clearPlot();
+    this.panel?.sync();
+    this.scheduleHash();
+  }
+
+  private loadSlots(): void {
+    const scenes = this.slotScenes();
+    this.sim.load(scenes);
+    const all = scenes.flatMap((s) => s.colliders);
+    this.stage.setColliders(all);
+    this.rebuildViews();
+  }
+
+  private rebuildViews(): void {
+    for (const v of this.views) { this.stage.content.remove(v.group); v.dispose(); }
+    const look = fabricLook(fabricFor(this.scene.name));
+    this.views = this.sim.mirrors.map((m) => {
+      const v = new ClothView(m.sim.model, look);
+      v.setView(this.view);
+      this.stage.content.add(v.group);
+      return v;
+    });
+    this.makeLabels();
+    this.dirty = true;
+  }
+
+  private frameCamera(moveCamera: boolean): void {
+    const box = new Box3();
+    for (const m of this.sim.mirrors) {
+      const x = m.sim.model.restPositions;
+      for (let i = 0; i < x.length; i += 3) box.expandByPoint(new Vector3(x[i], x[i + 1], x[i + 2]));
+      for (const c of m.sim.scene.colliders) {
+        if (c.type === 'sphere') {
+          box.expandByPoint(new Vector3(c.center[0] - c.radius, c.center[1] - c.radius, c.center[2] - c.radius));
+          box.expandByPoint(new Vector3(c.center[0] + c.radius, c.center[1] + c.radius, c.center[2] + c.radius));
+        }
+      }
+    }
+    const size = box.getSize(new Vector3());
+    const center = box.getCenter(new Vector3());
+    center.y = Math.max(0.55, center.y - 0.1 * size.y);
+    this.stage.frame(Math.max(size.x, size.y, size.z) * 0.75, center);
+    if (moveCamera) this.stage.setCamera('reset');
+  }
+
+  private makeLabels(): void {
+    for (const l of this.labels) l.remove();
+    this.labels = [];
+    if (!this.scene.resolutionSweep?.length) return;
+    this.sim.mirrors.forEach((m) => {
+      const l = document.createElement('div');
+      l.className = 'drape-label';
+      l.dataset.testid = 'sweep-label';
+      const r = m.sim.scene.cloth.resolution;
+      const faces = r * r;
+      const total = this.scene.resolutionSweep!.length;
+      const stage = this.sweepLayout === 'sequence' ? `<small>${this.sweepIndex % total + 1} / ${total}</small>` : '';
+      l.innerHTML = `${stage}<b>${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}</b><small>${r}×${r} grid · ${((r + 1) ** 2).toLocaleString('en')} particles</small>` +
+        `<small>${this.scene.material.scaleWithResolution ? 'scaled with resolution' : 'seed constants (not scaled)'}</small>`;
+      this.overlay.labelLayer.append(l);
+      this.labels.push(l);
+    });
+  }
+
+  private placeLabels(): void {
+    const rect = this.stage.container.getBoundingClientRect();
+    const v = new Vector3();
+    this.sim.mirrors.forEach((m, k) => {
+      const l = this.labels[k];
+      if (!l) return;
+      const p = m.sim.scene.cloth.position;
+      v.set(p[0], p[1] + 0.3, p[2]).project(this.stage.camera);
+      const visible = v.z < 1;
+      l.style.display = visible ? '' : 'none';
+      l.style.transform = `translate(-50%, -100%) translate(${((v.x + 1) / 2) * rect.width}px, ${((1 - v.y) / 2) * rect.height}px)`;
+    });
+  }
+
+  /** Sequence layout: move on to the next resolution when the current one has had its time. */
+  private advanceSweep(): void {
+    const sweep = this.scene.resolutionSweep;
+    if (!sweep?.length || this.sweepLayout !== 'sequence' || this.sim.paused) return;
+    const m = this.sim.mirrors[0];
+    if (!m || m.frame < SWEEP_STAGE_FRAMES) return;
+    this.interaction.cancel();
+    this.sweepIndex = (this.sweepIndex + 1) % sweep.length;
+    this.sim.setScene(0, this.slotScenes()[0]);
+    this.syncViews();
+  }
+
+  /** Rebuilds the views of slots whose cloth was rebuilt. */
+  private syncViews(): void {
+    let changed = false;
+    this.sim.mirrors.forEach((m, k) => {
+      if (this.views[k]?.model === m.sim.model) return;
+      changed = true;
+    });
+    if (changed) this.rebuildViews();
+  }
+
+  // ---------------------------------------------------------------- PanelHost
+
+  loadBuiltin(name: string): void {
+    const s = builtinScene(name);
+    if (!s) { this.overlay.message(`unknown scene '${name}'`); return; }
+    this.applyScene(s, name);
+  }
+
+  setPath(path: string, value: unknown): boolean {
+    let next: Scene;
+    try {
+      let base = this.scene;
+      // particle-index pins belong to one resolution: a new resolution keeps only the presets
+      if (path === 'cloth.resolution') base = { ...base, pins: base.pins.filter((p) => typeof p === 'string') };
+      next = setScenePath(base, path, value);
+    } catch (e) {
+      this.overlay.message(e instanceof SceneError ? e.message.replace(/^--set /, '') : String(e));
+      this.panel.sync();
+      return false;
+    }
+    this.scene = next;
+    const scenes = this.slotScenes();
+    if (scenes.length !== this.sim.mirrors.length) {
+      this.loadSlots();
+    } else {
+      scenes.forEach((s, k) => {
+        // keep slot-local pins (pin tool on a sweep cloth) when only parameters change
+        const keep = this.scene.resolutionSweep?.length ? { ...s, pins: this.sim.mirrors[k].sim.scene.pins } : s;
+        const derived = path.startsWith('cloth.') || path === 'material.scaleWithResolution' || path === 'pins';
+        const rebuilt = this.sim.setScene(k, derived ? s : keep);
+        if (rebuilt) this.interaction.cancel();
+      });
+      this.syncViews();
+      if (path === 'material.scaleWithResolution') this.makeLabels();
+    }
+    if (path.startsWith('cloth.')) this.frameCamera(false);
+    this.dirty = true;
+    this.scheduleHash();
+    return true;
+  }
+
+  reset(): void {
+    this.interaction.cancel();
+    if (this.scene.resolutionSweep?.length && this.sweepLayout === 'sequence' && this.sweepIndex !== 0) {
+      this.sweepIndex = 0;
+      this.loadSlots();
+    } else {
+      this.sim.reset();
+    }
+    this.hud.clearPlot();
+    this.dirty = true;
+  }
+
+  togglePause(): void {
+    this.sim.paused = !this.sim.paused;
+    this.panel.updatePlay();
+  }
+
+  stepOnce(): void {
+    if (!this.sim.paused) this.togglePause();
+    void this.sim.step(1);
+  }
+
+  setView(view: ViewName): void {
+    this.view = view;
+    for (const v of this.views) v.setView(view);
+    this.overlay.toast(VIEW_LABELS[view]);
+    this.panel.sync();
+    this.dirty = true;
+    this.scheduleHash();
+  }
+
+  cycleView(): void {
+    this.setView(VIEWS[(VIEWS.indexOf(this.view) + 1) % VIEWS.length]);
+  }
+
+  setCamera(preset: CameraPreset): void {
+    this.stage.setCamera(preset);
+  }
+
+  setPreset(preset: PinPreset, on: boolean): void {
+    const pins = this.scene.pins.filter((p) => p !== preset);
+    if (on) pins.push(preset);
+    this.setPath('pins', pins);
+    this.panel.sync();
+  }
+
+  clearPins(): void {
+    this.setPath('pins', []);
+    if (this.scene.resolutionSweep?.length) this.sim.mirrors.forEach((m, k) => this.sim.setScene(k, { ...m.sim.scene, pins: [] }));
+    this.panel.sync();
+  }
+
+  setPinTool(on: boolean): void {
+    this.pinTool = on;
+    this.stage.container.classList.toggle('pin-tool', on);
+    this.panel.sync();
+  }
+
+  /** Pin tool: pins or unpins one particle; presets it breaks up become particle lists. */
+  togglePin(slot: number, particle: number): void {
+    const m = this.sim.mirrors[slot];
+    const scene = m.sim.scene;
+    const pinned = new Set(resolvePins(m.sim.model, scene.pins));
+    const on = !pinned.has(particle);
+    let pins: (PinPreset | number)[];
+    if (on) {
+      pins = [...scene.pins, particle];
+    } else {
+      pins = [];
+      for (const p of scene.pins) {
+        if (p === particle) continue;
+        if (typeof p === 'string') {
+          const members = resolvePins(m.sim.model, [p]);
+          if (members.includes(particle)) { pins.push(...members.filter((i) => i !== particle)); continue; }
+        }
+        pins.push(p);
+      }
+    }
+    if (this.scene.resolutionSweep?.length) {
+      this.sim.setScene(slot, { ...scene, pins });
+    } else {
+      this.setPath('pins', pins);
+      this.panel.sync();
+    }
+    this.overlay.toast(`${on ? 'Pinned' : 'Unpinned'} particle ${particle}`);
+    this.dirty = true;
+  }
+
+  setSweepLayout(layout: SweepLayout): void {
+    this.sweepLayout = layout;
+    this.sweepIndex = 0;
+    this.loadSlots();
+    this.frameCamera(true);
+    this.scheduleHash();
+  }
+
+  grabChanged(active: boolean): void {
+    this.stage.container.classList.toggle('grabbing', active);
+  }
+
+  showHelp(): void {
+    this.overlay.help();
+  }
+
+  // ---------------------------------------------------------------- files and links
+
+  private download(blob: Blob, name: string): void {
+    const url = URL.createObjectURL(blob);
+    const a = document.createElement('a');
+    a.href = url;
+    a.download = name;
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(url), 10_000);
+  }
+
+  private fileBase(): string {
+    return (this.scene.name || 'scene').replace(/[^\w.-]+/g, '-');
+  }
+
+  exportJson(): void {
+    const doc = { $schema: 'https://drape.dev/scene.schema.json', ...this.scene };
+    this.download(new Blob([JSON.stringify(doc, null, 2) + '\n'], { type: 'application/json' }), `${this.fileBase()}.json`);
+  }
+
+  importJson(): void {
+    this.fileInput.value = '';
+    this.fileInput.click();
+  }
+
+  private async readImport(): Promise<void> {
+    const file = this.fileInput.files?.[0];
+    if (!file) return;
+    this.importText(await file.text(), file.name);
+  }
+
+  /** Loads a scene document; an invalid one is refused with a message and changes nothing. */
+  importText(text: string, source = 'scene'): boolean {
+    let scene: Scene;
+    try {
+      scene = parseScene(text, source);
+    } catch (e) {
+      this.overlay.message(`Import refused — ${(e as Error).message}`);
+      return false;
+    }
+    this.applyScene(scene, SCENE_NAMES.includes(scene.name) ? scene.name : '');
+    this.overlay.message(`Imported ${source}`, 'notice');
+    return true;
+  }
+
+  copyLink(): void {
+    this.writeHash();
+    const url = location.href;
+    navigator.clipboard?.writeText(url).then(
+      () => this.overlay.message('Link copied to the clipboard', 'notice'),
+      () => this.overlay.message(`Link: ${url}`, 'notice'),
+    );
+  }
+
+  private hashState() {
+    return {
+      scene: this.scene,
+      base: this.sceneKey,
+      view: {
+        view: this.view === 'shaded' ? undefined : this.view,
+        sweep: this.scene.resolutionSweep?.length && this.sweepLayout !== 'sequence' ? this.sweepLayout : undefined,
+      },
+    };
+  }
+
+  private writeHash(): void {
+    clearTimeout(this.hashTimer);
+    let hash: string;
+    try {
+      hash = encodeHash(this.hashState());
+    } catch {
+      return;
+    }
+    if (hash !== location.hash && !(hash === '' && location.hash === '')) {
+      history.replaceState(null, '', hash || location.pathname + location.search);
+    }
+  }
+
+  private scheduleHash(): void {
+    clearTimeout(this.hashTimer);
+    this.hashTimer = window.setTimeout(() => this.writeHash(), 250);
+  }
+
+  private onHashChange(): void {
+    if (location.hash === encodeHash(this.hashState())) return;
+    try {
+      const s = decodeHash(location.hash);
+      if (!s) return;
+      if (s.view.view && (VIEWS as readonly string[]).includes(s.view.view)) this.view = s.view.view as ViewName;
+      this.sweepLayout = s.view.sweep === 'side-by-side' ? 'side-by-side' : 'sequence';
+      this.applyScene(s.scene, SCENE_NAMES.includes(s.base) ? s.base : '');
+    } catch (e) {
+      this.overlay.message((e as Error).message);
+    }
+  }
+
+  screenshot(): void {
+    this.stage.render();
+    this.stage.renderer.domElement.toBlob((blob) => {
+      if (blob) this.download(blob, `drape-${this.fileBase()}.png`);
+      else this.overlay.message('screenshot failed: the canvas could not be read');
+    }, 'image/png');
+  }
+
+  /** The cloths as plain meshes with standard materials, at their current shape, for the exporters. */
+  private exportGroup(): Group {
+    const group = new Group();
+    group.name = this.scene.name;
+    const look = fabricLook(fabricFor(this.scene.name));
+    const material = new MeshStandardMaterial({ map: look.map, roughness: look.roughness, side: DoubleSide, name: `${look.kind} fabric` });
+    this.sim.mirrors.forEach((m, k) => {
+      const g = new BufferGeometry();
+      g.setAttribute('position', new BufferAttribute(new Float32Array(m.sim.state.positions), 3));
+      g.setAttribute('uv', new BufferAttribute(new Float32Array(m.sim.model.uvs), 2));
+      g.setIndex(new BufferAttribute(new Uint32Array(m.sim.model.triangles), 1));
+      g.computeVertexNormals();
+      const mesh = new Mesh(g, material);
+      mesh.name = this.sim.mirrors.length > 1 ? `cloth-${m.sim.scene.cloth.resolution}` : 'cloth';
+      if (k >= 0) group.add(mesh);
+    });
+    return group;
+  }
+
+  exportObj(): void {
+    void import('three/examples/jsm/exporters/OBJExporter.js').then(({ OBJExporter }) => {
+      const text = `# Drape cloth, scene '${this.scene.name}'\n` + new OBJExporter().parse(this.exportGroup());
+      this.download(new Blob([text], { type: 'model/obj' }), `${this.fileBase()}.obj`);
+    });
+  }
+
+  exportGltf(): void {
+    void import('three/examples/jsm/exporters/GLTFExporter.js').then(async ({ GLTFExporter }) => {
+      try {
+        const out = await new GLTFExporter().parseAsync(this.exportGroup(), { binary: true });
+        this.download(new Blob([out as ArrayBuffer], { type: 'model/gltf-binary' }), `${this.fileBase()}.glb`);
+      } catch (e) {
+        this.overlay.message(`glTF export failed: ${(e as Error).message}`);
+      }
+    });
+  }
+
+  // ---------------------------------------------------------------- keyboard and loop
+
+  private readonly onKey = (e: KeyboardEvent): void => {
+    const t = e.target as HTMLElement | null;
+    // typing into a text field or a dropdown is not a shortcut; a focused checkbox or button is
+    const typing = t instanceof HTMLInputElement ? !['checkbox', 'radio', 'button', 'range'].includes(t.type)
+      : !!t && (t.tagName === 'SELECT' || t.tagName === 'TEXTAREA' || t.isContentEditable);
+    if (typing) return;
+    // space on a focused checkbox or button would also toggle or press it on key-up
+    if (e.key === ' ' && t && t !== document.body && (t instanceof HTMLButtonElement || t instanceof HTMLInputElement)) t.blur();
+    if (e.ctrlKey || e.metaKey || e.altKey) return;
+    const k = e.key;
+    let handled = true;
+    if (k === 'v' || k === 'V') this.cycleView();
+    else if (k === '1') this.setCamera('front');
+    else if (k === '2') this.setCamera('side');
+    else if (k === '3') this.setCamera('top');
+    else if (k === '4') this.setCamera('reset');
+    else if (k === ' ') this.togglePause();
+    else if (k === 'r' || k === 'R') this.reset();
+    else if (k === 's' || k === 'S') this.stepOnce();
+    else if (k === 'p' || k === 'P') { this.setPinTool(!this.pinTool); this.overlay.toast(this.pinTool ? 'Pin tool on' : 'Pin tool off'); }
+    else if (k === '?' || (k === '/' && e.shiftKey)) this.overlay.help();
+    else if (k === 'Escape') this.overlay.help(false);
+    else handled = false;
+    if (handled) e.preventDefault();
+  };
+
+  private readonly loop = (now: number): void => {
+    requestAnimationFrame(this.loop);
+    const dt = this.lastTime ? now - this.lastTime : 0;
+    this.lastTime = now;
+    this.sim.tick(dt, now);
+    this.advanceSweep();
+    this.syncViews();
+    const redraw = this.dirty;
+    if (this.dirty) {
+      this.sim.mirrors.forEach((m, k) => this.views[k]?.update(m.sim.state, m.grabbed));
+      this.dirty = false;
+    }
+    const moved = this.stage.updateControls();
+    // draw only when something changed: a paused, untouched view costs nothing
+    const draw = !this.stage.busy && (redraw || moved || this.stage.needsRender || !this.firstFrameAt);
+    if (draw) {
+      this.placeLabels();
+      this.stage.render();
+      this.fpsFrames++;
+      if (!this.firstFrameAt) {
+        this.firstFrameAt = performance.now();
+        performance.mark('drape:first-frame');
+        this.firstFrameResolve();
+      }
+    }
+    if (now - this.fpsTime >= 500) {
+      this.fps = (1000 * this.fpsFrames) / (now - this.fpsTime);
+      this.idle = this.fpsFrames === 0;
+      this.fpsFrames = 0;
+      this.fpsTime = now;
+    }
+    if (now - this.plotTime >= 100 && !this.sim.paused) {
+      this.plotTime = now;
+      this.hud.sample(this.sim.stats.energy);
+    }
+    if (now - this.hudTime >= 250) {
+      this.hudTime = now;
+      this.updateHud();
+    }
+  };
+
+  private updateHud(): void {
+    let particles = 0, triangles = 0, springs = 0;
+    for (const m of this.sim.mirrors) {
+      particles += m.sim.model.particleCount;
+      triangles += m.sim.model.triangles.length / 3;
+      springs += m.sim.model.restLengths.length;
+    }
+    const sweep = this.scene.resolutionSweep;
+    this.hud.update({
+      fps: this.fps,
+      idle: this.idle,
+      backend: this.stage.backend === 'webgpu' ? 'WebGPU' : 'WebGL2',
+      stepMs: this.sim.stats.stepMs,
+      realTime: this.sim.stats.realTime,
+      paused: this.sim.paused,
+      particles, triangles, springs,
+      solver: this.scene.solver.type,
+      substeps: this.scene.solver.substeps,
+      clamps: this.sim.stats.clamps,
+      view: this.view,
+      maxStrain: this.sim.stats.maxStrain,
+      slots: this.sim.mirrors.length,
+      extra: sweep?.length && this.sweepLayout === 'sequence'
+        ? `resolution ${this.sweepIndex % sweep.length + 1} of ${sweep.length}, ${SWEEP_STAGE_FRAMES / 60} s each`
+        : SCENE_LABELS[this.scene.name] ? undefined : `scene: ${this.scene.name}`,
+    });
+  }
+}

@@ -1,0 +1,103 @@
+/**
+ * `window.drape`: a small, read-mostly hook for browser tests and the curious (documented in docs/app.md).
+ * Queries return plain JSON values. The only things it can change are stepping (`step`, for tests that must not
+ * depend on the machine's speed) and `import` (the same path as the panel's import button).
+ */
+import { Vector3 } from 'three/webgpu';
+import type { App } from './app.js';
+
+export interface DrapeHook {
+  /** true once the first frame has been drawn */
+  readonly ready: boolean;
+  /** ms from navigation start to the first drawn frame */
+  readonly firstFrameMs: number;
+  backend(): 'webgpu' | 'webgl2';
+  sceneName(): string;
+  /** the current scene document (a copy) */
+  scene(): unknown;
+  view(): string;
+  paused(): boolean;
+  pinTool(): boolean;
+  /** number of cloths on screen (7 for the Mesh Resolution scene side by side) */
+  slots(): number;
+  /** frames stepped since the cloth of a slot (re)started */
+  frame(slot?: number): number;
+  particleCount(slot?: number): number;
+  /** [x, y, z] of the given particles (all when omitted) */
+  positions(indices?: number[], slot?: number): number[][];
+  /** mean position of a slot's particles */
+  centroid(slot?: number): number[];
+  /** indices of pinned particles */
+  pinned(slot?: number): number[];
+  /** grabbed particle or -1 */
+  grabbed(slot?: number): number;
+  /** where a particle is on screen, in CSS pixels of the page */
+  screenOf(particle: number, slot?: number): { x: number; y: number };
+  /** camera position */
+  camera(): number[];
+  /** the text of the last message shown in the page, and its kind */
+  lastMessage(): { text: string; kind: string };
+  /** text of the floating labels (Mesh Resolution scene) */
+  labels(): string[];
+  stats(): { fps: number; stepMs: number; realTime: number; framesDone: number; clamps: string[] };
+  /** steps n frames now (whether paused or not) and resolves when they are drawn into the mirrors */
+  step(frames?: number): Promise<void>;
+  /** imports a scene document as the panel does; false (and a message) when refused */
+  import(text: string): boolean;
+}
+
+export function installHook(app: App): DrapeHook {
+  const mirror = (slot = 0) => {
+    const m = app.sim.mirrors[slot];
+    if (!m) throw new RangeError(`no slot ${slot}`);
+    return m;
+  };
+  const hook: DrapeHook = {
+    get ready() { return app.firstFrameAt > 0; },
+    get firstFrameMs() { return app.firstFrameAt; },
+    backend: () => app.stage.backend,
+    sceneName: () => app.scene.name,
+    scene: () => structuredClone(app.scene),
+    view: () => app.view,
+    paused: () => app.sim.paused,
+    pinTool: () => app.pinTool,
+    slots: () => app.sim.mirrors.length,
+    frame: (slot) => mirror(slot).frame,
+    particleCount: (slot) => mirror(slot).sim.model.particleCount,
+    positions: (indices, slot) => {
+      const x = mirror(slot).sim.state.positions;
+      const ids = indices ?? Array.from({ length: x.length / 3 }, (_, i) => i);
+      return ids.map((i) => [x[3 * i], x[3 * i + 1], x[3 * i + 2]]);
+    },
+    centroid: (slot) => {
+      const x = mirror(slot).sim.state.positions;
+      const c = [0, 0, 0];
+      for (let i = 0; i < x.length; i += 3) { c[0] += x[i]; c[1] += x[i + 1]; c[2] += x[i + 2]; }
+      return c.map((v) => (3 * v) / x.length);
+    },
+    pinned: (slot) => {
+      const p = mirror(slot).sim.state.pinned;
+      const out: number[] = [];
+      for (let i = 0; i < p.length; i++) if (p[i]) out.push(i);
+      return out;
+    },
+    grabbed: (slot) => mirror(slot).grabbed,
+    screenOf: (particle, slot) => {
+      const x = mirror(slot).sim.state.positions;
+      const v = new Vector3(x[3 * particle], x[3 * particle + 1], x[3 * particle + 2]).project(app.stage.camera);
+      const r = app.stage.container.getBoundingClientRect();
+      return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
+    },
+    camera: () => app.stage.camera.position.toArray(),
+    lastMessage: () => ({ text: app.overlay.lastMessage, kind: app.overlay.lastMessageKind }),
+    labels: () => [...app.overlay.labelLayer.querySelectorAll('.drape-label')].map((l) => (l as HTMLElement).innerText.replace(/\s+/g, ' ').trim()),
+    stats: () => ({
+      fps: app.fps, stepMs: app.sim.stats.stepMs, realTime: app.sim.stats.realTime,
+      framesDone: app.sim.stats.framesDone, clamps: [...app.sim.stats.clamps],
+    }),
+    step: (frames = 1) => app.sim.step(frames),
+    import: (text) => app.importText(text, 'hook'),
+  };
+  (window as unknown as { drape: DrapeHook }).drape = hook;
+  return hook;
+}

@@ -1,0 +1,48 @@
+/**
+ * Messages between the page (src/app/sim-client.ts) and the simulation worker (src/app/sim.worker.ts).
+ *
+ * The worker holds one Simulation per "slot" (one cloth; the Mesh Resolution scene side by side has seven). The
+ * page never steps physics: it sends commands and renders the positions the worker sends back. Messages are
+ * handled in order, so a command sent before an `advance` applies before those frames are stepped.
+ */
+import type { Energy, Scene } from '../core/index.js';
+
+export type ToWorker =
+  /** replace every slot with a fresh Simulation of each scene */
+  | { type: 'load'; gen: number; scenes: Scene[] }
+  /** change one slot's scene (Simulation.setScene: rebuilds only when the geometry changed) */
+  | { type: 'setScene'; gen: number; slot: number; scene: Scene }
+  /** restart slots at their start pose (all when slot is undefined) */
+  | { type: 'reset'; slot?: number }
+  /** step every slot `frames` frames of 1/60 s and answer with a `frame` message */
+  | { type: 'advance'; id: number; frames: number }
+  /** grab (or move the grab of) a particle toward target */
+  | { type: 'grab'; slot: number; particle: number; target: [number, number, number] }
+  | { type: 'release'; slot: number };
+
+export interface SlotFrame {
+  /** generation of the model these positions belong to (see SimClient) */
+  gen: number;
+  /** frames stepped since the slot's (re)start */
+  frame: number;
+  positions: Float32Array;
+  pinned: Uint8Array;
+  grabbed: number;
+}
+
+export type FromWorker =
+  | {
+    type: 'frame';
+    /** id of the `advance` this answers */
+    id: number;
+    /** frames stepped for this answer (0 when only the state was requested) */
+    frames: number;
+    slots: SlotFrame[];
+    /** wall time of the stepping, per frame, summed over slots [ms] */
+    stepMs: number;
+    /** energy of slot 0 (or summed over slots) [J] */
+    energy: Energy;
+    maxStrain: number;
+    clamps: string[];
+  }
+  | { type: 'error'; message: string };

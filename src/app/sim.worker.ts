@@ -1,0 +1,87 @@
+/**
+ * The simulation worker: owns the Simulation objects (one per slot) so that stepping never blocks input or
+ * drawing. Dumb on purpose: it applies commands in order and steps when asked (the page owns the clock).
+ */
+import { Simulation, energy, grab, maxStructuralStrain, release, type Energy } from '../core/index.js';
+import type { FromWorker, SlotFrame, ToWorker } from './protocol.js';
+
+interface Slot {
+  sim: Simulation;
+  gen: number;
+}
+
+const ctx = self as unknown as {
+  postMessage(message: FromWorker, transfer?: Transferable[]): void;
+  onmessage: ((e: MessageEvent<ToWorker>) => void) | null;
+};
+
+let slots: Slot[] = [];
+
+function send(msg: FromWorker, transfer: Transferable[] = []): void {
+  ctx.postMessage(msg, transfer);
+}
+
+function frameMessage(id: number, frames: number, stepMs: number): void {
+  const out: SlotFrame[] = [];
+  const transfer: Transferable[] = [];
+  const total: Energy = { kinetic: 0, gravitational: 0, elastic: 0 };
+  let maxStrain = 0;
+  const clamps = new Set<string>();
+  for (const s of slots) {
+    const { sim } = s;
+    const positions = sim.state.positions.slice();
+    const pinned = sim.state.pinned.slice();
+    transfer.push(positions.buffer, pinned.buffer);
+    out.push({ gen: s.gen, frame: sim.frame, positions, pinned, grabbed: sim.state.grabbed });
+    const e = energy(sim.model, sim.state, sim.params);
+    total.kinetic += e.kinetic;
+    total.gravitational += e.gravitational;
+    total.elastic += e.elastic;
+    maxStrain = Math.max(maxStrain, maxStructuralStrain(sim.model, sim.state));
+    for (const c of sim.params.clamps) clamps.add(c);
+  }
+  send({ type: 'frame', id, frames, slots: out, stepMs, energy: total, maxStrain, clamps: [...clamps] }, transfer);
+}
+
+function handle(msg: ToWorker): void {
+  switch (msg.type) {
+    case 'load':
+      slots = msg.scenes.map((scene) => ({ sim: new Simulation(scene), gen: msg.gen }));
+      return;
+    case 'setScene': {
+      const slot = slots[msg.slot];
+      if (!slot) return;
+      slot.sim.setScene(msg.scene);
+      slot.gen = msg.gen;
+      return;
+    }
+    case 'reset':
+      slots.forEach((s, k) => { if (msg.slot === undefined || msg.slot === k) s.sim.reset(); });
+      return;
+    case 'grab': {
+      const slot = slots[msg.slot];
+      if (slot && msg.particle < slot.sim.model.particleCount) grab(slot.sim.state, msg.particle, msg.target);
+      return;
+    }
+    case 'release': {
+      const slot = slots[msg.slot];
+      if (slot) release(slot.sim.state);
+      return;
+    }
+    case 'advance': {
+      const t0 = performance.now();
+      for (const s of slots) s.sim.advance(msg.frames);
+      const stepMs = msg.frames > 0 ? (performance.now() - t0) / msg.frames : 0;
+      frameMessage(msg.id, msg.frames, stepMs);
+      return;
+    }
+  }
+}
+
+ctx.onmessage = (e) => {
+  try {
+    handle(e.data);
+  } catch (err) {
+    send({ type: 'error', message: err instanceof Error ? err.message : String(err) });
+  }
+};

@@ -1,0 +1,40 @@
+import { describe, expect, it } from 'vitest';
+import { builtinScene, setScenePath } from '../core/index.js';
+import { decodeHash, encodeHash } from './url-state.js';
+
+describe('URL hash state', () => {
+  it('is empty for an unchanged default and names the base scene otherwise', () => {
+    const scene = builtinScene('silk-drape')!;
+    expect(encodeHash({ scene, base: 'silk-drape', view: {} })).toBe('#scene=silk-drape');
+  });
+
+  it('round-trips changed fields, arrays and view keys', () => {
+    let scene = builtinScene('cotton-basic')!;
+    scene = setScenePath(scene, 'material.damping', 0.3);
+    scene = setScenePath(scene, 'wind.enabled', true);
+    scene = setScenePath(scene, 'pins', ['top-left', 5]);
+    scene = setScenePath(scene, 'wind.direction', [0, 0, 1]);
+    scene = setScenePath(scene, 'name', 'my "odd" name & more');
+    const hash = encodeHash({ scene, base: 'cotton-basic', view: { view: 'strain', sweep: 'side-by-side' } });
+    expect(hash).toContain('material.damping=0.3');
+    expect(hash).toContain('pins=["top-left",5]');
+    const back = decodeHash(hash)!;
+    expect(back.scene).toEqual(scene);
+    expect(back.base).toBe('cotton-basic');
+    expect(back.view).toEqual({ view: 'strain', sweep: 'side-by-side' });
+  });
+
+  it('names the field of a bad value, and refuses unknown scenes and keys', () => {
+    expect(() => decodeHash('#scene=nope')).toThrow(/unknown scene 'nope'/);
+    expect(() => decodeHash('#scene=wind&material.damping=99')).toThrow(/link: material\.damping: must be <= 10/);
+    expect(() => decodeHash('#material.nope=1')).toThrow(/material\.nope/);
+    expect(() => decodeHash('#garbage')).toThrow(/not key=value/);
+    expect(decodeHash('')).toBeNull();
+  });
+
+  it('a string that looks like JSON stays a string', () => {
+    const scene = setScenePath(builtinScene('custom')!, 'name', 'true');
+    const back = decodeHash(encodeHash({ scene, base: 'custom', view: {} }))!;
+    expect(back.scene.name).toBe('true');
+  });
+});

@@ -1,0 +1,109 @@
+/**
+ * The URL hash holds what is on screen, so that a link reproduces it: the built-in scene it starts from and every
+ * scene field that differs from it, as dotted paths (the CLI's `--set` syntax), plus a few view settings.
+ *
+ *   #scene=silk-drape&material.damping=0.3&wind.enabled=true&pins=["top-left"]&view=strain
+ *
+ * Values are JSON when they parse (numbers, booleans, arrays), otherwise strings. No DOM here: unit-tested.
+ */
+import { SCENE_NAMES, SceneError, builtinScene, defaultScene, parseSetValue, setScenePath, type Scene } from '../core/index.js';
+
+/** hash keys that are not scene paths */
+export const VIEW_KEYS = ['view', 'sweep'] as const;
+export type ViewKey = (typeof VIEW_KEYS)[number];
+
+export interface HashState {
+  scene: Scene;
+  /** built-in scene the link starts from ('' for the schema defaults) */
+  base: string;
+  view: Partial<Record<ViewKey, string>>;
+}
+
+/** The scene a diff is taken against: a built-in by name, or the schema defaults. */
+export function baseScene(base: string): Scene {
+  if (!base) return defaultScene();
+  const s = builtinScene(base);
+  if (!s) throw new SceneError(`link: unknown scene '${base}' (one of ${SCENE_NAMES.join(', ')})`);
+  return s;
+}
+
+type Json = null | boolean | number | string | Json[] | { [k: string]: Json };
+
+function isPlainObject(v: unknown): v is Record<string, Json> {
+  return v !== null && typeof v === 'object' && !Array.isArray(v);
+}
+
+/** Leaf paths where `scene` differs from `base` (arrays are leaves), in a stable order. */
+export function sceneDiff(scene: Scene, base: Scene): [string, Json][] {
+  const out: [string, Json][] = [];
+  const walk = (a: unknown, b: unknown, path: string) => {
+    if (isPlainObject(a)) {
+      for (const k of Object.keys(a)) {
+        if (k === '$schema') continue;
+        walk(a[k], isPlainObject(b) ? b[k] : undefined, path ? `${path}.${k}` : k);
+      }
+      return;
+    }
+    if (JSON.stringify(a) !== JSON.stringify(b)) out.push([path, a as Json]);
+  };
+  walk(scene, base, '');
+  return out;
+}
+
+function encodeValue(v: Json): string {
+  const s = typeof v === 'string' && parseSetValue(v) === v ? v : JSON.stringify(v);
+  // keep brackets, commas, quotes and colons readable; escape what would break the hash
+  return encodeURIComponent(s).replace(/%5B/g, '[').replace(/%5D/g, ']').replace(/%2C/g, ',').replace(/%22/g, '"').replace(/%3A/g, ':');
+}
+
+export function encodeHash(state: HashState): string {
+  const parts: string[] = [];
+  if (state.base) parts.push(`scene=${encodeURIComponent(state.base)}`);
+  for (const [path, value] of sceneDiff(state.scene, baseScene(state.base))) parts.push(`${path}=${encodeValue(value)}`);
+  for (const k of VIEW_KEYS) {
+    const v = state.view[k];
+    if (v !== undefined) parts.push(`${k}=${encodeURIComponent(v)}`);
+  }
+  return parts.length ? `#${parts.join('&')}` : '';
+}
+
+/**
+ * Reads a hash (with or without '#'). An empty hash gives null. Anything wrong throws SceneError with one line
+ * naming the key.
+ */
+export function decodeHash(hash: string): HashState | null {
+  const text = hash.replace(/^#/, '');
+  if (!text.trim()) return null;
+  const pairs: [string, string][] = [];
+  for (const part of text.split('&')) {
+    if (!part) continue;
+    const eq = part.indexOf('=');
+    if (eq < 1) throw new SceneError(`link: '${safeDecode(part)}' is not key=value`);
+    pairs.push([safeDecode(part.slice(0, eq)), safeDecode(part.slice(eq + 1))]);
+  }
+  const sceneKey = pairs.find(([k]) => k === 'scene');
+  const base = sceneKey ? sceneKey[1] : '';
+  let scene = baseScene(base);
+  const view: HashState['view'] = {};
+  for (const [key, raw] of pairs) {
+    if (key === 'scene') continue;
+    if ((VIEW_KEYS as readonly string[]).includes(key)) { view[key as ViewKey] = raw; continue; }
+    try {
+      scene = setScenePath(scene, key, parseSetValue(raw));
+    } catch (e) {
+      const msg = (e as Error).message;
+      const dup = `--set ${key}: `;
+      // the core names the field twice ('--set a.b: a.b: must be…'); say it once
+      throw new SceneError(msg.startsWith(dup) && msg.slice(dup.length).startsWith(key) ? `link: ${msg.slice(dup.length)}` : msg.replace(/^--set /, 'link: '));
+    }
+  }
+  return { scene, base, view };
+}
+
+function safeDecode(s: string): string {
+  try {
+    return decodeURIComponent(s);
+  } catch {
+    throw new SceneError(`link: '${s}' is not valid URL encoding`);
+  }
+}

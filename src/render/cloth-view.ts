@@ -1,0 +1,276 @@
+/**
+ * Draws one cloth in the five views of the seed ('V' cycles them): shaded, wireframe, particles, springs coloured
+ * by kind, and a strain heat map; plus markers for pinned particles and the grabbed one. Reads a model and a
+ * state; never changes them.
+ */
+import {
+  BufferAttribute, BufferGeometry, Color, DoubleSide, DynamicDrawUsage, Group, IcosahedronGeometry, InstancedMesh,
+  LineBasicNodeMaterial, LineSegments, Mesh, MeshPhysicalNodeMaterial, MeshStandardNodeMaterial, Object3D,
+  SphereGeometry,
+} from 'three/webgpu';
+import { BEND, STRUCTURAL, type ClothModel, type ClothState } from '../core/index.js';
+import type { FabricLook } from './textures.js';
+
+export const VIEWS = ['shaded', 'wireframe', 'particles', 'springs', 'strain'] as const;
+export type ViewName = (typeof VIEWS)[number];
+export const VIEW_LABELS: Record<ViewName, string> = {
+  shaded: 'Shaded',
+  wireframe: 'Wireframe mesh',
+  particles: 'Particles',
+  springs: 'Springs by kind',
+  strain: 'Strain heat map',
+};
+
+/** spring colours by kind: structural, shear, bend */
+export const SPRING_COLORS = ['#2f6fd6', '#2ea043', '#e0832d'] as const;
+/** strain shown at full colour [-] */
+export const STRAIN_RANGE = 0.1;
+
+const tmpColor = new Color();
+
+/** Diverging map: compression blue, rest near white, stretch yellow → red. */
+export function strainColor(e: number, out: Color): Color {
+  const t = Math.max(-1, Math.min(1, e / STRAIN_RANGE));
+  if (t < 0) return out.setRGB(1 + 0.85 * t, 1 + 0.6 * t, 1 + 0.05 * t, 'srgb');
+  if (t < 0.5) { const u = t / 0.5; return out.setRGB(1, 1 - 0.15 * u, 1 - 0.85 * u, 'srgb'); }
+  const u = (t - 0.5) / 0.5;
+  return out.setRGB(1 - 0.2 * u, 0.85 - 0.75 * u, 0.15 - 0.1 * u, 'srgb');
+}
+
+export class ClothView {
+  readonly group = new Group();
+  readonly mesh: Mesh;
+  private readonly geometry: BufferGeometry;
+  private readonly position: BufferAttribute;
+  private readonly color: BufferAttribute;
+  private readonly shadedMaterial: MeshPhysicalNodeMaterial;
+  private readonly strainMaterial: MeshStandardNodeMaterial;
+  private readonly wire: LineSegments;
+  private readonly springs: LineSegments;
+  private readonly springPos: BufferAttribute;
+  private readonly points: InstancedMesh;
+  private pins: InstancedMesh;
+  private readonly grabMarker: Mesh;
+  private view: ViewName = 'shaded';
+  private readonly strainSum: Float32Array;
+  private readonly strainCount: Uint16Array;
+
+  constructor(readonly model: ClothModel, look: FabricLook) {
+    const n = model.particleCount;
+    const g = new BufferGeometry();
+    this.position = new BufferAttribute(new Float32Array(model.restPositions), 3).setUsage(DynamicDrawUsage);
+    this.color = new BufferAttribute(new Float32Array(3 * n).fill(1), 3).setUsage(DynamicDrawUsage);
+    g.setAttribute('position', this.position);
+    g.setAttribute('uv', new BufferAttribute(new Float32Array(model.uvs), 2));
+    g.setAttribute('color', this.color);
+    g.setIndex(new BufferAttribute(new Uint32Array(model.triangles), 1));
+    g.computeVertexNormals();
+    (g.getAttribute('normal') as BufferAttribute).setUsage(DynamicDrawUsage);
+    this.geometry = g;
+
+    this.shadedMaterial = new MeshPhysicalNodeMaterial({
+      map: look.map, roughness: look.roughness, metalness: 0, side: DoubleSide,
+      sheen: look.sheen, sheenRoughness: 0.6, sheenColor: new Color(look.sheenColor), clearcoat: look.clearcoat,
+      clearcoatRoughness: 0.4,
+    });
+    this.strainMaterial = new MeshStandardNodeMaterial({ vertexColors: true, roughness: 0.8, side: DoubleSide });
+    this.mesh = new Mesh(g, this.shadedMaterial);
+    this.mesh.castShadow = true;
+    this.mesh.receiveShadow = true;
+    this.mesh.frustumCulled = false;
+    this.mesh.name = 'cloth';
+
+    // wireframe: each triangle edge once, sharing the cloth's positions
+    const edges = new Set<number>();
+    const tri = model.triangles;
+    const edgeList: number[] = [];
+    for (let k = 0; k < tri.length; k += 3) {
+      for (let e = 0; e < 3; e++) {
+        const a = tri[k + e], b = tri[k + ((e + 1) % 3)];
+        const key = a < b ? a * n + b : b * n + a;
+        if (!edges.has(key)) { edges.add(key); edgeList.push(a, b); }
+      }
+    }
+    const wg = new BufferGeometry();
+    wg.setAttribute('position', this.position);
+    wg.setIndex(new BufferAttribute(new Uint32Array(edgeList), 1));
+    this.wire = new LineSegments(wg, new LineBasicNodeMaterial({ color: 0x26303d }));
+    this.wire.frustumCulled = false;
+
+    // springs: two vertices per spring so each can carry its kind's colour
+    const sCount = model.restLengths.length;
+    const sg = new BufferGeometry();
+    this.springPos = new BufferAttribute(new Float32Array(6 * sCount), 3).setUsage(DynamicDrawUsage);
+    const sCol = new Float32Array(6 * sCount);
+    const kindColors = SPRING_COLORS.map((c) => new Color(c));
+    for (let s = 0; s < sCount; s++) {
+      const c = kindColors[model.springKinds[s]];
+      sCol.set([c.r, c.g, c.b, c.r, c.g, c.b], 6 * s);
+    }
+    sg.setAttribute('position', this.springPos);
+    sg.setAttribute('color', new BufferAttribute(sCol, 3));
+    this.springs = new LineSegments(sg, new LineBasicNodeMaterial({ vertexColors: true }));
+    this.springs.frustumCulled = false;
+
+    const spacing = this.spacing();
+    this.points = new InstancedMesh(
+      new IcosahedronGeometry(Math.min(0.012, spacing * 0.22), 1),
+      new MeshStandardNodeMaterial({ color: 0x33485f, roughness: 0.5 }), n,
+    );
+    this.points.frustumCulled = false;
+    this.points.castShadow = true;
+    const o = new Object3D();
+    for (let i = 0; i < n; i++) { o.position.set(0, 0, 0); o.updateMatrix(); this.points.setMatrixAt(i, o.matrix); }
+
+    this.pins = this.makePins(16);
+    this.grabMarker = new Mesh(
+      new SphereGeometry(0.022, 16, 12),
+      new MeshStandardNodeMaterial({ color: 0x1e88e5, emissive: new Color(0x0d47a1), roughness: 0.3 }),
+    );
+    this.grabMarker.visible = false;
+
+    this.strainSum = new Float32Array(n);
+    this.strainCount = new Uint16Array(n);
+    for (let s = 0; s < sCount; s++) {
+      if (model.springKinds[s] === BEND) continue;
+      this.strainCount[model.springs[2 * s]]++;
+      this.strainCount[model.springs[2 * s + 1]]++;
+    }
+
+    this.group.add(this.mesh, this.wire, this.springs, this.points, this.pins, this.grabMarker);
+    this.setView('shaded');
+  }
+
+  /** typical particle spacing [m] */
+  spacing(): number {
+    const rest = this.model.restLengths;
+    for (let s = 0; s < rest.length; s++) if (this.model.springKinds[s] === STRUCTURAL) return rest[s];
+    return 0.03;
+  }
+
+  private makePins(capacity: number): InstancedMesh {
+    const r = Math.max(0.014, Math.min(0.03, this.spacing() * 0.45));
+    const m = new InstancedMesh(
+      new SphereGeometry(r, 16, 12),
+      new MeshStandardNodeMaterial({ color: 0xd93a2b, emissive: new Color(0x5a0d07), roughness: 0.35 }),
+      capacity,
+    );
+    m.count = 0;
+    m.frustumCulled = false;
+    m.castShadow = true;
+    m.name = 'pins';
+    return m;
+  }
+
+  setView(view: ViewName): void {
+    this.view = view;
+    this.mesh.visible = view === 'shaded' || view === 'strain';
+    this.mesh.material = view === 'strain' ? this.strainMaterial : this.shadedMaterial;
+    this.wire.visible = view === 'wireframe';
+    this.springs.visible = view === 'springs';
+    this.points.visible = view === 'particles';
+  }
+
+  setLook(look: FabricLook): void {
+    const m = this.shadedMaterial;
+    m.map = look.map;
+    m.roughness = look.roughness;
+    m.sheen = look.sheen;
+    m.sheenColor.set(look.sheenColor);
+    m.clearcoat = look.clearcoat;
+    m.needsUpdate = true;
+  }
+
+  /** Copies the state into the GPU buffers of the current view. */
+  update(state: ClothState, grabbed: number): void {
+    const x = state.positions;
+    const model = this.model;
+    this.position.array.set(x);
+    this.position.needsUpdate = true;
+    if (this.view === 'shaded' || this.view === 'strain') {
+      this.geometry.computeVertexNormals();
+      this.geometry.getAttribute('normal').needsUpdate = true;
+    }
+    if (this.view === 'strain') this.updateStrain(x);
+    if (this.view === 'springs') {
+      const sp = model.springs, out = this.springPos.array as Float32Array;
+      for (let s = 0; s < model.restLengths.length; s++) {
+        const a = 3 * sp[2 * s], b = 3 * sp[2 * s + 1], o = 6 * s;
+        out[o] = x[a]; out[o + 1] = x[a + 1]; out[o + 2] = x[a + 2];
+        out[o + 3] = x[b]; out[o + 4] = x[b + 1]; out[o + 5] = x[b + 2];
+      }
+      this.springPos.needsUpdate = true;
+    }
+    if (this.view === 'particles') {
+      const m = this.points.instanceMatrix.array as Float32Array;
+      for (let i = 0; i < model.particleCount; i++) {
+        m[16 * i + 12] = x[3 * i]; m[16 * i + 13] = x[3 * i + 1]; m[16 * i + 14] = x[3 * i + 2];
+      }
+      this.points.instanceMatrix.needsUpdate = true;
+    }
+    this.updatePins(state);
+    if (grabbed >= 0 && grabbed < model.particleCount) {
+      this.grabMarker.visible = true;
+      this.grabMarker.position.set(x[3 * grabbed], x[3 * grabbed + 1], x[3 * grabbed + 2]);
+    } else {
+      this.grabMarker.visible = false;
+    }
+  }
+
+  private updatePins(state: ClothState): void {
+    const pinned = state.pinned, x = state.positions;
+    let count = 0;
+    for (let i = 0; i < pinned.length; i++) if (pinned[i]) count++;
+    if (count > this.pins.instanceMatrix.count) {
+      this.group.remove(this.pins);
+      this.pins.geometry.dispose();
+      this.pins.dispose();
+      this.pins = this.makePins(Math.max(count, 2 * this.pins.instanceMatrix.count));
+      this.group.add(this.pins);
+    }
+    const m = this.pins.instanceMatrix.array as Float32Array;
+    let k = 0;
+    for (let i = 0; i < pinned.length; i++) {
+      if (!pinned[i]) continue;
+      m.set([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x[3 * i], x[3 * i + 1], x[3 * i + 2], 1], 16 * k);
+      k++;
+    }
+    this.pins.count = count;
+    this.pins.instanceMatrix.needsUpdate = true;
+  }
+
+  private updateStrain(x: Float32Array): void {
+    const model = this.model, sp = model.springs, rest = model.restLengths;
+    const sum = this.strainSum;
+    sum.fill(0);
+    for (let s = 0; s < rest.length; s++) {
+      if (model.springKinds[s] === BEND) continue;
+      const a = sp[2 * s], b = sp[2 * s + 1];
+      const dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
+      const e = Math.sqrt(dx * dx + dy * dy + dz * dz) / rest[s] - 1;
+      sum[a] += e; sum[b] += e;
+    }
+    const col = this.color.array as Float32Array;
+    for (let i = 0; i < model.particleCount; i++) {
+      strainColor(this.strainCount[i] ? sum[i] / this.strainCount[i] : 0, tmpColor);
+      col[3 * i] = tmpColor.r; col[3 * i + 1] = tmpColor.g; col[3 * i + 2] = tmpColor.b;
+    }
+    this.color.needsUpdate = true;
+  }
+
+  dispose(): void {
+    this.geometry.dispose();
+    this.wire.geometry.dispose();
+    this.springs.geometry.dispose();
+    this.points.geometry.dispose();
+    this.points.dispose();
+    this.pins.geometry.dispose();
+    this.pins.dispose();
+    this.grabMarker.geometry.dispose();
+    this.shadedMaterial.dispose();
+    this.strainMaterial.dispose();
+    (this.wire.material as LineBasicNodeMaterial).dispose();
+    (this.springs.material as LineBasicNodeMaterial).dispose();
+  }
+}
+

@@ -1,0 +1,257 @@
+/**
+ * The three.js stage: renderer (WebGPU, or WebGL2 when WebGPU is absent or its device is lost), camera and orbit
+ * controls, studio lighting with soft shadows, backdrop, floor and the collider shapes of the current scene.
+ */
+import {
+  Color, DirectionalLight, Fog, Group, HemisphereLight, Mesh, MeshStandardNodeMaterial, PCFShadowMap,
+  PerspectiveCamera, PlaneGeometry, ACESFilmicToneMapping, Scene as ThreeScene, SphereGeometry, Vector3,
+  WebGPURenderer,
+} from 'three/webgpu';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import type { ColliderSpec } from '../core/index.js';
+import { backdropTexture, floorTexture, repaintTextures } from './textures.js';
+
+export type BackendName = 'webgpu' | 'webgl2';
+export type CameraPreset = 'front' | 'side' | 'top' | 'reset';
+
+export interface StageOptions {
+  /** skip WebGPU altogether */
+  forceWebGL?: boolean;
+  /** cheaper rendering (no MSAA, smaller shadow map, pixel ratio 1): for software rasterisers and tests */
+  lite?: boolean;
+  /** called when a WebGPU device is lost after start-up (the stage has already switched to WebGL2) */
+  onFallback?: (reason: string) => void;
+  /** called when the device was lost and WebGL2 failed too */
+  onFallbackFailed?: (message: string) => void;
+}
+
+export class Stage {
+  renderer!: WebGPURenderer;
+  backend: BackendName = 'webgl2';
+  readonly scene = new ThreeScene();
+  readonly camera = new PerspectiveCamera(40, 1, 0.05, 200);
+  readonly controls: OrbitControls;
+  /** colliders and cloths live here */
+  readonly content = new Group();
+  private readonly colliderGroup = new Group();
+  private readonly floor: Mesh;
+  private readonly key: DirectionalLight;
+  private readonly sphereMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0 });
+  /** centre and size of what the camera frames */
+  private focus = new Vector3(0, 0.6, 0);
+  private extent = 1;
+  private lost = false;
+  private disposing = false;
+  private switching: Promise<void> | null = null;
+
+  private constructor(readonly container: HTMLElement, private readonly options: StageOptions) {
+    const s = this.scene;
+    s.background = backdropTexture();
+    s.fog = new Fog(new Color('#e3e5e8'), 14, 40);
+
+    const hemi = new HemisphereLight(0xf2f5ff, 0x8a8070, 1.4);
+    const key = new DirectionalLight(0xfff3e2, 2.6);
+    key.castShadow = true;
+    key.shadow.mapSize.setScalar(options.lite ? 1024 : 2048);
+    key.shadow.radius = 6;
+    key.shadow.bias = -0.0004;
+    key.shadow.normalBias = 0.02;
+    this.key = key;
+    const fill = new DirectionalLight(0xd8e6ff, 0.7);
+    fill.position.set(-4, 3, -2);
+    const rim = new DirectionalLight(0xffffff, 0.6);
+    rim.position.set(0, 4, -6);
+    s.add(hemi, key, key.target, fill, rim);
+
+    const fm = new MeshStandardNodeMaterial({ map: floorTexture(), roughness: 0.95, metalness: 0 });
+    this.floor = new Mesh(new PlaneGeometry(40, 40), fm);
+    this.floor.rotation.x = -Math.PI / 2;
+    this.floor.receiveShadow = true;
+    this.floor.name = 'floor';
+    s.add(this.floor, this.colliderGroup, this.content);
+
+    // Orbit controls listen on the container (not the canvas), so a renderer switch keeps them; the app's
+    // pointer handlers are registered on the same element before this, so they can claim a press first.
+    this.controls = new OrbitControls(this.camera, container);
+    this.controls.enableDamping = true;
+    this.controls.dampingFactor = 0.12;
+    this.controls.maxPolarAngle = Math.PI * 0.495;
+    this.controls.minDistance = 0.3;
+    this.controls.maxDistance = 40;
+    this.controls.screenSpacePanning = true;
+    this.frame(1, new Vector3(0, 0.6, 0));
+    this.setCamera('reset');
+  }
+
+  static async create(container: HTMLElement, options: StageOptions = {}): Promise<Stage> {
+    // calls three.js still has in flight when a WebGPU device dies reject with "Instance dropped…": they are the
+    // symptom of the loss handled by deviceLost(), not errors of their own
+    window.addEventListener('unhandledrejection', (e) => {
+      const r = e.reason as { name?: string; message?: string } | undefined;
+      if (r && r.name === 'OperationError' && /Instance dropped|device (was )?(lost|destroyed)/i.test(r.message ?? '')) e.preventDefault();
+    });
+    const stage = new Stage(container, options);
+    await stage.makeRenderer(options.forceWebGL === true);
+    return stage;
+  }
+
+  private async makeRenderer(forceWebGL: boolean): Promise<void> {
+    const canvas = document.createElement('canvas');
+    canvas.className = 'drape-canvas';
+    this.container.prepend(canvas);
+    const r = new WebGPURenderer({ canvas, antialias: !this.options.lite, forceWebGL });
+    r.onDeviceLost = (info: { message: string; reason: string | null }) => {
+      if (this.renderer === r) this.deviceLost(info.reason ? `reason: ${info.reason}` : info.message);
+    };
+    r.setPixelRatio(this.options.lite ? 1 : Math.min(window.devicePixelRatio, 2));
+    r.shadowMap.enabled = true;
+    r.shadowMap.type = PCFShadowMap;
+    r.toneMapping = ACESFilmicToneMapping;
+    r.toneMappingExposure = 1.0;
+    try {
+      await r.init();
+    } catch (e) {
+      canvas.remove();
+      throw e;
+    }
+    performance.mark(forceWebGL ? 'drape:renderer-webgl' : 'drape:renderer');
+    const old = this.renderer as WebGPURenderer | undefined;
+    this.renderer = r;
+    this.backend = (r.backend as { isWebGPUBackend?: boolean }).isWebGPUBackend ? 'webgpu' : 'webgl2';
+    const device = (r.backend as { device?: GPUDevice }).device;
+    if (this.backend === 'webgpu' && device) {
+      // three.js ignores a loss with reason 'destroyed', but Chromium reports exactly that when it cannot present
+      // to the canvas (no WebGPU context provider): any loss we did not cause ourselves means "switch".
+      void device.lost.then((info) => {
+        if (this.renderer === r && !this.disposing) this.deviceLost(info.reason ? `reason: ${info.reason}` : info.message || 'no reason given');
+      });
+    }
+    this.resize();
+    if (old) {
+      this.disposing = true;
+      try { old.dispose(); } catch { /* a lost device may refuse */ }
+      this.disposing = false;
+      old.domElement.remove();
+    }
+  }
+
+  /** WebGPU device lost: recreate the renderer on WebGL2 (a canvas that had a WebGPU context needs replacing). */
+  private deviceLost(reason: string): void {
+    if (this.lost) return;
+    this.lost = true;
+
+    this.switching = this.switchToWebGL().then(
+      () => {
+        this.switching = null;
+        this.needsRender = true;
+        repaintTextures();
+        this.options.onFallback?.(reason);
+      },
+      (e: unknown) => {
+        this.options.onFallbackFailed?.(`${reason}; WebGL2 could not start either (${e instanceof Error ? e.message : String(e)})`);
+      },
+    );
+  }
+
+  /** The GPU process may be restarting right after a loss: WebGL2 can fail for a moment, so try a few times. */
+  private async switchToWebGL(): Promise<void> {
+    for (let attempt = 0; ; attempt++) {
+      await new Promise((r) => setTimeout(r, attempt === 0 ? 50 : 400));
+      try {
+        await this.makeRenderer(true);
+        return;
+      } catch (e) {
+        if (attempt >= 5) throw e;
+      }
+    }
+  }
+
+  /** true while a renderer switch is under way (nothing to draw on) */
+  get busy(): boolean {
+    return this.switching !== null;
+  }
+
+  /** width covered by the control panel on the right [CSS px]: the view is centred in what is left */
+  insetRight = 0;
+
+  resize(): void {
+    const w = Math.max(1, this.container.clientWidth), h = Math.max(1, this.container.clientHeight);
+    this.renderer?.setSize(w, h, true);
+    const inset = this.insetRight > 0 && w > 2.5 * this.insetRight ? this.insetRight : 0;
+    // render the right part of a wider virtual image, so the principal point sits in the middle of the free area
+    this.camera.aspect = (w + inset) / h;
+    if (inset) this.camera.setViewOffset(w + inset, h, inset, 0, w, h);
+    else this.camera.clearViewOffset();
+    this.camera.updateProjectionMatrix();
+    this.needsRender = true;
+  }
+
+  /** Shows one sphere per sphere collider and puts the floor at the first floor's height (hidden if none). */
+  setColliders(colliders: readonly ColliderSpec[]): void {
+    for (const c of [...this.colliderGroup.children]) {
+      this.colliderGroup.remove(c);
+      (c as Mesh).geometry.dispose();
+    }
+    let floor: number | null = null;
+    for (const c of colliders) {
+      if (c.type === 'sphere') {
+        const m = new Mesh(new SphereGeometry(c.radius, 96, 48), this.sphereMaterial);
+        m.position.set(c.center[0], c.center[1], c.center[2]);
+        m.castShadow = true;
+        m.receiveShadow = true;
+        m.name = 'sphere';
+        this.colliderGroup.add(m);
+      } else if (floor === null) {
+        floor = c.height;
+      }
+    }
+    // a scene without a floor still gets a visual ground far below, so the studio does not look empty
+    this.floor.position.y = floor ?? -0.001;
+    this.floor.visible = true;
+    this.needsRender = true;
+  }
+
+  /** Fits lights, shadow camera and camera presets around a region [centre, size in m]. */
+  frame(extent: number, center: Vector3): void {
+    this.extent = Math.max(0.5, extent);
+    this.focus.copy(center);
+    const e = this.extent;
+    const key = this.key;
+    key.position.set(center.x + 2.2 * e + 1.5, center.y + 4 * e + 2, center.z + 1.6 * e + 1.5);
+    key.target.position.copy(center);
+    const cam = key.shadow.camera;
+    const half = 0.9 * e + 1;
+    cam.left = -half; cam.right = half; cam.top = half; cam.bottom = -half;
+    cam.near = 0.5; cam.far = 12 * e + 12;
+    cam.updateProjectionMatrix();
+  }
+
+  setCamera(preset: CameraPreset): void {
+    const c = this.focus, d = 2 * this.extent + 1.2;
+    const p = this.camera.position;
+    switch (preset) {
+      case 'front': p.set(c.x, c.y + 0.25 * d, c.z + d); break;
+      case 'side': p.set(c.x + d, c.y + 0.25 * d, c.z); break;
+      case 'top': p.set(c.x, c.y + 1.25 * d, c.z + 0.001); break;
+      case 'reset': p.set(c.x + 0.5 * d, c.y + 0.38 * d, c.z + 0.8 * d); break;
+    }
+    this.controls.target.copy(c);
+    this.camera.lookAt(c);
+    this.controls.update();
+    this.needsRender = true;
+  }
+
+  /** true when something asked for a new frame (camera preset, colliders, renderer switch, resize) */
+  needsRender = true;
+
+  /** Moves the camera by the controls' input and damping; true when it moved. */
+  updateControls(): boolean {
+    return this.controls.update();
+  }
+
+  render(): void {
+    if (this.switching) return;
+    this.renderer.render(this.scene, this.camera);
+    this.needsRender = false;
+  }
+}

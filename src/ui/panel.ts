@@ -1,0 +1,309 @@
+/**
+ * The control panel on the right (lil-gui), as in the seed: the scene dropdown and Reset/Replay at the top, then
+ * simulation, material, solver, wind, gravity, pins, view and file controls. Slider ranges, defaults and tooltips
+ * come from the scene schema (core's sceneSchema); the panel only sends changes to its host.
+ */
+import GUI, { type Controller } from 'lil-gui';
+import { SCENE_NAMES, sceneSchema, type PinPreset, type Scene } from '../core/index.js';
+import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
+import type { CameraPreset } from '../render/stage.js';
+
+export const SCENE_LABELS: Record<string, string> = {
+  'cotton-basic': 'Cotton Basic',
+  'silk-drape': 'Silk Drape',
+  'leather-stiff': 'Leather Stiff',
+  'rubber-stretch': 'Rubber Stretch',
+  custom: 'Custom Parameters',
+  wind: 'Wind',
+  pins: 'Pins',
+  resolution: 'Mesh Resolution',
+};
+
+export type SweepLayout = 'sequence' | 'side-by-side';
+export const CORNER_PINS: readonly PinPreset[] = ['top-left', 'top-right', 'bottom-left', 'bottom-right', 'center'];
+
+/** What the panel drives. */
+export interface PanelHost {
+  readonly scene: Scene;
+  /** dropdown value: a built-in name, or '' for an imported scene */
+  readonly sceneKey: string;
+  readonly paused: boolean;
+  readonly view: ViewName;
+  readonly pinTool: boolean;
+  readonly sweepLayout: SweepLayout;
+  loadBuiltin(name: string): void;
+  /** live change of one scene path; returns false (and shows why) when refused */
+  setPath(path: string, value: unknown): boolean;
+  reset(): void;
+  togglePause(): void;
+  stepOnce(): void;
+  setView(view: ViewName): void;
+  setCamera(preset: CameraPreset): void;
+  setPreset(preset: PinPreset, on: boolean): void;
+  clearPins(): void;
+  setPinTool(on: boolean): void;
+  setSweepLayout(layout: SweepLayout): void;
+  exportJson(): void;
+  importJson(): void;
+  copyLink(): void;
+  screenshot(): void;
+  exportObj(): void;
+  exportGltf(): void;
+  showHelp(): void;
+}
+
+interface SchemaNumber { type?: string; minimum?: number; maximum?: number; default?: unknown; description?: string; enum?: readonly string[] }
+
+/** The schema entry of a dotted scene path ('material.damping', 'gravity.1' for a vector component). */
+export function schemaFor(path: string): SchemaNumber {
+  let node: Record<string, unknown> = sceneSchema as unknown as Record<string, unknown>;
+  for (const key of path.split('.')) {
+    const props = node.properties as Record<string, Record<string, unknown>> | undefined;
+    if (props && props[key]) node = props[key];
+    else if (node.items && /^\d+$/.test(key)) node = node.items as Record<string, unknown>;
+    else throw new Error(`no schema for ${path}`);
+  }
+  return node as SchemaNumber;
+}
+
+function get(scene: Scene, path: string): unknown {
+  let v: unknown = scene;
+  for (const k of path.split('.')) v = (v as Record<string, unknown>)[k];
+  return v;
+}
+
+const fmt = (v: number): string => {
+  if (v === 0) return '0';
+  const a = Math.abs(v);
+  if (a >= 1e4) return `${+(v / 1000).toPrecision(3)}k`;
+  if (a >= 100) return v.toFixed(0);
+  return `${+v.toPrecision(3)}`;
+};
+
+/** A slider over log10 of the value, for ranges that span decades; the left end is 0 when 0 is allowed. */
+interface LogSlider { lo: number; hi: number; zeroAllowed: boolean }
+
+function logSliderFor(s: SchemaNumber): LogSlider | null {
+  const min = s.minimum ?? 0, max = s.maximum ?? 1;
+  if (min > 0 && max / min >= 1000) return { lo: Math.log10(min), hi: Math.log10(max), zeroAllowed: false };
+  if (min === 0 && max >= 1000) return { lo: Math.log10(max) - 7, hi: Math.log10(max), zeroAllowed: true };
+  return null;
+}
+
+const RESOLUTIONS = [1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 512, 1024];
+
+export class Panel {
+  readonly gui: GUI;
+  /** lil-gui binds to plain properties: one per control, keyed by scene path or action */
+  private readonly p: Record<string, unknown> = {};
+  private readonly syncers: (() => void)[] = [];
+  private sceneCtl!: Controller;
+  private playCtl!: Controller;
+  private sweepFolder!: GUI;
+  private resolutionCtl!: Controller;
+
+  constructor(private readonly host: PanelHost) {
+    this.gui = new GUI({ title: 'Drape', width: 300 });
+    this.gui.domElement.classList.add('drape-panel');
+    this.build();
+    this.sync();
+  }
+
+  private tag<C extends Controller>(c: C, id: string, description?: string): C {
+    c.domElement.dataset.testid = id;
+    if (description) c.domElement.title = description;
+    return c;
+  }
+
+  private build(): void {
+    const { gui, host, p } = this;
+
+    p.scene = host.sceneKey;
+    const options: Record<string, string> = {};
+    for (const name of SCENE_NAMES) options[SCENE_LABELS[name] ?? name] = name;
+    this.sceneCtl = this.tag(gui.add(p, 'scene', options).name('Scene'), 'scene')
+      .onChange((v: string) => { if (v) host.loadBuiltin(v); });
+    p.reset = () => host.reset();
+    this.tag(gui.add(p, 'reset').name('↺ Reset / Replay   (R)'), 'reset');
+    p.play = () => host.togglePause();
+    this.playCtl = this.tag(gui.add(p, 'play').name('Pause   (space)'), 'play');
+    p.step = () => host.stepOnce();
+    this.tag(gui.add(p, 'step').name('Step one frame   (S)'), 'step');
+
+    this.sweepFolder = gui.addFolder('Mesh resolution');
+    p.sweep = host.sweepLayout;
+    this.tag(this.sweepFolder.add(p, 'sweep', { 'one after another': 'sequence', 'side by side': 'side-by-side' })
+      .name('layout').onChange((v: SweepLayout) => host.setSweepLayout(v)), 'sweep');
+    this.addParam(this.sweepFolder, 'material.scaleWithResolution', 'scale with resolution', 'sweep.scaleWithResolution');
+
+    const cloth = gui.addFolder('Cloth & material');
+    p['cloth.resolution'] = 32;
+    const rs = schemaFor('cloth.resolution');
+    const resOptions: Record<string, number> = {};
+    for (const r of RESOLUTIONS) if (r >= (rs.minimum ?? 1) && r <= (rs.maximum ?? 1024)) resOptions[`${r} × ${r}  (${r * r} faces)`] = r;
+    this.resolutionCtl = this.tag(cloth.add(p, 'cloth.resolution', resOptions).name('resolution')
+      .onChange((v: number) => host.setPath('cloth.resolution', Number(v))), 'cloth.resolution', rs.description);
+    this.syncers.push(() => { p['cloth.resolution'] = host.scene.cloth.resolution; });
+    this.addParam(cloth, 'material.structuralStiffness', 'structural', undefined, 'N/m');
+    this.addParam(cloth, 'material.shearStiffness', 'shear', undefined, 'N/m');
+    this.addParam(cloth, 'material.bendStiffness', 'bend', undefined, 'N/m');
+    this.addParam(cloth, 'material.damping', 'damping', undefined, 'N·s/m');
+    this.addParam(cloth, 'material.mass', 'mass', undefined, 'kg');
+    this.addParam(cloth, 'material.stretchFactor', 'stretch factor');
+    this.addParam(cloth, 'material.friction', 'friction');
+    this.addParam(cloth, 'material.staticFriction', 'static friction');
+    this.addParam(cloth, 'material.scaleWithResolution', 'scale with resolution');
+
+    const solver = gui.addFolder('Solver');
+    this.addParam(solver, 'solver.type', 'solver');
+    this.addParam(solver, 'solver.substeps', 'substeps');
+    this.addParam(solver, 'solver.iterations', 'iterations');
+
+    const wind = gui.addFolder('Wind');
+    this.addParam(wind, 'wind.enabled', 'wind on');
+    this.addParam(wind, 'wind.strength', 'strength', undefined, 'm/s');
+    // direction as a compass heading in the ground plane (keeps the vertical component)
+    p.heading = 0;
+    this.tag(wind.add(p, 'heading', 0, 360, 1).name('direction (°)').onChange((deg: number) => {
+      const d = host.scene.wind.direction;
+      const horiz = Math.hypot(d[0], d[2]) || 1;
+      const a = (deg * Math.PI) / 180;
+      host.setPath('wind.direction', [round(horiz * Math.cos(a)), d[1], round(horiz * Math.sin(a))]);
+    }), 'wind.heading', 'compass heading the wind blows towards: 0° = +x, 90° = +z');
+    this.syncers.push(() => {
+      const d = host.scene.wind.direction;
+      p.heading = Math.round(((Math.atan2(d[2], d[0]) * 180) / Math.PI + 360) % 360);
+    });
+    this.addParam(wind, 'wind.gusts.enabled', 'gusts');
+    this.addParam(wind, 'wind.gusts.amplitude', 'gust amplitude');
+    this.addParam(wind, 'wind.gusts.frequency', 'gust frequency', undefined, 'Hz');
+
+    const grav = gui.addFolder('Gravity');
+    this.addParam(grav, 'gravity.1', 'gravity y', undefined, 'm/s²');
+
+    const pins = gui.addFolder('Pins');
+    for (const preset of CORNER_PINS) {
+      const key = `pin.${preset}`;
+      p[key] = false;
+      this.tag(pins.add(p, key).name(preset === 'center' ? 'centre' : preset)
+        .onChange((on: boolean) => host.setPreset(preset, on)), key);
+      this.syncers.push(() => { p[key] = host.scene.pins.includes(preset); });
+    }
+    p.pinTool = false;
+    this.tag(pins.add(p, 'pinTool').name('pin tool (click cloth)   P').onChange((on: boolean) => host.setPinTool(on)),
+      'pinTool', 'when on, clicking a particle pins or unpins it');
+    this.syncers.push(() => { p.pinTool = host.pinTool; });
+    p.clearPins = () => host.clearPins();
+    this.tag(pins.add(p, 'clearPins').name('clear pins'), 'clearPins');
+
+    const view = gui.addFolder('View');
+    p.view = host.view;
+    const viewOptions: Record<string, ViewName> = {};
+    for (const v of VIEWS) viewOptions[VIEW_LABELS[v]] = v;
+    this.tag(view.add(p, 'view', viewOptions).name('view   (V)').onChange((v: ViewName) => host.setView(v)), 'view');
+    this.syncers.push(() => { p.view = host.view; });
+    const cams: [CameraPreset, string][] = [['front', 'front   (1)'], ['side', 'side   (2)'], ['top', 'top   (3)'], ['reset', 'reset camera   (4)']];
+    for (const [preset, label] of cams) {
+      p[`cam.${preset}`] = () => host.setCamera(preset);
+      this.tag(view.add(p, `cam.${preset}`).name(label), `cam.${preset}`);
+    }
+    p.help = () => host.showHelp();
+    this.tag(view.add(p, 'help').name('shortcuts   (?)'), 'shortcuts');
+
+    const file = gui.addFolder('Scene & export');
+    const actions: [string, string, () => void][] = [
+      ['exportJson', 'export scene JSON', () => host.exportJson()],
+      ['importJson', 'import scene JSON…', () => host.importJson()],
+      ['copyLink', 'copy link to this scene', () => host.copyLink()],
+      ['screenshot', 'screenshot PNG', () => host.screenshot()],
+      ['exportObj', 'export cloth OBJ', () => host.exportObj()],
+      ['exportGltf', 'export cloth glTF', () => host.exportGltf()],
+    ];
+    for (const [key, label, fn] of actions) {
+      p[key] = fn;
+      this.tag(file.add(p, key).name(label), key);
+    }
+    for (const f of [grav, solver, file]) f.close();
+    // a dropdown keeps the focus after a choice, and would eat the shortcut keys: give it back to the page
+    gui.domElement.addEventListener('change', (e) => {
+      if (e.target instanceof HTMLSelectElement) e.target.blur();
+    });
+  }
+
+  /** A control for one scene path, shaped by its schema: checkbox, dropdown, linear or logarithmic slider. */
+  private addParam(folder: GUI, path: string, label: string, id = path, unit = ''): void {
+    const { host, p } = this;
+    const s = schemaFor(path);
+    const suffix = unit ? ` (${unit})` : '';
+    let ctl: Controller;
+    if (s.type === 'boolean') {
+      p[id] = false;
+      ctl = folder.add(p, id).name(label).onChange((v: boolean) => host.setPath(path, v));
+      this.syncers.push(() => { p[id] = get(host.scene, path); });
+    } else if (s.enum) {
+      p[id] = s.default;
+      ctl = folder.add(p, id, [...s.enum]).name(label).onChange((v: string) => host.setPath(path, v));
+      this.syncers.push(() => { p[id] = get(host.scene, path); });
+    } else {
+      const log = logSliderFor(s);
+      const min = s.minimum ?? 0, max = s.maximum ?? 1;
+      if (log) {
+        p[id] = 0;
+        const toValue = (x: number) => (log.zeroAllowed && x <= log.lo + 1e-9 ? 0 : +(10 ** x).toPrecision(3));
+        const toSlider = (v: number) => (v <= 0 ? log.lo : Math.min(log.hi, Math.max(log.lo, Math.log10(v))));
+        ctl = folder.add(p, id, log.lo, log.hi, 0.01).onChange((x: number) => {
+          const v = toValue(x);
+          ctl.name(`${label} ${fmt(v)}${unit ? ' ' + unit : ''}`);
+          host.setPath(path, v);
+        });
+        ctl.domElement.classList.add('drape-log');
+        this.syncers.push(() => {
+          const v = get(host.scene, path) as number;
+          p[id] = toSlider(v);
+          ctl.name(`${label} ${fmt(v)}${unit ? ' ' + unit : ''}`);
+        });
+      } else {
+        p[id] = 0;
+        const step = s.type === 'integer' ? 1 : niceStep((max - min) / 500);
+        ctl = folder.add(p, id, min, max, step).name(label + suffix)
+          .onChange((v: number) => host.setPath(path, s.type === 'integer' ? Math.round(v) : v));
+        this.syncers.push(() => { p[id] = get(host.scene, path); });
+      }
+      // substeps 1…200 and similar: fine as linear sliders
+    }
+    this.tag(ctl, id, s.description);
+  }
+
+  /** Re-reads every control from the host (after a scene load, import, link or reset). */
+  sync(): void {
+    const { host, p } = this;
+    p.scene = host.sceneKey;
+    // an imported scene shows in the dropdown without becoming a built-in (OptionController.options updates in place)
+    const opts: Record<string, string> = {};
+    if (host.sceneKey === '') opts[`Imported: ${host.scene.name}`] = '';
+    for (const name of SCENE_NAMES) opts[SCENE_LABELS[name] ?? name] = name;
+    this.sceneCtl.options(opts);
+    p.sweep = host.sweepLayout;
+    for (const f of this.syncers) f();
+    const sweep = !!host.scene.resolutionSweep?.length;
+    this.sweepFolder.show(sweep);
+    this.resolutionCtl.enable(!sweep);
+    this.updatePlay();
+    for (const c of this.gui.controllersRecursive()) c.updateDisplay();
+  }
+
+  updatePlay(): void {
+    this.playCtl.name(this.host.paused ? 'Play   (space)' : 'Pause   (space)');
+  }
+}
+
+function niceStep(x: number): number {
+  const e = 10 ** Math.floor(Math.log10(x));
+  const m = x / e;
+  return (m < 2 ? 1 : m < 5 ? 2 : 5) * e;
+}
+
+function round(v: number): number {
+  return Math.round(v * 1e4) / 1e4;
+}
+
