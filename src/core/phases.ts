@@ -208,3 +208,38 @@ export function updateVelocities(state: ClothState, h: number): void {
   const inv = 1 / h;
   for (let j = 0; j < x.length; j++) v[j] = (x[j] - xp[j]) * inv;
 }
+
+/** What a solver adds to the shared frame loop (module-level functions: nothing is allocated per step). */
+export interface SolverPhases {
+  /** internal forces [N] added to state.forces before integration (explicit solvers only) */
+  forces?: (model: ClothModel, state: ClothState, params: SimParams, h: number) => void;
+  /** the solver's constraint phases of one substep, after integration and the grab, before contact */
+  constrain: (model: ClothModel, state: ClothState, params: SimParams, h: number) => void;
+}
+
+/**
+ * One frame of dt [s] in params.substeps substeps, the loop every CPU solver shares: per substep wind, the solver's
+ * forces, integration, the grab, the solver's constraints, contact; velocities once at the end.
+ */
+export function runFrame(model: ClothModel, state: ClothState, params: SimParams, dt: number, phases: SolverPhases): void {
+  const n = params.substeps;
+  const h = dt / n;
+  beginStep(model, state, params, h);
+  const g = state.grabbed, x = state.positions;
+  const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
+  for (let sub = 0; sub < n; sub++) {
+    let forced = accumulateWind(model, state, params, state.time, h);
+    if (phases.forces) {
+      if (!forced) state.forces.fill(0);
+      phases.forces(model, state, params, h);
+      forced = true;
+    }
+    integrate(state, params, h, forced);
+    moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
+    phases.constrain(model, state, params, h);
+    collide(model, state, params);
+    state.time += h;
+    state.substeps++;
+  }
+  updateVelocities(state, h);
+}

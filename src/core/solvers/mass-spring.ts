@@ -7,7 +7,7 @@
  */
 import { BEND, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
-import { accumulateWind, beginStep, collide, integrate, moveGrabbed, updateVelocities } from '../phases.js';
+import { runFrame, type SolverPhases } from '../phases.js';
 import type { ClothState } from '../state.js';
 import { solveTethers } from '../tethers.js';
 
@@ -60,23 +60,15 @@ export function limitStretch(model: ClothModel, state: ClothState, params: SimPa
   }
 }
 
-/** Advances the cloth by dt [s] (one frame) in params.substeps substeps. */
-export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
-  const n = params.substeps;
-  const h = dt / n;
-  beginStep(model, state, params, h);
-  const g = state.grabbed, x = state.positions;
-  const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
-  for (let sub = 0; sub < n; sub++) {
-    if (!accumulateWind(model, state, params, state.time, h)) state.forces.fill(0);
-    accumulateSpringForces(model, state, params, h);
-    integrate(state, params, h, true);
-    moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
+const phases: SolverPhases = {
+  forces: accumulateSpringForces,
+  constrain(model, state, params) {
     solveTethers(state, params);
     for (let it = 0; it < params.iterations; it++) limitStretch(model, state, params);
-    collide(model, state, params);
-    state.time += h;
-    state.substeps++;
-  }
-  updateVelocities(state, h);
+  },
+};
+
+/** Advances the cloth by dt [s] (one frame) in params.substeps substeps. */
+export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
+  runFrame(model, state, params, dt, phases);
 }
