@@ -117,7 +117,7 @@ describe('WebGPU page', () => {
     expect(fine[1]).toBeLessThan(0.8);
     await shoot(page, 'scene-resolution-side-by-side');
 
-    expect(labels[0]).toContain('scaled with resolution');
+    expect(labels[0]).toContain('scaled');
     await setChecked(page, 'sweep.scaleWithResolution', false);
     expect(((await hook<any>(page, 'scene')).material.scaleWithResolution)).toBe(false);
     expect((await hook<string[]>(page, 'labels'))[6]).toContain('seed constants');

@@ -195,8 +195,11 @@ export class App implements PanelHost, InteractionHost {
     const size = box.getSize(new Vector3());
     const center = box.getCenter(new Vector3());
     center.y = Math.max(0.55, center.y - 0.1 * size.y);
-    this.stage.frame(Math.max(size.x, size.y, size.z) * 0.75, center);
-    if (moveCamera) this.stage.setCamera('reset');
+    const row = this.sim.mirrors.length > 1;
+    // a row of cloths is framed from the front, by its width; a single cloth from the front right
+    this.stage.frame(row ? size.x * 0.72 : Math.max(size.x, size.y, size.z) * 0.75, center);
+    this.stage.defaultView = row ? 'front' : 'reset';
+    if (moveCamera) this.stage.setCamera(this.stage.defaultView);
   }
 
   private makeLabels(): void {
@@ -210,9 +213,11 @@ export class App implements PanelHost, InteractionHost {
       const r = m.sim.scene.cloth.resolution;
       const faces = r * r;
       const total = this.scene.resolutionSweep!.length;
-      const stage = this.sweepLayout === 'sequence' ? `<small>${this.sweepIndex % total + 1} / ${total}</small>` : '';
-      l.innerHTML = `${stage}<b>${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}</b><small>${r}×${r} grid · ${((r + 1) ** 2).toLocaleString('en')} particles</small>` +
-        `<small>${this.scene.material.scaleWithResolution ? 'scaled with resolution' : 'seed constants (not scaled)'}</small>`;
+      const scaling = this.scene.material.scaleWithResolution ? 'scaled with resolution' : 'seed constants (not scaled)';
+      l.innerHTML = this.sweepLayout === 'sequence'
+        ? `<small>${this.sweepIndex % total + 1} / ${total}</small><b>${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}</b>` +
+          `<small>${r}×${r} grid · ${((r + 1) ** 2).toLocaleString('en')} particles</small><small>${scaling}</small>`
+        : `<b>${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}</b><small>${r}×${r} · ${this.scene.material.scaleWithResolution ? 'scaled' : 'seed constants'}</small>`;
       this.overlay.labelLayer.append(l);
       this.labels.push(l);
     });
@@ -225,10 +230,14 @@ export class App implements PanelHost, InteractionHost {
       const l = this.labels[k];
       if (!l) return;
       const p = m.sim.scene.cloth.position;
-      v.set(p[0], p[1] + 0.3, p[2]).project(this.stage.camera);
+      // one cloth: a title above it; a row: placards on the floor in front of each
+      const row = this.labels.length > 1;
+      if (row) v.set(p[0], 0, p[2] + 0.75);
+      else v.set(p[0], p[1] + 0.3, p[2]);
+      v.project(this.stage.camera);
       const visible = v.z < 1;
       l.style.display = visible ? '' : 'none';
-      l.style.transform = `translate(-50%, -100%) translate(${((v.x + 1) / 2) * rect.width}px, ${((1 - v.y) / 2) * rect.height}px)`;
+      l.style.transform = `translate(-50%, ${row ? '0' : '-100%'}) translate(${((v.x + 1) / 2) * rect.width}px, ${((1 - v.y) / 2) * rect.height}px)`;
     });
   }
 

@@ -23,8 +23,8 @@ export const VIEW_LABELS: Record<ViewName, string> = {
 
 /** spring colours by kind: structural, shear, bend */
 export const SPRING_COLORS = ['#2f6fd6', '#2ea043', '#e0832d'] as const;
-/** strain shown at full colour [-] */
-export const STRAIN_RANGE = 0.1;
+/** strain shown at full colour [-]: woven fabrics stretch a few per cent at most */
+export const STRAIN_RANGE = 0.02;
 
 const tmpColor = new Color();
 

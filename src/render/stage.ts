@@ -49,8 +49,8 @@ export class Stage {
     s.background = backdropTexture();
     s.fog = new Fog(new Color('#e3e5e8'), 14, 40);
 
-    const hemi = new HemisphereLight(0xf2f5ff, 0x8a8070, 1.4);
-    const key = new DirectionalLight(0xfff3e2, 2.6);
+    const hemi = new HemisphereLight(0xf2f5ff, 0x8a8070, 1.15);
+    const key = new DirectionalLight(0xfff3e2, 2.3);
     key.castShadow = true;
     key.shadow.mapSize.setScalar(options.lite ? 1024 : 2048);
     key.shadow.radius = 6;
@@ -226,11 +226,15 @@ export class Stage {
     cam.updateProjectionMatrix();
   }
 
+  /** what the 'reset' camera preset goes back to */
+  defaultView: Exclude<CameraPreset, 'reset'> | 'reset' = 'reset';
+
   setCamera(preset: CameraPreset): void {
-    const c = this.focus, d = 2 * this.extent + 1.2;
+    const c = this.focus, d = 1.6 * this.extent + 1.0;
     const p = this.camera.position;
+    if (preset === 'reset' && this.defaultView !== 'reset') preset = this.defaultView;
     switch (preset) {
-      case 'front': p.set(c.x, c.y + 0.25 * d, c.z + d); break;
+      case 'front': p.set(c.x, c.y + 0.3 * d, c.z + d); break;
       case 'side': p.set(c.x + d, c.y + 0.25 * d, c.z); break;
       case 'top': p.set(c.x, c.y + 1.25 * d, c.z + 0.001); break;
       case 'reset': p.set(c.x + 0.5 * d, c.y + 0.38 * d, c.z + 0.8 * d); break;

@@ -243,9 +243,15 @@ export function fabricLook(kind: FabricKind): FabricLook {
 /** Floor: warm light grey with faint tiles, darkening towards the edge so it melts into the backdrop. */
 export function floorTexture(): Texture {
   const c = canvas(1024, (g, size) => {
-    g.fillStyle = '#d9d6d0';
+    g.fillStyle = '#bcb6ac';
     g.fillRect(0, 0, size, size);
-    g.strokeStyle = 'rgba(90, 86, 80, 0.18)';
+    // a soft pool of light around the middle of the stage
+    const pool = g.createRadialGradient(size / 2, size / 2, 0, size / 2, size / 2, size * 0.16);
+    pool.addColorStop(0, 'rgba(255, 252, 246, 0.45)');
+    pool.addColorStop(1, 'rgba(255, 252, 246, 0)');
+    g.fillStyle = pool;
+    g.fillRect(0, 0, size, size);
+    g.strokeStyle = 'rgba(80, 76, 70, 0.16)';
     g.lineWidth = 2;
     const cells = 40; // 1 m tiles on a 40 m floor
     for (let k = 0; k <= cells; k++) {
