@@ -15,7 +15,7 @@ afterAll(async () => {
 });
 
 describe('without WebGPU (WebGL2 fallback)', () => {
-  it('draws, drapes, drags and pins on WebGL2 with no console errors', async () => {
+  it('draws, drapes, drags (mouse and touch) and pins on WebGL2 with no console errors', async () => {
     const b = await launch('webgl');
     browsers.push(b);
     const { page, errors, readyMs } = await openApp(b.context);
@@ -45,6 +45,24 @@ describe('without WebGPU (WebGL2 fallback)', () => {
     await step(page, 30);
     expect((await hook<number[][]>(page, 'positions', [grabbed]))[0][1]).toBeGreaterThan(y0 + 0.08);
     await page.mouse.up();
+
+    // touch: one finger on the cloth grabs it (pointer events from touch), and does not orbit
+    const cam = await hook<number[]>(page, 'camera');
+    const cdp = await page.context().newCDPSession(page);
+    await cdp.send('Emulation.setTouchEmulationEnabled', { enabled: true, maxTouchPoints: 2 });
+    const t0 = await hook<{ x: number; y: number }>(page, 'screenOf', 6 * 13 + 3);
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: [{ x: t0.x, y: t0.y }] });
+    const touched = await hook<number>(page, 'grabbed');
+    expect(touched).toBeGreaterThanOrEqual(0);
+    const ty0 = (await hook<number[][]>(page, 'positions', [touched]))[0][1];
+    for (let k = 1; k <= 5; k++) {
+      await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: [{ x: t0.x, y: t0.y - 12 * k }] });
+    }
+    await step(page, 30);
+    expect((await hook<number[][]>(page, 'positions', [touched]))[0][1]).toBeGreaterThan(ty0 + 0.05);
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+    expect(await hook(page, 'grabbed')).toBe(-1);
+    expect(await hook<number[]>(page, 'camera')).toEqual(cam);
 
     // pins and views
     await setChecked(page, 'pin.center', true);
