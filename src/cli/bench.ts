@@ -24,7 +24,14 @@ interface Timing {
   /** particles × substeps per second of wall time */
   particleSubstepsPerSecond: number;
   finite: boolean;
+  /** finite, and the centroid still within 10 cloth sizes of where it started (a cloth that explodes can stay finite) */
+  stable: boolean;
   centroid: number[];
+}
+
+/** Finite and not flown away: the centroid within 10 cloth sizes of the start centroid. */
+function isStable(finite: boolean, centroid: readonly number[], start: readonly number[], size: number): boolean {
+  return finite && Math.hypot(centroid[0] - start[0], centroid[1] - start[1], centroid[2] - start[2]) < 10 * size;
 }
 
 interface Row {
@@ -46,8 +53,9 @@ function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-sprin
   return scene;
 }
 
-function timeDrape(scene: Scene, frames: number, warmup: number): Timing & { sim: Simulation } {
+function timeDrape(scene: Scene, frames: number, warmup: number): Timing & { sim: Simulation; start: number[] } {
   const sim = new Simulation(scene);
+  const start = sim.report().centroid;
   sim.advance(warmup);
   const t0 = performance.now();
   sim.advance(frames);
@@ -57,8 +65,10 @@ function timeDrape(scene: Scene, frames: number, warmup: number): Timing & { sim
     msPerFrame: ms,
     particleSubstepsPerSecond: (r.particles * scene.solver.substeps * 1000) / ms,
     finite: r.finite,
+    stable: isStable(r.finite, r.centroid, start, sim.model.size),
     centroid: r.centroid,
     sim,
+    start,
   };
 }
 
@@ -103,8 +113,8 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
       particlesPerSide: side,
       particles: xpbd.sim.model.particleCount,
       constraints: xpbd.sim.model.restLengths.length,
-      xpbd: { msPerFrame: xpbd.msPerFrame, particleSubstepsPerSecond: xpbd.particleSubstepsPerSecond, finite: xpbd.finite, centroid: xpbd.centroid },
-      massSpring: { msPerFrame: ms.msPerFrame, particleSubstepsPerSecond: ms.particleSubstepsPerSecond, finite: ms.finite, centroid: ms.centroid },
+      xpbd: { msPerFrame: xpbd.msPerFrame, particleSubstepsPerSecond: xpbd.particleSubstepsPerSecond, finite: xpbd.finite, stable: xpbd.stable, centroid: xpbd.centroid },
+      massSpring: { msPerFrame: ms.msPerFrame, particleSubstepsPerSecond: ms.particleSubstepsPerSecond, finite: ms.finite, stable: ms.stable, centroid: ms.centroid },
     };
     if (runJolt) {
       try {
@@ -114,6 +124,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
           msPerFrame: j.msPerFrame,
           particleSubstepsPerSecond: (row.particles * opts.substeps * 1000) / j.msPerFrame,
           finite: j.finite,
+          stable: isStable(j.finite, j.centroid, xpbd.start, xpbd.sim.model.size),
           centroid: j.centroid,
         };
         row.ratio = xpbd.msPerFrame / j.msPerFrame;
@@ -133,14 +144,15 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
   }
   out(`drape bench — cotton dropped on sphere + floor, XPBD ${opts.substeps} substeps (Jolt: ${opts.substeps} iterations),`);
   out(`structural + shear + bend constraints; ${opts.frames} timed frames after ${opts.warmup}; ${machine}`);
+  out('stable = finite and the centroid within 10 cloth sizes of its start');
   out('');
-  out('| particles | constraints | Drape XPBD ms/frame | particle-substeps/s | Jolt ms/frame | Drape/Jolt | Drape mass-spring ms/frame | finite (Drape / Jolt) | centroid y (Drape / Jolt) |');
+  out('| particles | constraints | Drape XPBD ms/frame | particle-substeps/s | Jolt ms/frame | Drape/Jolt | Drape mass-spring ms/frame | stable (Drape / Jolt) | centroid y (Drape / Jolt) |');
   out('|---|---|---|---|---|---|---|---|---|');
   for (const r of rows) {
     const j = r.jolt;
     out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${r.constraints} | ${fmt(r.xpbd.msPerFrame)} | ${sci(r.xpbd.particleSubstepsPerSecond)} | ` +
       `${j ? fmt(j.msPerFrame) : 'n/a'} | ${r.ratio !== undefined ? fmt(r.ratio) : 'n/a'} | ${fmt(r.massSpring.msPerFrame)} | ` +
-      `${r.xpbd.finite ? 'yes' : 'NO'} / ${j ? (j.finite ? 'yes' : 'NO (NaN)') : 'n/a'} | ` +
+      `${r.xpbd.stable ? 'yes' : r.xpbd.finite ? 'NO (flew off)' : 'NO (NaN)'} / ${j ? (j.stable ? 'yes' : j.finite ? 'NO (flew off)' : 'NO (NaN)') : 'n/a'} | ` +
       `${fmt(r.xpbd.centroid[1], 3)} / ${j ? (j.finite ? fmt(j.centroid[1], 3) : 'NaN') : 'n/a'} |`);
   }
   const errs = [...new Set(rows.map((r) => r.peerError).filter(Boolean))];

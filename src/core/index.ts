@@ -11,4 +11,4 @@ export * from './pick.js';
 export { windVelocity } from './wind.js';
 export { SOLVERS, step, type StepFn } from './solvers/index.js';
 export * from './colliders/index.js';
-export { Simulation, modelFor, type Report } from './simulation.js';
+export { Simulation, modelFor, needsRebuild, type Report } from './simulation.js';

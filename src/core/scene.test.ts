@@ -68,8 +68,11 @@ describe('scenes', () => {
     expect(setScenePath(s, 'colliders[0].radius', 0.5).colliders[0]).toMatchObject({ radius: 0.5 });
     expect(setScenePath(s, 'colliders', []).colliders).toEqual([]);
     expect(s.material.bendStiffness).not.toBe(2); // the input is not changed
-    expect(() => setScenePath(s, 'material.nope', 1)).toThrow(/material\.nope: unknown key/);
-    expect(() => setScenePath(s, 'cloth.resolution', 'fine')).toThrow(/cloth\.resolution: must be integer/);
+    expect(() => setScenePath(s, 'material.nope', 1)).toThrow(/^--set material\.nope: unknown key$/);
+    expect(() => setScenePath(s, 'cloth.resolution', 'fine')).toThrow(/^--set cloth\.resolution: must be integer$/);
+    expect(() => setScenePath(s, 'colliders.0.radius', 0)).toThrow(/^--set colliders\.0\.radius: must be >= 0\.001$/);
+    // a change that breaks another field names both
+    expect(() => setScenePath(setScenePath(s, 'pins', [1000]), 'cloth.resolution', 4)).toThrow(/^--set cloth\.resolution: pins\[0\]: particle 1000 does not exist/);
     expect(() => setScenePath(s, 'gravity.x', 1)).toThrow(SceneError);
     expect(() => setScenePath(s, '__proto__.x', 1)).toThrow(/not a scene path/);
   });

@@ -185,5 +185,13 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     node = next as Record<string, unknown>;
   }
   (node as Record<string, unknown>)[keys[keys.length - 1]] = value;
-  return validateScene(doc, `--set ${path}`);
+  const source = `--set ${path}`;
+  try {
+    return validateScene(doc, source);
+  } catch (e) {
+    // name the field once when it is the path itself: '--set a.b: must be…', not '--set a.b: a.b: must be…'
+    const same = `${source}: ${fieldName('/' + keys.join('/'))}: `;
+    if (e instanceof SceneError && e.message.startsWith(same)) throw new SceneError(`${source}: ${e.message.slice(same.length)}`);
+    throw e;
+  }
 }

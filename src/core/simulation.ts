@@ -24,6 +24,12 @@ export interface Report {
   energy: Energy;
 }
 
+/** Whether going from scene `prev` to `next` needs a new model (and so restarts the cloth): a change of geometry. */
+export function needsRebuild(prev: Scene, next: Scene): boolean {
+  return JSON.stringify(prev.cloth) !== JSON.stringify(next.cloth) ||
+    prev.material.scaleWithResolution !== next.material.scaleWithResolution;
+}
+
 export function modelFor(scene: Scene): ClothModel {
   return buildGridModel({ ...scene.cloth, scaleWithResolution: scene.material.scaleWithResolution });
 }
@@ -72,9 +78,7 @@ export class Simulation {
     next = validateScene(next);
     const prev = this.scene;
     this.scene = next;
-    const rebuild =
-      JSON.stringify(prev.cloth) !== JSON.stringify(next.cloth) ||
-      prev.material.scaleWithResolution !== next.material.scaleWithResolution;
+    const rebuild = needsRebuild(prev, next);
     if (rebuild) {
       this.model = modelFor(next);
       this.state = createState(this.model);
