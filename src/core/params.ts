@@ -1,5 +1,5 @@
 import { createColliders, type ColliderShape } from './colliders/index.js';
-import { SPRING_KINDS, type ClothModel } from './model.js';
+import type { ClothModel } from './model.js';
 import type { Scene, SolverType } from './scene.js';
 
 /** Length of one simulated frame [s]: frames are 1/60 s everywhere (CLI, app, benchmarks). */
@@ -138,12 +138,4 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): S
     colliders: createColliders(scene.colliders),
     clamps,
   };
-}
-
-/** Effective per-kind stiffness summary (mean over a kind's springs) [N/m], for HUDs and reports. */
-export function kindStiffness(model: ClothModel, params: SimParams): Record<(typeof SPRING_KINDS)[number], number> {
-  const sum = [0, 0, 0];
-  for (let s = 0; s < params.stiffness.length; s++) sum[model.springKinds[s]] += params.stiffness[s];
-  const c = model.springCounts;
-  return { structural: c[0] ? sum[0] / c[0] : 0, shear: c[1] ? sum[1] / c[1] : 0, bend: c[2] ? sum[2] / c[2] : 0 };
 }

@@ -1,7 +1,7 @@
 /**
- * Solver phases shared by every CPU solver, one phase per function: inverse masses, external forces (wind),
- * integration, the grab, contact, velocity update. A solver's `step` strings these together with its own
- * constraint phases. None of them allocates.
+ * Solver phases shared by every CPU solver, one phase per function: start of step (inverse masses, tethers),
+ * external forces (wind), integration, the grab, contact, velocity update; and `runFrame`, the frame loop that
+ * strings them together with a solver's own force and constraint phases. None of them allocates.
  */
 import type { ColliderShape } from './colliders/shape.js';
 import type { ClothModel } from './model.js';
@@ -68,7 +68,7 @@ export function accumulateWind(model: ClothModel, state: ClothState, params: Sim
     const speed = Math.sqrt(rx * rx + ry * ry + rz * rz);
     const vn = (rx * nx + ry * ny + rz * nz) / nl; // relative air speed along the unit normal
     // per-particle force along the unit normal, and its cap
-    let fn = (k * speed * vn * nl);
+    let fn = k * speed * vn * nl;
     const cap = (Math.abs(vn) * capScale) / (im[tri[t3]] + im[tri[t3 + 1]] + im[tri[t3 + 2]]);
     if (fn > cap) fn = cap; else if (fn < -cap) fn = -cap;
     const s = fn / nl;
