@@ -2,8 +2,8 @@
  * The seed's solver: a mass-spring cloth integrated with position Verlet, Hooke springs with damping along each
  * spring, then position-based stretch limiting (Provot 1995, "Deformation constraints in a mass-spring model to
  * describe rigid cloth behavior"): a structural or shear spring longer than stretchFactor × rest is projected back,
- * the correction split by inverse mass; free particles are also tethered to their nearest pin (tethers.ts). Explicit, so stiffness is clamped to what the substep can carry
- * (params.ts reports it).
+ * the correction split by inverse mass; before that, free particles are pulled back by their tethers to the
+ * nearest pin (tethers.ts). Explicit, so stiffness is clamped to what the substep can carry (params.ts reports it).
  */
 import { BEND, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';

@@ -9,8 +9,9 @@
  *   α̃ = α/h²,  γ = α̃·β̃/h = α·β/h,
  *   Δλ = (−C − α̃·λ − γ·∇C·(x − x_prev)) / ((1 + γ)·(w_a + w_b) + α̃),   Δx_a = w_a·Δλ·∇C,  Δx_b = −w_b·Δλ·∇C.
  * Structural and shear springs are also capped at stretchFactor × rest inside the same projection (a hard limit
- * as in Provot 1995), and free particles are tethered to their nearest pin (tethers.ts): one Gauss–Seidel pass
- * per substep propagates an impact only a few springs, and these keep a fine cloth from overstretching meanwhile.
+ * as in Provot 1995); then free particles are pulled back by their tethers to the nearest pin (tethers.ts) and one
+ * stretch-limiting pass catches what later batches stretched again. One Gauss–Seidel pass per substep propagates
+ * an impact only a few springs; these keep a fine cloth from overstretching meanwhile (docs/physics.md).
  */
 import { BEND, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
