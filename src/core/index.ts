@@ -9,6 +9,7 @@ export * from './metrics.js';
 export * from './pins.js';
 export * from './pick.js';
 export { windVelocity } from './wind.js';
+export { mulberry32 } from './random.js';
 export { SOLVERS, step, type StepFn } from './solvers/index.js';
 export * from './colliders/index.js';
 export { Simulation, modelFor, needsRebuild, type Report } from './simulation.js';

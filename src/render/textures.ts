@@ -3,6 +3,7 @@
  * studio backdrop.
  */
 import { CanvasTexture, RepeatWrapping, SRGBColorSpace, type Texture } from 'three/webgpu';
+import { mulberry32 } from '../core/index.js';
 
 export type FabricKind = 'cotton' | 'silk' | 'leather' | 'rubber' | 'flag' | 'hammock' | 'checker';
 
@@ -65,20 +66,8 @@ function track(t: Texture, c: HTMLCanvasElement): Texture {
   return t;
 }
 
-/** Small deterministic PRNG so textures look the same on every load. */
-function rng(seed: number): () => number {
-  let s = seed >>> 0;
-  return () => {
-    s = (s + 0x6d2b79f5) >>> 0;
-    let t = s;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
-
 function noise(g: CanvasRenderingContext2D, size: number, alpha: number, seed: number, cell = 1): void {
-  const r = rng(seed);
+  const r = mulberry32(seed);
   for (let y = 0; y < size; y += cell) {
     for (let x = 0; x < size; x += cell) {
       const v = r();
@@ -159,7 +148,7 @@ function leather(): FabricLook {
     g.fillStyle = '#6b3f22';
     g.fillRect(0, 0, size, size);
     // grain: many soft blotches
-    const r = rng(11);
+    const r = mulberry32(11);
     for (let k = 0; k < 2600; k++) {
       const x = r() * size, y = r() * size, rad = 2 + r() * 7;
       g.fillStyle = r() > 0.5 ? `rgba(40, 20, 8, ${0.08 + r() * 0.12})` : `rgba(150, 95, 55, ${0.06 + r() * 0.1})`;
@@ -179,7 +168,7 @@ function rubber(): FabricLook {
   const c = canvas(256, (g, size) => {
     g.fillStyle = '#f2b705';
     g.fillRect(0, 0, size, size);
-    const r = rng(21);
+    const r = mulberry32(21);
     for (let k = 0; k < 500; k++) {
       g.fillStyle = `rgba(120, 70, 0, ${0.05 + r() * 0.1})`;
       g.fillRect(r() * size, r() * size, 1 + r() * 2, 1 + r() * 2);
