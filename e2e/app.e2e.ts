@@ -1,6 +1,7 @@
 /**
  * The app in Chromium with WebGPU (SwiftShader, presenting flags): every feature of issue 3, through the real UI
- * (panel, keys, pointer) and checked through window.drape. Cloths are small and runs short: SwiftShader is slow;
+ * (panel, keys, pointer) and checked through window.drape. WebGPU renders; the simulation runs on the CPU backend
+ * (`?backend=cpu`), which is what these tests time for; the GPU backend has its own tests in gpu.e2e.ts. Cloths are small and runs short: SwiftShader is slow;
  * the loop is paused and frames are stepped explicitly, so results do not depend on this machine's speed.
  */
 import { readFileSync } from 'node:fs';
@@ -12,13 +13,15 @@ import {
 } from './helpers.js';
 import { decodePng, imageStats } from './png.js';
 
+/** the page's query: cheap rendering, simulation on the CPU worker */
+const CPU = '?lite&backend=cpu';
 let browser: Browser;
 let page: Page;
 let errors: string[];
 
 beforeAll(async () => {
   browser = await launch('webgpu');
-  const opened = await openApp(browser.context);
+  const opened = await openApp(browser.context, '', CPU);
   page = opened.page;
   errors = opened.errors;
   writeJson('ready-webgpu', { readyMs: opened.readyMs });
@@ -371,21 +374,21 @@ describe('WebGPU page', () => {
     expect(url).toContain('view=wireframe');
     const scene = await hook(page, 'scene');
 
-    const other = await openApp(browser.context, new URL(url).hash);
+    const other = await openApp(browser.context, new URL(url).hash, CPU);
     expect(await hook(other.page, 'scene')).toEqual(scene);
     expect(await hook(other.page, 'view')).toBe('wireframe');
     expect(await hook<number[]>(other.page, 'pinned')).toEqual([0]);
     expect(other.errors).toEqual([]);
     await other.page.close();
 
-    const bad = await openApp(browser.context, '#scene=nope&material.damping=3');
+    const bad = await openApp(browser.context, '#scene=nope&material.damping=3', CPU);
     expect((await hook<any>(bad.page, 'lastMessage')).text).toContain("unknown scene 'nope'");
     expect(await byId(bad.page, 'message').isVisible()).toBe(true);
     expect(await hook(bad.page, 'sceneName')).toBe('cotton-basic');
     await shoot(bad.page, 'bad-link');
     await bad.page.close();
 
-    const badValue = await openApp(browser.context, '#scene=wind&material.damping=99');
+    const badValue = await openApp(browser.context, '#scene=wind&material.damping=99', CPU);
     expect((await hook<any>(badValue.page, 'lastMessage')).text).toContain('material.damping: must be <= 10');
     expect(await hook(badValue.page, 'sceneName')).toBe('cotton-basic');
     await badValue.page.close();

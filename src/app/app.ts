@@ -13,18 +13,29 @@ import { fabricFor, fabricLook } from '../render/textures.js';
 import { Hud } from '../ui/hud.js';
 import { Overlay } from '../ui/overlay.js';
 import { CORNER_PINS, Panel, SCENE_LABELS, type PanelHost, type SweepLayout } from '../ui/panel.js';
+import { GpuSim } from './gpu-sim.js';
 import { Interaction, type InteractionHost } from './interaction.js';
-import { SimClient } from './sim-client.js';
+import { SimClient, type SimDriver } from './sim-client.js';
 import { decodeHash, encodeHash } from './url-state.js';
 
 /** frames each resolution runs for in the Mesh Resolution sequence (3 s) */
 export const SWEEP_STAGE_FRAMES = 180;
 /** spacing of cloths laid side by side [m] */
 const SIDE_BY_SIDE_SPACING = 1.6;
+/** the Mesh Resolution scene on the GPU goes on past the CPU's 64 faces per side */
+export const GPU_SWEEP_EXTRA = [128, 256, 512, 1024];
+/** largest resolution the panel offers per simulation backend [faces per side] */
+export const MAX_RESOLUTION = { cpu: 256, gpu: 1024 } as const;
+
+/** the panel's and the link's backend choice; auto = the GPU when there is a WebGPU device and the scene allows */
+export type BackendChoice = 'auto' | 'gpu' | 'cpu';
+export const BACKEND_CHOICES: readonly BackendChoice[] = ['auto', 'gpu', 'cpu'];
 
 export interface AppOptions {
   forceWebGL?: boolean;
   lite?: boolean;
+  /** `?backend=`: the backend choice when the link does not name one (not written into the link) */
+  backend?: string | null;
 }
 
 export class App implements PanelHost, InteractionHost {
@@ -35,7 +46,15 @@ export class App implements PanelHost, InteractionHost {
   sweepLayout: SweepLayout = 'sequence';
   /** which resolution of the sweep is showing (sequence layout) */
   sweepIndex = 0;
-  readonly sim = new SimClient();
+  sim!: SimDriver;
+  /** simulation backend asked for (panel, link) */
+  backendChoice: BackendChoice = 'auto';
+  /** why the simulation is not where it was asked to be ('' when it is) */
+  backendNote = '';
+  /** the choice came from the link or the panel (so the link keeps it), not from `?backend=` */
+  private backendInLink = false;
+  /** the WebGPU device was lost: the GPU backend is gone for this page */
+  private gpuLost = false;
   readonly stage: Stage;
   readonly overlay: Overlay;
   readonly hud: Hud;
@@ -62,13 +81,11 @@ export class App implements PanelHost, InteractionHost {
   get camera() { return this.stage.camera; }
   get paused() { return this.sim.paused; }
 
-  private constructor(readonly root: HTMLElement, stage: Stage) {
+  private constructor(readonly root: HTMLElement, stage: Stage, options: AppOptions = {}) {
     this.stage = stage;
     this.overlay = new Overlay(root);
     this.hud = new Hud(root);
     this.interaction = new Interaction(stage.container, this);
-    this.sim.onFrame = () => { this.dirty = true; };
-    this.sim.onError = (m) => this.overlay.message(m, 'error');
 
     // start from the link, or the first built-in scene; a bad link says why and falls back
     let start: { scene: Scene; base: string; view: Record<string, string | undefined> } | null = null;
@@ -76,6 +93,13 @@ export class App implements PanelHost, InteractionHost {
       start = decodeHash(location.hash);
     } catch (e) {
       this.overlay.message(`${(e as Error).message} — showing the default scene instead`, 'error');
+    }
+    if (options.backend && (BACKEND_CHOICES as readonly string[]).includes(options.backend)) {
+      this.backendChoice = options.backend as BackendChoice;
+    }
+    if (start?.view.backend && (BACKEND_CHOICES as readonly string[]).includes(start.view.backend)) {
+      this.backendChoice = start.view.backend as BackendChoice;
+      this.backendInLink = true;
     }
     if (start) {
       if (start.view.sweep === 'side-by-side' || start.view.sweep === 'sequence') this.sweepLayout = start.view.sweep;
@@ -118,12 +142,118 @@ export class App implements PanelHost, InteractionHost {
       },
       onFallbackFailed: (message) => app?.overlay.message(`WebGPU device lost: ${message}. Reload the page to try again.`),
     });
-    app = new App(root, stage);
+    app = new App(root, stage, options);
     return app;
   }
 
   private afterRendererSwitch(): void {
     this.dirty = true;
+    // the GPU simulation lived on the lost device: go on on the CPU from the last positions read back
+    if (this.sim?.kind === 'gpu') {
+      const frame = this.sim.mirrors[0]?.frame ?? 0;
+      this.gpuLost = true;
+      this.switchBackend(true);
+      this.overlay.message(
+        `WebGPU device lost; switched to WebGL2. The simulation continues on the CPU from the last positions read back from the GPU (frame ${frame}).`,
+        'notice',
+      );
+    } else {
+      this.gpuLost = true;
+      this.backendNote = this.backendChoice === 'gpu' ? 'GPU unavailable: the WebGPU device was lost' : '';
+      this.panel?.sync();
+    }
+  }
+
+  // ---------------------------------------------------------------- simulation backend
+
+  /** the backend the current scene and renderer allow for the choice, and why if it differs from the choice */
+  private wantedBackend(): { kind: 'cpu' | 'gpu'; note: string } {
+    if (this.backendChoice === 'cpu') return { kind: 'cpu', note: '' };
+    const why = this.gpuLost ? 'the WebGPU device was lost'
+      : this.stage.backend !== 'webgpu' || !this.stage.device ? 'no WebGPU adapter (WebGL2)'
+      : GpuSim.supports(this.scene);
+    if (why) return { kind: 'cpu', note: this.backendChoice === 'gpu' || this.scene.solver.type !== 'xpbd' ? `GPU unavailable: ${why}` : '' };
+    return { kind: 'gpu', note: '' };
+  }
+
+  private makeDriver(kind: 'cpu' | 'gpu'): SimDriver {
+    const d: SimDriver = kind === 'gpu' && this.stage.device ? new GpuSim(this.stage.device) : new SimClient();
+    d.onFrame = () => { this.dirty = true; };
+    d.onError = (m) => this.overlay.message(m, 'error');
+    return d;
+  }
+
+  /**
+   * Puts the simulation on the backend the choice and scene ask for. `keep`: the cloths go on from where they are
+   * (positions, and velocities where the old backend has them) instead of restarting.
+   */
+  private switchBackend(keep: boolean): boolean {
+    const { kind, note } = this.wantedBackend();
+    this.backendNote = note;
+    const old = this.sim as SimDriver | undefined;
+    if (old && old.kind === kind && !(old instanceof GpuSim && old.lost)) return false;
+    this.interaction?.cancel();
+    const paused = old?.paused ?? false;
+    const oldMirrors = old ? old.mirrors.slice() : [];
+    old?.dispose();
+    this.sim = this.makeDriver(kind);
+    this.sim.paused = paused;
+    if (!keep || !old) return true;
+    const scenes = this.slotScenes();
+    this.sim.load(scenes);
+    this.sim.mirrors.forEach((m, k) => {
+      const from = oldMirrors[k];
+      if (!from || from.sim.model.particleCount !== m.sim.model.particleCount) return;
+      const st = from.sim.state;
+      if (this.sim instanceof SimClient) {
+        this.sim.setState(k, st, from.frame);
+      } else if (this.sim instanceof GpuSim) {
+        // the worker's mirrors carry positions only: the cloth goes on from there at rest
+        m.sim.state.positions.set(st.positions);
+        m.sim.state.previousPositions.set(st.positions);
+        m.sim.state.velocities.fill(0);
+        this.sim.upload(k, from.frame);
+      }
+    });
+    const all = scenes.flatMap((s) => s.colliders);
+    this.stage.setColliders(all);
+    this.rebuildViews();
+    this.hud?.clearPlot();
+    this.panel?.sync();
+    return true;
+  }
+
+  setBackend(choice: BackendChoice): void {
+    this.backendChoice = choice;
+    this.backendInLink = true;
+    const sweepBefore = this.sweepList().length;
+    const kindBefore = this.sim.kind;
+    this.backendNote = this.wantedBackend().note;
+    if (this.wantedBackend().kind !== kindBefore) {
+      this.switchBackend(true);
+      if (this.sweepList().length !== sweepBefore) { this.sweepIndex = 0; this.loadSlots(); this.frameCamera(true); }
+    }
+    if (this.backendNote) this.overlay.message(this.backendNote, 'notice');
+    this.panel.sync();
+    this.scheduleHash();
+    this.dirty = true;
+  }
+
+  /**
+   * Resolutions of a sweep scene; on the GPU the built-in Mesh Resolution scene, one after another, goes on to
+   * 1024 faces per side (side by side keeps the scene's own list: a row of eleven cloths up to 1025² is too much).
+   */
+  sweepList(): number[] {
+    const sweep = this.scene.resolutionSweep ?? [];
+    if (!sweep.length || this.sim?.kind !== 'gpu' || this.sweepLayout !== 'sequence') return sweep;
+    const builtin = builtinScene('resolution')?.resolutionSweep ?? [];
+    if (JSON.stringify(builtin) !== JSON.stringify(sweep)) return sweep;
+    return [...sweep, ...GPU_SWEEP_EXTRA.filter((r) => r > Math.max(...sweep))];
+  }
+
+  /** largest resolution the panel offers now */
+  get maxResolution(): number {
+    return MAX_RESOLUTION[this.sim?.kind ?? 'cpu'];
   }
 
   // ---------------------------------------------------------------- scenes and slots
@@ -131,8 +261,8 @@ export class App implements PanelHost, InteractionHost {
   /** The scenes of the cloths on screen: one, or one per resolution of a sweep. */
   private slotScenes(): Scene[] {
     const s = this.scene;
-    const sweep = s.resolutionSweep;
-    if (!sweep?.length) return [s];
+    const sweep = this.sweepList();
+    if (!sweep.length) return [s];
     const at = (res: number, dx: number): Scene => {
       const next = structuredClone(s);
       delete next.resolutionSweep;
@@ -160,6 +290,7 @@ export class App implements PanelHost, InteractionHost {
   }
 
   private loadSlots(): void {
+    this.switchBackend(false);
     const scenes = this.slotScenes();
     this.sim.load(scenes);
     const all = scenes.flatMap((s) => s.colliders);
@@ -170,8 +301,9 @@ export class App implements PanelHost, InteractionHost {
   private rebuildViews(): void {
     for (const v of this.views) { this.stage.content.remove(v.group); v.dispose(); }
     const look = fabricLook(fabricFor(this.scene.name));
+    const gpu = this.sim.kind === 'gpu';
     this.views = this.sim.mirrors.map((m) => {
-      const v = new ClothView(m.sim.model, look);
+      const v = new ClothView(m.sim.model, look, gpu);
       v.setView(this.view);
       this.stage.content.add(v.group);
       return v;
@@ -212,7 +344,7 @@ export class App implements PanelHost, InteractionHost {
       l.dataset.testid = 'sweep-label';
       const r = m.sim.scene.cloth.resolution;
       const faces = r * r;
-      const total = this.scene.resolutionSweep!.length;
+      const total = this.sweepList().length;
       const scaling = this.scene.material.scaleWithResolution ? 'scaled with resolution' : 'seed constants (not scaled)';
       l.innerHTML = this.sweepLayout === 'sequence'
         ? `<small>${this.sweepIndex % total + 1} / ${total}</small><b>${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}</b>` +
@@ -243,8 +375,8 @@ export class App implements PanelHost, InteractionHost {
 
   /** Sequence layout: move on to the next resolution when the current one has had its time. */
   private advanceSweep(): void {
-    const sweep = this.scene.resolutionSweep;
-    if (!sweep?.length || this.sweepLayout !== 'sequence' || this.sim.paused) return;
+    const sweep = this.sweepList();
+    if (!sweep.length || this.sweepLayout !== 'sequence' || this.sim.paused) return;
     const m = this.sim.mirrors[0];
     if (!m || m.frame < SWEEP_STAGE_FRAMES) return;
     this.interaction.cancel();
@@ -284,6 +416,12 @@ export class App implements PanelHost, InteractionHost {
       return false;
     }
     this.scene = next;
+    if (this.wantedBackend().kind !== this.sim.kind) {
+      this.switchBackend(true);
+      if (this.backendNote) this.overlay.message(this.backendNote, 'notice');
+    } else {
+      this.backendNote = this.wantedBackend().note;
+    }
     const scenes = this.slotScenes();
     if (scenes.length !== this.sim.mirrors.length) {
       this.loadSlots();
@@ -471,6 +609,7 @@ export class App implements PanelHost, InteractionHost {
       view: {
         view: this.view === 'shaded' ? undefined : this.view,
         sweep: this.scene.resolutionSweep?.length && this.sweepLayout !== 'sequence' ? this.sweepLayout : undefined,
+        backend: this.backendChoice === 'auto' || !this.backendInLink ? undefined : this.backendChoice,
       },
     };
   }
@@ -500,6 +639,10 @@ export class App implements PanelHost, InteractionHost {
       if (!s) return;
       if (s.view.view && (VIEWS as readonly string[]).includes(s.view.view)) this.view = s.view.view as ViewName;
       this.sweepLayout = s.view.sweep === 'side-by-side' ? 'side-by-side' : 'sequence';
+      if ((BACKEND_CHOICES as readonly string[]).includes(s.view.backend ?? '')) {
+        this.backendChoice = s.view.backend as BackendChoice;
+        this.backendInLink = true;
+      }
       this.applyScene(s.scene, SCENE_NAMES.includes(s.base) ? s.base : '');
     } catch (e) {
       this.overlay.message((e as Error).message);
@@ -586,6 +729,17 @@ export class App implements PanelHost, InteractionHost {
     this.sim.tick(dt, now);
     this.advanceSweep();
     this.syncViews();
+    if (this.sim instanceof GpuSim && !this.sim.lost) {
+      const backend = this.stage.renderer.backend as unknown as { get(o: object): { buffer?: GPUBuffer } };
+      this.views.forEach((v, k) => {
+        const solver = (this.sim as GpuSim).solverOf(k);
+        if (solver && !v.attached && v.model === this.sim.mirrors[k].sim.model) {
+          v.attachGpu(backend, solver.positionBuffer, solver.normalBuffer);
+          this.dirty = true;
+        }
+      });
+      this.sim.eagerReadback = this.views.some((v) => v.needsCpuPositions);
+    }
     const redraw = this.dirty;
     if (this.dirty) {
       this.sim.mirrors.forEach((m, k) => this.views[k]?.update(m.sim.state, m.grabbed));
@@ -627,11 +781,13 @@ export class App implements PanelHost, InteractionHost {
       triangles += m.sim.model.triangles.length / 3;
       springs += m.sim.model.restLengths.length;
     }
-    const sweep = this.scene.resolutionSweep;
+    const sweep = this.sweepList();
     this.hud.update({
       fps: this.fps,
       idle: this.idle,
       backend: this.stage.backend === 'webgpu' ? 'WebGPU' : 'WebGL2',
+      simBackend: this.sim.kind === 'gpu' ? 'GPU (WebGPU compute)' : 'CPU (worker)',
+      backendNote: this.backendNote,
       stepMs: this.sim.stats.stepMs,
       realTime: this.sim.stats.realTime,
       paused: this.sim.paused,
@@ -642,7 +798,7 @@ export class App implements PanelHost, InteractionHost {
       view: this.view,
       maxStrain: this.sim.stats.maxStrain,
       slots: this.sim.mirrors.length,
-      extra: sweep?.length && this.sweepLayout === 'sequence'
+      extra: sweep.length && this.sweepLayout === 'sequence'
         ? `resolution ${this.sweepIndex % sweep.length + 1} of ${sweep.length}, ${SWEEP_STAGE_FRAMES / 60} s each`
         : SCENE_LABELS[this.scene.name] ? undefined : `scene: ${this.scene.name}`,
     });

@@ -12,6 +12,12 @@ export interface DrapeHook {
   /** ms from navigation start to the first drawn frame */
   readonly firstFrameMs: number;
   backend(): 'webgpu' | 'webgl2';
+  /** where the simulation runs: 'gpu' (WebGPU compute on the renderer's device) or 'cpu' (worker) */
+  simBackend(): 'gpu' | 'cpu';
+  /** true once every GPU cloth is compiled and drawn from the solver's buffers (always true on the CPU) */
+  gpuDrawing(): boolean;
+  /** tests: destroys the renderer's WebGPU device, as a GPU reset would (false when there is none) */
+  loseDevice(): boolean;
   sceneName(): string;
   /** the current scene document (a copy) */
   scene(): unknown;
@@ -56,6 +62,14 @@ export function installHook(app: App): DrapeHook {
     get ready() { return app.firstFrameAt > 0; },
     get firstFrameMs() { return app.firstFrameAt; },
     backend: () => app.stage.backend,
+    simBackend: () => app.sim.kind,
+    gpuDrawing: () => app.sim.kind === 'cpu' || (app.views.length > 0 && app.views.every((v) => v.attached)),
+    loseDevice: () => {
+      const d = app.stage.device;
+      if (!d) return false;
+      d.destroy();
+      return true;
+    },
     sceneName: () => app.scene.name,
     scene: () => structuredClone(app.scene),
     view: () => app.view,

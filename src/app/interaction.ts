@@ -9,13 +9,13 @@
  */
 import { Plane, Raycaster, Vector2, Vector3, type PerspectiveCamera } from 'three/webgpu';
 import { pickParticle, type PickHit } from '../core/index.js';
-import type { Mirror, SimClient } from './sim-client.js';
+import type { Mirror, SimDriver } from './sim-client.js';
 
 /** how close to a pin marker a pin-tool click must be to unpin it [CSS px] */
 const PIN_MARKER_PX = 10;
 
 export interface InteractionHost {
-  readonly sim: SimClient;
+  readonly sim: SimDriver;
   readonly camera: PerspectiveCamera;
   readonly pinTool: boolean;
   togglePin(slot: number, particle: number): void;

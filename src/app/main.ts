@@ -1,6 +1,7 @@
 /**
  * Entry point of the page (index.html). Query options: `?webgl` forces the WebGL2 backend; `?lite` renders more
- * cheaply (no MSAA, pixel ratio 1, smaller shadow map) for software rasterisers.
+ * cheaply (no MSAA, pixel ratio 1, smaller shadow map) for software rasterisers; `?backend=auto|gpu|cpu` picks the
+ * simulation backend when the link's hash does not.
  */
 import '../ui/style.css';
 import { App } from './app.js';
@@ -11,7 +12,7 @@ const viewport = document.getElementById('viewport');
 if (!viewport) throw new Error('index.html: #viewport missing');
 
 const params = new URLSearchParams(location.search);
-App.create(document.body, viewport, { forceWebGL: params.has('webgl'), lite: params.has('lite') }).then(
+App.create(document.body, viewport, { forceWebGL: params.has('webgl'), lite: params.has('lite'), backend: params.get('backend') }).then(
   (app) => installHook(app),
   (e: unknown) => {
     const box = document.createElement('div');

@@ -18,7 +18,12 @@ export type ToWorker =
   | { type: 'advance'; id: number; frames: number }
   /** grab (or move the grab of) a particle toward target */
   | { type: 'grab'; slot: number; particle: number; target: [number, number, number] }
-  | { type: 'release'; slot: number };
+  | { type: 'release'; slot: number }
+  /** continue a slot from another backend's state (GPU → CPU after a device loss or a backend switch) */
+  | {
+    type: 'setState'; slot: number; frame: number; time: number; substeps: number;
+    positions: Float32Array; previous: Float32Array; velocities: Float32Array;
+  };
 
 export interface SlotFrame {
   /** generation of the model these positions belong to (see SimClient) */

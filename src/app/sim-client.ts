@@ -7,7 +7,7 @@
  * are overwritten by each frame from the worker. Changing its scene with `setScene` tells us, by the core's own
  * rule, whether the worker is rebuilding the cloth; frames of an older cloth are then dropped.
  */
-import { FRAME_DT, Simulation, type Energy, type Scene } from '../core/index.js';
+import { FRAME_DT, Simulation, type ClothState, type Energy, type Scene } from '../core/index.js';
 import type { FromWorker, ToWorker } from './protocol.js';
 
 export const FRAME_MS = FRAME_DT * 1000;
@@ -38,7 +38,27 @@ export interface SimStats {
   framesDone: number;
 }
 
-export class SimClient {
+/** What the app drives: the CPU backend (SimClient, a worker) or the GPU backend (GpuSim, on the page's device). */
+export interface SimDriver {
+  readonly kind: 'cpu' | 'gpu';
+  readonly mirrors: Mirror[];
+  paused: boolean;
+  readonly stats: SimStats;
+  onFrame: (() => void) | null;
+  onError: ((message: string) => void) | null;
+  load(scenes: Scene[]): void;
+  setScene(slot: number, scene: Scene): boolean;
+  reset(): void;
+  resetSlot(slot: number): void;
+  grab(slot: number, particle: number, target: [number, number, number]): void;
+  release(slot: number): void;
+  step(frames?: number): Promise<void>;
+  tick(dtMs: number, now: number): void;
+  dispose(): void;
+}
+
+export class SimClient implements SimDriver {
+  readonly kind = 'cpu' as const;
   readonly mirrors: Mirror[] = [];
   paused = false;
   readonly stats: SimStats = {
@@ -107,6 +127,26 @@ export class SimClient {
   release(slot: number): void {
     this.mirrors[slot].grabbed = -1;
     this.post({ type: 'release', slot });
+  }
+
+  /**
+   * Continues a slot from a state of another backend (positions, previous positions, velocities, time; pins are
+   * the scene's): the mirror shows it at once and the worker steps on from it.
+   */
+  setState(slot: number, state: ClothState, frame: number): void {
+    const m = this.mirrors[slot];
+    m.sim.state.positions.set(state.positions);
+    m.frame = frame;
+    this.post({
+      type: 'setState', slot, frame, time: state.time, substeps: state.substeps,
+      positions: state.positions.slice(), previous: state.previousPositions.slice(), velocities: state.velocities.slice(),
+    });
+  }
+
+  dispose(): void {
+    this.worker.terminate();
+    for (const done of this.pending.values()) done();
+    this.pending.clear();
   }
 
   /** Steps `frames` frames now (paused or not); resolves once they are in the mirrors. */

@@ -68,6 +68,19 @@ function handle(msg: ToWorker): void {
       if (slot) release(slot.sim.state);
       return;
     }
+    case 'setState': {
+      const slot = slots[msg.slot];
+      if (!slot || msg.positions.length !== slot.sim.state.positions.length) return;
+      const st = slot.sim.state;
+      st.positions.set(msg.positions);
+      st.previousPositions.set(msg.previous);
+      st.velocities.set(msg.velocities);
+      st.time = msg.time;
+      st.substeps = msg.substeps;
+      st.tethersStale = true;
+      slot.sim.frame = msg.frame;
+      return;
+    }
     case 'advance': {
       const t0 = performance.now();
       for (const s of slots) s.sim.advance(msg.frames);

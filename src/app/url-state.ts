@@ -9,7 +9,7 @@
 import { SCENE_NAMES, SceneError, builtinScene, defaultScene, parseSetValue, setScenePath, type Scene } from '../core/index.js';
 
 /** hash keys that are not scene paths */
-export const VIEW_KEYS = ['view', 'sweep'] as const;
+export const VIEW_KEYS = ['view', 'sweep', 'backend'] as const;
 export type ViewKey = (typeof VIEW_KEYS)[number];
 
 export interface HashState {

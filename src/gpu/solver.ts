@@ -322,6 +322,17 @@ export class GpuClothSolver {
     q.writeBuffer(this.buffers.previous, 0, toVec4(state.previousPositions));
     q.writeBuffer(this.buffers.velocities, 0, toVec4(state.velocities));
     this.uploadPins(state);
+    this.refreshNormals();
+  }
+
+  /** Recomputes the vertex normals from the current positions (step does this itself; upload calls it). */
+  refreshNormals(): void {
+    this.checkAlive();
+    const encoder = this.device.createCommandEncoder({ label: 'drape normals' });
+    const pass = encoder.beginComputePass({ label: 'drape normals' });
+    this.dispatch(pass, 'normals', this.model.particleCount, 0, 0);
+    pass.end();
+    this.device.queue.submit([encoder.finish()]);
   }
 
   private uploadPins(state: ClothState): void {

@@ -55,17 +55,28 @@ export class ClothView {
   private readonly strainSum: Float32Array;
   private readonly strainCount: Uint16Array;
 
-  constructor(readonly model: ClothModel, look: FabricLook) {
+  /** drawn from a GPU solver's buffers (see attachGpu) */
+  private gpuAttached = false;
+
+  /**
+   * `gpu`: the cloth will be drawn from a GpuClothSolver's buffers: position and normal attributes are vec4
+   * (the solver's layout) and static, so three.js never uploads them once attachGpu has put the solver's buffers
+   * in their place.
+   */
+  constructor(readonly model: ClothModel, look: FabricLook, readonly gpu = false) {
     const n = model.particleCount;
     const g = new BufferGeometry();
-    this.position = new BufferAttribute(new Float32Array(model.restPositions), 3).setUsage(DynamicDrawUsage);
+    const stride = gpu ? 4 : 3;
+    this.position = new BufferAttribute(gpu ? vec4(model.restPositions) : new Float32Array(model.restPositions), stride);
+    if (!gpu) this.position.setUsage(DynamicDrawUsage);
     this.color = new BufferAttribute(new Float32Array(3 * n).fill(1), 3).setUsage(DynamicDrawUsage);
     g.setAttribute('position', this.position);
     g.setAttribute('uv', new BufferAttribute(new Float32Array(model.uvs), 2));
     g.setAttribute('color', this.color);
     g.setIndex(new BufferAttribute(new Uint32Array(model.triangles), 1));
+    if (gpu) g.setAttribute('normal', new BufferAttribute(new Float32Array(4 * n), 4));
     g.computeVertexNormals();
-    (g.getAttribute('normal') as BufferAttribute).setUsage(DynamicDrawUsage);
+    if (!gpu) (g.getAttribute('normal') as BufferAttribute).setUsage(DynamicDrawUsage);
     this.geometry = g;
 
     this.shadedMaterial = new MeshPhysicalNodeMaterial({
@@ -181,15 +192,53 @@ export class ClothView {
     m.needsUpdate = true;
   }
 
+  /**
+   * Draws the cloth from a GPU solver's position and normal buffers (`array<vec4f>`, VERTEX usage) on the
+   * renderer's WebGPU backend: the buffers take the place of the ones three.js would create for the position and
+   * normal attributes (its backend keeps each attribute's GPUBuffer in `backend.get(attribute).buffer` and creates
+   * one only when there is none). The shaded, strain and wireframe views then never touch positions on the CPU.
+   * Disposing the view destroys those buffers with it (three.js destroys attribute buffers): dispose the view and
+   * the solver together.
+   */
+  attachGpu(backend: { get(object: object): { buffer?: GPUBuffer } }, positions: GPUBuffer, normals: GPUBuffer): void {
+    if (!this.gpu || this.gpuAttached) return;
+    for (const [attr, buffer] of [[this.position, positions], [this.geometry.getAttribute('normal') as BufferAttribute, normals]] as const) {
+      const data = backend.get(attr);
+      if (data.buffer && data.buffer !== buffer) data.buffer.destroy();
+      data.buffer = buffer;
+    }
+    this.gpuAttached = true;
+  }
+
+  get attached(): boolean {
+    return this.gpuAttached;
+  }
+
+  /** whether the current view draws from CPU positions (springs, particles, strain colours) */
+  get needsCpuPositions(): boolean {
+    return this.view === 'springs' || this.view === 'particles' || this.view === 'strain';
+  }
+
   /** Copies the state into the GPU buffers of the current view. */
   update(state: ClothState, grabbed: number): void {
     const x = state.positions;
     const model = this.model;
-    this.position.array.set(x);
-    this.position.needsUpdate = true;
-    if (this.view === 'shaded' || this.view === 'strain') {
-      this.geometry.computeVertexNormals();
-      this.geometry.getAttribute('normal').needsUpdate = true;
+    if (this.gpu) {
+      // until the solver is attached, draw the CPU state (its start pose) through the vec4 attributes
+      if (!this.gpuAttached) {
+        const p = this.position.array as Float32Array;
+        for (let i = 0; i < model.particleCount; i++) { p[4 * i] = x[3 * i]; p[4 * i + 1] = x[3 * i + 1]; p[4 * i + 2] = x[3 * i + 2]; }
+        this.position.needsUpdate = true;
+        this.geometry.computeVertexNormals();
+        this.geometry.getAttribute('normal').needsUpdate = true;
+      }
+    } else {
+      this.position.array.set(x);
+      this.position.needsUpdate = true;
+      if (this.view === 'shaded' || this.view === 'strain') {
+        this.geometry.computeVertexNormals();
+        this.geometry.getAttribute('normal').needsUpdate = true;
+      }
     }
     if (this.view === 'strain') this.updateStrain(x);
     if (this.view === 'springs') {
@@ -259,6 +308,7 @@ export class ClothView {
   }
 
   dispose(): void {
+    this.gpuAttached = false;
     this.geometry.dispose();
     this.wire.geometry.dispose();
     this.springs.geometry.dispose();
@@ -274,3 +324,10 @@ export class ClothView {
   }
 }
 
+
+/** stride 3 → stride 4 (w = 0), the GPU solver's layout */
+function vec4(src: Float32Array): Float32Array {
+  const n = src.length / 3, out = new Float32Array(4 * n);
+  for (let i = 0; i < n; i++) { out[4 * i] = src[3 * i]; out[4 * i + 1] = src[3 * i + 1]; out[4 * i + 2] = src[3 * i + 2]; }
+  return out;
+}

@@ -99,7 +99,20 @@ export class Stage {
     const canvas = document.createElement('canvas');
     canvas.className = 'drape-canvas';
     this.container.prepend(canvas);
-    const r = new WebGPURenderer({ canvas, antialias: !this.options.lite, forceWebGL });
+    // the GPU simulation shares this device: ask for the adapter's largest buffers (a 1025² cloth needs ~400 MB)
+    let requiredLimits: Record<string, number> | undefined;
+    if (!forceWebGL && typeof navigator !== 'undefined' && navigator.gpu) {
+      try {
+        const adapter = await navigator.gpu.requestAdapter();
+        if (adapter) {
+          requiredLimits = {
+            maxStorageBufferBindingSize: adapter.limits.maxStorageBufferBindingSize,
+            maxBufferSize: adapter.limits.maxBufferSize,
+          };
+        }
+      } catch { /* three.js decides */ }
+    }
+    const r = new WebGPURenderer({ canvas, antialias: !this.options.lite, forceWebGL, requiredLimits });
     r.onDeviceLost = (info: { message: string; reason: string | null }) => {
       if (this.renderer === r) this.deviceLost(info.reason ? `reason: ${info.reason}` : info.message);
     };
@@ -164,6 +177,12 @@ export class Stage {
         if (attempt >= 5) throw e;
       }
     }
+  }
+
+  /** the renderer's WebGPU device (shared with the GPU simulation), or null on WebGL2 or once lost */
+  get device(): GPUDevice | null {
+    if (this.backend !== 'webgpu' || this.lost) return null;
+    return (this.renderer.backend as { device?: GPUDevice }).device ?? null;
   }
 
   /** true while a renderer switch is under way (nothing to draw on) */

@@ -13,6 +13,10 @@ export interface HudInfo {
   /** nothing needed drawing lately */
   idle: boolean;
   backend: string;
+  /** where the simulation runs */
+  simBackend: string;
+  /** why it does not run where it was asked to ('' when it does) */
+  backendNote: string;
   stepMs: number;
   realTime: number;
   paused: boolean;
@@ -95,7 +99,7 @@ export class Hud {
   update(i: HudInfo): void {
     const slow = !i.paused && i.realTime < 0.9;
     this.text.innerHTML =
-      `<b>Drape</b> · ${i.backend}<br>` +
+      `<b>Drape</b> · ${i.backend} · sim on <span data-testid="hud-sim">${i.simBackend}</span><br>` +
       `${i.idle ? 'idle' : `${i.fps.toFixed(0)} fps`} · sim ${i.stepMs.toFixed(1)} ms/frame<br>` +
       `${i.particles.toLocaleString('en')} particles · ${i.triangles.toLocaleString('en')} triangles<br>` +
       `${i.springs.toLocaleString('en')} springs · ${i.solver}, ${i.substeps} substeps` +
@@ -105,6 +109,7 @@ export class Hud {
     if (i.paused) lines.push('<span class="ok">paused — space to run, “Step” for one frame</span>');
     else if (slow) lines.push(`<span class="warn">slow motion: ${(100 * i.realTime).toFixed(0)}% of real time — the simulation needs ${i.stepMs.toFixed(0)} ms per 16.7 ms frame; try a lower resolution or fewer substeps</span>`);
     else lines.push('<span class="ok">real time (fixed 1/60 s frames)</span>');
+    if (i.backendNote) lines.push(`<span class="warn">${escapeHtml(i.backendNote)}</span>`);
     for (const c of i.clamps) lines.push(`<span class="warn">⚠ ${escapeHtml(c)}</span>`);
     this.status.innerHTML = lines.join('<br>');
     this.status.dataset.state = i.paused ? 'paused' : slow ? 'slow' : 'realtime';

@@ -31,6 +31,11 @@ export interface PanelHost {
   readonly view: ViewName;
   readonly pinTool: boolean;
   readonly sweepLayout: SweepLayout;
+  /** simulation backend asked for: auto, gpu, cpu */
+  readonly backendChoice: 'auto' | 'gpu' | 'cpu';
+  /** largest cloth resolution offered (the GPU goes further) */
+  readonly maxResolution: number;
+  setBackend(choice: 'auto' | 'gpu' | 'cpu'): void;
   loadBuiltin(name: string): void;
   /** live change of one scene path; returns false (and shows why) when refused */
   setPath(path: string, value: unknown): boolean;
@@ -109,6 +114,18 @@ export class Panel {
     this.sync();
   }
 
+  private resolutionMax = 0;
+
+  /** cloth resolutions up to the backend's maximum (1024 faces per side on the GPU) */
+  private resolutionOptions(): Record<string, number> {
+    const rs = schemaFor('cloth.resolution');
+    this.resolutionMax = this.host.maxResolution;
+    const hi = Math.min(rs.maximum ?? 1024, this.resolutionMax);
+    const out: Record<string, number> = {};
+    for (const r of RESOLUTIONS) if (r >= (rs.minimum ?? 1) && r <= hi) out[`${r} × ${r}  (${r * r} faces)`] = r;
+    return out;
+  }
+
   private tag<C extends Controller>(c: C, id: string, description?: string): C {
     c.domElement.dataset.testid = id;
     if (description) c.domElement.title = description;
@@ -139,9 +156,7 @@ export class Panel {
     const cloth = gui.addFolder('Cloth & material');
     p['cloth.resolution'] = 32;
     const rs = schemaFor('cloth.resolution');
-    const resOptions: Record<string, number> = {};
-    for (const r of RESOLUTIONS) if (r >= (rs.minimum ?? 1) && r <= (rs.maximum ?? 1024)) resOptions[`${r} × ${r}  (${r * r} faces)`] = r;
-    this.resolutionCtl = this.tag(cloth.add(p, 'cloth.resolution', resOptions).name('resolution')
+    this.resolutionCtl = this.tag(cloth.add(p, 'cloth.resolution', this.resolutionOptions()).name('resolution')
       .onChange((v: number) => host.setPath('cloth.resolution', Number(v))), 'cloth.resolution', rs.description);
     this.syncers.push(() => { p['cloth.resolution'] = host.scene.cloth.resolution; });
     this.addParam(cloth, 'material.structuralStiffness', 'structural', undefined, 'N/m');
@@ -158,6 +173,10 @@ export class Panel {
     this.addParam(solver, 'solver.type', 'solver');
     this.addParam(solver, 'solver.substeps', 'substeps');
     this.addParam(solver, 'solver.iterations', 'iterations');
+    p.backend = host.backendChoice;
+    this.tag(solver.add(p, 'backend', { 'auto (GPU when WebGPU is there)': 'auto', 'GPU (WebGPU compute, xpbd)': 'gpu', 'CPU (worker)': 'cpu' })
+      .name('backend').onChange((v: 'auto' | 'gpu' | 'cpu') => host.setBackend(v)), 'backend',
+    'where the simulation runs: auto picks the GPU when there is a WebGPU device; mass-spring runs on the CPU only');
 
     const wind = gui.addFolder('Wind');
     this.addParam(wind, 'wind.enabled', 'wind on');
@@ -284,6 +303,8 @@ export class Panel {
     for (const name of SCENE_NAMES) opts[SCENE_LABELS[name] ?? name] = name;
     this.sceneCtl.options(opts);
     p.sweep = host.sweepLayout;
+    p.backend = host.backendChoice;
+    if (this.resolutionMax !== host.maxResolution) this.resolutionCtl.options(this.resolutionOptions());
     for (const f of this.syncers) f();
     const sweep = !!host.scene.resolutionSweep?.length;
     this.sweepFolder.show(sweep);

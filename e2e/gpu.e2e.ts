@@ -1,0 +1,117 @@
+/**
+ * The WebGPU simulation backend in the page (issue 4): the cloth is simulated by the GPU solver on the renderer's
+ * own device and drawn from the solver's buffers; the panel and the link choose the backend; a lost device falls
+ * back to the CPU with the positions kept, and says so. Small cloths, explicit steps (SwiftShader is slow).
+ */
+import type { Page } from 'playwright-core';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { launch, type Browser } from './browser.js';
+import { byId, centroid, choose, hook, loadScene, openApp, setChecked, shoot, step, viewStats, writeJson } from './helpers.js';
+
+let browser: Browser;
+
+beforeAll(async () => {
+  browser = await launch('webgpu');
+});
+
+afterAll(async () => {
+  await browser?.close();
+});
+
+async function gpuReady(page: Page): Promise<void> {
+  await page.waitForFunction(() => (window as any).drape.simBackend() === 'gpu' && (window as any).drape.gpuDrawing(), null, { timeout: 30_000 });
+}
+
+const dist = (a: number[], b: number[]) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+
+describe('GPU simulation backend', () => {
+  it('auto picks the GPU, drapes a GPU-simulated cloth drawn from its buffers, switches backends keeping the cloth', async () => {
+    const { page, errors } = await openApp(browser.context);
+    await gpuReady(page);
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('GPU');
+    await loadScene(page, 'Silk Drape', 16);
+    await gpuReady(page);
+    const t0 = performance.now();
+    await step(page, 120);
+    const ms = (performance.now() - t0) / 120;
+    writeJson('gpu-step', { scene: 'silk-drape', resolution: 16, frames: 120, msPerFrameWall: ms });
+    const c = await centroid(page);
+    expect(c[1]).toBeGreaterThan(0.3);
+    expect(c[1]).toBeLessThan(0.85);
+    const s = await viewStats(page);
+    expect(s.colours).toBeGreaterThan(20);
+    expect(s.lumaStd).toBeGreaterThan(4);
+    await shoot(page, 'gpu-silk');
+
+    // the panel offers 1024 faces per side on the GPU
+    const options = await byId(page, 'cloth.resolution').locator('option').allTextContents();
+    expect(options.some((o) => o.startsWith('1024 × 1024'))).toBe(true);
+
+    // to the CPU and back, from the panel; the cloth goes on from where it is; the link says so
+    await choose(page, 'backend', 'CPU (worker)');
+    expect(await hook(page, 'simBackend')).toBe('cpu');
+    expect(dist(await centroid(page), c)).toBeLessThan(1e-3);
+    await page.waitForFunction(() => location.hash.includes('backend=cpu'));
+    const cpuOptions = await byId(page, 'cloth.resolution').locator('option').allTextContents();
+    expect(cpuOptions.some((o) => o.startsWith('1024 × 1024'))).toBe(false);
+    await step(page, 10);
+    const c2 = await centroid(page);
+    await choose(page, 'backend', 'auto (GPU when WebGPU is there)');
+    await gpuReady(page);
+    expect(dist(await centroid(page), c2)).toBeLessThan(1e-3);
+    await step(page, 10);
+    expect(Math.abs((await centroid(page))[1] - c2[1])).toBeLessThan(0.05);
+
+    // mass-spring runs on the CPU only: auto falls back and says why
+    await choose(page, 'solver.type', 'mass-spring');
+    expect(await hook(page, 'simBackend')).toBe('cpu');
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('CPU only');
+    await choose(page, 'solver.type', 'xpbd');
+    await gpuReady(page);
+
+    // pins changed live reach the GPU: hangs from two corners
+    await loadScene(page, 'Custom Parameters', 12);
+    await setChecked(page, 'pin.top-left', true);
+    await setChecked(page, 'pin.top-right', true);
+    await gpuReady(page);
+    await step(page, 60);
+    const [tl, tr] = await hook<number[][]>(page, 'positions', [0, 12]);
+    expect(tl[1]).toBeCloseTo(1.2, 4);
+    expect(tr[1]).toBeCloseTo(1.2, 4);
+    expect((await centroid(page))[1]).toBeLessThan(1.1);
+
+    // the Mesh Resolution sequence goes on to 1024 faces per side on the GPU
+    await loadScene(page, 'Mesh Resolution');
+    expect((await hook<string[]>(page, 'labels'))[0]).toContain('1 / 11');
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('a lost device falls back to the CPU solver with the positions kept, and the page says so', async () => {
+    const { page, errors } = await openApp(browser.context);
+    await gpuReady(page);
+    await loadScene(page, 'Pins', 12);
+    await gpuReady(page);
+    await step(page, 60);
+    const before = await centroid(page);
+    const frame = await hook<number>(page, 'frame');
+    expect(await hook(page, 'loseDevice')).toBe(true);
+    await page.waitForFunction(() => (window as any).drape.backend() === 'webgl2' && (window as any).drape.simBackend() === 'cpu', null, { timeout: 20_000 });
+    const msg = await hook<{ text: string; kind: string }>(page, 'lastMessage');
+    expect(msg.text).toContain('WebGPU device lost');
+    expect(msg.text).toContain('continues on the CPU');
+    expect(await byId(page, 'message').isVisible()).toBe(true);
+    expect(await hook(page, 'frame')).toBe(frame);
+    expect(dist(await centroid(page), before)).toBeLessThan(1e-3);
+    await step(page, 30);
+    const after = await centroid(page);
+    // still hanging from its pins where it was (a restart would drop it from the start pose)
+    expect(dist(after, before)).toBeLessThan(0.05);
+    expect(await hook(page, 'frame')).toBe(frame + 30);
+    const s = await viewStats(page);
+    expect(s.colours).toBeGreaterThan(20);
+    await shoot(page, 'gpu-lost-fallback');
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+});

@@ -1,0 +1,286 @@
+/**
+ * The GPU backend of the page: one core Simulation (model, params, CPU bookkeeping) and one GpuClothSolver per
+ * slot, on the renderer's own GPUDevice, on the main thread. A frame is one command buffer the CPU only encodes;
+ * the cloth is drawn straight from the solver's position and normal buffers (ClothView.attachGpu). Positions come
+ * back to the CPU only asynchronously, at most ~10 times a second (every frame while a CPU-drawn view — springs,
+ * particles, strain — is showing), for picking, the HUD numbers, the exports and the device-loss fallback.
+ *
+ * Same interface and clock as the worker's SimClient: whole 1/60 s frames, at most one batch of frames in flight
+ * on the GPU queue, time it cannot keep up with dropped.
+ */
+import {
+  FRAME_DT, Simulation, energy, grab, maxStructuralStrain, release, type ClothModel, type Scene,
+} from '../core/index.js';
+import { GpuClothSolver } from '../gpu/index.js';
+import { FRAME_MS, type Mirror, type SimDriver, type SimStats } from './sim-client.js';
+
+const MAX_BACKLOG_FRAMES = 3;
+const MAX_FRAMES_PER_REQUEST = 4;
+const MAX_TICK_MS = 100;
+/** background readback period [ms] (picking, HUD, fallback state) */
+const READBACK_MS = 100;
+
+interface GpuSlot {
+  solver: GpuClothSolver | null;
+  /** model the solver was made for */
+  model: ClothModel | null;
+  /** creation in progress (for this model) */
+  creating: ClothModel | null;
+  /** a newer readback is wanted before positions are trusted (after a reset or upload) */
+  stale: boolean;
+}
+
+export class GpuSim implements SimDriver {
+  readonly kind = 'gpu' as const;
+  readonly mirrors: Mirror[] = [];
+  private slots: GpuSlot[] = [];
+  paused = false;
+  readonly stats: SimStats = {
+    stepMs: 0, realTime: 1, energy: { kinetic: 0, gravitational: 0, elastic: 0 }, maxStrain: 0, clamps: [], framesDone: 0,
+  };
+  onFrame: (() => void) | null = null;
+  onError: ((message: string) => void) | null = null;
+  /** true: read back every frame (a view drawn from CPU positions is showing) */
+  eagerReadback = false;
+  /** the device was lost: nothing is stepped or read any more; mirrors keep the last readback */
+  lost = false;
+  private acc = 0;
+  private inFlight = false;
+  private reading = false;
+  private lastRead = 0;
+  private readGen = 0;
+  private history: [number, number][] = [];
+  private disposed = false;
+
+  constructor(readonly device: GPUDevice) {
+    void device.lost.then(() => { this.lost = true; });
+  }
+
+  /** the solver of a slot once compiled for its current model (views attach to its buffers) */
+  solverOf(slot: number): GpuClothSolver | null {
+    const s = this.slots[slot], m = this.mirrors[slot];
+    return s && m && s.solver && s.model === m.sim.model ? s.solver : null;
+  }
+
+  /** all solvers compiled for their current models */
+  get ready(): boolean {
+    return this.mirrors.every((_, k) => this.solverOf(k) !== null);
+  }
+
+  load(scenes: Scene[]): void {
+    this.destroySolvers();
+    this.mirrors.length = 0;
+    for (const scene of scenes) {
+      const sim = new Simulation(scene);
+      this.mirrors.push({ sim, modelGen: 0, frame: 0, grabbed: -1 });
+      this.slots.push({ solver: null, model: null, creating: null, stale: false });
+    }
+    this.readGen++;
+    this.acc = 0;
+    this.mirrors.forEach((_, k) => this.ensureSolver(k));
+  }
+
+  /** Fails for what the GPU solver does not support (mass-spring, other colliders): the caller falls back. */
+  static supports(scene: Scene): string | null {
+    if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
+    const other = scene.colliders.find((c) => c.type !== 'sphere' && c.type !== 'floor') as { type: string } | undefined;
+    if (other) return `${other.type} colliders run on the CPU only`;
+    return null;
+  }
+
+  private ensureSolver(k: number): void {
+    const slot = this.slots[k], m = this.mirrors[k];
+    const model = m.sim.model;
+    if (slot.model === model || slot.creating === model || this.lost) return;
+    slot.creating = model;
+    GpuClothSolver.create(this.device, model).then((solver) => {
+      if (this.disposed || this.slots[k] !== slot || this.mirrors[k]?.sim.model !== model) { solver.destroy(); return; }
+      slot.solver?.destroy();
+      slot.solver = solver;
+      slot.model = model;
+      slot.creating = null;
+      try {
+        solver.setParams(m.sim.params);
+        solver.upload(m.sim.state);
+      } catch (e) {
+        this.onError?.(`GPU solver: ${(e as Error).message}`);
+      }
+      this.onFrame?.();
+    }, (e: unknown) => {
+      if (slot.creating === model) slot.creating = null;
+      if (!this.lost && !this.disposed) this.onError?.((e as Error).message ?? String(e));
+    });
+  }
+
+  setScene(slot: number, scene: Scene): boolean {
+    const m = this.mirrors[slot];
+    const rebuilt = m.sim.setScene(scene);
+    if (rebuilt) {
+      m.frame = 0; m.grabbed = -1;
+      this.readGen++;
+      const s = this.slots[slot];
+      s.solver?.destroy();
+      s.solver = null; s.model = null;
+      this.ensureSolver(slot);
+    }
+    return rebuilt;
+  }
+
+  reset(): void {
+    this.mirrors.forEach((_, k) => this.resetSlot(k));
+    this.acc = 0;
+  }
+
+  resetSlot(slot: number): void {
+    const m = this.mirrors[slot];
+    m.sim.reset(); m.frame = 0; m.grabbed = -1;
+    this.readGen++;
+    this.solverOf(slot)?.upload(m.sim.state);
+    this.onFrame?.();
+  }
+
+  /** Puts a state (from another backend) into a slot: positions, velocities, time, pins; and its frame count. */
+  upload(slot: number, frame: number): void {
+    const m = this.mirrors[slot];
+    m.frame = frame;
+    m.sim.frame = frame;
+    this.readGen++;
+    this.solverOf(slot)?.upload(m.sim.state);
+  }
+
+  grab(slot: number, particle: number, target: [number, number, number]): void {
+    const m = this.mirrors[slot];
+    m.grabbed = particle;
+    grab(m.sim.state, particle, target);
+    // the CPU copy of the grabbed particle follows the target at once (picking and the marker need no readback)
+    m.sim.state.positions.set(target, 3 * particle);
+  }
+
+  release(slot: number): void {
+    const m = this.mirrors[slot];
+    m.grabbed = -1;
+    release(m.sim.state);
+  }
+
+  /** Steps `frames` frames now (paused or not); resolves once they are done and read back into the mirrors. */
+  async step(frames = 1): Promise<void> {
+    await this.whenReady();
+    if (this.lost) return;
+    const t0 = performance.now();
+    this.encode(frames);
+    await this.device.queue.onSubmittedWorkDone();
+    this.account(frames, performance.now() - t0);
+    await this.readback(true);
+  }
+
+  private async whenReady(): Promise<void> {
+    for (let k = 0; !this.ready && !this.lost && k < 600; k++) await new Promise((r) => setTimeout(r, 50));
+  }
+
+  private encode(frames: number): void {
+    for (let f = 0; f < frames; f++) {
+      this.mirrors.forEach((m, k) => {
+        const solver = this.solverOf(k);
+        if (!solver) return;
+        solver.step(m.sim.state, m.sim.params, FRAME_DT);
+        m.sim.frame++;
+        m.frame = m.sim.frame;
+      });
+    }
+    this.onFrame?.();
+  }
+
+  private account(frames: number, ms: number): void {
+    const s = this.stats;
+    const per = ms / frames;
+    s.stepMs = s.stepMs > 0 ? 0.8 * s.stepMs + 0.2 * per : per;
+    s.framesDone += frames;
+    const last = this.history[this.history.length - 1];
+    if (last && !this.paused) last[1] += frames;
+    const span = this.history.length > 1 ? this.history[this.history.length - 1][0] - this.history[0][0] : 0;
+    if (span > 500) {
+      let n = 0;
+      for (let i = 1; i < this.history.length; i++) n += this.history[i][1];
+      s.realTime = (n * FRAME_MS) / span;
+    }
+  }
+
+  tick(dtMs: number, now: number): void {
+    if (this.lost || this.disposed) return;
+    dtMs = Math.min(Math.max(dtMs, 0), MAX_TICK_MS);
+    if (!this.paused && this.ready) {
+      this.acc += dtMs;
+      if (!this.inFlight) {
+        const budget = this.stats.stepMs > 0 ? Math.max(1, Math.floor(14 / this.stats.stepMs)) : 1;
+        const n = Math.min(Math.floor(this.acc / FRAME_MS), MAX_FRAMES_PER_REQUEST, budget);
+        if (n > 0) {
+          this.acc -= n * FRAME_MS;
+          this.inFlight = true;
+          const t0 = performance.now();
+          this.encode(n);
+          this.device.queue.onSubmittedWorkDone().then(() => {
+            this.inFlight = false;
+            this.account(n, performance.now() - t0);
+          }, () => { this.inFlight = false; });
+        }
+      }
+      this.acc = Math.min(this.acc, MAX_BACKLOG_FRAMES * FRAME_MS);
+      this.history.push([now, 0]);
+      while (this.history.length > 2 && now - this.history[0][0] > 1000) this.history.shift();
+    } else {
+      this.acc = 0;
+      this.history.length = 0;
+    }
+    if (!this.reading && this.ready && (this.eagerReadback || now - this.lastRead >= READBACK_MS)) void this.readback(false);
+  }
+
+  /**
+   * Reads every slot's cloth back into its mirror (positions, velocities, λ) and recomputes the HUD numbers.
+   * A lost device cannot be read: the mirrors then keep the last completed readback.
+   */
+  private async readback(force: boolean): Promise<void> {
+    if (this.lost || (this.reading && !force)) return;
+    this.reading = true;
+    const gen = this.readGen;
+    try {
+      await Promise.all(this.mirrors.map(async (m, k) => {
+        const solver = this.solverOf(k);
+        if (!solver) return;
+        // read into a scratch state, committed only if nothing restarted meanwhile
+        await solver.read(m.sim.state);
+        if (m.grabbed >= 0) m.sim.state.positions.set(m.sim.state.grabTarget, 3 * m.grabbed);
+      }));
+    } catch (e) {
+      if (!this.lost && !this.disposed) this.onError?.(`GPU readback: ${(e as Error).message}`);
+      return;
+    } finally {
+      this.reading = false;
+      this.lastRead = performance.now();
+    }
+    if (gen !== this.readGen) return;
+    const s = this.stats;
+    const total = { kinetic: 0, gravitational: 0, elastic: 0 };
+    let maxStrain = 0;
+    const clamps = new Set<string>();
+    for (const m of this.mirrors) {
+      const e = energy(m.sim.model, m.sim.state, m.sim.params);
+      total.kinetic += e.kinetic; total.gravitational += e.gravitational; total.elastic += e.elastic;
+      maxStrain = Math.max(maxStrain, maxStructuralStrain(m.sim.model, m.sim.state));
+      for (const c of m.sim.params.clamps) clamps.add(c);
+    }
+    s.energy = total;
+    s.maxStrain = maxStrain;
+    s.clamps = [...clamps];
+    this.onFrame?.();
+  }
+
+  private destroySolvers(): void {
+    for (const s of this.slots) { s.solver?.destroy(); s.solver = null; s.creating = null; }
+    this.slots = [];
+  }
+
+  dispose(): void {
+    this.disposed = true;
+    if (!this.lost) this.destroySolvers();
+  }
+}
