@@ -25,8 +25,17 @@ async function gpuReady(page: Page): Promise<void> {
 const dist = (a: number[], b: number[]) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 
 describe('GPU simulation backend', () => {
-  it('auto picks the GPU, drapes a GPU-simulated cloth drawn from its buffers, switches backends keeping the cloth', async () => {
-    const { page, errors } = await openApp(browser.context);
+  it('auto keeps a software WebGPU adapter for drawing and simulates on the CPU, and says why', async () => {
+    const { page, errors } = await openApp(browser.context); // SwiftShader here: a fallback adapter
+    await page.waitForFunction(() => (window as any).drape.backend() === 'webgpu');
+    expect(await hook(page, 'simBackend')).toBe('cpu');
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('software fallback');
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('the GPU backend drapes a GPU-simulated cloth drawn from its buffers, switches backends keeping the cloth', async () => {
+    const { page, errors } = await openApp(browser.context, '', '?lite&backend=gpu');
     await gpuReady(page);
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('GPU');
     await loadScene(page, 'Silk Drape', 16);
@@ -56,13 +65,13 @@ describe('GPU simulation backend', () => {
     expect(cpuOptions.some((o) => o.startsWith('1024 × 1024'))).toBe(false);
     await step(page, 10);
     const c2 = await centroid(page);
-    await choose(page, 'backend', 'auto (GPU when WebGPU is there)');
+    await choose(page, 'backend', 'GPU (WebGPU compute, xpbd)');
     await gpuReady(page);
     expect(dist(await centroid(page), c2)).toBeLessThan(1e-3);
     await step(page, 10);
     expect(Math.abs((await centroid(page))[1] - c2[1])).toBeLessThan(0.05);
 
-    // mass-spring runs on the CPU only: auto falls back and says why
+    // mass-spring runs on the CPU only: the GPU choice falls back and says why
     await choose(page, 'solver.type', 'mass-spring');
     expect(await hook(page, 'simBackend')).toBe('cpu');
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('CPU only');
@@ -88,7 +97,7 @@ describe('GPU simulation backend', () => {
   });
 
   it('a lost device falls back to the CPU solver with the positions kept, and the page says so', async () => {
-    const { page, errors } = await openApp(browser.context);
+    const { page, errors } = await openApp(browser.context, '', '?lite&backend=gpu');
     await gpuReady(page);
     await loadScene(page, 'Pins', 12);
     await gpuReady(page);

@@ -27,7 +27,7 @@ export const GPU_SWEEP_EXTRA = [128, 256, 512, 1024];
 /** largest resolution the panel offers per simulation backend [faces per side] */
 export const MAX_RESOLUTION = { cpu: 256, gpu: 1024 } as const;
 
-/** the panel's and the link's backend choice; auto = the GPU when there is a WebGPU device and the scene allows */
+/** the panel's and the link's backend choice; auto = the GPU when there is a hardware WebGPU device and the scene allows */
 export type BackendChoice = 'auto' | 'gpu' | 'cpu';
 export const BACKEND_CHOICES: readonly BackendChoice[] = ['auto', 'gpu', 'cpu'];
 
@@ -173,6 +173,9 @@ export class App implements PanelHost, InteractionHost {
       : this.stage.backend !== 'webgpu' || !this.stage.device ? 'no WebGPU adapter (WebGL2)'
       : GpuSim.supports(this.scene);
     if (why) return { kind: 'cpu', note: this.backendChoice === 'gpu' || this.scene.solver.type !== 'xpbd' ? `GPU unavailable: ${why}` : '' };
+    if (this.backendChoice === 'auto' && this.stage.softwareAdapter) {
+      return { kind: 'cpu', note: 'auto: the WebGPU adapter is a software fallback, slower than the CPU worker; choose GPU to use it anyway' };
+    }
     return { kind: 'gpu', note: '' };
   }
 

@@ -28,6 +28,8 @@ export interface StageOptions {
 export class Stage {
   renderer!: WebGPURenderer;
   backend: BackendName = 'webgl2';
+  /** the WebGPU adapter is a software fallback (e.g. SwiftShader): it can draw and compute, but slower than the CPU */
+  softwareAdapter = false;
   readonly scene = new ThreeScene();
   readonly camera = new PerspectiveCamera(40, 1, 0.05, 200);
   readonly controls: OrbitControls;
@@ -105,6 +107,10 @@ export class Stage {
       try {
         const adapter = await navigator.gpu.requestAdapter();
         if (adapter) {
+          // isFallbackAdapter moved from the adapter to its info; older Chromium has neither for SwiftShader
+          const a = adapter as unknown as { isFallbackAdapter?: boolean; info?: { isFallbackAdapter?: boolean; vendor?: string; architecture?: string; description?: string } };
+          const text = `${a.info?.vendor ?? ''} ${a.info?.architecture ?? ''} ${a.info?.description ?? ''}`;
+          this.softwareAdapter = Boolean(a.info?.isFallbackAdapter ?? a.isFallbackAdapter) || /swiftshader|llvmpipe|lavapipe/i.test(text);
           requiredLimits = {
             maxStorageBufferBindingSize: adapter.limits.maxStorageBufferBindingSize,
             maxBufferSize: adapter.limits.maxBufferSize,

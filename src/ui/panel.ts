@@ -174,7 +174,7 @@ export class Panel {
     this.addParam(solver, 'solver.substeps', 'substeps');
     this.addParam(solver, 'solver.iterations', 'iterations');
     p.backend = host.backendChoice;
-    this.tag(solver.add(p, 'backend', { 'auto (GPU when WebGPU is there)': 'auto', 'GPU (WebGPU compute, xpbd)': 'gpu', 'CPU (worker)': 'cpu' })
+    this.tag(solver.add(p, 'backend', { 'auto (GPU when there is a hardware WebGPU)': 'auto', 'GPU (WebGPU compute, xpbd)': 'gpu', 'CPU (worker)': 'cpu' })
       .name('backend').onChange((v: 'auto' | 'gpu' | 'cpu') => host.setBackend(v)), 'backend',
     'where the simulation runs: auto picks the GPU when there is a WebGPU device; mass-spring runs on the CPU only');
 
