@@ -12,11 +12,9 @@ import {
   FRAME_DT, Simulation, energy, grab, maxStructuralStrain, release, type ClothModel, type Scene,
 } from '../core/index.js';
 import { GpuClothSolver } from '../gpu/index.js';
-import { FRAME_MS, type Mirror, type SimDriver, type SimStats } from './sim-client.js';
+import { FrameClock, newStats } from './frame-clock.js';
+import type { Mirror, SimDriver, SimStats } from './sim-client.js';
 
-const MAX_BACKLOG_FRAMES = 3;
-const MAX_FRAMES_PER_REQUEST = 4;
-const MAX_TICK_MS = 100;
 /** background readback period [ms] (picking, HUD, fallback state) */
 const READBACK_MS = 100;
 
@@ -35,21 +33,18 @@ export class GpuSim implements SimDriver {
   readonly mirrors: Mirror[] = [];
   private slots: GpuSlot[] = [];
   paused = false;
-  readonly stats: SimStats = {
-    stepMs: 0, realTime: 1, energy: { kinetic: 0, gravitational: 0, elastic: 0 }, maxStrain: 0, clamps: [], framesDone: 0,
-  };
+  readonly stats: SimStats = newStats();
   onFrame: (() => void) | null = null;
   onError: ((message: string) => void) | null = null;
   /** true: read back every frame (a view drawn from CPU positions is showing) */
   eagerReadback = false;
   /** the device was lost: nothing is stepped or read any more; mirrors keep the last readback */
   lost = false;
-  private acc = 0;
+  private readonly clock = new FrameClock();
   private inFlight = false;
   private reading = false;
   private lastRead = 0;
   private readGen = 0;
-  private history: [number, number][] = [];
   private disposed = false;
 
   constructor(readonly device: GPUDevice) {
@@ -76,7 +71,7 @@ export class GpuSim implements SimDriver {
       this.slots.push({ solver: null, model: null, creating: null, stale: false });
     }
     this.readGen++;
-    this.acc = 0;
+    this.clock.clear();
     this.mirrors.forEach((_, k) => this.ensureSolver(k));
   }
 
@@ -128,7 +123,7 @@ export class GpuSim implements SimDriver {
 
   reset(): void {
     this.mirrors.forEach((_, k) => this.resetSlot(k));
-    this.acc = 0;
+    this.clock.clear();
   }
 
   resetSlot(slot: number): void {
@@ -169,7 +164,7 @@ export class GpuSim implements SimDriver {
     const t0 = performance.now();
     this.encode(frames);
     await this.device.queue.onSubmittedWorkDone();
-    this.account(frames, performance.now() - t0);
+    this.clock.account(this.stats, frames, (performance.now() - t0) / frames, this.paused);
     await this.readback(true);
   }
 
@@ -190,46 +185,21 @@ export class GpuSim implements SimDriver {
     this.onFrame?.();
   }
 
-  private account(frames: number, ms: number): void {
-    const s = this.stats;
-    const per = ms / frames;
-    s.stepMs = s.stepMs > 0 ? 0.8 * s.stepMs + 0.2 * per : per;
-    s.framesDone += frames;
-    const last = this.history[this.history.length - 1];
-    if (last && !this.paused) last[1] += frames;
-    const span = this.history.length > 1 ? this.history[this.history.length - 1][0] - this.history[0][0] : 0;
-    if (span > 500) {
-      let n = 0;
-      for (let i = 1; i < this.history.length; i++) n += this.history[i][1];
-      s.realTime = (n * FRAME_MS) / span;
-    }
-  }
-
   tick(dtMs: number, now: number): void {
     if (this.lost || this.disposed) return;
-    dtMs = Math.min(Math.max(dtMs, 0), MAX_TICK_MS);
     if (!this.paused && this.ready) {
-      this.acc += dtMs;
-      if (!this.inFlight) {
-        const budget = this.stats.stepMs > 0 ? Math.max(1, Math.floor(14 / this.stats.stepMs)) : 1;
-        const n = Math.min(Math.floor(this.acc / FRAME_MS), MAX_FRAMES_PER_REQUEST, budget);
-        if (n > 0) {
-          this.acc -= n * FRAME_MS;
-          this.inFlight = true;
-          const t0 = performance.now();
-          this.encode(n);
-          this.device.queue.onSubmittedWorkDone().then(() => {
-            this.inFlight = false;
-            this.account(n, performance.now() - t0);
-          }, () => { this.inFlight = false; });
-        }
+      const n = this.clock.tick(dtMs, now, this.inFlight, this.stats.stepMs);
+      if (n > 0) {
+        this.inFlight = true;
+        const t0 = performance.now();
+        this.encode(n);
+        this.device.queue.onSubmittedWorkDone().then(() => {
+          this.inFlight = false;
+          this.clock.account(this.stats, n, (performance.now() - t0) / n, this.paused);
+        }, () => { this.inFlight = false; });
       }
-      this.acc = Math.min(this.acc, MAX_BACKLOG_FRAMES * FRAME_MS);
-      this.history.push([now, 0]);
-      while (this.history.length > 2 && now - this.history[0][0] > 1000) this.history.shift();
     } else {
-      this.acc = 0;
-      this.history.length = 0;
+      this.clock.idle();
     }
     if (!this.reading && this.ready && (this.eagerReadback || now - this.lastRead >= READBACK_MS)) void this.readback(false);
   }

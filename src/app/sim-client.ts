@@ -7,16 +7,10 @@
  * are overwritten by each frame from the worker. Changing its scene with `setScene` tells us, by the core's own
  * rule, whether the worker is rebuilding the cloth; frames of an older cloth are then dropped.
  */
-import { FRAME_DT, Simulation, type ClothState, type Energy, type Scene } from '../core/index.js';
+import { Simulation, type ClothState, type Energy, type Scene } from '../core/index.js';
+import { FrameClock, newStats } from './frame-clock.js';
 import type { FromWorker, ToWorker } from './protocol.js';
 
-export const FRAME_MS = FRAME_DT * 1000;
-/** the accumulator never holds more than this many frames: a slow machine or a hidden tab builds no backlog */
-const MAX_BACKLOG_FRAMES = 3;
-/** most frames asked for in one go (catching up after a hiccup) */
-const MAX_FRAMES_PER_REQUEST = 4;
-/** longest wall-clock gap a single display frame may count for [ms] (tab switches, breakpoints) */
-const MAX_TICK_MS = 100;
 
 export interface Mirror {
   sim: Simulation;
@@ -61,9 +55,7 @@ export class SimClient implements SimDriver {
   readonly kind = 'cpu' as const;
   readonly mirrors: Mirror[] = [];
   paused = false;
-  readonly stats: SimStats = {
-    stepMs: 0, realTime: 1, energy: { kinetic: 0, gravitational: 0, elastic: 0 }, maxStrain: 0, clamps: [], framesDone: 0,
-  };
+  readonly stats: SimStats = newStats();
   /** called after each frame from the worker has been applied to the mirrors */
   onFrame: (() => void) | null = null;
   /** called with a worker error message */
@@ -71,12 +63,10 @@ export class SimClient implements SimDriver {
 
   private worker: Worker;
   private gen = 0;
-  private acc = 0;
+  private readonly clock = new FrameClock();
   private nextId = 1;
   private loopInFlight = 0;
   private pending = new Map<number, () => void>();
-  /** (wall ms, simulated frames) samples for the real-time ratio */
-  private history: [number, number][] = [];
 
   constructor() {
     this.worker = new Worker(new URL('./sim.worker.ts', import.meta.url), { type: 'module', name: 'drape-sim' });
@@ -94,7 +84,7 @@ export class SimClient implements SimDriver {
     this.mirrors.length = 0;
     for (const scene of scenes) this.mirrors.push({ sim: new Simulation(scene), modelGen: gen, frame: 0, grabbed: -1 });
     this.post({ type: 'load', gen, scenes: this.mirrors.map((m) => m.sim.scene) });
-    this.acc = 0;
+    this.clock.clear();
   }
 
   /** Changes one slot's scene, live. Returns true when the cloth is rebuilt (and restarts). */
@@ -110,7 +100,7 @@ export class SimClient implements SimDriver {
   reset(): void {
     for (const m of this.mirrors) { m.sim.reset(); m.frame = 0; m.grabbed = -1; }
     this.post({ type: 'reset' });
-    this.acc = 0;
+    this.clock.clear();
   }
 
   resetSlot(slot: number): void {
@@ -159,32 +149,21 @@ export class SimClient implements SimDriver {
   }
 
   /**
-   * Called once per displayed frame with the wall time since the last one. Asks the worker for as many whole
-   * frames as have accumulated, at most what it can step in about one display frame, and at most one request
-   * at a time; time the worker cannot keep up with is dropped (slow motion), never queued.
+   * Called once per displayed frame with the wall time since the last one: asks the worker for the whole frames
+   * the clock says are due, at most one request at a time (see FrameClock).
    */
   tick(dtMs: number, now: number): void {
-    dtMs = Math.min(Math.max(dtMs, 0), MAX_TICK_MS);
     if (this.paused) {
-      this.acc = 0;
-      this.history.length = 0;
+      this.clock.idle();
       return;
     }
-    this.acc += dtMs;
-    if (this.loopInFlight === 0) {
-      const budget = this.stats.stepMs > 0 ? Math.max(1, Math.floor(14 / this.stats.stepMs)) : 1;
-      const n = Math.min(Math.floor(this.acc / FRAME_MS), MAX_FRAMES_PER_REQUEST, budget);
-      if (n > 0) {
-        this.acc -= n * FRAME_MS;
-        const id = this.nextId++;
-        this.loopInFlight++;
-        this.pending.set(id, () => { this.loopInFlight--; });
-        this.post({ type: 'advance', id, frames: n });
-      }
+    const n = this.clock.tick(dtMs, now, this.loopInFlight > 0, this.stats.stepMs);
+    if (n > 0) {
+      const id = this.nextId++;
+      this.loopInFlight++;
+      this.pending.set(id, () => { this.loopInFlight--; });
+      this.post({ type: 'advance', id, frames: n });
     }
-    this.acc = Math.min(this.acc, MAX_BACKLOG_FRAMES * FRAME_MS);
-    this.history.push([now, 0]);
-    while (this.history.length > 2 && now - this.history[0][0] > 1000) this.history.shift();
   }
 
   private receive(msg: FromWorker): void {
@@ -201,18 +180,7 @@ export class SimClient implements SimDriver {
       m.grabbed = f.grabbed;
     });
     const s = this.stats;
-    if (msg.frames > 0) {
-      s.stepMs = s.stepMs > 0 ? 0.8 * s.stepMs + 0.2 * msg.stepMs : msg.stepMs;
-      s.framesDone += msg.frames;
-      const last = this.history[this.history.length - 1];
-      if (last && !this.paused) last[1] += msg.frames;
-      const span = this.history.length > 1 ? this.history[this.history.length - 1][0] - this.history[0][0] : 0;
-      if (span > 500) {
-        let frames = 0;
-        for (let i = 1; i < this.history.length; i++) frames += this.history[i][1];
-        s.realTime = (frames * FRAME_MS) / span;
-      }
-    }
+    if (msg.frames > 0) this.clock.account(s, msg.frames, msg.stepMs, this.paused);
     s.energy = msg.energy;
     s.maxStrain = msg.maxStrain;
     s.clamps = msg.clamps;
