@@ -53,7 +53,9 @@ export class GpuClothSolver {
   private readonly triangleColours: TriangleColouring;
   private readonly globals = new ArrayBuffer(GLOBALS.size);
   private readonly grabData = new ArrayBuffer(16);
+  private readonly grabView = new DataView(this.grabData);
   private substepData = new ArrayBuffer(RECORD_STRIDE);
+  private substepView = new DataView(this.substepData);
   private params: SimParams | undefined;
   private batchRecords: BatchRecords[] = [];
   private collidePasses: CollidePass[] = [];
@@ -308,6 +310,7 @@ export class GpuClothSolver {
     }
     if (this.substepData.byteLength < params.substeps * RECORD_STRIDE) {
       this.substepData = new ArrayBuffer(params.substeps * RECORD_STRIDE);
+      this.substepView = new DataView(this.substepData);
     }
   }
 
@@ -369,13 +372,13 @@ export class GpuClothSolver {
 
     // the grab: particle, target; its start position is copied on the GPU below
     const grabbed = state.grabbed >= 0 && state.grabbed < this.model.particleCount ? state.grabbed : -1;
-    const gv = new DataView(this.grabData);
+    const gv = this.grabView;
     gv.setInt32(0, grabbed, true);
     for (let k = 0; k < 3; k++) gv.setFloat32(4 + 4 * k, state.grabTarget[k], true);
     q.writeBuffer(this.globalsBuffer, GLOBALS.grabbed, this.grabData);
 
     // per-substep records, with the CPU's own time accumulation (gusts) and Taylor start
-    const sv = new DataView(this.substepData);
+    const sv = this.substepView;
     const windOn = params.wind.enabled;
     let t = state.time;
     for (let sub = 0; sub < n; sub++) {
