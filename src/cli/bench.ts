@@ -3,9 +3,10 @@
  * JoltPhysics.js on the very same cloth (same particles, masses, constraints and compliances) in the same run.
  */
 import { cpus } from 'node:os';
-import { builtinScene, Simulation, type Scene } from '../core/index.js';
+import { builtinScene, Simulation, type Scene, type SimulationOptions } from '../core/index.js';
 import type { Gpu } from './gpu.js';
 import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
+import { spawnNodeHelper } from './threads.js';
 
 export interface BenchOptions {
   /** particles per side */
@@ -16,6 +17,8 @@ export interface BenchOptions {
   warmup: number;
   /** run JoltPhysics.js beside Drape */
   peer: boolean;
+  /** threads of the WebAssembly XPBD kernel in the main Drape column (a 1-thread column is always printed) */
+  threads: number;
   json: boolean;
 }
 
@@ -38,11 +41,18 @@ interface Row {
   particlesPerSide: number;
   particles: number;
   constraints: number;
-  xpbd: Timing;
+  /** XPBD in the WebAssembly kernel with opts.threads threads */
+  xpbd: Timing & { kernel: string; threads: number };
+  /** XPBD in the WebAssembly kernel on one thread */
+  xpbd1: Timing & { kernel: string };
+  /** XPBD in TypeScript */
+  xpbdTs: Timing;
   massSpring: Timing;
   jolt?: Timing & { name: string };
-  /** Drape XPBD ms / Jolt ms (lower is better) */
+  /** Drape XPBD ms (opts.threads) / Jolt ms (lower is better) */
   ratio?: number;
+  /** Drape XPBD ms (1 thread) / Jolt ms */
+  ratio1?: number;
   peerError?: string;
 }
 
@@ -53,23 +63,41 @@ function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-sprin
   return scene;
 }
 
-function timeDrape(scene: Scene, frames: number, warmup: number): Timing & { sim: Simulation; start: number[] } {
-  const sim = new Simulation(scene);
-  const start = sim.report().centroid;
-  sim.advance(warmup);
-  const t0 = performance.now();
-  sim.advance(frames);
-  const ms = (performance.now() - t0) / frames;
-  const r = sim.report();
-  return {
-    msPerFrame: ms,
-    particleSubstepsPerSecond: (r.particles * scene.solver.substeps * 1000) / ms,
-    finite: r.finite,
-    stable: isStable(r.finite, r.centroid, start, sim.model.size),
-    centroid: r.centroid,
-    sim,
-    start,
-  };
+type DrapeTiming = Timing & { sim: Simulation; start: number[]; kernel: string; threads: number };
+
+/** Times `frames` frames after `warmup` (which also lets the WebAssembly code tier up) once helpers have started. */
+async function timeDrape(scene: Scene, frames: number, warmup: number, options: SimulationOptions): Promise<DrapeTiming> {
+  const sim = new Simulation(scene, options);
+  try {
+    await sim.whenReady();
+    const start = sim.report().centroid;
+    sim.advance(warmup);
+    const t0 = performance.now();
+    sim.advance(frames);
+    const ms = (performance.now() - t0) / frames;
+    const r = sim.report();
+    return {
+      msPerFrame: ms,
+      particleSubstepsPerSecond: (r.particles * scene.solver.substeps * 1000) / ms,
+      finite: r.finite,
+      stable: isStable(r.finite, r.centroid, start, sim.model.size),
+      centroid: r.centroid,
+      sim,
+      start,
+      kernel: sim.kernel,
+      threads: sim.threads,
+    };
+  } finally {
+    sim.dispose();
+  }
+}
+
+const timing = ({ msPerFrame, particleSubstepsPerSecond, finite, stable, centroid }: Timing): Timing =>
+  ({ msPerFrame, particleSubstepsPerSecond, finite, stable, centroid });
+
+/** The options of the fastest CPU XPBD Drape has here: the wasm kernel on `threads` threads. */
+export function cpuOptions(threads: number): SimulationOptions {
+  return { kernel: 'auto', threads, spawnHelper: spawnNodeHelper };
 }
 
 function peerSpec(sim: Simulation): PeerClothSpec {
@@ -107,14 +135,19 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
   }
   const rows: Row[] = [];
   for (const side of opts.sizes) {
-    const xpbd = timeDrape(benchScene(side, opts.substeps, 'xpbd'), opts.frames, opts.warmup);
-    const ms = timeDrape(benchScene(side, opts.substeps, 'mass-spring'), opts.frames, opts.warmup);
+    const scene = benchScene(side, opts.substeps, 'xpbd');
+    const xpbd = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(opts.threads));
+    const xpbd1 = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(1));
+    const xpbdTs = await timeDrape(scene, opts.frames, opts.warmup, { kernel: 'ts' });
+    const ms = await timeDrape(benchScene(side, opts.substeps, 'mass-spring'), opts.frames, opts.warmup, { kernel: 'ts' });
     const row: Row = {
       particlesPerSide: side,
       particles: xpbd.sim.model.particleCount,
       constraints: xpbd.sim.model.restLengths.length,
-      xpbd: { msPerFrame: xpbd.msPerFrame, particleSubstepsPerSecond: xpbd.particleSubstepsPerSecond, finite: xpbd.finite, stable: xpbd.stable, centroid: xpbd.centroid },
-      massSpring: { msPerFrame: ms.msPerFrame, particleSubstepsPerSecond: ms.particleSubstepsPerSecond, finite: ms.finite, stable: ms.stable, centroid: ms.centroid },
+      xpbd: { ...timing(xpbd), kernel: xpbd.kernel, threads: xpbd.threads },
+      xpbd1: { ...timing(xpbd1), kernel: xpbd1.kernel },
+      xpbdTs: timing(xpbdTs),
+      massSpring: timing(ms),
     };
     if (runJolt) {
       try {
@@ -128,6 +161,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
           centroid: j.centroid,
         };
         row.ratio = xpbd.msPerFrame / j.msPerFrame;
+        row.ratio1 = xpbd1.msPerFrame / j.msPerFrame;
       } catch (e) {
         row.peerError = (e as Error).message.split('\n')[0];
       }
@@ -139,19 +173,23 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
 
   const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
   if (opts.json) {
-    out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, warmup: opts.warmup, rows }));
+    out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, warmup: opts.warmup, threads: opts.threads, rows }));
     return rows;
   }
+  const first = rows[0]?.xpbd;
+  const kernel = (k: string, t: number) => (k === 'wasm' ? `wasm SIMD, ${t} thread${t === 1 ? '' : 's'}` : 'TypeScript');
   out(`drape bench — cotton dropped on sphere + floor, XPBD ${opts.substeps} substeps (Jolt: ${opts.substeps} iterations),`);
   out(`structural + shear + bend constraints; ${opts.frames} timed frames after ${opts.warmup}; ${machine}`);
+  out(`Drape XPBD: ${first ? kernel(first.kernel, first.threads) : ''}; also on 1 thread and in TypeScript. Jolt: 1 thread.`);
   out('stable = finite and the centroid within 10 cloth sizes of its start');
   out('');
-  out('| particles | constraints | Drape XPBD ms/frame | particle-substeps/s | Jolt ms/frame | Drape/Jolt | Drape mass-spring ms/frame | stable (Drape / Jolt) | centroid y (Drape / Jolt) |');
-  out('|---|---|---|---|---|---|---|---|---|');
+  out('| particles | constraints | Drape XPBD ms/frame | particle-substeps/s | Jolt ms/frame | Drape/Jolt | 1 thread ms/frame | 1 thread/Jolt | TypeScript ms/frame | Drape mass-spring ms/frame | stable (Drape / Jolt) | centroid y (Drape / Jolt) |');
+  out('|---|---|---|---|---|---|---|---|---|---|---|---|');
   for (const r of rows) {
     const j = r.jolt;
     out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${r.constraints} | ${fmt(r.xpbd.msPerFrame)} | ${sci(r.xpbd.particleSubstepsPerSecond)} | ` +
-      `${j ? fmt(j.msPerFrame) : 'n/a'} | ${r.ratio !== undefined ? fmt(r.ratio) : 'n/a'} | ${fmt(r.massSpring.msPerFrame)} | ` +
+      `${j ? fmt(j.msPerFrame) : 'n/a'} | ${r.ratio !== undefined ? fmt(r.ratio) : 'n/a'} | ` +
+      `${fmt(r.xpbd1.msPerFrame)} | ${r.ratio1 !== undefined ? fmt(r.ratio1) : 'n/a'} | ${fmt(r.xpbdTs.msPerFrame)} | ${fmt(r.massSpring.msPerFrame)} | ` +
       `${r.xpbd.stable ? 'yes' : r.xpbd.finite ? 'NO (flew off)' : 'NO (NaN)'} / ${j ? (j.stable ? 'yes' : j.finite ? 'NO (flew off)' : 'NO (NaN)') : 'n/a'} | ` +
       `${fmt(r.xpbd.centroid[1], 3)} / ${j ? (j.finite ? fmt(j.centroid[1], 3) : 'NaN') : 'n/a'} |`);
   }
@@ -164,6 +202,8 @@ export interface GpuBenchOptions {
   sizes: number[];
   substeps: number;
   frames: number;
+  /** threads of the CPU XPBD solver timed beside the GPU */
+  threads: number;
   json: boolean;
 }
 
@@ -176,14 +216,19 @@ const CPU_PEER_MAX_SIDE = 256;
  */
 export async function runGpuBench(gpu: Gpu, opts: GpuBenchOptions, out: (s: string) => void): Promise<void> {
   const results = await gpu.bench(opts.sizes, opts.substeps, opts.frames);
-  const cpu = results.map((r) =>
-    r.size <= CPU_PEER_MAX_SIDE ? timeDrape(benchScene(r.size, opts.substeps, 'xpbd'), Math.max(5, Math.min(opts.frames, 30)), 5).msPerFrame : undefined);
+  const cpu: (number | undefined)[] = [];
+  for (const r of results) {
+    cpu.push(r.size <= CPU_PEER_MAX_SIDE
+      ? (await timeDrape(benchScene(r.size, opts.substeps, 'xpbd'), Math.max(5, Math.min(opts.frames, 30)), 5, cpuOptions(opts.threads))).msPerFrame
+      : undefined);
+  }
   const machine = `${gpu.adapter}; host ${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
   if (opts.json) {
     out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, rows: results.map((r, k) => ({ ...r, cpuMsPerFrame: cpu[k] ?? null })) }));
     return;
   }
   out(`drape bench --backend gpu — cotton on sphere + floor, XPBD ${opts.substeps} substeps, ${opts.frames} timed frames; ${machine}`);
+  out(`CPU column: XPBD in the WebAssembly kernel on up to ${opts.threads} thread${opts.threads === 1 ? '' : 's'}`);
   out('');
   out('| particles | springs | dispatches/frame | GPU ms/frame (wall) | GPU ms/frame (timestamps) | particle-substeps/s | MB/substep | copy GB/s | bandwidth floor ms | of floor | CPU XPBD ms/frame | GPU speed-up |');
   out('|---|---|---|---|---|---|---|---|---|---|---|---|');

@@ -6,11 +6,12 @@
  */
 import { readFileSync, writeFileSync } from 'node:fs';
 import { parseArgs } from 'node:util';
-import { builtinScene, parseScene, parseSetValue, SCENE_NAMES, sceneSchema, setScenePath, Simulation, type Scene } from '../core/index.js';
-import { runBench, runGpuBench } from './bench.js';
+import { builtinScene, parseScene, parseSetValue, SCENE_NAMES, sceneSchema, setScenePath, Simulation, type Scene, type SimulationOptions } from '../core/index.js';
 import { UsageError } from './errors.js';
 import { openGpu, type Gpu } from './gpu.js';
 import { toOBJ } from './obj.js';
+import { cpuOptions, runBench, runGpuBench } from './bench.js';
+import { defaultThreads } from './threads.js';
 
 const HELP: Record<string, string> = {
   main: `drape — real-time cloth simulation, headless
@@ -29,6 +30,8 @@ Simulates a built-in scene (default: custom) or a scene file for N frames of 1/6
   --frames N            frames to simulate (default 180; 0 reports the start state)
   --solver S            xpbd | mass-spring (same as --set solver.type=S)
   --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD, sphere and floor colliders)
+  --kernel K            CPU XPBD kernel: wasm (WebAssembly SIMD, the default where available) or ts
+  --threads N           threads of the wasm kernel (default: the cores available, at most 8)
   --set PATH=VALUE      change any scene path, e.g. material.bendStiffness=2, wind.direction=[1,0,0],
                         colliders=[] ; VALUE is JSON when it parses, else a string (repeatable)
   --json                print exactly one JSON object
@@ -43,6 +46,8 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
   --frames N            timed frames per run (default 120), after --warmup N frames (default 30)
   --backend B           cpu (default: both CPU solvers and JoltPhysics.js) or gpu (the WebGPU solver, with
                         the CPU XPBD solver beside it up to 256 per side, and the memory-bandwidth floor)
+  --threads N           threads of Drape's wasm XPBD kernel (default: the cores available, at most 8); a
+                        1-thread and a TypeScript column are printed too
   --no-peer             skip JoltPhysics.js
   --json                print exactly one JSON object`,
   schema: `drape schema\n\nPrints the JSON schema every scene file is validated against (also published as scene.schema.json).`,
@@ -53,6 +58,12 @@ function intArg(name: string, raw: string | undefined, fallback: number, min: nu
   const v = Number(raw);
   if (!Number.isInteger(v) || v < min || v > max) throw new UsageError(`--${name}: must be an integer in ${min}…${max}, got '${raw}'`);
   return v;
+}
+
+function checkKernel(raw: string | undefined): 'wasm' | 'ts' | 'auto' {
+  if (raw === undefined) return 'auto';
+  if (raw === 'wasm' || raw === 'ts') return raw;
+  throw new UsageError(`--kernel: must be wasm or ts, got '${raw}'`);
 }
 
 function checkBackend(raw: string | undefined): 'cpu' | 'gpu' {
@@ -95,6 +106,9 @@ interface RunResult {
   triangles: number;
   constraints: number;
   msPerFrame: number;
+  /** CPU kernel and threads ('gpu' on the GPU) */
+  kernel: string;
+  threads: number;
   finite: boolean;
   maxStrain: number;
   maxPenetration: number;
@@ -105,15 +119,22 @@ interface RunResult {
   sim: Simulation;
 }
 
-async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined): Promise<RunResult> {
-  let sim: Simulation, ms: number;
+async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, options: SimulationOptions): Promise<RunResult> {
+  let sim: Simulation, ms: number, kernel = 'gpu', threads = 1;
   if (gpu) {
     ({ sim, msPerFrame: ms } = await gpu.simulate(scene, frames));
   } else {
-    sim = new Simulation(scene);
-    const t0 = performance.now();
-    sim.advance(frames);
-    ms = frames > 0 ? (performance.now() - t0) / frames : 0;
+    sim = new Simulation(scene, options);
+    try {
+      await sim.whenReady();
+      kernel = sim.kernel;
+      threads = sim.threads;
+      const t0 = performance.now();
+      sim.advance(frames);
+      ms = frames > 0 ? (performance.now() - t0) / frames : 0;
+    } finally {
+      sim.dispose();
+    }
   }
   const r = sim.report();
   return {
@@ -122,6 +143,8 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined): Pro
     triangles: r.triangles,
     constraints: r.constraints,
     msPerFrame: round(ms, 4),
+    kernel,
+    threads,
     finite: r.finite,
     maxStrain: round(r.maxStrain),
     maxPenetration: round(r.maxPenetration),
@@ -139,6 +162,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     allowPositionals: true,
     options: {
       frames: { type: 'string' }, solver: { type: 'string' }, backend: { type: 'string' },
+      kernel: { type: 'string' }, threads: { type: 'string' },
       set: { type: 'string', multiple: true }, json: { type: 'boolean' }, export: { type: 'string' }, help: { type: 'boolean', short: 'h' },
     },
   });
@@ -146,6 +170,10 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   if (positionals.length > 1) throw new UsageError(`run: one scene at a time, got ${positionals.join(', ')}`);
   const frames = intArg('frames', values.frames, 180, 0, 1_000_000);
   const backend = checkBackend(values.backend);
+  const options: SimulationOptions = {
+    ...cpuOptions(intArg('threads', values.threads, defaultThreads(), 1, 64)),
+    kernel: checkKernel(values.kernel),
+  };
   if (values.export !== undefined && !values.export.toLowerCase().endsWith('.obj')) throw new UsageError(`--export: only .obj files are supported, got '${values.export}'`);
   let scene = loadScene(positionals[0]);
   const sets = values.set ?? [];
@@ -157,8 +185,8 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   let main: RunResult;
   const sweepRuns: RunResult[] = [];
   try {
-    main = await simulate(scene, frames, gpu);
-    for (const resolution of sweep ?? []) sweepRuns.push(await simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames, gpu));
+    main = await simulate(scene, frames, gpu, options);
+    for (const resolution of sweep ?? []) sweepRuns.push(await simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames, gpu, options));
   } finally {
     gpu?.device.destroy();
   }
@@ -175,7 +203,8 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   }
   for (const c of clamps) err(`drape: note: ${c}`);
   const f = (v: number) => (Math.abs(v) < 1e-3 && v !== 0 ? v.toExponential(2) : v.toFixed(4));
-  out(`scene ${scene.name}: ${scene.solver.type} on ${backend}, ${scene.solver.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
+  const where = backend === 'gpu' ? 'gpu' : `cpu (${main.kernel === 'wasm' ? `wasm SIMD, ${main.threads} thread${main.threads === 1 ? '' : 's'}` : 'TypeScript'})`;
+  out(`scene ${scene.name}: ${scene.solver.type} on ${where}, ${scene.solver.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
   out(`  cloth        ${main.particles} particles, ${main.triangles} triangles, ${main.constraints} springs`);
   out(`  speed        ${main.msPerFrame.toFixed(3)} ms per frame`);
   out(`  finite       ${main.finite ? 'yes' : 'NO'}`);
@@ -205,11 +234,13 @@ async function cmdBench(argv: string[], out: (s: string) => void): Promise<numbe
     args: argv,
     options: {
       sizes: { type: 'string' }, substeps: { type: 'string' }, frames: { type: 'string' }, warmup: { type: 'string' },
-      backend: { type: 'string' }, 'no-peer': { type: 'boolean' }, json: { type: 'boolean' }, help: { type: 'boolean', short: 'h' },
+      backend: { type: 'string' }, threads: { type: 'string' }, 'no-peer': { type: 'boolean' }, json: { type: 'boolean' },
+      help: { type: 'boolean', short: 'h' },
     },
   });
   if (values.help) { out(HELP.bench); return 0; }
   const backend = checkBackend(values.backend);
+  const threads = intArg('threads', values.threads, defaultThreads(), 1, 64);
   const sizes = (values.sizes ?? (backend === 'gpu' ? '64,128,256,512,1024' : '64,128')).split(',').map((s) => intArg('sizes', s.trim(), 0, 2, 1025));
   if (backend === 'gpu') {
     const gpu = await openGpu();
@@ -218,6 +249,7 @@ async function cmdBench(argv: string[], out: (s: string) => void): Promise<numbe
         sizes,
         substeps: intArg('substeps', values.substeps, 10, 1, 200),
         frames: intArg('frames', values.frames, 60, 1, 100_000),
+        threads,
         json: values.json ?? false,
       }, out);
     } finally {
@@ -231,6 +263,7 @@ async function cmdBench(argv: string[], out: (s: string) => void): Promise<numbe
     frames: intArg('frames', values.frames, 120, 1, 100_000),
     warmup: intArg('warmup', values.warmup, 30, 0, 100_000),
     peer: !values['no-peer'],
+    threads,
     json: values.json ?? false,
   }, out);
   return 0;

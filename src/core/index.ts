@@ -12,4 +12,5 @@ export { windVelocity } from './wind.js';
 export { mulberry32 } from './random.js';
 export { SOLVERS, step, type StepFn } from './solvers/index.js';
 export * from './colliders/index.js';
-export { Simulation, modelFor, needsRebuild, type Report } from './simulation.js';
+export { Simulation, modelFor, needsRebuild, type Report, type CpuKernel, type SimulationOptions } from './simulation.js';
+export { createWasmState, wasmKernelAvailable, XpbdKernel, type HelperSpawner, type KernelHelperInit } from './wasm/xpbd-wasm.js';

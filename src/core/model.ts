@@ -178,7 +178,11 @@ export function buildModel(input: ModelInput): ClothModel {
     const offsets = colourOffsets(colours, count);
     for (let c = 0; c < count; c++) batches.push({ kind, start: at + offsets[c], end: at + offsets[c + 1] });
     const fill = offsets.slice(0, count);
-    for (let s = 0; s < m; s++) {
+    // within a batch, springs in order of their lower particle index: a contiguous share of a batch is then a
+    // contiguous region of the cloth (threads splitting a batch write different cache lines)
+    const order = Array.from({ length: m }, (_, s) => s);
+    order.sort((s, t) => Math.min(pairs[2 * s], pairs[2 * s + 1]) - Math.min(pairs[2 * t], pairs[2 * t + 1]) || s - t);
+    for (const s of order) {
       const dst = at + fill[colours[s]]++;
       const a = pairs[2 * s], b = pairs[2 * s + 1];
       springs[2 * dst] = a;

@@ -10,6 +10,22 @@ import { applyPins, resolvePins } from './pins.js';
 import { setScenePath, validateScene, type Scene } from './scene.js';
 import { step } from './solvers/index.js';
 import { createState, resetState, type ClothState } from './state.js';
+import { createWasmState, type HelperSpawner } from './wasm/xpbd-wasm.js';
+
+/** Where a Simulation runs the XPBD substeps on the CPU. */
+export type CpuKernel = 'wasm' | 'ts';
+
+export interface SimulationOptions {
+  /**
+   * 'wasm': the WebAssembly SIMD kernel (wasm/xpbd-wasm.ts); 'ts': the TypeScript solver; 'auto' (default): wasm
+   * where the runtime can run it, else ts. Both compute the same phases; wasm is f32 in the constraint passes.
+   */
+  kernel?: CpuKernel | 'auto';
+  /** threads sharing each substep of the wasm kernel, default 1; more need `spawnHelper` */
+  threads?: number;
+  /** starts a helper thread of the wasm kernel (Node: cli/threads.ts spawnNodeHelper) */
+  spawnHelper?: HelperSpawner;
+}
 
 export interface Report {
   particles: number;
@@ -41,13 +57,49 @@ export class Simulation {
   params: SimParams;
   /** frames stepped since the last (re)start */
   frame = 0;
+  private readonly options: SimulationOptions;
 
-  constructor(scene: Scene) {
+  constructor(scene: Scene, options: SimulationOptions = {}) {
+    this.options = options;
     this.scene = validateScene(scene);
     this.model = modelFor(this.scene);
-    this.state = createState(this.model);
+    this.state = this.newState();
     this.params = resolveParams(this.model, this.scene);
     applyPins(this.state, resolvePins(this.model, this.scene.pins));
+  }
+
+  /** the CPU kernel the XPBD substeps run in */
+  get kernel(): CpuKernel {
+    return this.state.kernel ? 'wasm' : 'ts';
+  }
+
+  /** threads sharing each substep now (1 until a wasm kernel's helpers have started) */
+  get threads(): number {
+    return this.state.kernel?.activeThreads ?? 1;
+  }
+
+  /** Resolves once the wasm kernel's helper threads (if any) have started. */
+  whenReady(): Promise<void> {
+    return this.state.kernel?.whenHelpersReady() ?? Promise.resolve();
+  }
+
+  /** Stops the wasm kernel's helper threads (the simulation can still step, on this thread). */
+  dispose(): void {
+    this.state.kernel?.dispose();
+  }
+
+  private newState(): ClothState {
+    const { kernel = 'auto', threads = 1, spawnHelper } = this.options;
+    if (kernel !== 'ts') {
+      const t = spawnHelper ? threads : 1;
+      const state = createWasmState(this.model, t) ?? (t > 1 ? createWasmState(this.model, 1) : null);
+      if (state) {
+        if (spawnHelper && state.kernel!.threads > 1) state.kernel!.startHelpers(spawnHelper);
+        return state;
+      }
+      if (kernel === 'wasm') throw new Error('the WebAssembly kernel needs WebAssembly SIMD, which this runtime lacks');
+    }
+    return createState(this.model);
   }
 
   /** Advances `frames` frames of 1/60 s. */
@@ -80,8 +132,9 @@ export class Simulation {
     this.scene = next;
     const rebuild = needsRebuild(prev, next);
     if (rebuild) {
+      this.dispose();
       this.model = modelFor(next);
-      this.state = createState(this.model);
+      this.state = this.newState();
       this.frame = 0;
     }
     this.params = resolveParams(this.model, next);

@@ -1,4 +1,5 @@
 import type { ClothModel } from './model.js';
+import type { XpbdKernel } from './wasm/xpbd-wasm.js';
 
 /**
  * Everything about a cloth that changes while it runs: flat typed arrays, one entry per particle (vec3 data with
@@ -36,25 +37,51 @@ export interface ClothState {
   time: number;
   /** substeps taken since the start (0 means the next one is the very first) */
   substeps: number;
+  /**
+   * the WebAssembly kernel whose memory holds this state's arrays, when the state was made by createWasmState();
+   * the XPBD solver then runs its substeps there (same phases, same results within f32 rounding)
+   */
+  readonly kernel?: XpbdKernel;
 }
 
-export function createState(model: ClothModel): ClothState {
+/** The typed arrays of a state, for createState to place somewhere else (a WebAssembly memory). */
+export interface StateArrays {
+  positions: Float32Array;
+  previousPositions: Float32Array;
+  velocities: Float32Array;
+  invMass: Float32Array;
+  forces: Float32Array;
+  lambdas: Float32Array;
+  tetherAnchors: Int32Array;
+  tetherLengths: Float32Array;
+}
+
+/**
+ * A state at the model's start pose, at rest. `arrays` (of the right lengths) and `kernel` are for
+ * createWasmState(); by default the arrays are new.
+ */
+export function createState(model: ClothModel, arrays?: StateArrays, kernel?: XpbdKernel): ClothState {
   const n = model.particleCount;
-  const state: ClothState = {
+  const a: StateArrays = arrays ?? {
     positions: new Float32Array(3 * n),
     previousPositions: new Float32Array(3 * n),
     velocities: new Float32Array(3 * n),
-    pinned: new Uint8Array(n),
     invMass: new Float32Array(n),
     forces: new Float32Array(3 * n),
     lambdas: new Float32Array(model.restLengths.length),
-    tetherAnchors: new Int32Array(n).fill(-1),
+    tetherAnchors: new Int32Array(n),
     tetherLengths: new Float32Array(n),
+  };
+  a.tetherAnchors.fill(-1);
+  const state: ClothState = {
+    ...a,
+    pinned: new Uint8Array(n),
     tethersStale: true,
     grabbed: -1,
     grabTarget: new Float64Array(3),
     time: 0,
     substeps: 0,
+    kernel,
   };
   resetState(model, state);
   return state;

@@ -4,7 +4,10 @@ import type { ColliderShape } from './shape.js';
 export class FloorCollider implements ColliderShape {
   readonly type = 'floor';
   readonly minCurvatureRadius = Infinity;
-  constructor(/** plane height [m] */ readonly height: number) {}
+  readonly kernelRecord: readonly number[];
+  constructor(/** plane height [m] */ readonly height: number) {
+    this.kernelRecord = [2, height, 0, 0, 0];
+  }
 
   signedDistance(_px: number, py: number, _pz: number, normal: Float64Array): number {
     normal[0] = 0; normal[1] = 1; normal[2] = 0;

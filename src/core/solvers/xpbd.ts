@@ -83,7 +83,11 @@ const phases: SolverPhases = {
   },
 };
 
-/** Advances the cloth by dt [s] (one frame) in params.substeps substeps. */
+/**
+ * Advances the cloth by dt [s] (one frame) in params.substeps substeps: in the WebAssembly kernel when the state
+ * lives in one (createWasmState), else in TypeScript.
+ */
 export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
-  runFrame(model, state, params, dt, phases);
+  if (state.kernel) state.kernel.frame(model, state, params, dt);
+  else runFrame(model, state, params, dt, phases);
 }

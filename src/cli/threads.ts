@@ -1,0 +1,28 @@
+/**
+ * Helper threads for the WebAssembly XPBD kernel in Node: one worker thread per helper, each instantiating the
+ * kernel module over the shared memory and serving substeps (core/wasm/xpbd-wasm.ts) until the kernel stops it.
+ */
+import { availableParallelism } from 'node:os';
+import { Worker } from 'node:worker_threads';
+import type { HelperSpawner } from '../core/wasm/xpbd-wasm.js';
+
+// The worker's whole program (CommonJS, evaluated): instantiate the kernel and enter its helper loop.
+const HELPER_SOURCE = `
+const { workerData } = require('node:worker_threads');
+const { module, memory, layout, thread } = workerData;
+const instance = new WebAssembly.Instance(module, { env: { memory, abort() { throw new Error('xpbd kernel abort'); } } });
+instance.exports.configure(...layout);
+instance.exports.helperLoop(thread);
+`;
+
+/** Starts a kernel helper on a Node worker thread that does not keep the process alive. */
+export const spawnNodeHelper: HelperSpawner = (init) => {
+  const worker = new Worker(HELPER_SOURCE, { eval: true, workerData: init });
+  worker.unref();
+  return { terminate: () => void worker.terminate() };
+};
+
+/** Default thread count of the CLI: the cores Node may use, at most 8. */
+export function defaultThreads(): number {
+  return Math.min(8, Math.max(1, availableParallelism()));
+}

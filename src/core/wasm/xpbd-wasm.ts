@@ -1,0 +1,273 @@
+/**
+ * The XPBD solver's substep in WebAssembly (SIMD, optionally threads): a ClothState whose arrays live in the
+ * kernel's memory, so the TypeScript phases (wind, triangle contact, start and end of a step) and the kernel work
+ * on the same arrays with no copy. The kernel (xpbd.as.ts) runs integration + grab, the distance constraints,
+ * tethers, stretch limiting and particle contact against the colliders that have a kernel record; the frame loop,
+ * wind and whatever contact the kernel cannot do stay in TypeScript (phases.ts), in the same order as runFrame.
+ *
+ * Threads: with `threads` > 1 the memory is shared and the caller's front end starts `threads − 1` helpers
+ * (a Web Worker or a Node worker thread each) with helperInit(); until every helper has checked in, substeps run
+ * on the calling thread alone, so a slow start never blocks and never changes results beyond f32 rounding order.
+ */
+import { needsTriangleContact, accumulateWind, beginStep, collide, updateVelocities } from '../phases.js';
+import type { ClothModel } from '../model.js';
+import type { SimParams } from '../params.js';
+import { createState, type ClothState } from '../state.js';
+import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
+
+// control block, byte offsets (mirrors xpbd.as.ts)
+const CTRL_DISPATCH = 0;
+const CTRL_THREADS = 12;
+const CTRL_GRABBED = 20;
+const CTRL_FLAGS = 24;
+const CTRL_ITERATIONS = 28;
+const CTRL_COLLIDERS = 32;
+const CTRL_READY = 36;
+const CTRL_H = 64;
+const CTRL_TAYLOR = 72;
+const CTRL_GRAVITY = 80;
+const CTRL_GRAB_AT = 104;
+const CTRL_STRETCH = 128;
+const CTRL_DAMPING = 136;
+const CTRL_THICKNESS = 144;
+const CTRL_FRICTION = 152;
+const CTRL_STATIC_FRICTION = 160;
+const CTRL_COLLIDER_RECORDS = 256;
+const CTRL_COLLIDER_BYTES = 48;
+const CTRL_BYTES = 1024;
+/** collider records the control block holds; scenes with more use the TypeScript contact phase */
+export const KERNEL_MAX_COLLIDERS = 8;
+const FLAG_FORCES = 1;
+const FLAG_CONTACT = 2;
+const FLAG_ACCUMULATE = 4;
+
+interface KernelExports {
+  configure(...layout: number[]): void;
+  substep(): void;
+  helperLoop(thread: number): void;
+  stopHelpers(): void;
+}
+
+/** What a helper thread needs to join a kernel: the compiled module, the shared memory, the layout, its index. */
+export interface KernelHelperInit {
+  module: WebAssembly.Module;
+  memory: WebAssembly.Memory;
+  layout: number[];
+  thread: number;
+}
+
+/** Starts one helper thread (front-end specific: Node worker_threads, Web Workers); returns how to stop it. */
+export type HelperSpawner = (init: KernelHelperInit) => { terminate(): void };
+
+const modules: { single?: WebAssembly.Module | null; threads?: WebAssembly.Module | null } = {};
+
+function decode(base64: string): Uint8Array {
+  const bin = atob(base64);
+  const bytes = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+  return bytes;
+}
+
+/** The compiled kernel, or null where WebAssembly SIMD (or, for threads, shared memory) is not available. */
+function kernelModule(threads: boolean): WebAssembly.Module | null {
+  const key = threads ? 'threads' : 'single';
+  if (modules[key] === undefined) {
+    try {
+      if (typeof WebAssembly !== 'object') throw new Error('no WebAssembly');
+      if (threads) new WebAssembly.Memory({ initial: 1, maximum: 1, shared: true });
+      modules[key] = new WebAssembly.Module(decode(threads ? XPBD_WASM_THREADS : XPBD_WASM_SINGLE) as BufferSource);
+    } catch {
+      modules[key] = null;
+    }
+  }
+  return modules[key]!;
+}
+
+/** Whether this runtime can run the WebAssembly kernel (with `threads`: over a shared memory). */
+export function wasmKernelAvailable(threads = false): boolean {
+  return kernelModule(threads) !== null;
+}
+
+/** Instantiates the kernel module over `memory` and configures it with `layout`. */
+function instantiateKernel(module: WebAssembly.Module, memory: WebAssembly.Memory, layout: number[]): KernelExports {
+  const instance = new WebAssembly.Instance(module, { env: { memory, abort: () => { throw new Error('xpbd kernel abort'); } } });
+  const exports = instance.exports as unknown as KernelExports;
+  exports.configure(...layout);
+  return exports;
+}
+
+export class XpbdKernel {
+  /** threads that share each substep (1: this thread only) */
+  readonly threads: number;
+  private readonly module: WebAssembly.Module;
+  private readonly memory: WebAssembly.Memory;
+  private readonly layout: number[];
+  private readonly exports: KernelExports;
+  private readonly ctrlI32: Int32Array;
+  private readonly ctrlF64: Float64Array;
+  private readonly alpha: Float32Array;
+  private readonly helpers: { terminate(): void }[] = [];
+  private paramsSeen: SimParams | undefined;
+  private helpersJoined = false;
+  private disposed = false;
+
+  private constructor(model: ClothModel, threads: number, module: WebAssembly.Module) {
+    this.threads = threads;
+    this.module = module;
+    const n = model.particleCount, m = model.restLengths.length, nb = model.batches.length;
+    let at = CTRL_BYTES;
+    const take = (bytes: number) => { const p = at; at += Math.ceil(bytes / 16) * 16; return p; };
+    const X = take(12 * n), XP = take(12 * n), V = take(12 * n), W = take(4 * n), F = take(12 * n);
+    const LAMBDA = take(4 * m), ANCHOR = take(4 * n), TLEN = take(4 * n);
+    const SPRINGS = take(8 * m), REST = take(4 * m), ALPHA = take(4 * m), BATCHES = take(12 * nb);
+    const pages = Math.ceil(at / 65536);
+    this.memory = threads > 1
+      ? new WebAssembly.Memory({ initial: pages, maximum: pages, shared: true })
+      : new WebAssembly.Memory({ initial: pages });
+    const buf = this.memory.buffer;
+    this.layout = [X, XP, W, F, LAMBDA, ANCHOR, TLEN, SPRINGS, REST, ALPHA, BATCHES, nb, n];
+    this.exports = instantiateKernel(module, this.memory, this.layout);
+    this.ctrlI32 = new Int32Array(buf, 0, CTRL_BYTES / 4);
+    this.ctrlF64 = new Float64Array(buf, 0, CTRL_BYTES / 8);
+    new Uint32Array(buf, SPRINGS, 2 * m).set(model.springs);
+    new Float32Array(buf, REST, m).set(model.restLengths);
+    const batches = new Int32Array(buf, BATCHES, 3 * nb);
+    model.batches.forEach((b, k) => { batches[3 * k] = b.start; batches[3 * k + 1] = b.end; batches[3 * k + 2] = b.kind; });
+    this.alpha = new Float32Array(buf, ALPHA, m);
+    this.ctrlI32[CTRL_THREADS / 4] = 1;
+    this.state = createState(model, {
+      positions: new Float32Array(buf, X, 3 * n),
+      previousPositions: new Float32Array(buf, XP, 3 * n),
+      velocities: new Float32Array(buf, V, 3 * n),
+      invMass: new Float32Array(buf, W, n),
+      forces: new Float32Array(buf, F, 3 * n),
+      lambdas: new Float32Array(buf, LAMBDA, m),
+      tetherAnchors: new Int32Array(buf, ANCHOR, n),
+      tetherLengths: new Float32Array(buf, TLEN, n),
+    }, this);
+  }
+
+  /** the state whose arrays live in this kernel's memory */
+  readonly state: ClothState;
+
+  /**
+   * A kernel and its state for `model`, or null where the runtime has no WebAssembly SIMD (or, with threads > 1,
+   * no shared memory: then the caller may ask again with 1 thread).
+   */
+  static create(model: ClothModel, threads = 1): XpbdKernel | null {
+    const t = Math.max(1, Math.floor(threads));
+    const module = kernelModule(t > 1);
+    return module ? new XpbdKernel(model, t, module) : null;
+  }
+
+  /** Starts the helper threads with `spawn` (threads − 1 of them); substeps use them once all have checked in. */
+  startHelpers(spawn: HelperSpawner): void {
+    for (let t = this.helpers.length + 1; t < this.threads; t++) {
+      this.helpers.push(spawn({ module: this.module, memory: this.memory, layout: this.layout, thread: t }));
+    }
+  }
+
+  /** Resolves once every helper has joined (immediately with one thread); rejects after `timeoutMs`. */
+  async whenHelpersReady(timeoutMs = 10000): Promise<void> {
+    const t0 = Date.now();
+    while (!this.joinHelpers()) {
+      if (Date.now() - t0 > timeoutMs) throw new Error(`kernel helper threads did not start within ${timeoutMs} ms`);
+      await new Promise((r) => setTimeout(r, 2));
+    }
+  }
+
+  /** threads working on the substeps now (helpers count once they have checked in) */
+  get activeThreads(): number {
+    return this.helpersJoined ? this.threads : 1;
+  }
+
+  private joinHelpers(): boolean {
+    if (!this.helpersJoined && this.threads > 1 && this.helpers.length === this.threads - 1 &&
+        Atomics.load(this.ctrlI32, CTRL_READY / 4) === this.threads - 1) {
+      this.ctrlI32[CTRL_THREADS / 4] = this.threads;
+      this.helpersJoined = true;
+    }
+    return this.helpersJoined || this.threads === 1;
+  }
+
+  /** Stops the helper threads; the state stays readable, and later frames run on this thread. */
+  dispose(): void {
+    if (this.disposed) return;
+    this.disposed = true;
+    this.exports.stopHelpers();
+    this.ctrlI32[CTRL_THREADS / 4] = 1;
+    this.helpersJoined = false;
+    for (const h of this.helpers) h.terminate();
+    this.helpers.length = 0;
+  }
+
+  /** Per-frame scalars and, when the params object changed, the per-spring compliances. */
+  private upload(model: ClothModel, params: SimParams): boolean {
+    if (params !== this.paramsSeen) {
+      this.alpha.set(params.compliance);
+      this.paramsSeen = params;
+    }
+    const f = this.ctrlF64, i = this.ctrlI32;
+    f[CTRL_GRAVITY / 8] = params.gravity[0];
+    f[CTRL_GRAVITY / 8 + 1] = params.gravity[1];
+    f[CTRL_GRAVITY / 8 + 2] = params.gravity[2];
+    f[CTRL_STRETCH / 8] = params.stretchFactor;
+    f[CTRL_DAMPING / 8] = params.damping;
+    f[CTRL_THICKNESS / 8] = params.thickness;
+    f[CTRL_FRICTION / 8] = params.friction;
+    f[CTRL_STATIC_FRICTION / 8] = params.staticFriction;
+    i[CTRL_ITERATIONS / 4] = params.iterations;
+    // the kernel does particle contact only when every collider has a record and none needs triangle contact
+    const shapes = params.colliders;
+    const inKernel = shapes.length <= KERNEL_MAX_COLLIDERS &&
+      shapes.every((s) => s.kernelRecord && !needsTriangleContact(model, s, params.thickness));
+    i[CTRL_COLLIDERS / 4] = inKernel ? shapes.length : 0;
+    if (inKernel) {
+      shapes.forEach((s, k) => f.set(s.kernelRecord!, (CTRL_COLLIDER_RECORDS + k * CTRL_COLLIDER_BYTES) / 8));
+    }
+    return inKernel;
+  }
+
+  /**
+   * One frame of dt [s] in params.substeps substeps: runFrame's loop (phases.ts) with the kernel's substep.
+   * Only XPBD: the kernel solves distance constraints.
+   */
+  frame(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
+    this.joinHelpers();
+    const n = params.substeps;
+    const h = dt / n;
+    beginStep(model, state, params, h);
+    const contactInKernel = this.upload(model, params);
+    const f = this.ctrlF64, i = this.ctrlI32;
+    const g = state.grabbed, x = state.positions;
+    const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
+    const accumulate = params.iterations > 1;
+    i[CTRL_GRABBED / 4] = g;
+    f[CTRL_H / 8] = h;
+    for (let sub = 0; sub < n; sub++) {
+      const forced = accumulateWind(model, state, params, state.time, h);
+      if (accumulate) state.lambdas.fill(0);
+      i[CTRL_FLAGS / 4] = (forced ? FLAG_FORCES : 0) | (contactInKernel ? FLAG_CONTACT : 0) | (accumulate ? FLAG_ACCUMULATE : 0);
+      f[CTRL_TAYLOR / 8] = state.substeps === 0 ? 0.5 : 1;
+      if (g >= 0) {
+        const frac = (sub + 1) / n, t = state.grabTarget;
+        f[CTRL_GRAB_AT / 8] = gx + (t[0] - gx) * frac;
+        f[CTRL_GRAB_AT / 8 + 1] = gy + (t[1] - gy) * frac;
+        f[CTRL_GRAB_AT / 8 + 2] = gz + (t[2] - gz) * frac;
+      }
+      this.exports.substep();
+      if (!contactInKernel) collide(model, state, params);
+      state.time += h;
+      state.substeps++;
+    }
+    updateVelocities(state, h);
+  }
+}
+
+/**
+ * A ClothState whose arrays live in a WebAssembly kernel's memory (XPBD then runs its substeps there), or null
+ * where the runtime cannot run the kernel. With threads > 1, start the helpers with state.kernel.startHelpers().
+ */
+export function createWasmState(model: ClothModel, threads = 1): ClothState | null {
+  return XpbdKernel.create(model, threads)?.state ?? null;
+}

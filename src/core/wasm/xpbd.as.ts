@@ -1,0 +1,403 @@
+// The XPBD substep as a WebAssembly kernel (AssemblyScript; built by src/core/wasm/gen-wasm.mjs into
+// xpbd-kernel.generated.ts). The same phases, in the same order, as the TypeScript solver (solvers/xpbd.ts,
+// phases.ts): integrate (+ the grab), distance constraints batch by batch, tethers, stretch limiting batch by
+// batch, particle contact. The constraint and stretch passes run four springs of a colour batch at once in f32x4
+// SIMD lanes (springs of a batch share no particle, so the lanes never write the same particle); integration,
+// tethers and contact are scalar f64 on f32 data exactly as the TypeScript code computes them.
+//
+// Threads: with the threads build, T instances over one shared memory run the same substep, each on its share of
+// every particle range and every colour batch, meeting at a barrier between phases and between batches.
+// Thread 0 is the caller's; helpers sit in helperLoop() and are started by a dispatch counter in the control
+// block. The single-thread build compiles no atomics and runs with T = 1.
+//
+// Memory: the caller (xpbd-wasm.ts) lays out every array and passes their byte offsets to configure(); the
+// control block at CTRL holds the per-substep scalars (offsets mirrored in xpbd-wasm.ts as CTRL_*).
+
+// ---- control block (byte offsets from CTRL = 0) ----
+const DISPATCH: usize = 0; // i32: bumped by thread 0 to start a substep on the helpers
+const BAR_COUNT: usize = 4; // i32: threads arrived at the current barrier
+const BAR_GEN: usize = 8; // i32: barrier generation
+const THREADS: usize = 12; // i32: T
+const COMMAND: usize = 16; // i32: 1 substep, 2 exit
+const GRABBED: usize = 20; // i32: grabbed particle or -1
+const FLAGS: usize = 24; // i32: bit 0 external forces, bit 1 particle contact in the kernel, bit 2 accumulate λ
+const ITERATIONS: usize = 28; // i32
+const COLLIDERS: usize = 32; // i32: number of collider records
+const READY: usize = 36; // i32: helpers that entered helperLoop
+const H: usize = 64; // f64 substep [s]
+const TAYLOR: usize = 72; // f64: ½ on the very first substep, else 1
+const GRAVITY: usize = 80; // 3 × f64 [m/s²]
+const GRAB_AT: usize = 104; // 3 × f64: where the grabbed particle is this substep [m]
+const STRETCH: usize = 128; // f64 stretchFactor
+const DAMPING: usize = 136; // f64 [N·s/m]
+const THICKNESS: usize = 144; // f64 [m]
+const FRICTION: usize = 152; // f64 kinetic
+const STATIC_FRICTION: usize = 160; // f64 static
+const COLLIDER_RECORDS: usize = 256; // 8 × 6 f64: type (1 sphere, 2 floor), then cx, cy, cz, r | height
+const COLLIDER_BYTES: usize = 48;
+
+const BEND: i32 = 2;
+const FLAG_FORCES: i32 = 1;
+const FLAG_CONTACT: i32 = 2;
+const FLAG_ACCUMULATE: i32 = 4;
+
+// ---- layout, set by configure() in every instance ----
+let X: usize = 0; // positions, f32 × 3n
+let XP: usize = 0; // previous positions, f32 × 3n
+let W: usize = 0; // inverse masses, f32 × n
+let F: usize = 0; // forces, f32 × 3n
+let LAMBDA: usize = 0; // λ per spring, f32
+let ANCHOR: usize = 0; // tether anchor per particle, i32
+let TLEN: usize = 0; // tether length per particle, f32
+let SPRINGS: usize = 0; // particle pairs, u32 × 2 per spring
+let REST: usize = 0; // rest length per spring, f32
+let ALPHA: usize = 0; // compliance per spring, f32
+let BATCHES: usize = 0; // i32 × 3 per batch: start, end, kind
+let BATCH_COUNT: i32 = 0;
+let N: i32 = 0; // particles
+
+export function configure(
+  x: usize, xp: usize, w: usize, f: usize, lambda: usize, anchor: usize, tlen: usize,
+  springs: usize, rest: usize, alpha: usize, batches: usize, batchCount: i32, particles: i32,
+): void {
+  X = x; XP = xp; W = w; F = f; LAMBDA = lambda; ANCHOR = anchor; TLEN = tlen;
+  SPRINGS = springs; REST = rest; ALPHA = alpha; BATCHES = batches; BATCH_COUNT = batchCount; N = particles;
+}
+
+// ---- threads ----
+
+function barrier(T: i32): void {
+  if (ASC_FEATURE_THREADS) {
+    if (T <= 1) return;
+    const gen = atomic.load<i32>(BAR_GEN);
+    if (atomic.add<i32>(BAR_COUNT, 1) == T - 1) {
+      atomic.store<i32>(BAR_COUNT, 0);
+      atomic.store<i32>(BAR_GEN, gen + 1);
+    } else {
+      while (atomic.load<i32>(BAR_GEN) == gen) {}
+    }
+  }
+}
+
+/** Start of thread t's share of [start, end) split T ways on multiples of 4 (springs) or 1 (particles). */
+@inline function shareStart(start: i32, end: i32, t: i32, T: i32, align: i32): i32 {
+  const per = (((end - start + T * align - 1) / (T * align)) * align);
+  return min(end, start + t * per);
+}
+
+/**
+ * Helper thread t's loop: wait for a dispatch, run its share of the substep, repeat until told to exit. Spins a
+ * while first (a substep follows the last within microseconds), then sleeps on the dispatch counter.
+ */
+export function helperLoop(t: i32): void {
+  if (ASC_FEATURE_THREADS) {
+    let seen = atomic.load<i32>(DISPATCH);
+    atomic.add<i32>(READY, 1);
+    for (;;) {
+      let spins = 0;
+      while (atomic.load<i32>(DISPATCH) == seen) {
+        if (++spins > 1 << 20) { atomic.wait<i32>(DISPATCH, seen, -1); spins = 0; }
+      }
+      seen = atomic.load<i32>(DISPATCH);
+      if (atomic.load<i32>(COMMAND) == 2) return;
+      substepShare(t, atomic.load<i32>(THREADS));
+    }
+  }
+}
+
+/** Thread 0: run one substep with every thread (the scalars are in the control block). */
+export function substep(): void {
+  let T = 1;
+  if (ASC_FEATURE_THREADS) {
+    T = atomic.load<i32>(THREADS);
+    if (T > 1) {
+      atomic.store<i32>(COMMAND, 1);
+      atomic.add<i32>(DISPATCH, 1);
+      atomic.notify(DISPATCH, T - 1);
+    }
+  }
+  substepShare(0, T);
+}
+
+/** Thread 0: tells the helpers to leave helperLoop. */
+export function stopHelpers(): void {
+  if (ASC_FEATURE_THREADS) {
+    atomic.store<i32>(COMMAND, 2);
+    atomic.add<i32>(DISPATCH, 1);
+    atomic.notify(DISPATCH, -1);
+  }
+}
+
+function substepShare(t: i32, T: i32): void {
+  const p0 = shareStart(0, N, t, T, 1), p1 = shareStart(0, N, t + 1, T, 1);
+  const flags = load<i32>(FLAGS);
+  integrate(p0, p1, (flags & FLAG_FORCES) != 0);
+  const g = load<i32>(GRABBED);
+  if (t == 0 && g >= 0) {
+    const gp = X + <usize>g * 12;
+    store<f32>(gp, <f32>load<f64>(GRAB_AT));
+    store<f32>(gp, <f32>load<f64>(GRAB_AT + 8), 4);
+    store<f32>(gp, <f32>load<f64>(GRAB_AT + 16), 8);
+  }
+  barrier(T);
+  const h = load<f64>(H);
+  const invH2 = <f32>(1 / (h * h));
+  const betaOverH = <f32>(load<f64>(DAMPING) / h);
+  const sf = <f32>load<f64>(STRETCH);
+  const accumulate = (flags & FLAG_ACCUMULATE) != 0;
+  const iterations = load<i32>(ITERATIONS);
+  for (let it = 0; it < iterations; it++) {
+    for (let b = 0; b < BATCH_COUNT; b++) {
+      const rec = BATCHES + <usize>b * 12;
+      const start = load<i32>(rec), end = load<i32>(rec, 4), kind = load<i32>(rec, 8);
+      const s0 = shareStart(start, end, t, T, 4), s1 = shareStart(start, end, t + 1, T, 4);
+      solveDistance(s0, s1, invH2, betaOverH, kind == BEND ? F32.MAX_VALUE : sf, accumulate);
+      barrier(T);
+    }
+  }
+  solveTethers(p0, p1, load<f64>(STRETCH));
+  barrier(T);
+  for (let b = 0; b < BATCH_COUNT; b++) {
+    const rec = BATCHES + <usize>b * 12;
+    const start = load<i32>(rec), end = load<i32>(rec, 4), kind = load<i32>(rec, 8);
+    if (kind == BEND) continue;
+    const s0 = shareStart(start, end, t, T, 4), s1 = shareStart(start, end, t + 1, T, 4);
+    limitStretch(s0, s1, sf);
+    barrier(T);
+  }
+  if ((flags & FLAG_CONTACT) != 0) {
+    collideParticles(p0, p1);
+    barrier(T);
+  }
+}
+
+// ---- phases ----
+
+/** Position Verlet as phases.ts integrate(): x ← 2x − x_prev + c·h²·(g + w·f), x_prev ← x. */
+function integrate(p0: i32, p1: i32, withForces: bool): void {
+  const h = load<f64>(H);
+  const h2 = load<f64>(TAYLOR) * h * h;
+  const gx = load<f64>(GRAVITY) * h2, gy = load<f64>(GRAVITY + 8) * h2, gz = load<f64>(GRAVITY + 16) * h2;
+  for (let i = p0; i < p1; i++) {
+    const j = <usize>i * 12;
+    const x0 = <f64>load<f32>(X + j), y0 = <f64>load<f32>(X + j, 4), z0 = <f64>load<f32>(X + j, 8);
+    const wi = <f64>load<f32>(W + (<usize>i << 2));
+    if (wi != 0) {
+      let ax = gx, ay = gy, az = gz;
+      if (withForces) {
+        const s = wi * h2;
+        ax += <f64>load<f32>(F + j) * s; ay += <f64>load<f32>(F + j, 4) * s; az += <f64>load<f32>(F + j, 8) * s;
+      }
+      store<f32>(X + j, <f32>(x0 + (x0 - <f64>load<f32>(XP + j)) + ax));
+      store<f32>(X + j, <f32>(y0 + (y0 - <f64>load<f32>(XP + j, 4)) + ay), 4);
+      store<f32>(X + j, <f32>(z0 + (z0 - <f64>load<f32>(XP + j, 8)) + az), 8);
+    }
+    store<f32>(XP + j, <f32>x0); store<f32>(XP + j, <f32>y0, 4); store<f32>(XP + j, <f32>z0, 8);
+  }
+}
+
+// gather lane k of a vec3 field at byte offset o (particle p → p·12)
+@inline function gather3(base: usize, o0: usize, o1: usize, o2: usize, o3: usize, c: usize): v128 {
+  let v = v128.load32_zero(base + o0 + c);
+  v = v128.load32_lane(base + o1 + c, v, 1);
+  v = v128.load32_lane(base + o2 + c, v, 2);
+  return v128.load32_lane(base + o3 + c, v, 3);
+}
+
+@inline function scatter3(base: usize, o0: usize, o1: usize, o2: usize, o3: usize, c: usize, v: v128): void {
+  v128.store32_lane(base + o0 + c, v, 0);
+  v128.store32_lane(base + o1 + c, v, 1);
+  v128.store32_lane(base + o2 + c, v, 2);
+  v128.store32_lane(base + o3 + c, v, 3);
+}
+
+// Four particles' xyz as one v128 load each (x, y, z and the next float, never used), transposed to x, y, z lanes.
+@inline function lo2(a: v128, b: v128): v128 { return v128.shuffle<f32>(a, b, 0, 4, 1, 5); }
+@inline function hi2(a: v128, b: v128): v128 { return v128.shuffle<f32>(a, b, 2, 6, 3, 7); }
+@inline function lanesXY0(t0: v128, t1: v128): v128 { return v128.shuffle<f32>(t0, t1, 0, 1, 4, 5); }
+@inline function lanesXY1(t0: v128, t1: v128): v128 { return v128.shuffle<f32>(t0, t1, 2, 3, 6, 7); }
+
+// Writes lanes x, y, z back to four particles: x and y as one 8-byte store, z as a 4-byte store (never past z).
+@inline function store4(base: usize, o0: usize, o1: usize, o2: usize, o3: usize, x: v128, y: v128, z: v128): void {
+  const u0 = lo2(x, y), u1 = hi2(x, y);
+  v128.store64_lane(base + o0, u0, 0); v128.store32_lane(base + o0 + 8, z, 0);
+  v128.store64_lane(base + o1, u0, 1); v128.store32_lane(base + o1 + 8, z, 1);
+  v128.store64_lane(base + o2, u1, 0); v128.store32_lane(base + o2 + 8, z, 2);
+  v128.store64_lane(base + o3, u1, 1); v128.store32_lane(base + o3 + 8, z, 3);
+}
+
+@inline function dot3(ax: v128, ay: v128, az: v128, bx: v128, by: v128, bz: v128): v128 {
+  return f32x4.add(f32x4.add(f32x4.mul(ax, bx), f32x4.mul(ay, by)), f32x4.mul(az, bz));
+}
+
+/**
+ * Distance constraints [s0, s1) of one batch, as solvers/xpbd.ts solveDistanceConstraints() in f32:
+ * Δλ = (−C − α̃λ − γ∇C·(x − x_prev)) / ((1 + γ)(w_a + w_b) + α̃) with the hard cap at capFactor × rest.
+ * Four springs per step; the last 1–3 repeat the last spring in the spare lanes (same values written twice).
+ */
+function solveDistance(s0: i32, s1: i32, invH2: f32, betaOverH: f32, capFactor: f32, accumulate: bool): void {
+  const vInvH2 = f32x4.splat(invH2), vBeta = f32x4.splat(betaOverH), vCap = f32x4.splat(capFactor);
+  const one = f32x4.splat(1), zero = f32x4.splat(0), tiny = f32x4.splat(1e-12), inf = f32x4.splat(Infinity);
+  const damped = betaOverH > 0;
+  for (let s = s0; s < s1; s += 4) {
+    const k1 = min(s + 1, s1 - 1), k2 = min(s + 2, s1 - 1), k3 = min(s + 3, s1 - 1);
+    const full = s + 4 <= s1;
+    const pa0 = <usize>load<u32>(SPRINGS + (<usize>s << 3)), pb0 = <usize>load<u32>(SPRINGS + (<usize>s << 3), 4);
+    const pa1 = <usize>load<u32>(SPRINGS + (<usize>k1 << 3)), pb1 = <usize>load<u32>(SPRINGS + (<usize>k1 << 3), 4);
+    const pa2 = <usize>load<u32>(SPRINGS + (<usize>k2 << 3)), pb2 = <usize>load<u32>(SPRINGS + (<usize>k2 << 3), 4);
+    const pa3 = <usize>load<u32>(SPRINGS + (<usize>k3 << 3)), pb3 = <usize>load<u32>(SPRINGS + (<usize>k3 << 3), 4);
+    const a0 = pa0 * 12, a1 = pa1 * 12, a2 = pa2 * 12, a3 = pa3 * 12;
+    const b0 = pb0 * 12, b1 = pb1 * 12, b2 = pb2 * 12, b3 = pb3 * 12;
+    let rest: v128, alpha: v128, lambda: v128;
+    if (full) {
+      rest = v128.load(REST + (<usize>s << 2));
+      alpha = v128.load(ALPHA + (<usize>s << 2));
+      lambda = v128.load(LAMBDA + (<usize>s << 2));
+    } else {
+      const o0 = <usize>s << 2, o1 = <usize>k1 << 2, o2 = <usize>k2 << 2, o3 = <usize>k3 << 2;
+      rest = gather3(REST, o0, o1, o2, o3, 0);
+      alpha = gather3(ALPHA, o0, o1, o2, o3, 0);
+      lambda = gather3(LAMBDA, o0, o1, o2, o3, 0);
+    }
+    const wa = gather3(W, pa0 << 2, pa1 << 2, pa2 << 2, pa3 << 2, 0);
+    const wb = gather3(W, pb0 << 2, pb1 << 2, pb2 << 2, pb3 << 2, 0);
+    const qa0 = v128.load(X + a0), qa1 = v128.load(X + a1), qa2 = v128.load(X + a2), qa3 = v128.load(X + a3);
+    const qb0 = v128.load(X + b0), qb1 = v128.load(X + b1), qb2 = v128.load(X + b2), qb3 = v128.load(X + b3);
+    const ta0 = lo2(qa0, qa1), ta1 = lo2(qa2, qa3), tb0 = lo2(qb0, qb1), tb1 = lo2(qb2, qb3);
+    const axv = lanesXY0(ta0, ta1), ayv = lanesXY1(ta0, ta1), azv = lanesXY0(hi2(qa0, qa1), hi2(qa2, qa3));
+    const bxv = lanesXY0(tb0, tb1), byv = lanesXY1(tb0, tb1), bzv = lanesXY0(hi2(qb0, qb1), hi2(qb2, qb3));
+    const dx = f32x4.sub(axv, bxv), dy = f32x4.sub(ayv, byv), dz = f32x4.sub(azv, bzv);
+    const len0 = f32x4.sqrt(dot3(dx, dy, dz, dx, dy, dz));
+    const wsum = f32x4.add(wa, wb);
+    // skipped as in the TypeScript solver: no stiffness, both particles fixed, coincident particles
+    const valid = v128.and(v128.and(f32x4.ne(alpha, inf), f32x4.ne(wsum, zero)), f32x4.ge(len0, tiny));
+    const len = f32x4.max(len0, tiny);
+    const alphaT = f32x4.mul(alpha, vInvH2);
+    const gamma = f32x4.mul(alpha, vBeta);
+    const D = f32x4.add(f32x4.mul(f32x4.add(one, gamma), wsum), alphaT);
+    const q = f32x4.div(one, f32x4.mul(len, D));
+    const lam = accumulate ? lambda : zero;
+    const dlE = f32x4.mul(f32x4.mul(f32x4.sub(f32x4.sub(rest, len), f32x4.mul(alphaT, lam)), len), q);
+    let dl = dlE;
+    if (damped) {
+      // x_prev of a and b, transposed as above: r = d − (x_prev,a − x_prev,b) is the relative motion
+      const ea0 = v128.load(XP + a0), ea1 = v128.load(XP + a1), ea2 = v128.load(XP + a2), ea3 = v128.load(XP + a3);
+      const eb0 = v128.load(XP + b0), eb1 = v128.load(XP + b1), eb2 = v128.load(XP + b2), eb3 = v128.load(XP + b3);
+      const da0 = f32x4.sub(ea0, eb0), da1 = f32x4.sub(ea1, eb1), da2 = f32x4.sub(ea2, eb2), da3 = f32x4.sub(ea3, eb3);
+      const u0 = lo2(da0, da1), u1 = lo2(da2, da3);
+      const rx = f32x4.sub(dx, lanesXY0(u0, u1)), ry = f32x4.sub(dy, lanesXY1(u0, u1));
+      const rz = f32x4.sub(dz, lanesXY0(hi2(da0, da1), hi2(da2, da3)));
+      dl = f32x4.sub(dl, f32x4.mul(f32x4.mul(gamma, q), dot3(rx, ry, rz, dx, dy, dz)));
+    }
+    const lamNew = v128.bitselect(f32x4.add(lam, dlE), lambda, valid);
+    if (full) v128.store(LAMBDA + (<usize>s << 2), lamNew);
+    else scatter3(LAMBDA, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, 0, lamNew);
+    // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest
+    const over = f32x4.sub(f32x4.add(len, f32x4.mul(wsum, dl)), f32x4.mul(vCap, rest));
+    dl = f32x4.sub(dl, f32x4.div(f32x4.max(over, zero), wsum));
+    dl = v128.and(dl, valid);
+    const invLen = v128.and(f32x4.mul(D, q), valid);
+    const nx = f32x4.mul(dx, invLen), ny = f32x4.mul(dy, invLen), nz = f32x4.mul(dz, invLen);
+    const sa = f32x4.mul(wa, dl), sb = f32x4.mul(wb, dl);
+    store4(X, a0, a1, a2, a3, f32x4.add(axv, f32x4.mul(sa, nx)), f32x4.add(ayv, f32x4.mul(sa, ny)), f32x4.add(azv, f32x4.mul(sa, nz)));
+    store4(X, b0, b1, b2, b3, f32x4.sub(bxv, f32x4.mul(sb, nx)), f32x4.sub(byv, f32x4.mul(sb, ny)), f32x4.sub(bzv, f32x4.mul(sb, nz)));
+  }
+}
+
+/** Tethers as tethers.ts solveTethers(), f64 on f32 data. */
+function solveTethers(p0: i32, p1: i32, sf: f64): void {
+  for (let i = p0; i < p1; i++) {
+    const a = load<i32>(ANCHOR + (<usize>i << 2));
+    if (a < 0 || load<f32>(W + (<usize>i << 2)) == 0) continue;
+    const j = X + <usize>i * 12, k = X + <usize>a * 12;
+    const kx = <f64>load<f32>(k), ky = <f64>load<f32>(k, 4), kz = <f64>load<f32>(k, 8);
+    const dx = <f64>load<f32>(j) - kx, dy = <f64>load<f32>(j, 4) - ky, dz = <f64>load<f32>(j, 8) - kz;
+    const d2 = dx * dx + dy * dy + dz * dz;
+    const max = sf * <f64>load<f32>(TLEN + (<usize>i << 2));
+    if (d2 <= max * max) continue;
+    const s = max / Math.sqrt(d2);
+    store<f32>(j, <f32>(kx + dx * s)); store<f32>(j, <f32>(ky + dy * s), 4); store<f32>(j, <f32>(kz + dz * s), 8);
+  }
+}
+
+/** Stretch limiting of springs [s0, s1) of one batch, as solvers/mass-spring.ts limitStretch(), in f32. */
+function limitStretch(s0: i32, s1: i32, sf: f32): void {
+  const vSf = f32x4.splat(sf), zero = f32x4.splat(0);
+  for (let s = s0; s < s1; s += 4) {
+    const k1 = min(s + 1, s1 - 1), k2 = min(s + 2, s1 - 1), k3 = min(s + 3, s1 - 1);
+    const pa0 = <usize>load<u32>(SPRINGS + (<usize>s << 3)), pb0 = <usize>load<u32>(SPRINGS + (<usize>s << 3), 4);
+    const pa1 = <usize>load<u32>(SPRINGS + (<usize>k1 << 3)), pb1 = <usize>load<u32>(SPRINGS + (<usize>k1 << 3), 4);
+    const pa2 = <usize>load<u32>(SPRINGS + (<usize>k2 << 3)), pb2 = <usize>load<u32>(SPRINGS + (<usize>k2 << 3), 4);
+    const pa3 = <usize>load<u32>(SPRINGS + (<usize>k3 << 3)), pb3 = <usize>load<u32>(SPRINGS + (<usize>k3 << 3), 4);
+    const a0 = pa0 * 12, a1 = pa1 * 12, a2 = pa2 * 12, a3 = pa3 * 12;
+    const b0 = pb0 * 12, b1 = pb1 * 12, b2 = pb2 * 12, b3 = pb3 * 12;
+    const rest = s + 4 <= s1 ? v128.load(REST + (<usize>s << 2))
+      : gather3(REST, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, 0);
+    const qa0 = v128.load(X + a0), qa1 = v128.load(X + a1), qa2 = v128.load(X + a2), qa3 = v128.load(X + a3);
+    const qb0 = v128.load(X + b0), qb1 = v128.load(X + b1), qb2 = v128.load(X + b2), qb3 = v128.load(X + b3);
+    const ta0 = lo2(qa0, qa1), ta1 = lo2(qa2, qa3), tb0 = lo2(qb0, qb1), tb1 = lo2(qb2, qb3);
+    const axv = lanesXY0(ta0, ta1), ayv = lanesXY1(ta0, ta1), azv = lanesXY0(hi2(qa0, qa1), hi2(qa2, qa3));
+    const bxv = lanesXY0(tb0, tb1), byv = lanesXY1(tb0, tb1), bzv = lanesXY0(hi2(qb0, qb1), hi2(qb2, qb3));
+    const dx = f32x4.sub(axv, bxv), dy = f32x4.sub(ayv, byv), dz = f32x4.sub(azv, bzv);
+    const len2 = dot3(dx, dy, dz, dx, dy, dz);
+    const max = f32x4.mul(vSf, rest);
+    const wa = gather3(W, pa0 << 2, pa1 << 2, pa2 << 2, pa3 << 2, 0);
+    const wb = gather3(W, pb0 << 2, pb1 << 2, pb2 << 2, pb3 << 2, 0);
+    const wsum = f32x4.add(wa, wb);
+    const over = v128.and(f32x4.gt(len2, f32x4.mul(max, max)), f32x4.ne(wsum, zero));
+    if (!v128.any_true(over)) continue;
+    const len = f32x4.sqrt(len2);
+    const scale = v128.and(f32x4.div(f32x4.sub(len, max), f32x4.mul(len, wsum)), over);
+    const sa = f32x4.mul(wa, scale), sb = f32x4.mul(wb, scale);
+    store4(X, a0, a1, a2, a3, f32x4.sub(axv, f32x4.mul(sa, dx)), f32x4.sub(ayv, f32x4.mul(sa, dy)), f32x4.sub(azv, f32x4.mul(sa, dz)));
+    store4(X, b0, b1, b2, b3, f32x4.add(bxv, f32x4.mul(sb, dx)), f32x4.add(byv, f32x4.mul(sb, dy)), f32x4.add(bzv, f32x4.mul(sb, dz)));
+  }
+}
+
+/** Position-based Coulomb friction scale, as phases.ts frictionScale(). */
+@inline function frictionScale(tangential: f64, depth: f64): f64 {
+  if (tangential < 1e-12) return 0;
+  if (tangential < load<f64>(STATIC_FRICTION) * depth) return 1;
+  return min((load<f64>(FRICTION) * depth) / tangential, 1);
+}
+
+/**
+ * Particle contact against the collider records, as phases.ts collide() does for shapes that need no triangle
+ * contact: each particle within the thickness is pushed out along the normal, then friction.
+ */
+function collideParticles(p0: i32, p1: i32): void {
+  const th = load<f64>(THICKNESS);
+  const count = load<i32>(COLLIDERS);
+  for (let c = 0; c < count; c++) {
+    const rec = COLLIDER_RECORDS + <usize>c * COLLIDER_BYTES;
+    const type = load<f64>(rec);
+    const c0 = load<f64>(rec, 8), c1 = load<f64>(rec, 16), c2 = load<f64>(rec, 24), r = load<f64>(rec, 32);
+    const far = r + th;
+    for (let i = p0; i < p1; i++) {
+      if (load<f32>(W + (<usize>i << 2)) == 0) continue;
+      const j = X + <usize>i * 12, jp = XP + <usize>i * 12;
+      const px = <f64>load<f32>(j), py = <f64>load<f32>(j, 4), pz = <f64>load<f32>(j, 8);
+      let d: f64, nx: f64, ny: f64, nz: f64;
+      if (type == 1) {
+        const dx = px - c0, dy = py - c1, dz = pz - c2;
+        const d2 = dx * dx + dy * dy + dz * dz;
+        if (far > 0 && d2 >= far * far) continue;
+        const dd = Math.sqrt(d2);
+        if (dd > 1e-12) { nx = dx / dd; ny = dy / dd; nz = dz / dd; } else { nx = 0; ny = 1; nz = 0; }
+        d = dd - r;
+      } else {
+        nx = 0; ny = 1; nz = 0;
+        d = py - c0;
+      }
+      if (d >= th) continue;
+      const depth = th - d;
+      store<f32>(j, <f32>(px + depth * nx)); store<f32>(j, <f32>(py + depth * ny), 4); store<f32>(j, <f32>(pz + depth * nz), 8);
+      const qx = <f64>load<f32>(j), qy = <f64>load<f32>(j, 4), qz = <f64>load<f32>(j, 8);
+      const mx = qx - <f64>load<f32>(jp), my = qy - <f64>load<f32>(jp, 4), mz = qz - <f64>load<f32>(jp, 8);
+      const mn = mx * nx + my * ny + mz * nz;
+      const tx = mx - mn * nx, ty = my - mn * ny, tz = mz - mn * nz;
+      const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth);
+      store<f32>(j, <f32>(qx - s * tx)); store<f32>(j, <f32>(qy - s * ty), 4); store<f32>(j, <f32>(qz - s * tz), 8);
+    }
+  }
+}
