@@ -11,7 +11,7 @@ import { UsageError } from './errors.js';
 import { openGpu, type Gpu } from './gpu.js';
 import { toOBJ } from './obj.js';
 import { cpuOptions, runBench, runGpuBench } from './bench.js';
-import { defaultThreads } from './threads.js';
+import { maxThreads } from './threads.js';
 
 const HELP: Record<string, string> = {
   main: `drape — real-time cloth simulation, headless
@@ -31,7 +31,7 @@ Simulates a built-in scene (default: custom) or a scene file for N frames of 1/6
   --solver S            xpbd | mass-spring (same as --set solver.type=S)
   --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD, sphere and floor colliders)
   --kernel K            CPU XPBD kernel: wasm (WebAssembly SIMD, the default where available) or ts
-  --threads N           threads of the wasm kernel (default: the cores available, at most 8)
+  --threads N           threads of the wasm kernel (default and most: the cores available, at most 8)
   --set PATH=VALUE      change any scene path, e.g. material.bendStiffness=2, wind.direction=[1,0,0],
                         colliders=[] ; VALUE is JSON when it parses, else a string (repeatable)
   --json                print exactly one JSON object
@@ -46,7 +46,7 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
   --frames N            timed frames per run (default 120), after --warmup N frames (default 30)
   --backend B           cpu (default: both CPU solvers and JoltPhysics.js) or gpu (the WebGPU solver, with
                         the CPU XPBD solver beside it up to 256 per side, and the memory-bandwidth floor)
-  --threads N           threads of Drape's wasm XPBD kernel (default: the cores available, at most 8); a
+  --threads N           threads of Drape's wasm XPBD kernel (default and most: the cores available, at most 8); a
                         1-thread and a TypeScript column are printed too
   --no-peer             skip JoltPhysics.js
   --json                print exactly one JSON object`,
@@ -58,6 +58,14 @@ function intArg(name: string, raw: string | undefined, fallback: number, min: nu
   const v = Number(raw);
   if (!Number.isInteger(v) || v < min || v > max) throw new UsageError(`--${name}: must be an integer in ${min}…${max}, got '${raw}'`);
   return v;
+}
+
+/** --threads: an integer ≥ 1; more than the cores available is clamped (the kernel's barriers spin), with a note. */
+function threadsArg(raw: string | undefined, err: (s: string) => void): number {
+  const max = maxThreads();
+  const t = intArg('threads', raw, max, 1, 1024);
+  if (t > max) err(`drape: note: --threads ${t}: using ${max}, the cores available`);
+  return Math.min(t, max);
 }
 
 function checkKernel(raw: string | undefined): 'wasm' | 'ts' | 'auto' {
@@ -171,7 +179,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   const frames = intArg('frames', values.frames, 180, 0, 1_000_000);
   const backend = checkBackend(values.backend);
   const options: SimulationOptions = {
-    ...cpuOptions(intArg('threads', values.threads, defaultThreads(), 1, 64)),
+    ...cpuOptions(threadsArg(values.threads, err)),
     kernel: checkKernel(values.kernel),
   };
   if (values.export !== undefined && !values.export.toLowerCase().endsWith('.obj')) throw new UsageError(`--export: only .obj files are supported, got '${values.export}'`);
@@ -229,7 +237,7 @@ function cmdScenes(argv: string[], out: (s: string) => void): number {
   return 0;
 }
 
-async function cmdBench(argv: string[], out: (s: string) => void): Promise<number> {
+async function cmdBench(argv: string[], out: (s: string) => void, err: (s: string) => void): Promise<number> {
   const { values } = parseArgs({
     args: argv,
     options: {
@@ -240,7 +248,7 @@ async function cmdBench(argv: string[], out: (s: string) => void): Promise<numbe
   });
   if (values.help) { out(HELP.bench); return 0; }
   const backend = checkBackend(values.backend);
-  const threads = intArg('threads', values.threads, defaultThreads(), 1, 64);
+  const threads = threadsArg(values.threads, err);
   const sizes = (values.sizes ?? (backend === 'gpu' ? '64,128,256,512,1024' : '64,128')).split(',').map((s) => intArg('sizes', s.trim(), 0, 2, 1025));
   if (backend === 'gpu') {
     const gpu = await openGpu();
@@ -278,7 +286,7 @@ export async function main(argv: string[], out: (s: string) => void = console.lo
       case '--version': case '-v': out(JSON.parse(readFileSync(new URL('../../package.json', import.meta.url), 'utf8')).version); return 0;
       case 'run': return await cmdRun(rest, out, err);
       case 'scenes': return cmdScenes(rest, out);
-      case 'bench': return await cmdBench(rest, out);
+      case 'bench': return await cmdBench(rest, out, err);
       case 'schema':
         if (rest.includes('--help') || rest.includes('-h')) { out(HELP.schema); return 0; }
         if (rest.length) throw new UsageError(`schema: takes no arguments, got ${rest.join(' ')}`);

@@ -22,7 +22,7 @@ export const spawnNodeHelper: HelperSpawner = (init) => {
   return { terminate: () => void worker.terminate() };
 };
 
-/** Default thread count of the CLI: the cores Node may use, at most 8. */
-export function defaultThreads(): number {
+/** Most threads the CLI gives the kernel: the cores Node may use (its barriers spin, so never more), at most 8. */
+export function maxThreads(): number {
   return Math.min(8, Math.max(1, availableParallelism()));
 }

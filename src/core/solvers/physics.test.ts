@@ -1,5 +1,5 @@
 /**
- * Physics tests, run for every CPU solver. Each asserts a physical law or an invariant of the model, with a
+ * Physics tests, run for every CPU solver and, for XPBD, both CPU kernels (TypeScript, WebAssembly). Each asserts a physical law or an invariant of the model, with a
  * tolerance that comes from the numbers (float32 round-off, discretisation), not from what the code happens to do.
  */
 import { describe, expect, it } from 'vitest';
@@ -7,12 +7,15 @@ import { buildModel } from '../model.js';
 import { FRAME_DT, resolveParams } from '../params.js';
 import { validateScene, type Scene, type SolverType } from '../scene.js';
 import { builtinScene, SCENE_NAMES } from '../scenes.js';
-import { Simulation } from '../simulation.js';
+import { Simulation, type CpuKernel } from '../simulation.js';
 import { createState, grab, release, setPinned } from '../state.js';
+import { createWasmState } from '../wasm/xpbd-wasm.js';
 import { step } from './index.js';
 import { sceneSchema } from '../scene-schema.js';
 
 const SOLVER_TYPES: SolverType[] = ['xpbd', 'mass-spring'];
+/** every solver with every CPU kernel that runs it (the WebAssembly kernel runs XPBD) */
+const CASES: [SolverType, CpuKernel][] = [['xpbd', 'ts'], ['xpbd', 'wasm'], ['mass-spring', 'ts']];
 
 function scene(name: string, edit: (s: Scene) => void = () => {}): Scene {
   const s = builtinScene(name)!;
@@ -20,11 +23,12 @@ function scene(name: string, edit: (s: Scene) => void = () => {}): Scene {
   return s;
 }
 
-describe.each(SOLVER_TYPES)('%s solver', (solver) => {
+describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
+  const newSim = (sc: Scene) => new Simulation(sc, { kernel });
   it('free fall matches y0 − ½gt² (Verlet with a Taylor start is exact for constant acceleration)', () => {
     // one substep per frame keeps float32 round-off (~ε·N^1.5) near 1e-4 m, while a wrong start would be off by
     // ½·g·h·t = 8 cm after 1 s
-    const sim = new Simulation(scene('custom', (s) => { s.colliders = []; s.solver = { type: solver, substeps: 1, iterations: 1 }; s.cloth.resolution = 2; }));
+    const sim = newSim(scene('custom', (s) => { s.colliders = []; s.solver = { type: solver, substeps: 1, iterations: 1 }; s.cloth.resolution = 2; }));
     const y0 = sim.state.positions[1];
     sim.advance(60);
     const exact = y0 - 0.5 * 9.81 * 1 * 1;
@@ -32,7 +36,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
   });
 
   it('free fall with 20 substeps stays within the float32 round-off bound', () => {
-    const sim = new Simulation(scene('custom', (s) => { s.colliders = []; s.solver.type = solver; s.cloth.resolution = 2; }));
+    const sim = newSim(scene('custom', (s) => { s.colliders = []; s.solver.type = solver; s.cloth.resolution = 2; }));
     const y0 = sim.state.positions[1];
     sim.advance(60);
     const n = 60 * sim.params.substeps;
@@ -53,7 +57,8 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
     const sc = validateScene({ solver: { type: solver, substeps: 1 }, gravity: [0, 0, 0], colliders: [], material: { structuralStiffness: k, mass: M, damping: 0, stretchFactor: 2 } });
     const params = resolveParams(model, sc, h);
     expect(params.clamps).toEqual([]);
-    const state = createState(model);
+    const state = kernel === 'wasm' ? createWasmState(model)! : createState(model);
+    expect(state.kernel !== undefined).toBe(kernel === 'wasm');
     setPinned(state, 0, true);
     state.positions[3] = state.previousPositions[3] = 1.05;
     // XPBD is implicit-Euler-like and damps a stiff oscillator within a few periods, so time the first four
@@ -73,7 +78,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
   });
 
   it('pinned particles never move', () => {
-    const sim = new Simulation(scene('pins', (s) => { s.solver.type = solver; s.cloth.resolution = 16; s.wind.enabled = true; }));
+    const sim = newSim(scene('pins', (s) => { s.solver.type = solver; s.cloth.resolution = 16; s.wind.enabled = true; }));
     const pinned = [...sim.state.pinned.keys()].filter((i) => sim.state.pinned[i]);
     expect(pinned.length).toBe(4);
     const before = pinned.map((i) => [...sim.state.positions.subarray(3 * i, 3 * i + 3)]);
@@ -82,7 +87,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
   });
 
   it("a hanging cotton cloth's structural strain stays under its stretch factor", () => {
-    const sim = new Simulation(scene('cotton-basic', (s) => {
+    const sim = newSim(scene('cotton-basic', (s) => {
       s.solver.type = solver;
       s.cloth = { ...s.cloth, orientation: 'hanging', position: [0, 1.5, 0], resolution: 24 };
       s.colliders = [];
@@ -99,7 +104,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
   });
 
   it('a cloth dropped on the sphere comes to rest on it: penetration ≤ 1 mm, kinetic energy decaying', () => {
-    const sim = new Simulation(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 20; }));
+    const sim = newSim(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 20; }));
     const ke: number[] = [];
     for (let second = 0; second < 4; second++) {
       sim.advance(60);
@@ -113,7 +118,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
   });
 
   it('a 1-face cloth dropped centred on the sphere rests on it (triangle contact, not only particles)', () => {
-    const sim = new Simulation(scene('resolution', (s) => { s.solver.type = solver; s.cloth.resolution = 1; }));
+    const sim = newSim(scene('resolution', (s) => { s.solver.type = solver; s.cloth.resolution = 1; }));
     sim.advance(180);
     const r = sim.report();
     expect(r.maxPenetration).toBeLessThanOrEqual(1e-3);
@@ -122,7 +127,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
 
   it('wind pushes the cloth along the wind', () => {
     for (const dir of [1, -1]) {
-      const sim = new Simulation(scene('wind', (s) => {
+      const sim = newSim(scene('wind', (s) => {
         s.solver.type = solver;
         s.cloth.resolution = 12;
         s.pins = ['top-edge'];
@@ -135,7 +140,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
   });
 
   it('total energy never grows without wind or grabbing', () => {
-    const sim = new Simulation(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 16; }));
+    const sim = newSim(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 16; }));
     const total = () => { const e = sim.report().energy; return e.kinetic + e.gravitational + e.elastic; };
     const e0 = total();
     let prev = e0;
@@ -151,7 +156,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
 
   it('a grabbed particle follows its target, and the cloth keeps its momentum when released', () => {
     // weightless free cloth: grab the middle particle and carry it up 2 cm per frame for 10 frames
-    const sim = new Simulation(scene('custom', (s) => { s.solver.type = solver; s.cloth.resolution = 8; s.gravity = [0, 0, 0]; s.colliders = []; }));
+    const sim = newSim(scene('custom', (s) => { s.solver.type = solver; s.cloth.resolution = 8; s.gravity = [0, 0, 0]; s.colliders = []; }));
     const p = 40; // the middle particle of the 9×9 grid
     const target: [number, number, number] = [...sim.state.positions.subarray(3 * p, 3 * p + 3)] as [number, number, number];
     for (let f = 0; f < 10; f++) {
@@ -190,7 +195,7 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
       };
       sc.gravity = [range(-50, 50) * 0.2, range(-50, 50), range(-50, 50) * 0.2];
       sc.wind = { ...sc.wind, enabled: rnd() < 0.5, strength: range(0, 30), direction: [range(-1, 1), range(-1, 1), range(-1, 1)] };
-      const sim = new Simulation(sc);
+      const sim = newSim(sc);
       const start = sim.report().centroid;
       sim.advance(30);
       const r = sim.report();
@@ -203,11 +208,12 @@ describe.each(SOLVER_TYPES)('%s solver', (solver) => {
 });
 
 describe('scene behaviour shared by both solvers', () => {
-  it('every built-in scene runs finite with both solvers', () => {
-    for (const name of SCENE_NAMES) for (const solver of SOLVER_TYPES) {
-      const sim = new Simulation(scene(name, (s) => { s.solver.type = solver; s.cloth.resolution = Math.min(s.cloth.resolution, 12); }));
+  it('every built-in scene runs finite with both solvers and both kernels', () => {
+    for (const name of SCENE_NAMES) for (const [solver, kernel] of CASES) {
+      const sim = new Simulation(scene(name, (s) => { s.solver.type = solver; s.cloth.resolution = Math.min(s.cloth.resolution, 12); }), { kernel });
+      expect(sim.kernel).toBe(kernel);
       sim.advance(30);
-      expect(sim.report().finite, `${name}/${solver}`).toBe(true);
+      expect(sim.report().finite, `${name}/${solver}/${kernel}`).toBe(true);
     }
   });
 });

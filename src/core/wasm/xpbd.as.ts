@@ -66,6 +66,10 @@ export function configure(
 
 // ---- threads ----
 
+/**
+ * Generation-counting spin barrier: threads never sleep inside a substep (a phase takes microseconds), so a kernel must
+ * not have more threads than cores (xpbd-wasm.ts clamps to the cores the front end reports).
+ */
 function barrier(T: i32): void {
   if (ASC_FEATURE_THREADS) {
     if (T <= 1) return;
@@ -92,6 +96,7 @@ function barrier(T: i32): void {
 export function helperLoop(t: i32): void {
   if (ASC_FEATURE_THREADS) {
     let seen = atomic.load<i32>(DISPATCH);
+    if (atomic.load<i32>(COMMAND) == 2) return; // the kernel was disposed before this helper started
     atomic.add<i32>(READY, 1);
     for (;;) {
       let spins = 0;

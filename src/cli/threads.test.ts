@@ -1,0 +1,62 @@
+/**
+ * The WebAssembly XPBD kernel on several threads (Node worker threads over a shared memory): every spring is solved
+ * by exactly the same arithmetic whichever thread takes it, so the cloth is bit-for-bit the 1-thread cloth.
+ */
+import { availableParallelism } from 'node:os';
+import { describe, expect, it } from 'vitest';
+import { builtinScene, grab, release, Simulation, type Scene } from '../core/index.js';
+import { spawnNodeHelper } from './threads.js';
+
+function scene(): Scene {
+  // wind (TypeScript phase), pins (tethers), sphere + floor (kernel contact) and a grab, 41² particles
+  const sc = builtinScene('wind')!;
+  sc.cloth.resolution = 40;
+  sc.colliders = [{ type: 'sphere', center: [0, 1.2, 0.4], radius: 0.3 }, { type: 'floor', height: 0 }];
+  return sc;
+}
+
+// the kernel's barriers spin, so a test never asks for more threads than cores (CI machines have 2)
+describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
+  it('2 threads give the same cloth as 1, bit for bit', async () => {
+    const threads = 2;
+    const one = new Simulation(scene(), { kernel: 'wasm', threads: 1 });
+    const many = new Simulation(scene(), { kernel: 'wasm', threads, spawnHelper: spawnNodeHelper });
+    try {
+      await many.whenReady();
+      expect(many.threads).toBe(threads);
+      expect(many.state.positions.buffer).toBeInstanceOf(SharedArrayBuffer);
+      for (let f = 0; f < 40; f++) {
+        if (f === 10) for (const s of [one, many]) grab(s.state, 100, [0.2, 2.2, 0.3]);
+        if (f === 20) for (const s of [one, many]) release(s.state);
+        one.advance(1);
+        many.advance(1);
+      }
+      expect([...many.state.positions]).toEqual([...one.state.positions]);
+      expect([...many.state.velocities]).toEqual([...one.state.velocities]);
+      expect(many.report().finite).toBe(true);
+    } finally {
+      many.dispose();
+    }
+  });
+
+  it('a rebuild stops the old helpers and starts new ones; after dispose it steps on one thread', async () => {
+    const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
+    await sim.whenReady();
+    const oldKernel = sim.state.kernel!;
+    expect(sim.set('cloth.resolution', 20)).toBe(true);
+    expect(oldKernel.activeThreads).toBe(1);
+    await sim.whenReady();
+    expect(sim.threads).toBe(2);
+    sim.advance(5);
+    sim.dispose();
+    expect(sim.threads).toBe(1);
+    sim.advance(5);
+    expect(sim.report().finite).toBe(true);
+  });
+
+  it('without a helper spawner the kernel runs on the calling thread', () => {
+    const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2 });
+    expect(sim.threads).toBe(1);
+    expect(sim.state.kernel!.threads).toBe(1);
+  });
+});

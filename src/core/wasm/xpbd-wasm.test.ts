@@ -1,0 +1,109 @@
+/**
+ * The WebAssembly XPBD kernel against the TypeScript solver it mirrors: same phases, so the same cloth within f32
+ * rounding of the constraint passes (the physics tests in solvers/physics.test.ts run on both kernels as well).
+ */
+import { readFileSync } from 'node:fs';
+import { describe, expect, it } from 'vitest';
+import { FRAME_DT, builtinScene, createState, SCENE_NAMES, Simulation, step, type Scene } from '../index.js';
+import { GENERATED_FILE, generateKernelModule } from './gen-wasm.mjs';
+import { createWasmState, wasmKernelAvailable } from './xpbd-wasm.js';
+
+function maxDiff(a: Float32Array, b: Float32Array): number {
+  let d = 0;
+  for (let i = 0; i < a.length; i++) d = Math.max(d, Math.abs(a[i] - b[i]));
+  return d;
+}
+
+function pair(sc: Scene): [Simulation, Simulation] {
+  return [new Simulation(sc, { kernel: 'ts' }), new Simulation(sc, { kernel: 'wasm' })];
+}
+
+describe('xpbd wasm kernel', () => {
+  it('xpbd-kernel.generated.ts matches xpbd.as.ts (else run: node src/core/wasm/gen-wasm.mjs)', async () => {
+    expect(readFileSync(GENERATED_FILE, 'utf8')).toBe(await generateKernelModule());
+  }, 60_000);
+
+  it('runs in Node, single-threaded and over a shared memory', () => {
+    expect(wasmKernelAvailable()).toBe(true);
+    expect(wasmKernelAvailable(true)).toBe(true);
+    const sim = new Simulation(builtinScene('cotton-basic')!);
+    expect(sim.kernel).toBe('wasm');
+    expect(sim.state.positions.buffer).not.toBeInstanceOf(SharedArrayBuffer);
+  });
+
+  it.each(SCENE_NAMES)('%s: the same cloth as the TypeScript solver (1 frame: 1 µm; 30 frames: 1 cm, elastic energy 2 %%)', (name) => {
+    const sc = builtinScene(name)!;
+    sc.cloth.resolution = Math.min(sc.cloth.resolution, 12);
+    const [ts, wasm] = pair(sc);
+    ts.advance(1); wasm.advance(1);
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-6);
+    ts.advance(29); wasm.advance(29);
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-2);
+    expect(maxDiff(ts.state.velocities, wasm.state.velocities)).toBeLessThan(1);
+    const e = ts.report().energy, ew = wasm.report().energy;
+    expect(Math.abs(ew.elastic - e.elastic)).toBeLessThanOrEqual(0.02 * e.elastic + 1e-9);
+    const motion = e.kinetic + e.gravitational;
+    expect(Math.abs(ew.kinetic + ew.gravitational - motion)).toBeLessThanOrEqual(1e-3 * Math.abs(motion) + 1e-9);
+  });
+
+  it('particle contact runs in the kernel at fine meshes and agrees (64² particles on sphere and floor)', () => {
+    // start the cloth touching the sphere top (0.8 m) and the floor's plane raised into it, so that the very
+    // first frame makes hundreds of particle contacts with friction on both colliders
+    const sc = builtinScene('cotton-basic')!;
+    sc.cloth.resolution = 63;
+    sc.cloth.position = [0, 0.802, 0];
+    sc.colliders = [{ type: 'sphere', center: [0, 0.5, 0], radius: 0.3 }, { type: 'floor', height: 0.799 }];
+    sc.solver.substeps = 10;
+    const [ts, wasm] = pair(sc);
+    ts.advance(1); wasm.advance(1);
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-6);
+    // later the runs part at stick/slip decisions of friction (a threshold amplifies f32 rounding): compare the
+    // cloth as a whole
+    ts.advance(44); wasm.advance(44);
+    const a = ts.report(), b = wasm.report();
+    for (let k = 0; k < 3; k++) expect(Math.abs(a.centroid[k] - b.centroid[k])).toBeLessThan(1e-3);
+    expect(b.maxPenetration).toBeLessThanOrEqual(1e-3);
+  });
+
+  it('several iterations per substep accumulate λ as in TypeScript', () => {
+    const sc = builtinScene('pins')!;
+    sc.cloth.resolution = 10;
+    sc.solver = { type: 'xpbd', substeps: 5, iterations: 3 };
+    const [ts, wasm] = pair(sc);
+    ts.advance(1); wasm.advance(1);
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-6);
+    // λ comes from rest − length, a cancellation: f32 leaves it a few % of the largest λ
+    expect(maxDiff(ts.state.lambdas, wasm.state.lambdas)).toBeLessThan(0.05 * Math.max(...ts.state.lambdas.map(Math.abs)));
+  });
+
+  it('a stiffness change applies on the next step (compliances are uploaded again)', () => {
+    const sc = builtinScene('pins')!;
+    sc.cloth.resolution = 10;
+    const [ts, wasm] = pair(sc);
+    ts.advance(20); wasm.advance(20);
+    const before = maxDiff(ts.state.positions, wasm.state.positions);
+    for (const sim of [ts, wasm]) sim.set('material.structuralStiffness', 5);
+    ts.advance(1); wasm.advance(1);
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(before + 1e-5);
+  });
+
+  it('the mass-spring solver steps a kernel state exactly as a plain one', () => {
+    const sc = builtinScene('wind')!;
+    sc.cloth.resolution = 8;
+    sc.solver.type = 'mass-spring';
+    const a = new Simulation(sc, { kernel: 'ts' });
+    const state = createWasmState(a.model)!;
+    state.pinned.set(a.state.pinned);
+    for (let f = 0; f < 20; f++) { a.advance(1); step(a.model, state, a.params, FRAME_DT); }
+    expect(maxDiff(a.state.positions, state.positions)).toBe(0);
+  });
+
+  it('createState still makes plain arrays; kernel states keep theirs in the kernel memory', () => {
+    const sim = new Simulation(builtinScene('custom')!, { kernel: 'ts' });
+    expect(createState(sim.model).kernel).toBeUndefined();
+    const st = createWasmState(sim.model)!;
+    expect(st.positions.buffer).toBe(st.previousPositions.buffer);
+    expect([...st.positions]).toEqual([...sim.model.restPositions]);
+    expect([...st.tetherAnchors].every((a) => a === -1)).toBe(true);
+  });
+});
