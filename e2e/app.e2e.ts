@@ -161,6 +161,9 @@ describe('WebGPU page', () => {
     await page.waitForTimeout(400);
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('mass-spring, 30 substeps');
     await choose(page, 'solver.type', 'xpbd');
+    // the worker steps the cloth in the WebAssembly SIMD kernel, and the HUD says so
+    await step(page, 10);
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('CPU (worker, WebAssembly SIMD)');
   });
 
   it('V cycles all five views and names each on screen', async () => {

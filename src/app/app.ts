@@ -789,7 +789,8 @@ export class App implements PanelHost, InteractionHost {
       fps: this.fps,
       idle: this.idle,
       backend: this.stage.backend === 'webgpu' ? 'WebGPU' : 'WebGL2',
-      simBackend: this.sim.kind === 'gpu' ? 'GPU (WebGPU compute)' : 'CPU (worker)',
+      simBackend: this.sim.kind === 'gpu' ? 'GPU (WebGPU compute)'
+        : `CPU (worker${this.sim.stats.kernel === 'wasm' ? ', WebAssembly SIMD' : this.sim.stats.kernel === 'ts' ? ', TypeScript' : ''})`,
       backendNote: this.backendNote,
       stepMs: this.sim.stats.stepMs,
       realTime: this.sim.stats.realTime,

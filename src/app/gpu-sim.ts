@@ -66,7 +66,8 @@ export class GpuSim implements SimDriver {
     this.destroySolvers();
     this.mirrors.length = 0;
     for (const scene of scenes) {
-      const sim = new Simulation(scene);
+      // the mirror holds scene, model and read-back positions; the GPU steps, so no kernel memory
+      const sim = new Simulation(scene, { kernel: 'ts' });
       this.mirrors.push({ sim, modelGen: 0, frame: 0, grabbed: -1 });
       this.slots.push({ solver: null, model: null, creating: null, stale: false });
     }

@@ -49,5 +49,7 @@ export type FromWorker =
     energy: Energy;
     maxStrain: number;
     clamps: string[];
+    /** CPU kernel of slot 0: 'wasm' (WebAssembly SIMD) or 'ts' */
+    kernel: string;
   }
   | { type: 'error'; message: string };

@@ -30,6 +30,8 @@ export interface SimStats {
   clamps: string[];
   /** frames answered by the worker since the page loaded */
   framesDone: number;
+  /** where the CPU worker runs the XPBD substeps ('wasm': WebAssembly SIMD; 'ts': TypeScript); '' on the GPU */
+  kernel: string;
 }
 
 /** What the app drives: the CPU backend (SimClient, a worker) or the GPU backend (GpuSim, on the page's device). */
@@ -82,7 +84,8 @@ export class SimClient implements SimDriver {
   load(scenes: Scene[]): void {
     const gen = ++this.gen;
     this.mirrors.length = 0;
-    for (const scene of scenes) this.mirrors.push({ sim: new Simulation(scene), modelGen: gen, frame: 0, grabbed: -1 });
+    // mirrors hold the scene and model for picking and the panel; they never step, so no kernel memory
+    for (const scene of scenes) this.mirrors.push({ sim: new Simulation(scene, { kernel: 'ts' }), modelGen: gen, frame: 0, grabbed: -1 });
     this.post({ type: 'load', gen, scenes: this.mirrors.map((m) => m.sim.scene) });
     this.clock.clear();
   }
@@ -184,6 +187,7 @@ export class SimClient implements SimDriver {
     s.energy = msg.energy;
     s.maxStrain = msg.maxStrain;
     s.clamps = msg.clamps;
+    s.kernel = msg.kernel;
     const done = this.pending.get(msg.id);
     this.pending.delete(msg.id);
     done?.();

@@ -40,7 +40,8 @@ function frameMessage(id: number, frames: number, stepMs: number): void {
     maxStrain = Math.max(maxStrain, maxStructuralStrain(sim.model, sim.state));
     for (const c of sim.params.clamps) clamps.add(c);
   }
-  send({ type: 'frame', id, frames, slots: out, stepMs, energy: total, maxStrain, clamps: [...clamps] }, transfer);
+  const kernel = slots[0]?.sim.kernel ?? '';
+  send({ type: 'frame', id, frames, slots: out, stepMs, energy: total, maxStrain, clamps: [...clamps], kernel }, transfer);
 }
 
 function handle(msg: ToWorker): void {
