@@ -366,43 +366,69 @@ function limitStretch(s0: i32, s1: i32, sf: f32): void {
   return min((load<f64>(FRICTION) * depth) / tangential, 1);
 }
 
+/** Contact of particle i with one collider record, exactly as phases.ts collide() (f64 on f32 data). */
+@inline function contactParticle(i: i32, sphere: bool, c0: f64, c1: f64, c2: f64, r: f64, far: f64, th: f64): void {
+  if (load<f32>(W + (<usize>i << 2)) == 0) return;
+  const j = X + <usize>i * 12, jp = XP + <usize>i * 12;
+  const px = <f64>load<f32>(j), py = <f64>load<f32>(j, 4), pz = <f64>load<f32>(j, 8);
+  let d: f64, nx: f64, ny: f64, nz: f64;
+  if (sphere) {
+    const dx = px - c0, dy = py - c1, dz = pz - c2;
+    const d2 = dx * dx + dy * dy + dz * dz;
+    if (far > 0 && d2 >= far * far) return;
+    const dd = Math.sqrt(d2);
+    if (dd > 1e-12) { nx = dx / dd; ny = dy / dd; nz = dz / dd; } else { nx = 0; ny = 1; nz = 0; }
+    d = dd - r;
+  } else {
+    nx = 0; ny = 1; nz = 0;
+    d = py - c0;
+  }
+  if (d >= th) return;
+  const depth = th - d;
+  store<f32>(j, <f32>(px + depth * nx)); store<f32>(j, <f32>(py + depth * ny), 4); store<f32>(j, <f32>(pz + depth * nz), 8);
+  const qx = <f64>load<f32>(j), qy = <f64>load<f32>(j, 4), qz = <f64>load<f32>(j, 8);
+  const mx = qx - <f64>load<f32>(jp), my = qy - <f64>load<f32>(jp, 4), mz = qz - <f64>load<f32>(jp, 8);
+  const mn = mx * nx + my * ny + mz * nz;
+  const tx = mx - mn * nx, ty = my - mn * ny, tz = mz - mn * nz;
+  const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth);
+  store<f32>(j, <f32>(qx - s * tx)); store<f32>(j, <f32>(qy - s * ty), 4); store<f32>(j, <f32>(qz - s * tz), 8);
+}
+
 /**
  * Particle contact against the collider records, as phases.ts collide() does for shapes that need no triangle
- * contact: each particle within the thickness is pushed out along the normal, then friction.
+ * contact: each particle within the thickness is pushed out along the normal, then friction. Four particles at a
+ * time are first tested in f32 against a reach widened by far more than f32 rounding (1e-5 of the coordinates'
+ * size), so a skipped quad is surely out of contact and the exact f64 test alone decides the rest.
  */
 function collideParticles(p0: i32, p1: i32): void {
   const th = load<f64>(THICKNESS);
   const count = load<i32>(COLLIDERS);
   for (let c = 0; c < count; c++) {
     const rec = COLLIDER_RECORDS + <usize>c * COLLIDER_BYTES;
-    const type = load<f64>(rec);
+    const sphere = load<f64>(rec) == 1;
     const c0 = load<f64>(rec, 8), c1 = load<f64>(rec, 16), c2 = load<f64>(rec, 24), r = load<f64>(rec, 32);
     const far = r + th;
-    for (let i = p0; i < p1; i++) {
-      if (load<f32>(W + (<usize>i << 2)) == 0) continue;
-      const j = X + <usize>i * 12, jp = XP + <usize>i * 12;
-      const px = <f64>load<f32>(j), py = <f64>load<f32>(j, 4), pz = <f64>load<f32>(j, 8);
-      let d: f64, nx: f64, ny: f64, nz: f64;
-      if (type == 1) {
-        const dx = px - c0, dy = py - c1, dz = pz - c2;
-        const d2 = dx * dx + dy * dy + dz * dz;
-        if (far > 0 && d2 >= far * far) continue;
-        const dd = Math.sqrt(d2);
-        if (dd > 1e-12) { nx = dx / dd; ny = dy / dd; nz = dz / dd; } else { nx = 0; ny = 1; nz = 0; }
-        d = dd - r;
+    const slack = 1e-5 * (1 + Math.abs(c0) + Math.abs(c1) + Math.abs(c2) + Math.abs(far));
+    const reach = far + slack;
+    const vReach2 = f32x4.splat(far > 0 ? <f32>(reach * reach) : Infinity);
+    const vTop = f32x4.splat(<f32>(c0 + th + slack));
+    const vc0 = f32x4.splat(<f32>c0), vc1 = f32x4.splat(<f32>c1), vc2 = f32x4.splat(<f32>c2);
+    let i = p0;
+    for (; i + 4 <= p1; i += 4) {
+      const o = X + <usize>i * 12;
+      const q0 = v128.load(o), q1 = v128.load(o, 12), q2 = v128.load(o, 24), q3 = v128.load(o, 36);
+      const t0 = lo2(q0, q1), t1 = lo2(q2, q3);
+      let near: v128;
+      if (sphere) {
+        const dx = f32x4.sub(lanesXY0(t0, t1), vc0), dy = f32x4.sub(lanesXY1(t0, t1), vc1);
+        const dz = f32x4.sub(lanesXY0(hi2(q0, q1), hi2(q2, q3)), vc2);
+        near = f32x4.lt(dot3(dx, dy, dz, dx, dy, dz), vReach2);
       } else {
-        nx = 0; ny = 1; nz = 0;
-        d = py - c0;
+        near = f32x4.lt(lanesXY1(t0, t1), vTop);
       }
-      if (d >= th) continue;
-      const depth = th - d;
-      store<f32>(j, <f32>(px + depth * nx)); store<f32>(j, <f32>(py + depth * ny), 4); store<f32>(j, <f32>(pz + depth * nz), 8);
-      const qx = <f64>load<f32>(j), qy = <f64>load<f32>(j, 4), qz = <f64>load<f32>(j, 8);
-      const mx = qx - <f64>load<f32>(jp), my = qy - <f64>load<f32>(jp, 4), mz = qz - <f64>load<f32>(jp, 8);
-      const mn = mx * nx + my * ny + mz * nz;
-      const tx = mx - mn * nx, ty = my - mn * ny, tz = mz - mn * nz;
-      const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth);
-      store<f32>(j, <f32>(qx - s * tx)); store<f32>(j, <f32>(qy - s * ty), 4); store<f32>(j, <f32>(qz - s * tz), 8);
+      if (!v128.any_true(near)) continue;
+      for (let k = 0; k < 4; k++) contactParticle(i + k, sphere, c0, c1, c2, r, far, th);
     }
+    for (; i < p1; i++) contactParticle(i, sphere, c0, c1, c2, r, far, th);
   }
 }
