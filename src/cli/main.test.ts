@@ -1,6 +1,6 @@
 import { execFileSync, spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { availableParallelism, tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { main } from './main.js';
@@ -21,6 +21,34 @@ describe('drape CLI', () => {
     expect(j).toMatchObject({ scene: 'cotton-basic', solver: 'xpbd', backend: 'cpu', frames: 30, particles: 81, triangles: 128, finite: true });
     expect(j.centroid).toHaveLength(3);
     expect(Object.keys(j.energy)).toEqual(['kinetic', 'gravitational', 'elastic']);
+  });
+
+  it('--kernel and --threads choose how the CPU steps XPBD, and the JSON says what ran', async () => {
+    const args = ['run', 'cotton-basic', '--frames', '10', '--set', 'cloth.resolution=8', '--json'];
+    const ts = JSON.parse((await run(...args, '--kernel', 'ts')).out);
+    const one = JSON.parse((await run(...args, '--kernel', 'wasm', '--threads', '1')).out);
+    const auto = JSON.parse((await run(...args)).out);
+    expect(ts).toMatchObject({ kernel: 'ts', threads: 1 });
+    expect(one).toMatchObject({ kernel: 'wasm', threads: 1 });
+    expect(auto).toMatchObject({ kernel: 'wasm', threads: Math.min(8, availableParallelism()) });
+    expect(auto.centroid).toEqual(one.centroid); // threads change nothing, bit for bit
+    for (let k = 0; k < 3; k++) expect(Math.abs(one.centroid[k] - ts.centroid[k])).toBeLessThan(1e-4);
+    // more threads than cores are clamped, with a note
+    const many = await run(...args, '--threads', '999');
+    expect(JSON.parse(many.out).threads).toBeLessThanOrEqual(availableParallelism());
+    expect(many.err).toMatch(/--threads 999: using \d+, the cores available/);
+  });
+
+  it('bench --json times the wasm kernel on its threads, on 1 thread, in TypeScript, and mass-spring', async () => {
+    const r = await run('bench', '--sizes', '9', '--frames', '2', '--warmup', '1', '--no-peer', '--json');
+    expect(r.code).toBe(0);
+    const j = JSON.parse(r.out);
+    const row = j.rows[0];
+    expect(row).toMatchObject({ particlesPerSide: 9, particles: 81 });
+    expect(row.xpbd).toMatchObject({ kernel: 'wasm', finite: true, stable: true });
+    expect(row.xpbd.threads).toBe(j.threads);
+    expect(row.xpbd1).toMatchObject({ kernel: 'wasm', finite: true });
+    for (const t of [row.xpbd, row.xpbd1, row.xpbdTs, row.massSpring]) expect(t.msPerFrame).toBeGreaterThan(0);
   });
 
   it('--frames 0 reports the start state; --solver and --set change the scene', async () => {
@@ -59,6 +87,8 @@ describe('drape CLI', () => {
     [['run', '--backend', 'quantum'], /--backend: must be cpu or gpu/],
     [['run', '--backend', 'gpu', '--solver', 'mass-spring', '--frames', '1'], /only the xpbd solver runs on the GPU/],
     [['bench', '--sizes', '64,x'], /--sizes: must be an integer/],
+    [['run', '--kernel', 'gpu'], /--kernel: must be wasm or ts/],
+    [['run', '--threads', '0'], /--threads: must be an integer in 1…1024/],
     [['fly'], /unknown command 'fly'/],
   ])('bad input %j exits 2 with one line naming the problem', async (argv, message) => {
     const r = await run(...argv);
