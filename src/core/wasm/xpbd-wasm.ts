@@ -5,7 +5,7 @@
  * tethers, stretch limiting and particle contact against the colliders that have a kernel record; the frame loop,
  * wind and whatever contact the kernel cannot do stay in TypeScript (phases.ts), in the same order as runFrame.
  *
- * Threads: with `threads` > 1 the memory is shared and the caller's front end starts `threads − 1` helpers
+ * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
  * (a Web Worker or a Node worker thread each) with helperInit(); until every helper has checked in, substeps run
  * on the calling thread alone, so a slow start never blocks and never changes results beyond f32 rounding order.
  */
@@ -15,7 +15,7 @@ import type { SimParams } from '../params.js';
 import { createState, type ClothState } from '../state.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
-// control block, byte offsets (mirrors xpbd.as.ts)
+// control block, byte offsets (mirrors xpbd.as.ts; 1024…3072 holds the threads' chunk counters)
 const CTRL_DISPATCH = 0;
 const CTRL_THREADS = 12;
 const CTRL_GRABBED = 20;
@@ -34,9 +34,11 @@ const CTRL_FRICTION = 152;
 const CTRL_STATIC_FRICTION = 160;
 const CTRL_COLLIDER_RECORDS = 256;
 const CTRL_COLLIDER_BYTES = 48;
-const CTRL_BYTES = 1024;
+const CTRL_BYTES = 4096;
 /** collider records the control block holds; scenes with more use the TypeScript contact phase */
 export const KERNEL_MAX_COLLIDERS = 8;
+/** most threads a kernel runs (chunk counters in the control block; mirrors xpbd.as.ts MAX_THREADS) */
+export const KERNEL_MAX_THREADS = 16;
 const FLAG_FORCES = 1;
 const FLAG_CONTACT = 2;
 const FLAG_ACCUMULATE = 4;
@@ -155,7 +157,7 @@ export class XpbdKernel {
    * no shared memory: then the caller may ask again with 1 thread).
    */
   static create(model: ClothModel, threads = 1): XpbdKernel | null {
-    const t = Math.max(1, Math.floor(threads));
+    const t = Math.min(KERNEL_MAX_THREADS, Math.max(1, Math.floor(threads)));
     const module = kernelModule(t > 1);
     return module ? new XpbdKernel(model, t, module) : null;
   }

@@ -5,8 +5,11 @@
 // SIMD lanes (springs of a batch share no particle, so the lanes never write the same particle); integration,
 // tethers and contact are scalar f64 on f32 data exactly as the TypeScript code computes them.
 //
-// Threads: with the threads build, T instances over one shared memory run the same substep, each on its share of
-// every particle range and every colour batch, meeting at a barrier between phases and between batches.
+// Threads: with the threads build, T instances over one shared memory run the same substep. Every phase (a
+// particle range, a colour batch) is cut into chunks; thread t owns the t-th contiguous run of chunks (a region of
+// the cloth: springs of a batch are sorted by particle) and takes them from an atomic counter, then helps the
+// other threads with theirs, so a thread slowed by the machine simply does fewer; a barrier separates phases. A spring or particle
+// is computed by the same arithmetic whichever thread takes it, so the result does not depend on T.
 // Thread 0 is the caller's; helpers sit in helperLoop() and are started by a dispatch counter in the control
 // block. The single-thread build compiles no atomics and runs with T = 1.
 //
@@ -35,6 +38,8 @@ const FRICTION: usize = 152; // f64 kinetic
 const STATIC_FRICTION: usize = 160; // f64 static
 const COLLIDER_RECORDS: usize = 256; // 8 × 6 f64: type (1 sphere, 2 floor), then cx, cy, cz, r | height
 const COLLIDER_BYTES: usize = 48;
+const CHUNKS: usize = 1024; // 2 × 16 i32, each on its own 64-byte line: per phase parity and thread, the next chunk of its run
+const MAX_THREADS: i32 = 16;
 
 const BEND: i32 = 2;
 const FLAG_FORCES: i32 = 1;
@@ -66,15 +71,23 @@ export function configure(
 
 // ---- threads ----
 
+/** Springs per chunk (a multiple of 4: chunks keep the quads of the 1-thread pass) and particles per chunk. */
+const CHUNK_SPRINGS: i32 = 256;
+const CHUNK_PARTICLES: i32 = 1024;
+
 /**
- * Generation-counting spin barrier: threads never sleep inside a substep (a phase takes microseconds), so a kernel must
- * not have more threads than cores (xpbd-wasm.ts clamps to the cores the front end reports).
+ * Generation-counting spin barrier after phase `phase`: the last thread to arrive also resets that phase's chunk
+ * counters (every thread is done taking chunks of it), so the counters alternate by phase parity. Threads never
+ * sleep inside a substep (a phase takes microseconds), so a kernel must not have more threads than cores (the
+ * front ends clamp to the cores they report).
  */
-function barrier(T: i32): void {
+function barrier(T: i32, phase: i32): void {
   if (ASC_FEATURE_THREADS) {
     if (T <= 1) return;
     const gen = atomic.load<i32>(BAR_GEN);
     if (atomic.add<i32>(BAR_COUNT, 1) == T - 1) {
+      const counters = CHUNKS + (<usize>(phase & 1) * MAX_THREADS << 6);
+      for (let v = 0; v < T; v++) atomic.store<i32>(counters + (<usize>v << 6), 0);
       atomic.store<i32>(BAR_COUNT, 0);
       atomic.store<i32>(BAR_GEN, gen + 1);
     } else {
@@ -83,10 +96,27 @@ function barrier(T: i32): void {
   }
 }
 
-/** Start of thread t's share of [start, end) split T ways on multiples of 4 (springs) or 1 (particles). */
-@inline function shareStart(start: i32, end: i32, t: i32, T: i32, align: i32): i32 {
-  const per = (((end - start + T * align - 1) / (T * align)) * align);
-  return min(end, start + t * per);
+/**
+ * Chunk index for thread t in a phase of `count` chunks, or -1 when none is left: first the chunks of t's own run,
+ * then those left in the runs of t + 1, t + 2, … (`runOf`, per instance: the run t is working on).
+ */
+let runOf: i32 = 0;
+@inline function firstChunk(t: i32, T: i32, phase: i32, count: i32): i32 {
+  runOf = 0;
+  return nextChunk(t, T, phase, count);
+}
+function nextChunk(t: i32, T: i32, phase: i32, count: i32): i32 {
+  if (ASC_FEATURE_THREADS) {
+    const counters = CHUNKS + (<usize>(phase & 1) * MAX_THREADS << 6);
+    while (runOf < T) {
+      const v = (t + runOf) % T;
+      const lo = (v * count) / T, hi = ((v + 1) * count) / T;
+      const c = lo + atomic.add<i32>(counters + (<usize>v << 6), 1);
+      if (c < hi) return c;
+      runOf++;
+    }
+  }
+  return -1;
 }
 
 /**
@@ -133,18 +163,31 @@ export function stopHelpers(): void {
   }
 }
 
+/**
+ * Thread t's part of one substep: integrate (+ grab), the distance constraints batch by batch, tethers, stretch
+ * limiting batch by batch, particle contact — each phase in chunks, a barrier after each.
+ */
 function substepShare(t: i32, T: i32): void {
-  const p0 = shareStart(0, N, t, T, 1), p1 = shareStart(0, N, t + 1, T, 1);
+  let phase = 0;
   const flags = load<i32>(FLAGS);
-  integrate(p0, p1, (flags & FLAG_FORCES) != 0);
-  const g = load<i32>(GRABBED);
-  if (t == 0 && g >= 0) {
-    const gp = X + <usize>g * 12;
-    store<f32>(gp, <f32>load<f64>(GRAB_AT));
-    store<f32>(gp, <f32>load<f64>(GRAB_AT + 8), 4);
-    store<f32>(gp, <f32>load<f64>(GRAB_AT + 16), 8);
+  const forces = (flags & FLAG_FORCES) != 0;
+  const particleChunks = (N + CHUNK_PARTICLES - 1) / CHUNK_PARTICLES;
+  if (T == 1) integrate(0, N, forces);
+  else for (let c = firstChunk(t, T, phase, particleChunks); c >= 0; c = nextChunk(t, T, phase, particleChunks)) {
+    integrate(c * CHUNK_PARTICLES, min(N, (c + 1) * CHUNK_PARTICLES), forces);
   }
-  barrier(T);
+  barrier(T, phase++);
+  const g = load<i32>(GRABBED);
+  if (g >= 0) {
+    // after every thread has integrated (the grabbed particle's x_prev is its position before the grab moves it)
+    if (t == 0) {
+      const gp = X + <usize>g * 12;
+      store<f32>(gp, <f32>load<f64>(GRAB_AT));
+      store<f32>(gp, <f32>load<f64>(GRAB_AT + 8), 4);
+      store<f32>(gp, <f32>load<f64>(GRAB_AT + 16), 8);
+    }
+    barrier(T, phase++);
+  }
   const h = load<f64>(H);
   const invH2 = <f32>(1 / (h * h));
   const betaOverH = <f32>(load<f64>(DAMPING) / h);
@@ -154,25 +197,45 @@ function substepShare(t: i32, T: i32): void {
   for (let it = 0; it < iterations; it++) {
     for (let b = 0; b < BATCH_COUNT; b++) {
       const rec = BATCHES + <usize>b * 12;
-      const start = load<i32>(rec), end = load<i32>(rec, 4), kind = load<i32>(rec, 8);
-      const s0 = shareStart(start, end, t, T, 4), s1 = shareStart(start, end, t + 1, T, 4);
-      solveDistance(s0, s1, invH2, betaOverH, kind == BEND ? F32.MAX_VALUE : sf, accumulate);
-      barrier(T);
+      const start = load<i32>(rec), end = load<i32>(rec, 4);
+      const cap = load<i32>(rec, 8) == BEND ? F32.MAX_VALUE : sf;
+      if (T == 1) solveDistance(start, end, invH2, betaOverH, cap, accumulate);
+      else {
+        const chunks = (end - start + CHUNK_SPRINGS - 1) / CHUNK_SPRINGS;
+        for (let c = firstChunk(t, T, phase, chunks); c >= 0; c = nextChunk(t, T, phase, chunks)) {
+          const s0 = start + c * CHUNK_SPRINGS;
+          solveDistance(s0, min(end, s0 + CHUNK_SPRINGS), invH2, betaOverH, cap, accumulate);
+        }
+      }
+      barrier(T, phase++);
     }
   }
-  solveTethers(p0, p1, load<f64>(STRETCH));
-  barrier(T);
+  const sf64 = load<f64>(STRETCH);
+  if (T == 1) solveTethers(0, N, sf64);
+  else for (let c = firstChunk(t, T, phase, particleChunks); c >= 0; c = nextChunk(t, T, phase, particleChunks)) {
+    solveTethers(c * CHUNK_PARTICLES, min(N, (c + 1) * CHUNK_PARTICLES), sf64);
+  }
+  barrier(T, phase++);
   for (let b = 0; b < BATCH_COUNT; b++) {
     const rec = BATCHES + <usize>b * 12;
-    const start = load<i32>(rec), end = load<i32>(rec, 4), kind = load<i32>(rec, 8);
-    if (kind == BEND) continue;
-    const s0 = shareStart(start, end, t, T, 4), s1 = shareStart(start, end, t + 1, T, 4);
-    limitStretch(s0, s1, sf);
-    barrier(T);
+    if (load<i32>(rec, 8) == BEND) continue;
+    const start = load<i32>(rec), end = load<i32>(rec, 4);
+    if (T == 1) limitStretch(start, end, sf);
+    else {
+      const chunks = (end - start + CHUNK_SPRINGS - 1) / CHUNK_SPRINGS;
+      for (let c = firstChunk(t, T, phase, chunks); c >= 0; c = nextChunk(t, T, phase, chunks)) {
+        const s0 = start + c * CHUNK_SPRINGS;
+        limitStretch(s0, min(end, s0 + CHUNK_SPRINGS), sf);
+      }
+    }
+    barrier(T, phase++);
   }
   if ((flags & FLAG_CONTACT) != 0) {
-    collideParticles(p0, p1);
-    barrier(T);
+    if (T == 1) collideParticles(0, N);
+    else for (let c = firstChunk(t, T, phase, particleChunks); c >= 0; c = nextChunk(t, T, phase, particleChunks)) {
+      collideParticles(c * CHUNK_PARTICLES, min(N, (c + 1) * CHUNK_PARTICLES));
+    }
+    barrier(T, phase++);
   }
 }
 
