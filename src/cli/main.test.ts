@@ -37,6 +37,8 @@ describe('drape CLI', () => {
     const many = await run(...args, '--threads', '999');
     expect(JSON.parse(many.out).threads).toBeLessThanOrEqual(availableParallelism());
     expect(many.err).toMatch(/--threads 999: using \d+, the cores available/);
+    // mass-spring always steps in TypeScript, and says so
+    expect(JSON.parse((await run(...args, '--solver', 'mass-spring')).out)).toMatchObject({ kernel: 'ts', threads: 1 });
   });
 
   it('bench --json times the wasm kernel on its threads, on 1 thread, in TypeScript, and mass-spring', async () => {

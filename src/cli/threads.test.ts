@@ -4,7 +4,7 @@
  */
 import { availableParallelism } from 'node:os';
 import { describe, expect, it } from 'vitest';
-import { builtinScene, grab, release, Simulation, type Scene } from '../core/index.js';
+import { builtinScene, grab, release, Simulation, type HelperSpawner, type Scene } from '../core/index.js';
 import { spawnNodeHelper } from './threads.js';
 
 function scene(): Scene {
@@ -55,6 +55,30 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
     expect(sim.threads).toBe(1);
     sim.advance(5);
     expect(sim.report().finite).toBe(true);
+  });
+
+  it('after dispose: no helpers again (not by a rebuild either), and nothing waits for them', async () => {
+    const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
+    await sim.whenReady();
+    const kernel = sim.state.kernel!;
+    sim.dispose();
+    expect(() => kernel.startHelpers(spawnNodeHelper)).toThrow(/disposed/);
+    await sim.whenReady(); // at once
+    sim.set('cloth.resolution', 12);
+    expect(sim.state.kernel!.threads).toBe(1);
+    sim.advance(2);
+    expect(sim.report().finite).toBe(true);
+  });
+
+  it('a helper that fails to start makes whenReady reject with its error, and stepping stays on one thread', async () => {
+    const failing: HelperSpawner = (_init, onError) => {
+      setTimeout(() => onError(new Error('no worker for you')), 1);
+      return { terminate() {} };
+    };
+    const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: failing });
+    await expect(sim.whenReady()).rejects.toThrow(/no worker for you/);
+    sim.advance(2);
+    expect(sim.threads).toBe(1);
   });
 
   it('without a helper spawner the kernel runs on the calling thread', () => {

@@ -16,8 +16,9 @@ instance.exports.helperLoop(thread);
 `;
 
 /** Starts a kernel helper on a Node worker thread that does not keep the process alive. */
-export const spawnNodeHelper: HelperSpawner = (init) => {
+export const spawnNodeHelper: HelperSpawner = (init, onError) => {
   const worker = new Worker(HELPER_SOURCE, { eval: true, workerData: init });
+  worker.on('error', onError);
   worker.unref();
   return { terminate: () => void worker.terminate() };
 };

@@ -9,7 +9,7 @@ import { FRAME_DT, resolveParams, type SimParams } from './params.js';
 import { applyPins, resolvePins } from './pins.js';
 import { setScenePath, validateScene, type Scene } from './scene.js';
 import { step } from './solvers/index.js';
-import { createState, resetState, type ClothState } from './state.js';
+import { copyState, createState, resetState, type ClothState } from './state.js';
 import { createWasmState, type HelperSpawner } from './wasm/xpbd-wasm.js';
 
 /** Where a Simulation runs the XPBD substeps on the CPU. */
@@ -21,7 +21,10 @@ export interface SimulationOptions {
    * where the runtime can run it, else ts. Both compute the same phases; wasm is f32 in the constraint passes.
    */
   kernel?: CpuKernel | 'auto';
-  /** threads sharing each substep of the wasm kernel, default 1; more need `spawnHelper` */
+  /**
+   * threads sharing each substep of the wasm kernel, default 1; more need `spawnHelper`, and no more than the
+   * cores there are (the kernel's barriers spin)
+   */
   threads?: number;
   /** starts a helper thread of the wasm kernel (Node: cli/threads.ts spawnNodeHelper) */
   spawnHelper?: HelperSpawner;
@@ -58,6 +61,7 @@ export class Simulation {
   /** frames stepped since the last (re)start */
   frame = 0;
   private readonly options: SimulationOptions;
+  private disposed = false;
 
   constructor(scene: Scene, options: SimulationOptions = {}) {
     this.options = options;
@@ -68,7 +72,7 @@ export class Simulation {
     applyPins(this.state, resolvePins(this.model, this.scene.pins));
   }
 
-  /** the CPU kernel the XPBD substeps run in */
+  /** the CPU kernel the substeps run in: 'wasm' only for XPBD (mass-spring always steps in TypeScript) */
   get kernel(): CpuKernel {
     return this.state.kernel ? 'wasm' : 'ts';
   }
@@ -83,14 +87,17 @@ export class Simulation {
     return this.state.kernel?.whenHelpersReady() ?? Promise.resolve();
   }
 
-  /** Stops the wasm kernel's helper threads (the simulation can still step, on this thread). */
+  /** Stops the wasm kernel's helper threads for good: the simulation still steps, on this thread. */
   dispose(): void {
+    this.disposed = true;
     this.state.kernel?.dispose();
   }
 
+  /** A state for the current model and solver: in the wasm kernel's memory for XPBD (unless asked not to). */
   private newState(): ClothState {
-    const { kernel = 'auto', threads = 1, spawnHelper } = this.options;
-    if (kernel !== 'ts') {
+    const { kernel = 'auto', threads = 1 } = this.options;
+    const spawnHelper = this.disposed ? undefined : this.options.spawnHelper;
+    if (kernel !== 'ts' && this.scene.solver.type === 'xpbd') {
       const t = spawnHelper ? threads : 1;
       const state = createWasmState(this.model, t) ?? (t > 1 ? createWasmState(this.model, 1) : null);
       if (state) {
@@ -132,10 +139,19 @@ export class Simulation {
     this.scene = next;
     const rebuild = needsRebuild(prev, next);
     if (rebuild) {
-      this.dispose();
+      this.state.kernel?.dispose();
       this.model = modelFor(next);
       this.state = this.newState();
       this.frame = 0;
+    }
+    else if ((prev.solver.type === 'xpbd') !== (next.solver.type === 'xpbd')) {
+      // XPBD steps in the kernel's memory, mass-spring in plain arrays: move the cloth over, as it is
+      const moved = this.newState();
+      if (moved.kernel !== this.state.kernel) {
+        copyState(this.state, moved);
+        this.state.kernel?.dispose();
+        this.state = moved;
+      }
     }
     this.params = resolveParams(this.model, next);
     if (rebuild || JSON.stringify(prev.pins) !== JSON.stringify(next.pins)) {

@@ -98,6 +98,28 @@ describe('xpbd wasm kernel', () => {
     expect(maxDiff(a.state.positions, state.positions)).toBe(0);
   });
 
+  it('mass-spring steps in plain arrays; switching solver moves the cloth over as it is', () => {
+    const sc = builtinScene('pins')!;
+    sc.cloth.resolution = 8;
+    const sim = new Simulation(sc);
+    expect(sim.kernel).toBe('wasm');
+    sim.advance(10);
+    const before = { x: [...sim.state.positions], v: [...sim.state.velocities], pinned: [...sim.state.pinned], t: sim.state.time };
+    sim.set('solver.type', 'mass-spring');
+    expect(sim.kernel).toBe('ts');
+    expect(sim.state.kernel).toBeUndefined();
+    expect([...sim.state.positions]).toEqual(before.x);
+    expect([...sim.state.velocities]).toEqual(before.v);
+    expect([...sim.state.pinned]).toEqual(before.pinned);
+    expect(sim.state.time).toBe(before.t);
+    sim.advance(5);
+    sim.set('solver.type', 'xpbd');
+    expect(sim.kernel).toBe('wasm');
+    sim.advance(5);
+    expect(sim.report().finite).toBe(true);
+    expect(new Simulation({ ...sc, solver: { ...sc.solver, type: 'mass-spring' } }).kernel).toBe('ts');
+  });
+
   it('createState still makes plain arrays; kernel states keep theirs in the kernel memory', () => {
     const sim = new Simulation(builtinScene('custom')!, { kernel: 'ts' });
     expect(createState(sim.model).kernel).toBeUndefined();

@@ -58,8 +58,11 @@ export interface KernelHelperInit {
   thread: number;
 }
 
-/** Starts one helper thread (front-end specific: Node worker_threads, Web Workers); returns how to stop it. */
-export type HelperSpawner = (init: KernelHelperInit) => { terminate(): void };
+/**
+ * Starts one helper thread (front-end specific: Node worker_threads, Web Workers) and returns how to stop it;
+ * calls `onError` if the thread fails (then whenHelpersReady() rejects with that error).
+ */
+export type HelperSpawner = (init: KernelHelperInit, onError: (error: Error) => void) => { terminate(): void };
 
 const modules: { single?: WebAssembly.Module | null; threads?: WebAssembly.Module | null } = {};
 
@@ -111,6 +114,7 @@ export class XpbdKernel {
   private readonly helpers: { terminate(): void }[] = [];
   private paramsSeen: SimParams | undefined;
   private helpersJoined = false;
+  private helperError: Error | undefined;
   private disposed = false;
 
   private constructor(model: ClothModel, threads: number, module: WebAssembly.Module) {
@@ -164,15 +168,21 @@ export class XpbdKernel {
 
   /** Starts the helper threads with `spawn` (threads − 1 of them); substeps use them once all have checked in. */
   startHelpers(spawn: HelperSpawner): void {
+    if (this.disposed) throw new Error('XpbdKernel.startHelpers: the kernel was disposed');
+    const onError = (e: Error) => { this.helperError ??= e; };
     for (let t = this.helpers.length + 1; t < this.threads; t++) {
-      this.helpers.push(spawn({ module: this.module, memory: this.memory, layout: this.layout, thread: t }));
+      this.helpers.push(spawn({ module: this.module, memory: this.memory, layout: this.layout, thread: t }, onError));
     }
   }
 
-  /** Resolves once every helper has joined (immediately with one thread); rejects after `timeoutMs`. */
+  /**
+   * Resolves once every helper has joined (at once with one thread or after dispose); rejects if a helper failed
+   * or after `timeoutMs`.
+   */
   async whenHelpersReady(timeoutMs = 10000): Promise<void> {
     const t0 = Date.now();
-    while (!this.joinHelpers()) {
+    while (!this.joinHelpers() && !this.disposed) {
+      if (this.helperError) throw new Error(`kernel helper thread failed: ${this.helperError.message}`);
       if (Date.now() - t0 > timeoutMs) throw new Error(`kernel helper threads did not start within ${timeoutMs} ms`);
       await new Promise((r) => setTimeout(r, 2));
     }
@@ -184,7 +194,7 @@ export class XpbdKernel {
   }
 
   private joinHelpers(): boolean {
-    if (!this.helpersJoined && this.threads > 1 && this.helpers.length === this.threads - 1 &&
+    if (!this.helpersJoined && !this.disposed && !this.helperError && this.threads > 1 && this.helpers.length === this.threads - 1 &&
         Atomics.load(this.ctrlI32, CTRL_READY / 4) === this.threads - 1) {
       this.ctrlI32[CTRL_THREADS / 4] = this.threads;
       this.helpersJoined = true;

@@ -198,7 +198,7 @@ function substepShare(t: i32, T: i32): void {
     for (let b = 0; b < BATCH_COUNT; b++) {
       const rec = BATCHES + <usize>b * 12;
       const start = load<i32>(rec), end = load<i32>(rec, 4);
-      const cap = load<i32>(rec, 8) == BEND ? F32.MAX_VALUE : sf;
+      const cap: f32 = load<i32>(rec, 8) == BEND ? Infinity : sf;
       if (T == 1) solveDistance(start, end, invH2, betaOverH, cap, accumulate);
       else {
         const chunks = (end - start + CHUNK_SPRINGS - 1) / CHUNK_SPRINGS;
@@ -362,9 +362,10 @@ function solveDistance(s0: i32, s1: i32, invH2: f32, betaOverH: f32, capFactor: 
     const lamNew = v128.bitselect(f32x4.add(lam, dlE), lambda, valid);
     if (full) v128.store(lamP + (<usize>s << 2), lamNew);
     else scatter3(lamP, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, 0, lamNew);
-    // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest
+    // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest (bend: cap ∞, and as in
+    // TypeScript a NaN excess — ∞ × a zero rest length — does not count as over)
     const over = f32x4.sub(f32x4.add(len, f32x4.mul(wsum, dl)), f32x4.mul(vCap, rest));
-    dl = f32x4.sub(dl, f32x4.div(f32x4.max(over, zero), wsum));
+    dl = f32x4.sub(dl, v128.and(f32x4.div(over, wsum), f32x4.gt(over, zero)));
     dl = v128.and(dl, valid);
     const invLen = v128.and(f32x4.mul(D, q), valid);
     const nx = f32x4.mul(dx, invLen), ny = f32x4.mul(dy, invLen), nz = f32x4.mul(dz, invLen);
