@@ -79,7 +79,9 @@ const CHUNK_PARTICLES: i32 = 1024;
  * Generation-counting spin barrier after phase `phase`: the last thread to arrive also resets that phase's chunk
  * counters (every thread is done taking chunks of it), so the counters alternate by phase parity. Threads never
  * sleep inside a substep (a phase takes microseconds), so a kernel must not have more threads than cores (the
- * front ends clamp to the cores they report).
+ * front ends clamp to the cores they report). No atomic.wait here: a wait is a call out of the wasm code, and a
+ * barrier that slept there once it was inlined into the substep gave wrong cloths in Node 20 (V8 12), as if
+ * vector values live across the call lost lanes; spinning makes no call.
  */
 function barrier(T: i32, phase: i32): void {
   if (ASC_FEATURE_THREADS) {
