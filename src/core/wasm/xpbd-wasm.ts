@@ -231,12 +231,13 @@ export class XpbdKernel {
     i[CTRL_ITERATIONS / 4] = params.iterations;
     // the kernel does particle contact only when every collider has a record and none needs triangle contact
     const shapes = params.colliders;
-    const inKernel = shapes.length <= KERNEL_MAX_COLLIDERS &&
-      shapes.every((s) => s.kernelRecord && !needsTriangleContact(model, s, params.thickness));
-    i[CTRL_COLLIDERS / 4] = inKernel ? shapes.length : 0;
-    if (inKernel) {
-      shapes.forEach((s, k) => f.set(s.kernelRecord!, (CTRL_COLLIDER_RECORDS + k * CTRL_COLLIDER_BYTES) / 8));
+    let inKernel = shapes.length <= KERNEL_MAX_COLLIDERS;
+    for (let k = 0; inKernel && k < shapes.length; k++) {
+      const record = shapes[k].kernelRecord;
+      if (!record || needsTriangleContact(model, shapes[k], params.thickness)) inKernel = false;
+      else f.set(record, (CTRL_COLLIDER_RECORDS + k * CTRL_COLLIDER_BYTES) / 8);
     }
+    i[CTRL_COLLIDERS / 4] = inKernel ? shapes.length : 0;
     return inKernel;
   }
 

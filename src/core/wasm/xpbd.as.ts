@@ -8,8 +8,9 @@
 // Threads: with the threads build, T instances over one shared memory run the same substep. Every phase (a
 // particle range, a colour batch) is cut into chunks; thread t owns the t-th contiguous run of chunks (a region of
 // the cloth: springs of a batch are sorted by particle) and takes them from an atomic counter, then helps the
-// other threads with theirs, so a thread slowed by the machine simply does fewer; a barrier separates phases. A spring or particle
-// is computed by the same arithmetic whichever thread takes it, so the result does not depend on T.
+// other threads with theirs, so a thread slowed by the machine simply does fewer; a barrier separates phases. A
+// spring or particle is computed by the same arithmetic whichever thread takes it, so the result does not depend
+// on T.
 // Thread 0 is the caller's; helpers sit in helperLoop() and are started by a dispatch counter in the control
 // block. The single-thread build compiles no atomics and runs with T = 1.
 //
@@ -38,7 +39,8 @@ const FRICTION: usize = 152; // f64 kinetic
 const STATIC_FRICTION: usize = 160; // f64 static
 const COLLIDER_RECORDS: usize = 256; // 8 × 6 f64: type (1 sphere, 2 floor), then cx, cy, cz, r | height
 const COLLIDER_BYTES: usize = 48;
-const CHUNKS: usize = 1024; // 2 × 16 i32, each on its own 64-byte line: per phase parity and thread, the next chunk of its run
+// 2 × 16 i32, each on its own 64-byte line: per phase parity and thread, the next chunk of that thread's run
+const CHUNKS: usize = 1024;
 const MAX_THREADS: i32 = 16;
 
 const BEND: i32 = 2;
