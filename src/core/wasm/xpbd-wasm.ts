@@ -42,6 +42,7 @@ export const KERNEL_MAX_THREADS = 16;
 const FLAG_FORCES = 1;
 const FLAG_CONTACT = 2;
 const FLAG_ACCUMULATE = 4;
+const FLAG_STORE_LAMBDA = 8;
 
 interface KernelExports {
   configure(...layout: number[]): void;
@@ -260,7 +261,9 @@ export class XpbdKernel {
     for (let sub = 0; sub < n; sub++) {
       const forced = accumulateWind(model, state, params, state.time, h);
       if (accumulate) state.lambdas.fill(0);
-      i[CTRL_FLAGS / 4] = (forced ? FLAG_FORCES : 0) | (contactInKernel ? FLAG_CONTACT : 0) | (accumulate ? FLAG_ACCUMULATE : 0);
+      // λ is kept only where it is read: across iterations, and after the frame (energy) from its last substep
+      i[CTRL_FLAGS / 4] = (forced ? FLAG_FORCES : 0) | (contactInKernel ? FLAG_CONTACT : 0) |
+        (accumulate ? FLAG_ACCUMULATE | FLAG_STORE_LAMBDA : 0) | (sub === n - 1 ? FLAG_STORE_LAMBDA : 0);
       f[CTRL_TAYLOR / 8] = state.substeps === 0 ? 0.5 : 1;
       if (g >= 0) {
         const frac = (sub + 1) / n, t = state.grabTarget;

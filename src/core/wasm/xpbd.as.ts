@@ -24,7 +24,8 @@ const BAR_GEN: usize = 8; // i32: barrier generation
 const THREADS: usize = 12; // i32: T
 const COMMAND: usize = 16; // i32: 1 substep, 2 exit
 const GRABBED: usize = 20; // i32: grabbed particle or -1
-const FLAGS: usize = 24; // i32: bit 0 external forces, bit 1 particle contact in the kernel, bit 2 accumulate λ
+// i32: bit 0 external forces, bit 1 particle contact in the kernel, bit 2 accumulate λ, bit 3 store λ
+const FLAGS: usize = 24;
 const ITERATIONS: usize = 28; // i32
 const COLLIDERS: usize = 32; // i32: number of collider records
 const READY: usize = 36; // i32: helpers that entered helperLoop
@@ -47,6 +48,7 @@ const BEND: i32 = 2;
 const FLAG_FORCES: i32 = 1;
 const FLAG_CONTACT: i32 = 2;
 const FLAG_ACCUMULATE: i32 = 4;
+const FLAG_STORE_LAMBDA: i32 = 8;
 
 // ---- layout, set by configure() in every instance ----
 let X: usize = 0; // positions, f32 × 3n
@@ -197,18 +199,19 @@ function substepShare(t: i32, T: i32): void {
   const betaOverH = <f32>(load<f64>(DAMPING) / h);
   const sf = <f32>load<f64>(STRETCH);
   const accumulate = (flags & FLAG_ACCUMULATE) != 0;
+  const storeLambda = (flags & FLAG_STORE_LAMBDA) != 0;
   const iterations = load<i32>(ITERATIONS);
   for (let it = 0; it < iterations; it++) {
     for (let b = 0; b < BATCH_COUNT; b++) {
       const rec = BATCHES + <usize>b * 12;
       const start = load<i32>(rec), end = load<i32>(rec, 4);
       const cap: f32 = load<i32>(rec, 8) == BEND ? Infinity : sf;
-      if (T == 1) solveDistance(start, end, invH2, betaOverH, cap, accumulate);
+      if (T == 1) solveDistance(start, end, invH2, betaOverH, cap, accumulate, storeLambda);
       else {
         const chunks = (end - start + CHUNK_SPRINGS - 1) / CHUNK_SPRINGS;
         for (let c = firstChunk(t, T, phase, chunks); c >= 0; c = nextChunk(t, T, phase, chunks)) {
           const s0 = start + c * CHUNK_SPRINGS;
-          solveDistance(s0, min(end, s0 + CHUNK_SPRINGS), invH2, betaOverH, cap, accumulate);
+          solveDistance(s0, min(end, s0 + CHUNK_SPRINGS), invH2, betaOverH, cap, accumulate, storeLambda);
         }
       }
       barrier(T, phase++);
@@ -306,8 +309,12 @@ function integrate(p0: i32, p1: i32, withForces: bool): void {
  * Distance constraints [s0, s1) of one batch, as solvers/xpbd.ts solveDistanceConstraints() in f32:
  * Δλ = (−C − α̃λ − γ∇C·(x − x_prev)) / ((1 + γ)(w_a + w_b) + α̃) with the hard cap at capFactor × rest.
  * Four springs per step; the last 1–3 repeat the last spring in the spare lanes (same values written twice).
+ * λ is read only when it accumulates and written only when `storeLambda` (several iterations, or the frame's last
+ * substep: what is read of λ after a frame is that substep's).
  */
-function solveDistance(s0: i32, s1: i32, invH2: f32, betaOverH: f32, capFactor: f32, accumulate: bool): void {
+function solveDistance(
+  s0: i32, s1: i32, invH2: f32, betaOverH: f32, capFactor: f32, accumulate: bool, storeLambda: bool,
+): void {
   // the layout's globals in locals: V8 keeps them in registers across the loop
   const x = X, xp = XP, w = W, sp = SPRINGS, restP = REST, alphaP = ALPHA, lamP = LAMBDA;
   const vInvH2 = f32x4.splat(invH2), vBeta = f32x4.splat(betaOverH), vCap = f32x4.splat(capFactor);
@@ -322,16 +329,17 @@ function solveDistance(s0: i32, s1: i32, invH2: f32, betaOverH: f32, capFactor: 
     const pa3 = <usize>load<u32>(sp + (<usize>k3 << 3)), pb3 = <usize>load<u32>(sp + (<usize>k3 << 3), 4);
     const a0 = pa0 * 12, a1 = pa1 * 12, a2 = pa2 * 12, a3 = pa3 * 12;
     const b0 = pb0 * 12, b1 = pb1 * 12, b2 = pb2 * 12, b3 = pb3 * 12;
-    let rest: v128, alpha: v128, lambda: v128;
+    let rest: v128, alpha: v128, lambda = zero;
+    const useLambda = accumulate || storeLambda;
     if (full) {
       rest = v128.load(restP + (<usize>s << 2));
       alpha = v128.load(alphaP + (<usize>s << 2));
-      lambda = v128.load(lamP + (<usize>s << 2));
+      if (useLambda) lambda = v128.load(lamP + (<usize>s << 2));
     } else {
       const o0 = <usize>s << 2, o1 = <usize>k1 << 2, o2 = <usize>k2 << 2, o3 = <usize>k3 << 2;
       rest = gather3(restP, o0, o1, o2, o3, 0);
       alpha = gather3(alphaP, o0, o1, o2, o3, 0);
-      lambda = gather3(lamP, o0, o1, o2, o3, 0);
+      if (useLambda) lambda = gather3(lamP, o0, o1, o2, o3, 0);
     }
     const wa = gather3(w, pa0 << 2, pa1 << 2, pa2 << 2, pa3 << 2, 0);
     const wb = gather3(w, pb0 << 2, pb1 << 2, pb2 << 2, pb3 << 2, 0);
@@ -363,9 +371,11 @@ function solveDistance(s0: i32, s1: i32, invH2: f32, betaOverH: f32, capFactor: 
       const rz = f32x4.sub(dz, lanesXY0(hi2(da0, da1), hi2(da2, da3)));
       dl = f32x4.sub(dl, f32x4.mul(f32x4.mul(gamma, q), dot3(rx, ry, rz, dx, dy, dz)));
     }
-    const lamNew = v128.bitselect(f32x4.add(lam, dlE), lambda, valid);
-    if (full) v128.store(lamP + (<usize>s << 2), lamNew);
-    else scatter3(lamP, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, 0, lamNew);
+    if (storeLambda) {
+      const lamNew = v128.bitselect(f32x4.add(lam, dlE), lambda, valid);
+      if (full) v128.store(lamP + (<usize>s << 2), lamNew);
+      else scatter3(lamP, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, 0, lamNew);
+    }
     // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest (bend: cap ∞, and as in
     // TypeScript a NaN excess — ∞ × a zero rest length — does not count as over)
     const over = f32x4.sub(f32x4.add(len, f32x4.mul(wsum, dl)), f32x4.mul(vCap, rest));
