@@ -56,7 +56,8 @@ describe('xpbd wasm kernel', () => {
     sc.solver.substeps = 10;
     const [ts, wasm] = pair(sc);
     ts.advance(1); wasm.advance(1);
-    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-6);
+    // contact in f32 lanes: about ten f32 steps at 0.8 m (6e-7); a wrong push or friction is off by millimetres
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(5e-6);
     // later the runs part at stick/slip decisions of friction (a threshold amplifies f32 rounding): compare the
     // cloth as a whole
     ts.advance(44); wasm.advance(44);

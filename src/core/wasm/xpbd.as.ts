@@ -2,8 +2,9 @@
 // xpbd-kernel.generated.ts). The same phases, in the same order, as the TypeScript solver (solvers/xpbd.ts,
 // phases.ts): integrate (+ the grab), distance constraints batch by batch, tethers, stretch limiting batch by
 // batch, particle contact. The constraint and stretch passes run four springs of a colour batch at once in f32x4
-// SIMD lanes (springs of a batch share no particle, so the lanes never write the same particle); integration,
-// tethers and contact are scalar f64 on f32 data exactly as the TypeScript code computes them.
+// SIMD lanes (springs of a batch share no particle, so the lanes never write the same particle), contact four
+// particles at once; integration and tethers are scalar f64 on f32 data exactly as the TypeScript code computes
+// them.
 //
 // Threads: with the threads build, T instances over one shared memory run the same substep. Every phase (a
 // particle range, a colour batch) is cut into chunks; thread t owns the t-th contiguous run of chunks (a region of
@@ -450,7 +451,7 @@ function limitStretch(s0: i32, s1: i32, sf: f32): void {
   return min((load<f64>(FRICTION) * depth) / tangential, 1);
 }
 
-/** Contact of particle i with one collider record, exactly as phases.ts collide() (f64 on f32 data). */
+/** Contact of particle i with one collider record, exactly as phases.ts collide() (f64 on f32 data): the tail. */
 @inline function contactParticle(i: i32, sphere: bool, c0: f64, c1: f64, c2: f64, r: f64, far: f64, th: f64): void {
   if (load<f32>(W + (<usize>i << 2)) == 0) return;
   const j = X + <usize>i * 12, jp = XP + <usize>i * 12;
@@ -480,38 +481,69 @@ function limitStretch(s0: i32, s1: i32, sf: f32): void {
 
 /**
  * Particle contact against the collider records, as phases.ts collide() does for shapes that need no triangle
- * contact: each particle within the thickness is pushed out along the normal, then friction. Four particles at a
- * time are first tested in f32 against a reach widened by far more than f32 rounding (1e-5 of the coordinates'
- * size), so a skipped quad is surely out of contact and the exact f64 test alone decides the rest.
+ * contact: each particle within the thickness is pushed out along the normal, then friction removes (static) or
+ * reduces (kinetic) its tangential motion over the substep. Four particles at a time in f32x4 lanes; the last 1–3
+ * particles of the cloth one by one in f64 (contactParticle).
  */
 function collideParticles(p0: i32, p1: i32): void {
+  const x = X, xp = XP, w = W;
   const th = load<f64>(THICKNESS);
+  const vTh = f32x4.splat(<f32>th);
+  const vMuS = f32x4.splat(<f32>load<f64>(STATIC_FRICTION)), vMuK = f32x4.splat(<f32>load<f64>(FRICTION));
+  const zero = f32x4.splat(0), one = f32x4.splat(1), tiny = f32x4.splat(1e-12);
   const count = load<i32>(COLLIDERS);
   for (let c = 0; c < count; c++) {
     const rec = COLLIDER_RECORDS + <usize>c * COLLIDER_BYTES;
     const sphere = load<f64>(rec) == 1;
     const c0 = load<f64>(rec, 8), c1 = load<f64>(rec, 16), c2 = load<f64>(rec, 24), r = load<f64>(rec, 32);
     const far = r + th;
-    const slack = 1e-5 * (1 + Math.abs(c0) + Math.abs(c1) + Math.abs(c2) + Math.abs(far));
-    const reach = far + slack;
-    const vReach2 = f32x4.splat(far > 0 ? <f32>(reach * reach) : Infinity);
-    const vTop = f32x4.splat(<f32>(c0 + th + slack));
-    const vc0 = f32x4.splat(<f32>c0), vc1 = f32x4.splat(<f32>c1), vc2 = f32x4.splat(<f32>c2);
+    const vc0 = f32x4.splat(<f32>c0), vc1 = f32x4.splat(<f32>c1), vc2 = f32x4.splat(<f32>c2), vR = f32x4.splat(<f32>r);
+    const vFar2 = f32x4.splat(far > 0 ? <f32>(far * far) : Infinity);
     let i = p0;
     for (; i + 4 <= p1; i += 4) {
-      const o = X + <usize>i * 12;
-      const q0 = v128.load(o), q1 = v128.load(o, 12), q2 = v128.load(o, 24), q3 = v128.load(o, 36);
+      const o = <usize>i * 12;
+      const q0 = v128.load(x + o), q1 = v128.load(x + o, 12), q2 = v128.load(x + o, 24), q3 = v128.load(x + o, 36);
       const t0 = lo2(q0, q1), t1 = lo2(q2, q3);
-      let near: v128;
+      const px = lanesXY0(t0, t1), py = lanesXY1(t0, t1), pz = lanesXY0(hi2(q0, q1), hi2(q2, q3));
+      let nx = zero, ny = one, nz = zero, d: v128, touching: v128;
       if (sphere) {
-        const dx = f32x4.sub(lanesXY0(t0, t1), vc0), dy = f32x4.sub(lanesXY1(t0, t1), vc1);
-        const dz = f32x4.sub(lanesXY0(hi2(q0, q1), hi2(q2, q3)), vc2);
-        near = f32x4.lt(dot3(dx, dy, dz, dx, dy, dz), vReach2);
+        const dx = f32x4.sub(px, vc0), dy = f32x4.sub(py, vc1), dz = f32x4.sub(pz, vc2);
+        const d2 = dot3(dx, dy, dz, dx, dy, dz);
+        touching = f32x4.lt(d2, vFar2);
+        if (!v128.any_true(touching)) continue;
+        const dd = f32x4.sqrt(d2);
+        // the outward normal, or up for a particle at the very centre
+        const away = f32x4.gt(dd, tiny);
+        const inv = f32x4.div(one, f32x4.max(dd, tiny));
+        nx = v128.bitselect(f32x4.mul(dx, inv), zero, away);
+        ny = v128.bitselect(f32x4.mul(dy, inv), one, away);
+        nz = v128.bitselect(f32x4.mul(dz, inv), zero, away);
+        d = f32x4.sub(dd, vR);
       } else {
-        near = f32x4.lt(lanesXY1(t0, t1), vTop);
+        d = f32x4.sub(py, vc0);
+        touching = i32x4.splat(-1);
       }
-      if (!v128.any_true(near)) continue;
-      for (let k = 0; k < 4; k++) contactParticle(i + k, sphere, c0, c1, c2, r, far, th);
+      touching = v128.and(v128.and(touching, f32x4.lt(d, vTh)), f32x4.ne(v128.load(w + (<usize>i << 2)), zero));
+      if (!v128.any_true(touching)) continue;
+      const depth = f32x4.sub(vTh, d);
+      const qx = f32x4.add(px, f32x4.mul(depth, nx));
+      const qy = f32x4.add(py, f32x4.mul(depth, ny));
+      const qz = f32x4.add(pz, f32x4.mul(depth, nz));
+      // tangential motion over the substep, removed by friction
+      const e0 = v128.load(xp + o), e1 = v128.load(xp + o, 12), e2 = v128.load(xp + o, 24), e3 = v128.load(xp + o, 36);
+      const u0 = lo2(e0, e1), u1 = lo2(e2, e3);
+      const mx = f32x4.sub(qx, lanesXY0(u0, u1)), my = f32x4.sub(qy, lanesXY1(u0, u1));
+      const mz = f32x4.sub(qz, lanesXY0(hi2(e0, e1), hi2(e2, e3)));
+      const mn = dot3(mx, my, mz, nx, ny, nz);
+      const tx = f32x4.sub(mx, f32x4.mul(mn, nx)), ty = f32x4.sub(my, f32x4.mul(mn, ny)), tz = f32x4.sub(mz, f32x4.mul(mn, nz));
+      const tl = f32x4.sqrt(dot3(tx, ty, tz, tx, ty, tz));
+      // frictionScale(): 0 for no motion, 1 inside the static cone, else min(μk·depth/|t|, 1)
+      const kinetic = f32x4.min(f32x4.div(f32x4.mul(vMuK, depth), f32x4.max(tl, tiny)), one);
+      const scale = v128.and(v128.bitselect(one, kinetic, f32x4.lt(tl, f32x4.mul(vMuS, depth))), f32x4.ge(tl, tiny));
+      store4(x, o, o + 12, o + 24, o + 36,
+        v128.bitselect(f32x4.sub(qx, f32x4.mul(scale, tx)), px, touching),
+        v128.bitselect(f32x4.sub(qy, f32x4.mul(scale, ty)), py, touching),
+        v128.bitselect(f32x4.sub(qz, f32x4.mul(scale, tz)), pz, touching));
     }
     for (; i < p1; i++) contactParticle(i, sphere, c0, c1, c2, r, far, th);
   }
