@@ -143,8 +143,7 @@ export class Simulation {
       this.model = modelFor(next);
       this.state = this.newState();
       this.frame = 0;
-    }
-    else if ((prev.solver.type === 'xpbd') !== (next.solver.type === 'xpbd')) {
+    } else if ((prev.solver.type === 'xpbd') !== (next.solver.type === 'xpbd')) {
       // XPBD steps in the kernel's memory, mass-spring in plain arrays: move the cloth over, as it is
       const moved = this.newState();
       if (moved.kernel !== this.state.kernel) {
