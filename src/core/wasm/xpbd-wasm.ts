@@ -16,7 +16,6 @@ import { createState, type ClothState } from '../state.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
 // control block, byte offsets (mirrors xpbd.as.ts; 1024…3072 holds the threads' chunk counters)
-const CTRL_DISPATCH = 0;
 const CTRL_THREADS = 12;
 const CTRL_GRABBED = 20;
 const CTRL_FLAGS = 24;

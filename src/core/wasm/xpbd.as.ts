@@ -272,19 +272,19 @@ function integrate(p0: i32, p1: i32, withForces: bool): void {
   }
 }
 
-// gather lane k of a vec3 field at byte offset o (particle p → p·12)
-@inline function gather3(base: usize, o0: usize, o1: usize, o2: usize, o3: usize, c: usize): v128 {
-  let v = v128.load32_zero(base + o0 + c);
-  v = v128.load32_lane(base + o1 + c, v, 1);
-  v = v128.load32_lane(base + o2 + c, v, 2);
-  return v128.load32_lane(base + o3 + c, v, 3);
+// Four f32 at byte offsets o0…o3 from base, as the lanes of one vector (and back).
+@inline function gather(base: usize, o0: usize, o1: usize, o2: usize, o3: usize): v128 {
+  let v = v128.load32_zero(base + o0);
+  v = v128.load32_lane(base + o1, v, 1);
+  v = v128.load32_lane(base + o2, v, 2);
+  return v128.load32_lane(base + o3, v, 3);
 }
 
-@inline function scatter3(base: usize, o0: usize, o1: usize, o2: usize, o3: usize, c: usize, v: v128): void {
-  v128.store32_lane(base + o0 + c, v, 0);
-  v128.store32_lane(base + o1 + c, v, 1);
-  v128.store32_lane(base + o2 + c, v, 2);
-  v128.store32_lane(base + o3 + c, v, 3);
+@inline function scatter(base: usize, o0: usize, o1: usize, o2: usize, o3: usize, v: v128): void {
+  v128.store32_lane(base + o0, v, 0);
+  v128.store32_lane(base + o1, v, 1);
+  v128.store32_lane(base + o2, v, 2);
+  v128.store32_lane(base + o3, v, 3);
 }
 
 // Four particles' xyz as one v128 load each (x, y, z and the next float, never used), transposed to x, y, z lanes.
@@ -338,12 +338,12 @@ function solveDistance(
       if (useLambda) lambda = v128.load(lamP + (<usize>s << 2));
     } else {
       const o0 = <usize>s << 2, o1 = <usize>k1 << 2, o2 = <usize>k2 << 2, o3 = <usize>k3 << 2;
-      rest = gather3(restP, o0, o1, o2, o3, 0);
-      alpha = gather3(alphaP, o0, o1, o2, o3, 0);
-      if (useLambda) lambda = gather3(lamP, o0, o1, o2, o3, 0);
+      rest = gather(restP, o0, o1, o2, o3);
+      alpha = gather(alphaP, o0, o1, o2, o3);
+      if (useLambda) lambda = gather(lamP, o0, o1, o2, o3);
     }
-    const wa = gather3(w, pa0 << 2, pa1 << 2, pa2 << 2, pa3 << 2, 0);
-    const wb = gather3(w, pb0 << 2, pb1 << 2, pb2 << 2, pb3 << 2, 0);
+    const wa = gather(w, pa0 << 2, pa1 << 2, pa2 << 2, pa3 << 2);
+    const wb = gather(w, pb0 << 2, pb1 << 2, pb2 << 2, pb3 << 2);
     const qa0 = v128.load(x + a0), qa1 = v128.load(x + a1), qa2 = v128.load(x + a2), qa3 = v128.load(x + a3);
     const qb0 = v128.load(x + b0), qb1 = v128.load(x + b1), qb2 = v128.load(x + b2), qb3 = v128.load(x + b3);
     const ta0 = lo2(qa0, qa1), ta1 = lo2(qa2, qa3), tb0 = lo2(qb0, qb1), tb1 = lo2(qb2, qb3);
@@ -375,7 +375,7 @@ function solveDistance(
     if (storeLambda) {
       const lamNew = v128.bitselect(f32x4.add(lam, dlE), lambda, valid);
       if (full) v128.store(lamP + (<usize>s << 2), lamNew);
-      else scatter3(lamP, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, 0, lamNew);
+      else scatter(lamP, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, lamNew);
     }
     // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest (bend: cap ∞, and as in
     // TypeScript a NaN excess — ∞ × a zero rest length — does not count as over)
@@ -420,7 +420,7 @@ function limitStretch(s0: i32, s1: i32, sf: f32): void {
     const a0 = pa0 * 12, a1 = pa1 * 12, a2 = pa2 * 12, a3 = pa3 * 12;
     const b0 = pb0 * 12, b1 = pb1 * 12, b2 = pb2 * 12, b3 = pb3 * 12;
     const rest = s + 4 <= s1 ? v128.load(restP + (<usize>s << 2))
-      : gather3(restP, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, 0);
+      : gather(restP, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2);
     const qa0 = v128.load(x + a0), qa1 = v128.load(x + a1), qa2 = v128.load(x + a2), qa3 = v128.load(x + a3);
     const qb0 = v128.load(x + b0), qb1 = v128.load(x + b1), qb2 = v128.load(x + b2), qb3 = v128.load(x + b3);
     const ta0 = lo2(qa0, qa1), ta1 = lo2(qa2, qa3), tb0 = lo2(qb0, qb1), tb1 = lo2(qb2, qb3);
@@ -431,8 +431,8 @@ function limitStretch(s0: i32, s1: i32, sf: f32): void {
     const max = f32x4.mul(vSf, rest);
     const long = f32x4.gt(len2, f32x4.mul(max, max));
     if (!v128.any_true(long)) continue; // the common case: no spring of the four is too long
-    const wa = gather3(w, pa0 << 2, pa1 << 2, pa2 << 2, pa3 << 2, 0);
-    const wb = gather3(w, pb0 << 2, pb1 << 2, pb2 << 2, pb3 << 2, 0);
+    const wa = gather(w, pa0 << 2, pa1 << 2, pa2 << 2, pa3 << 2);
+    const wb = gather(w, pb0 << 2, pb1 << 2, pb2 << 2, pb3 << 2);
     const wsum = f32x4.add(wa, wb);
     const over = v128.and(long, f32x4.ne(wsum, zero));
     if (!v128.any_true(over)) continue;
