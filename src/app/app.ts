@@ -5,7 +5,7 @@
  */
 import { Box3, Group, Mesh, MeshStandardMaterial, BufferGeometry, BufferAttribute, DoubleSide, Vector3 } from 'three/webgpu';
 import {
-  SCENE_NAMES, SceneError, builtinScene, parseScene, resolvePins, setScenePath, type PinPreset, type Scene,
+  SCENE_NAMES, SceneError, builtinScene, isBuiltinScene, parseScene, resolvePins, setScenePath, type PinPreset, type Scene,
 } from '../core/index.js';
 import { ClothView, VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import { Stage, type CameraPreset } from '../render/stage.js';
@@ -106,7 +106,7 @@ export class App implements PanelHost, InteractionHost {
       if (start.view.view && (VIEWS as readonly string[]).includes(start.view.view)) this.view = start.view.view as ViewName;
       this.applyScene(start.scene, start.base && start.base === start.scene.name ? start.base : SCENE_NAMES.includes(start.base) ? start.base : '');
     } else {
-      this.applyScene(builtinScene(SCENE_NAMES[0])!, SCENE_NAMES[0]);
+      this.applyScene(builtinScene(SCENE_NAMES[0]), SCENE_NAMES[0]);
     }
     this.panel = new Panel(this);
 
@@ -249,7 +249,7 @@ export class App implements PanelHost, InteractionHost {
   sweepList(): number[] {
     const sweep = this.scene.resolutionSweep ?? [];
     if (!sweep.length || this.sim?.kind !== 'gpu' || this.sweepLayout !== 'sequence') return sweep;
-    const builtin = builtinScene('resolution')?.resolutionSweep ?? [];
+    const builtin = builtinScene('resolution').resolutionSweep ?? [];
     if (JSON.stringify(builtin) !== JSON.stringify(sweep)) return sweep;
     return [...sweep, ...GPU_SWEEP_EXTRA.filter((r) => r > Math.max(...sweep))];
   }
@@ -401,9 +401,8 @@ export class App implements PanelHost, InteractionHost {
   // ---------------------------------------------------------------- PanelHost
 
   loadBuiltin(name: string): void {
-    const s = builtinScene(name);
-    if (!s) { this.overlay.message(`unknown scene '${name}'`); return; }
-    this.applyScene(s, name);
+    if (!isBuiltinScene(name)) { this.overlay.message(`unknown scene '${name}'`); return; }
+    this.applyScene(builtinScene(name), name);
   }
 
   setPath(path: string, value: unknown): boolean {

@@ -6,7 +6,7 @@
  *
  * Values are JSON when they parse (numbers, booleans, arrays), otherwise strings. No DOM here: unit-tested.
  */
-import { SCENE_NAMES, SceneError, builtinScene, defaultScene, parseSetValue, setScenePath, type Scene } from '../core/index.js';
+import { SCENE_NAMES, SceneError, builtinScene, isBuiltinScene, defaultScene, parseSetValue, setScenePath, type Scene } from '../core/index.js';
 
 /** hash keys that are not scene paths */
 export const VIEW_KEYS = ['view', 'sweep', 'backend'] as const;
@@ -22,9 +22,8 @@ export interface HashState {
 /** The scene a diff is taken against: a built-in by name, or the schema defaults. */
 export function baseScene(base: string): Scene {
   if (!base) return defaultScene();
-  const s = builtinScene(base);
-  if (!s) throw new SceneError(`link: unknown scene '${base}' (one of ${SCENE_NAMES.join(', ')})`);
-  return s;
+  if (!isBuiltinScene(base)) throw new SceneError(`link: unknown scene '${base}' (one of ${SCENE_NAMES.join(', ')})`);
+  return builtinScene(base);
 }
 
 type Json = null | boolean | number | string | Json[] | { [k: string]: Json };

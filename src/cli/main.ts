@@ -6,7 +6,7 @@
  */
 import { readFileSync, writeFileSync } from 'node:fs';
 import { parseArgs } from 'node:util';
-import { builtinScene, parseScene, parseSetValue, SCENE_NAMES, sceneSchema, setScenePath, Simulation, type Scene, type SimulationOptions } from '../core/index.js';
+import { builtinScene, isBuiltinScene, parseScene, parseSetValue, SCENE_NAMES, sceneSchema, setScenePath, Simulation, type Scene, type SimulationOptions } from '../core/index.js';
 import { UsageError } from './errors.js';
 import { openGpu, type Gpu } from './gpu.js';
 import { toOBJ } from './obj.js';
@@ -91,9 +91,8 @@ export function loadScene(arg: string | undefined): Scene {
     }
     return parseScene(text, name);
   }
-  const scene = builtinScene(name);
-  if (!scene) throw new UsageError(`unknown scene '${name}' (built-in scenes: ${SCENE_NAMES.join(', ')}; or give a .json file)`);
-  return scene;
+  if (!isBuiltinScene(name)) throw new UsageError(`unknown scene '${name}' (built-in scenes: ${SCENE_NAMES.join(', ')}; or give a .json file)`);
+  return builtinScene(name);
 }
 
 function applySets(scene: Scene, sets: string[]): Scene {
@@ -231,7 +230,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
 function cmdScenes(argv: string[], out: (s: string) => void): number {
   const { values } = parseArgs({ args: argv, options: { json: { type: 'boolean' }, help: { type: 'boolean', short: 'h' } } });
   if (values.help) { out(HELP.scenes); return 0; }
-  const list = SCENE_NAMES.map((name) => ({ name, description: builtinScene(name)!.description ?? '' }));
+  const list = SCENE_NAMES.map((name) => ({ name, description: builtinScene(name).description ?? '' }));
   if (values.json) out(JSON.stringify(list));
   else for (const s of list) out(`${s.name.padEnd(16)}${s.description}`);
   return 0;

@@ -2,7 +2,7 @@ import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { defaultScene, parseScene, parseSetValue, SceneError, setScenePath, validateScene } from './scene.js';
 import { sceneSchema } from './scene-schema.js';
-import { builtinScene, SCENE_NAMES } from './scenes.js';
+import { builtinScene, isBuiltinScene, SCENE_NAMES } from './scenes.js';
 
 const rejects = (doc: unknown, field: RegExp) => {
   expect(() => validateScene(doc)).toThrow(SceneError);
@@ -15,7 +15,32 @@ describe('scenes', () => {
       expect(SCENE_NAMES).toContain(name);
       expect(builtinScene(name)!.name).toBe(name);
     }
-    expect(builtinScene('nope')).toBeUndefined();
+    expect(() => builtinScene('nope')).toThrow(/^unknown scene 'nope' \(built-in scenes: cotton-basic, /);
+    // prototype names are not scenes
+    for (const name of ['__proto__', 'constructor', 'toString', 'hasOwnProperty']) {
+      expect(isBuiltinScene(name), name).toBe(false);
+      expect(() => builtinScene(name), name).toThrow(SceneError);
+    }
+  });
+
+  it('list indices in paths are bounded: an existing item, or one past the end to append', () => {
+    const s = defaultScene();
+    expect(setScenePath(s, 'cloth.position[2]', 3).cloth.position).toEqual([0, 1.2, 3]);
+    expect(setScenePath(s, 'pins[0]', 'center').pins).toEqual(['center']); // appends to []
+    const t0 = performance.now();
+    expect(() => setScenePath(s, 'cloth.position[100000000]', 2)).toThrow(/^--set cloth\.position\[100000000\]: cloth\.position has 3 items, no item 100000000 \(3 appends one\)$/);
+    expect(() => setScenePath(s, 'pins[1]', 'center')).toThrow(/pins has 0 items, no item 1/);
+    expect(() => setScenePath(s, 'colliders[5].radius', 1)).toThrow(/colliders has 2 items, no item 5$/);
+    expect(performance.now() - t0).toBeLessThan(1000); // refused at once, not after building a huge array
+    // only the scene's own keys are paths
+    expect(() => setScenePath(s, 'cloth.constructor.name', 1)).toThrow(/not a scene path/);
+    expect(() => setScenePath(s, 'material.toString.x', 1)).toThrow(/material\.toString is not an object in this scene/);
+  });
+
+  it('a document nested absurdly deep is refused by name, not with a stack overflow', () => {
+    const deep = JSON.parse('{"cloth":' + '['.repeat(100_000) + ']'.repeat(100_000) + '}');
+    expect(() => validateScene(deep, 'deep.json')).toThrow(/^deep\.json: nested more than 32 levels deep/);
+    expect(() => parseScene('{"a":'.repeat(100_000) + '1' + '}'.repeat(100_000), 'deep.json')).toThrow(/^deep\.json: nested/);
   });
 
   it('an empty document is a full scene with every default from the schema', () => {

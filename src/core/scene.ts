@@ -107,6 +107,20 @@ function pickError(errors: ErrorObject[]): ErrorObject {
   return pool.reduce((best, e) => (e.instancePath.length > best.instancePath.length ? e : best), pool[0]);
 }
 
+/** Deepest nesting a scene document may have: the schema's own is 4 (colliders[0].center[0]). */
+const MAX_DEPTH = 32;
+
+/** Refuses absurdly nested documents before anything recursive (structuredClone, the validator) sees them. */
+function checkDepth(input: object, source: string): void {
+  const stack: [unknown, number][] = [[input, 1]];
+  while (stack.length) {
+    const [v, depth] = stack.pop()!;
+    if (v === null || typeof v !== 'object') continue;
+    if (depth > MAX_DEPTH) throw new SceneError(`${source}: nested more than ${MAX_DEPTH} levels deep; a scene is at most 4`);
+    for (const child of Object.values(v)) if (child !== null && typeof child === 'object') stack.push([child, depth + 1]);
+  }
+}
+
 /**
  * Validates a scene document and fills in defaults. Returns a new object; the input is not changed.
  * Throws SceneError with one line naming the field.
@@ -115,6 +129,7 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
   if (input === null || typeof input !== 'object' || Array.isArray(input)) {
     throw new SceneError(`${source}: must be a JSON object`);
   }
+  checkDepth(input, source);
   const doc = structuredClone(input) as Record<string, unknown>;
   if (!validateFn(doc)) {
     const errors = validateFn.errors ?? [];
@@ -173,12 +188,19 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
   const doc = structuredClone(scene) as Record<string, unknown>;
   let node: Record<string, unknown> | unknown[] = doc;
   for (let i = 0; i < keys.length; i++) {
-    if (Array.isArray(node) && !/^\d+$/.test(keys[i])) {
-      throw new SceneError(`--set ${path}: ${keys.slice(0, i).join('.')} is a list; use an index such as ${keys.slice(0, i).join('.')}[0]`);
+    const last = i === keys.length - 1;
+    if (Array.isArray(node)) {
+      const list = keys.slice(0, i).join('.');
+      if (!/^\d+$/.test(keys[i])) throw new SceneError(`--set ${path}: ${list} is a list; use an index such as ${list}[0]`);
+      // an existing item, or (for the last key) one past the end to append: never a sparse array
+      if (Number(keys[i]) > (last ? node.length : node.length - 1)) {
+        const items = `${node.length} item${node.length === 1 ? '' : 's'}`;
+        throw new SceneError(`--set ${path}: ${list} has ${items}, no item ${keys[i]}${last ? ` (${node.length} appends one)` : ''}`);
+      }
     }
-    if (i === keys.length - 1) break;
+    if (last) break;
     const k = keys[i];
-    const next = (node as Record<string, unknown>)[k];
+    const next = Object.hasOwn(node, k) ? (node as Record<string, unknown>)[k] : undefined;
     if (next === null || typeof next !== 'object') {
       throw new SceneError(`--set ${path}: ${keys.slice(0, i + 1).join('.')} is not an object in this scene`);
     }

@@ -2,7 +2,7 @@
  * Built-in scenes shared by the CLI, the tests and the app. Material values and their sources: docs/materials.md.
  * Each is a partial scene document; everything it leaves out takes the schema's defaults.
  */
-import { validateScene, type Scene } from './scene.js';
+import { SceneError, validateScene, type Scene } from './scene.js';
 
 const fabrics = {
   cotton: { mass: 0.12, structuralStiffness: 8600, shearStiffness: 56, bendStiffness: 0.74, damping: 0.1, stretchFactor: 1.05, friction: 0.3, staticFriction: 0.4 },
@@ -48,8 +48,15 @@ const BUILTIN: Record<string, object> = {
 /** Names of the built-in scenes, in menu order. */
 export const SCENE_NAMES = Object.keys(BUILTIN);
 
-/** A fresh, validated copy of a built-in scene; undefined for an unknown name. */
-export function builtinScene(name: string): Scene | undefined {
-  const doc = BUILTIN[name];
-  return doc ? validateScene(doc, `scene '${name}'`) : undefined;
+/** Whether `name` is a built-in scene (own names only: 'constructor' or '__proto__' are not scenes). */
+export function isBuiltinScene(name: string): boolean {
+  return typeof name === 'string' && Object.hasOwn(BUILTIN, name);
+}
+
+/** A fresh, validated copy of a built-in scene; throws SceneError naming the built-in scenes for an unknown name. */
+export function builtinScene(name: string): Scene {
+  if (!isBuiltinScene(name)) {
+    throw new SceneError(`unknown scene '${String(name).slice(0, 100)}' (built-in scenes: ${SCENE_NAMES.join(', ')})`);
+  }
+  return validateScene(BUILTIN[name], `scene '${name}'`);
 }
