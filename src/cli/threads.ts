@@ -6,11 +6,18 @@ import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
 import type { HelperSpawner } from '../core/wasm/xpbd-wasm.js';
 
-// The worker's whole program (CommonJS, evaluated): instantiate the kernel and enter its helper loop.
+// The worker's whole program (CommonJS, evaluated): instantiate the kernel with the imports of core/wasm
+// kernelImports() (a worker thread may block, so wait always sleeps) and enter its helper loop.
 const HELPER_SOURCE = `
 const { workerData } = require('node:worker_threads');
 const { module, memory, layout, thread } = workerData;
-const instance = new WebAssembly.Instance(module, { env: { memory, abort() { throw new Error('xpbd kernel abort'); } } });
+const words = new Int32Array(memory.buffer);
+const instance = new WebAssembly.Instance(module, { env: {
+  memory,
+  abort() { throw new Error('xpbd kernel abort'); },
+  wait(address, expected, timeoutMs) { Atomics.wait(words, address >>> 2, expected, timeoutMs); },
+  notify(address) { Atomics.notify(words, address >>> 2); },
+} });
 instance.exports.configure(...layout);
 instance.exports.helperLoop(thread);
 `;

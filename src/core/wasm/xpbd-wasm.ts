@@ -93,9 +93,28 @@ export function wasmKernelAvailable(threads = false): boolean {
   return kernelModule(threads) !== null;
 }
 
+/**
+ * What the kernel imports: its memory, and for threads the host's wait and notify on a word of it (Atomics: a
+ * thread that must wait sleeps instead of spinning). Where a thread may not block (a browser's main thread),
+ * wait returns at once and the kernel polls again.
+ */
+export function kernelImports(memory: WebAssembly.Memory): WebAssembly.Imports {
+  const words = memory.buffer instanceof SharedArrayBuffer ? new Int32Array(memory.buffer) : null;
+  return {
+    env: {
+      memory,
+      abort: () => { throw new Error('xpbd kernel abort'); },
+      wait: (address: number, expected: number, timeoutMs: number) => {
+        try { Atomics.wait(words!, address >>> 2, expected, timeoutMs); } catch { /* this thread may not block */ }
+      },
+      notify: (address: number) => { Atomics.notify(words!, address >>> 2); },
+    },
+  };
+}
+
 /** Instantiates the kernel module over `memory` and configures it with `layout`. */
 function instantiateKernel(module: WebAssembly.Module, memory: WebAssembly.Memory, layout: number[]): KernelExports {
-  const instance = new WebAssembly.Instance(module, { env: { memory, abort: () => { throw new Error('xpbd kernel abort'); } } });
+  const instance = new WebAssembly.Instance(module, kernelImports(memory));
   const exports = instance.exports as unknown as KernelExports;
   exports.configure(...layout);
   return exports;

@@ -6,23 +6,18 @@
 // particles at once; integration and tethers are scalar f64 on f32 data exactly as the TypeScript code computes
 // them.
 //
-// Threads: with the threads build, T instances over one shared memory run the same substep. Every phase (a
-// particle range, a colour batch) is cut into chunks; thread t owns the t-th contiguous run of chunks (a region of
-// the cloth: springs of a batch are sorted by particle) and takes them from an atomic counter, then helps the
-// other threads with theirs, so a thread slowed by the machine simply does fewer; a barrier separates phases. A
-// spring or particle is computed by the same arithmetic whichever thread takes it, so the result does not depend
-// on T.
-// Thread 0 is the caller's; helpers sit in helperLoop() and are started by a dispatch counter in the control
-// block. The single-thread build compiles no atomics and runs with T = 1.
+// Threads: with the threads build, T instances over one shared memory run the same substep, under the phase
+// protocol described at "---- threads ----" below; the result does not depend on T. Thread 0 is the caller's;
+// helpers sit in helperLoop() and are started by a dispatch counter in the control block. The single-thread
+// build compiles no atomics and runs every phase whole.
 //
 // Memory: the caller (xpbd-wasm.ts) lays out every array and passes their byte offsets to configure(); the
 // control block at CTRL holds the per-substep scalars (offsets mirrored in xpbd-wasm.ts as CTRL_*).
 
 // ---- control block (byte offsets from CTRL = 0) ----
-const DISPATCH: usize = 0; // i32: bumped by thread 0 to start a substep on the helpers
-const BAR_COUNT: usize = 4; // i32: threads arrived at the current barrier
-const BAR_GEN: usize = 8; // i32: barrier generation
-const THREADS: usize = 12; // i32: T
+const DISPATCH: usize = 0; // i32: bumped by thread 0 to start a substep on the helpers (they sleep on it)
+const DISPATCH_SLEEPERS: usize = 4; // i32: helpers asleep waiting for a dispatch
+const THREADS: usize = 12; // i32: T; 1 makes thread 0 run substeps alone (helpers stay asleep)
 const COMMAND: usize = 16; // i32: 1 substep, 2 exit
 const GRABBED: usize = 20; // i32: grabbed particle or -1
 // i32: bit 0 external forces, bit 1 particle contact in the kernel, bit 2 accumulate λ, bit 3 store λ
@@ -30,6 +25,7 @@ const FLAGS: usize = 24;
 const ITERATIONS: usize = 28; // i32
 const COLLIDERS: usize = 32; // i32: number of collider records
 const READY: usize = 36; // i32: helpers that entered helperLoop
+const DESC: usize = 48; // i64: the dispatched substep's phase list (describe())
 const H: usize = 64; // f64 substep [s]
 const TAYLOR: usize = 72; // f64: ½ on the very first substep, else 1
 const GRAVITY: usize = 80; // 3 × f64 [m/s²]
@@ -41,9 +37,12 @@ const FRICTION: usize = 152; // f64 kinetic
 const STATIC_FRICTION: usize = 160; // f64 static
 const COLLIDER_RECORDS: usize = 256; // 8 × 6 f64: type (1 sphere, 2 floor), then cx, cy, cz, r | height
 const COLLIDER_BYTES: usize = 48;
-// 2 × 16 i32, each on its own 64-byte line: per phase parity and thread, the next chunk of that thread's run
-const CHUNKS: usize = 1024;
-const MAX_THREADS: i32 = 16;
+// each on its own 64-byte line: the open phase, its completed chunks, threads asleep waiting for a phase
+const PHASE: usize = 1024; // i32: sequence number of the open phase (grows by one per phase, wraps)
+const DONE: usize = 1088; // i32: chunks of the open phase completed and reported
+const PHASE_SLEEPERS: usize = 1152; // i32
+// T ≤ 16 × i64, each on its own 64-byte line: (phase << 32) | next chunk of run v of that phase
+const RUNS: usize = 2048;
 
 const BEND: i32 = 2;
 const FLAG_FORCES: i32 = 1;
@@ -75,60 +74,108 @@ export function configure(
 }
 
 // ---- threads ----
+//
+// A substep is a list of phases (integrate, the grab, each colour batch of each iteration, tethers, each stretch
+// batch, contact), every phase cut into chunks and the chunks into T runs (run t: the t-th contiguous part of the
+// cloth, thread t's own). Phases carry sequence numbers; one is open at a time. A thread waits for a phase to
+// open, takes chunks of its own run and then of the others (compare-and-swap on the run's counter, which also holds
+// the phase number, so a thread that arrives late takes nothing of a phase already over), and reports how many it
+// did; whoever reports the last chunk opens the next phase. So thread 0 never waits for a helper that is not
+// there (a helper descheduled by a busy machine): it does that helper's run itself. It only waits for chunks a
+// helper has taken and not finished. Waiting spins a little, then sleeps (host Atomics.wait through an import: a
+// wait inside the substep, once inlined next to live vectors, gave wrong cloths in Node 20), so no thread spins
+// for long. A chunk is computed by the same arithmetic whichever thread takes it: the cloth does not depend on T.
 
 /** Springs per chunk (a multiple of 4: chunks keep the quads of the 1-thread pass) and particles per chunk. */
 const CHUNK_SPRINGS: i32 = 256;
 const CHUNK_PARTICLES: i32 = 1024;
+/** polls of a word before a waiting thread sleeps (microseconds: a phase usually opens sooner) */
+const SPINS: i32 = 1 << 15;
+/** longest single sleep [ms]: a safety net, the thread is woken when the word changes */
+const SLEEP_MS: f64 = 20;
 
-/**
- * Generation-counting spin barrier after phase `phase`: the last thread to arrive also resets that phase's chunk
- * counters (every thread is done taking chunks of it), so the counters alternate by phase parity. Threads never
- * sleep inside a substep (a phase takes microseconds), so a kernel must not have more threads than cores (the
- * front ends clamp to the cores they report). No atomic.wait here: a wait is a call out of the wasm code, and a
- * barrier that slept there once it was inlined into the substep gave wrong cloths in Node 20 (V8 12), as if
- * vector values live across the call lost lanes; spinning makes no call.
- */
-function barrier(T: i32, phase: i32): void {
+// @ts-ignore: decorator
+@external("env", "wait")
+declare function hostWait(address: usize, expected: i32, timeoutMs: f64): void;
+// @ts-ignore: decorator
+@external("env", "notify")
+declare function hostNotify(address: usize): void;
+
+/** Waits until the i32 at `at` is no longer `seen`: spins SPINS polls, then sleeps, counted in `sleepers`. */
+function waitChange(at: usize, seen: i32, sleepers: usize): void {
   if (ASC_FEATURE_THREADS) {
-    if (T <= 1) return;
-    const gen = atomic.load<i32>(BAR_GEN);
-    if (atomic.add<i32>(BAR_COUNT, 1) == T - 1) {
-      const counters = CHUNKS + (<usize>(phase & 1) * MAX_THREADS << 6);
-      for (let v = 0; v < T; v++) atomic.store<i32>(counters + (<usize>v << 6), 0);
-      atomic.store<i32>(BAR_COUNT, 0);
-      atomic.store<i32>(BAR_GEN, gen + 1);
-    } else {
-      while (atomic.load<i32>(BAR_GEN) == gen) {}
+    for (let s = 0; s < SPINS; s++) if (atomic.load<i32>(at) != seen) return;
+    while (atomic.load<i32>(at) == seen) {
+      atomic.add<i32>(sleepers, 1);
+      if (atomic.load<i32>(at) == seen) hostWait(at, seen, SLEEP_MS);
+      atomic.sub<i32>(sleepers, 1);
     }
   }
 }
 
-/**
- * Chunk index for thread t in a phase of `count` chunks, or -1 when none is left: first the chunks of t's own run,
- * then those left in the runs of t + 1, t + 2, … (`runOf`, per instance: the run t is working on).
- */
-let runOf: i32 = 0;
-@inline function firstChunk(t: i32, T: i32, phase: i32, count: i32): i32 {
-  runOf = 0;
-  return nextChunk(t, T, phase, count);
-}
-function nextChunk(t: i32, T: i32, phase: i32, count: i32): i32 {
+/** Waits until phase `seq` is open or over (sequence numbers compare by wrapping difference). */
+function waitPhase(seq: i32): void {
   if (ASC_FEATURE_THREADS) {
-    const counters = CHUNKS + (<usize>(phase & 1) * MAX_THREADS << 6);
+    let p = atomic.load<i32>(PHASE);
+    while (p - seq < 0) {
+      waitChange(PHASE, p, PHASE_SLEEPERS);
+      p = atomic.load<i32>(PHASE);
+    }
+  }
+}
+
+/** Opens phase `seq` for T runs (by the thread that completed the one before), waking sleepers. */
+function openPhase(seq: i32, T: i32): void {
+  if (ASC_FEATURE_THREADS) {
+    atomic.store<i32>(DONE, 0);
+    const tag = (<i64><u32>seq) << 32;
+    for (let v = 0; v < T; v++) atomic.store<i64>(RUNS + (<usize>v << 6), tag);
+    atomic.store<i32>(PHASE, seq);
+    if (atomic.load<i32>(PHASE_SLEEPERS) > 0) hostNotify(PHASE);
+  }
+}
+
+// per instance: the run thread t is taking chunks from (0: its own), and the chunks it took in this phase
+let runOf: i32 = 0;
+let taken: i32 = 0;
+
+/**
+ * A chunk of phase `seq` (of `count`) for thread t, or -1 when none is left to take: first from t's own run, then
+ * from runs t + 1, t + 2, …
+ */
+function claim(t: i32, T: i32, seq: i32, count: i32): i32 {
+  if (ASC_FEATURE_THREADS) {
     while (runOf < T) {
       const v = (t + runOf) % T;
+      const at = RUNS + (<usize>v << 6);
       const lo = (v * count) / T, hi = ((v + 1) * count) / T;
-      const c = lo + atomic.add<i32>(counters + (<usize>v << 6), 1);
-      if (c < hi) return c;
+      let cur = atomic.load<i64>(at);
+      while (<i32>(cur >>> 32) == seq && lo + <i32>cur < hi) {
+        const prev = atomic.cmpxchg<i64>(at, cur, cur + 1);
+        if (prev == cur) {
+          taken++;
+          return lo + <i32>cur;
+        }
+        cur = prev;
+      }
       runOf++;
     }
   }
   return -1;
 }
 
+/** After claim() gave -1: reports this thread's chunks of phase `seq`; the last report opens the next phase. */
+function report(seq: i32, T: i32, count: i32): void {
+  if (ASC_FEATURE_THREADS) {
+    if (taken > 0 && atomic.add<i32>(DONE, taken) + taken == count) openPhase(seq + 1, T);
+    taken = 0;
+    runOf = 0;
+  }
+}
+
 /**
- * Helper thread t's loop: wait for a dispatch, run its share of the substep, repeat until told to exit. Spins a
- * while first (a substep follows the last within microseconds), then sleeps on the dispatch counter.
+ * Helper thread t's loop: wait for a dispatch, take part in that substep, repeat until told to exit. It reads the
+ * substep's phase list from DESC in one atomic load, so a helper that wakes late joins the newest substep.
  */
 export function helperLoop(t: i32): void {
   if (ASC_FEATURE_THREADS) {
@@ -136,29 +183,40 @@ export function helperLoop(t: i32): void {
     if (atomic.load<i32>(COMMAND) == 2) return; // the kernel was disposed before this helper started
     atomic.add<i32>(READY, 1);
     for (;;) {
-      let spins = 0;
-      while (atomic.load<i32>(DISPATCH) == seen) {
-        if (++spins > 1 << 20) { atomic.wait<i32>(DISPATCH, seen, -1); spins = 0; }
-      }
+      waitChange(DISPATCH, seen, DISPATCH_SLEEPERS);
       seen = atomic.load<i32>(DISPATCH);
       if (atomic.load<i32>(COMMAND) == 2) return;
-      substepShare(t, atomic.load<i32>(THREADS));
+      const desc = atomic.load<i64>(DESC);
+      if (t < descThreads(desc)) substepPhases(t, desc, false);
     }
   }
 }
 
-/** Thread 0: run one substep with every thread (the scalars are in the control block). */
+/**
+ * What a substep's phase list depends on, in one word: the first phase's sequence number (bits 0–31), iterations
+ * (32–39), particle contact in the kernel (40), a grab (41), T (48–55).
+ */
+function describe(first: i32, T: i32): i64 {
+  return (<i64><u32>first) | (<i64>load<i32>(ITERATIONS) << 32) | (<i64>((load<i32>(FLAGS) & FLAG_CONTACT) != 0) << 40) |
+    (<i64>(load<i32>(GRABBED) >= 0) << 41) | (<i64>T << 48);
+}
+@inline function descThreads(desc: i64): i32 { return <i32>((desc >>> 48) & 0xff); }
+
+/** Thread 0: one substep (the scalars are in the control block), with the helpers unless THREADS is 1. */
 export function substep(): void {
-  let T = 1;
   if (ASC_FEATURE_THREADS) {
-    T = atomic.load<i32>(THREADS);
+    const T = atomic.load<i32>(THREADS);
     if (T > 1) {
+      const desc = describe(atomic.load<i32>(PHASE), T);
+      atomic.store<i64>(DESC, desc);
       atomic.store<i32>(COMMAND, 1);
       atomic.add<i32>(DISPATCH, 1);
-      atomic.notify(DISPATCH, T - 1);
+      if (atomic.load<i32>(DISPATCH_SLEEPERS) > 0) hostNotify(DISPATCH);
+      waitPhase(substepPhases(0, desc, false));
+      return;
     }
   }
-  substepShare(0, T);
+  substepPhases(0, describe(0, 1), true);
 }
 
 /** Thread 0: tells the helpers to leave helperLoop. */
@@ -166,84 +224,82 @@ export function stopHelpers(): void {
   if (ASC_FEATURE_THREADS) {
     atomic.store<i32>(COMMAND, 2);
     atomic.add<i32>(DISPATCH, 1);
-    atomic.notify(DISPATCH, -1);
+    hostNotify(DISPATCH);
   }
 }
 
+const INTEGRATE: i32 = 0, GRAB: i32 = 1, DISTANCE: i32 = 2, TETHERS: i32 = 3, STRETCH_LIMIT: i32 = 4, CONTACT: i32 = 5;
+
 /**
- * Thread t's part of one substep: integrate (+ grab), the distance constraints batch by batch, tethers, stretch
- * limiting batch by batch, particle contact — each phase in chunks, a barrier after each.
+ * Thread t's part of one substep: integrate, the grab, the distance constraints batch by batch (per iteration),
+ * tethers, stretch limiting batch by batch, particle contact. `alone`: thread 0 runs every phase whole, without
+ * the phase protocol. Returns the sequence number after the last phase (the next substep's first).
  */
-function substepShare(t: i32, T: i32): void {
-  let phase = 0;
-  const flags = load<i32>(FLAGS);
-  const forces = (flags & FLAG_FORCES) != 0;
-  const particleChunks = (N + CHUNK_PARTICLES - 1) / CHUNK_PARTICLES;
-  if (T == 1) integrate(0, N, forces);
-  else for (let c = firstChunk(t, T, phase, particleChunks); c >= 0; c = nextChunk(t, T, phase, particleChunks)) {
-    integrate(c * CHUNK_PARTICLES, min(N, (c + 1) * CHUNK_PARTICLES), forces);
-  }
-  barrier(T, phase++);
-  const g = load<i32>(GRABBED);
-  if (g >= 0) {
-    // after every thread has integrated (the grabbed particle's x_prev is its position before the grab moves it)
-    if (t == 0) {
-      const gp = X + <usize>g * 12;
-      store<f32>(gp, <f32>load<f64>(GRAB_AT));
-      store<f32>(gp, <f32>load<f64>(GRAB_AT + 8), 4);
-      store<f32>(gp, <f32>load<f64>(GRAB_AT + 16), 8);
-    }
-    barrier(T, phase++);
-  }
-  const h = load<f64>(H);
-  const invH2 = <f32>(1 / (h * h));
-  const betaOverH = <f32>(load<f64>(DAMPING) / h);
-  const sf = <f32>load<f64>(STRETCH);
-  const accumulate = (flags & FLAG_ACCUMULATE) != 0;
-  const storeLambda = (flags & FLAG_STORE_LAMBDA) != 0;
-  const iterations = load<i32>(ITERATIONS);
+function substepPhases(t: i32, desc: i64, alone: bool): i32 {
+  const T = descThreads(desc);
+  let seq = <i32>desc;
+  seq = phase(t, T, seq, alone, INTEGRATE, 0, 0, N, CHUNK_PARTICLES);
+  if (((desc >>> 41) & 1) != 0) seq = phase(t, T, seq, alone, GRAB, 0, 0, 1, 1);
+  const iterations = <i32>((desc >>> 32) & 0xff);
   for (let it = 0; it < iterations; it++) {
     for (let b = 0; b < BATCH_COUNT; b++) {
       const rec = BATCHES + <usize>b * 12;
-      const start = load<i32>(rec), end = load<i32>(rec, 4);
-      const cap: f32 = load<i32>(rec, 8) == BEND ? Infinity : sf;
-      if (T == 1) solveDistance(start, end, invH2, betaOverH, cap, accumulate, storeLambda);
-      else {
-        const chunks = (end - start + CHUNK_SPRINGS - 1) / CHUNK_SPRINGS;
-        for (let c = firstChunk(t, T, phase, chunks); c >= 0; c = nextChunk(t, T, phase, chunks)) {
-          const s0 = start + c * CHUNK_SPRINGS;
-          solveDistance(s0, min(end, s0 + CHUNK_SPRINGS), invH2, betaOverH, cap, accumulate, storeLambda);
-        }
-      }
-      barrier(T, phase++);
+      seq = phase(t, T, seq, alone, DISTANCE, b, load<i32>(rec), load<i32>(rec, 4), CHUNK_SPRINGS);
     }
   }
-  const sf64 = load<f64>(STRETCH);
-  if (T == 1) solveTethers(0, N, sf64);
-  else for (let c = firstChunk(t, T, phase, particleChunks); c >= 0; c = nextChunk(t, T, phase, particleChunks)) {
-    solveTethers(c * CHUNK_PARTICLES, min(N, (c + 1) * CHUNK_PARTICLES), sf64);
-  }
-  barrier(T, phase++);
+  seq = phase(t, T, seq, alone, TETHERS, 0, 0, N, CHUNK_PARTICLES);
   for (let b = 0; b < BATCH_COUNT; b++) {
     const rec = BATCHES + <usize>b * 12;
     if (load<i32>(rec, 8) == BEND) continue;
-    const start = load<i32>(rec), end = load<i32>(rec, 4);
-    if (T == 1) limitStretch(start, end, sf);
-    else {
-      const chunks = (end - start + CHUNK_SPRINGS - 1) / CHUNK_SPRINGS;
-      for (let c = firstChunk(t, T, phase, chunks); c >= 0; c = nextChunk(t, T, phase, chunks)) {
-        const s0 = start + c * CHUNK_SPRINGS;
-        limitStretch(s0, min(end, s0 + CHUNK_SPRINGS), sf);
-      }
-    }
-    barrier(T, phase++);
+    seq = phase(t, T, seq, alone, STRETCH_LIMIT, b, load<i32>(rec), load<i32>(rec, 4), CHUNK_SPRINGS);
   }
-  if ((flags & FLAG_CONTACT) != 0) {
-    if (T == 1) collideParticles(0, N);
-    else for (let c = firstChunk(t, T, phase, particleChunks); c >= 0; c = nextChunk(t, T, phase, particleChunks)) {
-      collideParticles(c * CHUNK_PARTICLES, min(N, (c + 1) * CHUNK_PARTICLES));
+  if (((desc >>> 40) & 1) != 0) seq = phase(t, T, seq, alone, CONTACT, 0, 0, N, CHUNK_PARTICLES);
+  return seq;
+}
+
+/**
+ * One phase over items [start, end) in chunks of `size`: the whole range when alone, else thread t's chunks under
+ * the phase protocol. An empty range is no phase. Returns the next phase's sequence number.
+ */
+function phase(t: i32, T: i32, seq: i32, alone: bool, kind: i32, batch: i32, start: i32, end: i32, size: i32): i32 {
+  if (end <= start) return seq;
+  if (alone) {
+    run(kind, batch, start, end);
+    return seq;
+  }
+  const count = (end - start + size - 1) / size;
+  waitPhase(seq);
+  for (let c = claim(t, T, seq, count); c >= 0; c = claim(t, T, seq, count)) {
+    const c0 = start + c * size;
+    run(kind, batch, c0, min(end, c0 + size));
+  }
+  report(seq, T, count);
+  return seq + 1;
+}
+
+/** Items [i0, i1) of one phase; the scalars are read here, once the chunk is taken (they are this substep's). */
+function run(kind: i32, batch: i32, i0: i32, i1: i32): void {
+  const flags = load<i32>(FLAGS);
+  switch (kind) {
+    case INTEGRATE: integrate(i0, i1, (flags & FLAG_FORCES) != 0); break;
+    case GRAB: {
+      // after integration (the grabbed particle's x_prev is its position before the grab moves it)
+      const gp = X + <usize>load<i32>(GRABBED) * 12;
+      store<f32>(gp, <f32>load<f64>(GRAB_AT));
+      store<f32>(gp, <f32>load<f64>(GRAB_AT + 8), 4);
+      store<f32>(gp, <f32>load<f64>(GRAB_AT + 16), 8);
+      break;
     }
-    barrier(T, phase++);
+    case DISTANCE: {
+      const h = load<f64>(H);
+      const bend = load<i32>(BATCHES + <usize>batch * 12, 8) == BEND;
+      solveDistance(i0, i1, <f32>(1 / (h * h)), <f32>(load<f64>(DAMPING) / h), bend ? Infinity : <f32>load<f64>(STRETCH),
+        (flags & FLAG_ACCUMULATE) != 0, (flags & FLAG_STORE_LAMBDA) != 0);
+      break;
+    }
+    case TETHERS: solveTethers(i0, i1, load<f64>(STRETCH)); break;
+    case STRETCH_LIMIT: limitStretch(i0, i1, <f32>load<f64>(STRETCH)); break;
+    default: collideParticles(i0, i1);
   }
 }
 
