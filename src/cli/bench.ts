@@ -18,7 +18,7 @@ export interface BenchOptions {
   /** run JoltPhysics.js beside Drape */
   peer: boolean;
   /** threads of the WebAssembly XPBD kernel in the main Drape column (a 1-thread column is always printed) */
-  threads: number;
+  threads: number | 'auto';
   json: boolean;
 }
 
@@ -96,7 +96,7 @@ const timing = ({ msPerFrame, particleSubstepsPerSecond, finite, stable, centroi
   ({ msPerFrame, particleSubstepsPerSecond, finite, stable, centroid });
 
 /** The options of the fastest CPU XPBD Drape has here: the wasm kernel on `threads` threads. */
-export function cpuOptions(threads: number): SimulationOptions {
+export function cpuOptions(threads: number | 'auto'): SimulationOptions {
   return { kernel: 'auto', threads, spawnHelper: spawnNodeHelper };
 }
 
@@ -203,7 +203,7 @@ export interface GpuBenchOptions {
   substeps: number;
   frames: number;
   /** threads of the CPU XPBD solver timed beside the GPU */
-  threads: number;
+  threads: number | 'auto';
   json: boolean;
 }
 
@@ -228,7 +228,7 @@ export async function runGpuBench(gpu: Gpu, opts: GpuBenchOptions, out: (s: stri
     return;
   }
   out(`drape bench --backend gpu — cotton on sphere + floor, XPBD ${opts.substeps} substeps, ${opts.frames} timed frames; ${machine}`);
-  out(`CPU column: XPBD in the WebAssembly kernel on up to ${opts.threads} thread${opts.threads === 1 ? '' : 's'}`);
+  out(`CPU column: XPBD in the WebAssembly kernel on ${opts.threads === 'auto' ? 'its automatic thread count' : `up to ${opts.threads} thread${opts.threads === 1 ? '' : 's'}`}`);
   out('');
   out('| particles | springs | dispatches/frame | GPU ms/frame (wall) | GPU ms/frame (timestamps) | particle-substeps/s | MB/substep | copy GB/s | bandwidth floor ms | of floor | CPU XPBD ms/frame | GPU speed-up |');
   out('|---|---|---|---|---|---|---|---|---|---|---|---|');

@@ -1,15 +1,18 @@
 import { execFileSync, spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, symlinkSync, writeFileSync } from 'node:fs';
 import { availableParallelism, tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { describe, expect, it } from 'vitest';
-import { main } from './main.js';
+import { describe, expect, it, vi } from 'vitest';
+import { Simulation } from '../core/index.js';
+import { main, type CliIo } from './main.js';
 
-async function run(...argv: string[]) {
+async function runWith(io: CliIo | undefined, argv: string[]) {
   const out: string[] = [], err: string[] = [];
-  const code = await main(argv, (s) => out.push(s), (s) => err.push(s));
+  const code = await main(argv, (s) => out.push(s), (s) => err.push(s), io);
   return { code, out: out.join('\n'), err: err.join('\n') };
 }
+const run = (...argv: string[]) => runWith(undefined, argv);
+const tmp = () => mkdtempSync(join(tmpdir(), 'drape-cli-'));
 
 describe('drape CLI', () => {
   it('run --json prints exactly one JSON object with the documented fields', async () => {
@@ -30,7 +33,9 @@ describe('drape CLI', () => {
     const auto = JSON.parse((await run(...args)).out);
     expect(ts).toMatchObject({ kernel: 'ts', threads: 1 });
     expect(one).toMatchObject({ kernel: 'wasm', threads: 1 });
-    expect(auto).toMatchObject({ kernel: 'wasm', threads: Math.min(8, availableParallelism()) });
+    expect(auto).toMatchObject({ kernel: 'wasm', threads: 1 }); // a small cloth: threads would not pay
+    const big = JSON.parse((await run('run', 'cotton-basic', '--frames', '1', '--set', 'cloth.resolution=64', '--json')).out);
+    expect(big).toMatchObject({ kernel: 'wasm', threads: Math.min(8, availableParallelism()) });
     expect(auto.centroid).toEqual(one.centroid); // threads change nothing, bit for bit
     for (let k = 0; k < 3; k++) expect(Math.abs(one.centroid[k] - ts.centroid[k])).toBeLessThan(1e-4);
     // more threads than cores are clamped, with a note
@@ -48,7 +53,8 @@ describe('drape CLI', () => {
     const row = j.rows[0];
     expect(row).toMatchObject({ particlesPerSide: 9, particles: 81 });
     expect(row.xpbd).toMatchObject({ kernel: 'wasm', finite: true, stable: true });
-    expect(row.xpbd.threads).toBe(j.threads);
+    expect(j.threads).toBe('auto');
+    expect(row.xpbd.threads).toBe(1); // 'auto' on a cloth this small
     expect(row.xpbd1).toMatchObject({ kernel: 'wasm', finite: true });
     for (const t of [row.xpbd, row.xpbd1, row.xpbdTs, row.massSpring]) expect(t.msPerFrame).toBeGreaterThan(0);
   });
@@ -133,5 +139,156 @@ describe('drape CLI', () => {
     expect(bad.status).toBe(2);
     expect(bad.stderr.trim().split('\n')).toHaveLength(1);
     expect(bad.stderr).not.toMatch(/at .*\.js:\d+/); // no stack trace
+  });
+
+  it.each([
+    ['/dev/zero'], ['/dev/urandom'], ['/dev/null'],
+  ])('refuses %s at once: scene files must be regular files', async (path) => {
+    const t0 = performance.now();
+    const r = await run('run', path, '--frames', '1');
+    expect(performance.now() - t0).toBeLessThan(1000);
+    expect(r.code).toBe(2);
+    expect(r.err).toMatch(new RegExp(`^drape: ${path}: not a regular file`));
+  });
+
+  it('refuses a symlink to a device, a FIFO, a folder and an oversized file, at once', async () => {
+    const dir = tmp();
+    symlinkSync('/dev/zero', join(dir, 'zero.json'));
+    execFileSync('mkfifo', [join(dir, 'pipe.json')]);
+    mkdirSync(join(dir, 'folder.json'));
+    writeFileSync(join(dir, 'big.json'), Buffer.alloc(32 * 2 ** 20 + 1, 32));
+    const cases: [string, RegExp][] = [
+      ['zero.json', /zero\.json: not a regular file/],
+      ['pipe.json', /pipe\.json: not a regular file/],
+      ['folder.json', /folder\.json: is a folder, not a scene file/],
+      ['big.json', /big\.json: 32 MiB, more than the 32 MiB a scene file may have/],
+    ];
+    for (const [name, message] of cases) {
+      const t0 = performance.now();
+      const r = await run('run', join(dir, name), '--frames', '1');
+      expect(performance.now() - t0, name).toBeLessThan(1000);
+      expect(r.code, name).toBe(2);
+      expect(r.err, name).toMatch(message);
+      expect(r.err.split('\n'), name).toHaveLength(1);
+    }
+  });
+
+  it.each([
+    [['--frames', ''], /--frames: must be an integer in 0…1000000, got ''/],
+    [['--frames', '0x10'], /got '0x10'/],
+    [['--frames', '1e3'], /got '1e3'/],
+    [['--frames', ' 5'], /got ' 5'/],
+    [['--frames=-1'], /got '-1'/],
+    [['--threads', '2.0'], /--threads: must be an integer/],
+  ])('counts are decimal integers: %j exits 2', async (flags, message) => {
+    const r = await run('run', 'pins', ...flags);
+    expect(r.code).toBe(2);
+    expect(r.err).toMatch(message);
+  });
+
+  it('built-in names are scenes only: prototype names are unknown scenes', async () => {
+    for (const name of ['__proto__', 'constructor', 'toString']) {
+      const r = await run('run', name, '--frames', '1');
+      expect(r.code, name).toBe(2);
+      expect(r.err, name).toMatch(new RegExp(`unknown scene '${name}'`));
+    }
+  });
+
+  it('a huge list index in --set is refused at once; absurd nesting in a file names the file', async () => {
+    const t0 = performance.now();
+    const r = await run('run', 'pins', '--set', 'cloth.position[100000000]=2');
+    expect(performance.now() - t0).toBeLessThan(1000);
+    expect(r.code).toBe(2);
+    expect(r.err).toMatch(/cloth\.position has 3 items, no item 100000000/);
+    const file = join(tmp(), 'deep.json');
+    writeFileSync(file, '{"cloth":' + '['.repeat(100_000) + ']'.repeat(100_000) + '}');
+    const deep = await run('run', file);
+    expect(deep.code).toBe(2);
+    expect(deep.err).toMatch(/deep\.json: nested more than 32 levels deep/);
+  });
+
+  it('a bad export destination is refused before simulating', async () => {
+    const dir = tmp();
+    writeFileSync(join(dir, 'file'), 'x');
+    const cases: [string, RegExp][] = [
+      [dir + '.obj', /the folder .* does not exist|is a folder/],
+      [join(dir, 'missing', 'out.obj'), /the folder .*missing does not exist/],
+      [join(dir, 'file', 'out.obj'), /a folder on the path is a file|is not a folder/],
+    ];
+    mkdirSync(dir + '.obj');
+    for (const [path, message] of cases) {
+      const spy = vi.spyOn(Simulation.prototype, 'advance');
+      const r = await run('run', 'pins', '--frames', '600', '--export', path);
+      expect(spy, path).not.toHaveBeenCalled(); // nothing simulated
+      spy.mockRestore();
+      expect(r.code, path).toBe(2);
+      expect(r.err, path).toMatch(message);
+    }
+  });
+
+  it('an export that fails after the run still prints the results, and exits 4', async () => {
+    const failing: CliIo = { writeFile: () => { throw Object.assign(new Error('disk full'), { code: 'ENOSPC' }); } };
+    const path = join(tmp(), 'out.obj');
+    const text = await runWith(failing, ['run', 'pins', '--frames', '5', '--set', 'cloth.resolution=4', '--export', path]);
+    expect(text.code).toBe(4);
+    expect(text.out).toMatch(/^scene pins: /);
+    expect(text.err).toMatch(/--export: could not write .*out\.obj \(ENOSPC\); the results above are complete/);
+    const json = await runWith(failing, ['run', 'pins', '--frames', '5', '--set', 'cloth.resolution=4', '--export', path, '--json']);
+    expect(json.code).toBe(4);
+    const j = JSON.parse(json.out);
+    expect(j.finite).toBe(true);
+    expect(j.exportError).toMatch(/ENOSPC/);
+    expect(j.exported).toBeUndefined();
+    expect(existsSync(path)).toBe(false);
+  });
+
+  it('a run that becomes non-finite exits 3 naming the frame, and exports nothing', async () => {
+    const advance = Simulation.prototype.advance;
+    // a cloth that blows up at frame 7: no valid scene should, so the blow-up is made by hand
+    const spy = vi.spyOn(Simulation.prototype, 'advance').mockImplementation(function (this: Simulation, frames = 1) {
+      for (let f = 0; f < frames; f++) {
+        if (this.frame === 6) this.state.positions[4] = NaN;
+        if (!advance.call(this, 1)) return false;
+      }
+      return true;
+    });
+    try {
+      const path = join(tmp(), 'out.obj');
+      for (const json of [[], ['--json']]) {
+        const r = await run('run', 'pins', '--frames', '60', '--set', 'cloth.resolution=4', '--export', path, ...json);
+        expect(r.code).toBe(3);
+        expect(r.out).toBe('');
+        expect(r.err).toBe('drape: pins: the simulation became unstable at frame 7 of 60 (positions are no longer finite); nothing was exported');
+        expect(existsSync(path)).toBe(false);
+      }
+    } finally {
+      spy.mockRestore();
+    }
+  });
+
+  it('strings from a scene reach the terminal and the OBJ without control characters', async () => {
+    const dir = tmp();
+    const file = join(dir, 'evil.json'), obj = join(dir, 'evil.obj');
+    const name = 'x\nv 9 9 9\nmtllib evil.mtl\u001b[2J\u001b]0;pwned\u0007\u202e';
+    writeFileSync(file, JSON.stringify({ name, cloth: { resolution: 2 }, colliders: [] }));
+    const r = await run('run', file, '--frames', '1', '--export', obj);
+    expect(r.code).toBe(0);
+    expect(r.out).not.toMatch(/[\u0000-\u0009\u000b-\u001f\u007f-\u009f\u202e]/);
+    expect(r.out).toMatch(/^scene x\ufffdv 9 9 9\ufffdmtllib evil\.mtl\ufffd\[2J/);
+    expect(r.out.split('\n')[1]).toMatch(/^  cloth /); // the name added no line
+    const text = readFileSync(obj, 'utf8');
+    expect(text.match(/^v /gm)).toHaveLength(9); // the name added no vertex
+    expect(text).not.toMatch(/^mtllib/m);
+    expect(text).not.toMatch(/[\u001b\u0007\u202e]/);
+    const j = await run('run', file, '--frames', '1', '--json');
+    expect(j.out).not.toMatch(/[\u0000-\u001f\u007f-\u009f\u202e]/);
+    expect(JSON.parse(j.out).scene).toBe(name); // the same name, escaped in JSON
+    // an unknown key with an escape in it, in an error message
+    writeFileSync(file, JSON.stringify({ '\u001b[31mkey': 1 }));
+    const bad = await run('run', file);
+    expect(bad.code).toBe(2);
+    expect(bad.err).toBe('drape: ' + file + ': \ufffd[31mkey: unknown key');
+    writeFileSync(file, JSON.stringify({ 'a\nb': 1 }));
+    expect((await run('run', file)).err).toBe('drape: ' + file + ': a\ufffdb: unknown key');
   });
 });

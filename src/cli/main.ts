@@ -6,8 +6,12 @@
  */
 import { readFileSync, writeFileSync } from 'node:fs';
 import { parseArgs } from 'node:util';
-import { builtinScene, isBuiltinScene, parseScene, parseSetValue, SCENE_NAMES, sceneSchema, setScenePath, Simulation, type Scene, type SimulationOptions } from '../core/index.js';
-import { UsageError } from './errors.js';
+import {
+  builtinScene, isBuiltinScene, parseScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneSchema, setScenePath, Simulation,
+  type Scene, type SimulationOptions,
+} from '../core/index.js';
+import { EXIT, UsageError } from './errors.js';
+import { checkOutputPath, readInputFile } from './files.js';
 import { openGpu, type Gpu } from './gpu.js';
 import { toOBJ } from './obj.js';
 import { cpuOptions, runBench, runGpuBench } from './bench.js';
@@ -53,15 +57,20 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
   schema: `drape schema\n\nPrints the JSON schema every scene file is validated against (also published as scene.schema.json).`,
 };
 
+/** A count flag: decimal digits only (not '', '0x10', '1e3' or ' 5'), within min…max. */
 function intArg(name: string, raw: string | undefined, fallback: number, min: number, max: number): number {
   if (raw === undefined) return fallback;
-  const v = Number(raw);
-  if (!Number.isInteger(v) || v < min || v > max) throw new UsageError(`--${name}: must be an integer in ${min}…${max}, got '${raw}'`);
+  const v = /^[0-9]{1,10}$/.test(raw) ? Number(raw) : NaN;
+  if (!(v >= min && v <= max)) throw new UsageError(`--${name}: must be an integer in ${min}…${max}, got '${raw}'`);
   return v;
 }
 
-/** --threads: an integer ≥ 1; more than the cores available is clamped (the kernel's barriers spin), with a note. */
-function threadsArg(raw: string | undefined, err: (s: string) => void): number {
+/**
+ * --threads: an integer ≥ 1, more than the cores available clamped with a note; absent, 'auto' (the cores, or one
+ * thread for a small cloth).
+ */
+function threadsArg(raw: string | undefined, err: (s: string) => void): number | 'auto' {
+  if (raw === undefined) return 'auto';
   const max = maxThreads();
   const t = intArg('threads', raw, max, 1, 1024);
   if (t > max) err(`drape: note: --threads ${t}: using ${max}, the cores available`);
@@ -81,16 +90,7 @@ function checkBackend(raw: string | undefined): 'cpu' | 'gpu' {
 
 export function loadScene(arg: string | undefined): Scene {
   const name = arg ?? 'custom';
-  if (name.endsWith('.json') || name.includes('/') || name.includes('\\')) {
-    let text: string;
-    try {
-      text = readFileSync(name, 'utf8');
-    } catch (e) {
-      const code = (e as NodeJS.ErrnoException).code;
-      throw new UsageError(`${name}: ${code === 'ENOENT' ? 'no such file' : `cannot read (${code ?? (e as Error).message})`}`);
-    }
-    return parseScene(text, name);
-  }
+  if (name.endsWith('.json') || name.includes('/') || name.includes('\\')) return parseScene(readInputFile(name), name);
   if (!isBuiltinScene(name)) throw new UsageError(`unknown scene '${name}' (built-in scenes: ${SCENE_NAMES.join(', ')}; or give a .json file)`);
   return builtinScene(name);
 }
@@ -138,7 +138,7 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
       threads = sim.threads;
       const t0 = performance.now();
       sim.advance(frames);
-      ms = frames > 0 ? (performance.now() - t0) / frames : 0;
+      ms = sim.frame > 0 ? (performance.now() - t0) / sim.frame : 0;
     } finally {
       sim.dispose();
     }
@@ -163,7 +163,22 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
   };
 }
 
-async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string) => void): Promise<number> {
+/** The one line that says a run blew up, or undefined when every position stayed finite. */
+function unstableLine(scene: Scene, run: RunResult, frames: number, gpu: boolean): string | undefined {
+  if (run.finite) return undefined;
+  // the CPU checks every frame; the GPU backend reads positions back once, after the last frame
+  const when = !gpu && run.sim.unstableFrame !== null ? `at frame ${run.sim.unstableFrame} of ${frames}` : `by frame ${frames}`;
+  const res = scene.resolutionSweep ? ` (${run.resolution} faces per side)` : '';
+  return `${plainText(scene.name, 100)}${res}: the simulation became unstable ${when} (positions are no longer finite); nothing was exported`;
+}
+
+/** What the CLI does to the file system, replaceable in tests. */
+export interface CliIo {
+  writeFile(path: string, text: string): void;
+}
+const nodeIo: CliIo = { writeFile: (path, text) => writeFileSync(path, text) };
+
+async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string) => void, io: CliIo): Promise<number> {
   const { values, positionals } = parseArgs({
     args: argv,
     allowPositionals: true,
@@ -181,7 +196,10 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     ...cpuOptions(threadsArg(values.threads, err)),
     kernel: checkKernel(values.kernel),
   };
-  if (values.export !== undefined && !values.export.toLowerCase().endsWith('.obj')) throw new UsageError(`--export: only .obj files are supported, got '${values.export}'`);
+  if (values.export !== undefined) {
+    if (!values.export.toLowerCase().endsWith('.obj')) throw new UsageError(`--export: only .obj files are supported, got '${values.export}'`);
+    checkOutputPath(values.export, '--export'); // before simulating: a bad destination costs nothing
+  }
   let scene = loadScene(positionals[0]);
   const sets = values.set ?? [];
   if (values.solver !== undefined) sets.unshift(`solver.type=${values.solver}`);
@@ -197,33 +215,50 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   } finally {
     gpu?.device.destroy();
   }
+  const blewUp = [main, ...sweepRuns].map((r) => unstableLine(scene, r, frames, !!gpu)).find((line) => line !== undefined);
+  if (blewUp) {
+    err(`drape: ${blewUp}`);
+    return EXIT.unstable;
+  }
 
-  if (values.export) writeFileSync(values.export, toOBJ(main.sim.model, main.sim.state, scene.name));
+  let exportError: string | undefined;
+  if (values.export) {
+    try {
+      io.writeFile(values.export, toOBJ(main.sim.model, main.sim.state, scene.name));
+    } catch (e) {
+      exportError = `could not write ${values.export} (${(e as NodeJS.ErrnoException).code ?? (e as Error).message.split('\n')[0]})`;
+    }
+  }
   const { sim: _sim, resolution: _r, clamps, ...fields } = main;
   if (values.json) {
-    out(JSON.stringify({
+    out(safeJson({
       scene: scene.name, solver: scene.solver.type, backend, frames, substeps: scene.solver.substeps, ...fields, clamps,
       ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.resolution ** 2, ...r })) } : {}),
-      ...(values.export ? { exported: values.export } : {}),
+      ...(values.export && !exportError ? { exported: values.export } : {}),
+      ...(exportError ? { exportError } : {}),
     }));
-    return 0;
+  } else {
+    for (const c of clamps) err(`drape: note: ${c}`);
+    const f = (v: number) => (Math.abs(v) < 1e-3 && v !== 0 ? v.toExponential(2) : v.toFixed(4));
+    const where = backend === 'gpu' ? 'gpu' : `cpu (${main.kernel === 'wasm' ? `wasm SIMD, ${main.threads} thread${main.threads === 1 ? '' : 's'}` : 'TypeScript'})`;
+    out(`scene ${plainText(scene.name, 100)}: ${scene.solver.type} on ${where}, ${scene.solver.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
+    out(`  cloth        ${main.particles} particles, ${main.triangles} triangles, ${main.constraints} springs`);
+    out(`  speed        ${main.msPerFrame.toFixed(3)} ms per frame`);
+    out(`  finite       yes`);
+    out(`  max strain   ${(main.maxStrain * 100).toFixed(2)} % (structural)`);
+    out(`  penetration  ${(main.maxPenetration * 1000).toFixed(3)} mm`);
+    out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
+    out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J`);
+    if (sweep) {
+      out(`  resolution sweep (faces → resting height of the centroid):`);
+      for (const r of sweepRuns) out(`    ${String(r.resolution ** 2).padStart(5)} faces  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);
+    }
+    if (values.export && !exportError) out(`  exported     ${values.export}`);
   }
-  for (const c of clamps) err(`drape: note: ${c}`);
-  const f = (v: number) => (Math.abs(v) < 1e-3 && v !== 0 ? v.toExponential(2) : v.toFixed(4));
-  const where = backend === 'gpu' ? 'gpu' : `cpu (${main.kernel === 'wasm' ? `wasm SIMD, ${main.threads} thread${main.threads === 1 ? '' : 's'}` : 'TypeScript'})`;
-  out(`scene ${scene.name}: ${scene.solver.type} on ${where}, ${scene.solver.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
-  out(`  cloth        ${main.particles} particles, ${main.triangles} triangles, ${main.constraints} springs`);
-  out(`  speed        ${main.msPerFrame.toFixed(3)} ms per frame`);
-  out(`  finite       ${main.finite ? 'yes' : 'NO'}`);
-  out(`  max strain   ${(main.maxStrain * 100).toFixed(2)} % (structural)`);
-  out(`  penetration  ${(main.maxPenetration * 1000).toFixed(3)} mm`);
-  out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
-  out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J`);
-  if (sweep) {
-    out(`  resolution sweep (faces → resting height of the centroid):`);
-    for (const r of sweepRuns) out(`    ${String(r.resolution ** 2).padStart(5)} faces  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);
+  if (exportError) {
+    err(`drape: --export: ${exportError}; the results above are complete`);
+    return EXIT.exportFailed;
   }
-  if (values.export) out(`  exported     ${values.export}`);
   return 0;
 }
 
@@ -231,7 +266,7 @@ function cmdScenes(argv: string[], out: (s: string) => void): number {
   const { values } = parseArgs({ args: argv, options: { json: { type: 'boolean' }, help: { type: 'boolean', short: 'h' } } });
   if (values.help) { out(HELP.scenes); return 0; }
   const list = SCENE_NAMES.map((name) => ({ name, description: builtinScene(name).description ?? '' }));
-  if (values.json) out(JSON.stringify(list));
+  if (values.json) out(safeJson(list));
   else for (const s of list) out(`${s.name.padEnd(16)}${s.description}`);
   return 0;
 }
@@ -276,14 +311,27 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
   return 0;
 }
 
-/** Runs the CLI; returns the exit code. Output goes through `out`/`err` so tests can capture it. */
-export async function main(argv: string[], out: (s: string) => void = console.log, err: (s: string) => void = console.error): Promise<number> {
+/**
+ * Text for the terminal: line by line through plainText, a safety net so that no escape sequence reaches it (strings
+ * from scenes and files are made one line where they are inserted).
+ */
+const terminalText = (s: string) => s.split('\n').map((line) => plainText(line, Infinity)).join('\n');
+
+/**
+ * Runs the CLI; returns the exit code (EXIT: 0 done, 1 internal error, 2 bad input, 3 the simulation became
+ * unstable, 4 the results are printed but the export failed). Output goes through `out`/`err` (tests capture it),
+ * every line terminal-safe; `io` writes files.
+ */
+export async function main(
+  argv: string[], toOut: (s: string) => void = console.log, toErr: (s: string) => void = console.error, io: CliIo = nodeIo,
+): Promise<number> {
+  const out = (s: string) => toOut(terminalText(s)), err = (s: string) => toErr(terminalText(s));
   const [cmd, ...rest] = argv;
   try {
     switch (cmd) {
       case undefined: case 'help': case '--help': case '-h': out(HELP.main); return 0;
       case '--version': case '-v': out(JSON.parse(readFileSync(new URL('../../package.json', import.meta.url), 'utf8')).version); return 0;
-      case 'run': return await cmdRun(rest, out, err);
+      case 'run': return await cmdRun(rest, out, err, io);
       case 'scenes': return cmdScenes(rest, out);
       case 'bench': return await cmdBench(rest, out, err);
       case 'schema':
@@ -296,12 +344,13 @@ export async function main(argv: string[], out: (s: string) => void = console.lo
     const error = e as Error & { code?: string };
     // parseArgs' own errors (unknown option, missing value) and ours are the user's to fix: one line, exit 2
     if (e instanceof UsageError || error.name === 'SceneError' || error.code?.startsWith('ERR_PARSE_ARGS')) {
-      // parseArgs appends advice after the first sentence; the first sentence names the problem
-      const line = error.message.split('\n')[0];
-      err(`drape: ${error.code?.startsWith('ERR_PARSE_ARGS') ? line.split('. ')[0] : line}`);
-      return 2;
+      // parseArgs appends advice after the first sentence; the first sentence names the problem. Ours are one
+      // line, but may quote what the user gave (a key, a path), which must stay on that line
+      const line = error.code?.startsWith('ERR_PARSE_ARGS') ? error.message.split('\n')[0].split('. ')[0] : error.message;
+      err(`drape: ${plainText(line, 1000)}`);
+      return EXIT.usage;
     }
-    err(`drape: internal error: ${error.message.split('\n')[0]}`);
-    return 1;
+    err(`drape: internal error: ${plainText(error.message.split('\n')[0], 1000)}`);
+    return EXIT.internal;
   }
 }

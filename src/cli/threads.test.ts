@@ -71,10 +71,10 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
   });
 
   it('a helper that fails to start makes whenReady reject with its error, and stepping stays on one thread', async () => {
-    const failing: HelperSpawner = (_init, onError) => {
+    const failing: HelperSpawner = Object.assign((_init: unknown, onError: (e: Error) => void) => {
       setTimeout(() => onError(new Error('no worker for you')), 1);
       return { terminate() {} };
-    };
+    }, { cores: 2 });
     const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: failing });
     await expect(sim.whenReady()).rejects.toThrow(/no worker for you/);
     sim.advance(2);

@@ -4,7 +4,7 @@
  */
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
-import type { HelperSpawner } from '../core/wasm/xpbd-wasm.js';
+import type { HelperSpawner, KernelHelperInit } from '../core/wasm/xpbd-wasm.js';
 
 // The worker's whole program (CommonJS, evaluated): instantiate the kernel with the imports of core/wasm
 // kernelImports() (a worker thread may block, so wait always sleeps) and enter its helper loop.
@@ -22,15 +22,15 @@ instance.exports.configure(...layout);
 instance.exports.helperLoop(thread);
 `;
 
+/** Most threads the CLI gives the kernel: the cores Node may use (more would only take turns), at most 8. */
+export function maxThreads(): number {
+  return Math.min(8, Math.max(1, availableParallelism()));
+}
+
 /** Starts a kernel helper on a Node worker thread that does not keep the process alive. */
-export const spawnNodeHelper: HelperSpawner = (init, onError) => {
+export const spawnNodeHelper: HelperSpawner = Object.assign((init: KernelHelperInit, onError: (error: Error) => void) => {
   const worker = new Worker(HELPER_SOURCE, { eval: true, workerData: init });
   worker.on('error', onError);
   worker.unref();
   return { terminate: () => void worker.terminate() };
-};
-
-/** Most threads the CLI gives the kernel: the cores Node may use (its barriers spin, so never more), at most 8. */
-export function maxThreads(): number {
-  return Math.min(8, Math.max(1, availableParallelism()));
-}
+}, { cores: maxThreads() });

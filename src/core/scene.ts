@@ -107,6 +107,12 @@ function pickError(errors: ErrorObject[]): ErrorObject {
   return pool.reduce((best, e) => (e.instancePath.length > best.instancePath.length ? e : best), pool[0]);
 }
 
+/**
+ * Largest scene file (and, later, mesh file) the CLI and the app read [bytes]: 32 MiB, room for a scene pinning
+ * every particle of the largest cloth or a 100k-triangle mesh, small enough to read in well under a second.
+ */
+export const MAX_INPUT_BYTES = 32 * 2 ** 20;
+
 /** Deepest nesting a scene document may have: the schema's own is 4 (colliders[0].center[0]). */
 const MAX_DEPTH = 32;
 
@@ -178,12 +184,13 @@ export function parseSetValue(raw: string): unknown {
 
 /**
  * Sets a dotted path (`material.bendStiffness`, `colliders[0].radius`, `colliders.0.radius`) on a plain scene
- * document and re-validates it. Unknown paths and invalid values throw SceneError naming the path.
+ * document and re-validates it. Unknown paths and invalid values throw SceneError naming the path, after `source`
+ * (what the user wrote: `--set PATH` in the CLI).
  */
-export function setScenePath(scene: Scene | Record<string, unknown>, path: string, value: unknown): Scene {
+export function setScenePath(scene: Scene | Record<string, unknown>, path: string, value: unknown, source = `--set ${path}`): Scene {
   const keys = path.replace(/\[(\d+)\]/g, '.$1').split('.').filter(Boolean);
   if (keys.length === 0 || keys.some((k) => k === '__proto__' || k === 'constructor' || k === 'prototype')) {
-    throw new SceneError(`--set ${path}: not a scene path`);
+    throw new SceneError(`${source}: not a scene path`);
   }
   const doc = structuredClone(scene) as Record<string, unknown>;
   let node: Record<string, unknown> | unknown[] = doc;
@@ -191,23 +198,22 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     const last = i === keys.length - 1;
     if (Array.isArray(node)) {
       const list = keys.slice(0, i).join('.');
-      if (!/^\d+$/.test(keys[i])) throw new SceneError(`--set ${path}: ${list} is a list; use an index such as ${list}[0]`);
+      if (!/^\d+$/.test(keys[i])) throw new SceneError(`${source}: ${list} is a list; use an index such as ${list}[0]`);
       // an existing item, or (for the last key) one past the end to append: never a sparse array
       if (Number(keys[i]) > (last ? node.length : node.length - 1)) {
         const items = `${node.length} item${node.length === 1 ? '' : 's'}`;
-        throw new SceneError(`--set ${path}: ${list} has ${items}, no item ${keys[i]}${last ? ` (${node.length} appends one)` : ''}`);
+        throw new SceneError(`${source}: ${list} has ${items}, no item ${keys[i]}${last ? ` (${node.length} appends one)` : ''}`);
       }
     }
     if (last) break;
     const k = keys[i];
     const next = Object.hasOwn(node, k) ? (node as Record<string, unknown>)[k] : undefined;
     if (next === null || typeof next !== 'object') {
-      throw new SceneError(`--set ${path}: ${keys.slice(0, i + 1).join('.')} is not an object in this scene`);
+      throw new SceneError(`${source}: ${keys.slice(0, i + 1).join('.')} is not an object in this scene`);
     }
     node = next as Record<string, unknown>;
   }
   (node as Record<string, unknown>)[keys[keys.length - 1]] = value;
-  const source = `--set ${path}`;
   try {
     return validateScene(doc, source);
   } catch (e) {

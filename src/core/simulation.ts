@@ -9,6 +9,7 @@ import { FRAME_DT, resolveParams, type SimParams } from './params.js';
 import { applyPins, resolvePins } from './pins.js';
 import { setScenePath, validateScene, type Scene } from './scene.js';
 import { step } from './solvers/index.js';
+import { plainText } from './text.js';
 import { copyState, createState, resetState, type ClothState } from './state.js';
 import { createWasmState, type HelperSpawner } from './wasm/xpbd-wasm.js';
 
@@ -22,11 +23,12 @@ export interface SimulationOptions {
    */
   kernel?: CpuKernel | 'auto';
   /**
-   * threads sharing each substep of the wasm kernel, default 1; more need `spawnHelper`, and no more than the
-   * cores there are (the kernel's barriers spin)
+   * threads sharing each substep of the wasm kernel: an integer ≥ 1, or 'auto' (the default): the spawner's cores
+   * (at most 8), but one thread for cloths under AUTO_THREADS_MIN_PARTICLES particles, where threads do not pay.
+   * More than one needs `spawnHelper`, and never more than its `cores` are used.
    */
-  threads?: number;
-  /** starts a helper thread of the wasm kernel (Node: cli/threads.ts spawnNodeHelper) */
+  threads?: number | 'auto';
+  /** starts a helper thread of the wasm kernel (Node: spawnNodeHelper from drape/threads) */
   spawnHelper?: HelperSpawner;
 }
 
@@ -49,6 +51,42 @@ export function needsRebuild(prev: Scene, next: Scene): boolean {
     prev.material.scaleWithResolution !== next.material.scaleWithResolution;
 }
 
+/**
+ * Smallest cloth [particles] that 'auto' gives more than one thread: below it one thread is as fast (measured with
+ * `drape bench --sizes …`, docs/performance.md).
+ */
+export const AUTO_THREADS_MIN_PARTICLES = 2500;
+
+/** Threads for a kernel: the request, or 'auto' by cloth size, and never more than the cores or 8. */
+function threadsFor(request: number | 'auto', cores: number, particles: number): number {
+  const most = Math.max(1, Math.min(8, Math.floor(cores) || 1));
+  if (request === 'auto') return particles < AUTO_THREADS_MIN_PARTICLES ? 1 : most;
+  return Math.min(request, most);
+}
+
+/** Whether every value is finite: one sum (NaN and ±∞ survive it; f32 values cannot overflow an f64 sum). */
+function allFinite(x: Float32Array): boolean {
+  let s = 0;
+  for (let j = 0; j < x.length; j++) s += x[j];
+  return s - s === 0;
+}
+
+/** The options as given, or an Error naming the one that is wrong. */
+function checkOptions(options: SimulationOptions): SimulationOptions {
+  if (options === null || typeof options !== 'object') throw new TypeError('Simulation: options must be an object');
+  const { kernel, threads, spawnHelper } = options;
+  if (kernel !== undefined && kernel !== 'auto' && kernel !== 'wasm' && kernel !== 'ts') {
+    throw new TypeError(`Simulation: options.kernel must be 'auto', 'wasm' or 'ts', got ${JSON.stringify(kernel)}`);
+  }
+  if (threads !== undefined && threads !== 'auto' && !(Number.isInteger(threads) && threads >= 1)) {
+    throw new RangeError(`Simulation: options.threads must be 'auto' or an integer ≥ 1, got ${String(threads)}`);
+  }
+  if (spawnHelper !== undefined && typeof spawnHelper !== 'function') {
+    throw new TypeError('Simulation: options.spawnHelper must be a function (e.g. spawnNodeHelper from drape/threads)');
+  }
+  return options;
+}
+
 export function modelFor(scene: Scene): ClothModel {
   return buildGridModel({ ...scene.cloth, scaleWithResolution: scene.material.scaleWithResolution });
 }
@@ -60,11 +98,16 @@ export class Simulation {
   params: SimParams;
   /** frames stepped since the last (re)start */
   frame = 0;
+  /**
+   * the frame at whose end some position was first not finite (the cloth blew up), or null while every position
+   * is finite; advance() steps no further once it is set (reset() or a rebuild clears it)
+   */
+  unstableFrame: number | null = null;
   private readonly options: SimulationOptions;
   private disposed = false;
 
   constructor(scene: Scene, options: SimulationOptions = {}) {
-    this.options = options;
+    this.options = checkOptions(options);
     this.scene = validateScene(scene);
     this.model = modelFor(this.scene);
     this.state = this.newState();
@@ -95,10 +138,10 @@ export class Simulation {
 
   /** A state for the current model and solver: in the wasm kernel's memory for XPBD (unless asked not to). */
   private newState(): ClothState {
-    const { kernel = 'auto', threads = 1 } = this.options;
+    const { kernel = 'auto', threads = 'auto' } = this.options;
     const spawnHelper = this.disposed ? undefined : this.options.spawnHelper;
     if (kernel !== 'ts' && this.scene.solver.type === 'xpbd') {
-      const t = spawnHelper ? threads : 1;
+      const t = spawnHelper ? threadsFor(threads, spawnHelper.cores, this.model.particleCount) : 1;
       const state = createWasmState(this.model, t) ?? (t > 1 ? createWasmState(this.model, 1) : null);
       if (state) {
         if (spawnHelper && state.kernel!.threads > 1) state.kernel!.startHelpers(spawnHelper);
@@ -109,12 +152,18 @@ export class Simulation {
     return createState(this.model);
   }
 
-  /** Advances `frames` frames of 1/60 s. */
-  advance(frames = 1): void {
-    for (let f = 0; f < frames; f++) {
+  /**
+   * Advances `frames` frames of 1/60 s; returns false (stepping no further) once a position is not finite, with
+   * `unstableFrame` saying at which frame.
+   */
+  advance(frames = 1): boolean {
+    if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`Simulation.advance: frames must be an integer ≥ 0, got ${frames}`);
+    for (let f = 0; f < frames && this.unstableFrame === null; f++) {
       step(this.model, this.state, this.params, FRAME_DT);
       this.frame++;
+      if (!allFinite(this.state.positions)) this.unstableFrame = this.frame;
     }
+    return this.unstableFrame === null;
   }
 
   /** Back to the start pose with the scene's pins. */
@@ -122,6 +171,7 @@ export class Simulation {
     resetState(this.model, this.state);
     applyPins(this.state, resolvePins(this.model, this.scene.pins));
     this.frame = 0;
+    this.unstableFrame = null;
   }
 
   /**
@@ -129,7 +179,8 @@ export class Simulation {
    * be rebuilt (and so restarted).
    */
   set(path: string, value: unknown): boolean {
-    return this.setScene(setScenePath(this.scene, path, value));
+    if (typeof path !== 'string') throw new TypeError(`Simulation.set: path must be a string such as 'material.damping', got ${typeof path}`);
+    return this.setScene(setScenePath(this.scene, path, value, `Simulation.set('${plainText(path, 100)}')`));
   }
 
   /** Replaces the whole scene, rebuilding only what the change needs. Returns true when the cloth restarted. */
@@ -143,6 +194,7 @@ export class Simulation {
       this.model = modelFor(next);
       this.state = this.newState();
       this.frame = 0;
+      this.unstableFrame = null;
     } else if ((prev.solver.type === 'xpbd') !== (next.solver.type === 'xpbd')) {
       // XPBD steps in the kernel's memory, mass-spring in plain arrays: move the cloth over, as it is
       const moved = this.newState();

@@ -98,9 +98,20 @@ export function resetState(model: ClothModel, state: ClothState): void {
   state.substeps = 0;
 }
 
+/** Farthest a grab may carry a particle from the origin, per coordinate [m] (the schema's positions reach ±1000). */
+export const MAX_GRAB_COORDINATE = 10_000;
+
+/** Throws a RangeError naming `fn` unless `particle` is an index of the state's particles. */
+function checkParticle(fn: string, state: ClothState, particle: number): void {
+  if (!(Number.isInteger(particle) && particle >= 0 && particle < state.pinned.length)) {
+    throw new RangeError(`${fn}: particle must be an integer in 0…${state.pinned.length - 1}, got ${String(particle)}`);
+  }
+}
+
 /** Pins or unpins one particle; takes effect on the next step. */
 export function setPinned(state: ClothState, particle: number, pinned: boolean): void {
-  if (!(particle >= 0 && particle < state.pinned.length)) throw new RangeError(`particle ${particle} out of range`);
+  checkParticle('setPinned', state, particle);
+  if (typeof pinned !== 'boolean') throw new TypeError(`setPinned: pinned must be true or false, got ${String(pinned)}`);
   state.pinned[particle] = pinned ? 1 : 0;
   state.tethersStale = true;
   if (pinned) {
@@ -110,9 +121,17 @@ export function setPinned(state: ClothState, particle: number, pinned: boolean):
   }
 }
 
-/** Starts (or moves) a grab: the particle is carried to `target` over the next step and held there. */
+/**
+ * Starts (or moves) a grab: the particle is carried to `target` [m] over the next step and held there. The target
+ * must be three finite numbers within ±MAX_GRAB_COORDINATE.
+ */
 export function grab(state: ClothState, particle: number, target: readonly [number, number, number]): void {
-  if (!(particle >= 0 && particle < state.pinned.length)) throw new RangeError(`particle ${particle} out of range`);
+  checkParticle('grab', state, particle);
+  if (!Array.isArray(target) && !ArrayBuffer.isView(target) || target.length !== 3 ||
+      ![0, 1, 2].every((k) => Number.isFinite(target[k]) && Math.abs(target[k]) <= MAX_GRAB_COORDINATE)) {
+    const shown = Array.isArray(target) ? `[${target.map(String).join(', ')}]` : String(target);
+    throw new RangeError(`grab: target must be [x, y, z] of finite numbers within ±${MAX_GRAB_COORDINATE} m, got ${shown}`);
+  }
   state.grabbed = particle;
   state.grabTarget[0] = target[0];
   state.grabTarget[1] = target[1];

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { plainText } from './text.js';
+import { plainText, safeJson } from './text.js';
 
 describe('plainText', () => {
   it('keeps ordinary text, including non-Latin scripts and emoji', () => {
@@ -12,5 +12,15 @@ describe('plainText', () => {
   });
   it('cuts long text', () => {
     expect(plainText('x'.repeat(500), 10)).toBe('xxxxxxxxx…');
+  });
+});
+
+describe('safeJson', () => {
+  it('is the same JSON value with every unsafe character escaped', () => {
+    const value = { name: 'a\u001b[2J\u009b\u2028\u202eb', n: [1, 2] };
+    const text = safeJson(value);
+    expect(text).not.toMatch(/[\u0000-\u001f\u007f-\u009f\u2028\u2029\u202a-\u202e\u2066-\u2069]/);
+    expect(JSON.parse(text)).toEqual(value);
+    expect(safeJson({ a: 1 }, 2)).toBe('{\n  "a": 1\n}');
   });
 });

@@ -60,9 +60,14 @@ export interface KernelHelperInit {
 
 /**
  * Starts one helper thread (front-end specific: Node worker_threads, Web Workers) and returns how to stop it;
- * calls `onError` if the thread fails (then whenHelpersReady() rejects with that error).
+ * calls `onError` if the thread fails (then whenHelpersReady() rejects with that error). `cores` says how many
+ * threads the machine can run at once: a kernel never gets more threads than that.
  */
-export type HelperSpawner = (init: KernelHelperInit, onError: (error: Error) => void) => { terminate(): void };
+export interface HelperSpawner {
+  (init: KernelHelperInit, onError: (error: Error) => void): { terminate(): void };
+  /** logical cores available to the kernel's threads, the caller's included [-] */
+  readonly cores: number;
+}
 
 const modules: { single?: WebAssembly.Module | null; threads?: WebAssembly.Module | null } = {};
 
