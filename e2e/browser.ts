@@ -40,6 +40,8 @@ export async function launch(kind: BrowserKind): Promise<Browser> {
     viewport: { width: 960, height: 600 },
     acceptDownloads: true,
   });
+  // every Content-Security-Policy violation of any page becomes a console error, which collectErrors records
+  await context.addInitScript(CSP_REPORTER);
   return {
     context,
     async close() {
@@ -48,6 +50,11 @@ export async function launch(kind: BrowserKind): Promise<Browser> {
     },
   };
 }
+
+/** Reports `securitypolicyviolation` events as console errors (an init script: it runs before the page's own). */
+export const CSP_REPORTER = `document.addEventListener('securitypolicyviolation', (e) => {
+  console.error('CSP violation: ' + e.effectiveDirective + ' refused ' + (e.blockedURI || '(inline)') + ' at ' + e.sourceFile + ':' + e.lineNumber);
+});`;
 
 /** Console errors and uncaught exceptions of a page, collected from the start. */
 export function collectErrors(page: Page): string[] {

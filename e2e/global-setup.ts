@@ -8,7 +8,17 @@ let server: Server | undefined;
 
 export default async function setup(project: TestProject): Promise<() => Promise<void>> {
   const t0 = Date.now();
-  if (!process.env.DRAPE_E2E_NO_BUILD) await build({ configFile: 'vite.config.ts', logLevel: 'warn' });
+  if (!process.env.DRAPE_E2E_NO_BUILD) {
+    // a production build, as `npm run build` makes it (under vitest NODE_ENV is 'test', which Vite would build as
+    // a development bundle: import.meta.env.DEV true, and so the test hook always on)
+    const env = process.env.NODE_ENV;
+    process.env.NODE_ENV = 'production';
+    try {
+      await build({ configFile: 'vite.config.ts', mode: 'production', logLevel: 'warn' });
+    } finally {
+      process.env.NODE_ENV = env;
+    }
+  }
   const s = await serve('dist/web');
   server = s.server;
   project.provide('baseURL', s.url);

@@ -14,14 +14,20 @@ export interface Opened {
   readyMs: number;
 }
 
+/** `query` with the parameter that installs the test hook `window.drape` in the built site */
+export function withHook(query: string): string {
+  return `${query}${query.length > 1 ? '&' : query ? '' : '?'}testhook`;
+}
+
 /**
  * Opens the built app. `hash` is the URL hash (scene link); `query` defaults to `?lite` (cheaper rendering on
- * SwiftShader: no MSAA, pixel ratio 1; the same code paths otherwise).
+ * SwiftShader: no MSAA, pixel ratio 1; the same code paths otherwise). `?testhook` is added: the built site has
+ * no `window.drape` without it.
  */
 export async function openApp(context: BrowserContext, hash = '', query = '?lite'): Promise<Opened> {
   const page = await context.newPage();
   const errors = collectErrors(page);
-  await page.goto(`${inject('baseURL')}${query}${hash}`);
+  await page.goto(`${inject('baseURL')}${withHook(query)}${hash}`);
   await page.waitForFunction(() => (window as any).drape?.ready === true, null, { timeout: 30_000 });
   const readyMs = await page.evaluate(() => (window as any).drape.firstFrameMs as number);
   // open every panel folder so that all controls can be reached

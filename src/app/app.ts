@@ -5,16 +5,19 @@
  */
 import { Box3, Group, Mesh, MeshStandardMaterial, BufferGeometry, BufferAttribute, DoubleSide, Vector3 } from 'three/webgpu';
 import {
-  SCENE_NAMES, SceneError, builtinScene, isBuiltinScene, parseScene, resolvePins, setScenePath, type PinPreset, type Scene,
+  SCENE_NAMES, SceneError, builtinScene, isBuiltinScene, parseScene, plainText, resolvePins, setScenePath, type PinPreset,
+  type Scene,
 } from '../core/index.js';
 import { ClothView, VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import { Stage, type CameraPreset } from '../render/stage.js';
 import { fabricFor, fabricLook } from '../render/textures.js';
+import { append, h } from '../ui/dom.js';
 import { Hud } from '../ui/hud.js';
 import { Overlay } from '../ui/overlay.js';
 import { CORNER_PINS, Panel, SCENE_LABELS, type PanelHost, type SweepLayout } from '../ui/panel.js';
 import { GpuSim } from './gpu-sim.js';
 import { Interaction, type InteractionHost } from './interaction.js';
+import { MAX_RESOLUTION, capResolution, fitSideBySide, importSizeProblem } from './limits.js';
 import { SimClient, type SimDriver } from './sim-client.js';
 import { decodeHash, encodeHash } from './url-state.js';
 
@@ -24,8 +27,6 @@ export const SWEEP_STAGE_FRAMES = 180;
 const SIDE_BY_SIDE_SPACING = 1.6;
 /** the Mesh Resolution scene on the GPU goes on past the CPU's 64 faces per side */
 export const GPU_SWEEP_EXTRA = [128, 256, 512, 1024];
-/** largest resolution the panel offers per simulation backend [faces per side] */
-export const MAX_RESOLUTION = { cpu: 256, gpu: 1024 } as const;
 
 /** the panel's and the link's backend choice; auto = the GPU when there is a hardware WebGPU device and the scene allows */
 export type BackendChoice = 'auto' | 'gpu' | 'cpu';
@@ -51,6 +52,8 @@ export class App implements PanelHost, InteractionHost {
   backendChoice: BackendChoice = 'auto';
   /** why the simulation is not where it was asked to be ('' when it is) */
   backendNote = '';
+  /** what the backend's size cap changed in the scene ('' when nothing): shown in the HUD until the next scene */
+  capNote = '';
   /** the choice came from the link or the panel (so the link keeps it), not from `?backend=` */
   private backendInLink = false;
   /** the WebGPU device was lost: the GPU backend is gone for this page */
@@ -152,11 +155,12 @@ export class App implements PanelHost, InteractionHost {
     if (this.sim?.kind === 'gpu') {
       const frame = this.sim.mirrors[0]?.frame ?? 0;
       this.gpuLost = true;
+      const capBefore = this.capNote;
       this.switchBackend(true);
-      this.overlay.message(
-        `WebGPU device lost; switched to WebGL2. The simulation continues on the CPU from the last positions read back from the GPU (frame ${frame}).`,
-        'notice',
-      );
+      this.overlay.message(this.capNote !== capBefore
+        ? `WebGPU device lost; switched to WebGL2. The simulation moves to the CPU, which takes a smaller cloth (${this.capNote}): it restarts.`
+        : `WebGPU device lost; switched to WebGL2. The simulation continues on the CPU from the last positions read back from the GPU (frame ${frame}).`,
+      'notice');
     } else {
       this.gpuLost = true;
       this.backendNote = this.backendChoice === 'gpu' ? 'GPU unavailable: the WebGPU device was lost' : '';
@@ -183,7 +187,36 @@ export class App implements PanelHost, InteractionHost {
     const d: SimDriver = kind === 'gpu' && this.stage.device ? new GpuSim(this.stage.device) : new SimClient();
     d.onFrame = () => { this.dirty = true; };
     d.onError = (m) => this.overlay.message(m, 'error');
+    d.onUnstable = (slot, frame) => this.onUnstable(slot, frame);
     return d;
+  }
+
+  /** which cloth, in words: 'the cloth', or 'cloth 3 (16 × 16)' when there are several */
+  private clothName(slot: number): string {
+    const r = this.sim.mirrors[slot]?.sim.scene.cloth.resolution;
+    return this.sim.mirrors.length > 1 ? `cloth ${slot + 1} (${r} × ${r})` : 'the cloth';
+  }
+
+  /**
+   * A cloth's positions stopped being finite numbers (a blown-up solve): the driver has stopped stepping it and
+   * keeps its last finite shape on screen. Say what happened and offer Reset.
+   */
+  private onUnstable(slot: number, frame: number): void {
+    this.dirty = true;
+    this.overlay.message(
+      `The simulation became unstable at frame ${frame} (${this.clothName(slot)}: positions no longer finite numbers) and is ` +
+      'stopped, showing the last finite shape. Reset to start again; more substeps or a softer material may help.',
+      'error', { label: 'Reset', run: () => this.reset() });
+  }
+
+  /** why the cloths cannot be exported now ('' when they can): never a file with NaN in it */
+  private exportProblem(): string {
+    for (const [k, m] of this.sim.mirrors.entries()) {
+      if (m.unstableAt >= 0) return `${this.clothName(k)} became unstable at frame ${m.unstableAt}; reset it first`;
+      const x = m.sim.state.positions;
+      for (let i = 0; i < x.length; i++) if (!Number.isFinite(x[i])) return `${this.clothName(k)} has positions that are not finite; reset it first`;
+    }
+    return '';
   }
 
   /**
@@ -193,6 +226,7 @@ export class App implements PanelHost, InteractionHost {
   private switchBackend(keep: boolean): boolean {
     const { kind, note } = this.wantedBackend();
     this.backendNote = note;
+    this.capToBackend(kind);
     const old = this.sim as SimDriver | undefined;
     if (old && old.kind === kind && !(old instanceof GpuSim && old.lost)) return false;
     this.interaction?.cancel();
@@ -226,17 +260,34 @@ export class App implements PanelHost, InteractionHost {
     return true;
   }
 
+  /**
+   * Clamps the scene to what the backend takes (README: CPU 256 faces per side, GPU 1024) and says so: a link, a
+   * file or a backend switch never builds a cloth that would freeze the page. Returns the note when it clamped.
+   */
+  private capToBackend(kind: 'cpu' | 'gpu'): string {
+    const { scene, note } = capResolution(this.scene, kind);
+    if (!note) return '';
+    this.scene = scene;
+    this.capNote = note;
+    this.overlay.message(note, 'notice');
+    this.panel?.sync();
+    this.scheduleHash();
+    return note;
+  }
+
   setBackend(choice: BackendChoice): void {
     this.backendChoice = choice;
     this.backendInLink = true;
     const sweepBefore = this.sweepList().length;
     const kindBefore = this.sim.kind;
+    const capBefore = this.capNote;
     this.backendNote = this.wantedBackend().note;
     if (this.wantedBackend().kind !== kindBefore) {
       this.switchBackend(true);
       if (this.sweepList().length !== sweepBefore) { this.sweepIndex = 0; this.loadSlots(); this.frameCamera(true); }
     }
-    if (this.backendNote) this.overlay.message(this.backendNote, 'notice');
+    const capped = this.capNote !== capBefore ? this.capNote : '';
+    if (this.backendNote || capped) this.overlay.message([this.backendNote, capped].filter(Boolean).join('. '), 'notice');
     this.panel.sync();
     this.scheduleHash();
     this.dirty = true;
@@ -248,6 +299,8 @@ export class App implements PanelHost, InteractionHost {
    */
   sweepList(): number[] {
     const sweep = this.scene.resolutionSweep ?? [];
+    // side by side: as many cloths as the backend simulates at once (see limits.ts)
+    if (sweep.length && this.sweepLayout === 'side-by-side') return fitSideBySide(sweep, this.sim?.kind ?? 'cpu').list;
     if (!sweep.length || this.sim?.kind !== 'gpu' || this.sweepLayout !== 'sequence') return sweep;
     const builtin = builtinScene('resolution').resolutionSweep ?? [];
     if (JSON.stringify(builtin) !== JSON.stringify(sweep)) return sweep;
@@ -285,6 +338,7 @@ export class App implements PanelHost, InteractionHost {
     this.scene = scene;
     this.sceneKey = key;
     this.sweepIndex = 0;
+    this.capNote = '';
     this.loadSlots();
     this.frameCamera(true);
     this.hud?.clearPlot();
@@ -349,10 +403,13 @@ export class App implements PanelHost, InteractionHost {
       const faces = r * r;
       const total = this.sweepList().length;
       const scaling = this.scene.material.scaleWithResolution ? 'scaled with resolution' : 'seed constants (not scaled)';
-      l.innerHTML = this.sweepLayout === 'sequence'
-        ? `<small>${this.sweepIndex % total + 1} / ${total}</small><b>${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}</b>` +
-          `<small>${r}×${r} grid · ${((r + 1) ** 2).toLocaleString('en')} particles</small><small>${scaling}</small>`
-        : `<b>${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}</b><small>${r}×${r} · ${this.scene.material.scaleWithResolution ? 'scaled' : 'seed constants'}</small>`;
+      const title = h('b', null, `${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}`);
+      if (this.sweepLayout === 'sequence') {
+        append(l, [h('small', null, `${this.sweepIndex % total + 1} / ${total}`), title,
+          h('small', null, `${r}×${r} grid · ${((r + 1) ** 2).toLocaleString('en')} particles`), h('small', null, scaling)]);
+      } else {
+        append(l, [title, h('small', null, `${r}×${r} · ${this.scene.material.scaleWithResolution ? 'scaled' : 'seed constants'}`)]);
+      }
       this.overlay.labelLayer.append(l);
       this.labels.push(l);
     });
@@ -418,11 +475,15 @@ export class App implements PanelHost, InteractionHost {
       return false;
     }
     this.scene = next;
+    if (path === 'cloth.resolution' || path === 'resolutionSweep') this.capNote = '';
+    const capBefore = this.capNote;
     if (this.wantedBackend().kind !== this.sim.kind) {
       this.switchBackend(true);
-      if (this.backendNote) this.overlay.message(this.backendNote, 'notice');
+      const capped = this.capNote !== capBefore ? this.capNote : '';
+      if (this.backendNote || capped) this.overlay.message([this.backendNote, capped].filter(Boolean).join('. '), 'notice');
     } else {
       this.backendNote = this.wantedBackend().note;
+      this.capToBackend(this.sim.kind);
     }
     const scenes = this.slotScenes();
     if (scenes.length !== this.sim.mirrors.length) {
@@ -453,6 +514,8 @@ export class App implements PanelHost, InteractionHost {
       this.sim.reset();
     }
     this.hud.clearPlot();
+    // the unstable-cloth message (and its Reset button) has done its job
+    if (this.overlay.lastMessage.startsWith('The simulation became unstable')) this.overlay.clearMessage();
     this.dirty = true;
   }
 
@@ -561,8 +624,9 @@ export class App implements PanelHost, InteractionHost {
     setTimeout(() => URL.revokeObjectURL(url), 10_000);
   }
 
+  /** a file name from the scene's name: letters, digits, '.', '_' and '-' only, never hidden or empty */
   private fileBase(): string {
-    return (this.scene.name || 'scene').replace(/[^\w.-]+/g, '-');
+    return plainText(this.scene.name, 60).replace(/[^\w.-]+/g, '-').replace(/^[.-]+/, '') || 'scene';
   }
 
   exportJson(): void {
@@ -578,7 +642,11 @@ export class App implements PanelHost, InteractionHost {
   private async readImport(): Promise<void> {
     const file = this.fileInput.files?.[0];
     if (!file) return;
-    this.importText(await file.text(), file.name);
+    // the file's name is shown in messages: as text, with no control or direction-changing characters
+    const name = plainText(file.name, 80);
+    const tooBig = importSizeProblem(file.size);
+    if (tooBig) { this.overlay.message(`Import refused — ${name}: ${tooBig}`); return; }
+    this.importText(await file.text(), name);
   }
 
   /** Loads a scene document; an invalid one is refused with a message and changes nothing. */
@@ -662,7 +730,7 @@ export class App implements PanelHost, InteractionHost {
   /** The cloths as plain meshes with standard materials, at their current shape, for the exporters. */
   private exportGroup(): Group {
     const group = new Group();
-    group.name = this.scene.name;
+    group.name = plainText(this.scene.name, 100);
     const look = fabricLook(fabricFor(this.scene.name));
     const material = new MeshStandardMaterial({ map: look.map, roughness: look.roughness, side: DoubleSide, name: `${look.kind} fabric` });
     this.sim.mirrors.forEach((m, k) => {
@@ -679,13 +747,18 @@ export class App implements PanelHost, InteractionHost {
   }
 
   exportObj(): void {
+    const problem = this.exportProblem();
+    if (problem) { this.overlay.message(`OBJ export refused: ${problem}.`); return; }
     void import('three/examples/jsm/exporters/OBJExporter.js').then(({ OBJExporter }) => {
-      const text = `# Drape cloth, scene '${this.scene.name}'\n` + new OBJExporter().parse(this.exportGroup());
+      // one comment line: the name cannot break out of it (no line breaks in plainText)
+      const text = `# Drape cloth, scene '${plainText(this.scene.name, 100)}'\n` + new OBJExporter().parse(this.exportGroup());
       this.download(new Blob([text], { type: 'model/obj' }), `${this.fileBase()}.obj`);
     });
   }
 
   exportGltf(): void {
+    const problem = this.exportProblem();
+    if (problem) { this.overlay.message(`glTF export refused: ${problem}.`); return; }
     void import('three/examples/jsm/exporters/GLTFExporter.js').then(async ({ GLTFExporter }) => {
       try {
         const out = await new GLTFExporter().parseAsync(this.exportGroup(), { binary: true });
@@ -784,7 +857,17 @@ export class App implements PanelHost, InteractionHost {
       springs += m.sim.model.restLengths.length;
     }
     const sweep = this.sweepList();
+    const notes: string[] = [];
+    this.sim.mirrors.forEach((m, k) => {
+      if (m.unstableAt >= 0) notes.push(`${this.clothName(k)}: unstable at frame ${m.unstableAt}, stopped — Reset (R) to start again`);
+    });
+    if (this.capNote) notes.push(this.capNote);
+    if (this.scene.resolutionSweep?.length && this.sweepLayout === 'side-by-side') {
+      const fit = fitSideBySide(this.scene.resolutionSweep, this.sim.kind);
+      if (fit.note) notes.push(fit.note);
+    }
     this.hud.update({
+      notes,
       fps: this.fps,
       idle: this.idle,
       backend: this.stage.backend === 'webgpu' ? 'WebGPU' : 'WebGL2',
@@ -803,7 +886,7 @@ export class App implements PanelHost, InteractionHost {
       slots: this.sim.mirrors.length,
       extra: sweep.length && this.sweepLayout === 'sequence'
         ? `resolution ${this.sweepIndex % sweep.length + 1} of ${sweep.length}, ${SWEEP_STAGE_FRAMES / 60} s each`
-        : SCENE_LABELS[this.scene.name] ? undefined : `scene: ${this.scene.name}`,
+        : Object.hasOwn(SCENE_LABELS, this.scene.name) ? undefined : `scene: ${plainText(this.scene.name, 100)}`,
     });
   }
 }

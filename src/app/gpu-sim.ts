@@ -9,7 +9,7 @@
  * on the GPU queue, time it cannot keep up with dropped.
  */
 import {
-  FRAME_DT, Simulation, energy, grab, maxStructuralStrain, release, type ClothModel, type Scene,
+  FRAME_DT, Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type Scene,
 } from '../core/index.js';
 import { GpuClothSolver } from '../gpu/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
@@ -26,6 +26,8 @@ interface GpuSlot {
   creating: ClothModel | null;
   /** a newer readback is wanted before positions are trusted (after a reset or upload) */
   stale: boolean;
+  /** the last positions read back that were all finite (what an unstable cloth goes back to and shows) */
+  lastGood: Float32Array | null;
 }
 
 export class GpuSim implements SimDriver {
@@ -36,6 +38,7 @@ export class GpuSim implements SimDriver {
   readonly stats: SimStats = newStats();
   onFrame: (() => void) | null = null;
   onError: ((message: string) => void) | null = null;
+  onUnstable: ((slot: number, frame: number) => void) | null = null;
   /** true: read back every frame (a view drawn from CPU positions is showing) */
   eagerReadback = false;
   /** the device was lost: nothing is stepped or read any more; mirrors keep the last readback */
@@ -68,8 +71,8 @@ export class GpuSim implements SimDriver {
     for (const scene of scenes) {
       // the mirror holds scene, model and read-back positions; the GPU steps, so no kernel memory
       const sim = new Simulation(scene, { kernel: 'ts' });
-      this.mirrors.push({ sim, modelGen: 0, frame: 0, grabbed: -1 });
-      this.slots.push({ solver: null, model: null, creating: null, stale: false });
+      this.mirrors.push({ sim, modelGen: 0, frame: 0, grabbed: -1, unstableAt: -1 });
+      this.slots.push({ solver: null, model: null, creating: null, stale: false, lastGood: sim.state.positions.slice() });
     }
     this.readGen++;
     this.clock.clear();
@@ -112,9 +115,10 @@ export class GpuSim implements SimDriver {
     const m = this.mirrors[slot];
     const rebuilt = m.sim.setScene(scene);
     if (rebuilt) {
-      m.frame = 0; m.grabbed = -1;
+      m.frame = 0; m.grabbed = -1; m.unstableAt = -1;
       this.readGen++;
       const s = this.slots[slot];
+      s.lastGood = m.sim.state.positions.slice();
       s.solver?.destroy();
       s.solver = null; s.model = null;
       this.ensureSolver(slot);
@@ -129,10 +133,19 @@ export class GpuSim implements SimDriver {
 
   resetSlot(slot: number): void {
     const m = this.mirrors[slot];
-    m.sim.reset(); m.frame = 0; m.grabbed = -1;
+    m.sim.reset(); m.frame = 0; m.grabbed = -1; m.unstableAt = -1;
+    this.slots[slot].lastGood = m.sim.state.positions.slice();
     this.readGen++;
     this.solverOf(slot)?.upload(m.sim.state);
     this.onFrame?.();
+  }
+
+  /** Test hook: NaN into one particle's position on the GPU; the next readback finds it (see readback). */
+  poison(slot: number): void {
+    const solver = this.solverOf(slot), m = this.mirrors[slot];
+    if (!solver || !m) return;
+    const i = m.sim.model.particleCount >> 1;
+    this.device.queue.writeBuffer(solver.positionBuffer, 16 * i, new Float32Array([NaN, NaN, NaN, 0]));
   }
 
   /** Puts a state (from another backend) into a slot: positions, velocities, time, pins; and its frame count. */
@@ -140,6 +153,8 @@ export class GpuSim implements SimDriver {
     const m = this.mirrors[slot];
     m.frame = frame;
     m.sim.frame = frame;
+    m.unstableAt = -1;
+    this.slots[slot].lastGood = m.sim.state.positions.slice();
     this.readGen++;
     this.solverOf(slot)?.upload(m.sim.state);
   }
@@ -177,7 +192,7 @@ export class GpuSim implements SimDriver {
     for (let f = 0; f < frames; f++) {
       this.mirrors.forEach((m, k) => {
         const solver = this.solverOf(k);
-        if (!solver) return;
+        if (!solver || m.unstableAt >= 0) return;
         solver.step(m.sim.state, m.sim.params, FRAME_DT);
         m.sim.frame++;
         m.frame = m.sim.frame;
@@ -216,10 +231,17 @@ export class GpuSim implements SimDriver {
     try {
       await Promise.all(this.mirrors.map(async (m, k) => {
         const solver = this.solverOf(k);
-        if (!solver) return;
-        // read into a scratch state, committed only if nothing restarted meanwhile
+        if (!solver || m.unstableAt >= 0) return;
         await solver.read(m.sim.state);
+        // (synchronously after the read: nothing is drawn in between)
+        const slot = this.slots[k];
+        if (!isFinite3(m.sim.state)) {
+          this.stopUnstable(k, solver);
+          return;
+        }
         if (m.grabbed >= 0) m.sim.state.positions.set(m.sim.state.grabTarget, 3 * m.grabbed);
+        if (slot.lastGood?.length === m.sim.state.positions.length) slot.lastGood.set(m.sim.state.positions);
+        else slot.lastGood = m.sim.state.positions.slice();
       }));
     } catch (e) {
       if (!this.lost && !this.disposed) this.onError?.(`GPU readback: ${(e as Error).message}`);
@@ -234,6 +256,7 @@ export class GpuSim implements SimDriver {
     let maxStrain = 0;
     const clamps = new Set<string>();
     for (const m of this.mirrors) {
+      if (m.unstableAt >= 0) continue;
       const e = energy(m.sim.model, m.sim.state, m.sim.params);
       total.kinetic += e.kinetic; total.gravitational += e.gravitational; total.elastic += e.elastic;
       maxStrain = Math.max(maxStrain, maxStructuralStrain(m.sim.model, m.sim.state));
@@ -243,6 +266,26 @@ export class GpuSim implements SimDriver {
     s.maxStrain = maxStrain;
     s.clamps = [...clamps];
     this.onFrame?.();
+  }
+
+  /**
+   * A cloth whose positions read back are not finite: it is no longer stepped, and goes back to the last finite
+   * positions read back, on the CPU and on the GPU (which the views draw from), so nothing NaN is drawn (at most
+   * the one readback period, ~0.1 s, in between), picked or exported. Reset starts it again.
+   */
+  private stopUnstable(k: number, solver: GpuClothSolver): void {
+    const m = this.mirrors[k], slot = this.slots[k];
+    m.unstableAt = m.frame;
+    const st = m.sim.state;
+    const good = slot.lastGood?.length === st.positions.length ? slot.lastGood : m.sim.model.restPositions;
+    st.positions.set(good);
+    st.previousPositions.set(good);
+    st.velocities.fill(0);
+    st.lambdas.fill(0);
+    m.grabbed = -1;
+    release(st);
+    solver.upload(st);
+    this.onUnstable?.(k, m.frame);
   }
 
   private destroySolvers(): void {

@@ -1,7 +1,10 @@
 /**
- * `window.drape`: a small, read-mostly hook for browser tests and the curious (documented in docs/app.md).
- * Queries return plain JSON values. The only things it can change are stepping (`step`, for tests that must not
- * depend on the machine's speed) and `import` (the same path as the panel's import button).
+ * `window.drape`: a small, read-mostly hook for browser tests (documented in docs/app.md). Installed by the dev
+ * server, and in a production build only when the page's query has `?testhook` (main.ts): a link cannot call it —
+ * the site's Content-Security-Policy lets only the site's own scripts run — and nothing in it runs code or reaches
+ * outside the page. Queries return plain JSON values. What it can change: stepping (`step`, for tests that must
+ * not depend on the machine's speed), `import` (the same path as the panel's import button), and two test-only
+ * faults, `loseDevice` and `poison`.
  */
 import { Vector3 } from 'three/webgpu';
 import type { App } from './app.js';
@@ -18,6 +21,10 @@ export interface DrapeHook {
   gpuDrawing(): boolean;
   /** tests: destroys the renderer's WebGPU device, as a GPU reset would (false when there is none) */
   loseDevice(): boolean;
+  /** tests: makes one particle's position NaN in the simulation (worker or GPU), as a blown-up solve would */
+  poison(slot?: number): void;
+  /** frame at which a slot's cloth became unstable (non-finite) and was stopped; -1 while it is fine */
+  unstableAt(slot?: number): number;
   sceneName(): string;
   /** the current scene document (a copy) */
   scene(): unknown;
@@ -70,6 +77,8 @@ export function installHook(app: App): DrapeHook {
       d.destroy();
       return true;
     },
+    poison: (slot = 0) => { mirror(slot); app.sim.poison(slot); },
+    unstableAt: (slot) => mirror(slot).unstableAt,
     sceneName: () => app.scene.name,
     scene: () => structuredClone(app.scene),
     view: () => app.view,

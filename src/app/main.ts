@@ -1,11 +1,14 @@
 /**
  * Entry point of the page (index.html). Query options: `?webgl` forces the WebGL2 backend; `?lite` renders more
  * cheaply (no MSAA, pixel ratio 1, smaller shadow map) for software rasterisers; `?backend=auto|gpu|cpu` picks the
- * simulation backend when the link's hash does not.
+ * simulation backend when the link's hash does not; `?testhook` installs the test hook `window.drape` in a
+ * production build (the dev server always has it).
  */
+/// <reference types="vite/client" />
 import '../ui/style.css';
 import { App } from './app.js';
 import { installHook } from './hook.js';
+import { wantsTestHook } from './security.js';
 
 performance.mark('drape:start');
 const viewport = document.getElementById('viewport');
@@ -13,7 +16,7 @@ if (!viewport) throw new Error('index.html: #viewport missing');
 
 const params = new URLSearchParams(location.search);
 App.create(document.body, viewport, { forceWebGL: params.has('webgl'), lite: params.has('lite'), backend: params.get('backend') }).then(
-  (app) => installHook(app),
+  (app) => { if (wantsTestHook(location.search, import.meta.env.DEV)) installHook(app); },
   (e: unknown) => {
     const box = document.createElement('div');
     box.className = 'drape-fatal';

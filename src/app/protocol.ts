@@ -12,13 +12,15 @@ export type ToWorker =
   | { type: 'load'; gen: number; scenes: Scene[] }
   /** change one slot's scene (Simulation.setScene: rebuilds only when the geometry changed) */
   | { type: 'setScene'; gen: number; slot: number; scene: Scene }
-  /** restart slots at their start pose (all when slot is undefined) */
-  | { type: 'reset'; slot?: number }
+  /** restart slots at their start pose (all when slot is undefined); frames of older generations are dropped */
+  | { type: 'reset'; gen: number; slot?: number }
   /** step every slot `frames` frames of 1/60 s and answer with a `frame` message */
   | { type: 'advance'; id: number; frames: number }
   /** grab (or move the grab of) a particle toward target */
   | { type: 'grab'; slot: number; particle: number; target: [number, number, number] }
   | { type: 'release'; slot: number }
+  /** test hook only: makes a particle's position NaN, as a blown-up solver would (see `unstableAt`) */
+  | { type: 'poison'; slot: number }
   /** continue a slot from another backend's state (GPU → CPU after a device loss or a backend switch) */
   | {
     type: 'setState'; slot: number; frame: number; time: number; substeps: number;
@@ -33,6 +35,11 @@ export interface SlotFrame {
   positions: Float32Array;
   pinned: Uint8Array;
   grabbed: number;
+  /**
+   * frame at which the cloth's positions stopped being finite numbers (-1: they are finite). Such a slot is no
+   * longer stepped, and its positions are not to be drawn or exported; a reset or rebuild starts it again.
+   */
+  unstableAt: number;
 }
 
 export type FromWorker =

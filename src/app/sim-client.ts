@@ -18,6 +18,11 @@ export interface Mirror {
   modelGen: number;
   frame: number;
   grabbed: number;
+  /**
+   * frame at which the cloth stopped being finite (-1: it is finite). The mirror then keeps the last finite
+   * positions: nothing NaN is drawn, picked or exported; the slot is no longer stepped until a reset or rebuild.
+   */
+  unstableAt: number;
 }
 
 export interface SimStats {
@@ -42,6 +47,8 @@ export interface SimDriver {
   readonly stats: SimStats;
   onFrame: (() => void) | null;
   onError: ((message: string) => void) | null;
+  /** a slot's cloth stopped being finite at `frame` (called once; see Mirror.unstableAt) */
+  onUnstable: ((slot: number, frame: number) => void) | null;
   load(scenes: Scene[]): void;
   setScene(slot: number, scene: Scene): boolean;
   reset(): void;
@@ -50,6 +57,8 @@ export interface SimDriver {
   release(slot: number): void;
   step(frames?: number): Promise<void>;
   tick(dtMs: number, now: number): void;
+  /** test hook only: makes one particle's position NaN, as a blown-up solver would */
+  poison(slot: number): void;
   dispose(): void;
 }
 
@@ -62,6 +71,7 @@ export class SimClient implements SimDriver {
   onFrame: (() => void) | null = null;
   /** called with a worker error message */
   onError: ((message: string) => void) | null = null;
+  onUnstable: ((slot: number, frame: number) => void) | null = null;
 
   private worker: Worker;
   private gen = 0;
@@ -85,7 +95,9 @@ export class SimClient implements SimDriver {
     const gen = ++this.gen;
     this.mirrors.length = 0;
     // mirrors hold the scene and model for picking and the panel; they never step, so no kernel memory
-    for (const scene of scenes) this.mirrors.push({ sim: new Simulation(scene, { kernel: 'ts' }), modelGen: gen, frame: 0, grabbed: -1 });
+    for (const scene of scenes) {
+      this.mirrors.push({ sim: new Simulation(scene, { kernel: 'ts' }), modelGen: gen, frame: 0, grabbed: -1, unstableAt: -1 });
+    }
     this.post({ type: 'load', gen, scenes: this.mirrors.map((m) => m.sim.scene) });
     this.clock.clear();
   }
@@ -95,21 +107,28 @@ export class SimClient implements SimDriver {
     const m = this.mirrors[slot];
     const gen = ++this.gen;
     const rebuilt = m.sim.setScene(scene);
-    if (rebuilt) { m.modelGen = gen; m.frame = 0; m.grabbed = -1; }
+    if (rebuilt) { m.modelGen = gen; m.frame = 0; m.grabbed = -1; m.unstableAt = -1; }
     this.post({ type: 'setScene', gen, slot, scene: m.sim.scene });
     return rebuilt;
   }
 
+  /** frames stepped before a reset (still on their way) are dropped: a newer generation */
   reset(): void {
-    for (const m of this.mirrors) { m.sim.reset(); m.frame = 0; m.grabbed = -1; }
-    this.post({ type: 'reset' });
+    const gen = ++this.gen;
+    for (const m of this.mirrors) { m.sim.reset(); m.frame = 0; m.grabbed = -1; m.unstableAt = -1; m.modelGen = gen; }
+    this.post({ type: 'reset', gen });
     this.clock.clear();
   }
 
   resetSlot(slot: number): void {
+    const gen = ++this.gen;
     const m = this.mirrors[slot];
-    m.sim.reset(); m.frame = 0; m.grabbed = -1;
-    this.post({ type: 'reset', slot });
+    m.sim.reset(); m.frame = 0; m.grabbed = -1; m.unstableAt = -1; m.modelGen = gen;
+    this.post({ type: 'reset', gen, slot });
+  }
+
+  poison(slot: number): void {
+    this.post({ type: 'poison', slot });
   }
 
   grab(slot: number, particle: number, target: [number, number, number]): void {
@@ -130,6 +149,7 @@ export class SimClient implements SimDriver {
     const m = this.mirrors[slot];
     m.sim.state.positions.set(state.positions);
     m.frame = frame;
+    m.unstableAt = -1;
     this.post({
       type: 'setState', slot, frame, time: state.time, substeps: state.substeps,
       positions: state.positions.slice(), previous: state.previousPositions.slice(), velocities: state.velocities.slice(),
@@ -177,6 +197,12 @@ export class SimClient implements SimDriver {
     msg.slots.forEach((f, k) => {
       const m = this.mirrors[k];
       if (!m || f.gen < m.modelGen || f.positions.length !== m.sim.state.positions.length) return;
+      if (f.unstableAt >= 0) {
+        // keep the last finite positions on screen; say so once
+        m.frame = f.frame;
+        if (m.unstableAt < 0) { m.unstableAt = f.unstableAt; this.onUnstable?.(k, f.unstableAt); }
+        return;
+      }
       m.sim.state.positions.set(f.positions);
       m.sim.state.pinned.set(f.pinned);
       m.frame = f.frame;

@@ -5,10 +5,24 @@
 import { Simulation, energy, grab, maxStructuralStrain, release, type Energy } from '../core/index.js';
 import type { FromWorker, SlotFrame, ToWorker } from './protocol.js';
 
+// Browsers hide SharedArrayBuffer on pages that are not cross-origin isolated (this one is not), and the core's
+// kernelImports asks `memory.buffer instanceof SharedArrayBuffer`, which then throws. A stand-in class that no
+// buffer is an instance of gives the right answer (not shared). TODO: drop once the core checks
+// `typeof SharedArrayBuffer` itself.
+if (typeof SharedArrayBuffer === 'undefined') {
+  (globalThis as unknown as { SharedArrayBuffer: unknown }).SharedArrayBuffer = class NoSharedArrayBuffer {};
+}
+
 interface Slot {
   sim: Simulation;
   gen: number;
 }
+
+/**
+ * Frame at which a slot's positions stopped being finite, or -1. The core's Simulation checks after every frame
+ * and steps no further once they are not (`unstableFrame`); reset and rebuilds clear it.
+ */
+const unstableAt = (s: Slot): number => s.sim.unstableFrame ?? -1;
 
 const ctx = self as unknown as {
   postMessage(message: FromWorker, transfer?: Transferable[]): void;
@@ -32,7 +46,9 @@ function frameMessage(id: number, frames: number, stepMs: number): void {
     const positions = sim.state.positions.slice();
     const pinned = sim.state.pinned.slice();
     transfer.push(positions.buffer, pinned.buffer);
-    out.push({ gen: s.gen, frame: sim.frame, positions, pinned, grabbed: sim.state.grabbed });
+    out.push({ gen: s.gen, frame: sim.frame, positions, pinned, grabbed: sim.state.grabbed, unstableAt: unstableAt(s) });
+    // a cloth that is not finite any more has no energy or strain worth showing (NaN)
+    if (unstableAt(s) >= 0) continue;
     const e = energy(sim.model, sim.state, sim.params);
     total.kinetic += e.kinetic;
     total.gravitational += e.gravitational;
@@ -57,7 +73,11 @@ function handle(msg: ToWorker): void {
       return;
     }
     case 'reset':
-      slots.forEach((s, k) => { if (msg.slot === undefined || msg.slot === k) s.sim.reset(); });
+      slots.forEach((s, k) => {
+        if (msg.slot !== undefined && msg.slot !== k) return;
+        s.sim.reset();
+        s.gen = msg.gen;
+      });
       return;
     case 'grab': {
       const slot = slots[msg.slot];
@@ -82,8 +102,16 @@ function handle(msg: ToWorker): void {
       slot.sim.frame = msg.frame;
       return;
     }
+    case 'poison': {
+      const slot = slots[msg.slot];
+      if (!slot) return;
+      const i = 3 * (slot.sim.model.particleCount >> 1);
+      slot.sim.state.positions.fill(NaN, i, i + 3);
+      return;
+    }
     case 'advance': {
       const t0 = performance.now();
+      // a cloth that blows up stops at the frame it did (Simulation.advance), and the page is told (unstableAt)
       for (const s of slots) s.sim.advance(msg.frames);
       const stepMs = msg.frames > 0 ? (performance.now() - t0) / msg.frames : 0;
       frameMessage(msg.id, msg.frames, stepMs);

@@ -7,6 +7,7 @@ import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import type { Energy } from '../core/index.js';
 import { SPRING_COLORS, STRAIN_RANGE, type ViewName } from '../render/cloth-view.js';
+import { append, h, setLines, type Child } from './dom.js';
 
 export interface HudInfo {
   fps: number;
@@ -29,7 +30,10 @@ export interface HudInfo {
   view: ViewName;
   maxStrain: number;
   slots: number;
+  /** another line of the text block (a scene's name: shown as text, never as markup) */
   extra?: string;
+  /** what the app had to do or stop (a clamped resolution, an unstable cloth), shown as warnings */
+  notes?: string[];
 }
 
 const PLOT_POINTS = 240;
@@ -81,6 +85,8 @@ export class Hud {
 
   /** Adds one energy sample (call about 10×/s). */
   sample(e: Energy): void {
+    // an unstable cloth's energy is not a number: the plot skips it rather than drawing garbage
+    if (!Number.isFinite(e.kinetic) || !Number.isFinite(e.gravitational) || !Number.isFinite(e.elastic)) return;
     const t = (performance.now() - this.t0) / 1000;
     const d = this.data;
     d[0].push(t);
@@ -98,32 +104,40 @@ export class Hud {
 
   update(i: HudInfo): void {
     const slow = !i.paused && i.realTime < 0.9;
-    this.text.innerHTML =
-      `<b>Drape</b> · ${i.backend} · sim on <span data-testid="hud-sim">${i.simBackend}</span><br>` +
-      `${i.idle ? 'idle' : `${i.fps.toFixed(0)} fps`} · sim ${i.stepMs.toFixed(1)} ms/frame<br>` +
-      `${i.particles.toLocaleString('en')} particles · ${i.triangles.toLocaleString('en')} triangles<br>` +
-      `${i.springs.toLocaleString('en')} springs · ${i.solver}, ${i.substeps} substeps` +
-      (i.slots > 1 ? `<br>${i.slots} cloths side by side (totals)` : '') +
-      (i.extra ? `<br>${i.extra}` : '');
-    const lines: string[] = [];
-    if (i.paused) lines.push('<span class="ok">paused — space to run, “Step” for one frame</span>');
-    else if (slow) lines.push(`<span class="warn">slow motion: ${(100 * i.realTime).toFixed(0)}% of real time — the simulation needs ${i.stepMs.toFixed(0)} ms per 16.7 ms frame; try a lower resolution or fewer substeps</span>`);
-    else lines.push('<span class="ok">real time (fixed 1/60 s frames)</span>');
-    if (i.backendNote) lines.push(`<span class="warn">${escapeHtml(i.backendNote)}</span>`);
-    for (const c of i.clamps) lines.push(`<span class="warn">⚠ ${escapeHtml(c)}</span>`);
-    this.status.innerHTML = lines.join('<br>');
+    const lines: Child[][] = [
+      [h('b', null, 'Drape'), ` · ${i.backend} · sim on `, h('span', { testid: 'hud-sim' }, i.simBackend)],
+      [`${i.idle ? 'idle' : `${i.fps.toFixed(0)} fps`} · sim ${finite(i.stepMs, 1)} ms/frame`],
+      [`${i.particles.toLocaleString('en')} particles · ${i.triangles.toLocaleString('en')} triangles`],
+      [`${i.springs.toLocaleString('en')} springs · ${i.solver}, ${i.substeps} substeps`],
+    ];
+    if (i.slots > 1) lines.push([`${i.slots} cloths side by side (totals)`]);
+    if (i.extra) lines.push([i.extra]);
+    setLines(this.text, lines);
+    const status: Child[][] = [];
+    const ok = (t: string) => [h('span', 'ok', t)];
+    const warn = (t: string) => [h('span', 'warn', t)];
+    if (i.paused) status.push(ok('paused — space to run, “Step” for one frame'));
+    else if (slow) status.push(warn(`slow motion: ${(100 * i.realTime).toFixed(0)}% of real time — the simulation needs ${finite(i.stepMs, 0)} ms per 16.7 ms frame; try a lower resolution or fewer substeps`));
+    else status.push(ok('real time (fixed 1/60 s frames)'));
+    for (const n of i.notes ?? []) status.push(warn(`⚠ ${n}`));
+    if (i.backendNote) status.push(warn(i.backendNote));
+    for (const c of i.clamps) status.push(warn(`⚠ ${c}`));
+    setLines(this.status, status);
     this.status.dataset.state = i.paused ? 'paused' : slow ? 'slow' : 'realtime';
+    this.legend.replaceChildren();
     if (i.view === 'springs') {
-      this.legend.innerHTML = ['structural', 'shear', 'bend']
-        .map((k, n) => `<span><i style="background:${SPRING_COLORS[n]}"></i>${k}</span>`).join(' ');
+      ['structural', 'shear', 'bend'].forEach((k, n) => {
+        const swatch = h('i', null);
+        swatch.style.background = SPRING_COLORS[n]; // through CSSOM: no style attribute for the CSP to refuse
+        append(this.legend, [n > 0 && ' ', h('span', null, swatch, k)]);
+      });
     } else if (i.view === 'strain') {
-      this.legend.innerHTML = `<span class="strain-bar"></span> −${STRAIN_RANGE * 100}% … 0 … +${STRAIN_RANGE * 100}% · max ${(100 * i.maxStrain).toFixed(1)}%`;
-    } else {
-      this.legend.innerHTML = '';
+      append(this.legend, [h('span', 'strain-bar'), ` −${STRAIN_RANGE * 100}% … 0 … +${STRAIN_RANGE * 100}% · max ${finite(100 * i.maxStrain, 1)}%`]);
     }
   }
 }
 
-function escapeHtml(s: string): string {
-  return s.replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c] ?? c);
+/** a number for the HUD: never 'NaN' or 'Infinity' on screen */
+function finite(v: number, digits: number): string {
+  return Number.isFinite(v) ? v.toFixed(digits) : '–';
 }

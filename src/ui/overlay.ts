@@ -2,6 +2,7 @@
  * Page overlays: the view-name toast, the '?' shortcut sheet, the message banner (errors and notices) and the
  * labels that float above cloths in the Mesh Resolution scene.
  */
+import { append, h } from './dom.js';
 
 export const SHORTCUTS: [string, string][] = [
   ['V', 'cycle views: shaded → wireframe → particles → springs → strain'],
@@ -20,6 +21,8 @@ export class Overlay {
   private readonly helpEl: HTMLElement;
   private readonly messageEl: HTMLElement;
   private readonly messageText: HTMLElement;
+  private readonly messageAction: HTMLButtonElement;
+  private actionRun: (() => void) | null = null;
   readonly labelLayer: HTMLElement;
   private toastTimer = 0;
   private messageTimer = 0;
@@ -33,15 +36,25 @@ export class Overlay {
     this.helpEl = el('div', 'drape-help', parent);
     this.helpEl.dataset.testid = 'help';
     this.helpEl.setAttribute('role', 'dialog');
-    this.helpEl.innerHTML =
-      '<h2>Shortcuts</h2><table>' +
-      SHORTCUTS.map(([k, v]) => `<tr><td><kbd>${k}</kbd></td><td>${v}</td></tr>`).join('') +
-      '</table><p>Press <kbd>?</kbd> or <kbd>Esc</kbd> to close.</p>';
+    const rows = SHORTCUTS.map(([k, v]) => h('tr', null, h('td', null, h('kbd', null, k)), h('td', null, v)));
+    append(this.helpEl, [
+      h('h2', null, 'Shortcuts'),
+      h('table', null, h('tbody', null, ...rows)),
+      h('p', null, 'Press ', h('kbd', null, '?'), ' or ', h('kbd', null, 'Esc'), ' to close.'),
+    ]);
     this.helpEl.addEventListener('click', () => this.help(false));
     this.messageEl = el('div', 'drape-message', parent);
     this.messageEl.dataset.testid = 'message';
     this.messageEl.setAttribute('role', 'alert');
     this.messageText = el('span', '', this.messageEl);
+    this.messageAction = el('button', 'drape-message-action', this.messageEl) as HTMLButtonElement;
+    this.messageAction.dataset.testid = 'message-action';
+    this.messageAction.hidden = true;
+    this.messageAction.addEventListener('click', () => {
+      const run = this.actionRun;
+      this.clearMessage();
+      run?.();
+    });
     const close = el('button', 'drape-message-close', this.messageEl);
     close.textContent = '×';
     close.title = 'dismiss';
@@ -64,19 +77,28 @@ export class Overlay {
     this.helpEl.classList.toggle('show', show);
   }
 
-  /** A one-line message at the top of the page; errors stay until dismissed or replaced, notices fade. */
-  message(text: string, kind: 'error' | 'notice' = 'error'): void {
+  /**
+   * A one-line message at the top of the page (as text: it may quote a link or a file); errors stay until dismissed
+   * or replaced, notices fade. `action`: a button beside it (e.g. Reset); a message with one stays until used or
+   * dismissed.
+   */
+  message(text: string, kind: 'error' | 'notice' = 'error', action?: { label: string; run: () => void }): void {
     this.lastMessage = text;
     this.lastMessageKind = kind;
     this.messageText.textContent = text;
     this.messageEl.dataset.kind = kind;
     this.messageEl.classList.add('show');
+    this.actionRun = action?.run ?? null;
+    this.messageAction.hidden = !action;
+    this.messageAction.textContent = action?.label ?? '';
     clearTimeout(this.messageTimer);
-    this.messageTimer = window.setTimeout(() => this.clearMessage(), kind === 'error' ? 15000 : 6000);
+    if (!action) this.messageTimer = window.setTimeout(() => this.clearMessage(), kind === 'error' ? 15000 : 6000);
   }
 
   clearMessage(): void {
     this.messageEl.classList.remove('show');
+    this.actionRun = null;
+    this.messageAction.hidden = true;
   }
 }
 

@@ -4,7 +4,9 @@
  * come from the scene schema (core's sceneSchema); the panel only sends changes to its host.
  */
 import GUI, { type Controller } from 'lil-gui';
-import { SCENE_NAMES, sceneSchema, type PinPreset, type Scene } from '../core/index.js';
+// lil-gui's stylesheet as a file of the build: the panel injects no <style> element (the site's CSP has no inline styles)
+import 'lil-gui/dist/lil-gui.css';
+import { SCENE_NAMES, plainText, sceneSchema, type PinPreset, type Scene } from '../core/index.js';
 import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import type { CameraPreset } from '../render/stage.js';
 
@@ -108,7 +110,7 @@ export class Panel {
   private resolutionCtl!: Controller;
 
   constructor(private readonly host: PanelHost) {
-    this.gui = new GUI({ title: 'Drape', width: 300 });
+    this.gui = new GUI({ title: 'Drape', width: 300, injectStyles: false });
     this.gui.domElement.classList.add('drape-panel');
     this.build();
     this.sync();
@@ -299,7 +301,8 @@ export class Panel {
     p.scene = host.sceneKey;
     // an imported scene shows in the dropdown without becoming a built-in (OptionController.options updates in place)
     const opts: Record<string, string> = {};
-    if (host.sceneKey === '') opts[`Imported: ${host.scene.name}`] = '';
+    // lil-gui writes option names as text; plainText keeps control and direction-changing characters out
+    if (host.sceneKey === '') opts[`Imported: ${plainText(host.scene.name, 60)}`] = '';
     for (const name of SCENE_NAMES) opts[SCENE_LABELS[name] ?? name] = name;
     this.sceneCtl.options(opts);
     p.sweep = host.sweepLayout;

@@ -1,0 +1,85 @@
+/**
+ * How big a cloth each simulation backend takes (README, "The app"): the CPU worker up to 256 faces per side, the
+ * GPU up to 1024. The scene schema allows 1024 everywhere (the CLI and the GPU run it), so a link, a file or a
+ * backend switch can ask the CPU for a million-particle cloth — which would freeze the tab building it. The app
+ * clamps such a scene to the backend's cap and says so. No DOM here: unit-tested in limits.test.ts.
+ */
+import { MAX_INPUT_BYTES, type Scene } from '../core/index.js';
+
+export type BackendKind = 'cpu' | 'gpu';
+
+/** largest resolution per simulation backend [faces per side] */
+export const MAX_RESOLUTION: Readonly<Record<BackendKind, number>> = { cpu: 256, gpu: 1024 };
+
+/** particles of all the cloths on screen together, at most: one cloth at the backend's largest resolution */
+export const MAX_PARTICLES: Readonly<Record<BackendKind, number>> = {
+  cpu: (MAX_RESOLUTION.cpu + 1) ** 2,
+  gpu: (MAX_RESOLUTION.gpu + 1) ** 2,
+};
+
+const NAMES: Record<BackendKind, string> = { cpu: 'CPU', gpu: 'GPU' };
+
+export interface Capped {
+  scene: Scene;
+  /** one line saying what was clamped ('' when nothing was) */
+  note: string;
+}
+
+/**
+ * The scene with its resolution (and each resolution of a sweep) at most the backend's cap. The same scene object
+ * when nothing is over it.
+ */
+export function capResolution(scene: Scene, kind: BackendKind): Capped {
+  const max = MAX_RESOLUTION[kind];
+  const over: string[] = [];
+  let next = scene;
+  if (scene.cloth.resolution > max) {
+    over.push(`resolution ${scene.cloth.resolution}`);
+    next = { ...next, cloth: { ...next.cloth, resolution: max } };
+  }
+  const sweep = scene.resolutionSweep;
+  if (sweep?.some((r) => r > max)) {
+    over.push(`sweep resolutions ${sweep.filter((r) => r > max).join(', ')}`);
+    const capped: number[] = [];
+    for (const r of sweep) if (!capped.includes(Math.min(r, max))) capped.push(Math.min(r, max));
+    next = { ...next, resolutionSweep: capped };
+  }
+  if (!over.length) return { scene, note: '' };
+  const more = kind === 'cpu' ? `; the GPU backend goes to ${MAX_RESOLUTION.gpu}` : '';
+  return {
+    scene: next,
+    note: `${over.join(' and ')} faces per side: more than the ${NAMES[kind]} backend takes, clamped to ${max}${more}`,
+  };
+}
+
+/** particles of a cloth of `resolution` faces per side */
+export const particlesOf = (resolution: number): number => (resolution + 1) ** 2;
+
+/**
+ * The resolutions of a sweep laid side by side that the backend takes together: the leading ones while the sum of
+ * their particles stays within MAX_PARTICLES (at least the first), and a note when some were left out.
+ */
+export function fitSideBySide(resolutions: readonly number[], kind: BackendKind): { list: number[]; note: string } {
+  const list: number[] = [];
+  let total = 0;
+  for (const r of resolutions) {
+    if (list.length && total + particlesOf(r) > MAX_PARTICLES[kind]) break;
+    list.push(r);
+    total += particlesOf(r);
+  }
+  if (list.length === resolutions.length) return { list, note: '' };
+  return {
+    list,
+    note: `side by side: ${list.length} of ${resolutions.length} cloths shown — the ${NAMES[kind]} backend simulates at most ` +
+      `${MAX_PARTICLES[kind].toLocaleString('en')} particles at once`,
+  };
+}
+
+/**
+ * Why a file of `bytes` is not read as a scene ('' when it may be): larger than the core's MAX_INPUT_BYTES (the
+ * CLI's limit too), which reading would only spend the tab's memory on.
+ */
+export function importSizeProblem(bytes: number): string {
+  if (bytes <= MAX_INPUT_BYTES) return '';
+  return `${(bytes / 2 ** 20).toFixed(1)} MiB, more than the ${MAX_INPUT_BYTES / 2 ** 20} MiB a scene file may be`;
+}
