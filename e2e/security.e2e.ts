@@ -145,6 +145,11 @@ describe('absurd links', () => {
     await expect.poll(() => byId(page, 'hud-status').innerText(), POLL).toContain('clamped to 256');
     // the link now says what is on screen
     await page.waitForFunction(() => location.hash.includes('cloth.resolution=256'));
+    // an imported file asking for more is clamped the same way
+    expect(await hook(page, 'import', JSON.stringify({ name: 'huge', cloth: { resolution: 300 }, resolutionSweep: [8, 512] }))).toBe(true);
+    expect(((await hook<any>(page, 'scene')).cloth.resolution)).toBe(256);
+    expect(((await hook<any>(page, 'scene')).resolutionSweep)).toEqual([8, 256]);
+    expect((await hook<{ text: string }>(page, 'lastMessage')).text).toContain('resolution 300 and sweep resolutions 512 faces per side');
     expect(errors).toEqual([]);
     await page.close();
   });

@@ -659,7 +659,7 @@ export class App implements PanelHost, InteractionHost {
       return false;
     }
     this.applyScene(scene, SCENE_NAMES.includes(scene.name) ? scene.name : '');
-    this.overlay.message(`Imported ${source}`, 'notice');
+    this.overlay.message(this.capNote ? `Imported ${source} — ${this.capNote}` : `Imported ${source}`, 'notice');
     return true;
   }
 
