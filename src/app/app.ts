@@ -39,6 +39,12 @@ export interface AppOptions {
   backend?: string | null;
 }
 
+/** The core's one-line refusal of a scene (SceneError); anything else is a bug, thrown on. */
+function refusal(e: unknown): string {
+  if (e instanceof SceneError) return e.message.replace(/^--set /, '');
+  throw e;
+}
+
 export class App implements PanelHost, InteractionHost {
   scene!: Scene;
   sceneKey = 'cotton-basic';
@@ -52,6 +58,8 @@ export class App implements PanelHost, InteractionHost {
   backendChoice: BackendChoice = 'auto';
   /** why the simulation is not where it was asked to be ('' when it is) */
   backendNote = '';
+  /** the Mesh Resolution sequence met a resolution the simulation refuses: it stays where it is until a reset */
+  private sweepHalted = false;
   /** what the backend's size cap changed in the scene ('' when nothing): shown in the HUD until the next scene */
   capNote = '';
   /** the choice came from the link or the panel (so the link keeps it), not from `?backend=` */
@@ -107,10 +115,15 @@ export class App implements PanelHost, InteractionHost {
     if (start) {
       if (start.view.sweep === 'side-by-side' || start.view.sweep === 'sequence') this.sweepLayout = start.view.sweep;
       if (start.view.view && (VIEWS as readonly string[]).includes(start.view.view)) this.view = start.view.view as ViewName;
-      this.applyScene(start.scene, start.base && start.base === start.scene.name ? start.base : SCENE_NAMES.includes(start.base) ? start.base : '');
-    } else {
-      this.applyScene(builtinScene(SCENE_NAMES[0]), SCENE_NAMES[0]);
+      try {
+        this.applyScene(start.scene, start.base && start.base === start.scene.name ? start.base : SCENE_NAMES.includes(start.base) ? start.base : '');
+      } catch (e) {
+        // a scene the simulation refuses (a collider cutting through the cloth, …)
+        this.overlay.message(`link: ${refusal(e)} — showing the default scene instead`, 'error');
+        start = null;
+      }
     }
+    if (!start) this.applyScene(builtinScene(SCENE_NAMES[0]), SCENE_NAMES[0]);
     this.panel = new Panel(this);
 
     this.fileInput = document.createElement('input');
@@ -236,8 +249,22 @@ export class App implements PanelHost, InteractionHost {
     this.sim = this.makeDriver(kind);
     this.sim.paused = paused;
     if (!keep || !old) return true;
-    const scenes = this.slotScenes();
-    this.sim.load(scenes);
+    let scenes = this.slotScenes();
+    try {
+      this.sim.load(scenes);
+    } catch (e) {
+      // accepted before, so only a clamp (a smaller cloth under the same colliders) can make it refused here
+      this.overlay.message(`${refusal(e)} — showing the default scene instead`);
+      this.scene = builtinScene(SCENE_NAMES[0]);
+      this.sceneKey = SCENE_NAMES[0];
+      this.capNote = '';
+      this.sweepIndex = 0;
+      scenes = this.slotScenes();
+      this.sim.load(scenes);
+      oldMirrors.length = 0;
+      this.frameCamera(true);
+      this.scheduleHash();
+    }
     this.sim.mirrors.forEach((m, k) => {
       const from = oldMirrors[k];
       if (!from || from.sim.model.particleCount !== m.sim.model.particleCount) return;
@@ -332,18 +359,46 @@ export class App implements PanelHost, InteractionHost {
     return sweep.map((r, k) => at(r, (k - (sweep.length - 1) / 2) * SIDE_BY_SIDE_SPACING));
   }
 
-  /** Replaces the scene: new cloths from their start, camera framed, panel and link updated. */
+  /**
+   * Replaces the scene: new cloths from their start, camera framed, panel and link updated. A scene the simulation
+   * refuses (the core's SceneError: a collider cutting through the cloth where it starts, a pin inside one) throws,
+   * and the page keeps what it had.
+   */
   private applyScene(scene: Scene, key: string): void {
     this.interaction?.cancel();
+    const before = { scene: this.scene as Scene | undefined, sceneKey: this.sceneKey, sweepIndex: this.sweepIndex, capNote: this.capNote };
     this.scene = scene;
     this.sceneKey = key;
     this.sweepIndex = 0;
     this.capNote = '';
-    this.loadSlots();
+    this.sweepHalted = false;
+    try {
+      this.loadSlots();
+    } catch (e) {
+      if (!(e instanceof SceneError) || !before.scene) throw e;
+      this.scene = before.scene;
+      this.sceneKey = before.sceneKey;
+      this.sweepIndex = before.sweepIndex;
+      this.capNote = before.capNote;
+      this.restoreSlots();
+      throw e;
+    }
     this.frameCamera(true);
     this.hud?.clearPlot();
     this.panel?.sync();
     this.scheduleHash();
+  }
+
+  /**
+   * After a refused change: the scene is the one before again. The cloths on screen still are too (loads are
+   * all-or-nothing) unless the backend changed on the way, which left none: then they start again.
+   */
+  private restoreSlots(): void {
+    if (!this.sim.mirrors.length) this.loadSlots();
+    this.backendNote = this.wantedBackend().note;
+    this.panel?.sync();
+    this.scheduleHash();
+    this.dirty = true;
   }
 
   private loadSlots(): void {
@@ -438,10 +493,19 @@ export class App implements PanelHost, InteractionHost {
     const sweep = this.sweepList();
     if (!sweep.length || this.sweepLayout !== 'sequence' || this.sim.paused) return;
     const m = this.sim.mirrors[0];
-    if (!m || m.frame < SWEEP_STAGE_FRAMES) return;
+    if (!m || m.frame < SWEEP_STAGE_FRAMES || this.sweepHalted) return;
     this.interaction.cancel();
+    const from = this.sweepIndex;
     this.sweepIndex = (this.sweepIndex + 1) % sweep.length;
-    this.sim.setScene(0, this.slotScenes()[0]);
+    try {
+      this.sim.setScene(0, this.slotScenes()[0]);
+    } catch (e) {
+      // this resolution of an imported sweep cannot start where the scene puts it: stay, and say why
+      this.sweepIndex = from;
+      this.sweepHalted = true;
+      this.overlay.message(`Mesh resolution ${sweep[(from + 1) % sweep.length]} refused: ${refusal(e)}`);
+      return;
+    }
     this.syncViews();
   }
 
@@ -459,7 +523,11 @@ export class App implements PanelHost, InteractionHost {
 
   loadBuiltin(name: string): void {
     if (!isBuiltinScene(name)) { this.overlay.message(`unknown scene '${name}'`); return; }
-    this.applyScene(builtinScene(name), name);
+    try {
+      this.applyScene(builtinScene(name), name);
+    } catch (e) {
+      this.overlay.message(refusal(e));
+    }
   }
 
   setPath(path: string, value: unknown): boolean {
@@ -474,6 +542,31 @@ export class App implements PanelHost, InteractionHost {
       this.panel.sync();
       return false;
     }
+    const before = { scene: this.scene, capNote: this.capNote, slots: this.sim.mirrors.map((m) => m.sim.scene) };
+    try {
+      this.applyPath(path, next);
+    } catch (e) {
+      // refused by the simulation (a collider cutting through the cloth, a pin inside one): as it was
+      const why = refusal(e);
+      this.scene = before.scene;
+      this.capNote = before.capNote;
+      if (this.sim.mirrors.length === before.slots.length) {
+        before.slots.forEach((s, k) => { if (this.sim.mirrors[k].sim.scene !== s) this.sim.setScene(k, s); });
+        this.syncViews();
+      } else {
+        this.sim.mirrors.length = 0;
+      }
+      this.restoreSlots();
+      this.overlay.message(why);
+      return false;
+    }
+    this.dirty = true;
+    this.scheduleHash();
+    return true;
+  }
+
+  /** setPath's change, once the new scene is valid; throws SceneError when the simulation refuses it */
+  private applyPath(path: string, next: Scene): void {
     this.scene = next;
     if (path === 'cloth.resolution' || path === 'resolutionSweep') this.capNote = '';
     const capBefore = this.capNote;
@@ -500,13 +593,11 @@ export class App implements PanelHost, InteractionHost {
       if (path === 'material.scaleWithResolution') this.makeLabels();
     }
     if (path.startsWith('cloth.')) this.frameCamera(false);
-    this.dirty = true;
-    this.scheduleHash();
-    return true;
   }
 
   reset(): void {
     this.interaction.cancel();
+    this.sweepHalted = false;
     if (this.scene.resolutionSweep?.length && this.sweepLayout === 'sequence' && this.sweepIndex !== 0) {
       this.sweepIndex = 0;
       this.loadSlots();
@@ -586,9 +677,14 @@ export class App implements PanelHost, InteractionHost {
       }
     }
     if (this.scene.resolutionSweep?.length) {
-      this.sim.setScene(slot, { ...scene, pins });
+      try {
+        this.sim.setScene(slot, { ...scene, pins });
+      } catch (e) {
+        this.overlay.message(refusal(e));
+        return;
+      }
     } else {
-      this.setPath('pins', pins);
+      if (!this.setPath('pins', pins)) return;
       this.panel.sync();
     }
     this.overlay.toast(`${on ? 'Pinned' : 'Unpinned'} particle ${particle}`);
@@ -596,9 +692,20 @@ export class App implements PanelHost, InteractionHost {
   }
 
   setSweepLayout(layout: SweepLayout): void {
+    const before = { layout: this.sweepLayout, index: this.sweepIndex };
     this.sweepLayout = layout;
     this.sweepIndex = 0;
-    this.loadSlots();
+    this.sweepHalted = false;
+    try {
+      this.loadSlots();
+    } catch (e) {
+      const why = refusal(e);
+      this.sweepLayout = before.layout;
+      this.sweepIndex = before.index;
+      this.restoreSlots();
+      this.overlay.message(why);
+      return;
+    }
     this.frameCamera(true);
     this.scheduleHash();
   }
@@ -658,7 +765,12 @@ export class App implements PanelHost, InteractionHost {
       this.overlay.message(`Import refused — ${(e as Error).message}`);
       return false;
     }
-    this.applyScene(scene, SCENE_NAMES.includes(scene.name) ? scene.name : '');
+    try {
+      this.applyScene(scene, SCENE_NAMES.includes(scene.name) ? scene.name : '');
+    } catch (e) {
+      this.overlay.message(`Import refused — ${source}: ${refusal(e)}`);
+      return false;
+    }
     this.overlay.message(this.capNote ? `Imported ${source} — ${this.capNote}` : `Imported ${source}`, 'notice');
     return true;
   }
@@ -704,6 +816,7 @@ export class App implements PanelHost, InteractionHost {
 
   private onHashChange(): void {
     if (location.hash === encodeHash(this.hashState())) return;
+    const before = { view: this.view, sweepLayout: this.sweepLayout, backendChoice: this.backendChoice, backendInLink: this.backendInLink };
     try {
       const s = decodeHash(location.hash);
       if (!s) return;
@@ -715,7 +828,14 @@ export class App implements PanelHost, InteractionHost {
       }
       this.applyScene(s.scene, SCENE_NAMES.includes(s.base) ? s.base : '');
     } catch (e) {
-      this.overlay.message((e as Error).message);
+      const why = e instanceof SceneError && !e.message.startsWith('link: ') ? `link: ${e.message}` : refusal(e);
+      // as it was: the view settings too (the address bar is rewritten to what is on screen)
+      const relayout = this.sweepLayout !== before.sweepLayout || this.backendChoice !== before.backendChoice;
+      Object.assign(this, before);
+      if (relayout) { this.loadSlots(); this.frameCamera(true); }
+      this.panel.sync();
+      this.scheduleHash();
+      this.overlay.message(why);
     }
   }
 

@@ -65,12 +65,13 @@ export class GpuSim implements SimDriver {
     return this.mirrors.every((_, k) => this.solverOf(k) !== null);
   }
 
+  /** Replaces every cloth; a scene the core refuses throws before anything changes. */
   load(scenes: Scene[]): void {
+    // the mirror holds scene, model and read-back positions; the GPU steps, so no kernel memory
+    const sims = scenes.map((scene) => new Simulation(scene, { kernel: 'ts' }));
     this.destroySolvers();
     this.mirrors.length = 0;
-    for (const scene of scenes) {
-      // the mirror holds scene, model and read-back positions; the GPU steps, so no kernel memory
-      const sim = new Simulation(scene, { kernel: 'ts' });
+    for (const sim of sims) {
       this.mirrors.push({ sim, modelGen: 0, frame: 0, grabbed: -1, unstableAt: -1 });
       this.slots.push({ solver: null, model: null, creating: null, stale: false, lastGood: sim.state.positions.slice() });
     }

@@ -8,8 +8,9 @@
 import '../ui/style.css';
 import { App } from './app.js';
 import { installHook } from './hook.js';
-import { wantsTestHook } from './security.js';
+import { installTrustedTypesPolicy, wantsTestHook } from './security.js';
 
+installTrustedTypesPolicy();
 performance.mark('drape:start');
 const viewport = document.getElementById('viewport');
 if (!viewport) throw new Error('index.html: #viewport missing');

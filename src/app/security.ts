@@ -16,7 +16,11 @@
  * - `img-src data:`: the page icon, an inline SVG in index.html; textures are painted on canvases;
  * - `font-src data:`: lil-gui's icon font, embedded in its stylesheet;
  * - `base-uri 'none'`, `form-action 'none'`: a `<base>` or a form could redirect the page's URLs or data
- *   (neither falls back to default-src).
+ *   (neither falls back to default-src);
+ * - `require-trusted-types-for 'script'`, `trusted-types default`: Trusted Types — the browser itself refuses a
+ *   string in any sink that parses HTML or runs script (eval-like calls included), so markup from data cannot
+ *   come back even by a later mistake. The one policy, `default` (installTrustedTypesPolicy, before anything
+ *   else runs), lets through only script URLs of the site itself: the worker's module.
  *
  * Downloads (scene JSON, PNG, OBJ, glTF) are `blob:` URLs opened by a link with `download`: a navigation, which
  * CSP does not restrict, so no `blob:` source is listed. `frame-ancestors` cannot be set from a meta tag (servers
@@ -31,7 +35,25 @@ export const CSP_DIRECTIVES: Readonly<Record<string, readonly string[]>> = {
   'font-src': ['data:'],
   'base-uri': ["'none'"],
   'form-action': ["'none'"],
+  'require-trusted-types-for': ["'script'"],
+  'trusted-types': ['default'],
 };
+
+/**
+ * The page's Trusted Types policy (see the CSP above): the site's own script URLs pass (the simulation worker);
+ * anything else, and every HTML or script string, is refused. Call once, first. No-op where the browser has no
+ * Trusted Types (the CSP directive is then ignored too).
+ */
+export function installTrustedTypesPolicy(): void {
+  const tt = (globalThis as { trustedTypes?: { createPolicy(name: string, rules: object): unknown } }).trustedTypes;
+  if (!tt) return;
+  tt.createPolicy('default', {
+    createScriptURL(url: string): string {
+      if (new URL(url, location.href).origin !== location.origin) throw new TypeError(`Drape: script URL from elsewhere refused: ${url}`);
+      return url;
+    },
+  });
+}
 
 export const CONTENT_SECURITY_POLICY = Object.entries(CSP_DIRECTIVES).map(([k, v]) => `${k} ${v.join(' ')}`).join('; ');
 

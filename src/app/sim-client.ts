@@ -90,19 +90,21 @@ export class SimClient implements SimDriver {
     this.worker.postMessage(msg);
   }
 
-  /** Replaces every cloth (a new scene, or a different number of slots). */
+  /**
+   * Replaces every cloth (a new scene, or a different number of slots). A scene the core refuses (SceneError, e.g.
+   * a collider cutting through the cloth) throws before anything changes.
+   */
   load(scenes: Scene[]): void {
+    // mirrors hold the scene and model for picking and the panel; they never step, so no kernel memory
+    const sims = scenes.map((scene) => new Simulation(scene, { kernel: 'ts' }));
     const gen = ++this.gen;
     this.mirrors.length = 0;
-    // mirrors hold the scene and model for picking and the panel; they never step, so no kernel memory
-    for (const scene of scenes) {
-      this.mirrors.push({ sim: new Simulation(scene, { kernel: 'ts' }), modelGen: gen, frame: 0, grabbed: -1, unstableAt: -1 });
-    }
+    for (const sim of sims) this.mirrors.push({ sim, modelGen: gen, frame: 0, grabbed: -1, unstableAt: -1 });
     this.post({ type: 'load', gen, scenes: this.mirrors.map((m) => m.sim.scene) });
     this.clock.clear();
   }
 
-  /** Changes one slot's scene, live. Returns true when the cloth is rebuilt (and restarts). */
+  /** Changes one slot's scene, live. Returns true when the cloth is rebuilt (and restarts). Refused: throws, changes nothing. */
   setScene(slot: number, scene: Scene): boolean {
     const m = this.mirrors[slot];
     const gen = ++this.gen;
