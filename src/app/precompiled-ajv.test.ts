@@ -1,8 +1,8 @@
-import { mkdirSync, writeFileSync } from 'node:fs';
+import { mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { Ajv } from 'ajv';
-import { beforeAll, describe, expect, it } from 'vitest';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { builtinScene, sceneSchema, SCENE_NAMES } from '../core/index.js';
 import { CORE_AJV_OPTIONS, precompiledAjvModule } from './precompiled-ajv.js';
 
@@ -10,16 +10,19 @@ type Validate = ((data: unknown) => boolean) & { errors?: unknown[] | null };
 interface Precompiled { validate: Validate; Ajv: new (options?: object) => { compile(schema: object): Validate } }
 
 let pre: Precompiled;
+let file = '';
 const live = new Ajv(CORE_AJV_OPTIONS).compile(sceneSchema) as Validate;
 
 beforeAll(async () => {
   // inside the repository, so that the module's imports of ajv's run-time helpers resolve
   const dir = join('node_modules', '.cache', 'drape-test');
   mkdirSync(dir, { recursive: true });
-  const file = join(dir, `precompiled-ajv-${process.pid}.mjs`);
+  file = join(dir, `precompiled-ajv-${process.pid}.mjs`);
   writeFileSync(file, precompiledAjvModule(sceneSchema));
   pre = await import(/* @vite-ignore */ pathToFileURL(file).href) as Precompiled;
 });
+
+afterAll(() => { if (file) rmSync(file, { force: true }); });
 
 const DOCS: unknown[] = [
   {},
