@@ -5,14 +5,6 @@
 import { Simulation, energy, grab, maxStructuralStrain, release, type Energy } from '../core/index.js';
 import type { FromWorker, SlotFrame, ToWorker } from './protocol.js';
 
-// Browsers hide SharedArrayBuffer on pages that are not cross-origin isolated (this one is not), and the core's
-// kernelImports asks `memory.buffer instanceof SharedArrayBuffer`, which then throws. A stand-in class that no
-// buffer is an instance of gives the right answer (not shared). TODO: drop once the core checks
-// `typeof SharedArrayBuffer` itself.
-if (typeof SharedArrayBuffer === 'undefined') {
-  (globalThis as unknown as { SharedArrayBuffer: unknown }).SharedArrayBuffer = class NoSharedArrayBuffer {};
-}
-
 interface Slot {
   sim: Simulation;
   gen: number;

@@ -59,7 +59,7 @@ interface Row {
 function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-spring'): Scene {
   const scene = builtinScene('cotton-basic');
   scene.cloth.resolution = side - 1;
-  scene.solver = { type: solver, substeps, iterations: 1 };
+  scene.solver = { ...scene.solver, type: solver, substeps, iterations: 1 };
   return scene;
 }
 

@@ -65,6 +65,8 @@ export interface ClothModel {
   readonly triangleBatches: readonly TriangleBatch[];
   /** longest rest edge of any triangle [m]; bounds the reach of triangle contact */
   readonly maxTriangleEdge: number;
+  /** most triangles that share one particle [-] (6 inside a grid) */
+  readonly maxTriangleValence: number;
   /** total rest area of the cloth [m²] */
   readonly area: number;
   /** grid layout when the cloth is a rectangular grid */
@@ -134,6 +136,7 @@ export function buildModel(input: ModelInput): ClothModel {
   const massWeights = new Float32Array(n);
   let area = 0;
   let maxTriangleEdge = 0;
+  const valence = new Uint32Array(n);
   for (let t = 0; t < input.triangles.length; t += 3) {
     const a = input.triangles[t], b = input.triangles[t + 1], c = input.triangles[t + 2];
     const ux = restPositions[3 * b] - restPositions[3 * a];
@@ -149,7 +152,10 @@ export function buildModel(input: ModelInput): ClothModel {
     massWeights[b] += ta / 3;
     massWeights[c] += ta / 3;
     maxTriangleEdge = Math.max(maxTriangleEdge, distance(restPositions, a, b), distance(restPositions, b, c), distance(restPositions, c, a));
+    valence[a]++; valence[b]++; valence[c]++;
   }
+  let maxTriangleValence = 0;
+  for (let i = 0; i < n; i++) maxTriangleValence = Math.max(maxTriangleValence, valence[i]);
   if (area > 0) {
     for (let i = 0; i < n; i++) massWeights[i] /= area;
   } else {
@@ -233,6 +239,7 @@ export function buildModel(input: ModelInput): ClothModel {
     triangles,
     triangleBatches,
     maxTriangleEdge,
+    maxTriangleValence,
     area,
     grid: input.grid,
     size,

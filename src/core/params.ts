@@ -35,6 +35,8 @@ export interface SimParams {
   staticFriction: number;
   /** contact thickness [m] */
   thickness: number;
+  /** fastest an overlap with a collider that the cloth did not move into is undone [m/s] */
+  depenetrationSpeed: number;
   wind: {
     enabled: boolean;
     /** wind speed [m/s] */
@@ -128,6 +130,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): S
     friction: m.friction,
     staticFriction: Math.max(m.staticFriction, m.friction),
     thickness: scene.cloth.thickness,
+    depenetrationSpeed: scene.solver.depenetrationSpeed,
     wind: {
       enabled: scene.wind.enabled && len > 0 && scene.wind.strength > 0,
       strength: scene.wind.strength,

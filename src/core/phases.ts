@@ -4,7 +4,7 @@
  * strings them together with a solver's own force and constraint phases. None of them allocates.
  */
 import type { ColliderShape } from './colliders/shape.js';
-import type { ClothModel } from './model.js';
+import { BEND, type ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
 import { updateTethers } from './tethers.js';
@@ -142,13 +142,23 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
 }
 
 /**
- * Contact against every collider: particles first (pushed out to the contact thickness along the surface normal,
- * with friction), then triangles for shapes whose surface can poke between vertices (the deepest point of the
- * triangle is pushed out, its correction shared by barycentric weight and inverse mass).
+ * Contact against every collider, for a substep of h [s]: particles first (pushed out to the contact thickness
+ * along the surface normal, with friction), then triangles for shapes whose surface can poke between vertices (the
+ * deepest point of the triangle is pushed out, its correction shared by barycentric weight and inverse mass).
+ *
+ * Overlaps are resolved without launching the cloth. The push-out undoes at once whatever the contact point moved
+ * into the surface during this substep; an overlap it did not move into (a cloth that begins inside a collider, or
+ * that a collider is moved into) is undone at no more than `depenetrationSpeed` (triangles share it among the
+ * triangles of a particle), so the constraints that follow drag the rest of the cloth along no faster. And of the outward motion left after the push-out, the part the
+ * push-out made (at most its depth) also moves x_prev: it is not velocity. A particle arriving from outside ends
+ * with zero normal velocity, as before.
  */
-export function collide(model: ClothModel, state: ClothState, params: SimParams): void {
+export function collide(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
   const th = params.thickness;
+  const recover = params.depenetrationSpeed * h;
+  // a particle can be the contact point of every triangle around it: they share its recovery
+  const triangleRecover = recover / Math.max(1, model.maxTriangleValence);
   const n = model.particleCount;
   for (const shape of params.colliders) {
     for (let i = 0; i < n; i++) {
@@ -156,16 +166,18 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams)
       const j = 3 * i;
       const d = shape.signedDistance(x[j], x[j + 1], x[j + 2], normal, th);
       if (d >= th) continue;
-      const depth = th - d;
-      x[j] += depth * normal[0];
-      x[j + 1] += depth * normal[1];
-      x[j + 2] += depth * normal[2];
-      // tangential motion over the substep
+      // motion over the substep so far, its normal part, and the push-out
       const mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
       const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
+      const depth = Math.min(th - d, Math.max(-mn, 0) + recover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
       const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params);
-      x[j] -= s * tx; x[j + 1] -= s * ty; x[j + 2] -= s * tz;
+      x[j] += depth * normal[0] - s * tx;
+      x[j + 1] += depth * normal[1] - s * ty;
+      x[j + 2] += depth * normal[2] - s * tz;
+      // the outward normal motion the push-out made (mn + depth, at most depth) is not velocity
+      const made = Math.min(mn + depth, depth);
+      if (made > 0) { xp[j] += made * normal[0]; xp[j + 1] += made * normal[1]; xp[j + 2] += made * normal[2]; }
     }
     const triangleDeepest = shape.triangleDeepest;
     if (!triangleDeepest || !needsTriangleContact(model, shape, th)) continue;
@@ -180,21 +192,29 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams)
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
       const denom = wa * bary[0] + wb * bary[1] + wc * bary[2];
       if (denom === 0) continue;
-      const depth = th - d;
-      // tangential motion of the contact point over the substep, removed by friction as for particles
+      // motion of the contact point over the substep so far, treated as a particle's above
       const mx = bary[0] * (x[3 * a] - xp[3 * a]) + bary[1] * (x[3 * b] - xp[3 * b]) + bary[2] * (x[3 * c] - xp[3 * c]);
       const my = bary[0] * (x[3 * a + 1] - xp[3 * a + 1]) + bary[1] * (x[3 * b + 1] - xp[3 * b + 1]) + bary[2] * (x[3 * c + 1] - xp[3 * c + 1]);
       const mz = bary[0] * (x[3 * a + 2] - xp[3 * a + 2]) + bary[1] * (x[3 * b + 2] - xp[3 * b + 2]) + bary[2] * (x[3 * c + 2] - xp[3 * c + 2]);
       const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
+      const depth = Math.min(th - d, Math.max(-mn, 0) + triangleRecover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
       const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params);
-      // desired displacement of the contact point, spread so that Σ bary_i·Δx_i equals it
+      // desired displacement of the contact point, spread so that Σ bary_i·Δx_i equals it; and what of it
+      // moves x_prev likewise
+      const made = Math.min(mn + depth, depth);
       const dx = (depth * normal[0] - fs * tx) / denom;
       const dy = (depth * normal[1] - fs * ty) / denom;
       const dz = (depth * normal[2] - fs * tz) / denom;
       x[3 * a] += wa * dx; x[3 * a + 1] += wa * dy; x[3 * a + 2] += wa * dz;
       x[3 * b] += wb * dx; x[3 * b + 1] += wb * dy; x[3 * b + 2] += wb * dz;
       x[3 * c] += wc * dx; x[3 * c + 1] += wc * dy; x[3 * c + 2] += wc * dz;
+      if (made > 0) {
+        const px = (made * normal[0]) / denom, py = (made * normal[1]) / denom, pz = (made * normal[2]) / denom;
+        xp[3 * a] += wa * px; xp[3 * a + 1] += wa * py; xp[3 * a + 2] += wa * pz;
+        xp[3 * b] += wb * px; xp[3 * b + 1] += wb * py; xp[3 * b + 2] += wb * pz;
+        xp[3 * c] += wc * px; xp[3 * c + 1] += wc * py; xp[3 * c + 2] += wc * pz;
+      }
     }
   }
 }
@@ -207,6 +227,34 @@ export function updateVelocities(state: ClothState, h: number): void {
   const x = state.positions, xp = state.previousPositions, v = state.velocities;
   const inv = 1 / h;
   for (let j = 0; j < x.length; j++) v[j] = (x[j] - xp[j]) * inv;
+}
+
+/**
+ * Stretch limiting (Provot 1995, "Deformation constraints in a mass-spring model to describe rigid cloth
+ * behavior"): structural and shear springs longer than stretchFactor × rest are projected back, batch by batch.
+ */
+export function limitStretch(model: ClothModel, state: ClothState, params: SimParams): void {
+  const x = state.positions, w = state.invMass;
+  const springs = model.springs, rest = model.restLengths;
+  const sf = params.stretchFactor;
+  for (const batch of model.batches) {
+    if (batch.kind === BEND) continue;
+    for (let s = batch.start; s < batch.end; s++) {
+      const pa = springs[2 * s], pb = springs[2 * s + 1];
+      const wa = w[pa], wb = w[pb];
+      const wsum = wa + wb;
+      if (wsum === 0) continue;
+      const a = 3 * pa, b = 3 * pb;
+      const dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+      const len2 = dx * dx + dy * dy + dz * dz;
+      const max = sf * rest[s];
+      if (len2 <= max * max) continue;
+      const len = Math.sqrt(len2);
+      const scale = (len - max) / (len * wsum);
+      x[a] -= wa * scale * dx; x[a + 1] -= wa * scale * dy; x[a + 2] -= wa * scale * dz;
+      x[b] += wb * scale * dx; x[b + 1] += wb * scale * dy; x[b + 2] += wb * scale * dz;
+    }
+  }
 }
 
 /** What a solver adds to the shared frame loop (module-level functions: nothing is allocated per step). */
@@ -237,7 +285,7 @@ export function runFrame(model: ClothModel, state: ClothState, params: SimParams
     integrate(state, params, h, forced);
     moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
     phases.constrain(model, state, params, h);
-    collide(model, state, params);
+    collide(model, state, params, h);
     state.time += h;
     state.substeps++;
   }

@@ -67,6 +67,7 @@ export const sceneSchema = {
         type: { enum: ['xpbd', 'mass-spring'], default: 'xpbd', description: "'xpbd' (Macklin et al. 2016, small steps 2019) or 'mass-spring' (the seed: Verlet, Hooke springs, stretch limiting)" },
         substeps: { type: 'integer', minimum: 1, maximum: 200, default: 20, description: 'substeps per 1/60 s frame [-]' },
         iterations: { type: 'integer', minimum: 1, maximum: 20, default: 1, description: 'constraint passes per substep (XPBD: Gauss–Seidel sweeps; mass-spring: stretch-limiting passes) [-]' },
+        depenetrationSpeed: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'fastest the cloth is pushed out of a collider it did not move into (a cloth that starts inside one, or that a collider is moved into); contact the cloth moves into is undone at once [m/s]' },
       },
     },
     gravity: vec3('gravitational acceleration [m/s²]', -50, 50, [0, -9.81, 0]),

@@ -19,7 +19,7 @@ export interface Scene {
     thickness: number;
   };
   material: Material;
-  solver: { type: SolverType; substeps: number; iterations: number };
+  solver: { type: SolverType; substeps: number; iterations: number; depenetrationSpeed: number };
   gravity: Vec3;
   wind: Wind;
   colliders: ColliderSpec[];

@@ -10,6 +10,7 @@ import { applyPins, resolvePins } from './pins.js';
 import { setScenePath, validateScene, type Scene } from './scene.js';
 import { step } from './solvers/index.js';
 import { plainText } from './text.js';
+import { checkPlacement } from './placement.js';
 import { copyState, createState, resetState, type ClothState } from './state.js';
 import { createWasmState, type HelperSpawner } from './wasm/xpbd-wasm.js';
 
@@ -64,6 +65,9 @@ function threadsFor(request: number | 'auto', cores: number, particles: number):
   return Math.min(request, most);
 }
 
+/** How errors about a whole scene name it. */
+const sceneLabel = (scene: Scene) => `scene '${plainText(scene.name, 100)}'`;
+
 /** Whether every value is finite: one sum (NaN and ±∞ survive it; f32 values cannot overflow an f64 sum). */
 function allFinite(x: Float32Array): boolean {
   let s = 0;
@@ -110,9 +114,11 @@ export class Simulation {
     this.options = checkOptions(options);
     this.scene = validateScene(scene);
     this.model = modelFor(this.scene);
-    this.state = this.newState();
     this.params = resolveParams(this.model, this.scene);
-    applyPins(this.state, resolvePins(this.model, this.scene.pins));
+    const pins = resolvePins(this.model, this.scene.pins);
+    checkPlacement(this.model, this.params.colliders, pins, this.scene.material.stretchFactor, sceneLabel(this.scene));
+    this.state = this.newState();
+    applyPins(this.state, pins);
   }
 
   /** the CPU kernel the substeps run in: 'wasm' only for XPBD (mass-spring always steps in TypeScript) */
@@ -187,11 +193,20 @@ export class Simulation {
   setScene(next: Scene): boolean {
     next = validateScene(next);
     const prev = this.scene;
-    this.scene = next;
     const rebuild = needsRebuild(prev, next);
+    const model = rebuild ? modelFor(next) : this.model;
+    const params = resolveParams(model, next);
+    const pinsChanged = JSON.stringify(prev.pins) !== JSON.stringify(next.pins);
+    const pins = resolvePins(model, next.pins);
+    // a scene whose cloth cannot start outside its colliders is refused, and nothing changes
+    if (rebuild || pinsChanged || JSON.stringify(prev.colliders) !== JSON.stringify(next.colliders) ||
+        prev.material.stretchFactor !== next.material.stretchFactor) {
+      checkPlacement(model, params.colliders, pins, next.material.stretchFactor, sceneLabel(next));
+    }
+    this.scene = next;
     if (rebuild) {
       this.state.kernel?.dispose();
-      this.model = modelFor(next);
+      this.model = model;
       this.state = this.newState();
       this.frame = 0;
       this.unstableFrame = null;
@@ -204,10 +219,8 @@ export class Simulation {
         this.state = moved;
       }
     }
-    this.params = resolveParams(this.model, next);
-    if (rebuild || JSON.stringify(prev.pins) !== JSON.stringify(next.pins)) {
-      applyPins(this.state, resolvePins(this.model, next.pins));
-    }
+    this.params = params;
+    if (rebuild || pinsChanged) applyPins(this.state, pins);
     return rebuild;
   }
 

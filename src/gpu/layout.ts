@@ -103,7 +103,7 @@ export const KERNELS = {
       ['springData', 'read'], ['lambdas', 'read_write'],
     ],
   },
-  /** limitStretch (mass-spring.ts), which XPBD runs after the tethers, for one structural or shear batch */
+  /** limitStretch (phases.ts), which XPBD runs after the tethers, for one structural or shear batch */
   limitStretch: {
     bindings: [['positions', 'read_write'], ['invMass', 'read'], ['springs', 'read'], ['springData', 'read']],
   },
@@ -111,13 +111,13 @@ export const KERNELS = {
   tethers: { bindings: [['positions', 'read_write'], ['invMass', 'read'], ['tethers', 'read']] },
   /** collide, particle part, for a run of colliders */
   collideParticles: {
-    bindings: [['positions', 'read_write'], ['previous', 'read'], ['invMass', 'read']],
+    bindings: [['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read']],
     libs: ['colliders'],
   },
   /** collide, triangle part, for one collider and one triangle colour */
   collideTriangles: {
     bindings: [
-      ['positions', 'read_write'], ['previous', 'read'], ['invMass', 'read'], ['triangles', 'read'],
+      ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['triangles', 'read'],
       ['triOrder', 'read'],
     ],
     libs: ['colliders'],
@@ -166,6 +166,8 @@ export const SUBSTEP = {
   betaOverH: 28, // f32 damping/h
   grabFraction: 32, // f32 (sub + 1)/substeps
   windOn: 36, // u32
+  recover: 40, // f32 depenetrationSpeed·h: most a collider overlap the cloth did not move into is undone [m]
+  recoverTriangle: 44, // f32 recover / model.maxTriangleValence: the same for triangle contact [m]
   size: 48,
 } as const;
 
@@ -219,6 +221,8 @@ struct Substep {
   betaOverH: f32,
   grabFraction: f32,
   windOn: u32,
+  recover: f32,
+  recoverTriangle: f32,
 }
 
 struct Pass {

@@ -393,6 +393,8 @@ export class GpuClothSolver {
       sv.setFloat32(at + SUBSTEP.betaOverH, params.damping / h, true);
       sv.setFloat32(at + SUBSTEP.grabFraction, (sub + 1) / n, true);
       sv.setUint32(at + SUBSTEP.windOn, windOn ? 1 : 0, true);
+      sv.setFloat32(at + SUBSTEP.recover, params.depenetrationSpeed * h, true);
+      sv.setFloat32(at + SUBSTEP.recoverTriangle, (params.depenetrationSpeed * h) / Math.max(1, this.model.maxTriangleValence), true);
       t += h;
     }
     q.writeBuffer(this.substepBuffer, 0, this.substepData, 0, n * RECORD_STRIDE);

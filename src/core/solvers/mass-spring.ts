@@ -7,7 +7,7 @@
  */
 import { BEND, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
-import { runFrame, type SolverPhases } from '../phases.js';
+import { limitStretch, runFrame, type SolverPhases } from '../phases.js';
 import type { ClothState } from '../state.js';
 import { solveTethers } from '../tethers.js';
 
@@ -35,30 +35,6 @@ export function accumulateSpringForces(model: ClothModel, state: ClothState, par
   }
 }
 
-/** Stretch limiting: structural and shear springs longer than stretchFactor × rest are projected back. */
-export function limitStretch(model: ClothModel, state: ClothState, params: SimParams): void {
-  const x = state.positions, w = state.invMass;
-  const springs = model.springs, rest = model.restLengths;
-  const sf = params.stretchFactor;
-  for (const batch of model.batches) {
-    if (batch.kind === BEND) continue;
-    for (let s = batch.start; s < batch.end; s++) {
-      const pa = springs[2 * s], pb = springs[2 * s + 1];
-      const wa = w[pa], wb = w[pb];
-      const wsum = wa + wb;
-      if (wsum === 0) continue;
-      const a = 3 * pa, b = 3 * pb;
-      const dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
-      const len2 = dx * dx + dy * dy + dz * dz;
-      const max = sf * rest[s];
-      if (len2 <= max * max) continue;
-      const len = Math.sqrt(len2);
-      const scale = (len - max) / (len * wsum);
-      x[a] -= wa * scale * dx; x[a + 1] -= wa * scale * dy; x[a + 2] -= wa * scale * dz;
-      x[b] += wb * scale * dx; x[b + 1] += wb * scale * dy; x[b + 2] += wb * scale * dz;
-    }
-  }
-}
 
 const phases: SolverPhases = {
   forces: accumulateSpringForces,

@@ -5,7 +5,7 @@
 import { describe, expect, it } from 'vitest';
 import { buildModel } from '../model.js';
 import { FRAME_DT, resolveParams } from '../params.js';
-import { validateScene, type Scene, type SolverType } from '../scene.js';
+import { SceneError, validateScene, type Scene, type SolverType } from '../scene.js';
 import { builtinScene, SCENE_NAMES } from '../scenes.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
 import { createState, grab, release, setPinned } from '../state.js';
@@ -28,7 +28,7 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
   it('free fall matches y0 − ½gt² (Verlet with a Taylor start is exact for constant acceleration)', () => {
     // one substep per frame keeps float32 round-off (~ε·N^1.5) near 1e-4 m, while a wrong start would be off by
     // ½·g·h·t = 8 cm after 1 s
-    const sim = newSim(scene('custom', (s) => { s.colliders = []; s.solver = { type: solver, substeps: 1, iterations: 1 }; s.cloth.resolution = 2; }));
+    const sim = newSim(scene('custom', (s) => { s.colliders = []; s.solver = { ...s.solver, type: solver, substeps: 1, iterations: 1 }; s.cloth.resolution = 2; }));
     const y0 = sim.state.positions[1];
     sim.advance(60);
     const exact = y0 - 0.5 * 9.81 * 1 * 1;
@@ -179,8 +179,8 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const range = (lo: number, hi: number, log = false) => (log ? Math.exp(Math.log(lo) + rnd() * (Math.log(hi) - Math.log(lo))) : lo + rnd() * (hi - lo));
     const mat = sceneSchema.properties.material.properties;
     for (let trial = 0; trial < 200; trial++) {
-      const sc = builtinScene(SCENE_NAMES[trial % SCENE_NAMES.length])!;
-      sc.solver = { type: solver, substeps: Math.round(range(1, 40)), iterations: Math.round(range(1, 3)) };
+      const sc = builtinScene(SCENE_NAMES[trial % SCENE_NAMES.length]);
+      sc.solver = { ...sc.solver, type: solver, substeps: Math.round(range(1, 40)), iterations: Math.round(range(1, 3)) };
       sc.cloth.resolution = Math.round(range(1, 12));
       sc.material = {
         structuralStiffness: range(mat.structuralStiffness.minimum, mat.structuralStiffness.maximum, true),
@@ -197,13 +197,88 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
       sc.wind = { ...sc.wind, enabled: rnd() < 0.5, strength: range(0, 30), direction: [range(-1, 1), range(-1, 1), range(-1, 1)] };
       const sim = newSim(sc);
       const start = sim.report().centroid;
+      const label = JSON.stringify({ trial, solver: sc.solver, res: sc.cloth.resolution, material: sc.material });
       sim.advance(30);
       const r = sim.report();
-      const label = JSON.stringify({ trial, solver: sc.solver, res: sc.cloth.resolution, material: sc.material });
       expect(r.finite, label).toBe(true);
       const size = sim.model.size;
       for (const b of [r.bounds.min, r.bounds.max]) for (let k = 0; k < 3; k++) expect(Math.abs(b[k] - start[k]), label).toBeLessThan(50 * size);
     }
+  });
+
+  it('colliders placed at random inside, across and around the cloth: refused by name, or a cloth at rest and in one piece after 2 s', () => {
+    let seed = 4242;
+    const rnd = () => ((seed = (Math.imul(seed, 1664525) + 1013904223) >>> 0) / 2 ** 32);
+    const range = (lo: number, hi: number) => lo + rnd() * (hi - lo);
+    let ran = 0, refused = 0;
+    for (let trial = 0; trial < 90; trial++) {
+      const sc = builtinScene(SCENE_NAMES[trial % SCENE_NAMES.length]);
+      sc.resolutionSweep = undefined;
+      sc.solver.type = solver;
+      sc.wind.enabled = false;
+      sc.cloth.resolution = Math.round(range(2, 12));
+      const c = sc.cloth.position, size = Math.max(sc.cloth.width, sc.cloth.height);
+      // a floor to rest on, then spheres and floors anywhere from inside the cloth to around it
+      sc.colliders = [{ type: 'floor', height: c[1] - range(0.3, 1.5) * size }];
+      for (let k = Math.floor(rnd() * 3); k >= 0; k--) {
+        sc.colliders.push(rnd() < 0.65
+          ? { type: 'sphere', center: [c[0] + range(-1, 1) * size, c[1] + range(-1, 1) * size, c[2] + range(-1, 1) * size], radius: range(0.02, 2) * size }
+          : { type: 'floor', height: c[1] + range(-1, 1) * size });
+      }
+      const label = JSON.stringify({ trial, scene: sc.name, res: sc.cloth.resolution, colliders: sc.colliders });
+      let sim: Simulation;
+      try {
+        sim = newSim(sc);
+      } catch (e) {
+        expect(e, label).toBeInstanceOf(SceneError);
+        expect((e as Error).message, label).toMatch(/^scene '[a-z-]+': colliders\[\d\] \((sphere|floor)\)/);
+        refused++;
+        continue;
+      }
+      ran++;
+      const start = sim.report().centroid;
+      sim.advance(120);
+      const r = sim.report();
+      const m = sc.material.mass, g = Math.hypot(...sc.gravity);
+      expect(r.finite, label).toBe(true);
+      // not thrown: it stays near where it fell (sliding off a large sphere may carry it a few sizes sideways)
+      expect(Math.hypot(r.centroid[0] - start[0], r.centroid[1] - start[1], r.centroid[2] - start[2]), label).toBeLessThan(5 * size);
+      expect(r.energy.kinetic, label).toBeLessThan(0.05 * m * g * size); // nearly at rest
+      expect(r.maxStrain, label).toBeLessThanOrEqual(sc.material.stretchFactor - 1 + 0.02); // in one piece
+    }
+    expect(ran).toBeGreaterThan(20);
+    expect(refused).toBeGreaterThan(20);
+  });
+
+  it('a cloth that starts under a floor is lifted onto it at the depenetration speed, not thrown', () => {
+    const sim = newSim(scene('custom', (s) => { s.solver.type = solver; s.cloth.resolution = 8; s.colliders = [{ type: 'floor', height: 1.25 }]; }));
+    sim.advance(1); // 5 cm under the floor: lifted 1/60 m in the first frame (1 m/s), less gravity's pull
+    expect(sim.report().centroid[1]).toBeGreaterThan(1.2 + 1 / 60 - 0.002);
+    expect(sim.report().centroid[1]).toBeLessThan(1.2 + 1 / 60 + 1e-4);
+    sim.advance(29);
+    const r = sim.report();
+    expect(r.centroid[1]).toBeCloseTo(1.25 + sim.scene.cloth.thickness, 4); // resting on it
+    expect(r.energy.kinetic).toBeLessThan(1e-6);
+  });
+
+  it.each([
+    ['the floor raised into the draped cloth', 'colliders[1].height', 0.6],
+    ['the sphere moved sideways into it', 'colliders[0].center', [0.25, 0.5, 0.1]],
+    ['the sphere moved up through it', 'colliders[0].center', [0, 0.9, 0]],
+    ['the sphere grown around it', 'colliders[0].radius', 0.6],
+  ])('a collider moved into a resting cloth (%s) pushes it out without throwing it', (_label, path, value) => {
+    const sim = newSim(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 20; }));
+    sim.advance(90);
+    sim.set(path, value);
+    sim.advance(120);
+    const r = sim.report();
+    expect(r.finite).toBe(true);
+    for (let k = 0; k < 3; k++) {
+      expect(r.bounds.min[k]).toBeGreaterThan(-1.5); // measured: within ±0.8 m; thrown cloths went kilometres
+      expect(r.bounds.max[k]).toBeLessThan(1.5);
+    }
+    expect(r.energy.kinetic).toBeLessThan(1e-3 * 0.12 * 9.81); // at rest again
+    expect(r.maxStrain).toBeLessThanOrEqual(sim.scene.material.stretchFactor - 1 + 2e-3); // in one piece
   });
 });
 

@@ -15,10 +15,9 @@
  */
 import { BEND, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
-import { runFrame, type SolverPhases } from '../phases.js';
+import { limitStretch, runFrame, type SolverPhases } from '../phases.js';
 import type { ClothState } from '../state.js';
 import { solveTethers } from '../tethers.js';
-import { limitStretch } from './mass-spring.js';
 
 /**
  * One Gauss–Seidel pass over every distance constraint, batch by batch (colour order: springs of a batch share no

@@ -31,6 +31,7 @@ const CTRL_DAMPING = 136;
 const CTRL_THICKNESS = 144;
 const CTRL_FRICTION = 152;
 const CTRL_STATIC_FRICTION = 160;
+const CTRL_DEPENETRATION = 168;
 const CTRL_COLLIDER_RECORDS = 256;
 const CTRL_COLLIDER_BYTES = 48;
 const CTRL_BYTES = 4096;
@@ -104,7 +105,8 @@ export function wasmKernelAvailable(threads = false): boolean {
  * wait returns at once and the kernel polls again.
  */
 export function kernelImports(memory: WebAssembly.Memory): WebAssembly.Imports {
-  const words = memory.buffer instanceof SharedArrayBuffer ? new Int32Array(memory.buffer) : null;
+  // only a shared memory has waiters; pages that are not cross-origin isolated have no SharedArrayBuffer at all
+  const words = typeof SharedArrayBuffer !== 'undefined' && memory.buffer instanceof SharedArrayBuffer ? new Int32Array(memory.buffer) : null;
   return {
     env: {
       memory,
@@ -252,6 +254,7 @@ export class XpbdKernel {
     f[CTRL_THICKNESS / 8] = params.thickness;
     f[CTRL_FRICTION / 8] = params.friction;
     f[CTRL_STATIC_FRICTION / 8] = params.staticFriction;
+    f[CTRL_DEPENETRATION / 8] = params.depenetrationSpeed;
     i[CTRL_ITERATIONS / 4] = params.iterations;
     // the kernel does particle contact only when every collider has a record and none needs triangle contact
     const shapes = params.colliders;
@@ -295,12 +298,13 @@ export class XpbdKernel {
         f[CTRL_GRAB_AT / 8 + 2] = gz + (t[2] - gz) * frac;
       }
       this.exports.substep();
-      if (!contactInKernel) collide(model, state, params);
+      if (!contactInKernel) collide(model, state, params, h);
       state.time += h;
       state.substeps++;
     }
     updateVelocities(state, h);
   }
+
 }
 
 /**

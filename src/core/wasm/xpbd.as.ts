@@ -35,6 +35,7 @@ const DAMPING: usize = 136; // f64 [N·s/m]
 const THICKNESS: usize = 144; // f64 [m]
 const FRICTION: usize = 152; // f64 kinetic
 const STATIC_FRICTION: usize = 160; // f64 static
+const DEPENETRATION: usize = 168; // f64 depenetrationSpeed [m/s]
 const COLLIDER_RECORDS: usize = 256; // 8 × 6 f64: type (1 sphere, 2 floor), then cx, cy, cz, r | height
 const COLLIDER_BYTES: usize = 48;
 // each on its own 64-byte line: the open phase, its completed chunks, threads asleep waiting for a phase
@@ -462,7 +463,7 @@ function solveTethers(p0: i32, p1: i32, sf: f64): void {
   }
 }
 
-/** Stretch limiting of springs [s0, s1) of one batch, as solvers/mass-spring.ts limitStretch(), in f32. */
+/** Stretch limiting of springs [s0, s1) of one batch, as phases.ts limitStretch(), in f32. */
 function limitStretch(s0: i32, s1: i32, sf: f32): void {
   // the layout's globals in locals: V8 keeps them in registers across the loop
   const x = X, w = W, sp = SPRINGS, restP = REST;
@@ -508,7 +509,7 @@ function limitStretch(s0: i32, s1: i32, sf: f32): void {
 }
 
 /** Contact of particle i with one collider record, exactly as phases.ts collide() (f64 on f32 data): the tail. */
-@inline function contactParticle(i: i32, sphere: bool, c0: f64, c1: f64, c2: f64, r: f64, far: f64, th: f64): void {
+@inline function contactParticle(i: i32, sphere: bool, c0: f64, c1: f64, c2: f64, r: f64, far: f64, th: f64, recover: f64): void {
   if (load<f32>(W + (<usize>i << 2)) == 0) return;
   const j = X + <usize>i * 12, jp = XP + <usize>i * 12;
   const px = <f64>load<f32>(j), py = <f64>load<f32>(j, 4), pz = <f64>load<f32>(j, 8);
@@ -525,26 +526,34 @@ function limitStretch(s0: i32, s1: i32, sf: f32): void {
     d = py - c0;
   }
   if (d >= th) return;
-  const depth = th - d;
-  store<f32>(j, <f32>(px + depth * nx)); store<f32>(j, <f32>(py + depth * ny), 4); store<f32>(j, <f32>(pz + depth * nz), 8);
-  const qx = <f64>load<f32>(j), qy = <f64>load<f32>(j, 4), qz = <f64>load<f32>(j, 8);
-  const mx = qx - <f64>load<f32>(jp), my = qy - <f64>load<f32>(jp, 4), mz = qz - <f64>load<f32>(jp, 8);
+  const ex = <f64>load<f32>(jp), ey = <f64>load<f32>(jp, 4), ez = <f64>load<f32>(jp, 8);
+  const mx = px - ex, my = py - ey, mz = pz - ez;
   const mn = mx * nx + my * ny + mz * nz;
+  const depth = min(th - d, max(-mn, 0) + recover);
   const tx = mx - mn * nx, ty = my - mn * ny, tz = mz - mn * nz;
   const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth);
-  store<f32>(j, <f32>(qx - s * tx)); store<f32>(j, <f32>(qy - s * ty), 4); store<f32>(j, <f32>(qz - s * tz), 8);
+  store<f32>(j, <f32>(px + (depth * nx - s * tx)));
+  store<f32>(j, <f32>(py + (depth * ny - s * ty)), 4);
+  store<f32>(j, <f32>(pz + (depth * nz - s * tz)), 8);
+  // the outward normal motion the push-out made is not velocity
+  const made = min(mn + depth, depth);
+  if (made > 0) {
+    store<f32>(jp, <f32>(ex + made * nx)); store<f32>(jp, <f32>(ey + made * ny), 4); store<f32>(jp, <f32>(ez + made * nz), 8);
+  }
 }
 
 /**
  * Particle contact against the collider records, as phases.ts collide() does for shapes that need no triangle
  * contact: each particle within the thickness is pushed out along the normal, then friction removes (static) or
- * reduces (kinetic) its tangential motion over the substep. Four particles at a time in f32x4 lanes; the last 1–3
+ * reduces (kinetic) its tangential motion over the substep, and the outward motion the push-out made moves x_prev
+ * too (a push-out never launches the cloth). Four particles at a time in f32x4 lanes; the last 1–3
  * particles of the cloth one by one in f64 (contactParticle).
  */
 function collideParticles(p0: i32, p1: i32): void {
   const x = X, xp = XP, w = W;
   const th = load<f64>(THICKNESS);
-  const vTh = f32x4.splat(<f32>th);
+  const recover = load<f64>(DEPENETRATION) * load<f64>(H);
+  const vTh = f32x4.splat(<f32>th), vRecover = f32x4.splat(<f32>recover);
   const vMuS = f32x4.splat(<f32>load<f64>(STATIC_FRICTION)), vMuK = f32x4.splat(<f32>load<f64>(FRICTION));
   const zero = f32x4.splat(0), one = f32x4.splat(1), tiny = f32x4.splat(1e-12);
   const count = load<i32>(COLLIDERS);
@@ -581,26 +590,32 @@ function collideParticles(p0: i32, p1: i32): void {
       }
       touching = v128.and(v128.and(touching, f32x4.lt(d, vTh)), f32x4.ne(v128.load(w + (<usize>i << 2)), zero));
       if (!v128.any_true(touching)) continue;
-      const depth = f32x4.sub(vTh, d);
-      const qx = f32x4.add(px, f32x4.mul(depth, nx));
-      const qy = f32x4.add(py, f32x4.mul(depth, ny));
-      const qz = f32x4.add(pz, f32x4.mul(depth, nz));
-      // tangential motion over the substep, removed by friction
+      // motion over the substep so far, its normal part, and the push-out (contactParticle() in lanes)
       const e0 = v128.load(xp + o), e1 = v128.load(xp + o, 12), e2 = v128.load(xp + o, 24), e3 = v128.load(xp + o, 36);
       const u0 = lo2(e0, e1), u1 = lo2(e2, e3);
-      const mx = f32x4.sub(qx, lanesXY0(u0, u1)), my = f32x4.sub(qy, lanesXY1(u0, u1));
-      const mz = f32x4.sub(qz, lanesXY0(hi2(e0, e1), hi2(e2, e3)));
+      const ex = lanesXY0(u0, u1), ey = lanesXY1(u0, u1), ez = lanesXY0(hi2(e0, e1), hi2(e2, e3));
+      const mx = f32x4.sub(px, ex), my = f32x4.sub(py, ey), mz = f32x4.sub(pz, ez);
       const mn = dot3(mx, my, mz, nx, ny, nz);
+      const depth = f32x4.min(f32x4.sub(vTh, d), f32x4.add(f32x4.max(f32x4.neg(mn), zero), vRecover));
       const tx = f32x4.sub(mx, f32x4.mul(mn, nx)), ty = f32x4.sub(my, f32x4.mul(mn, ny)), tz = f32x4.sub(mz, f32x4.mul(mn, nz));
       const tl = f32x4.sqrt(dot3(tx, ty, tz, tx, ty, tz));
       // frictionScale(): 0 for no motion, 1 inside the static cone, else min(μk·depth/|t|, 1)
       const kinetic = f32x4.min(f32x4.div(f32x4.mul(vMuK, depth), f32x4.max(tl, tiny)), one);
       const scale = v128.and(v128.bitselect(one, kinetic, f32x4.lt(tl, f32x4.mul(vMuS, depth))), f32x4.ge(tl, tiny));
       store4(x, o, o + 12, o + 24, o + 36,
-        v128.bitselect(f32x4.sub(qx, f32x4.mul(scale, tx)), px, touching),
-        v128.bitselect(f32x4.sub(qy, f32x4.mul(scale, ty)), py, touching),
-        v128.bitselect(f32x4.sub(qz, f32x4.mul(scale, tz)), pz, touching));
+        v128.bitselect(f32x4.add(px, f32x4.sub(f32x4.mul(depth, nx), f32x4.mul(scale, tx))), px, touching),
+        v128.bitselect(f32x4.add(py, f32x4.sub(f32x4.mul(depth, ny), f32x4.mul(scale, ty))), py, touching),
+        v128.bitselect(f32x4.add(pz, f32x4.sub(f32x4.mul(depth, nz), f32x4.mul(scale, tz))), pz, touching));
+      // the outward normal motion the push-out made (mn + depth, at most depth) moves x_prev too: not velocity
+      const made = f32x4.min(f32x4.add(mn, depth), depth);
+      const launched = v128.and(touching, f32x4.gt(made, zero));
+      if (v128.any_true(launched)) {
+        store4(xp, o, o + 12, o + 24, o + 36,
+          v128.bitselect(f32x4.add(ex, f32x4.mul(made, nx)), ex, launched),
+          v128.bitselect(f32x4.add(ey, f32x4.mul(made, ny)), ey, launched),
+          v128.bitselect(f32x4.add(ez, f32x4.mul(made, nz)), ez, launched));
+      }
     }
-    for (; i < p1; i++) contactParticle(i, sphere, c0, c1, c2, r, far, th);
+    for (; i < p1; i++) contactParticle(i, sphere, c0, c1, c2, r, far, th, recover);
   }
 }

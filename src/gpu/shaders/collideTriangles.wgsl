@@ -1,8 +1,8 @@
 // collide (phases.ts), triangle part, for collider globals.colliders[batch.flags] and the triangles of one colour,
 // triOrder[batch.start .. batch.end): triangles of a colour share no vertex, so each thread owns its three
 // particles for the dispatch (Gauss–Seidel over colours, as the constraint solve; no float atomics). The deepest
-// point of the triangle is pushed out to the contact thickness, with friction; the correction is shared by
-// barycentric weight and inverse mass so that Σ bary_i·Δx_i is the wanted displacement.
+// point of the triangle is pushed out to the contact thickness as a particle is (collideParticles), with friction;
+// the correction is shared by barycentric weight and inverse mass so that Σ bary_i·Δx_i is the wanted displacement.
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
@@ -30,12 +30,26 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   let wc = invMass[c] * bary.z;
   let denom = wa * bary.x + wb * bary.y + wc * bary.z;
   if (denom == 0.0) { return; }
-  let depth = th - d;
-  let m = bary.x * (xa - previous[a].xyz) + bary.y * (xb - previous[b].xyz) + bary.z * (xc - previous[c].xyz);
-  let tang = m - dot(m, n) * n;
+  // motion of the contact point over the substep so far, treated as a particle's (collideParticles), the
+  // recovery shared among the triangles of a particle
+  let pa = previous[a].xyz;
+  let pb = previous[b].xyz;
+  let pc = previous[c].xyz;
+  let m = bary.x * (xa - pa) + bary.y * (xb - pb) + bary.z * (xc - pc);
+  let mn = dot(m, n);
+  let depth = min(th - d, max(-mn, 0.0) + sub.recoverTriangle);
+  let tang = m - mn * n;
   let fs = frictionScale(length(tang), depth);
   let dx = (depth * n - fs * tang) / denom;
   positions[a] = vec4f(xa + wa * dx, 0.0);
   positions[b] = vec4f(xb + wb * dx, 0.0);
   positions[c] = vec4f(xc + wc * dx, 0.0);
+  // the outward motion the push-out made is not velocity: x_prev moves likewise
+  let made = min(mn + depth, depth);
+  if (made > 0.0) {
+    let dp = (made / denom) * n;
+    previous[a] = vec4f(pa + wa * dp, 0.0);
+    previous[b] = vec4f(pb + wb * dp, 0.0);
+    previous[c] = vec4f(pc + wc * dp, 0.0);
+  }
 }

@@ -1,4 +1,4 @@
-// limitStretch (solvers/mass-spring.ts), run by XPBD after the tethers: a structural or shear spring of the batch
+// limitStretch (phases.ts), run by XPBD after the tethers: a structural or shear spring of the batch
 // [batch.start, batch.end) longer than stretchFactor × rest is projected back to that length, the correction
 // shared by inverse mass. One dispatch per colour batch, like the constraint solve (bend batches are skipped).
 
