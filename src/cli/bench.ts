@@ -2,10 +2,11 @@
  * `drape bench`: ms per 60 Hz frame for the CPU solvers on a cloth dropped on a sphere and a floor, and
  * JoltPhysics.js on the very same cloth (same particles, masses, constraints and compliances) in the same run.
  */
-import { cpus } from 'node:os';
+import { availableParallelism, cpus } from 'node:os';
 import { builtinScene, Simulation, type Scene, type SimulationOptions } from '../core/index.js';
 import type { Gpu } from './gpu.js';
 import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
+import { whileBusy } from './busy.js';
 import { spawnNodeHelper } from './threads.js';
 
 export interface BenchOptions {
@@ -17,6 +18,8 @@ export interface BenchOptions {
   warmup: number;
   /** run JoltPhysics.js beside Drape */
   peer: boolean;
+  /** also time Drape's XPBD (default threads and one thread) while other processes keep every core busy */
+  contention: boolean;
   /** threads of the WebAssembly XPBD kernel in the main Drape column (a 1-thread column is always printed) */
   threads: number | 'auto';
   json: boolean;
@@ -54,6 +57,8 @@ interface Row {
   /** Drape XPBD ms (1 thread) / Jolt ms */
   ratio1?: number;
   peerError?: string;
+  /** on a busy machine: Drape XPBD with the default threads and with one, and their ratio */
+  busy?: { xpbd: Timing & { threads: number; aloneFraction: number }; xpbd1: Timing; ratio: number };
 }
 
 function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-spring'): Scene {
@@ -63,7 +68,7 @@ function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-sprin
   return scene;
 }
 
-type DrapeTiming = Timing & { sim: Simulation; start: number[]; kernel: string; threads: number };
+type DrapeTiming = Timing & { sim: Simulation; start: number[]; kernel: string; threads: number; aloneFraction: number };
 
 /** Times `frames` frames after `warmup` (which also lets the WebAssembly code tier up) once helpers have started. */
 async function timeDrape(scene: Scene, frames: number, warmup: number, options: SimulationOptions): Promise<DrapeTiming> {
@@ -76,6 +81,7 @@ async function timeDrape(scene: Scene, frames: number, warmup: number, options: 
     sim.advance(frames);
     const ms = (performance.now() - t0) / frames;
     const r = sim.report();
+    const mode = sim.state.kernel?.mode;
     return {
       msPerFrame: ms,
       particleSubstepsPerSecond: (r.particles * scene.solver.substeps * 1000) / ms,
@@ -86,6 +92,7 @@ async function timeDrape(scene: Scene, frames: number, warmup: number, options: 
       start,
       kernel: sim.kernel,
       threads: sim.threads,
+      aloneFraction: mode && mode.frames > 0 ? mode.framesAlone / mode.frames : sim.threads > 1 ? 0 : 1,
     };
   } finally {
     sim.dispose();
@@ -170,6 +177,22 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
     }
     rows.push(row);
   }
+  if (opts.contention) {
+    // every core busy with another process, each bounded (a minute per size is far more than a run takes)
+    const cores = availableParallelism();
+    await whileBusy(cores, 60_000 * opts.sizes.length, async () => {
+      for (const row of rows) {
+        const scene = benchScene(row.particlesPerSide, opts.substeps, 'xpbd');
+        const xpbd = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(opts.threads));
+        const xpbd1 = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(1));
+        row.busy = {
+          xpbd: { ...timing(xpbd), threads: xpbd.threads, aloneFraction: xpbd.aloneFraction },
+          xpbd1: timing(xpbd1),
+          ratio: xpbd.msPerFrame / xpbd1.msPerFrame,
+        };
+      }
+    });
+  }
 
   const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
   if (opts.json) {
@@ -195,6 +218,18 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
   }
   const errs = [...new Set(rows.map((r) => r.peerError).filter(Boolean))];
   for (const e of errs) out(`peer: ${e}`);
+  if (opts.contention) {
+    out('');
+    out(`Busy machine: ${availableParallelism()} other processes keep every core busy (started by the bench, each bounded in time).`);
+    out('Drape XPBD with its default threads (each frame with the helpers or alone, whichever measures faster) against one thread:');
+    out('');
+    out('| particles | default threads ms/frame | threads | frames run alone | 1 thread ms/frame | default / 1 thread |');
+    out('|---|---|---|---|---|---|');
+    for (const r of rows) {
+      const b = r.busy!;
+      out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${fmt(b.xpbd.msPerFrame)} | ${b.xpbd.threads} | ${fmt(100 * b.xpbd.aloneFraction, 0)} % | ${fmt(b.xpbd1.msPerFrame)} | ${fmt(b.ratio)} |`);
+    }
+  }
   return rows;
 }
 

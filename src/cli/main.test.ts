@@ -47,16 +47,27 @@ describe('drape CLI', () => {
   });
 
   it('bench --json times the wasm kernel on its threads, on 1 thread, in TypeScript, and mass-spring', async () => {
-    const r = await run('bench', '--sizes', '9', '--frames', '2', '--warmup', '1', '--no-peer', '--json');
+    const r = await run('bench', '--sizes', '9', '--frames', '2', '--warmup', '1', '--no-peer', '--no-contention', '--json');
     expect(r.code).toBe(0);
     const j = JSON.parse(r.out);
     const row = j.rows[0];
+    expect(row.busy).toBeUndefined();
     expect(row).toMatchObject({ particlesPerSide: 9, particles: 81 });
     expect(row.xpbd).toMatchObject({ kernel: 'wasm', finite: true, stable: true });
     expect(j.threads).toBe('auto');
     expect(row.xpbd.threads).toBe(1); // 'auto' on a cloth this small
     expect(row.xpbd1).toMatchObject({ kernel: 'wasm', finite: true });
     for (const t of [row.xpbd, row.xpbd1, row.xpbdTs, row.massSpring]) expect(t.msPerFrame).toBeGreaterThan(0);
+  });
+
+  it('bench times the default threads against one thread on a machine it keeps busy, and stops the busy processes', async () => {
+    const r = await run('bench', '--sizes', '51', '--frames', '3', '--warmup', '1', '--no-peer');
+    expect(r.code).toBe(0);
+    expect(r.out).toMatch(/Busy machine: \d+ other processes keep every core busy/);
+    expect(r.out).toMatch(/^\| 51×51 \| [\d.]+ \| \d \| \d+ % \| [\d.]+ \| [\d.]+ \|$/m);
+    // the spinners are gone: no node process still runs the bench's busy loop
+    const left = spawnSync('pgrep', ['-f', 'while \\(Date.now\\(\\) < end\\)'], { encoding: 'utf8' }).stdout.trim();
+    expect(left).toBe('');
   });
 
   it('--frames 0 reports the start state; --solver and --set change the scene', async () => {

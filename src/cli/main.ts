@@ -35,7 +35,8 @@ Simulates a built-in scene (default: custom) or a scene file for N frames of 1/6
   --solver S            xpbd | mass-spring (same as --set solver.type=S)
   --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD, sphere and floor colliders)
   --kernel K            CPU XPBD kernel: wasm (WebAssembly SIMD, the default where available) or ts
-  --threads N           threads of the wasm kernel (default and most: the cores available, at most 8)
+  --threads N           threads of the wasm kernel (default: automatic, the cores available up to 8, but one
+                        for cloths under 2500 particles; more than the cores is clamped)
   --set PATH=VALUE      change any scene path, e.g. material.bendStiffness=2, wind.direction=[1,0,0],
                         colliders=[] ; VALUE is JSON when it parses, else a string (repeatable)
   --json                print exactly one JSON object
@@ -50,9 +51,11 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
   --frames N            timed frames per run (default 120), after --warmup N frames (default 30)
   --backend B           cpu (default: both CPU solvers and JoltPhysics.js) or gpu (the WebGPU solver, with
                         the CPU XPBD solver beside it up to 256 per side, and the memory-bandwidth floor)
-  --threads N           threads of Drape's wasm XPBD kernel (default and most: the cores available, at most 8); a
-                        1-thread and a TypeScript column are printed too
+  --threads N           threads of Drape's wasm XPBD kernel (default: automatic, the cores available up to 8, one
+                        for a small cloth); a 1-thread and a TypeScript column are printed too
   --no-peer             skip JoltPhysics.js
+  --no-contention       skip the busy-machine table (the default threads against one thread while other
+                        processes, started and stopped by the bench, keep every core busy)
   --json                print exactly one JSON object`,
   schema: `drape schema\n\nPrints the JSON schema every scene file is validated against (also published as scene.schema.json).`,
 };
@@ -276,7 +279,8 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
     args: argv,
     options: {
       sizes: { type: 'string' }, substeps: { type: 'string' }, frames: { type: 'string' }, warmup: { type: 'string' },
-      backend: { type: 'string' }, threads: { type: 'string' }, 'no-peer': { type: 'boolean' }, json: { type: 'boolean' },
+      backend: { type: 'string' }, threads: { type: 'string' }, 'no-peer': { type: 'boolean' }, 'no-contention': { type: 'boolean' },
+      json: { type: 'boolean' },
       help: { type: 'boolean', short: 'h' },
     },
   });
@@ -305,6 +309,7 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
     frames: intArg('frames', values.frames, 120, 1, 100_000),
     warmup: intArg('warmup', values.warmup, 30, 0, 100_000),
     peer: !values['no-peer'],
+    contention: !values['no-contention'],
     threads,
     json: values.json ?? false,
   }, out);

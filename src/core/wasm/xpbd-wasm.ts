@@ -7,12 +7,15 @@
  *
  * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
  * (a Web Worker or a Node worker thread each) with helperInit(); until every helper has checked in, substeps run
- * on the calling thread alone, so a slow start never blocks and never changes results beyond f32 rounding order.
+ * on the calling thread alone, so a slow start never blocks. Then each frame runs with the helpers or alone,
+ * whichever its measured frame times say is faster (thread-mode.ts: on a busy machine, alone can be). The cloth is
+ * the same bit for bit either way.
  */
 import { needsTriangleContact, accumulateWind, beginStep, collide, updateVelocities } from '../phases.js';
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import { createState, type ClothState } from '../state.js';
+import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
 // control block, byte offsets (mirrors xpbd.as.ts; 1024…3072 holds the threads' chunk counters)
@@ -139,6 +142,8 @@ export class XpbdKernel {
   private readonly alpha: Float32Array;
   private readonly helpers: { terminate(): void }[] = [];
   private paramsSeen: SimParams | undefined;
+  /** with helpers: whether a frame runs with them (thread-mode.ts) */
+  readonly mode = new ThreadModeChooser();
   private helpersJoined = false;
   private helperError: Error | undefined;
   private disposed = false;
@@ -222,7 +227,6 @@ export class XpbdKernel {
   private joinHelpers(): boolean {
     if (!this.helpersJoined && !this.disposed && !this.helperError && this.threads > 1 && this.helpers.length === this.threads - 1 &&
         Atomics.load(this.ctrlI32, CTRL_READY / 4) === this.threads - 1) {
-      this.ctrlI32[CTRL_THREADS / 4] = this.threads;
       this.helpersJoined = true;
     }
     return this.helpersJoined || this.threads === 1;
@@ -273,7 +277,12 @@ export class XpbdKernel {
    * Only XPBD: the kernel solves distance constraints.
    */
   frame(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
+    // with helpers, each frame runs with them or alone, whichever the measured frame times say is faster
     this.joinHelpers();
+    const timed = this.helpersJoined;
+    const parallel = timed && this.mode.next();
+    this.ctrlI32[CTRL_THREADS / 4] = parallel ? this.threads : 1;
+    const t0 = timed ? performance.now() : 0;
     const n = params.substeps;
     const h = dt / n;
     beginStep(model, state, params, h);
@@ -303,6 +312,7 @@ export class XpbdKernel {
       state.substeps++;
     }
     updateVelocities(state, h);
+    if (timed) this.mode.record((performance.now() - t0) / n);
   }
 
 }
