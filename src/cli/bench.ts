@@ -70,6 +70,24 @@ function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-sprin
 
 type DrapeTiming = Timing & { sim: Simulation; start: number[]; kernel: string; threads: number; aloneFraction: number };
 
+/** What a timed simulation reports: ms per frame, whether it stayed put, and how its kernel ran. */
+function drapeTiming(sim: Simulation, msPerFrame: number, start: number[]): DrapeTiming {
+  const r = sim.report();
+  const mode = sim.state.kernel?.mode;
+  return {
+    msPerFrame,
+    particleSubstepsPerSecond: (r.particles * sim.scene.solver.substeps * 1000) / msPerFrame,
+    finite: r.finite,
+    stable: isStable(r.finite, r.centroid, start, sim.model.size),
+    centroid: r.centroid,
+    sim,
+    start,
+    kernel: sim.kernel,
+    threads: sim.threads,
+    aloneFraction: mode && mode.frames > 0 ? mode.framesAlone / mode.frames : sim.threads > 1 ? 0 : 1,
+  };
+}
+
 /** Times `frames` frames after `warmup` (which also lets the WebAssembly code tier up) once helpers have started. */
 async function timeDrape(scene: Scene, frames: number, warmup: number, options: SimulationOptions): Promise<DrapeTiming> {
   const sim = new Simulation(scene, options);
@@ -79,23 +97,35 @@ async function timeDrape(scene: Scene, frames: number, warmup: number, options: 
     sim.advance(warmup);
     const t0 = performance.now();
     sim.advance(frames);
-    const ms = (performance.now() - t0) / frames;
-    const r = sim.report();
-    const mode = sim.state.kernel?.mode;
-    return {
-      msPerFrame: ms,
-      particleSubstepsPerSecond: (r.particles * scene.solver.substeps * 1000) / ms,
-      finite: r.finite,
-      stable: isStable(r.finite, r.centroid, start, sim.model.size),
-      centroid: r.centroid,
-      sim,
-      start,
-      kernel: sim.kernel,
-      threads: sim.threads,
-      aloneFraction: mode && mode.frames > 0 ? mode.framesAlone / mode.frames : sim.threads > 1 ? 0 : 1,
-    };
+    return drapeTiming(sim, (performance.now() - t0) / frames, start);
   } finally {
     sim.dispose();
+  }
+}
+
+/**
+ * Times two simulations of one scene in alternating blocks of frames, so that both meet the same machine (a busy
+ * one changes from second to second): the fair way to compare two settings.
+ */
+async function timeDrapePair(scene: Scene, frames: number, warmup: number, a: SimulationOptions, b: SimulationOptions): Promise<[DrapeTiming, DrapeTiming]> {
+  const sims = [new Simulation(scene, a), new Simulation(scene, b)];
+  try {
+    await Promise.all(sims.map((s) => s.whenReady()));
+    const starts = sims.map((s) => s.report().centroid);
+    for (const s of sims) s.advance(warmup);
+    const ms = [0, 0];
+    const block = 10;
+    for (let done = 0, k = 0; done < frames; done += block, k++) {
+      const n = Math.min(block, frames - done);
+      for (const i of k % 2 ? [1, 0] : [0, 1]) {
+        const t0 = performance.now();
+        sims[i].advance(n);
+        ms[i] += performance.now() - t0;
+      }
+    }
+    return [drapeTiming(sims[0], ms[0] / frames, starts[0]), drapeTiming(sims[1], ms[1] / frames, starts[1])];
+  } finally {
+    for (const s of sims) s.dispose();
   }
 }
 
@@ -183,8 +213,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
     await whileBusy(cores, 60_000 * opts.sizes.length, async () => {
       for (const row of rows) {
         const scene = benchScene(row.particlesPerSide, opts.substeps, 'xpbd');
-        const xpbd = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(opts.threads));
-        const xpbd1 = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(1));
+        const [xpbd, xpbd1] = await timeDrapePair(scene, opts.frames, opts.warmup, cpuOptions(opts.threads), cpuOptions(1));
         row.busy = {
           xpbd: { ...timing(xpbd), threads: xpbd.threads, aloneFraction: xpbd.aloneFraction },
           xpbd1: timing(xpbd1),

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { PROBE_AFTER, PROBE_EVERY, ThreadModeChooser } from './thread-mode.js';
+import { PROBE_AFTER, PROBE_EVERY, PROBE_FRAMES, ThreadModeChooser } from './thread-mode.js';
 
 /** Runs `frames` frames where a frame costs `ms(parallel)` per substep; returns the modes chosen. */
 function drive(chooser: ThreadModeChooser, frames: number, ms: (parallel: boolean) => number): boolean[] {
@@ -19,25 +19,41 @@ describe('thread mode', () => {
     expect(c.parallel).toBe(true);
     const alone = modes.filter((p) => !p).length;
     expect(alone).toBeGreaterThan(0);
-    expect(alone).toBeLessThanOrEqual(Math.ceil(200 / PROBE_EVERY)); // one probe per PROBE_EVERY frames
+    expect(alone).toBeLessThanOrEqual(PROBE_FRAMES * Math.ceil(200 / PROBE_EVERY)); // one probe per PROBE_EVERY frames
   });
 
   it('runs alone when the helpers make frames slower (a busy machine), and goes back when they pay again', () => {
     const c = new ThreadModeChooser();
     let busy = true;
-    const modes = drive(c, 120, (p) => (p ? (busy ? 0.5 : 0.1) : 0.18));
+    const modes = drive(c, 200, (p) => (p ? (busy ? 0.5 : 0.1) : 0.18));
     expect(c.parallel).toBe(false);
-    expect(modes.slice(PROBE_AFTER + 2).filter((p) => p).length).toBeLessThanOrEqual(Math.ceil(120 / PROBE_EVERY));
+    // parallel only during warm-up, the first window and one probe per PROBE_EVERY frames
+    expect(modes.filter((p) => p).length).toBeLessThanOrEqual(PROBE_AFTER + 9 + PROBE_FRAMES * Math.ceil(200 / PROBE_EVERY));
     busy = false;
-    drive(c, 2 * PROBE_EVERY + 2, (p) => (p ? (busy ? 0.5 : 0.1) : 0.18));
+    drive(c, PROBE_EVERY + 12, (p) => (p ? (busy ? 0.5 : 0.1) : 0.18));
     expect(c.parallel).toBe(true);
+  });
+
+  it('is not fooled by single slow frames (a machine hiccup), nor switches for less than the margin', () => {
+    const c = new ThreadModeChooser();
+    let f = 0;
+    drive(c, 400, (p) => (f++ % 7 === 0 ? 5 : p ? 0.1 : 0.18)); // every 7th frame 50× slower, in either mode
+    expect(c.parallel).toBe(true);
+    expect(c.framesAlone).toBeLessThanOrEqual(PROBE_FRAMES * Math.ceil(400 / PROBE_EVERY));
   });
 
   it('does not measure warm-up frames, nor switch for less than the margin', () => {
     const c = new ThreadModeChooser();
     const modes = drive(c, PROBE_AFTER, () => 1);
     expect(modes.every((p) => p)).toBe(true);
-    drive(c, 200, (p) => (p ? 0.1 : 0.095)); // alone only 5 % faster: stays
+    drive(c, 200, (p) => (p ? 0.1 : 0.097)); // alone only 3 % faster: stays
     expect(c.parallel).toBe(true);
+    const d = new ThreadModeChooser();
+    drive(d, 200, (p) => (p ? 0.1 : 0.096)); // alone 4 % faster: stays (the margin to alone is 5 %)
+    expect(d.parallel).toBe(true);
+    drive(d, 200, (p) => (p ? 0.1 : 0.09)); // 10 % faster alone: goes
+    expect(d.parallel).toBe(false);
+    drive(d, 300, (p) => (p ? 0.08 : 0.09)); // helpers 11 % faster: not enough to go back (15 %)
+    expect(d.parallel).toBe(false);
   });
 });

@@ -2,36 +2,57 @@
  * Whether a kernel's helper threads take part in a frame, decided from measured frame times. On an idle machine
  * they make a frame faster; on a busy one a helper is often descheduled, and thread 0, which then does the
  * helper's share itself and may wait for a chunk the helper holds, can end up slower than alone. So the kernel
- * times its frames in the mode it is in, now and then runs one frame in the other mode (a probe), and keeps the
- * faster. Both modes compute the same cloth bit for bit: only the speed depends on the choice.
+ * times its frames in the mode it is in, now and then runs a few frames in the other mode (a probe), and keeps the
+ * faster. Medians, not means: a machine's hiccups make single frames slow, not fast. Both modes compute the same
+ * cloth bit for bit: only the speed depends on the choice.
  */
 
-/** Frames before the first probe (the code tiers up, the cloth starts moving) [-]. */
+/** Frames before anything is measured (the code tiers up, the cloth starts moving) [-]. */
 export const PROBE_AFTER = 8;
-/** Frames between probes of the other mode [-]. */
-export const PROBE_EVERY = 30;
-/** The other mode must be this much faster per substep to be chosen [-]. */
-export const SWITCH_MARGIN = 0.1;
-/** Weight of a new frame in the running estimate of the current mode [-]. */
-const SMOOTHING = 0.25;
+/** Frames in the current mode between probes [-]. */
+export const PROBE_EVERY = 90;
+/** Frames a probe runs in the other mode [-]. */
+export const PROBE_FRAMES = 5;
+/**
+ * How much lower the other mode's median must be to be chosen [-]: the helpers must clearly pay to be taken on
+ * (a busy machine makes timings noisy, and alone is the safe side), and are dropped as soon as they do not.
+ */
+export const MARGIN_TO_PARALLEL = 0.15;
+export const MARGIN_TO_ALONE = 0.05;
+/** Recent frames of the current mode whose median it is judged by [-]. */
+const WINDOW = 9;
+
+function median(values: Float64Array, count: number, scratch: Float64Array): number {
+  for (let i = 0; i < count; i++) scratch[i] = values[i];
+  const s = scratch.subarray(0, count).sort();
+  return count % 2 ? s[(count - 1) / 2] : 0.5 * (s[count / 2 - 1] + s[count / 2]);
+}
 
 export class ThreadModeChooser {
-  /** whether the coming frame runs with the helpers */
+  /** whether the current mode runs with the helpers */
   parallel = true;
   /** frames run alone since the start (for reports) */
   framesAlone = 0;
   /** frames run in all */
   frames = 0;
-  /** ms per substep: [alone, parallel]; NaN until measured */
-  private readonly estimate = [NaN, NaN];
-  private sinceProbe = 0;
+  /** the current mode's last WINDOW frames [ms per substep], a ring */
+  private readonly recent = new Float64Array(WINDOW);
+  private recentCount = 0;
+  private recentAt = 0;
+  private readonly probe = new Float64Array(PROBE_FRAMES);
+  private probeCount = 0;
+  private readonly scratch = new Float64Array(WINDOW);
+  /** frames of the current mode since the last probe (the first is due as soon as the window is full) */
+  private sinceProbe = PROBE_EVERY;
   private probing = false;
 
   /** Whether the next frame runs with the helpers (call once per frame, then record()). */
   next(): boolean {
-    const current = this.estimate[this.parallel ? 1 : 0], other = this.estimate[this.parallel ? 0 : 1];
-    // warm-up frames are not measured; then the current mode is, and the other is probed once it has a number
-    this.probing = this.frames >= PROBE_AFTER && !Number.isNaN(current) && (Number.isNaN(other) || this.sinceProbe >= PROBE_EVERY);
+    // warm-up frames are not measured; a probe starts once the current mode has a full window and is due
+    if (!this.probing && this.recentCount === WINDOW && this.sinceProbe >= PROBE_EVERY) {
+      this.probing = true;
+      this.probeCount = 0;
+    }
     return this.probing ? !this.parallel : this.parallel;
   }
 
@@ -43,13 +64,27 @@ export class ThreadModeChooser {
     if (!ran) this.framesAlone++;
     if (!measured) return;
     if (this.probing) {
-      this.estimate[ran ? 1 : 0] = msPerSubstep;
+      this.probe[this.probeCount++] = msPerSubstep;
+      if (this.probeCount < PROBE_FRAMES) return;
+      this.probing = false;
       this.sinceProbe = 0;
-      if (msPerSubstep < this.estimate[this.parallel ? 1 : 0] * (1 - SWITCH_MARGIN)) this.parallel = ran;
+      const other = median(this.probe, PROBE_FRAMES, this.scratch);
+      if (other < median(this.recent, WINDOW, this.scratch) * (1 - (ran ? MARGIN_TO_PARALLEL : MARGIN_TO_ALONE))) {
+        // switch; the probe's frames start the new mode's window
+        this.parallel = ran;
+        this.recentCount = 0;
+        this.recentAt = 0;
+        for (let i = 0; i < PROBE_FRAMES; i++) this.push(this.probe[i]);
+      }
       return;
     }
-    const k = this.parallel ? 1 : 0;
-    this.estimate[k] = Number.isNaN(this.estimate[k]) ? msPerSubstep : this.estimate[k] + SMOOTHING * (msPerSubstep - this.estimate[k]);
+    this.push(msPerSubstep);
     this.sinceProbe++;
+  }
+
+  private push(ms: number): void {
+    this.recent[this.recentAt] = ms;
+    this.recentAt = (this.recentAt + 1) % WINDOW;
+    this.recentCount = Math.min(this.recentCount + 1, WINDOW);
   }
 }

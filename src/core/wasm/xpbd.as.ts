@@ -90,7 +90,7 @@ export function configure(
 /** Springs per chunk (a multiple of 4: chunks keep the quads of the 1-thread pass) and particles per chunk. */
 const CHUNK_SPRINGS: i32 = 256;
 const CHUNK_PARTICLES: i32 = 1024;
-/** polls of a word before a waiting thread sleeps (microseconds: a phase usually opens sooner) */
+/** polls of a word before a waiting thread sleeps (a phase usually opens sooner) */
 const SPINS: i32 = 1 << 15;
 /** longest single sleep [ms]: a safety net, the thread is woken when the word changes */
 const SLEEP_MS: f64 = 20;
