@@ -7,8 +7,10 @@ export default defineConfig({
     include: ['e2e/**/*.e2e.ts'],
     environment: 'node',
     globalSetup: ['e2e/global-setup.ts'],
-    testTimeout: 90_000,
-    hookTimeout: 90_000,
+    // generous limits, so that a busy machine makes the suite slower, never red: they only stop a test that hangs
+    testTimeout: 300_000,
+    hookTimeout: 300_000,
+    expect: { poll: { timeout: 30_000 } },
     // one browser at a time: SwiftShader already uses both cores
     fileParallelism: false,
     reporters: ['default'],

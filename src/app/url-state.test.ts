@@ -38,13 +38,10 @@ describe('URL hash state', () => {
     expect(back.scene.name).toBe('true');
   });
 
-  it('refuses a list index far past the end at once, in one line, without building a huge list', () => {
-    const t0 = performance.now();
+  it('refuses a list index far past the end in one line, without building a huge list', () => {
     expect(() => decodeHash('#cloth.position[100000000]=2')).toThrow(/^link: cloth\.position\[100000000\]: cloth\.position has 3 items, no item 100000000/);
     expect(() => decodeHash('#colliders[5].radius=1')).toThrow(/colliders has \d+ items?, no item 5/);
     expect(() => decodeHash('#pins[99999999]=3')).toThrow(/pins has 0 items, no item 99999999 \(0 appends one\)/);
-    // well under a second even on a loaded machine; the old behaviour took seconds and gigabytes
-    expect(performance.now() - t0).toBeLessThan(2000);
     // one past the end appends, as the CLI's --set does
     expect(decodeHash('#pins[0]=3')!.scene.pins).toEqual([3]);
   });

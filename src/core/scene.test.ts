@@ -27,11 +27,9 @@ describe('scenes', () => {
     const s = defaultScene();
     expect(setScenePath(s, 'cloth.position[2]', 3).cloth.position).toEqual([0, 1.2, 3]);
     expect(setScenePath(s, 'pins[0]', 'center').pins).toEqual(['center']); // appends to []
-    const t0 = performance.now();
     expect(() => setScenePath(s, 'cloth.position[100000000]', 2)).toThrow(/^--set cloth\.position\[100000000\]: cloth\.position has 3 items, no item 100000000 \(3 appends one\)$/);
     expect(() => setScenePath(s, 'pins[1]', 'center')).toThrow(/pins has 0 items, no item 1/);
     expect(() => setScenePath(s, 'colliders[5].radius', 1)).toThrow(/colliders has 2 items, no item 5$/);
-    expect(performance.now() - t0).toBeLessThan(1000); // refused at once, not after building a huge array
     // only the scene's own keys are paths
     expect(() => setScenePath(s, 'cloth.constructor.name', 1)).toThrow(/not a scene path/);
     expect(() => setScenePath(s, 'material.toString.x', 1)).toThrow(/material\.toString is not an object in this scene/);
