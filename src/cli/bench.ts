@@ -95,9 +95,9 @@ async function timeDrape(scene: Scene, frames: number, warmup: number, options: 
     await sim.whenReady();
     const start = sim.report().centroid;
     sim.advance(warmup);
-    const t0 = performance.now();
+    const f0 = sim.frame, t0 = performance.now();
     sim.advance(frames);
-    return drapeTiming(sim, (performance.now() - t0) / frames, start);
+    return drapeTiming(sim, (performance.now() - t0) / Math.max(1, sim.frame - f0), start);
   } finally {
     sim.dispose();
   }
@@ -113,7 +113,7 @@ async function timeDrapePair(scene: Scene, frames: number, warmup: number, a: Si
     await Promise.all(sims.map((s) => s.whenReady()));
     const starts = sims.map((s) => s.report().centroid);
     for (const s of sims) s.advance(warmup);
-    const ms = [0, 0];
+    const ms = [0, 0], f0 = sims.map((s) => s.frame);
     const block = 10;
     for (let done = 0, k = 0; done < frames; done += block, k++) {
       const n = Math.min(block, frames - done);
@@ -123,7 +123,8 @@ async function timeDrapePair(scene: Scene, frames: number, warmup: number, a: Si
         ms[i] += performance.now() - t0;
       }
     }
-    return [drapeTiming(sims[0], ms[0] / frames, starts[0]), drapeTiming(sims[1], ms[1] / frames, starts[1])];
+    const per = (i: number) => ms[i] / Math.max(1, sims[i].frame - f0[i]);
+    return [drapeTiming(sims[0], per(0), starts[0]), drapeTiming(sims[1], per(1), starts[1])];
   } finally {
     for (const s of sims) s.dispose();
   }
@@ -208,9 +209,9 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
     rows.push(row);
   }
   if (opts.contention) {
-    // every core busy with another process, each bounded (a minute per size is far more than a run takes)
+    // every core busy with another process, each bounded (ten minutes per size is far more than a run takes)
     const cores = availableParallelism();
-    await whileBusy(cores, 60_000 * opts.sizes.length, async () => {
+    await whileBusy(cores, 600_000 * opts.sizes.length, async () => {
       for (const row of rows) {
         const scene = benchScene(row.particlesPerSide, opts.substeps, 'xpbd');
         const [xpbd, xpbd1] = await timeDrapePair(scene, opts.frames, opts.warmup, cpuOptions(opts.threads), cpuOptions(1));

@@ -4,15 +4,20 @@
  */
 import { spawn } from 'node:child_process';
 
-/** Runs `work` while `count` other processes spin, each for at most `maxMs` [ms]. */
-export async function whileBusy<T>(count: number, maxMs: number, work: () => Promise<T>): Promise<T> {
+/** Runs `work` (given the spinners' process ids) while `count` other processes spin, each for at most `maxMs` [ms]. */
+export async function whileBusy<T>(count: number, maxMs: number, work: (pids: number[]) => Promise<T>): Promise<T> {
   const bound = Math.max(1, Math.floor(maxMs));
-  const spinners = Array.from({ length: count }, () =>
-    spawn(process.execPath, ['-e', `const end = Date.now() + ${bound}; while (Date.now() < end) {}`], { stdio: 'ignore' }));
+  let failed: Error | undefined;
+  const spinners = Array.from({ length: count }, () => {
+    const child = spawn(process.execPath, ['-e', `const end = Date.now() + ${bound}; while (Date.now() < end) {}`], { stdio: 'ignore' });
+    child.on('error', (e) => { failed ??= e; });
+    return child;
+  });
   try {
     // until each has started spinning (Node starts in ~50 ms)
     await new Promise((r) => setTimeout(r, 300));
-    return await work();
+    if (failed) throw new Error(`could not start the processes that keep the machine busy (${failed.message})`);
+    return await work(spinners.map((s) => s.pid!));
   } finally {
     for (const s of spinners) s.kill();
   }

@@ -15,7 +15,7 @@ function cannot(path: string, e: unknown, doing: string): UsageError {
   const code = (e as NodeJS.ErrnoException).code;
   const why = code === 'ENOENT' ? 'no such file' : code === 'EACCES' || code === 'EPERM' ? 'permission denied'
     : code === 'ENOTDIR' ? 'a folder on the path is a file' : code === 'ELOOP' ? 'too many symbolic links'
-      : `${doing} failed (${code ?? (e as Error).message})`;
+      : code === 'ENXIO' ? 'not a regular file (a socket or device)' : `${doing} failed (${code ?? (e as Error).message})`;
   return new UsageError(`${path}: ${why}`);
 }
 
@@ -33,16 +33,11 @@ export function readInputFile(path: string, what = 'scene file'): string {
     if (st.isDirectory()) throw new UsageError(`${path}: is a folder, not a ${what}`);
     if (!st.isFile()) throw new UsageError(`${path}: not a regular file (a device, pipe or socket); a ${what} must be a file`);
     if (st.size > MAX_INPUT_BYTES) throw new UsageError(`${path}: ${mib(st.size)}, more than the ${mib(MAX_INPUT_BYTES)} a ${what} may have`);
-    // read at most one byte past the cap: a file that grows while it is read is refused too
-    const buf = Buffer.alloc(Math.min(st.size, MAX_INPUT_BYTES) + 1);
+    // one byte more than the file's size: a file that grows while it is read fills it, and is refused
+    const buf = Buffer.alloc(st.size + 1);
     let n = 0;
-    for (;;) {
-      const got = readSync(fd, buf, n, buf.length - n, null);
-      if (got === 0) break;
-      n += got;
-      if (n > MAX_INPUT_BYTES) throw new UsageError(`${path}: more than the ${mib(MAX_INPUT_BYTES)} a ${what} may have`);
-      if (n === buf.length) break;
-    }
+    for (let got = 1; got > 0 && n < buf.length; n += got) got = readSync(fd, buf, n, buf.length - n, null);
+    if (n > st.size) throw new UsageError(`${path}: the file changed while it was read`);
     return buf.toString('utf8', 0, n);
   } catch (e) {
     if (e instanceof UsageError) throw e;

@@ -166,9 +166,8 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
   };
 }
 
-/** The one line that says a run blew up, or undefined when every position stayed finite. */
-function unstableLine(scene: Scene, run: RunResult, frames: number, gpu: boolean): string | undefined {
-  if (run.finite) return undefined;
+/** The one line that says a run blew up. */
+function unstableLine(scene: Scene, run: RunResult, frames: number, gpu: boolean): string {
   // the CPU checks every frame; the GPU backend reads positions back once, after the last frame
   const when = !gpu && run.sim.unstableFrame !== null ? `at frame ${run.sim.unstableFrame} of ${frames}` : `by frame ${frames}`;
   const res = scene.resolutionSweep ? ` (${run.resolution} faces per side)` : '';
@@ -218,9 +217,17 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   } finally {
     gpu?.device.destroy();
   }
-  const blewUp = [main, ...sweepRuns].map((r) => unstableLine(scene, r, frames, !!gpu)).find((line) => line !== undefined);
-  if (blewUp) {
-    err(`drape: ${blewUp}`);
+  const unstable = [main, ...sweepRuns].find((r) => !r.finite);
+  if (unstable) {
+    const line = unstableLine(scene, unstable, frames, !!gpu);
+    // --json still prints one object: what blew up and when, with no NaN in it
+    if (values.json) {
+      out(safeJson({
+        scene: scene.name, solver: scene.solver.type, backend, frames, substeps: scene.solver.substeps, resolution: unstable.resolution,
+        finite: false, unstableFrame: gpu ? null : unstable.sim.unstableFrame, error: line,
+      }));
+    }
+    err(`drape: ${line}`);
     return EXIT.unstable;
   }
 

@@ -23,6 +23,7 @@ describe('library arguments', () => {
     [{ threads: 1.5 }, /got 1\.5$/],
     [{ threads: 'many' }, /got many$/],
     [{ spawnHelper: 'yes' }, /options\.spawnHelper must be a function/],
+    [{ spawnHelper: () => ({ terminate() {} }) }, /options\.spawnHelper\.cores must be the number of cores its threads can use/],
   ])('new Simulation(scene, %j) throws at once', (options, message) => {
     expect(() => new Simulation(small(), options as unknown as SimulationOptions)).toThrow(message);
   });

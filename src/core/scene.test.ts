@@ -30,6 +30,9 @@ describe('scenes', () => {
     expect(() => setScenePath(s, 'cloth.position[100000000]', 2)).toThrow(/^--set cloth\.position\[100000000\]: cloth\.position has 3 items, no item 100000000 \(3 appends one\)$/);
     expect(() => setScenePath(s, 'pins[1]', 'center')).toThrow(/pins has 0 items, no item 1/);
     expect(() => setScenePath(s, 'colliders[5].radius', 1)).toThrow(/colliders has 2 items, no item 5$/);
+    // '01' is not an index: it would name a property of the list and change nothing
+    expect(() => setScenePath(s, 'cloth.position.01', 5)).toThrow(/cloth\.position is a list; use an index such as cloth\.position\[0\]/);
+    expect(() => setScenePath(s, 'pins[00]', 'center')).toThrow(/pins is a list/);
     // only the scene's own keys are paths
     expect(() => setScenePath(s, 'cloth.constructor.name', 1)).toThrow(/not a scene path/);
     expect(() => setScenePath(s, 'material.toString.x', 1)).toThrow(/material\.toString is not an object in this scene/);

@@ -198,7 +198,8 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     const last = i === keys.length - 1;
     if (Array.isArray(node)) {
       const list = keys.slice(0, i).join('.');
-      if (!/^\d+$/.test(keys[i])) throw new SceneError(`${source}: ${list} is a list; use an index such as ${list}[0]`);
+      // a plain index: '01' would name a property of the list, not an item
+      if (!/^(0|[1-9]\d*)$/.test(keys[i])) throw new SceneError(`${source}: ${list} is a list; use an index such as ${list}[0]`);
       // an existing item, or (for the last key) one past the end to append: never a sparse array
       if (Number(keys[i]) > (last ? node.length : node.length - 1)) {
         const items = `${node.length} item${node.length === 1 ? '' : 's'}`;

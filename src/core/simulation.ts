@@ -60,7 +60,7 @@ export const AUTO_THREADS_MIN_PARTICLES = 2500;
 
 /** Threads for a kernel: the request, or 'auto' by cloth size, and never more than the cores or 8. */
 function threadsFor(request: number | 'auto', cores: number, particles: number): number {
-  const most = Math.max(1, Math.min(8, Math.floor(cores) || 1));
+  const most = Math.min(8, cores);
   if (request === 'auto') return particles < AUTO_THREADS_MIN_PARTICLES ? 1 : most;
   return Math.min(request, most);
 }
@@ -87,6 +87,9 @@ function checkOptions(options: SimulationOptions): SimulationOptions {
   }
   if (spawnHelper !== undefined && typeof spawnHelper !== 'function') {
     throw new TypeError('Simulation: options.spawnHelper must be a function (e.g. spawnNodeHelper from drape/threads)');
+  }
+  if (spawnHelper !== undefined && !(Number.isInteger(spawnHelper.cores) && spawnHelper.cores >= 1)) {
+    throw new TypeError('Simulation: options.spawnHelper.cores must be the number of cores its threads can use (an integer ≥ 1)');
   }
   return options;
 }

@@ -56,4 +56,15 @@ describe('thread mode', () => {
     drive(d, 300, (p) => (p ? 0.08 : 0.09)); // helpers 11 % faster: not enough to go back (15 %)
     expect(d.parallel).toBe(false);
   });
+
+  it('hold() fixes the mode until released', () => {
+    const c = new ThreadModeChooser();
+    c.hold(true);
+    expect(drive(c, 200, (p) => (p ? 1 : 0.1)).every((p) => p)).toBe(true);
+    c.hold(false);
+    expect(drive(c, 10, () => 0.1).every((p) => !p)).toBe(true);
+    c.hold(undefined);
+    drive(c, 200, (p) => (p ? 1 : 0.1));
+    expect(c.parallel).toBe(false);
+  });
 });

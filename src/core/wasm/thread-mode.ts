@@ -46,8 +46,18 @@ export class ThreadModeChooser {
   private sinceProbe = PROBE_EVERY;
   private probing = false;
 
+  /** mode held by hold(), or undefined while measurements decide */
+  private held: boolean | undefined;
+
+  /** Runs every frame with the helpers (true) or alone (false), measuring nothing; undefined lets the times decide. */
+  hold(parallel: boolean | undefined): void {
+    this.held = parallel;
+    this.probing = false;
+  }
+
   /** Whether the next frame runs with the helpers (call once per frame, then record()). */
   next(): boolean {
+    if (this.held !== undefined) return this.held;
     // warm-up frames are not measured; a probe starts once the current mode has a full window and is due
     if (!this.probing && this.recentCount === WINDOW && this.sinceProbe >= PROBE_EVERY) {
       this.probing = true;
@@ -58,6 +68,11 @@ export class ThreadModeChooser {
 
   /** The time of the frame next() was asked for, per substep [ms]. */
   record(msPerSubstep: number): void {
+    if (this.held !== undefined) {
+      this.frames++;
+      if (!this.held) this.framesAlone++;
+      return;
+    }
     const ran = this.probing ? !this.parallel : this.parallel;
     const measured = this.frames >= PROBE_AFTER && msPerSubstep >= 0 && Number.isFinite(msPerSubstep);
     this.frames++;

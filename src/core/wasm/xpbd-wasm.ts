@@ -18,13 +18,16 @@ import { createState, type ClothState } from '../state.js';
 import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
-// control block, byte offsets (mirrors xpbd.as.ts; 1024…3072 holds the threads' chunk counters)
+// control block, byte offsets (mirrors xpbd.as.ts; 1024… holds the threads' phase protocol words, 2048…3072 the runs)
 const CTRL_THREADS = 12;
 const CTRL_GRABBED = 20;
 const CTRL_FLAGS = 24;
 const CTRL_ITERATIONS = 28;
 const CTRL_COLLIDERS = 32;
 const CTRL_READY = 36;
+const CTRL_SPIN_LIMIT = 40;
+/** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
+const SPIN_LIMIT = 1 << 15;
 const CTRL_H = 64;
 const CTRL_TAYLOR = 72;
 const CTRL_GRAVITY = 80;
@@ -40,7 +43,7 @@ const CTRL_COLLIDER_BYTES = 48;
 const CTRL_BYTES = 4096;
 /** collider records the control block holds; scenes with more use the TypeScript contact phase */
 export const KERNEL_MAX_COLLIDERS = 8;
-/** most threads a kernel runs (chunk counters in the control block; mirrors xpbd.as.ts MAX_THREADS) */
+/** most threads a kernel runs (one run counter each at xpbd.as.ts RUNS, 16 lines of 64 bytes) */
 export const KERNEL_MAX_THREADS = 16;
 const FLAG_FORCES = 1;
 const FLAG_CONTACT = 2;
@@ -172,6 +175,7 @@ export class XpbdKernel {
     model.batches.forEach((b, k) => { batches[3 * k] = b.start; batches[3 * k + 1] = b.end; batches[3 * k + 2] = b.kind; });
     this.alpha = new Float32Array(buf, ALPHA, m);
     this.ctrlI32[CTRL_THREADS / 4] = 1;
+    this.ctrlI32[CTRL_SPIN_LIMIT / 4] = SPIN_LIMIT;
     this.state = createState(model, {
       positions: new Float32Array(buf, X, 3 * n),
       previousPositions: new Float32Array(buf, XP, 3 * n),
@@ -219,6 +223,14 @@ export class XpbdKernel {
     }
   }
 
+  /**
+   * Polls before a waiting thread sleeps (default 32 768). Tests set 0, so that every wait sleeps through the host's
+   * Atomics.wait inside the substep, the path a busy machine takes.
+   */
+  set spinLimit(polls: number) {
+    Atomics.store(this.ctrlI32, CTRL_SPIN_LIMIT / 4, Math.max(0, Math.floor(polls)));
+  }
+
   /** threads working on the substeps now (helpers count once they have checked in) */
   get activeThreads(): number {
     return this.helpersJoined ? this.threads : 1;
@@ -259,7 +271,7 @@ export class XpbdKernel {
     f[CTRL_FRICTION / 8] = params.friction;
     f[CTRL_STATIC_FRICTION / 8] = params.staticFriction;
     f[CTRL_DEPENETRATION / 8] = params.depenetrationSpeed;
-    i[CTRL_ITERATIONS / 4] = params.iterations;
+    i[CTRL_ITERATIONS / 4] = Math.min(255, params.iterations); // 8 bits in the kernel's phase list (the schema: ≤ 20)
     // the kernel does particle contact only when every collider has a record and none needs triangle contact
     const shapes = params.colliders;
     let inKernel = shapes.length <= KERNEL_MAX_COLLIDERS;

@@ -25,6 +25,7 @@ const FLAGS: usize = 24;
 const ITERATIONS: usize = 28; // i32
 const COLLIDERS: usize = 32; // i32: number of collider records
 const READY: usize = 36; // i32: helpers that entered helperLoop
+const SPIN_LIMIT: usize = 40; // i32: polls of a word before a waiting thread sleeps (a phase usually opens sooner)
 const DESC: usize = 48; // i64: the dispatched substep's phase list (describe())
 const H: usize = 64; // f64 substep [s]
 const TAYLOR: usize = 72; // f64: ½ on the very first substep, else 1
@@ -90,8 +91,6 @@ export function configure(
 /** Springs per chunk (a multiple of 4: chunks keep the quads of the 1-thread pass) and particles per chunk. */
 const CHUNK_SPRINGS: i32 = 256;
 const CHUNK_PARTICLES: i32 = 1024;
-/** polls of a word before a waiting thread sleeps (a phase usually opens sooner) */
-const SPINS: i32 = 1 << 15;
 /** longest single sleep [ms]: a safety net, the thread is woken when the word changes */
 const SLEEP_MS: f64 = 20;
 
@@ -102,10 +101,11 @@ declare function hostWait(address: usize, expected: i32, timeoutMs: f64): void;
 @external("env", "notify")
 declare function hostNotify(address: usize): void;
 
-/** Waits until the i32 at `at` is no longer `seen`: spins SPINS polls, then sleeps, counted in `sleepers`. */
+/** Waits until the i32 at `at` is no longer `seen`: polls SPIN_LIMIT times, then sleeps, counted in `sleepers`. */
 function waitChange(at: usize, seen: i32, sleepers: usize): void {
   if (ASC_FEATURE_THREADS) {
-    for (let s = 0; s < SPINS; s++) if (atomic.load<i32>(at) != seen) return;
+    const spins = load<i32>(SPIN_LIMIT);
+    for (let s = 0; s < spins; s++) if (atomic.load<i32>(at) != seen) return;
     while (atomic.load<i32>(at) == seen) {
       atomic.add<i32>(sleepers, 1);
       if (atomic.load<i32>(at) == seen) hostWait(at, seen, SLEEP_MS);
@@ -198,7 +198,7 @@ export function helperLoop(t: i32): void {
  * (32–39), particle contact in the kernel (40), a grab (41), T (48–55).
  */
 function describe(first: i32, T: i32): i64 {
-  return (<i64><u32>first) | (<i64>load<i32>(ITERATIONS) << 32) | (<i64>((load<i32>(FLAGS) & FLAG_CONTACT) != 0) << 40) |
+  return (<i64><u32>first) | (<i64>(load<i32>(ITERATIONS) & 0xff) << 32) | (<i64>((load<i32>(FLAGS) & FLAG_CONTACT) != 0) << 40) |
     (<i64>(load<i32>(GRABBED) >= 0) << 41) | (<i64>T << 48);
 }
 @inline function descThreads(desc: i64): i32 { return <i32>((desc >>> 48) & 0xff); }
