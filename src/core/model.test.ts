@@ -76,4 +76,24 @@ describe('grid cloth model', () => {
     expect(() => buildGridModel(spec(0))).toThrow(/resolution/);
     expect(() => buildGridModel(spec(1025))).toThrow(/resolution/);
   });
+
+  it('triangle colour batches cover every triangle once and share no vertex within a batch; a grid needs 6–8', () => {
+    const m = buildGridModel(spec(12));
+    const batches = m.triangleBatches;
+    expect(batches.length).toBeGreaterThanOrEqual(6);
+    expect(batches.length).toBeLessThanOrEqual(8);
+    expect(batches[0].start).toBe(0);
+    expect(batches[batches.length - 1].end).toBe(m.triangles.length / 3);
+    for (let c = 0; c < batches.length; c++) {
+      if (c > 0) expect(batches[c].start).toBe(batches[c - 1].end);
+      const seen = new Set<number>();
+      for (let t = batches[c].start; t < batches[c].end; t++) {
+        for (let j = 0; j < 3; j++) {
+          const v = m.triangles[3 * t + j];
+          expect(seen.has(v), `colour ${c}, triangle ${t}`).toBe(false);
+          seen.add(v);
+        }
+      }
+    }
+  });
 });

@@ -5,5 +5,5 @@
 export { GpuClothSolver, type SubstepTraffic } from './solver.js';
 export { benchGpu, measureCopyBandwidth, type GpuBenchResult } from './bench.js';
 export { kernelSource } from './shaders.js';
-export { colourTriangles, triangleAdjacency, type TriangleColouring } from './topology.js';
+export { triangleAdjacency } from './topology.js';
 export * as gpuLayout from './layout.js';

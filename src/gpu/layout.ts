@@ -55,8 +55,6 @@ export const BUFFERS = {
   triForces: { type: 'vec4f', bytes: 16 },
   /** particle → incident triangles, CSR: n + 1 offsets (already offset by n + 1), then triangle indices */
   adjacency: { type: 'u32', bytes: 4 },
-  /** triangle indices sorted by colour (triangles of one colour share no vertex) */
-  triOrder: { type: 'u32', bytes: 4 },
   /** area-weighted vertex normals, unit length, for renderers */
   normals: { type: 'vec4f', bytes: 16 },
   /** position of the grabbed particle at the start of the frame (1 element) */
@@ -118,7 +116,6 @@ export const KERNELS = {
   collideTriangles: {
     bindings: [
       ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['triangles', 'read'],
-      ['triOrder', 'read'],
     ],
     libs: ['colliders'],
   },
@@ -172,7 +169,7 @@ export const SUBSTEP = {
 } as const;
 
 export const PASS = {
-  start: 0, // u32 first element (spring, triangle in triOrder, or collider)
+  start: 0, // u32 first element (spring, triangle, or collider)
   end: 4, // u32 one past the last
   cap: 8, // f32 stretch cap (× rest length)
   flags: 12, // u32 PASS_* flags, or the collider index of a triangle pass

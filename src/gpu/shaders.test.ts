@@ -6,7 +6,7 @@ import { GENERATED_FILE, generateShaderModule } from './gen-shaders.mjs';
 import { BUFFERS, GLOBALS, KERNELS, PASS, RECORD_STRIDE, SUBSTEP, type KernelName } from './layout.js';
 import { kernelSource } from './shaders.js';
 import { WGSL_SOURCES } from './shaders.generated.js';
-import { colourTriangles, triangleAdjacency } from './topology.js';
+import { triangleAdjacency } from './topology.js';
 
 describe('shaders', () => {
   test('shaders.generated.ts matches src/gpu/shaders/*.wgsl (else run: node src/gpu/gen-shaders.mjs)', () => {
@@ -58,31 +58,5 @@ describe('mesh tables', () => {
         expect([model.triangles[3 * t], model.triangles[3 * t + 1], model.triangles[3 * t + 2]]).toContain(i);
       }
     }
-  });
-
-  test('triangle colours share no vertex; a grid needs 6–8', () => {
-    const { order, starts } = colourTriangles(model);
-    expect(starts.length - 1).toBeGreaterThanOrEqual(6);
-    expect(starts.length - 1).toBeLessThanOrEqual(8);
-    expect([...order].sort((a, b) => a - b)).toEqual(Array.from({ length: order.length }, (_, k) => k));
-    for (let c = 0; c + 1 < starts.length; c++) {
-      const seen = new Set<number>();
-      for (let k = starts[c]; k < starts[c + 1]; k++) {
-        for (let j = 0; j < 3; j++) {
-          const v = model.triangles[3 * order[k] + j];
-          expect(seen.has(v)).toBe(false);
-          seen.add(v);
-        }
-      }
-    }
-  });
-
-  test('the GPU walks triangles in the model\'s colour order (GPU order = CPU order)', () => {
-    const sc = builtinScene('cotton-basic')!;
-    sc.cloth.resolution = 12;
-    const model = modelFor(sc);
-    const { order, starts } = colourTriangles(model);
-    expect([...order]).toEqual(Array.from({ length: order.length }, (_, k) => k));
-    expect(starts.length - 1).toBe(model.triangleBatches.length);
   });
 });

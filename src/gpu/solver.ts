@@ -23,7 +23,7 @@ import {
   type BufferName, type KernelName, type KernelSpec,
 } from './layout.js';
 import { kernelSource } from './shaders.js';
-import { colourTriangles, triangleAdjacency, type TriangleColouring } from './topology.js';
+import { triangleAdjacency } from './topology.js';
 
 /** A run of contact work in one substep: particles against colliders [first, last), or one triangle colour. */
 type CollidePass = { kernel: 'collideParticles' | 'collideTriangles'; record: number; count: number };
@@ -50,7 +50,6 @@ export class GpuClothSolver {
   private substepBuffer: GPUBuffer;
   private passBuffer: GPUBuffer;
   private uniformGroup: GPUBindGroup;
-  private readonly triangleColours: TriangleColouring;
   private readonly globals = new ArrayBuffer(GLOBALS.size);
   private readonly grabData = new ArrayBuffer(16);
   private readonly grabView = new DataView(this.grabData);
@@ -132,13 +131,12 @@ export class GpuClothSolver {
     const springCount = model.restLengths.length;
     const triangleCount = model.triangles.length / 3;
     const adjacency = triangleAdjacency(model);
-    this.triangleColours = colourTriangles(model);
 
     const counts: Record<BufferName, number> = {
       positions: n, previous: n, velocities: n, invMass: n, baseInvMass: n, pinned: n,
       springs: springCount, springData: springCount, lambdas: springCount, tethers: n,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
-      triOrder: triangleCount, normals: n, grabStart: 1,
+      normals: n, grabStart: 1,
     };
     const extraUsage: Partial<Record<BufferName, number>> = {
       positions: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC,
@@ -163,7 +161,6 @@ export class GpuClothSolver {
     q.writeBuffer(buffers.springs, 0, bytes(model.springs));
     q.writeBuffer(buffers.triangles, 0, bytes(model.triangles));
     q.writeBuffer(buffers.adjacency, 0, bytes(adjacency));
-    q.writeBuffer(buffers.triOrder, 0, bytes(this.triangleColours.order));
     const pos = toVec4(model.restPositions);
     q.writeBuffer(buffers.positions, 0, pos);
     q.writeBuffer(buffers.previous, 0, pos);
@@ -200,7 +197,7 @@ export class GpuClothSolver {
   /** Triangle indices (u32, usage INDEX | STORAGE), the model's `triangles`. */
   get indexBuffer(): GPUBuffer { return this.buffers.triangles; }
   /** Triangle colours used by triangle contact. */
-  get triangleColourCount(): number { return this.triangleColours.starts.length - 1; }
+  get triangleColourCount(): number { return this.model.triangleBatches.length; }
 
   private recordBuffer(label: string, records: number): GPUBuffer {
     return this.device.createBuffer({ label, size: records * RECORD_STRIDE, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
@@ -282,10 +279,9 @@ export class GpuClothSolver {
       records.push([first, k + 1, 0, 0]);
       first = k + 1;
       if (!triangleShapes[k]) continue;
-      const starts = this.triangleColours.starts;
-      for (let c = 0; c + 1 < starts.length; c++) {
-        this.collidePasses.push({ kernel: 'collideTriangles', record: records.length, count: starts[c + 1] - starts[c] });
-        records.push([starts[c], starts[c + 1], 0, k]);
+      for (const b of model.triangleBatches) {
+        this.collidePasses.push({ kernel: 'collideTriangles', record: records.length, count: b.end - b.start });
+        records.push([b.start, b.end, 0, k]);
       }
     }
     if (records.length * RECORD_STRIDE > this.passBuffer.size) {
@@ -498,7 +494,7 @@ export class GpuClothSolver {
     add('limitStretch', stretchSprings * (8 + 8 + 8 + 32)); // springs, rest, w×2, x×2 in (written only when over)
     for (const c of this.collidePasses) {
       if (c.kernel === 'collideParticles') add('collideParticles', n * (4 + 16 + 16 + 16));
-      else add('collideTriangles', c.count * (4 + 12 + 48));
+      else add('collideTriangles', c.count * (12 + 48 + 48)); // indices, positions and previous positions of 3 particles
     }
     add('perFrame', (n * (4 + 4 + 4 + 16 + 16 + 16) + n * 48) / params.substeps); // prepare + velocities, per substep
     let total = 0;

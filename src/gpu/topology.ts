@@ -1,6 +1,7 @@
 /**
  * Mesh tables the GPU kernels need beyond the ClothModel, built once per model on the CPU: particle → triangle
- * adjacency (for the wind and normal gathers) and a triangle colouring (for Gauss–Seidel triangle contact).
+ * adjacency (for the wind and normal gathers). Triangle contact walks the model's own colour batches (core sorts
+ * triangles by colour).
  */
 import type { ClothModel } from '../core/model.js';
 
@@ -19,21 +20,4 @@ export function triangleAdjacency(model: ClothModel): Uint32Array {
   const fill = out.slice(0, n);
   for (let k = 0; k < tri.length; k++) out[fill[tri[k]]++] = (k / 3) | 0;
   return out;
-}
-
-export interface TriangleColouring {
-  /** triangle indices in visiting order (the model's triangles are already sorted by colour: 0, 1, 2, …) */
-  order: Uint32Array;
-  /** colour c holds order[starts[c] .. starts[c + 1]) */
-  starts: number[];
-}
-
-/** The model's triangle colouring (core sorts triangles by colour), in the form the contact kernel walks. */
-export function colourTriangles(model: ClothModel): TriangleColouring {
-  const m = model.triangles.length / 3;
-  const order = new Uint32Array(m);
-  for (let t = 0; t < m; t++) order[t] = t;
-  const starts = model.triangleBatches.map((b) => b.start);
-  starts.push(m);
-  return { order, starts };
 }

@@ -1,15 +1,14 @@
 // collide (phases.ts), triangle part, for collider globals.colliders[batch.flags] and the triangles of one colour,
-// triOrder[batch.start .. batch.end): triangles of a colour share no vertex, so each thread owns its three
+// [batch.start, batch.end) (core sorts triangles by colour): they share no vertex, so each thread owns its three
 // particles for the dispatch (Gauss–Seidel over colours, as the constraint solve; no float atomics). The deepest
 // point of the triangle is pushed out to the contact thickness as a particle is (collideParticles), with friction;
 // the correction is shared by barycentric weight and inverse mass so that Σ bary_i·Δx_i is the wanted displacement.
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
-  let k = batch.start + flatIndex(gid, nwg);
-  if (k >= batch.end) { return; }
+  let t = batch.start + flatIndex(gid, nwg);
+  if (t >= batch.end) { return; }
   let shape = globals.colliders[batch.flags];
-  let t = triOrder[k];
   let a = triangles[3u * t];
   let b = triangles[3u * t + 1u];
   let c = triangles[3u * t + 2u];
