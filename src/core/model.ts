@@ -4,12 +4,12 @@
  * Everything that may change while the cloth runs (pins, stiffness, wind...) lives elsewhere.
  */
 
-/** The three spring kinds of the seed design. */
+import { STRUCTURAL, SHEAR, BEND } from './layout.generated.js';
+
+/** The three spring kinds of the seed design; their ids (STRUCTURAL, SHEAR, BEND) come from the one table. */
 export const SPRING_KINDS = ['structural', 'shear', 'bend'] as const;
 export type SpringKind = (typeof SPRING_KINDS)[number];
-export const STRUCTURAL = 0;
-export const SHEAR = 1;
-export const BEND = 2;
+export { STRUCTURAL, SHEAR, BEND };
 
 /** A run of springs of one kind and one colour: no two springs in it share a particle. */
 export interface SpringBatch {

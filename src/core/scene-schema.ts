@@ -4,6 +4,8 @@
  * repository root is generated from this object (`npm run schema`; a test checks it is current).
  */
 
+import { MAX_COLLIDERS } from './layout.generated.js';
+
 const vec3 = (description: string, min: number, max: number, dflt: readonly number[]) => ({
   description,
   type: 'array',
@@ -95,7 +97,7 @@ export const sceneSchema = {
     },
     colliders: {
       type: 'array',
-      maxItems: 64,
+      maxItems: MAX_COLLIDERS,
       description: 'static colliders the cloth rests on',
       default: [
         { type: 'sphere', center: [0, 0.5, 0], radius: 0.3 },

@@ -8,20 +8,23 @@
  * w = 0. The CPU keeps stride 3; upload/read convert.
  */
 
+import { COLLIDER_FLOOR, COLLIDER_SPHERE, MAX_COLLIDERS } from '../core/layout.generated.js';
+
+/**
+ * Shared with the CPU through the one table (core/gen-layout.mjs): collider type ids, and the colliders the
+ * uniform block holds (the schema's most).
+ */
+export { COLLIDER_FLOOR, COLLIDER_SPHERE, MAX_COLLIDERS };
+
 /** Threads per workgroup of every kernel (1-D). */
 export const WORKGROUP_SIZE = 64;
 /** Most workgroups along x in one dispatch; bigger dispatches spill into y (see `flatIndex` in the preamble). */
 export const MAX_WORKGROUPS_X = 65535;
 /** Floats per vec3 element on the GPU. */
 export const VEC4 = 4;
-/** The schema allows up to 64 colliders; the uniform block holds that many. */
-export const MAX_COLLIDERS = 64;
 /** Byte stride of the dynamic-offset uniform records (minUniformBufferOffsetAlignment is at most 256). */
 export const RECORD_STRIDE = 256;
 
-/** Collider kinds as the kernels see them. */
-export const COLLIDER_SPHERE = 0;
-export const COLLIDER_FLOOR = 1;
 
 /** Flags of a solve pass record. */
 export const PASS_CAP = 1; // apply the hard stretch cap (structural and shear batches)
@@ -129,52 +132,92 @@ export const KERNELS = {
 export type KernelName = keyof typeof KERNELS;
 
 /**
- * Uniform structs: fields in declaration order with their byte offsets (std140-like WGSL uniform rules, checked
- * by hand: vec3f aligns to 16, scalars to 4). `Globals` is written by setParams and (the grab) by every step;
- * `Substep` is one record per substep at RECORD_STRIDE, selected with a dynamic offset; `Pass` likewise, one
- * record per solve batch / collider pass.
+ * Uniform structs, each one list of fields in declaration order: the WGSL declaration and the byte offsets the
+ * solver writes at are both derived from it (`structLayout`, WGSL's uniform layout rules), so they cannot drift
+ * apart. `Globals` is written by setParams and (the grab) by every step; `Substep` is one record per substep at
+ * RECORD_STRIDE, selected with a dynamic offset; `Pass` likewise, one record per solve batch / collider pass.
  */
-export const GLOBALS = {
-  gravity: 0, // vec3f [m/s²]
-  iterations: 12, // u32
-  damping: 16, // f32 β [N·s/m]
-  stretchFactor: 20, // f32
-  friction: 24, // f32
-  staticFriction: 28, // f32
-  thickness: 32, // f32 [m]
-  reach: 36, // f32: thickness + 2·maxTriangleEdge [m]
-  windK: 40, // f32: ¼ρ/3
-  grabbed: 44, // i32, −1 none
-  grabTarget: 48, // vec3f [m]
-  particleCount: 60, // u32
-  triangleCount: 64, // u32
-  colliderCount: 68, // u32
-  colliders: 80, // array<Collider, MAX_COLLIDERS>, 32 bytes each: data vec4f, kind u32, 3 × pad
-  size: 80 + 32 * MAX_COLLIDERS,
-} as const;
-export const COLLIDER_BYTES = 32;
+type Field = readonly [name: string, type: string, doc: string];
 
-export const SUBSTEP = {
-  wind: 0, // vec3f wind velocity at this substep's start time [m/s]
-  h: 12, // f32 substep [s]
-  h2: 16, // f32 c·h², c = ½ on the very first substep (Taylor start), else 1
-  invH: 20, // f32 1/h
-  invH2: 24, // f32 1/h²
-  betaOverH: 28, // f32 damping/h
-  grabFraction: 32, // f32 (sub + 1)/substeps
-  windOn: 36, // u32
-  recover: 40, // f32 depenetrationSpeed·h: most a collider overlap the cloth did not move into is undone [m]
-  recoverTriangle: 44, // f32 recover / model.maxTriangleValence: the same for triangle contact [m]
-  size: 48,
-} as const;
+/** Alignment and size [bytes] of the WGSL types the uniform structs use (WGSL §"Memory layout"). */
+const TYPES: Record<string, { align: number; size: number }> = {
+  f32: { align: 4, size: 4 }, u32: { align: 4, size: 4 }, i32: { align: 4, size: 4 },
+  vec3f: { align: 16, size: 12 }, vec4f: { align: 16, size: 16 },
+  Collider: { align: 16, size: 32 },
+  [`array<Collider, ${MAX_COLLIDERS}>`]: { align: 16, size: 32 * MAX_COLLIDERS },
+};
 
-export const PASS = {
-  start: 0, // u32 first element (spring, triangle, or collider)
-  end: 4, // u32 one past the last
-  cap: 8, // f32 stretch cap (× rest length)
-  flags: 12, // u32 PASS_* flags, or the collider index of a triangle pass
-  size: 16,
-} as const;
+type Layout<F extends readonly Field[]> = { readonly [K in F[number][0]]: number } & { readonly size: number };
+
+/** Byte offset of every field and the struct's size, by WGSL's rules for uniform buffers. */
+function structLayout<const F extends readonly Field[]>(fields: F): Layout<F> {
+  const out: Record<string, number> = {};
+  let at = 0, align = 1;
+  for (const [name, type] of fields) {
+    const t = TYPES[type];
+    if (!t) throw new Error(`layout: no WGSL layout for ${type}`);
+    at = Math.ceil(at / t.align) * t.align;
+    out[name] = at;
+    at += t.size;
+    align = Math.max(align, t.align);
+  }
+  out.size = Math.ceil(at / align) * align;
+  return out as Layout<F>;
+}
+
+/** The WGSL declaration of a struct. */
+function wgslStruct(name: string, fields: readonly Field[]): string {
+  return `struct ${name} {\n${fields.map(([f, type, doc]) => `  ${f}: ${type}, // ${doc}`).join('\n')}\n}`;
+}
+
+const COLLIDER_FIELDS = [
+  ['data', 'vec4f', 'sphere: centre xyz, radius [m]; floor: height in x [m]'],
+  ['kind', 'u32', 'COLLIDER_SPHERE or COLLIDER_FLOOR'],
+  ['_p0', 'u32', 'padding'], ['_p1', 'u32', 'padding'], ['_p2', 'u32', 'padding'],
+] as const satisfies readonly Field[];
+
+const GLOBALS_FIELDS = [
+  ['gravity', 'vec3f', '[m/s²]'],
+  ['iterations', 'u32', 'constraint passes per substep'],
+  ['damping', 'f32', 'β [N·s/m]'],
+  ['stretchFactor', 'f32', 'stretch cap × rest length'],
+  ['friction', 'f32', 'kinetic friction coefficient'],
+  ['staticFriction', 'f32', 'static friction coefficient'],
+  ['thickness', 'f32', 'contact thickness [m]'],
+  ['reach', 'f32', 'thickness + 2·maxTriangleEdge [m]'],
+  ['windK', 'f32', '¼ρ/3'],
+  ['grabbed', 'i32', 'grabbed particle, −1 none'],
+  ['grabTarget', 'vec3f', '[m]'],
+  ['particleCount', 'u32', 'particles of the model'],
+  ['triangleCount', 'u32', 'triangles of the model'],
+  ['colliderCount', 'u32', 'colliders in use'],
+  ['colliders', `array<Collider, ${MAX_COLLIDERS}>`, 'the scene\'s colliders in order'],
+] as const satisfies readonly Field[];
+
+const SUBSTEP_FIELDS = [
+  ['wind', 'vec3f', 'wind velocity at this substep\'s start time [m/s]'],
+  ['h', 'f32', 'substep [s]'],
+  ['h2', 'f32', 'c·h², c = ½ on the very first substep (Taylor start), else 1'],
+  ['invH', 'f32', '1/h'],
+  ['invH2', 'f32', '1/h²'],
+  ['betaOverH', 'f32', 'damping/h'],
+  ['grabFraction', 'f32', '(sub + 1)/substeps'],
+  ['windOn', 'u32', '1 when the wind blows'],
+  ['recover', 'f32', 'depenetrationSpeed·h: most a collider overlap the cloth did not move into is undone [m]'],
+  ['recoverTriangle', 'f32', 'recover / model.maxTriangleValence: the same for triangle contact [m]'],
+] as const satisfies readonly Field[];
+
+const PASS_FIELDS = [
+  ['start', 'u32', 'first element (spring, triangle, or collider)'],
+  ['end', 'u32', 'one past the last'],
+  ['cap', 'f32', 'stretch cap (× rest length)'],
+  ['flags', 'u32', 'PASS_* flags, or the collider index of a triangle pass'],
+] as const satisfies readonly Field[];
+
+export const GLOBALS = structLayout(GLOBALS_FIELDS);
+export const SUBSTEP = structLayout(SUBSTEP_FIELDS);
+export const PASS = structLayout(PASS_FIELDS);
+export const COLLIDER_BYTES = structLayout(COLLIDER_FIELDS).size;
 
 /** WGSL text of the shared declarations, prepended to every kernel. */
 export function wgslPreamble(): string {
@@ -185,49 +228,13 @@ const COLLIDER_FLOOR: u32 = ${COLLIDER_FLOOR}u;
 const PASS_CAP: u32 = ${PASS_CAP}u;
 const PASS_READ_LAMBDA: u32 = ${PASS_READ_LAMBDA}u;
 
-struct Collider {
-  data: vec4f, // sphere: centre xyz, radius; floor: height in x
-  kind: u32,
-  _p0: u32, _p1: u32, _p2: u32,
-}
+${wgslStruct('Collider', COLLIDER_FIELDS)}
 
-struct Globals {
-  gravity: vec3f,
-  iterations: u32,
-  damping: f32,
-  stretchFactor: f32,
-  friction: f32,
-  staticFriction: f32,
-  thickness: f32,
-  reach: f32,
-  windK: f32,
-  grabbed: i32,
-  grabTarget: vec3f,
-  particleCount: u32,
-  triangleCount: u32,
-  colliderCount: u32,
-  colliders: array<Collider, ${MAX_COLLIDERS}>,
-}
+${wgslStruct('Globals', GLOBALS_FIELDS)}
 
-struct Substep {
-  wind: vec3f,
-  h: f32,
-  h2: f32,
-  invH: f32,
-  invH2: f32,
-  betaOverH: f32,
-  grabFraction: f32,
-  windOn: u32,
-  recover: f32,
-  recoverTriangle: f32,
-}
+${wgslStruct('Substep', SUBSTEP_FIELDS)}
 
-struct Pass {
-  start: u32,
-  end: u32,
-  cap: f32,
-  flags: u32,
-}
+${wgslStruct('Pass', PASS_FIELDS)}
 
 struct Tether {
   anchor: i32,

@@ -1,3 +1,4 @@
+import { COLLIDER_FLOOR } from '../layout.generated.js';
 import type { ColliderShape } from './shape.js';
 
 /** The half-space y < height. A triangle's deepest point in a half-space is a vertex, so particle contact suffices. */
@@ -6,7 +7,7 @@ export class FloorCollider implements ColliderShape {
   readonly minCurvatureRadius = Infinity;
   readonly kernelRecord: readonly number[];
   constructor(/** plane height [m] */ readonly height: number) {
-    this.kernelRecord = [2, height, 0, 0, 0];
+    this.kernelRecord = [COLLIDER_FLOOR, height, 0, 0, 0];
   }
 
   signedDistance(_px: number, py: number, _pz: number, normal: Float64Array): number {

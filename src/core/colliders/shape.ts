@@ -10,8 +10,9 @@ export interface ColliderShape {
    */
   readonly minCurvatureRadius: number;
   /**
-   * The shape as a record of the WebAssembly kernel's particle contact (wasm/xpbd.as.ts): [1, cx, cy, cz, r] for a
-   * sphere, [2, height, 0, 0, 0] for a floor. A shape without one is handled by the TypeScript contact phase.
+   * The shape as a record of the WebAssembly kernel's particle contact (wasm/xpbd.as.ts): [COLLIDER_SPHERE, cx, cy,
+   * cz, r] for a sphere, [COLLIDER_FLOOR, height, 0, 0, 0] for a floor (ids from layout.generated.ts), at most
+   * COLLIDER_RECORD_FLOATS numbers. A shape without one is handled by the TypeScript contact phase.
    */
   readonly kernelRecord?: readonly number[];
   /**

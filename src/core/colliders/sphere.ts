@@ -1,3 +1,4 @@
+import { COLLIDER_SPHERE } from '../layout.generated.js';
 import type { ColliderShape } from './shape.js';
 
 /**
@@ -58,7 +59,7 @@ export class SphereCollider implements ColliderShape {
     /** centre z [m] */ readonly cz: number,
     /** radius [m] */ readonly radius: number,
   ) {
-    this.kernelRecord = [1, cx, cy, cz, radius];
+    this.kernelRecord = [COLLIDER_SPHERE, cx, cy, cz, radius];
   }
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {

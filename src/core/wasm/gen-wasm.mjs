@@ -19,11 +19,20 @@ const VARIANTS = {
   threads: [...COMMON, '--enable', 'simd,threads', '--sharedMemory', '--maximumMemory', '65536'],
 };
 
+/** What the kernel imports from beside it (the generated layout), read from this folder. */
+function besideKernel(name) {
+  try {
+    return readFileSync(join(here, name), 'utf8');
+  } catch {
+    return null;
+  }
+}
+
 async function compile(source, flags) {
   const out = {};
   const stderr = [];
   const { error } = await asc.main(['kernel.ts', '--outFile', 'kernel.wasm', ...flags], {
-    readFile: (name) => (name === 'kernel.ts' ? source : null),
+    readFile: (name) => (name === 'kernel.ts' ? source : name.endsWith('.generated.as.ts') ? besideKernel(name) : null),
     writeFile: (name, contents) => { out[name] = contents; },
     listFiles: () => [],
     stderr: { write: (s) => { stderr.push(String(s)); return true; } },

@@ -15,40 +15,15 @@ import { needsTriangleContact, accumulateWind, beginStep, collide, updateVelocit
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import { createState, type ClothState } from '../state.js';
+import {
+  CTRL, CTRL_BYTES, KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_CONTACT, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_MAX_THREADS,
+  MAX_COLLIDERS, COLLIDER_RECORD_FLOATS,
+} from '../layout.generated.js';
 import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
-// control block, byte offsets (mirrors xpbd.as.ts; 1024… holds the threads' phase protocol words, 2048…3072 the runs)
-const CTRL_THREADS = 12;
-const CTRL_GRABBED = 20;
-const CTRL_FLAGS = 24;
-const CTRL_ITERATIONS = 28;
-const CTRL_COLLIDERS = 32;
-const CTRL_READY = 36;
-const CTRL_SPIN_LIMIT = 40;
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
 const SPIN_LIMIT = 1 << 15;
-const CTRL_H = 64;
-const CTRL_TAYLOR = 72;
-const CTRL_GRAVITY = 80;
-const CTRL_GRAB_AT = 104;
-const CTRL_STRETCH = 128;
-const CTRL_DAMPING = 136;
-const CTRL_THICKNESS = 144;
-const CTRL_FRICTION = 152;
-const CTRL_STATIC_FRICTION = 160;
-const CTRL_DEPENETRATION = 168;
-const CTRL_COLLIDER_RECORDS = 256;
-const CTRL_COLLIDER_BYTES = 48;
-const CTRL_BYTES = 4096;
-/** collider records the control block holds; scenes with more use the TypeScript contact phase */
-export const KERNEL_MAX_COLLIDERS = 8;
-/** most threads a kernel runs (one run counter each at xpbd.as.ts RUNS, 16 lines of 64 bytes) */
-export const KERNEL_MAX_THREADS = 16;
-const FLAG_FORCES = 1;
-const FLAG_CONTACT = 2;
-const FLAG_ACCUMULATE = 4;
-const FLAG_STORE_LAMBDA = 8;
 
 interface KernelExports {
   configure(...layout: number[]): void;
@@ -174,8 +149,8 @@ export class XpbdKernel {
     const batches = new Int32Array(buf, BATCHES, 3 * nb);
     model.batches.forEach((b, k) => { batches[3 * k] = b.start; batches[3 * k + 1] = b.end; batches[3 * k + 2] = b.kind; });
     this.alpha = new Float32Array(buf, ALPHA, m);
-    this.ctrlI32[CTRL_THREADS / 4] = 1;
-    this.ctrlI32[CTRL_SPIN_LIMIT / 4] = SPIN_LIMIT;
+    this.ctrlI32[CTRL.THREADS / 4] = 1;
+    this.ctrlI32[CTRL.SPIN_LIMIT / 4] = SPIN_LIMIT;
     this.state = createState(model, {
       positions: new Float32Array(buf, X, 3 * n),
       previousPositions: new Float32Array(buf, XP, 3 * n),
@@ -228,7 +203,7 @@ export class XpbdKernel {
    * Atomics.wait inside the substep, the path a busy machine takes.
    */
   set spinLimit(polls: number) {
-    Atomics.store(this.ctrlI32, CTRL_SPIN_LIMIT / 4, Math.max(0, Math.floor(polls)));
+    Atomics.store(this.ctrlI32, CTRL.SPIN_LIMIT / 4, Math.max(0, Math.floor(polls)));
   }
 
   /** threads working on the substeps now (helpers count once they have checked in) */
@@ -238,7 +213,7 @@ export class XpbdKernel {
 
   private joinHelpers(): boolean {
     if (!this.helpersJoined && !this.disposed && !this.helperError && this.threads > 1 && this.helpers.length === this.threads - 1 &&
-        Atomics.load(this.ctrlI32, CTRL_READY / 4) === this.threads - 1) {
+        Atomics.load(this.ctrlI32, CTRL.READY / 4) === this.threads - 1) {
       this.helpersJoined = true;
     }
     return this.helpersJoined || this.threads === 1;
@@ -249,7 +224,7 @@ export class XpbdKernel {
     if (this.disposed) return;
     this.disposed = true;
     this.exports.stopHelpers();
-    this.ctrlI32[CTRL_THREADS / 4] = 1;
+    this.ctrlI32[CTRL.THREADS / 4] = 1;
     this.helpersJoined = false;
     for (const h of this.helpers) h.terminate();
     this.helpers.length = 0;
@@ -262,25 +237,25 @@ export class XpbdKernel {
       this.paramsSeen = params;
     }
     const f = this.ctrlF64, i = this.ctrlI32;
-    f[CTRL_GRAVITY / 8] = params.gravity[0];
-    f[CTRL_GRAVITY / 8 + 1] = params.gravity[1];
-    f[CTRL_GRAVITY / 8 + 2] = params.gravity[2];
-    f[CTRL_STRETCH / 8] = params.stretchFactor;
-    f[CTRL_DAMPING / 8] = params.damping;
-    f[CTRL_THICKNESS / 8] = params.thickness;
-    f[CTRL_FRICTION / 8] = params.friction;
-    f[CTRL_STATIC_FRICTION / 8] = params.staticFriction;
-    f[CTRL_DEPENETRATION / 8] = params.depenetrationSpeed;
-    i[CTRL_ITERATIONS / 4] = Math.min(255, params.iterations); // 8 bits in the kernel's phase list (the schema: ≤ 20)
+    f[CTRL.GRAVITY / 8] = params.gravity[0];
+    f[CTRL.GRAVITY / 8 + 1] = params.gravity[1];
+    f[CTRL.GRAVITY / 8 + 2] = params.gravity[2];
+    f[CTRL.STRETCH / 8] = params.stretchFactor;
+    f[CTRL.DAMPING / 8] = params.damping;
+    f[CTRL.THICKNESS / 8] = params.thickness;
+    f[CTRL.FRICTION / 8] = params.friction;
+    f[CTRL.STATIC_FRICTION / 8] = params.staticFriction;
+    f[CTRL.DEPENETRATION / 8] = params.depenetrationSpeed;
+    i[CTRL.ITERATIONS / 4] = Math.min(255, params.iterations); // 8 bits in the kernel's phase list (the schema: ≤ 20)
     // the kernel does particle contact only when every collider has a record and none needs triangle contact
     const shapes = params.colliders;
-    let inKernel = shapes.length <= KERNEL_MAX_COLLIDERS;
+    let inKernel = shapes.length <= MAX_COLLIDERS;
     for (let k = 0; inKernel && k < shapes.length; k++) {
       const record = shapes[k].kernelRecord;
       if (!record || needsTriangleContact(model, shapes[k], params.thickness)) inKernel = false;
-      else f.set(record, (CTRL_COLLIDER_RECORDS + k * CTRL_COLLIDER_BYTES) / 8);
+      else f.set(record, CTRL.COLLIDER_RECORDS / 8 + k * COLLIDER_RECORD_FLOATS);
     }
-    i[CTRL_COLLIDERS / 4] = inKernel ? shapes.length : 0;
+    i[CTRL.COLLIDERS / 4] = inKernel ? shapes.length : 0;
     return inKernel;
   }
 
@@ -293,7 +268,7 @@ export class XpbdKernel {
     this.joinHelpers();
     const timed = this.helpersJoined;
     const parallel = timed && this.mode.next();
-    this.ctrlI32[CTRL_THREADS / 4] = parallel ? this.threads : 1;
+    this.ctrlI32[CTRL.THREADS / 4] = parallel ? this.threads : 1;
     const t0 = timed ? performance.now() : 0;
     const n = params.substeps;
     const h = dt / n;
@@ -303,20 +278,20 @@ export class XpbdKernel {
     const g = state.grabbed, x = state.positions;
     const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
     const accumulate = params.iterations > 1;
-    i[CTRL_GRABBED / 4] = g;
-    f[CTRL_H / 8] = h;
+    i[CTRL.GRABBED / 4] = g;
+    f[CTRL.H / 8] = h;
     for (let sub = 0; sub < n; sub++) {
       const forced = accumulateWind(model, state, params, state.time, h);
       if (accumulate) state.lambdas.fill(0);
       // λ is kept only where it is read: across iterations, and after the frame (energy) from its last substep
-      i[CTRL_FLAGS / 4] = (forced ? FLAG_FORCES : 0) | (contactInKernel ? FLAG_CONTACT : 0) |
-        (accumulate ? FLAG_ACCUMULATE | FLAG_STORE_LAMBDA : 0) | (sub === n - 1 ? FLAG_STORE_LAMBDA : 0);
-      f[CTRL_TAYLOR / 8] = state.substeps === 0 ? 0.5 : 1;
+      i[CTRL.FLAGS / 4] = (forced ? KERNEL_FLAG_FORCES : 0) | (contactInKernel ? KERNEL_FLAG_CONTACT : 0) |
+        (accumulate ? KERNEL_FLAG_ACCUMULATE | KERNEL_FLAG_STORE_LAMBDA : 0) | (sub === n - 1 ? KERNEL_FLAG_STORE_LAMBDA : 0);
+      f[CTRL.TAYLOR / 8] = state.substeps === 0 ? 0.5 : 1;
       if (g >= 0) {
         const frac = (sub + 1) / n, t = state.grabTarget;
-        f[CTRL_GRAB_AT / 8] = gx + (t[0] - gx) * frac;
-        f[CTRL_GRAB_AT / 8 + 1] = gy + (t[1] - gy) * frac;
-        f[CTRL_GRAB_AT / 8 + 2] = gz + (t[2] - gz) * frac;
+        f[CTRL.GRAB_AT / 8] = gx + (t[0] - gx) * frac;
+        f[CTRL.GRAB_AT / 8 + 1] = gy + (t[1] - gy) * frac;
+        f[CTRL.GRAB_AT / 8 + 2] = gz + (t[2] - gz) * frac;
       }
       this.exports.substep();
       if (!contactInKernel) collide(model, state, params, h);

@@ -12,45 +12,18 @@
 // build compiles no atomics and runs every phase whole.
 //
 // Memory: the caller (xpbd-wasm.ts) lays out every array and passes their byte offsets to configure(); the
-// control block at CTRL holds the per-substep scalars (offsets mirrored in xpbd-wasm.ts as CTRL_*).
+// control block at CTRL holds the per-substep scalars (its layout is generated, for both sides, by gen-layout.mjs).
 
-// ---- control block (byte offsets from CTRL = 0) ----
-const DISPATCH: usize = 0; // i32: bumped by thread 0 to start a substep on the helpers (they sleep on it)
-const DISPATCH_SLEEPERS: usize = 4; // i32: helpers asleep waiting for a dispatch
-const THREADS: usize = 12; // i32: T; 1 makes thread 0 run substeps alone (helpers stay asleep)
-const COMMAND: usize = 16; // i32: 1 substep, 2 exit
-const GRABBED: usize = 20; // i32: grabbed particle or -1
-// i32: bit 0 external forces, bit 1 particle contact in the kernel, bit 2 accumulate λ, bit 3 store λ
-const FLAGS: usize = 24;
-const ITERATIONS: usize = 28; // i32
-const COLLIDERS: usize = 32; // i32: number of collider records
-const READY: usize = 36; // i32: helpers that entered helperLoop
-const SPIN_LIMIT: usize = 40; // i32: polls of a word before a waiting thread sleeps (a phase usually opens sooner)
-const DESC: usize = 48; // i64: the dispatched substep's phase list (describe())
-const H: usize = 64; // f64 substep [s]
-const TAYLOR: usize = 72; // f64: ½ on the very first substep, else 1
-const GRAVITY: usize = 80; // 3 × f64 [m/s²]
-const GRAB_AT: usize = 104; // 3 × f64: where the grabbed particle is this substep [m]
-const STRETCH: usize = 128; // f64 stretchFactor
-const DAMPING: usize = 136; // f64 [N·s/m]
-const THICKNESS: usize = 144; // f64 [m]
-const FRICTION: usize = 152; // f64 kinetic
-const STATIC_FRICTION: usize = 160; // f64 static
-const DEPENETRATION: usize = 168; // f64 depenetrationSpeed [m/s]
-const COLLIDER_RECORDS: usize = 256; // 8 × 6 f64: type (1 sphere, 2 floor), then cx, cy, cz, r | height
-const COLLIDER_BYTES: usize = 48;
-// each on its own 64-byte line: the open phase, its completed chunks, threads asleep waiting for a phase
-const PHASE: usize = 1024; // i32: sequence number of the open phase (grows by one per phase, wraps)
-const DONE: usize = 1088; // i32: chunks of the open phase completed and reported
-const PHASE_SLEEPERS: usize = 1152; // i32
-// T ≤ 16 × i64, each on its own 64-byte line: (phase << 32) | next chunk of run v of that phase
-const RUNS: usize = 2048;
+// ---- the control block's layout, type ids and flags: generated from the one table (src/core/gen-layout.mjs) ----
+import {
+  BEND, COLLIDER_RECORD_FLOATS, COLLIDER_SPHERE, KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_CONTACT, KERNEL_FLAG_FORCES,
+  KERNEL_FLAG_STORE_LAMBDA, RUN_STRIDE,
+  COLLIDERS, COLLIDER_RECORDS, COMMAND, DAMPING, DEPENETRATION, DESC, DISPATCH, DISPATCH_SLEEPERS, DONE, FLAGS, FRICTION,
+  GRAB_AT, GRABBED, GRAVITY, H, ITERATIONS, PHASE, PHASE_SLEEPERS, READY, RUNS, SPIN_LIMIT, STATIC_FRICTION, STRETCH,
+  TAYLOR, THICKNESS, THREADS,
+} from './layout.generated.as';
 
-const BEND: i32 = 2;
-const FLAG_FORCES: i32 = 1;
-const FLAG_CONTACT: i32 = 2;
-const FLAG_ACCUMULATE: i32 = 4;
-const FLAG_STORE_LAMBDA: i32 = 8;
+const COLLIDER_BYTES: usize = <usize>COLLIDER_RECORD_FLOATS * 8;
 
 // ---- layout, set by configure() in every instance ----
 let X: usize = 0; // positions, f32 × 3n
@@ -130,7 +103,7 @@ function openPhase(seq: i32, T: i32): void {
   if (ASC_FEATURE_THREADS) {
     atomic.store<i32>(DONE, 0);
     const tag = (<i64><u32>seq) << 32;
-    for (let v = 0; v < T; v++) atomic.store<i64>(RUNS + (<usize>v << 6), tag);
+    for (let v = 0; v < T; v++) atomic.store<i64>(RUNS + <usize>v * RUN_STRIDE, tag);
     atomic.store<i32>(PHASE, seq);
     if (atomic.load<i32>(PHASE_SLEEPERS) > 0) hostNotify(PHASE);
   }
@@ -148,7 +121,7 @@ function claim(t: i32, T: i32, seq: i32, count: i32): i32 {
   if (ASC_FEATURE_THREADS) {
     while (runOf < T) {
       const v = (t + runOf) % T;
-      const at = RUNS + (<usize>v << 6);
+      const at = RUNS + <usize>v * RUN_STRIDE;
       const lo = (v * count) / T, hi = ((v + 1) * count) / T;
       let cur = atomic.load<i64>(at);
       while (<i32>(cur >>> 32) == seq && lo + <i32>cur < hi) {
@@ -198,7 +171,7 @@ export function helperLoop(t: i32): void {
  * (32–39), particle contact in the kernel (40), a grab (41), T (48–55).
  */
 function describe(first: i32, T: i32): i64 {
-  return (<i64><u32>first) | (<i64>(load<i32>(ITERATIONS) & 0xff) << 32) | (<i64>((load<i32>(FLAGS) & FLAG_CONTACT) != 0) << 40) |
+  return (<i64><u32>first) | (<i64>(load<i32>(ITERATIONS) & 0xff) << 32) | (<i64>((load<i32>(FLAGS) & KERNEL_FLAG_CONTACT) != 0) << 40) |
     (<i64>(load<i32>(GRABBED) >= 0) << 41) | (<i64>T << 48);
 }
 @inline function descThreads(desc: i64): i32 { return <i32>((desc >>> 48) & 0xff); }
@@ -282,7 +255,7 @@ function phase(t: i32, T: i32, seq: i32, alone: bool, kind: i32, batch: i32, sta
 function run(kind: i32, batch: i32, i0: i32, i1: i32): void {
   const flags = load<i32>(FLAGS);
   switch (kind) {
-    case INTEGRATE: integrate(i0, i1, (flags & FLAG_FORCES) != 0); break;
+    case INTEGRATE: integrate(i0, i1, (flags & KERNEL_FLAG_FORCES) != 0); break;
     case GRAB: {
       // after integration (the grabbed particle's x_prev is its position before the grab moves it)
       const gp = X + <usize>load<i32>(GRABBED) * 12;
@@ -295,7 +268,7 @@ function run(kind: i32, batch: i32, i0: i32, i1: i32): void {
       const h = load<f64>(H);
       const bend = load<i32>(BATCHES + <usize>batch * 12, 8) == BEND;
       solveDistance(i0, i1, <f32>(1 / (h * h)), <f32>(load<f64>(DAMPING) / h), bend ? Infinity : <f32>load<f64>(STRETCH),
-        (flags & FLAG_ACCUMULATE) != 0, (flags & FLAG_STORE_LAMBDA) != 0);
+        (flags & KERNEL_FLAG_ACCUMULATE) != 0, (flags & KERNEL_FLAG_STORE_LAMBDA) != 0);
       break;
     }
     case TETHERS: solveTethers(i0, i1, load<f64>(STRETCH)); break;
@@ -559,7 +532,7 @@ function collideParticles(p0: i32, p1: i32): void {
   const count = load<i32>(COLLIDERS);
   for (let c = 0; c < count; c++) {
     const rec = COLLIDER_RECORDS + <usize>c * COLLIDER_BYTES;
-    const sphere = load<f64>(rec) == 1;
+    const sphere = load<f64>(rec) == <f64>COLLIDER_SPHERE;
     const c0 = load<f64>(rec, 8), c1 = load<f64>(rec, 16), c2 = load<f64>(rec, 24), r = load<f64>(rec, 32);
     const far = r + th;
     const vc0 = f32x4.splat(<f32>c0), vc1 = f32x4.splat(<f32>c1), vc2 = f32x4.splat(<f32>c2), vR = f32x4.splat(<f32>r);
