@@ -5,7 +5,7 @@
  * No adapter: in CI (process.env.CI set) the file fails with the reason; locally it is skipped with the reason
  * printed. It never passes without running.
  */
-import { afterAll, describe, expect, test } from 'vitest';
+import { afterAll, describe, expect, test, vi } from 'vitest';
 import type {} from 'webgpu';
 import {
   FRAME_DT, SCENE_NAMES, Simulation, applyPins, builtinScene, centroid, copyState, createState, energy, grab, isFinite3,
@@ -317,6 +317,24 @@ describe.skipIf(!gpu)('GPU physics', () => {
     for (let i = 0; i < p.model.particleCount; i++) {
       expect(Math.hypot(n[4 * i], n[4 * i + 1], n[4 * i + 2])).toBeCloseTo(1, 5);
       expect(n[4 * i + 1]).toBeGreaterThan(0.999);
+    }
+  });
+
+  test('kernels are compiled once per device: another model on it compiles nothing', async () => {
+    const device = gpu!.device;
+    solvers.push(await GpuClothSolver.create(device, modelFor(scene('cotton-basic'))));
+    const spy = vi.spyOn(device, 'createShaderModule');
+    try {
+      const other = await GpuClothSolver.create(device, modelFor(scene('pins', (s) => { s.cloth.resolution = 20; })));
+      solvers.push(other);
+      expect(spy).not.toHaveBeenCalled();
+      const g = createState(other.model);
+      other.upload(g);
+      other.step(g, resolveParams(other.model, scene('pins', (s) => { s.cloth.resolution = 20; })), FRAME_DT);
+      await other.read(g);
+      expect(isFinite3(g)).toBe(true);
+    } finally {
+      spy.mockRestore();
     }
   });
 

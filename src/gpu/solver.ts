@@ -39,6 +39,65 @@ export interface SubstepTraffic {
   byKernel: Record<string, number>;
 }
 
+/** A device's compiled kernels: every solver on the device shares them. */
+interface Kernels {
+  uniformLayout: GPUBindGroupLayout;
+  pipelines: Record<KernelName, GPUComputePipeline>;
+  storageLayouts: Record<KernelName, GPUBindGroupLayout>;
+}
+const compiled = new WeakMap<GPUDevice, Promise<Kernels>>();
+
+/** The kernels of `device`, compiled on first use (a failed compile is not kept: the next call tries again). */
+function kernelsFor(device: GPUDevice): Promise<Kernels> {
+  let kernels = compiled.get(device);
+  if (!kernels) {
+    kernels = compileKernels(device);
+    compiled.set(device, kernels);
+    kernels.catch(() => compiled.delete(device));
+  }
+  return kernels;
+}
+
+async function compileKernels(device: GPUDevice): Promise<Kernels> {
+  const uniformLayout = device.createBindGroupLayout({
+    label: 'drape uniforms',
+    entries: [
+      { binding: 0, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
+      { binding: 1, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform', hasDynamicOffset: true, minBindingSize: SUBSTEP.size } },
+      { binding: 2, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform', hasDynamicOffset: true, minBindingSize: PASS.size } },
+    ],
+  });
+  const pipelines = {} as Record<KernelName, GPUComputePipeline>;
+  const storageLayouts = {} as Record<KernelName, GPUBindGroupLayout>;
+  await Promise.all(KERNEL_NAMES.map(async (kernel) => {
+    const spec: KernelSpec = KERNELS[kernel];
+    const layout = device.createBindGroupLayout({
+      label: `drape ${kernel} storage`,
+      entries: spec.bindings.map(([, access], i) => ({
+        binding: i,
+        visibility: GPUShaderStage.COMPUTE,
+        buffer: { type: access === 'read' ? 'read-only-storage' as const : 'storage' as const },
+      })),
+    });
+    storageLayouts[kernel] = layout;
+    const code = kernelSource(kernel);
+    const module = device.createShaderModule({ label: `drape ${kernel}.wgsl`, code });
+    const info = await module.getCompilationInfo();
+    const errors = info.messages.filter((m) => m.type === 'error');
+    if (errors.length) {
+      const lines = code.split('\n');
+      const where = (m: GPUCompilationMessage) => `'${(lines[m.lineNum - 1] ?? '').trim()}': ${m.message}`;
+      throw new Error(`GPU solver: ${kernel} kernel does not compile: ${errors.map(where).join('; ')}`);
+    }
+    pipelines[kernel] = await device.createComputePipelineAsync({
+      label: `drape ${kernel}`,
+      layout: device.createPipelineLayout({ bindGroupLayouts: [uniformLayout, layout] }),
+      compute: { module, entryPoint: 'main' },
+    });
+  }));
+  return { uniformLayout, pipelines, storageLayouts };
+}
+
 export class GpuClothSolver {
   readonly device: GPUDevice;
   readonly model: ClothModel;
@@ -64,49 +123,17 @@ export class GpuClothSolver {
   private readonly wind = new Float64Array(3);
   private destroyed = false;
 
-  /** Compiles the kernels and creates the buffers for `model`; the cloth starts at its rest pose, unpinned. */
+  /**
+   * Creates the buffers for `model` (the kernels are compiled once per device and reused: they do not depend on
+   * the model); the cloth starts at its rest pose, unpinned.
+   */
   static async create(device: GPUDevice, model: ClothModel): Promise<GpuClothSolver> {
     device.pushErrorScope('validation');
     device.pushErrorScope('out-of-memory');
     let solver: GpuClothSolver | undefined;
     let failure: unknown;
     try {
-      const uniformLayout = device.createBindGroupLayout({
-        label: 'drape uniforms',
-        entries: [
-          { binding: 0, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform' } },
-          { binding: 1, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform', hasDynamicOffset: true, minBindingSize: SUBSTEP.size } },
-          { binding: 2, visibility: GPUShaderStage.COMPUTE, buffer: { type: 'uniform', hasDynamicOffset: true, minBindingSize: PASS.size } },
-        ],
-      });
-      const pipelines = {} as Record<KernelName, GPUComputePipeline>;
-      const storageLayouts = {} as Record<KernelName, GPUBindGroupLayout>;
-      await Promise.all(KERNEL_NAMES.map(async (kernel) => {
-        const spec: KernelSpec = KERNELS[kernel];
-        const layout = device.createBindGroupLayout({
-          label: `drape ${kernel} storage`,
-          entries: spec.bindings.map(([, access], i) => ({
-            binding: i,
-            visibility: GPUShaderStage.COMPUTE,
-            buffer: { type: access === 'read' ? 'read-only-storage' as const : 'storage' as const },
-          })),
-        });
-        storageLayouts[kernel] = layout;
-        const code = kernelSource(kernel);
-        const module = device.createShaderModule({ label: `drape ${kernel}.wgsl`, code });
-        const info = await module.getCompilationInfo();
-        const errors = info.messages.filter((m) => m.type === 'error');
-        if (errors.length) {
-          const lines = code.split('\n');
-          const where = (m: GPUCompilationMessage) => `'${(lines[m.lineNum - 1] ?? '').trim()}': ${m.message}`;
-          throw new Error(`GPU solver: ${kernel} kernel does not compile: ${errors.map(where).join('; ')}`);
-        }
-        pipelines[kernel] = await device.createComputePipelineAsync({
-          label: `drape ${kernel}`,
-          layout: device.createPipelineLayout({ bindGroupLayouts: [uniformLayout, layout] }),
-          compute: { module, entryPoint: 'main' },
-        });
-      }));
+      const { uniformLayout, pipelines, storageLayouts } = await kernelsFor(device);
       solver = new GpuClothSolver(device, model, uniformLayout, pipelines, storageLayouts);
     } catch (e) {
       failure = e;
