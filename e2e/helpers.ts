@@ -38,9 +38,12 @@ export async function openApp(context: BrowserContext, hash = '', query = '?lite
 export const byId = (page: Page, id: string) => page.locator(`[data-testid="${id}"]`);
 
 /** Pauses the loop so that only explicit steps advance the cloth (results independent of the machine's speed). */
+/** Pauses the loop and waits until a frame it had already asked for has arrived, so the frame count stays put. */
 export async function pause(page: Page): Promise<void> {
   if (!(await page.evaluate(() => (window as any).drape.paused()))) await byId(page, 'play').locator('button').click();
   await page.waitForFunction(() => (window as any).drape.paused());
+  // a round trip of no frames: the worker answers in order, so it comes back after any request still in flight
+  await step(page, 0);
 }
 
 export async function step(page: Page, frames: number): Promise<void> {

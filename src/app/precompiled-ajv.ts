@@ -12,9 +12,10 @@
  */
 import { Ajv, type Options } from 'ajv';
 import standaloneCodeModule from 'ajv/dist/standalone/index.js';
+import { SCENE_VALIDATOR_OPTIONS } from '../core/scene.js';
 
-/** the options src/core/scene.ts creates its Ajv with (the wrapper refuses any other) */
-export const CORE_AJV_OPTIONS: Options = { allErrors: true, useDefaults: true, discriminator: true, strict: false };
+/** the options the core creates its Ajv with (the wrapper refuses any other) */
+export const CORE_AJV_OPTIONS: Options = SCENE_VALIDATOR_OPTIONS;
 
 type StandaloneCode = (ajv: Ajv, validate: unknown) => string;
 const standaloneCode: StandaloneCode =

@@ -149,9 +149,9 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
  * Overlaps are resolved without launching the cloth. The push-out undoes at once whatever the contact point moved
  * into the surface during this substep; an overlap it did not move into (a cloth that begins inside a collider, or
  * that a collider is moved into) is undone at no more than `depenetrationSpeed` (triangles share it among the
- * triangles of a particle), so the constraints that follow drag the rest of the cloth along no faster. And of the outward motion left after the push-out, the part the
- * push-out made (at most its depth) also moves x_prev: it is not velocity. A particle arriving from outside ends
- * with zero normal velocity, as before.
+ * triangles of a particle), so the constraints that follow drag the rest of the cloth along no faster. And of the
+ * outward motion left after the push-out, the part the push-out made (at most its depth) also moves x_prev: it is
+ * not velocity. A particle arriving from outside ends with zero normal velocity, as before.
  */
 export function collide(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
   const x = state.positions, xp = state.previousPositions, w = state.invMass;

@@ -62,7 +62,9 @@ export class SceneError extends Error {
   }
 }
 
-const ajv = new Ajv({ allErrors: true, useDefaults: true, discriminator: true, strict: false });
+/** Ajv's options for the scene validator (the site build compiles its validator ahead with the same: app/precompiled-ajv.ts). */
+export const SCENE_VALIDATOR_OPTIONS = { allErrors: true, useDefaults: true, discriminator: true, strict: false } as const;
+const ajv = new Ajv(SCENE_VALIDATOR_OPTIONS);
 const validateFn = ajv.compile(sceneSchema);
 
 /** 'material/bendStiffness' → 'material.bendStiffness', '/colliders/0/radius' → 'colliders[0].radius' */
