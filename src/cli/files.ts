@@ -19,8 +19,13 @@ function cannot(path: string, e: unknown, doing: string): UsageError {
   return new UsageError(`${path}: ${why}`);
 }
 
-/** The text of an input file, or a UsageError naming it: not a regular file, larger than the cap, unreadable. */
+/** The text of an input file (UTF-8), or a UsageError naming it: not a regular file, larger than the cap, unreadable. */
 export function readInputFile(path: string, what = 'scene file'): string {
+  return Buffer.from(readInputBytes(path, what)).toString('utf8');
+}
+
+/** The bytes of an input file, or a UsageError naming it: not a regular file, larger than the cap, unreadable. */
+export function readInputBytes(path: string, what = 'scene file'): Uint8Array {
   let fd: number;
   try {
     // non-blocking, so that opening a FIFO with no writer returns at once (it is then refused as not a file)
@@ -38,7 +43,7 @@ export function readInputFile(path: string, what = 'scene file'): string {
     let n = 0;
     for (let got = 1; got > 0 && n < buf.length; n += got) got = readSync(fd, buf, n, buf.length - n, null);
     if (n > st.size) throw new UsageError(`${path}: the file changed while it was read`);
-    return buf.toString('utf8', 0, n);
+    return buf.subarray(0, n);
   } catch (e) {
     if (e instanceof UsageError) throw e;
     throw cannot(path, e, 'reading');

@@ -2,7 +2,7 @@
  * The CLI's WebGPU backend: Dawn in Node through the optional `webgpu` package (src/gpu/node.ts), the same scenes
  * and models as the CPU. Loaded only when `--backend gpu` is asked for.
  */
-import { FRAME_DT, Simulation, type Scene } from '../core/index.js';
+import { FRAME_DT, Simulation, type MeshResolver, type Scene } from '../core/index.js';
 import type { GpuBenchResult } from '../gpu/index.js';
 import { UsageError } from './errors.js';
 
@@ -10,7 +10,7 @@ export interface Gpu {
   device: GPUDevice;
   adapter: string;
   /** steps `scene` for `frames` frames on the GPU; the returned Simulation holds the read-back state */
-  simulate(scene: Scene, frames: number): Promise<{ sim: Simulation; msPerFrame: number }>;
+  simulate(scene: Scene, frames: number, meshes?: MeshResolver): Promise<{ sim: Simulation; msPerFrame: number }>;
   bench(sizes: number[], substeps: number, frames: number): Promise<GpuBenchResult[]>;
 }
 
@@ -30,8 +30,8 @@ export async function openGpu(): Promise<Gpu> {
   return {
     device,
     adapter,
-    async simulate(scene, frames) {
-      const sim = new Simulation(scene);
+    async simulate(scene, frames, meshes) {
+      const sim = new Simulation(scene, { kernel: 'ts', meshes });
       const solver = await gpu.GpuClothSolver.create(device, sim.model);
       try {
         try {

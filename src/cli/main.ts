@@ -7,11 +7,12 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { parseArgs } from 'node:util';
 import {
-  builtinScene, isBuiltinScene, parseScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneSchema, setScenePath, Simulation,
-  type Scene, type SimulationOptions,
+  builtinScene, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneSchema, setScenePath, Simulation,
+  type MeshResolver, type Scene, type SimulationOptions,
 } from '../core/index.js';
 import { EXIT, UsageError } from './errors.js';
-import { checkOutputPath, readInputFile } from './files.js';
+import { checkOutputPath } from './files.js';
+import { loadSceneFile, meshReader } from './node.js';
 import { openGpu, type Gpu } from './gpu.js';
 import { toOBJ } from './obj.js';
 import { cpuOptions, runBench, runGpuBench } from './bench.js';
@@ -91,11 +92,15 @@ function checkBackend(raw: string | undefined): 'cpu' | 'gpu' {
   throw new UsageError(`--backend: must be cpu or gpu, got '${raw}'`);
 }
 
-export function loadScene(arg: string | undefined): Scene {
+/**
+ * A built-in scene by name or a scene file, with the reader of the mesh files it may name (relative to the scene
+ * file's folder; to the working folder for a built-in scene given a mesh with --set).
+ */
+export function loadScene(arg: string | undefined): { scene: Scene; meshes: MeshResolver } {
   const name = arg ?? 'custom';
-  if (name.endsWith('.json') || name.includes('/') || name.includes('\\')) return parseScene(readInputFile(name), name);
+  if (name.endsWith('.json') || name.includes('/') || name.includes('\\')) return loadSceneFile(name);
   if (!isBuiltinScene(name)) throw new UsageError(`unknown scene '${name}' (built-in scenes: ${SCENE_NAMES.join(', ')}; or give a .json file)`);
-  return builtinScene(name);
+  return { scene: builtinScene(name), meshes: meshReader() };
 }
 
 function applySets(scene: Scene, sets: string[]): Scene {
@@ -132,7 +137,7 @@ interface RunResult {
 async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, options: SimulationOptions): Promise<RunResult> {
   let sim: Simulation, ms: number, kernel = 'gpu', threads = 1;
   if (gpu) {
-    ({ sim, msPerFrame: ms } = await gpu.simulate(scene, frames));
+    ({ sim, msPerFrame: ms } = await gpu.simulate(scene, frames, options.meshes));
   } else {
     sim = new Simulation(scene, options);
     try {
@@ -202,7 +207,9 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     if (!values.export.toLowerCase().endsWith('.obj')) throw new UsageError(`--export: only .obj files are supported, got '${values.export}'`);
     checkOutputPath(values.export, '--export'); // before simulating: a bad destination costs nothing
   }
-  let scene = loadScene(positionals[0]);
+  const loaded = loadScene(positionals[0]);
+  let scene = loaded.scene;
+  options.meshes = loaded.meshes;
   const sets = values.set ?? [];
   if (values.solver !== undefined) sets.unshift(`solver.type=${values.solver}`);
   scene = applySets(scene, sets);
@@ -246,6 +253,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
       ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.resolution ** 2, ...r })) } : {}),
       ...(values.export && !exportError ? { exported: values.export } : {}),
       ...(exportError ? { exportError } : {}),
+      resolvedScene: scene,
     }));
   } else {
     for (const c of clamps) err(`drape: note: ${c}`);

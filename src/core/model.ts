@@ -5,6 +5,9 @@
  */
 
 import { STRUCTURAL, SHEAR, BEND } from './layout.generated.js';
+import { eulerXYZ } from './mesh/generators.js';
+import type { TriangleMesh } from './mesh/triangle-mesh.js';
+import { edgeTable } from './mesh/edges.js';
 
 /** The three spring kinds of the seed design; their ids (STRUCTURAL, SHEAR, BEND) come from the one table. */
 export const SPRING_KINDS = ['structural', 'shear', 'bend'] as const;
@@ -69,6 +72,17 @@ export interface ClothModel {
   readonly maxTriangleValence: number;
   /** total rest area of the cloth [m²] */
   readonly area: number;
+  /** the mesh's edges, pairs (a, b) with a < b, each once */
+  readonly edges: Uint32Array;
+  /**
+   * bending pairs: one per edge shared by two triangles, as quadruples (a, b, c, d): the shared edge a–b and the
+   * two corners c, d opposite it
+   */
+  readonly bendingPairs: Uint32Array;
+  /** connected piece of each particle, 0 … pieceCount − 1 (for per-piece material and pins) */
+  readonly pieces: Uint32Array;
+  /** number of connected pieces [-] */
+  readonly pieceCount: number;
   /** grid layout when the cloth is a rectangular grid */
   readonly grid?: GridInfo;
   /** largest extent of the rest shape [m]; the size used by sanity bounds */
@@ -124,6 +138,38 @@ function distance(p: Float32Array, a: number, b: number): number {
   const dy = p[3 * a + 1] - p[3 * b + 1];
   const dz = p[3 * a + 2] - p[3 * b + 2];
   return Math.sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/** Edges, bending pairs and connected pieces of a triangle mesh (see ClothModel), from its edge table. */
+export function meshTopology(triangles: Uint32Array, n: number): { edges: Uint32Array; bendingPairs: Uint32Array; pieces: Uint32Array; pieceCount: number } {
+  const table = edgeTable(triangles, n);
+  let shared = 0;
+  for (let e = 0; e < table.count; e++) if (table.faces[2 * e + 1] >= 0) shared++;
+  const bendingPairs = new Uint32Array(4 * shared);
+  const parent = new Uint32Array(n);
+  for (let i = 0; i < n; i++) parent[i] = i;
+  const find = (i: number): number => {
+    while (parent[i] !== i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (let e = 0, k = 0; e < table.count; e++) {
+    const a = table.ends[2 * e], b = table.ends[2 * e + 1];
+    const ra = find(a), rb = find(b);
+    if (ra !== rb) parent[Math.max(ra, rb)] = Math.min(ra, rb);
+    if (table.faces[2 * e + 1] < 0) continue;
+    bendingPairs[k++] = a; bendingPairs[k++] = b;
+    bendingPairs[k++] = table.opposite[2 * e]; bendingPairs[k++] = table.opposite[2 * e + 1];
+  }
+  // pieces numbered in order of their lowest particle
+  const pieces = new Uint32Array(n);
+  const id = new Int32Array(n).fill(-1);
+  let pieceCount = 0;
+  for (let i = 0; i < n; i++) {
+    const r = find(i);
+    if (id[r] < 0) id[r] = pieceCount++;
+    pieces[i] = id[r];
+  }
+  return { edges: table.ends, bendingPairs, pieces, pieceCount };
 }
 
 /** Builds a model from any particle/spring/triangle set (the grid builder and tests use it). */
@@ -224,6 +270,7 @@ export function buildModel(input: ModelInput): ClothModel {
     }
   }
   const size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-3);
+  const topology = meshTopology(triangles, n);
 
   return {
     particleCount: n,
@@ -241,6 +288,7 @@ export function buildModel(input: ModelInput): ClothModel {
     maxTriangleEdge,
     maxTriangleValence,
     area,
+    ...topology,
     grid: input.grid,
     size,
   };
@@ -266,18 +314,6 @@ export interface GridClothSpec {
 
 /** Spacing at which material stiffnesses are given: a 1 m cloth at 32 faces per side [m]. */
 export const REFERENCE_SPACING = 1 / 32;
-
-/** Rotation matrix (row-major 3×3) for Euler XYZ angles in degrees. */
-function eulerXYZ(deg: readonly [number, number, number]): number[] {
-  const [x, y, z] = deg.map((d) => (d * Math.PI) / 180);
-  const cx = Math.cos(x), sx = Math.sin(x), cy = Math.cos(y), sy = Math.sin(y), cz = Math.cos(z), sz = Math.sin(z);
-  // R = Rz * Ry * Rx  (rotate about X first)
-  return [
-    cy * cz, sx * sy * cz - cx * sz, cx * sy * cz + sx * sz,
-    cy * sz, sx * sy * sz + cx * cz, cx * sy * sz - sx * cz,
-    -sy, sx * cy, cx * cy,
-  ];
-}
 
 /**
  * The seed's cloth: a grid of (resolution + 1)² particles at the corners of each face; structural springs between
@@ -354,5 +390,52 @@ export function buildGridModel(spec: GridClothSpec): ClothModel {
     springs: [structural, shear, bend],
     stiffnessScales: spec.scaleWithResolution ? [sScale, ones(shear.length / 2), bScale] : undefined,
     grid: { nx, ny },
+  });
+}
+
+
+/**
+ * A model from any prepared triangle mesh (mesh/triangle-mesh.ts prepareMesh): the springs come from the
+ * triangles. Structural springs are the mesh's edges, with the per-edge factor Σ A_t / |e|² over the edge's
+ * triangles (Van Gelder 1998, "Approximate simulation of elastic membranes by triangulated spring meshes"), which
+ * gives a lattice of equilateral triangles (and the axis springs of the grid) the sheet's tensile stiffness. There
+ * are no separate shear springs: a triangle lattice resists shear with its edges. Bend springs join the two corners
+ * opposite each edge two triangles share; their factor follows the grid's skip-one springs, (s₀/ℓ)⁴·(|e|/ℓ) with
+ * ℓ half the spring's rest length and s₀ = REFERENCE_SPACING. With `scaleWithResolution` off every factor is 1.
+ */
+export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean): ClothModel {
+  const p = mesh.positions, tri = mesh.triangles, n = p.length / 3;
+  const { edges, bendingPairs } = meshTopology(tri, n);
+  const table = edgeTable(tri, n);
+  const triArea = (t: number) => {
+    const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
+    const ux = p[3 * b] - p[3 * a], uy = p[3 * b + 1] - p[3 * a + 1], uz = p[3 * b + 2] - p[3 * a + 2];
+    const vx = p[3 * c] - p[3 * a], vy = p[3 * c + 1] - p[3 * a + 1], vz = p[3 * c + 2] - p[3 * a + 2];
+    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    return 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
+  };
+  const m = edges.length / 2;
+  const sScale = new Float32Array(m);
+  for (let e = 0; e < m; e++) {
+    const l = distance(p, edges[2 * e], edges[2 * e + 1]);
+    const t0 = table.faces[2 * e], t1 = table.faces[2 * e + 1];
+    sScale[e] = (triArea(t0) + (t1 >= 0 ? triArea(t1) : 0)) / (l * l);
+  }
+  const nb = bendingPairs.length / 4;
+  const bend = new Uint32Array(2 * nb);
+  const bScale = new Float32Array(nb);
+  for (let k = 0; k < nb; k++) {
+    const c = bendingPairs[4 * k + 2], d = bendingPairs[4 * k + 3];
+    bend[2 * k] = c;
+    bend[2 * k + 1] = d;
+    const half = distance(p, c, d) / 2, hinge = distance(p, bendingPairs[4 * k], bendingPairs[4 * k + 1]);
+    bScale[k] = Math.pow(REFERENCE_SPACING / half, 4) * (hinge / half);
+  }
+  return buildModel({
+    restPositions: p,
+    uvs: mesh.uvs,
+    triangles: tri,
+    springs: [edges, new Uint32Array(0), bend],
+    stiffnessScales: scaleWithResolution ? [sScale, new Float32Array(0), bScale] : undefined,
   });
 }

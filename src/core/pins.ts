@@ -1,14 +1,19 @@
 import type { ClothModel } from './model.js';
-import type { PinPreset } from './scene.js';
+import { SceneError, type PinPreset } from './scene.js';
 import type { ClothState } from './state.js';
 
 /**
- * Particle indices of a pin preset on a grid cloth. Row 0 is the 'top' (the far edge, -z, of a horizontal cloth;
- * the upper edge of a hanging one); column 0 is 'left' (-x).
+ * Particle indices of a pin preset. On a rectangle (a grid), row 0 is the 'top' (the far edge, -z, of a horizontal
+ * cloth; the upper edge of a hanging one) and column 0 is 'left' (-x). Any other cloth has only 'center': the
+ * particle nearest the middle of its rest shape's bounding box; the corner and edge presets throw a SceneError
+ * saying they need a rectangle.
  */
 export function presetParticles(model: ClothModel, preset: PinPreset): number[] {
   const grid = model.grid;
-  if (!grid) throw new Error(`pin preset '${preset}' needs a grid cloth`);
+  if (!grid) {
+    if (preset === 'center') return [nearestToMiddle(model)];
+    throw new SceneError(`pin preset '${preset}' names a corner or an edge of a rectangle, and this cloth is not one; pin particles by index (in the app: click them with the pin tool)`);
+  }
   const { nx, ny } = grid;
   const id = (i: number, j: number) => j * nx + i;
   const range = (count: number, f: (k: number) => number) => Array.from({ length: count }, (_, k) => f(k));
@@ -30,13 +35,40 @@ export function presetParticles(model: ClothModel, preset: PinPreset): number[] 
   }
 }
 
-/** Resolves a scene's pin list (presets and indices) to particle indices, without duplicates. */
+/** The particle nearest the middle of the rest shape's bounding box (the lowest index on a tie). */
+function nearestToMiddle(model: ClothModel): number {
+  const p = model.restPositions;
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < p.length; i += 3) for (let k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], p[i + k]); hi[k] = Math.max(hi[k], p[i + k]); }
+  let best = 0, bestD = Infinity;
+  for (let i = 0; i < model.particleCount; i++) {
+    let d = 0;
+    for (let k = 0; k < 3; k++) d += (p[3 * i + k] - (lo[k] + hi[k]) / 2) ** 2;
+    if (d < bestD) { bestD = d; best = i; }
+  }
+  return best;
+}
+
+/**
+ * Resolves a scene's pin list (presets and indices) to particle indices, without duplicates. Throws a SceneError
+ * naming the entry (pins[k]) for an index the cloth does not have or a preset it cannot take.
+ */
 export function resolvePins(model: ClothModel, pins: readonly (PinPreset | number)[]): number[] {
   const set = new Set<number>();
-  for (const p of pins) {
-    if (typeof p === 'number') set.add(p);
-    else for (const i of presetParticles(model, p)) set.add(i);
-  }
+  const n = model.particleCount;
+  pins.forEach((p, k) => {
+    if (typeof p === 'number') {
+      if (p >= n) throw new SceneError(`pins[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
+      set.add(p);
+      return;
+    }
+    try {
+      for (const i of presetParticles(model, p)) set.add(i);
+    } catch (e) {
+      if (e instanceof SceneError) throw new SceneError(`pins[${k}]: ${e.message}`);
+      throw e;
+    }
+  });
   return [...set].sort((a, b) => a - b);
 }
 

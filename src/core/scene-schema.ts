@@ -36,11 +36,14 @@ export const sceneSchema = {
       additionalProperties: false,
       default: {},
       properties: {
-        resolution: { type: 'integer', minimum: 1, maximum: 1024, default: 32, description: 'faces per side [-]: 1 is one quad of 4 particles, 64 is 4096 faces (65² particles)' },
-        width: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along x [m]' },
-        height: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along the second axis (z when horizontal, y when hanging) [m]' },
-        orientation: { enum: ['horizontal', 'hanging'], default: 'horizontal', description: "start pose: 'horizontal' lies in the xz plane (row 0 at -z); 'hanging' lies in the xy plane (row 0 at the top)" },
-        position: vec3('centre of the cloth at the start [m]', -1000, 1000, [0, 1.2, 0]),
+        shape: { enum: ['rectangle', 'disc', 'tube', 'mesh'], default: 'rectangle', description: "'rectangle': the seed's grid; 'disc': a round sheet of concentric rings; 'tube': an open cylinder (a skirt, a sleeve); 'mesh': the triangle mesh in the file cloth.mesh (set when cloth.mesh is given)" },
+        mesh: { type: 'string', minLength: 1, maxLength: 1000, description: 'OBJ or glTF (.obj, .gltf, .glb) file of the cloth, relative to the scene file; any manifold triangle mesh with boundary, several pieces allowed. The app imports it from a file; a link cannot carry it' },
+        scale: { type: 'number', minimum: 1e-6, maximum: 1e6, default: 1, description: 'metres per unit of the mesh file: 0.01 for centimetres, 0.001 for millimetres, 0.0254 for inches (mesh only) [m]' },
+        resolution: { type: 'integer', minimum: 1, maximum: 1024, default: 32, description: 'density [-]: faces per side of a rectangle (1 is one quad of 4 particles, 64 is 4096 faces: 65² particles); faces across a disc\'s diameter; faces along the longer of a tube\'s circumference and length (a mesh file has its own)' },
+        width: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along x of a rectangle; diameter of a disc or tube [m]' },
+        height: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent of a rectangle along its second axis (z when horizontal, y when hanging); length of a tube [m]' },
+        orientation: { enum: ['horizontal', 'hanging'], default: 'horizontal', description: "start pose of a rectangle, disc or tube: 'horizontal' lies in the xz plane (row 0 at -z; a tube's axis along z); 'hanging' in the xy plane (row 0 at the top; a tube's axis vertical). A mesh keeps the file's pose" },
+        position: vec3('centre of the cloth at the start (of its bounding box, for a mesh) [m]', -1000, 1000, [0, 1.2, 0]),
         rotation: vec3('extra rotation about the centre, Euler XYZ [degrees]', -360, 360, [0, 0, 0]),
         thickness: { type: 'number', minimum: 0, maximum: 0.1, default: 0.005, description: 'contact thickness: how far the cloth surface is kept from colliders [m]' },
       },
@@ -140,7 +143,7 @@ export const sceneSchema = {
       type: 'array',
       default: [],
       maxItems: 1050625,
-      description: `pinned particles: presets (${PIN_PRESETS.join(', ')}) or particle indices (row-major, row 0 first)`,
+      description: `pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) or particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding)`,
       items: {
         anyOf: [
           { enum: [...PIN_PRESETS] },

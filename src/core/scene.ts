@@ -2,6 +2,8 @@ import { Ajv, type ErrorObject } from 'ajv';
 import { PIN_PRESETS, sceneSchema } from './scene-schema.js';
 
 export type Vec3 = [number, number, number];
+/** `cloth.shape` (the list: CLOTH_SHAPES in cloth-shape.ts) */
+export type ClothShape = 'rectangle' | 'disc' | 'tube' | 'mesh';
 export type PinPreset = (typeof PIN_PRESETS)[number];
 
 /** Field meanings, units and defaults: see scene-schema.ts (the one source). */
@@ -10,6 +12,10 @@ export interface Scene {
   name: string;
   description?: string;
   cloth: {
+    shape: ClothShape;
+    /** mesh file path (shape 'mesh' only) */
+    mesh?: string;
+    scale: number;
     resolution: number;
     width: number;
     height: number;
@@ -139,6 +145,9 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
   }
   checkDepth(input, source);
   const doc = structuredClone(input) as Record<string, unknown>;
+  // a cloth given by a mesh file is a 'mesh' without saying so
+  const cloth = doc.cloth as Record<string, unknown> | undefined;
+  if (cloth && typeof cloth === 'object' && cloth.mesh !== undefined && cloth.shape === undefined) cloth.shape = 'mesh';
   if (!validateFn(doc)) {
     const errors = validateFn.errors ?? [];
     const pinErr = errors.find((e) => e.instancePath.startsWith('/pins/'));
@@ -148,6 +157,14 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
     throw new SceneError(`${source}: ${describe(pickError(errors))}`);
   }
   const scene = doc as unknown as Scene;
+  if (scene.cloth.shape === 'mesh' && scene.cloth.mesh === undefined) {
+    throw new SceneError(`${source}: cloth.mesh: required when cloth.shape is 'mesh' (the OBJ or glTF file of the cloth)`);
+  }
+  if (scene.cloth.shape !== 'mesh' && scene.cloth.mesh !== undefined) {
+    throw new SceneError(`${source}: cloth.mesh: only for cloth.shape 'mesh', and this cloth is a '${scene.cloth.shape}'`);
+  }
+  // other shapes check their pins when the model is built (pins.ts resolvePins)
+  if (scene.cloth.shape !== 'rectangle') return scene;
   const n = (scene.cloth.resolution + 1) ** 2;
   scene.pins.forEach((p, k) => {
     if (typeof p === 'number' && p >= n) {
@@ -217,6 +234,12 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     node = next as Record<string, unknown>;
   }
   (node as Record<string, unknown>)[keys[keys.length - 1]] = value;
+  // the shape and the mesh file go together: a mesh file makes the cloth a 'mesh', another shape drops the file
+  const cloth = doc.cloth as Record<string, unknown> | undefined;
+  if (keys.length === 2 && keys[0] === 'cloth' && cloth && typeof cloth === 'object') {
+    if (keys[1] === 'mesh' && value !== undefined) cloth.shape = 'mesh';
+    if (keys[1] === 'shape' && value !== 'mesh') delete cloth.mesh;
+  }
   try {
     return validateScene(doc, source);
   } catch (e) {

@@ -3,7 +3,8 @@
  * rebuilds. Geometry (cloth.*, material.scaleWithResolution) rebuilds the model and restarts the cloth; everything
  * else (stiffness, damping, mass, wind, gravity, solver, colliders, pins) applies on the next step.
  */
-import { buildGridModel, type ClothModel } from './model.js';
+import type { ClothModel } from './model.js';
+import { modelFor, type MeshResolver } from './cloth-shape.js';
 import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrain, type Bounds, type Energy } from './metrics.js';
 import { FRAME_DT, resolveParams, type SimParams } from './params.js';
 import { applyPins, resolvePins } from './pins.js';
@@ -31,6 +32,11 @@ export interface SimulationOptions {
   threads?: number | 'auto';
   /** starts a helper thread of the wasm kernel (Node: spawnNodeHelper from drape/threads) */
   spawnHelper?: HelperSpawner;
+  /**
+   * reads the mesh file a scene's cloth.mesh names (Node: loadSceneFile or meshReader from drape/node; the app:
+   * its imported file); needed only for cloth.shape 'mesh'
+   */
+  meshes?: MeshResolver;
 }
 
 export interface Report {
@@ -88,14 +94,13 @@ function checkOptions(options: SimulationOptions): SimulationOptions {
   if (spawnHelper !== undefined && typeof spawnHelper !== 'function') {
     throw new TypeError('Simulation: options.spawnHelper must be a function (e.g. spawnNodeHelper from drape/threads)');
   }
+  if (options.meshes !== undefined && typeof options.meshes !== 'function') {
+    throw new TypeError('Simulation: options.meshes must be a function from a cloth.mesh path to a mesh (e.g. meshReader from drape/node)');
+  }
   if (spawnHelper !== undefined && !(Number.isInteger(spawnHelper.cores) && spawnHelper.cores >= 1)) {
     throw new TypeError('Simulation: options.spawnHelper.cores must be the number of cores its threads can use (an integer ≥ 1)');
   }
   return options;
-}
-
-export function modelFor(scene: Scene): ClothModel {
-  return buildGridModel({ ...scene.cloth, scaleWithResolution: scene.material.scaleWithResolution });
 }
 
 export class Simulation {
@@ -116,7 +121,7 @@ export class Simulation {
   constructor(scene: Scene, options: SimulationOptions = {}) {
     this.options = checkOptions(options);
     this.scene = validateScene(scene);
-    this.model = modelFor(this.scene);
+    this.model = modelFor(this.scene, this.options.meshes);
     this.params = resolveParams(this.model, this.scene);
     const pins = resolvePins(this.model, this.scene.pins);
     checkPlacement(this.model, this.params.colliders, pins, this.scene.material.stretchFactor, sceneLabel(this.scene));
@@ -197,7 +202,7 @@ export class Simulation {
     next = validateScene(next);
     const prev = this.scene;
     const rebuild = needsRebuild(prev, next);
-    const model = rebuild ? modelFor(next) : this.model;
+    const model = rebuild ? modelFor(next, this.options.meshes) : this.model;
     const params = resolveParams(model, next);
     const pinsChanged = JSON.stringify(prev.pins) !== JSON.stringify(next.pins);
     const pins = resolvePins(model, next.pins);

@@ -5,7 +5,7 @@
 import type {} from 'webgpu';
 import { FRAME_DT, resolveParams } from '../core/params.js';
 import { defaultScene } from '../core/scene.js';
-import { modelFor } from '../core/simulation.js';
+import { modelFor } from '../core/cloth-shape.js';
 import { createState } from '../core/state.js';
 import { GpuClothSolver } from './solver.js';
 

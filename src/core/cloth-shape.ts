@@ -1,0 +1,66 @@
+/**
+ * From a scene's `cloth` to a model: the shape it names (the seed's rectangle grid, a disc, a tube, or a mesh
+ * file), scaled and placed, checked and turned into particles, springs and colours. Mesh files are read by the
+ * host (a path means nothing to the core, which runs in browsers too): the CLI and `drape/node` read them next
+ * to the scene file; the app from an imported file.
+ */
+import { buildGridModel, buildMeshModel, type ClothModel } from './model.js';
+import { discMesh, placeMesh, tubeMesh } from './mesh/generators.js';
+import { parseGltf, type ExternalReader } from './mesh/gltf.js';
+import { parseObj } from './mesh/obj.js';
+import { prepareMesh, type TriangleMesh } from './mesh/triangle-mesh.js';
+import { SceneError, type Scene } from './scene.js';
+import { plainText } from './text.js';
+
+/** The cloth shapes a scene can name (`cloth.shape`). */
+export const CLOTH_SHAPES = ['rectangle', 'disc', 'tube', 'mesh'] as const;
+export type ClothShape = (typeof CLOTH_SHAPES)[number];
+
+/** The mesh a scene's `cloth.mesh` path names, as read and parsed by the host (throws SceneError naming the file). */
+export type MeshResolver = (path: string) => TriangleMesh;
+
+/** File types a cloth mesh may come in, by extension. */
+export const MESH_EXTENSIONS = ['.obj', '.gltf', '.glb'] as const;
+
+/**
+ * Parses a mesh file's bytes by its name's extension (.obj, .gltf, .glb); `readExternal` reads a .gltf's separate
+ * buffers. Throws SceneError naming the file. The mesh is checked when a model is built from it.
+ */
+export function parseMeshFile(bytes: Uint8Array, name: string, readExternal?: ExternalReader): TriangleMesh {
+  const shown = plainText(name, 200);
+  return meshFormat(name) === '.obj' ? parseObj(new TextDecoder().decode(bytes), shown) : parseGltf(bytes, shown, readExternal);
+}
+
+/** The extension of a mesh file's name (one of MESH_EXTENSIONS), or a SceneError naming the file. */
+export function meshFormat(name: string): (typeof MESH_EXTENSIONS)[number] {
+  const ext = name.slice(name.lastIndexOf('.')).toLowerCase();
+  const known = MESH_EXTENSIONS.find((e) => e === ext);
+  if (!known) throw new SceneError(`${plainText(name, 200)}: not a mesh file Drape reads (${MESH_EXTENSIONS.join(', ')})`);
+  return known;
+}
+
+/**
+ * The model of a scene's cloth. A 'mesh' needs `meshes` to turn cloth.mesh into a mesh; without it (a link, a
+ * scene passed without its files) the error says so.
+ */
+export function modelFor(scene: Scene, meshes?: MeshResolver): ClothModel {
+  const c = scene.cloth, swr = scene.material.scaleWithResolution;
+  switch (c.shape) {
+    case 'rectangle':
+      return buildGridModel({ ...c, scaleWithResolution: swr });
+    case 'disc':
+      return buildMeshModel(prepareMesh(discMesh(c), 'cloth.shape disc'), swr);
+    case 'tube':
+      return buildMeshModel(prepareMesh(tubeMesh(c), 'cloth.shape tube'), swr);
+    case 'mesh': {
+      const path = c.mesh!;
+      if (!meshes) {
+        throw new SceneError(`cloth.mesh: '${plainText(path, 200)}' is a file, and nothing here reads files; load the scene with its files (drape run, loadSceneFile from drape/node, or the app's mesh import)`);
+      }
+      const mesh = prepareMesh(meshes(path), plainText(path, 200));
+      const scaled = new Float32Array(mesh.positions.length);
+      for (let j = 0; j < scaled.length; j++) scaled[j] = mesh.positions[j] * c.scale;
+      return buildMeshModel({ ...mesh, positions: placeMesh(scaled, c) }, swr);
+    }
+  }
+}

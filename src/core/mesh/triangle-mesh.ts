@@ -1,0 +1,190 @@
+/**
+ * A cloth's triangle mesh as it comes from a generator or a file, and `prepareMesh`, which makes any such mesh fit
+ * to simulate or says, in one line naming the source, why it is not: duplicate vertices welded, unused ones dropped,
+ * degenerate, duplicated and non-manifold triangles refused, every piece oriented consistently.
+ */
+import { SceneError } from '../scene.js';
+import { edgeTable } from './edges.js';
+
+/** Positions and triangles of a cloth, before the model is built. */
+export interface TriangleMesh {
+  /** vertex positions [m], xyz interleaved */
+  positions: Float32Array;
+  /** vertex indices, triples */
+  triangles: Uint32Array;
+  /** texture coordinates, uv interleaved, one pair per vertex (optional) */
+  uvs?: Float32Array;
+}
+
+/** Most particles a cloth may have: as many as the largest grid (1024 faces per side). */
+export const MAX_MESH_PARTICLES = 1025 * 1025;
+
+/**
+ * Most edges that may meet at one vertex [-]. The parallel solve colours springs and triangles so that no two of a
+ * colour share a vertex, with at most 32 colours; a vertex with more edges than this (a fan of slivers) can need
+ * more. Inside a regular mesh it is 6.
+ */
+export const MAX_VERTEX_EDGES = 12;
+
+/**
+ * Distance below which two vertices are the same one, relative to the mesh's size [-]: files split vertices at
+ * UV seams and normal creases, and the cloth must not come apart there.
+ */
+export const WELD_TOLERANCE = 1e-6;
+
+const fail = (source: string, why: string): never => {
+  throw new SceneError(`${source}: ${why}`);
+};
+
+/** Largest extent of a point set along any axis [m]. */
+function extent(p: Float32Array): { size: number; axis: number } {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < p.length; i += 3) {
+    for (let k = 0; k < 3; k++) {
+      if (p[i + k] < lo[k]) lo[k] = p[i + k];
+      if (p[i + k] > hi[k]) hi[k] = p[i + k];
+    }
+  }
+  const d = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+  const axis = d[0] >= d[1] && d[0] >= d[2] ? 0 : d[1] >= d[2] ? 1 : 2;
+  return { size: d[axis], axis };
+}
+
+/**
+ * Representative of each vertex after welding those closer than `tol` [m]: vertices sorted along the axis of
+ * largest extent, each compared with the ones that follow it within `tol` on that axis.
+ */
+function weldMap(p: Float32Array, tol: number, axis: number): Uint32Array {
+  const n = p.length / 3;
+  const parent = new Uint32Array(n);
+  for (let i = 0; i < n; i++) parent[i] = i;
+  const find = (i: number): number => {
+    while (parent[i] !== i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  const order = Array.from({ length: n }, (_, i) => i).sort((a, b) => p[3 * a + axis] - p[3 * b + axis] || a - b);
+  const tol2 = tol * tol;
+  for (let s = 0; s < n; s++) {
+    const a = order[s];
+    for (let t = s + 1; t < n; t++) {
+      const b = order[t];
+      if (p[3 * b + axis] - p[3 * a + axis] > tol) break;
+      const dx = p[3 * a] - p[3 * b], dy = p[3 * a + 1] - p[3 * b + 1], dz = p[3 * a + 2] - p[3 * b + 2];
+      if (dx * dx + dy * dy + dz * dz <= tol2) {
+        const ra = find(a), rb = find(b);
+        // the lower index survives, so that welding keeps the file's vertex order
+        if (ra !== rb) { if (ra < rb) parent[rb] = ra; else parent[ra] = rb; }
+      }
+    }
+  }
+  for (let i = 0; i < n; i++) parent[i] = find(i);
+  return parent;
+}
+
+/**
+ * Checks and cleans a mesh for simulation; `source` names it in errors (a file name, or 'cloth.shape disc').
+ * Returns a new mesh: vertices closer than WELD_TOLERANCE × size welded (the first one's UV kept), vertices no
+ * triangle uses dropped, the triangles of each connected piece turned to agree with the piece's first triangle.
+ * Throws SceneError for: no triangles, an index out of range, a non-finite position, a degenerate triangle (two
+ * corners the same vertex, or no area), a triangle given twice, an edge shared by more than two triangles, a piece
+ * that cannot be oriented (a Möbius strip), more than MAX_VERTEX_EDGES edges at a vertex, or more than
+ * MAX_MESH_PARTICLES vertices.
+ */
+export function prepareMesh(mesh: TriangleMesh, source: string): TriangleMesh {
+  const { positions: p, triangles: inTri } = mesh;
+  const n0 = p.length / 3;
+  if (!Number.isInteger(n0) || p.length === 0) fail(source, 'no vertices');
+  if (inTri.length === 0 || inTri.length % 3 !== 0) fail(source, 'no triangles: a cloth mesh needs faces');
+  for (let j = 0; j < p.length; j++) if (!Number.isFinite(p[j])) fail(source, `vertex ${Math.floor(j / 3) + 1} has a coordinate that is not a finite number`);
+  for (let k = 0; k < inTri.length; k++) {
+    if (inTri[k] >= n0) fail(source, `face ${Math.floor(k / 3) + 1} uses vertex ${inTri[k] + 1}, but there are only ${n0}`);
+  }
+  const { size, axis } = extent(p);
+  if (!(size > 0)) fail(source, 'all vertices are at one point');
+
+  // weld, then renumber the vertices the triangles use, in first-use order of the file's numbering
+  const rep = weldMap(p, WELD_TOLERANCE * size, axis);
+  const newIndex = new Int32Array(n0).fill(-1);
+  let n = 0;
+  const used = new Uint8Array(n0);
+  for (let k = 0; k < inTri.length; k++) used[rep[inTri[k]]] = 1;
+  for (let i = 0; i < n0; i++) if (used[i]) newIndex[i] = n++;
+  if (n > MAX_MESH_PARTICLES) fail(source, `${n} vertices; a cloth may have at most ${MAX_MESH_PARTICLES}`);
+  const positions = new Float32Array(3 * n);
+  const uvs = mesh.uvs ? new Float32Array(2 * n) : undefined;
+  for (let i = 0; i < n0; i++) {
+    const j = newIndex[i];
+    if (j < 0) continue;
+    positions.set(p.subarray(3 * i, 3 * i + 3), 3 * j);
+    if (uvs && mesh.uvs) uvs.set(mesh.uvs.subarray(2 * i, 2 * i + 2), 2 * j);
+  }
+  const m = inTri.length / 3;
+  const tri = new Uint32Array(inTri.length);
+  for (let k = 0; k < inTri.length; k++) tri[k] = newIndex[rep[inTri[k]]];
+
+  // degenerate triangles
+  const minArea2 = (1e-12 * size * size) ** 2;
+  for (let t = 0; t < m; t++) {
+    const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
+    if (a === b || b === c || c === a) {
+      const raw = inTri[3 * t] === inTri[3 * t + 1] || inTri[3 * t + 1] === inTri[3 * t + 2] || inTri[3 * t + 2] === inTri[3 * t];
+      fail(source, `face ${t + 1} is degenerate: two of its corners are the same vertex${raw ? '' : ` (after welding vertices closer than ${(WELD_TOLERANCE * size).toPrecision(2)} m)`}`);
+    }
+    const ux = positions[3 * b] - positions[3 * a], uy = positions[3 * b + 1] - positions[3 * a + 1], uz = positions[3 * b + 2] - positions[3 * a + 2];
+    const vx = positions[3 * c] - positions[3 * a], vy = positions[3 * c + 1] - positions[3 * a + 1], vz = positions[3 * c + 2] - positions[3 * a + 2];
+    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    if (cx * cx + cy * cy + cz * cz <= 4 * minArea2) fail(source, `face ${t + 1} is degenerate: it has no area (its corners are in a line)`);
+  }
+
+  // edges: each shared by at most two triangles, and two triangles on one edge never with the same third corner
+  const table = edgeTable(tri, n);
+  if (table.overShared >= 0) {
+    const a = table.ends[2 * table.overShared] + 1, b = table.ends[2 * table.overShared + 1] + 1;
+    fail(source, `not a manifold surface: the edge between vertices ${a} and ${b} is shared by more than two faces`);
+  }
+  const degree = new Uint32Array(n);
+  for (let e = 0; e < table.count; e++) {
+    degree[table.ends[2 * e]]++;
+    degree[table.ends[2 * e + 1]]++;
+    if (table.faces[2 * e + 1] >= 0 && table.opposite[2 * e] === table.opposite[2 * e + 1]) {
+      fail(source, `face ${Math.max(table.faces[2 * e], table.faces[2 * e + 1]) + 1} repeats face ${Math.min(table.faces[2 * e], table.faces[2 * e + 1]) + 1} (the same three vertices)`);
+    }
+  }
+  for (let i = 0; i < n; i++) {
+    if (degree[i] > MAX_VERTEX_EDGES) fail(source, `vertex ${i + 1} joins ${degree[i]} edges, more than the ${MAX_VERTEX_EDGES} the parallel solve allows; remesh or triangulate that fan more evenly`);
+  }
+
+  // orient each piece like its first triangle: two agreeing triangles run their shared edge in opposite directions
+  const flip = new Int8Array(m).fill(-1); // -1 not reached yet, 0 kept, 1 flipped
+  const forward = (t: number, e: number) => tri[3 * t + e] < tri[3 * t + (e + 1) % 3]; // corner e → e+1 runs a → b
+  const edgeOf = (t: number, id: number) => (table.triangleEdges[3 * t] === id ? 0 : table.triangleEdges[3 * t + 1] === id ? 1 : 2);
+  const queue = new Int32Array(m);
+  for (let first = 0; first < m; first++) {
+    if (flip[first] !== -1) continue;
+    flip[first] = 0;
+    let head = 0, tail = 0;
+    queue[tail++] = first;
+    while (head < tail) {
+      const t = queue[head++];
+      for (let e = 0; e < 3; e++) {
+        const id = table.triangleEdges[3 * t + e];
+        const u = table.faces[2 * id] === t ? table.faces[2 * id + 1] : table.faces[2 * id];
+        if (u < 0) continue;
+        // as stored after flipping, t runs the edge a → b iff forward xor flipped; u must run it the other way
+        const tRuns = forward(t, e) !== (flip[t] === 1);
+        const uForward = forward(u, edgeOf(u, id));
+        const uFlip = uForward === tRuns ? 1 : 0;
+        if (flip[u] === -1) {
+          flip[u] = uFlip;
+          queue[tail++] = u;
+        } else if (flip[u] !== uFlip) {
+          fail(source, `face ${u + 1} cannot be oriented like its neighbours: the surface is one-sided (a Möbius strip)`);
+        }
+      }
+    }
+  }
+  for (let t = 0; t < m; t++) {
+    if (flip[t] === 1) { const b = tri[3 * t + 1]; tri[3 * t + 1] = tri[3 * t + 2]; tri[3 * t + 2] = b; }
+  }
+  return { positions, triangles: tri, uvs };
+}
