@@ -59,6 +59,13 @@ describe('a garment from a mesh file drops onto the sphere', () => {
     expectDraped(reports[label], label);
   });
 
+  it('with the mass-spring solver', () => {
+    const { scene, meshes } = loadSceneFile(SCENE);
+    const sim = new Simulation({ ...scene, solver: { ...scene.solver, type: 'mass-spring' } }, { meshes });
+    expect(sim.advance(FRAMES)).toBe(true);
+    expectDraped(sim.report(), 'mass-spring');
+  });
+
   it('the kernels agree: threads bit for bit, wasm (f32) and TypeScript within a millimetre', () => {
     const [ts, one, two] = ['TypeScript', 'wasm, 1 thread', 'wasm, 2 threads'].map((k) => reports[k]);
     expect(two.centroid).toEqual(one.centroid);
