@@ -36,40 +36,51 @@ export function edgeTable(triangles: Uint32Array, n: number): EdgeTable {
     const t = k - (k % 3), e = k % 3;
     half[fill[Math.min(triangles[k], triangles[t + (e + 1) % 3])]++] = k;
   }
-  const other = (k: number) => triangles[k - (k % 3) + ((k % 3) + 1) % 3];
-  const high = (k: number) => Math.max(triangles[k], other(k));
-  const ends: number[] = [];
-  const faces: number[] = [];
-  const opposite: number[] = [];
+  // the higher vertex of each half-edge
+  const high = new Uint32Array(triangles.length);
+  for (let k = 0; k < triangles.length; k++) {
+    const t = k - (k % 3);
+    high[k] = Math.max(triangles[k], triangles[t + ((k % 3) + 1) % 3]);
+  }
+  // at most one edge per half-edge: sized for the worst case, trimmed at the end
+  const ends = new Uint32Array(2 * triangles.length);
+  const faces = new Int32Array(2 * triangles.length);
+  const opposite = new Int32Array(2 * triangles.length);
   const triangleEdges = new Uint32Array(3 * m);
-  let overShared = -1;
+  let overShared = -1, count = 0;
   for (let a = 0; a < n; a++) {
     const s = start[a], e = start[a + 1];
-    // within the bucket, by the higher vertex: buckets are small (the vertex's edge count)
-    const bucket = Array.from(half.subarray(s, e)).sort((x, y) => high(x) - high(y) || x - y);
-    for (let i = 0; i < bucket.length;) {
-      const b = high(bucket[i]);
-      const id = ends.length / 2;
-      ends.push(a, b);
+    // insertion sort of the bucket by the higher vertex (then half-edge): buckets hold a vertex's few edges
+    for (let i = s + 1; i < e; i++) {
+      const k = half[i], hk = high[k];
+      let j = i - 1;
+      while (j >= s && (high[half[j]] > hk || (high[half[j]] === hk && half[j] > k))) { half[j + 1] = half[j]; j--; }
+      half[j + 1] = k;
+    }
+    for (let i = s; i < e;) {
+      const b = high[half[i]];
+      const id = count++;
+      ends[2 * id] = a;
+      ends[2 * id + 1] = b;
       let j = i;
-      for (; j < bucket.length && high(bucket[j]) === b; j++) {
-        const k = bucket[j], t = (k - (k % 3)) / 3;
+      for (; j < e && high[half[j]] === b; j++) {
+        const k = half[j], t = (k - (k % 3)) / 3;
         triangleEdges[k] = id;
         if (j - i < 2) {
-          faces.push(t);
-          opposite.push(triangles[3 * t + ((k % 3) + 2) % 3]);
+          faces[2 * id + j - i] = t;
+          opposite[2 * id + j - i] = triangles[3 * t + ((k % 3) + 2) % 3];
         }
       }
-      if (j - i === 1) { faces.push(-1); opposite.push(-1); }
+      if (j - i === 1) { faces[2 * id + 1] = -1; opposite[2 * id + 1] = -1; }
       if (j - i > 2 && overShared < 0) overShared = id;
       i = j;
     }
   }
   return {
-    count: ends.length / 2,
-    ends: Uint32Array.from(ends),
-    faces: Int32Array.from(faces),
-    opposite: Int32Array.from(opposite),
+    count,
+    ends: ends.slice(0, 2 * count),
+    faces: faces.slice(0, 2 * count),
+    opposite: opposite.slice(0, 2 * count),
     overShared,
     triangleEdges,
   };
