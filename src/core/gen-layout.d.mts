@@ -6,3 +6,8 @@ export declare const CONTROL: readonly (readonly [name: string, type: 'i32' | 'i
 export declare function layoutControl(): { offsets: Record<string, number>; bytes: number };
 export declare function generateLayoutModules(): { ts: string; as: string };
 export declare function layoutFilesCurrent(): boolean;
+export declare const PHASES: readonly (readonly [
+  name: string, scope: 'frame-start' | 'substep' | 'frame-end', solvers: readonly string[], when: 'always' | 'wind' | 'grab',
+  repeat: readonly string[], doc: string,
+])[];
+export declare const DESC: readonly (readonly [field: string, shift: number, bits: number, doc: string])[];

@@ -1,7 +1,8 @@
 #!/usr/bin/env node
 // The one table of what the languages of Drape share — TypeScript (core, the GPU driver), AssemblyScript (the
 // WebAssembly kernel) and WGSL (through src/gpu/layout.ts, which reads the TypeScript module): type ids, flags,
-// limits, and the WebAssembly kernel's control block, whose byte offsets are laid out here and nowhere else.
+// limits, the phase schedule every backend follows, and the WebAssembly kernel's control block and substep
+// descriptor, whose layouts are made here and nowhere else.
 // It writes two modules that say the same thing in two languages:
 //   src/core/layout.generated.ts        (TypeScript)
 //   src/core/wasm/layout.generated.as.ts (AssemblyScript, imported by xpbd.as.ts)
@@ -25,11 +26,50 @@ export const CONSTANTS = [
   ['COLLIDER_RECORD_FLOATS', 6, 'f64 per collider record in the kernel: type id, then up to five shape numbers'],
   ['KERNEL_MAX_THREADS', 16, 'most threads one kernel runs (one run counter each in the control block)'],
   ['KERNEL_FLAG_FORCES', 1, 'kernel substep flag: external forces (wind) to integrate'],
-  ['KERNEL_FLAG_CONTACT', 2, 'kernel substep flag: particle contact runs in the kernel'],
-  ['KERNEL_FLAG_ACCUMULATE', 4, 'kernel substep flag: λ accumulates across iterations'],
-  ['KERNEL_FLAG_STORE_LAMBDA', 8, 'kernel substep flag: λ is written back'],
+  ['KERNEL_FLAG_ACCUMULATE', 2, 'kernel substep flag: λ accumulates across iterations'],
+  ['KERNEL_FLAG_STORE_LAMBDA', 4, 'kernel substep flag: λ is written back'],
+  ['KERNEL_FLAG_TRACE', 8, 'kernel substep flag: thread 0 lists the phases it runs in TRACE (tests)'],
 ];
 const C = Object.fromEntries(CONSTANTS.map(([name, value]) => [name, value]));
+
+const BOTH = ['xpbd', 'mass-spring'];
+/**
+ * The phase schedule of one frame, in order: [name, scope, solvers, when, repeat, what it does]. A phase's id is its
+ * row (0, 1, …), so ascending ids are the order and a set of phases is a bit mask. `scope`: 'frame-start' (once,
+ * before the substeps), 'substep' (every substep), 'frame-end' (once, after them). `solvers`: the solver types whose
+ * frame has it. `when`: 'always', 'wind' (the wind blows) or 'grab' (a particle is grabbed). `repeat`: the solvers
+ * for which it runs solver.iterations passes per substep (else one). Every backend walks this list (core/frame.ts
+ * runFrame); docs/architecture.md says where a new phase goes in each.
+ */
+export const PHASES = [
+  ['begin', 'frame-start', BOTH, 'always', [], 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v'],
+  ['wind', 'substep', BOTH, 'wind', [], 'wind force per triangle on the air velocity relative to it, into the force accumulator'],
+  ['springForces', 'substep', ['mass-spring'], 'always', [], 'Hooke spring forces with damping along each spring'],
+  ['integrate', 'substep', BOTH, 'always', [], 'position Verlet (Taylor start) with gravity and any accumulated forces'],
+  ['grab', 'substep', BOTH, 'grab', [], 'the grabbed particle carried part of the way to its target'],
+  ['distance', 'substep', ['xpbd'], 'always', ['xpbd'], 'XPBD distance constraints, colour batch by colour batch'],
+  ['tethers', 'substep', BOTH, 'always', [], 'long-range attachments to the nearest pin'],
+  ['stretchLimit', 'substep', BOTH, 'always', ['mass-spring'], 'stretch limiting of structural and shear springs'],
+  ['contact', 'substep', BOTH, 'always', [], 'collider contact with friction: per collider, its particles, then its triangles where needed'],
+  ['velocities', 'frame-end', BOTH, 'always', [], 'v = (x − x_prev)/h of the last substep'],
+];
+
+/**
+ * The word describing one kernel substep (the DESC control field, xpbd.as.ts describe()): [field, first bit, bits,
+ * what it is]. Helpers read it in one atomic load.
+ */
+export const DESC = [
+  ['SEQ', 0, 32, 'sequence number of the substep\'s first phase'],
+  ['ITERATIONS', 32, 8, 'distance constraint passes'],
+  ['THREADS', 40, 8, 'T, the threads of the substep'],
+  ['PHASES', 48, 16, 'the phases it runs, a bit per phase id'],
+];
+if (PHASES.length > DESC.find(([name]) => name === 'PHASES')[2]) throw new Error('gen-layout: more phases than the descriptor has bits');
+const descBits = (field) => DESC.find(([name]) => name === field)[2];
+if (C.KERNEL_MAX_THREADS >= 2 ** descBits('THREADS')) throw new Error('gen-layout: KERNEL_MAX_THREADS does not fit the descriptor');
+
+/** PHASE_WIND for 'wind', PHASE_STRETCH_LIMIT for 'stretchLimit': the AssemblyScript constant of a phase. */
+const phaseConstant = (name) => `PHASE_${name.replace(/[A-Z]/g, (c) => `_${c}`).toUpperCase()}`;
 
 /**
  * The WebAssembly kernel's control block, in order: [name, type, count, what it is, line?]. Types: i32, i64, f64.
@@ -42,11 +82,14 @@ export const CONTROL = [
   ['COMMAND', 'i32', 1, '1 substep, 2 exit'],
   ['GRABBED', 'i32', 1, 'grabbed particle or -1'],
   ['FLAGS', 'i32', 1, 'KERNEL_FLAG_* of this substep'],
-  ['ITERATIONS', 'i32', 1, 'constraint passes per substep (8 bits in the phase list)'],
+  ['ITERATIONS', 'i32', 1, 'distance constraint passes per substep (at most KERNEL_MAX_ITERATIONS: the DESC field)'],
+  ['SUBSTEP_PHASES', 'i32', 1, 'the phases the next substep() runs, a bit per phase id (consecutive in the schedule)'],
   ['COLLIDERS', 'i32', 1, 'collider records in use'],
   ['READY', 'i32', 1, 'helpers that entered helperLoop'],
   ['SPIN_LIMIT', 'i32', 1, 'polls of a word before a waiting thread sleeps'],
-  ['DESC', 'i64', 1, 'the dispatched substep\'s phase list (xpbd.as.ts describe())'],
+  ['DESC', 'i64', 1, 'the dispatched substep, described by the DESC_* fields (xpbd.as.ts describe())'],
+  ['TRACE_COUNT', 'i32', 1, 'phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE'],
+  ['TRACE', 'i32', PHASES.length, 'the ids of those phases, in the order thread 0 ran them'],
   ['H', 'f64', 1, 'substep length [s]'],
   ['TAYLOR', 'f64', 1, '½ on the very first substep (Taylor start), else 1'],
   ['GRAVITY', 'f64', 3, 'gravitational acceleration [m/s²]'],
@@ -81,6 +124,9 @@ export function layoutControl() {
   return { offsets, bytes: Math.ceil(at / 64) * 64 };
 }
 
+/** A number, string or list of strings as TypeScript source. */
+const tsValue = (v) => Array.isArray(v) ? `[${v.map(tsValue).join(', ')}]` : typeof v === 'string' ? `'${v.replace(/'/g, "\\'")}'` : String(v);
+
 const HEADER = 'Generated by src/core/gen-layout.mjs from its tables: do not edit; run `npm run gen`.';
 
 /** The two modules' text: { ts, as }. */
@@ -92,6 +138,30 @@ export function generateLayoutModules() {
     ts.push(`/** ${doc} */`, `export const ${name} = ${value};`);
     as.push(`/** ${doc} */`, `export const ${name}: i32 = ${value};`);
   }
+
+  ts.push('', '/** Phase ids, in schedule order (PHASES in gen-layout.mjs): a set of phases is a mask of `1 << id`. */', 'export const PHASE = {');
+  as.push('', '// Phase ids, in schedule order (PHASES in gen-layout.mjs): a set of phases is a mask of 1 << id.');
+  PHASES.forEach(([name, scope, , , , doc], id) => {
+    ts.push(`  /** ${scope}: ${doc} */`, `  ${name}: ${id},`);
+    as.push(`/** ${scope}: ${doc} */`, `export const ${phaseConstant(name)}: i32 = ${id};`);
+  });
+  ts.push('} as const;', '/** Phases in the schedule. */', `export const PHASE_COUNT = ${PHASES.length};`);
+  as.push('/** Phases in the schedule. */', `export const PHASE_COUNT: i32 = ${PHASES.length};`);
+  ts.push('/** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */', 'export const SCHEDULE = [');
+  PHASES.forEach(([name, scope, solvers, when, repeat, doc], id) => {
+    const row = { id, name, scope, solvers, when, repeat, doc };
+    ts.push(`  { ${Object.entries(row).map(([k, v]) => `${k}: ${tsValue(v)}`).join(', ')} },`);
+  });
+  ts.push('] as const;');
+  const iterationBits = DESC.find(([name]) => name === 'ITERATIONS')[2];
+  ts.push(`/** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */`,
+    `export const KERNEL_MAX_ITERATIONS = ${2 ** iterationBits - 1};`);
+  as.push('', '// The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.');
+  for (const [name, shift, bits, doc] of DESC) {
+    as.push(`/** ${doc}: first bit */`, `export const DESC_${name}_SHIFT: i64 = ${shift};`);
+    as.push(`/** ${doc}: mask after the shift (${bits} bits) */`, `export const DESC_${name}_MASK: i64 = ${2 ** bits - 1};`);
+  }
+
   ts.push('', '/** Byte offsets of the WebAssembly kernel\'s control block (see CONTROL in gen-layout.mjs). */', 'export const CTRL = {');
   as.push('', '// Byte offsets of the control block (from CTRL = 0).');
   for (const [name, type, count, doc] of CONTROL) {

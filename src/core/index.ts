@@ -12,6 +12,8 @@ export { plainText, safeJson } from './text.js';
 export { windVelocity } from './wind.js';
 export { mulberry32 } from './random.js';
 export { SOLVERS, step, type StepFn } from './solvers/index.js';
+export { PHASE, PHASES, PhaseLog, type Phase, type PhaseName, type BackendPhases } from './schedule.js';
+export { runFrame, type PhaseBackend, type FrameVars } from './frame.js';
 export * from './colliders/index.js';
 export { Simulation, needsRebuild, AUTO_THREADS_MIN_PARTICLES, type Report, type CpuKernel, type SimulationOptions } from './simulation.js';
 export { createWasmState, wasmKernelAvailable, XpbdKernel, type HelperSpawner, type KernelHelperInit } from './wasm/xpbd-wasm.js';

@@ -18,12 +18,53 @@ export const COLLIDER_RECORD_FLOATS = 6;
 export const KERNEL_MAX_THREADS = 16;
 /** kernel substep flag: external forces (wind) to integrate */
 export const KERNEL_FLAG_FORCES = 1;
-/** kernel substep flag: particle contact runs in the kernel */
-export const KERNEL_FLAG_CONTACT = 2;
 /** kernel substep flag: λ accumulates across iterations */
-export const KERNEL_FLAG_ACCUMULATE = 4;
+export const KERNEL_FLAG_ACCUMULATE = 2;
 /** kernel substep flag: λ is written back */
-export const KERNEL_FLAG_STORE_LAMBDA = 8;
+export const KERNEL_FLAG_STORE_LAMBDA = 4;
+/** kernel substep flag: thread 0 lists the phases it runs in TRACE (tests) */
+export const KERNEL_FLAG_TRACE = 8;
+
+/** Phase ids, in schedule order (PHASES in gen-layout.mjs): a set of phases is a mask of `1 << id`. */
+export const PHASE = {
+  /** frame-start: effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v */
+  begin: 0,
+  /** substep: wind force per triangle on the air velocity relative to it, into the force accumulator */
+  wind: 1,
+  /** substep: Hooke spring forces with damping along each spring */
+  springForces: 2,
+  /** substep: position Verlet (Taylor start) with gravity and any accumulated forces */
+  integrate: 3,
+  /** substep: the grabbed particle carried part of the way to its target */
+  grab: 4,
+  /** substep: XPBD distance constraints, colour batch by colour batch */
+  distance: 5,
+  /** substep: long-range attachments to the nearest pin */
+  tethers: 6,
+  /** substep: stretch limiting of structural and shear springs */
+  stretchLimit: 7,
+  /** substep: collider contact with friction: per collider, its particles, then its triangles where needed */
+  contact: 8,
+  /** frame-end: v = (x − x_prev)/h of the last substep */
+  velocities: 9,
+} as const;
+/** Phases in the schedule. */
+export const PHASE_COUNT = 10;
+/** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */
+export const SCHEDULE = [
+  { id: 0, name: 'begin', scope: 'frame-start', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v' },
+  { id: 1, name: 'wind', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'wind', repeat: [], doc: 'wind force per triangle on the air velocity relative to it, into the force accumulator' },
+  { id: 2, name: 'springForces', scope: 'substep', solvers: ['mass-spring'], when: 'always', repeat: [], doc: 'Hooke spring forces with damping along each spring' },
+  { id: 3, name: 'integrate', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'position Verlet (Taylor start) with gravity and any accumulated forces' },
+  { id: 4, name: 'grab', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'grab', repeat: [], doc: 'the grabbed particle carried part of the way to its target' },
+  { id: 5, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'always', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
+  { id: 6, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'long-range attachments to the nearest pin' },
+  { id: 7, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
+  { id: 8, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'collider contact with friction: per collider, its particles, then its triangles where needed' },
+  { id: 9, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
+] as const;
+/** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */
+export const KERNEL_MAX_ITERATIONS = 255;
 
 /** Byte offsets of the WebAssembly kernel's control block (see CONTROL in gen-layout.mjs). */
 export const CTRL = {
@@ -39,49 +80,55 @@ export const CTRL = {
   GRABBED: 16,
   /** i32: KERNEL_FLAG_* of this substep */
   FLAGS: 20,
-  /** i32: constraint passes per substep (8 bits in the phase list) */
+  /** i32: distance constraint passes per substep (at most KERNEL_MAX_ITERATIONS: the DESC field) */
   ITERATIONS: 24,
+  /** i32: the phases the next substep() runs, a bit per phase id (consecutive in the schedule) */
+  SUBSTEP_PHASES: 28,
   /** i32: collider records in use */
-  COLLIDERS: 28,
+  COLLIDERS: 32,
   /** i32: helpers that entered helperLoop */
-  READY: 32,
+  READY: 36,
   /** i32: polls of a word before a waiting thread sleeps */
-  SPIN_LIMIT: 36,
-  /** i64: the dispatched substep's phase list (xpbd.as.ts describe()) */
-  DESC: 40,
+  SPIN_LIMIT: 40,
+  /** i64: the dispatched substep, described by the DESC_* fields (xpbd.as.ts describe()) */
+  DESC: 48,
+  /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
+  TRACE_COUNT: 56,
+  /** i32 × 10: the ids of those phases, in the order thread 0 ran them */
+  TRACE: 60,
   /** f64: substep length [s] */
-  H: 48,
+  H: 104,
   /** f64: ½ on the very first substep (Taylor start), else 1 */
-  TAYLOR: 56,
+  TAYLOR: 112,
   /** f64 × 3: gravitational acceleration [m/s²] */
-  GRAVITY: 64,
+  GRAVITY: 120,
   /** f64 × 3: where the grabbed particle is this substep [m] */
-  GRAB_AT: 88,
+  GRAB_AT: 144,
   /** f64: stretchFactor [-] */
-  STRETCH: 112,
+  STRETCH: 168,
   /** f64: damping β [N·s/m] */
-  DAMPING: 120,
+  DAMPING: 176,
   /** f64: contact thickness [m] */
-  THICKNESS: 128,
+  THICKNESS: 184,
   /** f64: kinetic friction coefficient [-] */
-  FRICTION: 136,
+  FRICTION: 192,
   /** f64: static friction coefficient [-] */
-  STATIC_FRICTION: 144,
+  STATIC_FRICTION: 200,
   /** f64: depenetrationSpeed [m/s] */
-  DEPENETRATION: 152,
+  DEPENETRATION: 208,
   /** f64 × 384: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS: type id, then cx, cy, cz, r (sphere) or height (floor) */
-  COLLIDER_RECORDS: 160,
+  COLLIDER_RECORDS: 216,
   /** i32: sequence number of the open phase (grows by one per phase, wraps) */
-  PHASE: 3264,
+  PHASE: 3328,
   /** i32: chunks of the open phase completed and reported */
-  DONE: 3328,
+  DONE: 3392,
   /** i32: threads asleep waiting for a phase */
-  PHASE_SLEEPERS: 3392,
+  PHASE_SLEEPERS: 3456,
   /** i64 × 16: per thread, on its own line: (phase << 32) | next chunk of its run (stride RUN_STRIDE) */
-  RUNS: 3456,
+  RUNS: 3520,
 } as const;
 
 /** Bytes of the control block; the kernel's arrays follow it. */
-export const CTRL_BYTES = 4480;
+export const CTRL_BYTES = 4544;
 /** Bytes between the threads' run counters. */
 export const RUN_STRIDE = 64;

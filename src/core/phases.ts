@@ -1,7 +1,7 @@
 /**
- * Solver phases shared by every CPU solver, one phase per function: start of step (inverse masses, tethers),
- * external forces (wind), integration, the grab, contact, velocity update; and `runFrame`, the frame loop that
- * strings them together with a solver's own force and constraint phases. None of them allocates.
+ * The phases every solver shares, one function each: start of step (inverse masses, tethers), external forces
+ * (wind), integration, the grab, stretch limiting, contact, velocity update. reference.ts maps the schedule's phases
+ * (schedule.ts) onto them and the solvers' own. None of them allocates.
  */
 import type { ColliderShape } from './colliders/shape.js';
 import { BEND, type ClothModel } from './model.js';
@@ -255,39 +255,4 @@ export function limitStretch(model: ClothModel, state: ClothState, params: SimPa
       x[b] += wb * scale * dx; x[b + 1] += wb * scale * dy; x[b + 2] += wb * scale * dz;
     }
   }
-}
-
-/** What a solver adds to the shared frame loop (module-level functions: nothing is allocated per step). */
-export interface SolverPhases {
-  /** internal forces [N] added to state.forces before integration (explicit solvers only) */
-  forces?: (model: ClothModel, state: ClothState, params: SimParams, h: number) => void;
-  /** the solver's constraint phases of one substep, after integration and the grab, before contact */
-  constrain: (model: ClothModel, state: ClothState, params: SimParams, h: number) => void;
-}
-
-/**
- * One frame of dt [s] in params.substeps substeps, the loop every CPU solver shares: per substep wind, the solver's
- * forces, integration, the grab, the solver's constraints, contact; velocities once at the end.
- */
-export function runFrame(model: ClothModel, state: ClothState, params: SimParams, dt: number, phases: SolverPhases): void {
-  const n = params.substeps;
-  const h = dt / n;
-  beginStep(model, state, params, h);
-  const g = state.grabbed, x = state.positions;
-  const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
-  for (let sub = 0; sub < n; sub++) {
-    let forced = accumulateWind(model, state, params, state.time, h);
-    if (phases.forces) {
-      if (!forced) state.forces.fill(0);
-      phases.forces(model, state, params, h);
-      forced = true;
-    }
-    integrate(state, params, h, forced);
-    moveGrabbed(state, gx, gy, gz, (sub + 1) / n);
-    phases.constrain(model, state, params, h);
-    collide(model, state, params, h);
-    state.time += h;
-    state.substeps++;
-  }
-  updateVelocities(state, h);
 }

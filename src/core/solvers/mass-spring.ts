@@ -2,14 +2,14 @@
  * The seed's solver: a mass-spring cloth integrated with position Verlet, Hooke springs with damping along each
  * spring, then position-based stretch limiting (Provot 1995, "Deformation constraints in a mass-spring model to
  * describe rigid cloth behavior"): a structural or shear spring longer than stretchFactor × rest is projected back,
- * the correction split by inverse mass; before that, free particles are pulled back by their tethers to the
- * nearest pin (tethers.ts). Explicit, so stiffness is clamped to what the substep can carry (params.ts reports it).
+ * the correction split by inverse mass, solver.iterations passes; before that, free particles are pulled back by
+ * their tethers to the nearest pin (tethers.ts). Explicit, so stiffness is clamped to what the substep can carry
+ * (params.ts reports it). Its own phase is the spring forces; the schedule (schedule.ts) strings it together with
+ * the shared ones.
  */
-import { BEND, type ClothModel } from '../model.js';
+import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
-import { limitStretch, runFrame, type SolverPhases } from '../phases.js';
 import type { ClothState } from '../state.js';
-import { solveTethers } from '../tethers.js';
 
 /**
  * Spring forces [N] added to state.forces: F_a = −(k·(|d| − L) + c·(v_a − v_b)·d̂)·d̂, F_b = −F_a with d = x_a − x_b,
@@ -33,18 +33,4 @@ export function accumulateSpringForces(model: ClothModel, state: ClothState, par
     f[a] += fx; f[a + 1] += fy; f[a + 2] += fz;
     f[b] -= fx; f[b + 1] -= fy; f[b + 2] -= fz;
   }
-}
-
-
-const phases: SolverPhases = {
-  forces: accumulateSpringForces,
-  constrain(model, state, params) {
-    solveTethers(state, params);
-    for (let it = 0; it < params.iterations; it++) limitStretch(model, state, params);
-  },
-};
-
-/** Advances the cloth by dt [s] (one frame) in params.substeps substeps. */
-export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
-  runFrame(model, state, params, dt, phases);
 }

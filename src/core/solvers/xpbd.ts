@@ -12,12 +12,11 @@
  * as in Provot 1995); then free particles are pulled back by their tethers to the nearest pin (tethers.ts) and one
  * stretch-limiting pass catches what later batches stretched again. One Gauss–Seidel pass per substep propagates
  * an impact only a few springs; these keep a fine cloth from overstretching meanwhile (docs/physics.md).
+ * Its own phase is the distance constraints; the schedule (schedule.ts) strings it together with the shared ones.
  */
 import { BEND, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
-import { limitStretch, runFrame, type SolverPhases } from '../phases.js';
 import type { ClothState } from '../state.js';
-import { solveTethers } from '../tethers.js';
 
 /**
  * One Gauss–Seidel pass over every distance constraint, batch by batch (colour order: springs of a batch share no
@@ -70,23 +69,4 @@ export function solveDistanceConstraints(
       x[b] -= sb * nx; x[b + 1] -= sb * ny; x[b + 2] -= sb * nz;
     }
   }
-}
-
-const phases: SolverPhases = {
-  constrain(model, state, params, h) {
-    const accumulate = params.iterations > 1;
-    if (accumulate) state.lambdas.fill(0);
-    for (let it = 0; it < params.iterations; it++) solveDistanceConstraints(model, state, params, h, accumulate);
-    solveTethers(state, params);
-    limitStretch(model, state, params);
-  },
-};
-
-/**
- * Advances the cloth by dt [s] (one frame) in params.substeps substeps: in the WebAssembly kernel when the state
- * lives in one (createWasmState), else in TypeScript.
- */
-export function step(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
-  if (state.kernel) state.kernel.frame(model, state, params, dt);
-  else runFrame(model, state, params, dt, phases);
 }

@@ -18,12 +18,54 @@ export const COLLIDER_RECORD_FLOATS: i32 = 6;
 export const KERNEL_MAX_THREADS: i32 = 16;
 /** kernel substep flag: external forces (wind) to integrate */
 export const KERNEL_FLAG_FORCES: i32 = 1;
-/** kernel substep flag: particle contact runs in the kernel */
-export const KERNEL_FLAG_CONTACT: i32 = 2;
 /** kernel substep flag: λ accumulates across iterations */
-export const KERNEL_FLAG_ACCUMULATE: i32 = 4;
+export const KERNEL_FLAG_ACCUMULATE: i32 = 2;
 /** kernel substep flag: λ is written back */
-export const KERNEL_FLAG_STORE_LAMBDA: i32 = 8;
+export const KERNEL_FLAG_STORE_LAMBDA: i32 = 4;
+/** kernel substep flag: thread 0 lists the phases it runs in TRACE (tests) */
+export const KERNEL_FLAG_TRACE: i32 = 8;
+
+// Phase ids, in schedule order (PHASES in gen-layout.mjs): a set of phases is a mask of 1 << id.
+/** frame-start: effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v */
+export const PHASE_BEGIN: i32 = 0;
+/** substep: wind force per triangle on the air velocity relative to it, into the force accumulator */
+export const PHASE_WIND: i32 = 1;
+/** substep: Hooke spring forces with damping along each spring */
+export const PHASE_SPRING_FORCES: i32 = 2;
+/** substep: position Verlet (Taylor start) with gravity and any accumulated forces */
+export const PHASE_INTEGRATE: i32 = 3;
+/** substep: the grabbed particle carried part of the way to its target */
+export const PHASE_GRAB: i32 = 4;
+/** substep: XPBD distance constraints, colour batch by colour batch */
+export const PHASE_DISTANCE: i32 = 5;
+/** substep: long-range attachments to the nearest pin */
+export const PHASE_TETHERS: i32 = 6;
+/** substep: stretch limiting of structural and shear springs */
+export const PHASE_STRETCH_LIMIT: i32 = 7;
+/** substep: collider contact with friction: per collider, its particles, then its triangles where needed */
+export const PHASE_CONTACT: i32 = 8;
+/** frame-end: v = (x − x_prev)/h of the last substep */
+export const PHASE_VELOCITIES: i32 = 9;
+/** Phases in the schedule. */
+export const PHASE_COUNT: i32 = 10;
+
+// The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.
+/** sequence number of the substep's first phase: first bit */
+export const DESC_SEQ_SHIFT: i64 = 0;
+/** sequence number of the substep's first phase: mask after the shift (32 bits) */
+export const DESC_SEQ_MASK: i64 = 4294967295;
+/** distance constraint passes: first bit */
+export const DESC_ITERATIONS_SHIFT: i64 = 32;
+/** distance constraint passes: mask after the shift (8 bits) */
+export const DESC_ITERATIONS_MASK: i64 = 255;
+/** T, the threads of the substep: first bit */
+export const DESC_THREADS_SHIFT: i64 = 40;
+/** T, the threads of the substep: mask after the shift (8 bits) */
+export const DESC_THREADS_MASK: i64 = 255;
+/** the phases it runs, a bit per phase id: first bit */
+export const DESC_PHASES_SHIFT: i64 = 48;
+/** the phases it runs, a bit per phase id: mask after the shift (16 bits) */
+export const DESC_PHASES_MASK: i64 = 65535;
 
 // Byte offsets of the control block (from CTRL = 0).
 /** i32: bumped by thread 0 to start a substep on the helpers (they sleep on it) */
@@ -38,45 +80,51 @@ export const COMMAND: usize = 12;
 export const GRABBED: usize = 16;
 /** i32: KERNEL_FLAG_* of this substep */
 export const FLAGS: usize = 20;
-/** i32: constraint passes per substep (8 bits in the phase list) */
+/** i32: distance constraint passes per substep (at most KERNEL_MAX_ITERATIONS: the DESC field) */
 export const ITERATIONS: usize = 24;
+/** i32: the phases the next substep() runs, a bit per phase id (consecutive in the schedule) */
+export const SUBSTEP_PHASES: usize = 28;
 /** i32: collider records in use */
-export const COLLIDERS: usize = 28;
+export const COLLIDERS: usize = 32;
 /** i32: helpers that entered helperLoop */
-export const READY: usize = 32;
+export const READY: usize = 36;
 /** i32: polls of a word before a waiting thread sleeps */
-export const SPIN_LIMIT: usize = 36;
-/** i64: the dispatched substep's phase list (xpbd.as.ts describe()) */
-export const DESC: usize = 40;
+export const SPIN_LIMIT: usize = 40;
+/** i64: the dispatched substep, described by the DESC_* fields (xpbd.as.ts describe()) */
+export const DESC: usize = 48;
+/** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
+export const TRACE_COUNT: usize = 56;
+/** i32 × 10: the ids of those phases, in the order thread 0 ran them */
+export const TRACE: usize = 60;
 /** f64: substep length [s] */
-export const H: usize = 48;
+export const H: usize = 104;
 /** f64: ½ on the very first substep (Taylor start), else 1 */
-export const TAYLOR: usize = 56;
+export const TAYLOR: usize = 112;
 /** f64 × 3: gravitational acceleration [m/s²] */
-export const GRAVITY: usize = 64;
+export const GRAVITY: usize = 120;
 /** f64 × 3: where the grabbed particle is this substep [m] */
-export const GRAB_AT: usize = 88;
+export const GRAB_AT: usize = 144;
 /** f64: stretchFactor [-] */
-export const STRETCH: usize = 112;
+export const STRETCH: usize = 168;
 /** f64: damping β [N·s/m] */
-export const DAMPING: usize = 120;
+export const DAMPING: usize = 176;
 /** f64: contact thickness [m] */
-export const THICKNESS: usize = 128;
+export const THICKNESS: usize = 184;
 /** f64: kinetic friction coefficient [-] */
-export const FRICTION: usize = 136;
+export const FRICTION: usize = 192;
 /** f64: static friction coefficient [-] */
-export const STATIC_FRICTION: usize = 144;
+export const STATIC_FRICTION: usize = 200;
 /** f64: depenetrationSpeed [m/s] */
-export const DEPENETRATION: usize = 152;
+export const DEPENETRATION: usize = 208;
 /** f64 × 384: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS: type id, then cx, cy, cz, r (sphere) or height (floor) */
-export const COLLIDER_RECORDS: usize = 160;
+export const COLLIDER_RECORDS: usize = 216;
 /** i32: sequence number of the open phase (grows by one per phase, wraps) */
-export const PHASE: usize = 3264;
+export const PHASE: usize = 3328;
 /** i32: chunks of the open phase completed and reported */
-export const DONE: usize = 3328;
+export const DONE: usize = 3392;
 /** i32: threads asleep waiting for a phase */
-export const PHASE_SLEEPERS: usize = 3392;
+export const PHASE_SLEEPERS: usize = 3456;
 /** i64 × 16: per thread, on its own line: (phase << 32) | next chunk of its run (stride RUN_STRIDE) */
-export const RUNS: usize = 3456;
+export const RUNS: usize = 3520;
 /** Bytes between the threads' run counters. */
 export const RUN_STRIDE: usize = 64;

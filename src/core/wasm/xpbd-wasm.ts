@@ -1,9 +1,10 @@
 /**
  * The XPBD solver's substep in WebAssembly (SIMD, optionally threads): a ClothState whose arrays live in the
- * kernel's memory, so the TypeScript phases (wind, triangle contact, start and end of a step) and the kernel work
- * on the same arrays with no copy. The kernel (xpbd.as.ts) runs integration + grab, the distance constraints,
- * tethers, stretch limiting and particle contact against the colliders that have a kernel record; the frame loop,
- * wind and whatever contact the kernel cannot do stay in TypeScript (phases.ts), in the same order as runFrame.
+ * kernel's memory, so the TypeScript reference (reference.ts) and the kernel work on the same arrays with no copy.
+ * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
+ * (KERNEL_PHASES: integration, the grab, the distance constraints, tethers, stretch limiting, and particle contact
+ * against colliders that have a kernel record) and runs each substep's run of them in one call; the phases it lacks
+ * (the start and end of a frame, wind, triangle contact) run in TypeScript in their place in the schedule.
  *
  * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
  * (a Web Worker or a Node worker thread each) with helperInit(); until every helper has checked in, substeps run
@@ -11,16 +12,42 @@
  * whichever its measured frame times say is faster (thread-mode.ts: on a busy machine, alone can be). The cloth is
  * the same bit for bit either way.
  */
-import { needsTriangleContact, accumulateWind, beginStep, collide, updateVelocities } from '../phases.js';
+import { runFrame, type FrameVars, type PhaseBackend } from '../frame.js';
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
+import { needsTriangleContact } from '../phases.js';
+import { PHASE, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../schedule.js';
 import { createState, type ClothState } from '../state.js';
 import {
-  CTRL, CTRL_BYTES, KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_CONTACT, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_MAX_THREADS,
-  MAX_COLLIDERS, COLLIDER_RECORD_FLOATS,
+  CTRL, CTRL_BYTES, KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE,
+  KERNEL_MAX_ITERATIONS, KERNEL_MAX_THREADS, MAX_COLLIDERS, COLLIDER_RECORD_FLOATS,
 } from '../layout.generated.js';
 import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
+
+/**
+ * Why the kernel cannot do contact against these colliders, or null: it does particle contact against shapes with
+ * a kernel record (ColliderShape.kernelRecord), so not when one has none or needs triangle contact at this mesh size.
+ */
+function contactRefusal(model: ClothModel, params: SimParams): string | null {
+  const shapes = params.colliders;
+  if (shapes.length > MAX_COLLIDERS) return 'more colliders than the control block holds';
+  for (let k = 0; k < shapes.length; k++) {
+    if (!shapes[k].kernelRecord) return 'a collider without a kernel record';
+    if (needsTriangleContact(model, shapes[k], params.thickness)) return 'a collider that needs triangle contact';
+  }
+  return null;
+}
+
+/** The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter). */
+export const KERNEL_PHASES: BackendPhases = {
+  name: 'WebAssembly kernel',
+  sharesMemory: true,
+  solvers: ['xpbd'],
+  phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.tethers) |
+    (1 << PHASE.stretchLimit) | (1 << PHASE.contact),
+  refusal: (id: PhaseId, model: ClothModel, params: SimParams) => (id === PHASE.contact ? contactRefusal(model, params) : null),
+};
 
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
 const SPIN_LIMIT = 1 << 15;
@@ -108,7 +135,10 @@ function instantiateKernel(module: WebAssembly.Module, memory: WebAssembly.Memor
   return exports;
 }
 
-export class XpbdKernel {
+/** The kernel over one model's arrays: its memory, helper threads and the backend of the frame loop. */
+export class XpbdKernel implements PhaseBackend {
+  /** the phases it implements */
+  readonly phases = KERNEL_PHASES;
   /** threads that share each substep (1: this thread only) */
   readonly threads: number;
   private readonly module: WebAssembly.Module;
@@ -230,13 +260,14 @@ export class XpbdKernel {
     this.helpers.length = 0;
   }
 
-  /** Per-frame scalars and, when the params object changed, the per-spring compliances. */
-  private upload(model: ClothModel, params: SimParams): boolean {
+  /** Per-frame scalars, the collider records when contact is the kernel's, and (new params) the compliances. */
+  private upload(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
     if (params !== this.paramsSeen) {
       this.alpha.set(params.compliance);
       this.paramsSeen = params;
     }
     const f = this.ctrlF64, i = this.ctrlI32;
+    f[CTRL.H / 8] = h;
     f[CTRL.GRAVITY / 8] = params.gravity[0];
     f[CTRL.GRAVITY / 8 + 1] = params.gravity[1];
     f[CTRL.GRAVITY / 8 + 2] = params.gravity[2];
@@ -246,62 +277,53 @@ export class XpbdKernel {
     f[CTRL.FRICTION / 8] = params.friction;
     f[CTRL.STATIC_FRICTION / 8] = params.staticFriction;
     f[CTRL.DEPENETRATION / 8] = params.depenetrationSpeed;
-    i[CTRL.ITERATIONS / 4] = Math.min(255, params.iterations); // 8 bits in the kernel's phase list (the schema: ≤ 20)
-    // the kernel does particle contact only when every collider has a record and none needs triangle contact
+    i[CTRL.GRABBED / 4] = state.grabbed;
+    // the schema's iterations (≤ 20) fit the substep descriptor's field
+    i[CTRL.ITERATIONS / 4] = Math.min(KERNEL_MAX_ITERATIONS, phasePasses(PHASE.distance, params));
     const shapes = params.colliders;
-    let inKernel = shapes.length <= MAX_COLLIDERS;
-    for (let k = 0; inKernel && k < shapes.length; k++) {
-      const record = shapes[k].kernelRecord;
-      if (!record || needsTriangleContact(model, shapes[k], params.thickness)) inKernel = false;
-      else f.set(record, CTRL.COLLIDER_RECORDS / 8 + k * COLLIDER_RECORD_FLOATS);
-    }
-    i[CTRL.COLLIDERS / 4] = inKernel ? shapes.length : 0;
-    return inKernel;
+    const contact = contactRefusal(model, params) === null;
+    if (contact) for (let k = 0; k < shapes.length; k++) f.set(shapes[k].kernelRecord!, CTRL.COLLIDER_RECORDS / 8 + k * COLLIDER_RECORD_FLOATS);
+    i[CTRL.COLLIDERS / 4] = contact ? shapes.length : 0;
   }
 
   /**
-   * One frame of dt [s] in params.substeps substeps: runFrame's loop (phases.ts) with the kernel's substep.
-   * Only XPBD: the kernel solves distance constraints.
+   * One frame of dt [s] in params.substeps substeps: the frame loop (frame.ts) with this kernel as its backend.
+   * `log` (tests) receives the phases run, the kernel's as the kernel reports them.
    */
-  frame(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
+  frame(model: ClothModel, state: ClothState, params: SimParams, dt: number, log?: PhaseLog): void {
     // with helpers, each frame runs with them or alone, whichever the measured frame times say is faster
     this.joinHelpers();
     const timed = this.helpersJoined;
     const parallel = timed && this.mode.next();
     this.ctrlI32[CTRL.THREADS / 4] = parallel ? this.threads : 1;
     const t0 = timed ? performance.now() : 0;
-    const n = params.substeps;
-    const h = dt / n;
-    beginStep(model, state, params, h);
-    const contactInKernel = this.upload(model, params);
-    const f = this.ctrlF64, i = this.ctrlI32;
-    const g = state.grabbed, x = state.positions;
-    const gx = g >= 0 ? x[3 * g] : 0, gy = g >= 0 ? x[3 * g + 1] : 0, gz = g >= 0 ? x[3 * g + 2] : 0;
-    const accumulate = params.iterations > 1;
-    i[CTRL.GRABBED / 4] = g;
-    f[CTRL.H / 8] = h;
-    for (let sub = 0; sub < n; sub++) {
-      const forced = accumulateWind(model, state, params, state.time, h);
-      if (accumulate) state.lambdas.fill(0);
-      // λ is kept only where it is read: across iterations, and after the frame (energy) from its last substep
-      i[CTRL.FLAGS / 4] = (forced ? KERNEL_FLAG_FORCES : 0) | (contactInKernel ? KERNEL_FLAG_CONTACT : 0) |
-        (accumulate ? KERNEL_FLAG_ACCUMULATE | KERNEL_FLAG_STORE_LAMBDA : 0) | (sub === n - 1 ? KERNEL_FLAG_STORE_LAMBDA : 0);
-      f[CTRL.TAYLOR / 8] = state.substeps === 0 ? 0.5 : 1;
-      if (g >= 0) {
-        const frac = (sub + 1) / n, t = state.grabTarget;
-        f[CTRL.GRAB_AT / 8] = gx + (t[0] - gx) * frac;
-        f[CTRL.GRAB_AT / 8 + 1] = gy + (t[1] - gy) * frac;
-        f[CTRL.GRAB_AT / 8 + 2] = gz + (t[2] - gz) * frac;
-      }
-      this.exports.substep();
-      if (!contactInKernel) collide(model, state, params, h);
-      state.time += h;
-      state.substeps++;
-    }
-    updateVelocities(state, h);
-    if (timed) this.mode.record((performance.now() - t0) / n);
+    this.upload(model, state, params, dt / params.substeps);
+    runFrame(model, state, params, dt, this, log);
+    if (timed) this.mode.record((performance.now() - t0) / params.substeps);
   }
 
+  /**
+   * The kernel's phases of `mask` (of one substep: frame.sub) in one substep() call; it lists what it ran for `log`.
+   */
+  run(mask: number, _model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
+    const f = this.ctrlF64, i = this.ctrlI32;
+    const accumulate = phasePasses(PHASE.distance, params) > 1;
+    // λ starts from zero in every substep where it accumulates across passes
+    if (accumulate && (mask & (1 << PHASE.distance)) !== 0) state.lambdas.fill(0);
+    // λ is kept only where it is read: across iterations, and after the frame (energy) from its last substep
+    i[CTRL.FLAGS / 4] = (frame.forced ? KERNEL_FLAG_FORCES : 0) | (accumulate ? KERNEL_FLAG_ACCUMULATE | KERNEL_FLAG_STORE_LAMBDA : 0) |
+      (frame.sub === frame.substeps - 1 ? KERNEL_FLAG_STORE_LAMBDA : 0) | (log ? KERNEL_FLAG_TRACE : 0);
+    f[CTRL.TAYLOR / 8] = state.substeps === 0 ? 0.5 : 1;
+    if ((mask & (1 << PHASE.grab)) !== 0) {
+      const frac = (frame.sub + 1) / frame.substeps, t = state.grabTarget, from = frame.grabFrom;
+      f[CTRL.GRAB_AT / 8] = from[0] + (t[0] - from[0]) * frac;
+      f[CTRL.GRAB_AT / 8 + 1] = from[1] + (t[1] - from[1]) * frac;
+      f[CTRL.GRAB_AT / 8 + 2] = from[2] + (t[2] - from[2]) * frac;
+    }
+    i[CTRL.SUBSTEP_PHASES / 4] = mask;
+    this.exports.substep();
+    if (log) for (let k = 0; k < i[CTRL.TRACE_COUNT / 4]; k++) log.push(i[CTRL.TRACE / 4 + k], false);
+  }
 }
 
 /**

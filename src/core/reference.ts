@@ -1,0 +1,56 @@
+/**
+ * The TypeScript reference implementation of every phase of the schedule (schedule.ts), by phase id: what the
+ * TypeScript backend runs, what the other backends are measured against, and what runs a phase on a backend's
+ * memory where the backend does not implement it. Each entry only calls the phase functions (phases.ts, tethers.ts,
+ * the solvers' own phases); nothing here allocates.
+ */
+import type { FrameVars } from './frame.js';
+import type { ClothModel } from './model.js';
+import type { SimParams } from './params.js';
+import { accumulateWind, beginStep, collide, integrate, limitStretch, moveGrabbed, updateVelocities } from './phases.js';
+import { PHASE, PHASES, phasePasses, type PhaseName } from './schedule.js';
+import { accumulateSpringForces } from './solvers/mass-spring.js';
+import { solveDistanceConstraints } from './solvers/xpbd.js';
+import type { ClothState } from './state.js';
+import { solveTethers } from './tethers.js';
+
+/** A phase's reference implementation, for substep `frame.sub` of the frame. */
+export type ReferencePhase = (model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars) => void;
+
+/** One implementation per phase name (the compiler checks that none is missing) → a table by phase id. */
+function byId(phases: Record<PhaseName, ReferencePhase>): readonly ReferencePhase[] {
+  return PHASES.map((phase) => phases[phase.name]);
+}
+
+/** The reference implementation of each phase: REFERENCE[id] runs phase `id`. */
+export const REFERENCE: readonly ReferencePhase[] = byId({
+  begin: (model, state, params, frame) => beginStep(model, state, params, frame.h),
+  wind(model, state, params, frame) {
+    accumulateWind(model, state, params, state.time, frame.h);
+    frame.forced = true;
+  },
+  springForces(model, state, params, frame) {
+    if (!frame.forced) state.forces.fill(0);
+    accumulateSpringForces(model, state, params, frame.h);
+    frame.forced = true;
+  },
+  integrate: (_model, state, params, frame) => integrate(state, params, frame.h, frame.forced),
+  grab(_model, state, _params, frame) {
+    const from = frame.grabFrom;
+    moveGrabbed(state, from[0], from[1], from[2], (frame.sub + 1) / frame.substeps);
+  },
+  distance(model, state, params, frame) {
+    const passes = phasePasses(PHASE.distance, params);
+    // λ accumulates across the passes of a substep (it starts from zero in each)
+    const accumulate = passes > 1;
+    if (accumulate) state.lambdas.fill(0);
+    for (let it = 0; it < passes; it++) solveDistanceConstraints(model, state, params, frame.h, accumulate);
+  },
+  tethers: (_model, state, params) => solveTethers(state, params),
+  stretchLimit(model, state, params) {
+    const passes = phasePasses(PHASE.stretchLimit, params);
+    for (let it = 0; it < passes; it++) limitStretch(model, state, params);
+  },
+  contact: (model, state, params, frame) => collide(model, state, params, frame.h),
+  velocities: (_model, state, _params, frame) => updateVelocities(state, frame.h),
+});

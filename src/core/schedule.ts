@@ -1,0 +1,156 @@
+/**
+ * The phase schedule: the one ordered list of what a frame does, which every backend follows (the TypeScript
+ * reference, the WebAssembly kernel, WebGPU), and the one rule for a phase a backend does not implement. The list
+ * is a table of the one table (PHASES in gen-layout.mjs, generated into layout.generated.ts, so that the kernel
+ * shares its ids); this module gives it types and says which phases a frame runs and which backend runs each.
+ * core/frame.ts walks it.
+ */
+import { PHASE, PHASE_COUNT, SCHEDULE } from './layout.generated.js';
+import type { ClothModel } from './model.js';
+import type { SimParams } from './params.js';
+import type { SolverType } from './scene.js';
+import type { ClothState } from './state.js';
+
+export { PHASE, PHASE_COUNT };
+
+/** A phase's name in the schedule. */
+export type PhaseName = keyof typeof PHASE;
+/** A phase's id: its place in the schedule (ascending ids are the order; a set of phases is a mask of 1 << id). */
+export type PhaseId = (typeof PHASE)[PhaseName];
+/** When a phase runs: once before the substeps, every substep, or once after them. */
+export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
+/** What a phase needs to be part of a frame: nothing, the wind blowing, or a grabbed particle. */
+export type PhaseCondition = 'always' | 'wind' | 'grab';
+
+/** One row of the schedule (see PHASES in gen-layout.mjs). */
+export interface Phase {
+  readonly id: PhaseId;
+  readonly name: PhaseName;
+  readonly scope: PhaseScope;
+  /** the solver types whose frame has this phase */
+  readonly solvers: readonly SolverType[];
+  readonly when: PhaseCondition;
+  /** the solver types for which it runs solver.iterations passes per substep (others: one) */
+  readonly repeat: readonly SolverType[];
+  /** what it does, for messages and docs */
+  readonly doc: string;
+}
+
+/** The schedule of one frame, in order: PHASES[id] is phase `id`. */
+export const PHASES: readonly Phase[] = SCHEDULE;
+
+/** The mask of the phases for which `test` holds. */
+function maskOf(test: (phase: Phase) => boolean): number {
+  let mask = 0;
+  for (const phase of PHASES) if (test(phase)) mask |= 1 << phase.id;
+  return mask;
+}
+
+/** The phases of each scope, as masks. */
+export const SCOPE_PHASES: Readonly<Record<PhaseScope, number>> = {
+  'frame-start': maskOf((p) => p.scope === 'frame-start'),
+  substep: maskOf((p) => p.scope === 'substep'),
+  'frame-end': maskOf((p) => p.scope === 'frame-end'),
+};
+const WIND_PHASES = maskOf((p) => p.when === 'wind');
+const GRAB_PHASES = maskOf((p) => p.when === 'grab');
+
+/** The mask of the phases a frame of `solver` has. */
+export function solverPhases(solver: SolverType): number {
+  let mask = 0;
+  for (let id = 0; id < PHASE_COUNT; id++) if (PHASES[id].solvers.includes(solver)) mask |= 1 << id;
+  return mask;
+}
+
+/** The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab). */
+export function framePhases(state: ClothState, params: SimParams): number {
+  let mask = solverPhases(params.solver);
+  if (!params.wind.enabled) mask &= ~WIND_PHASES;
+  if (state.grabbed < 0) mask &= ~GRAB_PHASES;
+  return mask;
+}
+
+/** Passes of phase `id` per substep: params.iterations where the schedule repeats it for params.solver, else 1. */
+export function phasePasses(id: PhaseId, params: SimParams): number {
+  return PHASES[id].repeat.includes(params.solver) ? params.iterations : 1;
+}
+
+/** What a backend implements of the schedule: declared once, beside the backend. */
+export interface BackendPhases {
+  /** how messages name it */
+  readonly name: string;
+  /**
+   * whether the TypeScript reference can run a phase on the backend's memory between its own phases: true where
+   * the CPU state's arrays are the backend's (the WebAssembly kernel), false where the cloth lives elsewhere (GPU
+   * buffers)
+   */
+  readonly sharesMemory: boolean;
+  /** the solver types whose phases it implements */
+  readonly solvers: readonly SolverType[];
+  /** the phases it implements, a mask of 1 << id */
+  readonly phases: number;
+  /**
+   * Why it cannot run phase `id`, which it implements, for these inputs (a collider shape it does not know...), or
+   * null when it can. Called every frame: a backend that shares memory returns constant strings (nothing allocated).
+   */
+  refusal?(id: PhaseId, model: ClothModel, params: SimParams): string | null;
+}
+
+/**
+ * The rule for a phase a backend lacks, in one place: the mask of the phases of a params.solver frame that
+ * `backend` runs itself. A phase of the frame that it does not implement, or refuses for these inputs, runs in the
+ * TypeScript reference on the same memory when the backend shares the CPU's arrays (a frame of a solver it does not
+ * implement runs there whole); a backend that does not share them cannot leave a phase to the reference and is
+ * refused with an Error naming what it lacks.
+ */
+export function assignPhases(backend: BackendPhases, model: ClothModel, params: SimParams): number {
+  if (!backend.solvers.includes(params.solver)) {
+    if (backend.sharesMemory) return 0;
+    throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs on it (params.solver is '${params.solver}')`);
+  }
+  const wanted = solverPhases(params.solver);
+  let own = 0;
+  for (let id = 0; id < PHASE_COUNT; id++) {
+    const bit = 1 << id;
+    if ((wanted & bit) === 0) continue;
+    const phase = PHASES[id];
+    const implemented = (backend.phases & bit) !== 0;
+    const refusal = implemented ? backend.refusal?.(phase.id, model, params) ?? null : null;
+    if (implemented && refusal === null) own |= bit;
+    else if (!backend.sharesMemory) {
+      throw new Error(`${backend.name}: ${refusal ?? `it does not implement phase '${phase.name}' (${phase.doc})`}`);
+    }
+  }
+  return own;
+}
+
+/**
+ * The phases frames ran, in order, and who ran each: the backend itself or the TypeScript reference in its place
+ * (tests hold backends to the schedule with it). Its arrays are made once: logging allocates nothing.
+ */
+export class PhaseLog {
+  /** phase ids in the order they ran (the first `length`) */
+  readonly ids: Uint8Array;
+  /** 1 where the TypeScript reference ran the phase, 0 where the backend did */
+  readonly byReference: Uint8Array;
+  /** entries logged */
+  length = 0;
+
+  /** A log with room for `capacity` phases. */
+  constructor(capacity = 4096) {
+    this.ids = new Uint8Array(capacity);
+    this.byReference = new Uint8Array(capacity);
+  }
+
+  /** Appends phase `id`, run by the TypeScript reference (`byReference`) or by the backend itself. */
+  push(id: number, byReference: boolean): void {
+    if (this.length === this.ids.length) throw new RangeError(`PhaseLog: more than ${this.ids.length} phases`);
+    this.ids[this.length] = id;
+    this.byReference[this.length++] = byReference ? 1 : 0;
+  }
+
+  /** The logged phases by name, '(reference)' after those the reference ran. */
+  names(): string[] {
+    return Array.from(this.ids.subarray(0, this.length), (id, k) => PHASES[id].name + (this.byReference[k] ? ' (reference)' : ''));
+  }
+}

@@ -1,0 +1,38 @@
+// The kernel's arrays: byte offsets into the memory, laid out by the caller (xpbd-wasm.ts) and set by configure()
+// in every instance (each thread's). Read by the phases; written only here.
+
+/** positions, f32 × 3n */
+export let X: usize = 0;
+/** previous positions, f32 × 3n */
+export let XP: usize = 0;
+/** inverse masses, f32 × n */
+export let W: usize = 0;
+/** forces, f32 × 3n */
+export let F: usize = 0;
+/** λ per spring, f32 */
+export let LAMBDA: usize = 0;
+/** tether anchor per particle, i32 */
+export let ANCHOR: usize = 0;
+/** tether length per particle, f32 */
+export let TLEN: usize = 0;
+/** particle pairs, u32 × 2 per spring */
+export let SPRINGS: usize = 0;
+/** rest length per spring, f32 */
+export let REST: usize = 0;
+/** compliance per spring, f32 */
+export let ALPHA: usize = 0;
+/** i32 × 3 per batch: start, end, kind */
+export let BATCHES: usize = 0;
+/** colour batches */
+export let BATCH_COUNT: i32 = 0;
+/** particles */
+export let N: i32 = 0;
+
+/** Sets the arrays' byte offsets and the counts (the caller's layout, the same in every instance). */
+export function configure(
+  x: usize, xp: usize, w: usize, f: usize, lambda: usize, anchor: usize, tlen: usize,
+  springs: usize, rest: usize, alpha: usize, batches: usize, batchCount: i32, particles: i32,
+): void {
+  X = x; XP = xp; W = w; F = f; LAMBDA = lambda; ANCHOR = anchor; TLEN = tlen;
+  SPRINGS = springs; REST = rest; ALPHA = alpha; BATCHES = batches; BATCH_COUNT = batchCount; N = particles;
+}
