@@ -90,13 +90,15 @@ export const KERNELS = {
       ['triForces', 'read_write'],
     ],
   },
-  /** integrate + moveGrabbed: gathers the wind of incident triangles (no atomics) */
+  /** integrate: gathers the wind of incident triangles (no atomics) */
   integrate: {
     bindings: [
       ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['triForces', 'read'],
-      ['adjacency', 'read'], ['grabStart', 'read'],
+      ['adjacency', 'read'],
     ],
   },
+  /** moveGrabbed: the grabbed particle, one thread */
+  grab: { bindings: [['positions', 'read_write'], ['grabStart', 'read']] },
   /** solveDistanceConstraints for one colour batch */
   solve: {
     bindings: [

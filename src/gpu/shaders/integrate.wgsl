@@ -1,7 +1,7 @@
-// integrate + moveGrabbed (phases.ts), position Verlet: x ← x + (x − x_prev) + c·h²·(g + w·f), x_prev ← x.
+// integrate (phases.ts), position Verlet: x ← x + (x − x_prev) + c·h²·(g + w·f), x_prev ← x.
 // c = ½ on the very first substep (Taylor start, exact for constant acceleration), else 1 (folded into sub.h2).
-// Particles with zero inverse mass stay, except the grabbed one, which is carried from its frame-start position
-// to the grab target. The wind force is gathered from the incident triangles (no float atomics).
+// Particles with zero inverse mass stay (the grabbed one is moved by the grab kernel after this one). The wind
+// force is gathered from the incident triangles (no float atomics).
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
@@ -11,13 +11,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   let xp = previous[i].xyz;
   previous[i] = vec4f(x, 0.0);
   let w = invMass[i];
-  if (w == 0.0) {
-    if (i32(i) == globals.grabbed) {
-      let x0 = grabStart[0].xyz;
-      positions[i] = vec4f(x0 + (globals.grabTarget - x0) * sub.grabFraction, 0.0);
-    }
-    return;
-  }
+  if (w == 0.0) { return; }
   var a = globals.gravity * sub.h2;
   if (sub.windOn != 0u) {
     var f = vec3f(0.0);

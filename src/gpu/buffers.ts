@@ -1,0 +1,153 @@
+/**
+ * The cloth's storage buffers on the GPU (layout.ts BUFFERS) and each kernel's bind group over them: made for a
+ * model with its static data (springs, triangles, adjacency, the rest pose), then written from the CPU: the
+ * params' per-particle and per-spring values, a state's particles, its pins and tethers.
+ */
+import type {} from 'webgpu';
+import type { ClothModel } from '../core/model.js';
+import type { SimParams } from '../core/params.js';
+import type { ClothState } from '../core/state.js';
+import { updateTethers } from '../core/tethers.js';
+import { BUFFERS, KERNELS, VEC4, type BufferName, type KernelName, type KernelSpec } from './layout.js';
+import { triangleAdjacency } from './topology.js';
+
+/** The storage buffers of one cloth and the kernels' bind groups over them. */
+export class ClothBuffers {
+  /** every storage buffer, by name */
+  readonly buffers: Record<BufferName, GPUBuffer>;
+  /** group 1 of each kernel */
+  readonly storageGroups: Record<KernelName, GPUBindGroup>;
+  /** whether any particle has a tether anchor (the tethers kernel has work), as of the last writePins */
+  hasTethers = false;
+  private readonly device: GPUDevice;
+  private readonly model: ClothModel;
+
+  /** Buffers for `model` with its static data; the cloth at its rest pose, unpinned. */
+  constructor(device: GPUDevice, model: ClothModel, storageLayouts: Record<KernelName, GPUBindGroupLayout>) {
+    this.device = device;
+    this.model = model;
+    const n = model.particleCount;
+    const springCount = model.restLengths.length;
+    const triangleCount = model.triangles.length / 3;
+    const adjacency = triangleAdjacency(model);
+
+    const counts: Record<BufferName, number> = {
+      positions: n, previous: n, velocities: n, invMass: n, baseInvMass: n, pinned: n,
+      springs: springCount, springData: springCount, lambdas: springCount, tethers: n,
+      triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
+      normals: n, grabStart: 1,
+    };
+    const extraUsage: Partial<Record<BufferName, number>> = {
+      positions: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC,
+      previous: GPUBufferUsage.COPY_SRC,
+      velocities: GPUBufferUsage.COPY_SRC,
+      normals: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC,
+      lambdas: GPUBufferUsage.COPY_SRC,
+      triangles: GPUBufferUsage.INDEX,
+    };
+    const buffers = {} as Record<BufferName, GPUBuffer>;
+    for (const name of Object.keys(BUFFERS) as BufferName[]) {
+      buffers[name] = device.createBuffer({
+        label: `drape ${name}`,
+        size: Math.max(16, Math.ceil((counts[name] * BUFFERS[name].bytes) / 4) * 4),
+        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST | (extraUsage[name] ?? 0),
+      });
+    }
+    this.buffers = buffers;
+
+    // static model data
+    const q = device.queue;
+    q.writeBuffer(buffers.springs, 0, bytes(model.springs));
+    q.writeBuffer(buffers.triangles, 0, bytes(model.triangles));
+    q.writeBuffer(buffers.adjacency, 0, bytes(adjacency));
+    const pos = toVec4(model.restPositions);
+    q.writeBuffer(buffers.positions, 0, pos);
+    q.writeBuffer(buffers.previous, 0, pos);
+    const tethers = new Int32Array(2 * n).fill(-1);
+    for (let i = 0; i < n; i++) tethers[2 * i + 1] = 0;
+    q.writeBuffer(buffers.tethers, 0, tethers);
+
+    this.storageGroups = {} as Record<KernelName, GPUBindGroup>;
+    for (const kernel of Object.keys(KERNELS) as KernelName[]) {
+      const spec: KernelSpec = KERNELS[kernel];
+      this.storageGroups[kernel] = device.createBindGroup({
+        label: `drape ${kernel}`,
+        layout: storageLayouts[kernel],
+        entries: spec.bindings.map(([name], i) => ({ binding: i, resource: { buffer: buffers[name] } })),
+      });
+    }
+  }
+
+  /** The params' per-particle inverse masses and per-spring rest length and compliance (−1: no constraint). */
+  writeParams(params: SimParams): void {
+    const model = this.model;
+    this.device.queue.writeBuffer(this.buffers.baseInvMass, 0, bytes(params.particleInvMass));
+    const springCount = model.restLengths.length;
+    const data = new Float32Array(2 * springCount);
+    for (let s = 0; s < springCount; s++) {
+      data[2 * s] = model.restLengths[s];
+      const c = params.compliance[s];
+      data[2 * s + 1] = Number.isFinite(c) ? c : -1;
+    }
+    if (springCount) this.device.queue.writeBuffer(this.buffers.springData, 0, data);
+  }
+
+  /** A state's positions, previous positions and velocities. */
+  writeParticles(state: ClothState): void {
+    const q = this.device.queue;
+    q.writeBuffer(this.buffers.positions, 0, toVec4(state.positions));
+    q.writeBuffer(this.buffers.previous, 0, toVec4(state.previousPositions));
+    q.writeBuffer(this.buffers.velocities, 0, toVec4(state.velocities));
+  }
+
+  /** A state's pins and tethers (recomputed on the CPU first when `state.tethersStale`). */
+  writePins(state: ClothState): void {
+    if (state.tethersStale) updateTethers(this.model, state);
+    const n = this.model.particleCount;
+    const pinned = new Uint32Array(n);
+    for (let i = 0; i < n; i++) pinned[i] = state.pinned[i];
+    const tethers = new ArrayBuffer(8 * n);
+    const anchors = new Int32Array(tethers), lengths = new Float32Array(tethers);
+    let any = false;
+    for (let i = 0; i < n; i++) {
+      anchors[2 * i] = state.tetherAnchors[i];
+      lengths[2 * i + 1] = state.tetherLengths[i];
+      if (state.tetherAnchors[i] >= 0) any = true;
+    }
+    this.hasTethers = any;
+    this.device.queue.writeBuffer(this.buffers.pinned, 0, pinned);
+    this.device.queue.writeBuffer(this.buffers.tethers, 0, tethers);
+  }
+
+  /** Frees every buffer. */
+  destroy(): void {
+    for (const buf of Object.values(this.buffers)) buf.destroy();
+  }
+}
+
+/** A typed array as writeBuffer wants it (core's arrays are typed over ArrayBufferLike). */
+function bytes(view: ArrayBufferView): GPUAllowSharedBufferSource {
+  return view as GPUAllowSharedBufferSource;
+}
+
+/** stride 3 → stride 4 (w = 0) */
+function toVec4(src: Float32Array): Float32Array<ArrayBuffer> {
+  const n = src.length / 3;
+  const out = new Float32Array(VEC4 * n);
+  for (let i = 0; i < n; i++) {
+    out[4 * i] = src[3 * i];
+    out[4 * i + 1] = src[3 * i + 1];
+    out[4 * i + 2] = src[3 * i + 2];
+  }
+  return out;
+}
+
+/** stride 4 → stride 3, into `out` */
+export function fromVec4(src: Float32Array, out: Float32Array): void {
+  const n = out.length / 3;
+  for (let i = 0; i < n; i++) {
+    out[3 * i] = src[4 * i];
+    out[3 * i + 1] = src[4 * i + 1];
+    out[3 * i + 2] = src[4 * i + 2];
+  }
+}

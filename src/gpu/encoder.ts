@@ -1,0 +1,145 @@
+/**
+ * The GPU as a backend of the frame loop (core/frame.ts): which phases of the schedule it implements (GPU_PHASES),
+ * and the encoder that turns each phase of a frame into its kernel dispatches, all substeps of the frame in one
+ * compute pass of one command buffer.
+ */
+import type {} from 'webgpu';
+import { runFrame, type FrameVars, type PhaseBackend } from '../core/frame.js';
+import type { ClothModel } from '../core/model.js';
+import type { SimParams } from '../core/params.js';
+import { PHASE, PHASE_COUNT, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../core/schedule.js';
+import type { ClothState } from '../core/state.js';
+import type { ClothBuffers } from './buffers.js';
+import { MAX_COLLIDERS, MAX_WORKGROUPS_X, RECORD_STRIDE, WORKGROUP_SIZE, type KernelName } from './layout.js';
+import { gpuCollider, type UniformTables } from './uniforms.js';
+
+/** Why the GPU cannot do contact against these colliders (it knows spheres and floors), or null. */
+function contactRefusal(params: SimParams): string | null {
+  if (params.colliders.length > MAX_COLLIDERS) return `at most ${MAX_COLLIDERS} colliders (got ${params.colliders.length})`;
+  for (const shape of params.colliders) {
+    if (!gpuCollider(shape)) return `collider type '${shape.type}' is not supported on the GPU (sphere, floor)`;
+  }
+  return null;
+}
+
+/**
+ * The phases of the schedule the GPU implements: every phase of XPBD. Its cloth lives in GPU buffers, so it cannot
+ * leave a phase to the TypeScript reference: a frame that needs one is refused (the mass-spring solver, a collider
+ * shape it does not know).
+ */
+export const GPU_PHASES: BackendPhases = {
+  name: 'GPU solver',
+  sharesMemory: false,
+  solvers: ['xpbd'],
+  phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) |
+    (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.contact) | (1 << PHASE.velocities),
+  refusal: (id: PhaseId, _model: ClothModel, params: SimParams) => (id === PHASE.contact ? contactRefusal(params) : null),
+};
+
+/** Encodes a cloth's frames: the frame loop's phases as dispatches. */
+export class FrameEncoder implements PhaseBackend {
+  /** the phases it implements */
+  readonly phases = GPU_PHASES;
+  private readonly device: GPUDevice;
+  private readonly model: ClothModel;
+  private readonly pipelines: Record<KernelName, GPUComputePipeline>;
+  private readonly buffers: ClothBuffers;
+  private readonly uniforms: UniformTables;
+  /** the compute pass of the frame being encoded */
+  private pass: GPUComputePassEncoder | undefined;
+
+  /** An encoder over a cloth's buffers and uniform tables. */
+  constructor(
+    device: GPUDevice, model: ClothModel, pipelines: Record<KernelName, GPUComputePipeline>, buffers: ClothBuffers,
+    uniforms: UniformTables,
+  ) {
+    this.device = device;
+    this.model = model;
+    this.pipelines = pipelines;
+    this.buffers = buffers;
+    this.uniforms = uniforms;
+  }
+
+  /**
+   * Encodes and submits one frame of dt [s]: the frame's inputs written, the grabbed particle's start copied, the
+   * frame loop's phases dispatched in one compute pass (timed with `timestampWrites` where given), then the vertex
+   * normals. The frame loop counts state.time and state.substeps; `log` receives the phases encoded.
+   */
+  frame(state: ClothState, params: SimParams, dt: number, timestampWrites: GPUComputePassTimestampWrites | undefined, log: PhaseLog | undefined): void {
+    this.uniforms.writeFrame(state, params, dt);
+    const encoder = this.device.createCommandEncoder({ label: 'drape step' });
+    const grabbed = state.grabbed;
+    if (grabbed >= 0 && grabbed < this.model.particleCount) {
+      encoder.copyBufferToBuffer(this.buffers.buffers.positions, grabbed * 16, this.buffers.buffers.grabStart, 0, 16);
+    }
+    this.pass = encoder.beginComputePass(timestampWrites ? { label: 'drape step', timestampWrites } : { label: 'drape step' });
+    runFrame(this.model, state, params, dt, this, log);
+    this.dispatch('normals', this.model.particleCount, 0, 0);
+    this.pass.end();
+    this.pass = undefined;
+    this.device.queue.submit([encoder.finish()]);
+  }
+
+  /** The phases of `mask` for substep frame.sub, as dispatches into the frame's pass, in schedule order. */
+  run(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
+    const so = frame.sub * RECORD_STRIDE;
+    const particles = model.particleCount;
+    const u = this.uniforms;
+    for (let id = 0; id < PHASE_COUNT; id++) {
+      if ((mask & (1 << id)) === 0) continue;
+      switch (id) {
+        case PHASE.begin:
+          // tethers are found on the CPU when the pins changed, as the reference's begin does
+          if (state.tethersStale) this.buffers.writePins(state);
+          this.dispatch('prepare', particles, so, 0);
+          break;
+        case PHASE.wind: this.dispatch('wind', model.triangles.length / 3, so, 0); break;
+        case PHASE.integrate: this.dispatch('integrate', particles, so, 0); break;
+        case PHASE.grab: this.dispatch('grab', 1, so, 0); break;
+        case PHASE.distance: {
+          const passes = phasePasses(PHASE.distance, params);
+          for (let it = 0; it < passes; it++) {
+            for (const r of u.batchRecords) this.dispatch('solve', r.count, so, (it === 0 ? r.first : r.later) * RECORD_STRIDE);
+          }
+          break;
+        }
+        case PHASE.tethers: if (this.buffers.hasTethers) this.dispatch('tethers', particles, so, 0); break;
+        case PHASE.stretchLimit: {
+          const passes = phasePasses(PHASE.stretchLimit, params);
+          for (let it = 0; it < passes; it++) {
+            for (const r of u.batchRecords) if (r.stretch) this.dispatch('limitStretch', r.count, so, r.first * RECORD_STRIDE);
+          }
+          break;
+        }
+        case PHASE.contact:
+          for (const c of u.collidePasses) this.dispatch(c.kernel, c.count, so, c.record * RECORD_STRIDE);
+          break;
+        case PHASE.velocities: this.dispatch('velocities', particles, so, 0); break;
+        default: continue; // not a GPU phase: assignPhases never hands it one
+      }
+      log?.push(id, false);
+    }
+  }
+
+  /** Recomputes the vertex normals from the current positions, in a submit of its own. */
+  refreshNormals(): void {
+    const encoder = this.device.createCommandEncoder({ label: 'drape normals' });
+    this.pass = encoder.beginComputePass({ label: 'drape normals' });
+    this.dispatch('normals', this.model.particleCount, 0, 0);
+    this.pass.end();
+    this.pass = undefined;
+    this.device.queue.submit([encoder.finish()]);
+  }
+
+  /** Dispatches `kernel` over `count` threads with the given Substep and Pass records (spilling into y when large). */
+  private dispatch(kernel: KernelName, count: number, substepOffset: number, passOffset: number): void {
+    if (count <= 0) return;
+    const pass = this.pass!;
+    pass.setPipeline(this.pipelines[kernel]);
+    pass.setBindGroup(0, this.uniforms.group, [substepOffset, passOffset]);
+    pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
+    const groups = Math.ceil(count / WORKGROUP_SIZE);
+    if (groups <= MAX_WORKGROUPS_X) pass.dispatchWorkgroups(groups);
+    else pass.dispatchWorkgroups(MAX_WORKGROUPS_X, Math.ceil(groups / MAX_WORKGROUPS_X));
+  }
+}

@@ -1,0 +1,65 @@
+/**
+ * Reading a GPU cloth back into a CPU state: positions, previous positions, velocities and the springs' λ of the last
+ * substep, through one staging buffer, one read at a time.
+ */
+import type {} from 'webgpu';
+import type { ClothModel } from '../core/model.js';
+import type { ClothState } from '../core/state.js';
+import { fromVec4, type ClothBuffers } from './buffers.js';
+
+/** The readback of one cloth: a staging buffer made on first use, reads serialised. */
+export class Readback {
+  private readonly device: GPUDevice;
+  private readonly model: ClothModel;
+  private readonly buffers: ClothBuffers;
+  private staging: GPUBuffer | undefined;
+  private reading: Promise<void> = Promise.resolve();
+
+  /** A readback of `buffers` (a cloth of `model`) on `device`. */
+  constructor(device: GPUDevice, model: ClothModel, buffers: ClothBuffers) {
+    this.device = device;
+    this.model = model;
+    this.buffers = buffers;
+  }
+
+  /** Copies the GPU cloth into `state`; resolves once the data is there. Calls are serialised. */
+  read(state: ClothState): Promise<void> {
+    const next = this.reading.then(() => this.readNow(state));
+    this.reading = next.catch(() => undefined);
+    return next;
+  }
+
+  private async readNow(state: ClothState): Promise<void> {
+    const n = this.model.particleCount;
+    const vecBytes = n * 16;
+    const lambdaBytes = this.model.restLengths.length * 4;
+    const size = 3 * vecBytes + lambdaBytes;
+    if (!this.staging || this.staging.size < size) {
+      this.staging?.destroy();
+      this.staging = this.device.createBuffer({ label: 'drape readback', size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+    }
+    const staging = this.staging;
+    const b = this.buffers.buffers;
+    const encoder = this.device.createCommandEncoder({ label: 'drape read' });
+    encoder.copyBufferToBuffer(b.positions, 0, staging, 0, vecBytes);
+    encoder.copyBufferToBuffer(b.previous, 0, staging, vecBytes, vecBytes);
+    encoder.copyBufferToBuffer(b.velocities, 0, staging, 2 * vecBytes, vecBytes);
+    if (lambdaBytes) encoder.copyBufferToBuffer(b.lambdas, 0, staging, 3 * vecBytes, lambdaBytes);
+    this.device.queue.submit([encoder.finish()]);
+    await staging.mapAsync(GPUMapMode.READ, 0, size);
+    try {
+      const all = new Float32Array(staging.getMappedRange(0, size));
+      fromVec4(all.subarray(0, 4 * n), state.positions);
+      fromVec4(all.subarray(4 * n, 8 * n), state.previousPositions);
+      fromVec4(all.subarray(8 * n, 12 * n), state.velocities);
+      if (lambdaBytes) state.lambdas.set(all.subarray(12 * n, 12 * n + this.model.restLengths.length));
+    } finally {
+      staging.unmap();
+    }
+  }
+
+  /** Frees the staging buffer. */
+  destroy(): void {
+    this.staging?.destroy();
+  }
+}

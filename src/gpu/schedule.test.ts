@@ -1,0 +1,82 @@
+/**
+ * The GPU solver held to the phase schedule: what it implements (no GPU needed), and, on whatever adapter
+ * `createNodeDevice` finds, that its encoder dispatches exactly the schedule's phases of a frame in order. No
+ * adapter: as in gpu.test.ts, the device tests fail in CI and are skipped (saying why) elsewhere.
+ */
+import { afterAll, describe, expect, test } from 'vitest';
+import type {} from 'webgpu';
+import { FRAME_DT, Simulation, builtinScene, copyState, createState, grab, type ColliderShape, type Scene } from '../core/index.js';
+import { PHASE, PHASES, PhaseLog, assignPhases, solverPhases, type PhaseName } from '../core/schedule.js';
+import { GPU_PHASES } from './encoder.js';
+import { createNodeDevice } from './node.js';
+import { GpuClothSolver } from './solver.js';
+
+let gpu: { device: GPUDevice; adapter: string } | undefined;
+let reason = '';
+try {
+  gpu = await createNodeDevice();
+} catch (e) {
+  reason = (e as Error).message;
+}
+if (!gpu && process.env.CI) throw new Error(`GPU tests need a WebGPU adapter in CI: ${reason}`);
+if (!gpu) console.warn(`src/gpu/schedule.test.ts: device tests skipped: ${reason}`);
+
+/** The hanging flag in gusts, pinned along one edge (tethers), over a floor: 3 substeps of 2 iterations. */
+function windyScene(edit: (s: Scene) => void = () => {}): Scene {
+  const s = builtinScene('wind');
+  s.cloth.resolution = 6;
+  s.solver = { ...s.solver, substeps: 3, iterations: 2 };
+  edit(s);
+  return s;
+}
+
+/** The phases an XPBD frame must run, straight from the table. */
+function expected(substeps: number, wind: boolean, grabbed: boolean): PhaseName[] {
+  const runs = (name: PhaseName) => {
+    const p = PHASES[PHASE[name]];
+    return p.solvers.includes('xpbd') && (p.when === 'always' || (p.when === 'wind' && wind) || (p.when === 'grab' && grabbed));
+  };
+  const of = (scope: string) => PHASES.filter((p) => p.scope === scope && runs(p.name)).map((p) => p.name);
+  return [...of('frame-start'), ...Array.from({ length: substeps }, () => of('substep')).flat(), ...of('frame-end')];
+}
+
+describe('what the GPU implements of the schedule', () => {
+  test('every phase of an XPBD frame: none is left to the TypeScript reference', () => {
+    const sim = new Simulation(windyScene(), { kernel: 'ts' });
+    expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(solverPhases('xpbd'));
+  });
+
+  test('what it lacks it cannot leave to the reference (its cloth is in GPU memory): refused, saying why', () => {
+    const sim = new Simulation(windyScene((s) => { s.solver.type = 'mass-spring'; }), { kernel: 'ts' });
+    expect(() => assignPhases(GPU_PHASES, sim.model, sim.params)).toThrow(/GPU solver: only the xpbd solver/);
+    const xpbd = new Simulation(windyScene(), { kernel: 'ts' });
+    const box = { type: 'box', minCurvatureRadius: 0, signedDistance: () => 1 } satisfies ColliderShape;
+    const params = { ...xpbd.params, colliders: [...xpbd.params.colliders, box] };
+    expect(() => assignPhases(GPU_PHASES, xpbd.model, params)).toThrow(/collider type 'box' is not supported on the GPU/);
+  });
+});
+
+const solvers: GpuClothSolver[] = [];
+afterAll(() => {
+  for (const s of solvers) s.destroy();
+});
+
+describe.skipIf(!gpu)('the GPU encodes the schedule', () => {
+  test.each([[true, true], [false, false], [true, false]])('wind %s, a grab %s: every phase, in order, by the GPU', async (wind, grabbed) => {
+    const sim = new Simulation(windyScene((s) => { s.wind.enabled = wind; }), { kernel: 'ts' });
+    const state = createState(sim.model);
+    copyState(sim.state, state);
+    const solver = await GpuClothSolver.create(gpu!.device, sim.model);
+    solvers.push(solver);
+    solver.setParams(sim.params);
+    solver.upload(state);
+    if (grabbed) grab(state, 5, [0.1, 2.2, 0.3]);
+    for (let f = 0; f < 2; f++) {
+      const log = new PhaseLog();
+      solver.step(state, sim.params, FRAME_DT, undefined, log);
+      expect(log.names()).toEqual(expected(3, wind, grabbed));
+    }
+    await solver.read(state);
+    expect(state.positions.every(Number.isFinite)).toBe(true);
+  });
+});

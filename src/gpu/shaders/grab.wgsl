@@ -1,0 +1,11 @@
+// moveGrabbed (phases.ts), every substep while a particle is grabbed, after integrate (which left the grabbed
+// particle, of zero inverse mass, where it was and set its x_prev): the particle is carried from its frame-start
+// position (grabStart, copied at the frame start) the fraction sub.grabFraction of the way to the grab target.
+// One thread.
+
+@compute @workgroup_size(WG)
+fn main(@builtin(global_invocation_id) gid: vec3u) {
+  if (gid.x != 0u || globals.grabbed < 0) { return; }
+  let x0 = grabStart[0].xyz;
+  positions[u32(globals.grabbed)] = vec4f(x0 + (globals.grabTarget - x0) * sub.grabFraction, 0.0);
+}

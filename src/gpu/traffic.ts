@@ -1,0 +1,52 @@
+/**
+ * What one frame of the GPU solver costs, counted from the model, the params and the pass lists (for the benchmark
+ * and reports; docs/gpu.md, "Benchmark"): bytes each kernel moves per substep, and dispatches per frame.
+ */
+import type { ClothModel } from '../core/model.js';
+import type { SimParams } from '../core/params.js';
+import type { BatchRecords, CollidePass } from './uniforms.js';
+
+/** Bytes one substep's kernels read and write, as written (each element access counted once per thread). */
+export interface SubstepTraffic {
+  total: number;
+  byKernel: Record<string, number>;
+}
+
+/** Bytes one substep moves, by kernel; `hasTethers`: whether the tethers kernel has work. */
+export function substepTraffic(model: ClothModel, params: SimParams, collidePasses: readonly CollidePass[], hasTethers: boolean): SubstepTraffic {
+  const n = model.particleCount, T = model.triangles.length / 3, S = model.restLengths.length;
+  const by: Record<string, number> = {};
+  const add = (k: string, bytes: number) => { by[k] = (by[k] ?? 0) + bytes; };
+  if (params.wind.enabled) {
+    add('wind', T * (12 + 3 * 16 + 3 * 16 + 12 + 16)); // indices, x, x_prev, base w, force
+    add('integrate', n * 8 + 3 * T * 20); // adjacency offsets, then index + force per incident triangle
+  }
+  add('integrate', n * (16 + 16 + 4 + 16 + 16)); // x, x_prev, w in; x_prev, x out
+  let solve = S * (8 + 8 + 8 + 32 + 32); // springData, springs, w×2, x×2 in and out
+  if (params.damping > 0) solve += S * 32; // previous×2
+  solve += S * 4; // λ written
+  solve *= params.iterations;
+  solve += S * 4 * (params.iterations - 1); // λ read after the first pass
+  add('solve', solve);
+  if (hasTethers) add('tethers', n * (8 + 4 + 16 + 16 + 16));
+  const stretchSprings = model.springCounts[0] + model.springCounts[1];
+  add('limitStretch', stretchSprings * (8 + 8 + 8 + 32)); // springs, rest, w×2, x×2 in (written only when over)
+  for (const c of collidePasses) {
+    if (c.kernel === 'collideParticles') add('collideParticles', n * (4 + 16 + 16 + 16));
+    else add('collideTriangles', c.count * (12 + 48 + 48)); // indices, positions and previous positions of 3 particles
+  }
+  add('perFrame', (n * (4 + 4 + 4 + 16 + 16 + 16) + n * 48) / params.substeps); // prepare + velocities, per substep
+  let total = 0;
+  for (const k of Object.keys(by)) { by[k] = Math.round(by[k]); total += by[k]; }
+  return { total, byKernel: by };
+}
+
+/** Dispatches one frame encodes with nothing grabbed (prepare, velocities and normals once; the rest per substep). */
+export function dispatchesPerFrame(
+  params: SimParams, batchRecords: readonly BatchRecords[], collidePasses: readonly CollidePass[], hasTethers: boolean,
+): number {
+  const stretchBatches = batchRecords.filter((r) => r.stretch).length;
+  const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + params.iterations * batchRecords.length + stretchBatches +
+    (hasTethers ? 1 : 0) + collidePasses.length;
+  return 3 + params.substeps * perSubstep;
+}

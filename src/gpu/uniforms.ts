@@ -1,0 +1,214 @@
+/**
+ * The uniform tables every kernel reads (group 0, layout.ts): `Globals` (the params, and the grab of each frame),
+ * one `Substep` record per substep (written every frame), and one `Pass` record per constraint batch variant and
+ * per contact pass (written with the params), with the lists of those passes the encoder dispatches.
+ */
+import type {} from 'webgpu';
+import { FloorCollider, SphereCollider, type ColliderShape } from '../core/colliders/index.js';
+import { BEND, type ClothModel } from '../core/model.js';
+import type { SimParams } from '../core/params.js';
+import { needsTriangleContact } from '../core/phases.js';
+import type { ClothState } from '../core/state.js';
+import { windVelocity } from '../core/wind.js';
+import {
+  COLLIDER_BYTES, COLLIDER_FLOOR, COLLIDER_SPHERE, GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SUBSTEP,
+} from './layout.js';
+
+/** A run of contact work in one substep: particles against colliders [first, last), or one triangle colour. */
+export interface CollidePass {
+  readonly kernel: 'collideParticles' | 'collideTriangles';
+  /** its Pass record */
+  readonly record: number;
+  /** threads: particles or triangles */
+  readonly count: number;
+}
+
+/** Pass-record indices of one constraint batch: first iteration (λ from 0), later ones (λ accumulated). */
+export interface BatchRecords {
+  readonly first: number;
+  readonly later: number;
+  /** springs */
+  readonly count: number;
+  /** structural or shear: stretch limiting runs over it */
+  readonly stretch: boolean;
+}
+
+/** A collider as the GPU's `Collider` struct holds it, or null for a shape the GPU does not know. */
+export function gpuCollider(shape: ColliderShape): { kind: number; data4: [number, number, number, number] } | null {
+  if (shape instanceof SphereCollider) return { kind: COLLIDER_SPHERE, data4: [shape.cx, shape.cy, shape.cz, shape.radius] };
+  if (shape instanceof FloorCollider) return { kind: COLLIDER_FLOOR, data4: [shape.height, 0, 0, 0] };
+  return null;
+}
+
+/** The uniform buffers of one cloth, their bind group, and the pass lists of the current params. */
+export class UniformTables {
+  /** group 0 over the three tables (replaced when a table grows) */
+  group: GPUBindGroup;
+  /** the constraint batches' records, in model.batches order */
+  batchRecords: BatchRecords[] = [];
+  /** the contact passes of a substep, in order */
+  collidePasses: CollidePass[] = [];
+  private readonly device: GPUDevice;
+  private readonly model: ClothModel;
+  private readonly layout: GPUBindGroupLayout;
+  private readonly globalsBuffer: GPUBuffer;
+  private substepBuffer: GPUBuffer;
+  private passBuffer: GPUBuffer;
+  private readonly globals = new ArrayBuffer(GLOBALS.size);
+  private readonly grabData = new ArrayBuffer(16);
+  private readonly grabView = new DataView(this.grabData);
+  private substepData = new ArrayBuffer(RECORD_STRIDE);
+  private substepView = new DataView(this.substepData);
+  private readonly wind = new Float64Array(3);
+
+  /** Tables for `model` (nothing grabbed); setParams fills in the params. */
+  constructor(device: GPUDevice, model: ClothModel, layout: GPUBindGroupLayout) {
+    this.device = device;
+    this.model = model;
+    this.layout = layout;
+    this.globalsBuffer = device.createBuffer({ label: 'drape globals', size: GLOBALS.size, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
+    this.substepBuffer = this.recordBuffer('drape substeps', 1);
+    this.passBuffer = this.recordBuffer('drape passes', 1);
+    this.group = this.makeGroup();
+    const g = new DataView(this.globals);
+    g.setUint32(GLOBALS.particleCount, model.particleCount, true);
+    g.setUint32(GLOBALS.triangleCount, model.triangles.length / 3, true);
+    g.setInt32(GLOBALS.grabbed, -1, true);
+  }
+
+  private recordBuffer(label: string, records: number): GPUBuffer {
+    return this.device.createBuffer({ label, size: records * RECORD_STRIDE, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
+  }
+
+  private makeGroup(): GPUBindGroup {
+    return this.device.createBindGroup({
+      label: 'drape uniforms',
+      layout: this.layout,
+      entries: [
+        { binding: 0, resource: { buffer: this.globalsBuffer } },
+        { binding: 1, resource: { buffer: this.substepBuffer, size: SUBSTEP.size } },
+        { binding: 2, resource: { buffer: this.passBuffer, size: PASS.size } },
+      ],
+    });
+  }
+
+  /**
+   * Globals and pass records for `params` (every collider must have a gpuCollider form), and room for
+   * params.substeps substep records.
+   */
+  setParams(params: SimParams): void {
+    const model = this.model;
+    const q = this.device.queue;
+    const g = new DataView(this.globals);
+    for (let k = 0; k < 3; k++) g.setFloat32(GLOBALS.gravity + 4 * k, params.gravity[k], true);
+    g.setUint32(GLOBALS.iterations, params.iterations, true);
+    g.setFloat32(GLOBALS.damping, params.damping, true);
+    g.setFloat32(GLOBALS.stretchFactor, params.stretchFactor, true);
+    g.setFloat32(GLOBALS.friction, params.friction, true);
+    g.setFloat32(GLOBALS.staticFriction, params.staticFriction, true);
+    g.setFloat32(GLOBALS.thickness, params.thickness, true);
+    g.setFloat32(GLOBALS.reach, params.thickness + 2 * model.maxTriangleEdge, true);
+    g.setFloat32(GLOBALS.windK, (0.25 * params.wind.airDensity) / 3, true);
+    g.setUint32(GLOBALS.colliderCount, params.colliders.length, true);
+    const triangleShapes: boolean[] = [];
+    params.colliders.forEach((shape, k) => {
+      const at = GLOBALS.colliders + k * COLLIDER_BYTES;
+      const { kind, data4 } = gpuCollider(shape)!;
+      for (let j = 0; j < 4; j++) g.setFloat32(at + 4 * j, data4[j], true);
+      g.setUint32(at + 16, kind, true);
+      triangleShapes.push(kind === COLLIDER_SPHERE && needsTriangleContact(model, shape, params.thickness));
+    });
+    q.writeBuffer(this.globalsBuffer, 0, this.globals);
+
+    // pass records: constraint batches (two variants each), then contact
+    const records: number[][] = []; // [start, end, cap(float), flags]
+    this.batchRecords = model.batches.map((b) => {
+      const cap = b.kind === BEND ? 0 : PASS_CAP;
+      const at = records.length;
+      records.push([b.start, b.end, params.stretchFactor, cap]);
+      records.push([b.start, b.end, params.stretchFactor, cap | PASS_READ_LAMBDA]);
+      return { first: at, later: at + 1, count: b.end - b.start, stretch: b.kind !== BEND };
+    });
+    this.collidePasses = [];
+    let first = 0;
+    const shapes = params.colliders.length;
+    for (let k = 0; k < shapes; k++) {
+      if (!triangleShapes[k] && k + 1 < shapes) continue;
+      this.collidePasses.push({ kernel: 'collideParticles', record: records.length, count: model.particleCount });
+      records.push([first, k + 1, 0, 0]);
+      first = k + 1;
+      if (!triangleShapes[k]) continue;
+      for (const b of model.triangleBatches) {
+        this.collidePasses.push({ kernel: 'collideTriangles', record: records.length, count: b.end - b.start });
+        records.push([b.start, b.end, 0, k]);
+      }
+    }
+    if (records.length * RECORD_STRIDE > this.passBuffer.size) {
+      this.passBuffer.destroy();
+      this.passBuffer = this.recordBuffer('drape passes', records.length);
+      this.group = this.makeGroup();
+    }
+    const table = new DataView(new ArrayBuffer(Math.max(1, records.length) * RECORD_STRIDE));
+    records.forEach(([start, end, cap, flags], r) => {
+      const at = r * RECORD_STRIDE;
+      table.setUint32(at + PASS.start, start, true);
+      table.setUint32(at + PASS.end, end, true);
+      table.setFloat32(at + PASS.cap, cap, true);
+      table.setUint32(at + PASS.flags, flags, true);
+    });
+    q.writeBuffer(this.passBuffer, 0, table.buffer);
+
+    if (params.substeps * RECORD_STRIDE > this.substepBuffer.size) {
+      this.substepBuffer.destroy();
+      this.substepBuffer = this.recordBuffer('drape substeps', params.substeps);
+      this.group = this.makeGroup();
+    }
+    if (this.substepData.byteLength < params.substeps * RECORD_STRIDE) {
+      this.substepData = new ArrayBuffer(params.substeps * RECORD_STRIDE);
+      this.substepView = new DataView(this.substepData);
+    }
+  }
+
+  /**
+   * A frame's per-frame inputs: the grab (particle, target) and one record per substep of dt [s], with the CPU's own
+   * time accumulation (gusts) and Taylor start, as the frame loop will count them from `state`.
+   */
+  writeFrame(state: ClothState, params: SimParams, dt: number): void {
+    const q = this.device.queue;
+    const n = params.substeps;
+    const h = dt / n;
+    const grabbed = state.grabbed >= 0 && state.grabbed < this.model.particleCount ? state.grabbed : -1;
+    const gv = this.grabView;
+    gv.setInt32(0, grabbed, true);
+    for (let k = 0; k < 3; k++) gv.setFloat32(4 + 4 * k, state.grabTarget[k], true);
+    q.writeBuffer(this.globalsBuffer, GLOBALS.grabbed, this.grabData);
+
+    const sv = this.substepView;
+    const windOn = params.wind.enabled;
+    let t = state.time;
+    for (let sub = 0; sub < n; sub++) {
+      const at = sub * RECORD_STRIDE;
+      if (windOn) windVelocity(params, t, this.wind); else this.wind.fill(0);
+      for (let k = 0; k < 3; k++) sv.setFloat32(at + SUBSTEP.wind + 4 * k, this.wind[k], true);
+      const c = state.substeps + sub === 0 ? 0.5 : 1;
+      sv.setFloat32(at + SUBSTEP.h, h, true);
+      sv.setFloat32(at + SUBSTEP.h2, c * h * h, true);
+      sv.setFloat32(at + SUBSTEP.invH, 1 / h, true);
+      sv.setFloat32(at + SUBSTEP.invH2, 1 / (h * h), true);
+      sv.setFloat32(at + SUBSTEP.betaOverH, params.damping / h, true);
+      sv.setFloat32(at + SUBSTEP.grabFraction, (sub + 1) / n, true);
+      sv.setUint32(at + SUBSTEP.windOn, windOn ? 1 : 0, true);
+      sv.setFloat32(at + SUBSTEP.recover, params.depenetrationSpeed * h, true);
+      sv.setFloat32(at + SUBSTEP.recoverTriangle, (params.depenetrationSpeed * h) / Math.max(1, this.model.maxTriangleValence), true);
+      t += h;
+    }
+    q.writeBuffer(this.substepBuffer, 0, this.substepData, 0, n * RECORD_STRIDE);
+  }
+
+  /** Frees the uniform buffers. */
+  destroy(): void {
+    this.globalsBuffer.destroy();
+    this.substepBuffer.destroy();
+    this.passBuffer.destroy();
+  }
+}
