@@ -102,7 +102,7 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     // a backend whose integrate and tethers are the reference's own, handed over by the frame loop
     const ran: number[] = [];
     const partial: PhaseBackend = {
-      phases: { name: 'partial', sharesMemory: true, solvers: ['xpbd', 'mass-spring'], phases: (1 << PHASE.integrate) | (1 << PHASE.tethers) },
+      phases: { name: 'partial', where: 'here', sharesMemory: true, solvers: ['xpbd', 'mass-spring'], phases: (1 << PHASE.integrate) | (1 << PHASE.tethers) },
       run(mask, model, state, params, frame, log) {
         for (let id = 0; id < PHASE_COUNT; id++) {
           if ((mask & (1 << id)) === 0) continue;
@@ -134,10 +134,10 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
   it('a backend that does not share memory cannot leave a phase to the reference: refused, naming the phase', () => {
     const sim = new Simulation(windyScene('xpbd'), { kernel: 'ts' });
     const all = (1 << PHASE_COUNT) - 1;
-    const remote: BackendPhases = { name: 'remote', sharesMemory: false, solvers: ['xpbd'], phases: all & ~(1 << PHASE.tethers) };
+    const remote: BackendPhases = { name: 'remote', where: 'remotely', sharesMemory: false, solvers: ['xpbd'], phases: all & ~(1 << PHASE.tethers) };
     expect(() => assignPhases(remote, sim.model, sim.params)).toThrow(/remote: it does not implement phase 'tethers'/);
     expect(() => assignPhases({ ...remote, phases: all, refusal: () => 'no such shape' }, sim.model, sim.params)).toThrow(/remote: no such shape/);
-    expect(() => assignPhases({ ...remote, solvers: ['mass-spring'] }, sim.model, sim.params)).toThrow(/only the mass-spring solver/);
+    expect(() => assignPhases({ ...remote, solvers: ['mass-spring'] }, sim.model, sim.params)).toThrow(/remote: only the mass-spring solver runs remotely \(params.solver is 'xpbd'\)/);
     expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params)).toBe(all & ~(1 << PHASE.springForces));
   });
 });

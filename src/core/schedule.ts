@@ -79,6 +79,8 @@ export function phasePasses(id: PhaseId, params: SimParams): number {
 export interface BackendPhases {
   /** how messages name it */
   readonly name: string;
+  /** where it runs, as messages end 'only the xpbd solver runs …' */
+  readonly where: string;
   /**
    * whether the TypeScript reference can run a phase on the backend's memory between its own phases: true where
    * the CPU state's arrays are the backend's (the WebAssembly kernel), false where the cloth lives elsewhere (GPU
@@ -106,7 +108,7 @@ export interface BackendPhases {
 export function assignPhases(backend: BackendPhases, model: ClothModel, params: SimParams): number {
   if (!backend.solvers.includes(params.solver)) {
     if (backend.sharesMemory) return 0;
-    throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs on it (params.solver is '${params.solver}')`);
+    throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs ${backend.where} (params.solver is '${params.solver}')`);
   }
   const wanted = solverPhases(params.solver);
   let own = 0;

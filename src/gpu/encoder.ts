@@ -29,6 +29,7 @@ function contactRefusal(params: SimParams): string | null {
  */
 export const GPU_PHASES: BackendPhases = {
   name: 'GPU solver',
+  where: 'on the GPU',
   sharesMemory: false,
   solvers: ['xpbd'],
   phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) |

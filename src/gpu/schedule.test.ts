@@ -48,7 +48,7 @@ describe('what the GPU implements of the schedule', () => {
 
   test('what it lacks it cannot leave to the reference (its cloth is in GPU memory): refused, saying why', () => {
     const sim = new Simulation(windyScene((s) => { s.solver.type = 'mass-spring'; }), { kernel: 'ts' });
-    expect(() => assignPhases(GPU_PHASES, sim.model, sim.params)).toThrow(/GPU solver: only the xpbd solver/);
+    expect(() => assignPhases(GPU_PHASES, sim.model, sim.params)).toThrow(/GPU solver: only the xpbd solver runs on the GPU/);
     const xpbd = new Simulation(windyScene(), { kernel: 'ts' });
     const box = { type: 'box', minCurvatureRadius: 0, signedDistance: () => 1 } satisfies ColliderShape;
     const params = { ...xpbd.params, colliders: [...xpbd.params.colliders, box] };

@@ -42,6 +42,7 @@ function contactRefusal(model: ClothModel, params: SimParams): string | null {
 /** The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter). */
 export const KERNEL_PHASES: BackendPhases = {
   name: 'WebAssembly kernel',
+  where: 'in the WebAssembly kernel',
   sharesMemory: true,
   solvers: ['xpbd'],
   phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.tethers) |
