@@ -3,7 +3,7 @@
  * JoltPhysics.js on the very same cloth (same particles, masses, constraints and compliances) in the same run.
  */
 import { availableParallelism, cpus } from 'node:os';
-import { builtinScene, Simulation, type Scene, type SimulationOptions } from '../core/index.js';
+import { builtinScene, Simulation, WasmBackend, type Scene, type SimulationOptions } from '../core/index.js';
 import type { Gpu } from './gpu.js';
 import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
 import { whileBusy } from './busy.js';
@@ -73,7 +73,7 @@ type DrapeTiming = Timing & { sim: Simulation; start: number[]; kernel: string; 
 /** What a timed simulation reports: ms per frame, whether it stayed put, and how its kernel ran. */
 function drapeTiming(sim: Simulation, msPerFrame: number, start: number[]): DrapeTiming {
   const r = sim.report();
-  const mode = sim.state.kernel?.mode;
+  const mode = sim.backend instanceof WasmBackend ? sim.backend.kernel.mode : undefined;
   return {
     msPerFrame,
     particleSubstepsPerSecond: (r.particles * sim.scene.solver.substeps * 1000) / msPerFrame,

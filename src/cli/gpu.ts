@@ -2,7 +2,7 @@
  * The CLI's WebGPU backend: Dawn in Node through the optional `webgpu` package (src/gpu/node.ts), the same scenes
  * and models as the CPU. Loaded only when `--backend gpu` is asked for.
  */
-import { FRAME_DT, Simulation, type MeshResolver, type Scene } from '../core/index.js';
+import { Simulation, type MeshResolver, type Scene } from '../core/index.js';
 import type { GpuBenchResult } from '../gpu/index.js';
 import { UsageError } from './errors.js';
 
@@ -32,23 +32,21 @@ export async function openGpu(): Promise<Gpu> {
     adapter,
     async simulate(scene, frames, meshes) {
       const sim = new Simulation(scene, { kernel: 'ts', meshes });
-      const solver = await gpu.GpuClothSolver.create(device, sim.model);
       try {
-        try {
-          solver.setParams(sim.params);
-        } catch (e) {
-          throw new UsageError(`--backend gpu: ${(e as Error).message.split('\n')[0]}`);
-        }
-        solver.upload(sim.state);
+        sim.useBackend(await gpu.GpuBackend.create(device, sim.model));
         const t0 = performance.now();
-        for (let f = 0; f < frames; f++) solver.step(sim.state, sim.params, FRAME_DT);
+        sim.advance(frames);
         await device.queue.onSubmittedWorkDone();
         const msPerFrame = frames > 0 ? (performance.now() - t0) / frames : 0;
-        await solver.read(sim.state);
-        sim.frame = frames;
+        await sim.sync();
         return { sim, msPerFrame };
+      } catch (e) {
+        // what the GPU solver refuses (a solver it does not run, a limit) is the user's input
+        const message = (e as Error).message;
+        if (message.startsWith('GPU solver:')) throw new UsageError(`--backend gpu: ${message.split('\n')[0]}`);
+        throw e;
       } finally {
-        solver.destroy();
+        sim.dispose();
       }
     },
     bench: (sizes, substeps, frames) => gpu.benchGpu(device, sizes, substeps, frames),

@@ -4,7 +4,7 @@
  */
 import { availableParallelism } from 'node:os';
 import { describe, expect, it } from 'vitest';
-import { builtinScene, grab, release, Simulation, type HelperSpawner, type Scene } from '../core/index.js';
+import { builtinScene, grab, release, Simulation, WasmBackend, type HelperSpawner, type Scene } from '../core/index.js';
 import { spawnNodeHelper } from './threads.js';
 
 function scene(): Scene {
@@ -27,8 +27,8 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
     try {
       await many.whenReady();
       expect(many.threads).toBe(threads);
-      many.state.kernel!.spinLimit = spins;
-      many.state.kernel!.mode.hold(true); // every frame with the helper, however slow sleeping makes it
+      (many.backend as WasmBackend).kernel.spinLimit = spins;
+      (many.backend as WasmBackend).kernel.mode.hold(true); // every frame with the helper, however slow sleeping makes it
       expect(many.state.positions.buffer).toBeInstanceOf(SharedArrayBuffer);
       for (let f = 0; f < 40; f++) {
         if (f === 10) for (const s of [one, many]) grab(s.state, 1500, [0.2, 2.2, 0.3]);
@@ -36,7 +36,7 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
         one.advance(1);
         many.advance(1);
       }
-      expect(many.state.kernel!.mode.framesAlone).toBe(0);
+      expect((many.backend as WasmBackend).kernel.mode.framesAlone).toBe(0);
       expect([...many.state.positions]).toEqual([...one.state.positions]);
       expect([...many.state.velocities]).toEqual([...one.state.velocities]);
       expect(many.report().finite).toBe(true);
@@ -48,7 +48,7 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
   it('a rebuild stops the old helpers and starts new ones; after dispose it steps on one thread', async () => {
     const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
     await sim.whenReady();
-    const oldKernel = sim.state.kernel!;
+    const oldKernel = (sim.backend as WasmBackend).kernel;
     expect(sim.set('cloth.resolution', 20)).toBe(true);
     expect(oldKernel.activeThreads).toBe(1);
     await sim.whenReady();
@@ -63,12 +63,12 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
   it('after dispose: no helpers again (not by a rebuild either), and nothing waits for them', async () => {
     const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
     await sim.whenReady();
-    const kernel = sim.state.kernel!;
+    const kernel = (sim.backend as WasmBackend).kernel;
     sim.dispose();
     expect(() => kernel.startHelpers(spawnNodeHelper)).toThrow(/disposed/);
     await sim.whenReady(); // at once
     sim.set('cloth.resolution', 12);
-    expect(sim.state.kernel!.threads).toBe(1);
+    expect((sim.backend as WasmBackend).kernel.threads).toBe(1);
     sim.advance(2);
     expect(sim.report().finite).toBe(true);
   });
@@ -87,6 +87,6 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
   it('without a helper spawner the kernel runs on the calling thread', () => {
     const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2 });
     expect(sim.threads).toBe(1);
-    expect(sim.state.kernel!.threads).toBe(1);
+    expect((sim.backend as WasmBackend).kernel.threads).toBe(1);
   });
 });

@@ -6,6 +6,7 @@ import { describe, expect, it } from 'vitest';
 import { SceneError } from './scene.js';
 import { builtinScene } from './scenes.js';
 import { Simulation, type SimulationOptions } from './simulation.js';
+import { WasmBackend } from './backend.js';
 import { grab, release, setPinned } from './state.js';
 
 const small = () => { const s = builtinScene('custom'); s.cloth.resolution = 8; return s; };
@@ -33,7 +34,7 @@ describe('library arguments', () => {
     const spawner = Object.assign((init: { thread: number }) => { started.push(init.thread); return { terminate() {} }; }, { cores: 2 });
     const s = builtinScene('custom'); s.cloth.resolution = 64;
     const sim = new Simulation(s, { kernel: 'wasm', threads: 1000, spawnHelper: spawner });
-    expect(sim.state.kernel!.threads).toBe(2);
+    expect((sim.backend as WasmBackend).kernel.threads).toBe(2);
     expect(started).toEqual([1]); // one helper, not 999
     sim.dispose();
   });

@@ -16,7 +16,8 @@ export { PHASE, PHASES, PhaseLog, type Phase, type PhaseName, type BackendPhases
 export { runFrame, type PhaseBackend, type FrameVars } from './frame.js';
 export * from './colliders/index.js';
 export { Simulation, needsRebuild, AUTO_THREADS_MIN_PARTICLES, type Report, type CpuKernel, type SimulationOptions } from './simulation.js';
-export { createWasmState, wasmKernelAvailable, XpbdKernel, type HelperSpawner, type KernelHelperInit } from './wasm/xpbd-wasm.js';
+export { TsBackend, WasmBackend, type Backend, type BackendKind } from './backend.js';
+export { wasmKernelAvailable, XpbdKernel, type HelperSpawner, type KernelHelperInit } from './wasm/xpbd-wasm.js';
 export { modelFor, parseMeshFile, meshFormat, CLOTH_SHAPES, MESH_EXTENSIONS, type ClothShape, type MeshResolver } from './cloth-shape.js';
 export { prepareMesh, MAX_MESH_PARTICLES, MAX_VERTEX_EDGES, WELD_TOLERANCE, type TriangleMesh } from './mesh/triangle-mesh.js';
 export { discMesh, tubeMesh, placeMesh, type ShapeSpec, type Placement } from './mesh/generators.js';

@@ -6,6 +6,7 @@
 import { describe, expect, it } from 'vitest';
 import { runFrame, type PhaseBackend } from './frame.js';
 import { FRAME_DT } from './params.js';
+import { WasmBackend } from './backend.js';
 import { REFERENCE } from './reference.js';
 import { grab } from './state.js';
 import type { Scene, SolverType } from './scene.js';
@@ -37,7 +38,7 @@ function windyScene(solver: SolverType, edit: (s: Scene) => void = () => {}): Sc
 function loggedFrame(sim: Simulation, grabbed: boolean): PhaseLog {
   if (grabbed) grab(sim.state, 5, [0.1, 2.2, 0.3]);
   const log = new PhaseLog();
-  if (sim.state.kernel) sim.state.kernel.frame(sim.model, sim.state, sim.params, FRAME_DT, log);
+  if (sim.backend instanceof WasmBackend) sim.backend.kernel.frame(sim.model, sim.state, sim.params, FRAME_DT, log);
   else runFrame(sim.model, sim.state, sim.params, FRAME_DT, undefined, log);
   return log;
 }

@@ -9,11 +9,11 @@ import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrai
 import { FRAME_DT, resolveParams, type SimParams } from './params.js';
 import { applyPins, resolvePins } from './pins.js';
 import { setScenePath, validateScene, type Scene } from './scene.js';
-import { step } from './solvers/index.js';
 import { plainText } from './text.js';
 import { checkPlacement } from './placement.js';
-import { copyState, createState, resetState, type ClothState } from './state.js';
-import { createWasmState, type HelperSpawner } from './wasm/xpbd-wasm.js';
+import { copyState, resetState, type ClothState } from './state.js';
+import type { HelperSpawner } from './wasm/xpbd-wasm.js';
+import { TsBackend, WasmBackend, type Backend } from './backend.js';
 
 /** Where a Simulation runs the XPBD substeps on the CPU. */
 export type CpuKernel = 'wasm' | 'ts';
@@ -106,13 +106,15 @@ function checkOptions(options: SimulationOptions): SimulationOptions {
 export class Simulation {
   scene: Scene;
   model: ClothModel;
-  state: ClothState;
   params: SimParams;
+  /** where the frames run; it holds the state (see backend.ts) */
+  private backendNow: Backend;
   /** frames stepped since the last (re)start */
   frame = 0;
   /**
    * the frame at whose end some position was first not finite (the cloth blew up), or null while every position
-   * is finite; advance() steps no further once it is set (reset() or a rebuild clears it)
+   * is finite; advance() steps no further once it is set (reset() or a rebuild clears it). On a backend whose
+   * state is read back (the GPU), it is found by sync(): the frame of that read
    */
   unstableFrame: number | null = null;
   private readonly options: SimulationOptions;
@@ -125,45 +127,73 @@ export class Simulation {
     this.params = resolveParams(this.model, this.scene);
     const pins = resolvePins(this.model, this.scene.pins);
     checkPlacement(this.model, this.params.colliders, pins, this.scene.material.stretchFactor, sceneLabel(this.scene));
-    this.state = this.newState();
+    this.backendNow = this.newBackend();
     applyPins(this.state, pins);
+  }
+
+  /** the backend the frames run on */
+  get backend(): Backend {
+    return this.backendNow;
+  }
+
+  /** the cloth's state (on the GPU: as of the last sync()) */
+  get state(): ClothState {
+    return this.backendNow.state;
   }
 
   /** the CPU kernel the substeps run in: 'wasm' only for XPBD (mass-spring always steps in TypeScript) */
   get kernel(): CpuKernel {
-    return this.state.kernel ? 'wasm' : 'ts';
+    return this.backendNow.kind === 'wasm' ? 'wasm' : 'ts';
   }
 
   /** threads sharing each substep now (1 until a wasm kernel's helpers have started) */
   get threads(): number {
-    return this.state.kernel?.activeThreads ?? 1;
+    return this.backendNow.threads;
   }
 
-  /** Resolves once the wasm kernel's helper threads (if any) have started. */
+  /** Resolves once the backend runs at full strength (the wasm kernel's helper threads started). */
   whenReady(): Promise<void> {
-    return this.state.kernel?.whenHelpersReady() ?? Promise.resolve();
+    return this.backendNow.whenReady();
   }
 
-  /** Stops the wasm kernel's helper threads for good: the simulation still steps, on this thread. */
+  /** Stops the wasm kernel's helper threads (and frees a GPU backend) for good: the state stays readable. */
   dispose(): void {
     this.disposed = true;
-    this.state.kernel?.dispose();
+    this.backendNow.dispose();
   }
 
-  /** A state for the current model and solver: in the wasm kernel's memory for XPBD (unless asked not to). */
-  private newState(): ClothState {
+  /**
+   * Moves the cloth, as it is, onto another backend built for this model (e.g. the GPU's, src/gpu/backend.ts); the
+   * old one is disposed. A rebuild of the model (a geometry change) comes back to a CPU backend.
+   */
+  useBackend(next: Backend): void {
+    if (next === this.backendNow) return;
+    if (next.state.positions.length !== this.state.positions.length) {
+      throw new RangeError(`Simulation.useBackend: the backend holds ${next.state.positions.length / 3} particles, the cloth ${this.model.particleCount}`);
+    }
+    copyState(this.state, next.state);
+    next.stateChanged();
+    this.backendNow.dispose();
+    this.backendNow = next;
+  }
+
+  /** Brings the state up to date with the frames stepped (the GPU reads back) and checks it is finite. */
+  async sync(): Promise<void> {
+    await this.backendNow.sync();
+    if (this.unstableFrame === null && !allFinite(this.state.positions)) this.unstableFrame = this.frame;
+  }
+
+  /** A backend for the current model and solver: the wasm kernel for XPBD (unless asked not to), else TypeScript. */
+  private newBackend(): Backend {
     const { kernel = 'auto', threads = 'auto' } = this.options;
     const spawnHelper = this.disposed ? undefined : this.options.spawnHelper;
     if (kernel !== 'ts' && this.scene.solver.type === 'xpbd') {
       const t = spawnHelper ? threadsFor(threads, spawnHelper.cores, this.model.particleCount) : 1;
-      const state = createWasmState(this.model, t) ?? (t > 1 ? createWasmState(this.model, 1) : null);
-      if (state) {
-        if (spawnHelper && state.kernel!.threads > 1) state.kernel!.startHelpers(spawnHelper);
-        return state;
-      }
+      const backend = WasmBackend.create(this.model, t, spawnHelper) ?? (t > 1 ? WasmBackend.create(this.model, 1) : null);
+      if (backend) return backend;
       if (kernel === 'wasm') throw new Error('the WebAssembly kernel needs WebAssembly SIMD, which this runtime lacks');
     }
-    return createState(this.model);
+    return new TsBackend(this.model);
   }
 
   /**
@@ -172,10 +202,11 @@ export class Simulation {
    */
   advance(frames = 1): boolean {
     if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`Simulation.advance: frames must be an integer ≥ 0, got ${frames}`);
+    const live = this.backendNow.kind !== 'gpu'; // a GPU state is checked when it is read back (sync)
     for (let f = 0; f < frames && this.unstableFrame === null; f++) {
-      step(this.model, this.state, this.params, FRAME_DT);
+      this.backendNow.frame(this.model, this.params, FRAME_DT);
       this.frame++;
-      if (!allFinite(this.state.positions)) this.unstableFrame = this.frame;
+      if (live && !allFinite(this.state.positions)) this.unstableFrame = this.frame;
     }
     return this.unstableFrame === null;
   }
@@ -184,6 +215,7 @@ export class Simulation {
   reset(): void {
     resetState(this.model, this.state);
     applyPins(this.state, resolvePins(this.model, this.scene.pins));
+    this.backendNow.stateChanged();
     this.frame = 0;
     this.unstableFrame = null;
   }
@@ -213,22 +245,22 @@ export class Simulation {
     }
     this.scene = next;
     if (rebuild) {
-      this.state.kernel?.dispose();
+      this.backendNow.dispose();
       this.model = model;
-      this.state = this.newState();
+      this.backendNow = this.newBackend();
       this.frame = 0;
       this.unstableFrame = null;
-    } else if ((prev.solver.type === 'xpbd') !== (next.solver.type === 'xpbd')) {
+    } else if ((prev.solver.type === 'xpbd') !== (next.solver.type === 'xpbd') && this.backendNow.kind !== 'gpu') {
       // XPBD steps in the kernel's memory, mass-spring in plain arrays: move the cloth over, as it is
-      const moved = this.newState();
-      if (moved.kernel !== this.state.kernel) {
-        copyState(this.state, moved);
-        this.state.kernel?.dispose();
-        this.state = moved;
-      }
+      const moved = this.newBackend();
+      if (moved.kind !== this.backendNow.kind) this.useBackend(moved);
+      else moved.dispose();
     }
     this.params = params;
-    if (rebuild || pinsChanged) applyPins(this.state, pins);
+    if (rebuild || pinsChanged) {
+      applyPins(this.state, pins);
+      this.backendNow.stateChanged();
+    }
     return rebuild;
   }
 

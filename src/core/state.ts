@@ -1,5 +1,4 @@
 import type { ClothModel } from './model.js';
-import type { XpbdKernel } from './wasm/xpbd-wasm.js';
 
 /**
  * Everything about a cloth that changes while it runs: flat typed arrays, one entry per particle (vec3 data with
@@ -37,11 +36,6 @@ export interface ClothState {
   time: number;
   /** substeps taken since the start (0 means the next one is the very first) */
   substeps: number;
-  /**
-   * the WebAssembly kernel whose memory holds this state's arrays, when the state was made by createWasmState();
-   * the XPBD solver then runs its substeps there (same phases, same results within f32 rounding)
-   */
-  readonly kernel?: XpbdKernel;
 }
 
 /** The typed arrays of a state, for createState to place somewhere else (a WebAssembly memory). */
@@ -57,10 +51,10 @@ export interface StateArrays {
 }
 
 /**
- * A state at the model's start pose, at rest. `arrays` (of the right lengths) and `kernel` are for
- * createWasmState(); by default the arrays are new.
+ * A state at the model's start pose, at rest. `arrays` (of the right lengths) are for a backend that keeps them in
+ * its own memory (the WebAssembly kernel); by default the arrays are new.
  */
-export function createState(model: ClothModel, arrays?: StateArrays, kernel?: XpbdKernel): ClothState {
+export function createState(model: ClothModel, arrays?: StateArrays): ClothState {
   const n = model.particleCount;
   const a: StateArrays = arrays ?? {
     positions: new Float32Array(3 * n),
@@ -81,7 +75,6 @@ export function createState(model: ClothModel, arrays?: StateArrays, kernel?: Xp
     grabTarget: new Float64Array(3),
     time: 0,
     substeps: 0,
-    kernel,
   };
   resetState(model, state);
   return state;

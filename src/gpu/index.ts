@@ -3,6 +3,7 @@
  * helper lives in ./node.js (it imports node: modules and the `webgpu` package).
  */
 export { GpuClothSolver, type SubstepTraffic } from './solver.js';
+export { GpuBackend } from './backend.js';
 export { benchGpu, measureCopyBandwidth, type GpuBenchResult } from './bench.js';
 export { kernelSource } from './shaders.js';
 export { triangleAdjacency } from './topology.js';

@@ -7,13 +7,9 @@ import type { ClothState } from '../state.js';
 /** A stateless stepper: advances `state` by dt [s] using `model` and `params`; allocates nothing. */
 export type StepFn = (model: ClothModel, state: ClothState, params: SimParams, dt: number) => void;
 
-/**
- * XPBD (solvers/xpbd.ts): in the WebAssembly kernel when the state lives in one (createWasmState), else in
- * TypeScript.
- */
+/** XPBD (solvers/xpbd.ts), every phase in TypeScript (the kernel's frames: backend.ts WasmBackend). */
 function stepXpbd(model: ClothModel, state: ClothState, params: SimParams, dt: number): void {
-  if (state.kernel) state.kernel.frame(model, state, params, dt);
-  else runFrame(model, state, params, dt);
+  runFrame(model, state, params, dt);
 }
 
 /** Mass-spring (solvers/mass-spring.ts): in TypeScript, whatever memory the state's arrays live in. */

@@ -8,9 +8,8 @@ import { FRAME_DT, resolveParams } from '../params.js';
 import { SceneError, validateScene, type Scene, type SolverType } from '../scene.js';
 import { builtinScene, SCENE_NAMES } from '../scenes.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
-import { createState, grab, release, setPinned } from '../state.js';
-import { createWasmState } from '../wasm/xpbd-wasm.js';
-import { step } from './index.js';
+import { grab, release, setPinned } from '../state.js';
+import { TsBackend, WasmBackend } from '../backend.js';
 import { sceneSchema } from '../scene-schema.js';
 
 const SOLVER_TYPES: SolverType[] = ['xpbd', 'mass-spring'];
@@ -57,8 +56,9 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const sc = validateScene({ solver: { type: solver, substeps: 1 }, gravity: [0, 0, 0], colliders: [], material: { structuralStiffness: k, mass: M, damping: 0, stretchFactor: 2 } });
     const params = resolveParams(model, sc, h);
     expect(params.clamps).toEqual([]);
-    const state = kernel === 'wasm' ? createWasmState(model)! : createState(model);
-    expect(state.kernel !== undefined).toBe(kernel === 'wasm');
+    const backend = kernel === 'wasm' ? WasmBackend.create(model)! : new TsBackend(model);
+    expect(backend.kind).toBe(kernel);
+    const state = backend.state;
     setPinned(state, 0, true);
     state.positions[3] = state.previousPositions[3] = 1.05;
     // XPBD is implicit-Euler-like and damps a stiff oscillator within a few periods, so time the first four
@@ -66,7 +66,7 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const crossings: number[] = [];
     let prev = 0.05, t = 0;
     while (crossings.length < 9) {
-      step(model, state, params, h);
+      backend.frame(model, params, h);
       t += h;
       const d = state.positions[3] - 1;
       if ((prev > 0 && d <= 0) || (prev < 0 && d >= 0)) crossings.push(t - (h * d) / (d - prev));

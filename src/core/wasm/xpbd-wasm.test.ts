@@ -6,7 +6,8 @@ import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { FRAME_DT, builtinScene, createState, SCENE_NAMES, Simulation, step, type Scene } from '../index.js';
 import { GENERATED_FILE, generateKernelModule } from './gen-wasm.mjs';
-import { createWasmState, wasmKernelAvailable } from './xpbd-wasm.js';
+import { wasmKernelAvailable } from './xpbd-wasm.js';
+import { WasmBackend } from '../backend.js';
 
 function maxDiff(a: Float32Array, b: Float32Array): number {
   let d = 0;
@@ -95,9 +96,10 @@ describe('xpbd wasm kernel', () => {
     sc.cloth.resolution = 8;
     sc.solver.type = 'mass-spring';
     const a = new Simulation(sc, { kernel: 'ts' });
-    const state = createWasmState(a.model)!;
+    const backend = WasmBackend.create(a.model)!;
+    const state = backend.state;
     state.pinned.set(a.state.pinned);
-    for (let f = 0; f < 20; f++) { a.advance(1); step(a.model, state, a.params, FRAME_DT); }
+    for (let f = 0; f < 20; f++) { a.advance(1); backend.frame(a.model, a.params, FRAME_DT); }
     expect(maxDiff(a.state.positions, state.positions)).toBe(0);
   });
 
@@ -110,7 +112,7 @@ describe('xpbd wasm kernel', () => {
     const before = { x: [...sim.state.positions], v: [...sim.state.velocities], pinned: [...sim.state.pinned], t: sim.state.time };
     sim.set('solver.type', 'mass-spring');
     expect(sim.kernel).toBe('ts');
-    expect(sim.state.kernel).toBeUndefined();
+    expect(sim.backend.kind).toBe('ts');
     expect([...sim.state.positions]).toEqual(before.x);
     expect([...sim.state.velocities]).toEqual(before.v);
     expect([...sim.state.pinned]).toEqual(before.pinned);
@@ -125,8 +127,8 @@ describe('xpbd wasm kernel', () => {
 
   it('createState still makes plain arrays; kernel states keep theirs in the kernel memory', () => {
     const sim = new Simulation(builtinScene('custom')!, { kernel: 'ts' });
-    expect(createState(sim.model).kernel).toBeUndefined();
-    const st = createWasmState(sim.model)!;
+    expect(createState(sim.model).positions.buffer).not.toBe(WasmBackend.create(sim.model)!.state.positions.buffer);
+    const st = WasmBackend.create(sim.model)!.state;
     expect(st.positions.buffer).toBe(st.previousPositions.buffer);
     expect([...st.positions]).toEqual([...sim.model.restPositions]);
     expect([...st.tetherAnchors].every((a) => a === -1)).toBe(true);

@@ -191,7 +191,7 @@ export class XpbdKernel implements PhaseBackend {
       lambdas: new Float32Array(buf, LAMBDA, m),
       tetherAnchors: new Int32Array(buf, ANCHOR, n),
       tetherLengths: new Float32Array(buf, TLEN, n),
-    }, this);
+    });
   }
 
   /** the state whose arrays live in this kernel's memory */
@@ -327,10 +327,3 @@ export class XpbdKernel implements PhaseBackend {
   }
 }
 
-/**
- * A ClothState whose arrays live in a WebAssembly kernel's memory (XPBD then runs its substeps there), or null
- * where the runtime cannot run the kernel. With threads > 1, start the helpers with state.kernel.startHelpers().
- */
-export function createWasmState(model: ClothModel, threads = 1): ClothState | null {
-  return XpbdKernel.create(model, threads)?.state ?? null;
-}
