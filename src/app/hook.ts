@@ -59,6 +59,7 @@ export interface DrapeHook {
   import(text: string): boolean;
 }
 
+/** Installs `window.drape`, reading and driving `app`, and returns it. */
 export function installHook(app: App): DrapeHook {
   const mirror = (slot = 0) => {
     const m = app.sim.mirrors[slot];
@@ -66,8 +67,8 @@ export function installHook(app: App): DrapeHook {
     return m;
   };
   const hook: DrapeHook = {
-    get ready() { return app.firstFrameAt > 0; },
-    get firstFrameMs() { return app.firstFrameAt; },
+    get ready() { return app.loop.firstFrameAt > 0; },
+    get firstFrameMs() { return app.loop.firstFrameAt; },
     backend: () => app.stage.backend,
     simBackend: () => app.sim.kind,
     gpuDrawing: () => app.sim.kind === 'cpu' || (app.views.length > 0 && app.views.every((v) => v.attached)),
@@ -115,11 +116,11 @@ export function installHook(app: App): DrapeHook {
     lastMessage: () => ({ text: app.overlay.lastMessage, kind: app.overlay.lastMessageKind }),
     labels: () => [...app.overlay.labelLayer.querySelectorAll('.drape-label')].map((l) => (l as HTMLElement).innerText.replace(/\s+/g, ' ').trim()),
     stats: () => ({
-      fps: app.fps, stepMs: app.sim.stats.stepMs, realTime: app.sim.stats.realTime,
+      fps: app.loop.fps, stepMs: app.sim.stats.stepMs, realTime: app.sim.stats.realTime,
       framesDone: app.sim.stats.framesDone, clamps: [...app.sim.stats.clamps],
     }),
     step: (frames = 1) => app.sim.step(frames),
-    import: (text) => app.importText(text, 'hook'),
+    import: (text) => app.fileImport.importText(text, 'hook'),
   };
   (window as unknown as { drape: DrapeHook }).drape = hook;
   return hook;

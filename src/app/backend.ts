@@ -1,0 +1,185 @@
+/**
+ * The simulation backend: which one the choice (panel, link, `?backend=`), the scene and the renderer allow; the
+ * driver that runs it; moving the cloths from one backend to the other; and what happens when the WebGPU device is
+ * lost or a cloth blows up.
+ */
+import { SCENE_NAMES, builtinScene } from '../core/index.js';
+import type { App } from './app.js';
+import { GpuSim } from './gpu-sim.js';
+import { capResolution } from './limits.js';
+import { refusal } from './refusal.js';
+import { SimClient, type SimDriver } from './sim-client.js';
+
+/** the panel's and the link's backend choice; auto = the GPU when there is a hardware WebGPU device and the scene allows */
+export type BackendChoice = 'auto' | 'gpu' | 'cpu';
+/** every backend choice, as the panel and the link name them */
+export const BACKEND_CHOICES: readonly BackendChoice[] = ['auto', 'gpu', 'cpu'];
+
+/** The simulation backend of the page: the choice, where it runs now and why, and the driver behind `app.sim`. */
+export class Backend {
+  /** simulation backend asked for (panel, link) */
+  choice: BackendChoice = 'auto';
+  /** why the simulation is not where it was asked to be ('' when it is) */
+  note = '';
+  /** the choice came from the link or the panel (so the link keeps it), not from `?backend=` */
+  inLink = false;
+  /** the WebGPU device was lost: the GPU backend is gone for this page */
+  private gpuLost = false;
+
+  constructor(private readonly app: App) {}
+
+  /** `?backend=`: the choice when the link names none (not written into the link); anything else is ignored. */
+  setDefault(choice: string | null | undefined): void {
+    if (choice && (BACKEND_CHOICES as readonly string[]).includes(choice)) this.choice = choice as BackendChoice;
+  }
+
+  /** The renderer lost its WebGPU device and went on with WebGL2: the GPU backend is gone for this page. */
+  deviceLost(): void {
+    const app = this.app;
+    app.dirty = true;
+    // the GPU simulation lived on the lost device: go on on the CPU from the last positions read back
+    if (app.sim?.kind === 'gpu') {
+      const frame = app.sim.mirrors[0]?.frame ?? 0;
+      this.gpuLost = true;
+      const capBefore = app.capNote;
+      this.place(true);
+      app.overlay.message(app.capNote !== capBefore
+        ? `WebGPU device lost; switched to WebGL2. The simulation moves to the CPU, which takes a smaller cloth (${app.capNote}): it restarts.`
+        : `WebGPU device lost; switched to WebGL2. The simulation continues on the CPU from the last positions read back from the GPU (frame ${frame}).`,
+      'notice');
+    } else {
+      this.gpuLost = true;
+      this.note = this.choice === 'gpu' ? 'GPU unavailable: the WebGPU device was lost' : '';
+      app.panel?.sync();
+    }
+  }
+
+  /** The backend the current scene and renderer allow for the choice, and why if it differs from the choice. */
+  wanted(): { kind: 'cpu' | 'gpu'; note: string } {
+    const { stage, scene } = this.app;
+    if (this.choice === 'cpu') return { kind: 'cpu', note: '' };
+    const why = this.gpuLost ? 'the WebGPU device was lost'
+      : stage.backend !== 'webgpu' || !stage.device ? 'no WebGPU adapter (WebGL2)'
+      : GpuSim.supports(scene);
+    if (why) return { kind: 'cpu', note: this.choice === 'gpu' || scene.solver.type !== 'xpbd' ? `GPU unavailable: ${why}` : '' };
+    if (this.choice === 'auto' && stage.softwareAdapter) {
+      return { kind: 'cpu', note: 'auto: the WebGPU adapter is a software fallback, slower than the CPU worker; choose GPU to use it anyway' };
+    }
+    return { kind: 'gpu', note: '' };
+  }
+
+  private makeDriver(kind: 'cpu' | 'gpu'): SimDriver {
+    const app = this.app;
+    const d: SimDriver = kind === 'gpu' && app.stage.device ? new GpuSim(app.stage.device) : new SimClient();
+    d.onFrame = () => { app.dirty = true; };
+    d.onError = (m) => app.overlay.message(m, 'error');
+    d.onUnstable = (slot, frame) => this.onUnstable(slot, frame);
+    return d;
+  }
+
+  /**
+   * A cloth's positions stopped being finite numbers (a blown-up solve): the driver has stopped stepping it and
+   * keeps its last finite shape on screen. Say what happened and offer Reset.
+   */
+  private onUnstable(slot: number, frame: number): void {
+    const app = this.app;
+    app.dirty = true;
+    app.overlay.message(
+      `The simulation became unstable at frame ${frame} (${app.slots.clothName(slot)}: positions no longer finite numbers) and is ` +
+      'stopped, showing the last finite shape. Reset to start again; more substeps or a softer material may help.',
+      'error', { label: 'Reset', run: () => app.commands.reset() });
+  }
+
+  /**
+   * Puts the simulation on the backend the choice and scene ask for. `keep`: the cloths go on from where they are
+   * (positions, and velocities where the old backend has them) instead of restarting. Returns whether the driver
+   * changed.
+   */
+  place(keep: boolean): boolean {
+    const app = this.app;
+    const { kind, note } = this.wanted();
+    this.note = note;
+    this.capTo(kind);
+    const old = app.sim as SimDriver | undefined;
+    if (old && old.kind === kind && !(old instanceof GpuSim && old.lost)) return false;
+    app.interaction?.cancel();
+    const paused = old?.paused ?? false;
+    const oldMirrors = old ? old.mirrors.slice() : [];
+    old?.dispose();
+    app.sim = this.makeDriver(kind);
+    app.sim.paused = paused;
+    if (!keep || !old) return true;
+    let scenes = app.sweep.scenes();
+    try {
+      app.sim.load(scenes);
+    } catch (e) {
+      // accepted before, so only a clamp (a smaller cloth under the same colliders) can make it refused here
+      app.overlay.message(`${refusal(e)} — showing the default scene instead`);
+      app.scene = builtinScene(SCENE_NAMES[0]);
+      app.sceneKey = SCENE_NAMES[0];
+      app.capNote = '';
+      app.sweep.index = 0;
+      scenes = app.sweep.scenes();
+      app.sim.load(scenes);
+      oldMirrors.length = 0;
+      app.slots.frameCamera(true);
+      app.link.schedule();
+    }
+    app.sim.mirrors.forEach((m, k) => {
+      const from = oldMirrors[k];
+      if (!from || from.sim.model.particleCount !== m.sim.model.particleCount) return;
+      const st = from.sim.state;
+      if (app.sim instanceof SimClient) {
+        app.sim.setState(k, st, from.frame);
+      } else if (app.sim instanceof GpuSim) {
+        // the worker's mirrors carry positions only: the cloth goes on from there at rest
+        m.sim.state.positions.set(st.positions);
+        m.sim.state.previousPositions.set(st.positions);
+        m.sim.state.velocities.fill(0);
+        app.sim.upload(k, from.frame);
+      }
+    });
+    const all = scenes.flatMap((s) => s.colliders);
+    app.stage.setColliders(all);
+    app.slots.rebuildViews();
+    app.hud?.clearPlot();
+    app.panel?.sync();
+    return true;
+  }
+
+  /**
+   * Clamps the scene to what the backend takes (README: CPU 256 faces per side, GPU 1024) and says so: a link, a
+   * file or a backend switch never builds a cloth that would freeze the page. Returns the note when it clamped.
+   */
+  capTo(kind: 'cpu' | 'gpu'): string {
+    const app = this.app;
+    const { scene, note } = capResolution(app.scene, kind);
+    if (!note) return '';
+    app.scene = scene;
+    app.capNote = note;
+    app.overlay.message(note, 'notice');
+    app.panel?.sync();
+    app.link.schedule();
+    return note;
+  }
+
+  /** The panel's backend choice: moves the cloths to that backend when it changes where they run. */
+  set(choice: BackendChoice): void {
+    const app = this.app;
+    this.choice = choice;
+    this.inLink = true;
+    const sweepBefore = app.sweep.list().length;
+    const kindBefore = app.sim.kind;
+    const capBefore = app.capNote;
+    this.note = this.wanted().note;
+    if (this.wanted().kind !== kindBefore) {
+      this.place(true);
+      if (app.sweep.list().length !== sweepBefore) { app.sweep.index = 0; app.slots.load(); app.slots.frameCamera(true); }
+    }
+    const capped = app.capNote !== capBefore ? app.capNote : '';
+    if (this.note || capped) app.overlay.message([this.note, capped].filter(Boolean).join('. '), 'notice');
+    app.panel.sync();
+    app.link.schedule();
+    app.dirty = true;
+  }
+}

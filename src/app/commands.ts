@@ -1,0 +1,272 @@
+/**
+ * What the panel, the keyboard shortcuts and the pointer ask the app to do: scene changes (built-in scenes, one
+ * parameter at a time, pins), play, pause, step, reset, view and camera, and the file and link buttons, which it
+ * hands to their jobs. It is the panel's host and the pointer's; it reads the app's state and sends commands.
+ */
+import { SceneError, builtinScene, isBuiltinScene, resolvePins, setScenePath, type PinPreset, type Scene } from '../core/index.js';
+import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
+import type { CameraPreset } from '../render/stage.js';
+import type { PanelHost, SweepLayout } from '../ui/panel.js';
+import type { App } from './app.js';
+import type { BackendChoice } from './backend.js';
+import type { InteractionHost } from './interaction.js';
+import { MAX_RESOLUTION } from './limits.js';
+import { refusal } from './refusal.js';
+
+/** The app's commands: the panel's host (PanelHost) and the pointer's (InteractionHost). */
+export class Commands implements PanelHost, InteractionHost {
+  constructor(private readonly app: App) {}
+
+  get scene() { return this.app.scene; }
+  get sceneKey() { return this.app.sceneKey; }
+  get paused() { return this.app.sim.paused; }
+  get view() { return this.app.view; }
+  get pinTool() { return this.app.pinTool; }
+  get sweepLayout() { return this.app.sweep.layout; }
+  get backendChoice() { return this.app.backend.choice; }
+  get sim() { return this.app.sim; }
+  get camera() { return this.app.stage.camera; }
+
+  /** largest resolution the panel offers now */
+  get maxResolution(): number {
+    return MAX_RESOLUTION[this.app.sim?.kind ?? 'cpu'];
+  }
+
+  /** The panel's backend choice. */
+  setBackend(choice: BackendChoice): void {
+    this.app.backend.set(choice);
+  }
+
+  /** The scene dropdown: a built-in scene by name; one the simulation refuses says why and changes nothing. */
+  loadBuiltin(name: string): void {
+    const app = this.app;
+    if (!isBuiltinScene(name)) { app.overlay.message(`unknown scene '${name}'`); return; }
+    try {
+      app.slots.apply(builtinScene(name), name);
+    } catch (e) {
+      app.overlay.message(refusal(e));
+    }
+  }
+
+  /** A live change of one scene path (a panel control); false, with a message, when refused, and nothing changes. */
+  setPath(path: string, value: unknown): boolean {
+    const app = this.app;
+    let next: Scene;
+    try {
+      let base = app.scene;
+      // particle-index pins belong to one resolution: a new resolution keeps only the presets
+      if (path === 'cloth.resolution') base = { ...base, pins: base.pins.filter((p) => typeof p === 'string') };
+      next = setScenePath(base, path, value);
+    } catch (e) {
+      app.overlay.message(e instanceof SceneError ? e.message.replace(/^--set /, '') : String(e));
+      app.panel.sync();
+      return false;
+    }
+    const before = { scene: app.scene, capNote: app.capNote, slots: app.sim.mirrors.map((m) => m.sim.scene) };
+    try {
+      this.applyPath(path, next);
+    } catch (e) {
+      // refused by the simulation (a collider cutting through the cloth, a pin inside one): as it was
+      const why = refusal(e);
+      app.scene = before.scene;
+      app.capNote = before.capNote;
+      if (app.sim.mirrors.length === before.slots.length) {
+        before.slots.forEach((s, k) => { if (app.sim.mirrors[k].sim.scene !== s) app.sim.setScene(k, s); });
+        app.slots.syncViews();
+      } else {
+        app.sim.mirrors.length = 0;
+      }
+      app.slots.restore();
+      app.overlay.message(why);
+      return false;
+    }
+    app.dirty = true;
+    app.link.schedule();
+    return true;
+  }
+
+  /** setPath's change, once the new scene is valid; throws SceneError when the simulation refuses it */
+  private applyPath(path: string, next: Scene): void {
+    const app = this.app;
+    app.scene = next;
+    if (path === 'cloth.resolution' || path === 'resolutionSweep') app.capNote = '';
+    const capBefore = app.capNote;
+    if (app.backend.wanted().kind !== app.sim.kind) {
+      app.backend.place(true);
+      const capped = app.capNote !== capBefore ? app.capNote : '';
+      if (app.backend.note || capped) app.overlay.message([app.backend.note, capped].filter(Boolean).join('. '), 'notice');
+    } else {
+      app.backend.note = app.backend.wanted().note;
+      app.backend.capTo(app.sim.kind);
+    }
+    const scenes = app.sweep.scenes();
+    if (scenes.length !== app.sim.mirrors.length) {
+      app.slots.load();
+    } else {
+      scenes.forEach((s, k) => {
+        // keep slot-local pins (pin tool on a sweep cloth) when only parameters change
+        const keep = app.scene.resolutionSweep?.length ? { ...s, pins: app.sim.mirrors[k].sim.scene.pins } : s;
+        const derived = path.startsWith('cloth.') || path === 'material.scaleWithResolution' || path === 'pins';
+        const rebuilt = app.sim.setScene(k, derived ? s : keep);
+        if (rebuilt) app.interaction.cancel();
+      });
+      app.slots.syncViews();
+      if (path === 'material.scaleWithResolution') app.labels.make();
+    }
+    if (path.startsWith('cloth.')) app.slots.frameCamera(false);
+  }
+
+  /** Every cloth back to its start (a sweep sequence back to its first resolution). */
+  reset(): void {
+    const app = this.app;
+    app.interaction.cancel();
+    app.sweep.halted = false;
+    if (app.scene.resolutionSweep?.length && app.sweep.layout === 'sequence' && app.sweep.index !== 0) {
+      app.sweep.index = 0;
+      app.slots.load();
+    } else {
+      app.sim.reset();
+    }
+    app.hud.clearPlot();
+    // the unstable-cloth message (and its Reset button) has done its job
+    if (app.overlay.lastMessage.startsWith('The simulation became unstable')) app.overlay.clearMessage();
+    app.dirty = true;
+  }
+
+  /** Play or pause. */
+  togglePause(): void {
+    this.app.sim.paused = !this.app.sim.paused;
+    this.app.panel.updatePlay();
+  }
+
+  /** One frame forward, pausing first. */
+  stepOnce(): void {
+    if (!this.app.sim.paused) this.togglePause();
+    void this.app.sim.step(1);
+  }
+
+  /** How the cloths are drawn (shaded, wireframe, …). */
+  setView(view: ViewName): void {
+    const app = this.app;
+    app.view = view;
+    for (const v of app.views) v.setView(view);
+    app.overlay.toast(VIEW_LABELS[view]);
+    app.panel.sync();
+    app.dirty = true;
+    app.link.schedule();
+  }
+
+  /** The next view in the list (V). */
+  cycleView(): void {
+    this.setView(VIEWS[(VIEWS.indexOf(this.app.view) + 1) % VIEWS.length]);
+  }
+
+  /** A camera preset (front, side, top, reset). */
+  setCamera(preset: CameraPreset): void {
+    this.app.stage.setCamera(preset);
+  }
+
+  /** Turns one pin preset on or off. */
+  setPreset(preset: PinPreset, on: boolean): void {
+    const pins = this.app.scene.pins.filter((p) => p !== preset);
+    if (on) pins.push(preset);
+    this.setPath('pins', pins);
+    this.app.panel.sync();
+  }
+
+  /** Unpins everything (on every cloth of a sweep too). */
+  clearPins(): void {
+    const app = this.app;
+    this.setPath('pins', []);
+    if (app.scene.resolutionSweep?.length) app.sim.mirrors.forEach((m, k) => app.sim.setScene(k, { ...m.sim.scene, pins: [] }));
+    app.panel.sync();
+  }
+
+  /** The pin tool on or off (a click on the cloth pins instead of grabbing). */
+  setPinTool(on: boolean): void {
+    this.app.pinTool = on;
+    this.app.stage.container.classList.toggle('pin-tool', on);
+    this.app.panel.sync();
+  }
+
+  /** Pin tool: pins or unpins one particle; presets it breaks up become particle lists. */
+  togglePin(slot: number, particle: number): void {
+    const app = this.app;
+    const m = app.sim.mirrors[slot];
+    const scene = m.sim.scene;
+    const pinned = new Set(resolvePins(m.sim.model, scene.pins));
+    const on = !pinned.has(particle);
+    let pins: (PinPreset | number)[];
+    if (on) {
+      pins = [...scene.pins, particle];
+    } else {
+      pins = [];
+      for (const p of scene.pins) {
+        if (p === particle) continue;
+        if (typeof p === 'string') {
+          const members = resolvePins(m.sim.model, [p]);
+          if (members.includes(particle)) { pins.push(...members.filter((i) => i !== particle)); continue; }
+        }
+        pins.push(p);
+      }
+    }
+    if (app.scene.resolutionSweep?.length) {
+      try {
+        app.sim.setScene(slot, { ...scene, pins });
+      } catch (e) {
+        app.overlay.message(refusal(e));
+        return;
+      }
+    } else {
+      if (!this.setPath('pins', pins)) return;
+      app.panel.sync();
+    }
+    app.overlay.toast(`${on ? 'Pinned' : 'Unpinned'} particle ${particle}`);
+    app.dirty = true;
+  }
+
+  /** The panel's sweep layout (sequence or side by side). */
+  setSweepLayout(layout: SweepLayout): void {
+    this.app.sweep.setLayout(layout);
+  }
+
+  /** A grab started or ended: the cursor shows it. */
+  grabChanged(active: boolean): void {
+    this.app.stage.container.classList.toggle('grabbing', active);
+  }
+
+  /** The `?` sheet. */
+  showHelp(): void {
+    this.app.overlay.help();
+  }
+
+  /** Downloads the scene as a JSON document. */
+  exportJson(): void {
+    this.app.fileExport.exportJson();
+  }
+
+  /** Opens the file picker for a scene document. */
+  importJson(): void {
+    this.app.fileImport.open();
+  }
+
+  /** Copies the link to this scene. */
+  copyLink(): void {
+    this.app.link.copy();
+  }
+
+  /** Downloads a PNG of the view. */
+  screenshot(): void {
+    this.app.fileExport.screenshot();
+  }
+
+  /** Downloads the cloths as OBJ. */
+  exportObj(): void {
+    this.app.fileExport.exportObj();
+  }
+
+  /** Downloads the cloths as binary glTF. */
+  exportGltf(): void {
+    this.app.fileExport.exportGltf();
+  }
+}

@@ -1,0 +1,101 @@
+/**
+ * Downloads: the scene as a JSON document, a PNG screenshot, and the cloths at their current shape as OBJ or
+ * binary glTF (never a file with NaN in it). File names come from the scene's name, made safe.
+ */
+import { BufferAttribute, BufferGeometry, DoubleSide, Group, Mesh, MeshStandardMaterial } from 'three/webgpu';
+import { plainText } from '../core/index.js';
+import { fabricFor, fabricLook } from '../render/textures.js';
+import type { App } from './app.js';
+
+/** The page's downloads. */
+export class FileExport {
+  constructor(private readonly app: App) {}
+
+  private download(blob: Blob, name: string): void {
+    const url = URL.createObjectURL(blob);
+    const a = document.createElement('a');
+    a.href = url;
+    a.download = name;
+    document.body.append(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(url), 10_000);
+  }
+
+  /** a file name from the scene's name: letters, digits, '.', '_' and '-' only, never hidden or empty */
+  private fileBase(): string {
+    return plainText(this.app.scene.name, 60).replace(/[^\w.-]+/g, '-').replace(/^[.-]+/, '') || 'scene';
+  }
+
+  /** Downloads the scene document (what an import or a link reproduces). */
+  exportJson(): void {
+    const doc = { $schema: 'https://drape.dev/scene.schema.json', ...this.app.scene };
+    this.download(new Blob([JSON.stringify(doc, null, 2) + '\n'], { type: 'application/json' }), `${this.fileBase()}.json`);
+  }
+
+  /** Downloads the view as it is drawn now, as PNG. */
+  screenshot(): void {
+    const { stage, overlay } = this.app;
+    stage.render();
+    stage.renderer.domElement.toBlob((blob) => {
+      if (blob) this.download(blob, `drape-${this.fileBase()}.png`);
+      else overlay.message('screenshot failed: the canvas could not be read');
+    }, 'image/png');
+  }
+
+  /** why the cloths cannot be exported now ('' when they can): never a file with NaN in it */
+  private exportProblem(): string {
+    const app = this.app;
+    for (const [k, m] of app.sim.mirrors.entries()) {
+      if (m.unstableAt >= 0) return `${app.slots.clothName(k)} became unstable at frame ${m.unstableAt}; reset it first`;
+      const x = m.sim.state.positions;
+      for (let i = 0; i < x.length; i++) if (!Number.isFinite(x[i])) return `${app.slots.clothName(k)} has positions that are not finite; reset it first`;
+    }
+    return '';
+  }
+
+  /** The cloths as plain meshes with standard materials, at their current shape, for the exporters. */
+  private exportGroup(): Group {
+    const app = this.app;
+    const group = new Group();
+    group.name = plainText(app.scene.name, 100);
+    const look = fabricLook(fabricFor(app.scene.name));
+    const material = new MeshStandardMaterial({ map: look.map, roughness: look.roughness, side: DoubleSide, name: `${look.kind} fabric` });
+    app.sim.mirrors.forEach((m, k) => {
+      const g = new BufferGeometry();
+      g.setAttribute('position', new BufferAttribute(new Float32Array(m.sim.state.positions), 3));
+      g.setAttribute('uv', new BufferAttribute(new Float32Array(m.sim.model.uvs), 2));
+      g.setIndex(new BufferAttribute(new Uint32Array(m.sim.model.triangles), 1));
+      g.computeVertexNormals();
+      const mesh = new Mesh(g, material);
+      mesh.name = app.sim.mirrors.length > 1 ? `cloth-${m.sim.scene.cloth.resolution}` : 'cloth';
+      if (k >= 0) group.add(mesh);
+    });
+    return group;
+  }
+
+  /** Downloads the cloths as OBJ; refused while one is unstable. */
+  exportObj(): void {
+    const problem = this.exportProblem();
+    if (problem) { this.app.overlay.message(`OBJ export refused: ${problem}.`); return; }
+    void import('three/examples/jsm/exporters/OBJExporter.js').then(({ OBJExporter }) => {
+      // one comment line: the name cannot break out of it (no line breaks in plainText)
+      const text = `# Drape cloth, scene '${plainText(this.app.scene.name, 100)}'\n` + new OBJExporter().parse(this.exportGroup());
+      this.download(new Blob([text], { type: 'model/obj' }), `${this.fileBase()}.obj`);
+    });
+  }
+
+  /** Downloads the cloths as binary glTF (.glb); refused while one is unstable. */
+  exportGltf(): void {
+    const problem = this.exportProblem();
+    if (problem) { this.app.overlay.message(`glTF export refused: ${problem}.`); return; }
+    void import('three/examples/jsm/exporters/GLTFExporter.js').then(async ({ GLTFExporter }) => {
+      try {
+        const out = await new GLTFExporter().parseAsync(this.exportGroup(), { binary: true });
+        this.download(new Blob([out as ArrayBuffer], { type: 'model/gltf-binary' }), `${this.fileBase()}.glb`);
+      } catch (e) {
+        this.app.overlay.message(`glTF export failed: ${(e as Error).message}`);
+      }
+    });
+  }
+}

@@ -1,0 +1,53 @@
+/** What the HUD shows: the app's and the simulation's state, gathered into the HUD's fields and notes. */
+import { plainText } from '../core/index.js';
+import type { HudInfo } from '../ui/hud.js';
+import { SCENE_LABELS } from '../ui/panel.js';
+import type { App } from './app.js';
+import { fitSideBySide } from './limits.js';
+import { SWEEP_STAGE_FRAMES } from './sweep.js';
+
+/**
+ * The HUD's content now: sizes, backends (and why not the one asked for), solver and view, and the notes (unstable
+ * cloths, a clamped resolution, a thinned side-by-side sweep). `fps` and `idle` come from the frame loop.
+ */
+export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
+  const { sim, scene } = app;
+  let particles = 0, triangles = 0, springs = 0;
+  for (const m of sim.mirrors) {
+    particles += m.sim.model.particleCount;
+    triangles += m.sim.model.triangles.length / 3;
+    springs += m.sim.model.restLengths.length;
+  }
+  const sweep = app.sweep.list();
+  const notes: string[] = [];
+  sim.mirrors.forEach((m, k) => {
+    if (m.unstableAt >= 0) notes.push(`${app.slots.clothName(k)}: unstable at frame ${m.unstableAt}, stopped — Reset (R) to start again`);
+  });
+  if (app.capNote) notes.push(app.capNote);
+  if (scene.resolutionSweep?.length && app.sweep.layout === 'side-by-side') {
+    const fit = fitSideBySide(scene.resolutionSweep, sim.kind);
+    if (fit.note) notes.push(fit.note);
+  }
+  return {
+    notes,
+    fps,
+    idle,
+    backend: app.stage.backend === 'webgpu' ? 'WebGPU' : 'WebGL2',
+    simBackend: sim.kind === 'gpu' ? 'GPU (WebGPU compute)'
+      : `CPU (worker${sim.stats.kernel === 'wasm' ? ', WebAssembly SIMD' : sim.stats.kernel === 'ts' ? ', TypeScript' : ''})`,
+    backendNote: app.backend.note,
+    stepMs: sim.stats.stepMs,
+    realTime: sim.stats.realTime,
+    paused: sim.paused,
+    particles, triangles, springs,
+    solver: scene.solver.type,
+    substeps: scene.solver.substeps,
+    clamps: sim.stats.clamps,
+    view: app.view,
+    maxStrain: sim.stats.maxStrain,
+    slots: sim.mirrors.length,
+    extra: sweep.length && app.sweep.layout === 'sequence'
+      ? `resolution ${app.sweep.index % sweep.length + 1} of ${sweep.length}, ${SWEEP_STAGE_FRAMES / 60} s each`
+      : Object.hasOwn(SCENE_LABELS, scene.name) ? undefined : `scene: ${plainText(scene.name, 100)}`,
+  };
+}

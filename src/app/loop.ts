@@ -1,0 +1,78 @@
+/**
+ * The frame loop (requestAnimationFrame): steps the simulation by the time that passed, moves the sweep on, draws
+ * only when something changed, and measures the frame rate; the energy plot and the HUD text are refreshed a few
+ * times a second.
+ */
+import type { App } from './app.js';
+import { GpuSim } from './gpu-sim.js';
+import { hudInfo } from './hud-feed.js';
+
+/** The requestAnimationFrame loop, and what it measures (fps, first frame). */
+export class FrameLoop {
+  private lastTime = 0;
+  private fpsFrames = 0;
+  private fpsTime = 0;
+  /** frames drawn per second, over the last half second */
+  fps = 0;
+  /** nothing was drawn in the last half second (paused and untouched) */
+  idle = false;
+  private hudTime = 0;
+  private plotTime = 0;
+  /** performance.now() when the first frame was drawn */
+  firstFrameAt = 0;
+
+  constructor(private readonly app: App) {}
+
+  /** One display frame; it asks for the next one itself (start it with requestAnimationFrame). */
+  readonly frame = (now: number): void => {
+    const app = this.app;
+    requestAnimationFrame(this.frame);
+    const dt = this.lastTime ? now - this.lastTime : 0;
+    this.lastTime = now;
+    app.sim.tick(dt, now);
+    app.sweep.advance();
+    app.slots.syncViews();
+    if (app.sim instanceof GpuSim && !app.sim.lost) {
+      const backend = app.stage.renderer.backend as unknown as { get(o: object): { buffer?: GPUBuffer } };
+      app.views.forEach((v, k) => {
+        const solver = (app.sim as GpuSim).solverOf(k);
+        if (solver && !v.attached && v.model === app.sim.mirrors[k].sim.model) {
+          v.attachGpu(backend, solver.positionBuffer, solver.normalBuffer);
+          app.dirty = true;
+        }
+      });
+      app.sim.eagerReadback = app.views.some((v) => v.needsCpuPositions);
+    }
+    const redraw = app.dirty;
+    if (app.dirty) {
+      app.sim.mirrors.forEach((m, k) => app.views[k]?.update(m.sim.state, m.grabbed));
+      app.dirty = false;
+    }
+    const moved = app.stage.updateControls();
+    // draw only when something changed: a paused, untouched view costs nothing
+    const draw = !app.stage.busy && (redraw || moved || app.stage.needsRender || !this.firstFrameAt);
+    if (draw) {
+      app.labels.place();
+      app.stage.render();
+      this.fpsFrames++;
+      if (!this.firstFrameAt) {
+        this.firstFrameAt = performance.now();
+        performance.mark('drape:first-frame');
+      }
+    }
+    if (now - this.fpsTime >= 500) {
+      this.fps = (1000 * this.fpsFrames) / (now - this.fpsTime);
+      this.idle = this.fpsFrames === 0;
+      this.fpsFrames = 0;
+      this.fpsTime = now;
+    }
+    if (now - this.plotTime >= 100 && !app.sim.paused) {
+      this.plotTime = now;
+      app.hud.sample(app.sim.stats.energy);
+    }
+    if (now - this.hudTime >= 250) {
+      this.hudTime = now;
+      app.hud.update(hudInfo(app, this.fps, this.idle));
+    }
+  };
+}

@@ -1,0 +1,60 @@
+/**
+ * The floating labels of a sweep scene's cloths (faces, grid, particles, scaling): made when the cloths are, and
+ * kept over them on screen, as text in the overlay's label layer.
+ */
+import { Vector3 } from 'three/webgpu';
+import { append, h } from '../ui/dom.js';
+import type { App } from './app.js';
+
+/** The labels over a sweep's cloths (text only). */
+export class SweepLabels {
+  private labels: HTMLElement[] = [];
+
+  constructor(private readonly app: App) {}
+
+  /** One label per cloth on screen when the scene is a sweep (none otherwise). */
+  make(): void {
+    const app = this.app;
+    for (const l of this.labels) l.remove();
+    this.labels = [];
+    if (!app.scene.resolutionSweep?.length) return;
+    app.sim.mirrors.forEach((m) => {
+      const l = document.createElement('div');
+      l.className = 'drape-label';
+      l.dataset.testid = 'sweep-label';
+      const r = m.sim.scene.cloth.resolution;
+      const faces = r * r;
+      const total = app.sweep.list().length;
+      const scaling = app.scene.material.scaleWithResolution ? 'scaled with resolution' : 'seed constants (not scaled)';
+      const title = h('b', null, `${faces.toLocaleString('en')} face${faces > 1 ? 's' : ''}`);
+      if (app.sweep.layout === 'sequence') {
+        append(l, [h('small', null, `${app.sweep.index % total + 1} / ${total}`), title,
+          h('small', null, `${r}×${r} grid · ${((r + 1) ** 2).toLocaleString('en')} particles`), h('small', null, scaling)]);
+      } else {
+        append(l, [title, h('small', null, `${r}×${r} · ${app.scene.material.scaleWithResolution ? 'scaled' : 'seed constants'}`)]);
+      }
+      app.overlay.labelLayer.append(l);
+      this.labels.push(l);
+    });
+  }
+
+  /** Moves each label to its cloth's place on screen (every drawn frame). */
+  place(): void {
+    const app = this.app;
+    const rect = app.stage.container.getBoundingClientRect();
+    const v = new Vector3();
+    app.sim.mirrors.forEach((m, k) => {
+      const l = this.labels[k];
+      if (!l) return;
+      const p = m.sim.scene.cloth.position;
+      // one cloth: a title above it; a row: placards on the floor in front of each
+      const row = this.labels.length > 1;
+      if (row) v.set(p[0], 0, p[2] + 0.75);
+      else v.set(p[0], p[1] + 0.3, p[2]);
+      v.project(app.stage.camera);
+      const visible = v.z < 1;
+      l.style.display = visible ? '' : 'none';
+      l.style.transform = `translate(-50%, ${row ? '0' : '-100%'}) translate(${((v.x + 1) / 2) * rect.width}px, ${((1 - v.y) / 2) * rect.height}px)`;
+    });
+  }
+}

@@ -1,0 +1,103 @@
+/**
+ * The resolution sweep (the Mesh Resolution scene, or any scene with `resolutionSweep`): which resolutions it
+ * shows on the backend in use, the slot scenes it makes — one after another (sequence) or side by side — and
+ * moving the sequence on.
+ */
+import { builtinScene, type Scene } from '../core/index.js';
+import type { SweepLayout } from '../ui/panel.js';
+import type { App } from './app.js';
+import { fitSideBySide } from './limits.js';
+import { refusal } from './refusal.js';
+
+/** frames each resolution runs for in the Mesh Resolution sequence (3 s) */
+export const SWEEP_STAGE_FRAMES = 180;
+/** spacing of cloths laid side by side [m] */
+const SIDE_BY_SIDE_SPACING = 1.6;
+/** the Mesh Resolution scene on the GPU goes on past the CPU's 64 faces per side */
+export const GPU_SWEEP_EXTRA = [128, 256, 512, 1024];
+
+/** The sweep's layout and progress, and the slot scenes it makes. */
+export class Sweep {
+  layout: SweepLayout = 'sequence';
+  /** which resolution of the sweep is showing (sequence layout) */
+  index = 0;
+  /** the Mesh Resolution sequence met a resolution the simulation refuses: it stays where it is until a reset */
+  halted = false;
+
+  constructor(private readonly app: App) {}
+
+  /**
+   * Resolutions of a sweep scene; on the GPU the built-in Mesh Resolution scene, one after another, goes on to
+   * 1024 faces per side (side by side keeps the scene's own list: a row of eleven cloths up to 1025² is too much).
+   */
+  list(): number[] {
+    const sweep = this.app.scene.resolutionSweep ?? [];
+    // side by side: as many cloths as the backend simulates at once (see limits.ts)
+    if (sweep.length && this.layout === 'side-by-side') return fitSideBySide(sweep, this.app.sim?.kind ?? 'cpu').list;
+    if (!sweep.length || this.app.sim?.kind !== 'gpu' || this.layout !== 'sequence') return sweep;
+    const builtin = builtinScene('resolution').resolutionSweep ?? [];
+    if (JSON.stringify(builtin) !== JSON.stringify(sweep)) return sweep;
+    return [...sweep, ...GPU_SWEEP_EXTRA.filter((r) => r > Math.max(...sweep))];
+  }
+
+  /** The scenes of the cloths on screen: one, or one per resolution of a sweep. */
+  scenes(): Scene[] {
+    const s = this.app.scene;
+    const sweep = this.list();
+    if (!sweep.length) return [s];
+    const at = (res: number, dx: number): Scene => {
+      const next = structuredClone(s);
+      delete next.resolutionSweep;
+      next.cloth.resolution = res;
+      next.cloth.position = [s.cloth.position[0] + dx, s.cloth.position[1], s.cloth.position[2]];
+      next.colliders = s.colliders.map((c) => (c.type === 'sphere' ? { ...c, center: [c.center[0] + dx, c.center[1], c.center[2]] } : c));
+      next.pins = s.pins.filter((p) => typeof p === 'string');
+      return next;
+    };
+    if (this.layout === 'sequence') return [at(sweep[this.index % sweep.length], 0)];
+    return sweep.map((r, k) => at(r, (k - (sweep.length - 1) / 2) * SIDE_BY_SIDE_SPACING));
+  }
+
+  /** Sequence layout: move on to the next resolution when the current one has had its time. */
+  advance(): void {
+    const app = this.app;
+    const sweep = this.list();
+    if (!sweep.length || this.layout !== 'sequence' || app.sim.paused) return;
+    const m = app.sim.mirrors[0];
+    if (!m || m.frame < SWEEP_STAGE_FRAMES || this.halted) return;
+    app.interaction.cancel();
+    const from = this.index;
+    this.index = (this.index + 1) % sweep.length;
+    try {
+      app.sim.setScene(0, this.scenes()[0]);
+    } catch (e) {
+      // this resolution of an imported sweep cannot start where the scene puts it: stay, and say why
+      this.index = from;
+      this.halted = true;
+      app.overlay.message(`Mesh resolution ${sweep[(from + 1) % sweep.length]} refused: ${refusal(e)}`);
+      return;
+    }
+    app.slots.syncViews();
+  }
+
+  /** The panel's sweep layout: the sweep starts again in it; a layout the simulation refuses leaves things as they were. */
+  setLayout(layout: SweepLayout): void {
+    const app = this.app;
+    const before = { layout: this.layout, index: this.index };
+    this.layout = layout;
+    this.index = 0;
+    this.halted = false;
+    try {
+      app.slots.load();
+    } catch (e) {
+      const why = refusal(e);
+      this.layout = before.layout;
+      this.index = before.index;
+      app.slots.restore();
+      app.overlay.message(why);
+      return;
+    }
+    app.slots.frameCamera(true);
+    app.link.schedule();
+  }
+}

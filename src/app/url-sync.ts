@@ -1,0 +1,119 @@
+/**
+ * The page's link: the hash holds the scene (as a diff from a built-in one) and the view settings. The page starts
+ * from it, rewrites it (a moment after each change) to what is on screen, follows it when it is edited, and copies
+ * it to the clipboard.
+ */
+import { SCENE_NAMES, SceneError } from '../core/index.js';
+import { VIEWS, type ViewName } from '../render/cloth-view.js';
+import type { App } from './app.js';
+import { BACKEND_CHOICES, type BackendChoice } from './backend.js';
+import { refusal } from './refusal.js';
+import { decodeHash, encodeHash, type HashState } from './url-state.js';
+
+/** The link in the address bar, kept in step with what is on screen. */
+export class UrlSync {
+  private timer = 0;
+
+  constructor(private readonly app: App) {}
+
+  /**
+   * Starts from the link: its view settings and its scene. False when there is no link, or it is refused (a bad
+   * link, a scene the simulation refuses), which says why: then the caller shows the default scene.
+   */
+  start(): boolean {
+    const app = this.app;
+    let start: HashState | null = null;
+    try {
+      start = decodeHash(location.hash);
+    } catch (e) {
+      app.overlay.message(`${(e as Error).message} — showing the default scene instead`, 'error');
+    }
+    if (start?.view.backend && (BACKEND_CHOICES as readonly string[]).includes(start.view.backend)) {
+      app.backend.choice = start.view.backend as BackendChoice;
+      app.backend.inLink = true;
+    }
+    if (!start) return false;
+    if (start.view.sweep === 'side-by-side' || start.view.sweep === 'sequence') app.sweep.layout = start.view.sweep;
+    if (start.view.view && (VIEWS as readonly string[]).includes(start.view.view)) app.view = start.view.view as ViewName;
+    try {
+      app.slots.apply(start.scene, start.base && start.base === start.scene.name ? start.base : SCENE_NAMES.includes(start.base) ? start.base : '');
+    } catch (e) {
+      // a scene the simulation refuses (a collider cutting through the cloth, …)
+      app.overlay.message(`link: ${refusal(e)} — showing the default scene instead`, 'error');
+      return false;
+    }
+    return true;
+  }
+
+  /** Writes the link now and copies it to the clipboard (or shows it where the clipboard is out of reach). */
+  copy(): void {
+    this.write();
+    const url = location.href;
+    navigator.clipboard?.writeText(url).then(
+      () => this.app.overlay.message('Link copied to the clipboard', 'notice'),
+      () => this.app.overlay.message(`Link: ${url}`, 'notice'),
+    );
+  }
+
+  private state(): HashState {
+    const app = this.app;
+    return {
+      scene: app.scene,
+      base: app.sceneKey,
+      view: {
+        view: app.view === 'shaded' ? undefined : app.view,
+        sweep: app.scene.resolutionSweep?.length && app.sweep.layout !== 'sequence' ? app.sweep.layout : undefined,
+        backend: app.backend.choice === 'auto' || !app.backend.inLink ? undefined : app.backend.choice,
+      },
+    };
+  }
+
+  private write(): void {
+    clearTimeout(this.timer);
+    let hash: string;
+    try {
+      hash = encodeHash(this.state());
+    } catch {
+      return;
+    }
+    if (hash !== location.hash && !(hash === '' && location.hash === '')) {
+      history.replaceState(null, '', hash || location.pathname + location.search);
+    }
+  }
+
+  /** Rewrites the link a moment from now (changes in a row write it once). */
+  schedule(): void {
+    clearTimeout(this.timer);
+    this.timer = window.setTimeout(() => this.write(), 250);
+  }
+
+  /** The link was edited (hashchange): show what it says; a link that is refused says why and changes nothing. */
+  onHashChange(): void {
+    const app = this.app;
+    if (location.hash === encodeHash(this.state())) return;
+    const before = { view: app.view, sweepLayout: app.sweep.layout, backendChoice: app.backend.choice, backendInLink: app.backend.inLink };
+    try {
+      const s = decodeHash(location.hash);
+      if (!s) return;
+      if (s.view.view && (VIEWS as readonly string[]).includes(s.view.view)) app.view = s.view.view as ViewName;
+      app.sweep.layout = s.view.sweep === 'side-by-side' ? 'side-by-side' : 'sequence';
+      if ((BACKEND_CHOICES as readonly string[]).includes(s.view.backend ?? '')) {
+        app.backend.choice = s.view.backend as BackendChoice;
+        app.backend.inLink = true;
+      }
+      app.slots.apply(s.scene, SCENE_NAMES.includes(s.base) ? s.base : '');
+    } catch (e) {
+      const why = e instanceof SceneError && !e.message.startsWith('link: ') ? `link: ${e.message}` : refusal(e);
+      // as it was: the view settings too (the address bar is rewritten to what is on screen)
+      const relayout = app.sweep.layout !== before.sweepLayout || app.backend.choice !== before.backendChoice;
+      app.view = before.view;
+      app.sweep.layout = before.sweepLayout;
+      app.backend.choice = before.backendChoice;
+      app.backend.inLink = before.backendInLink;
+      if (relayout) { app.slots.load(); app.slots.frameCamera(true); }
+      app.panel.sync();
+      this.schedule();
+      app.overlay.message(why);
+    }
+  }
+}
