@@ -84,7 +84,8 @@ describe('WebGPU device lost (no presenting flags)', () => {
     const msg = await hook<{ text: string; kind: string }>(page, 'lastMessage');
     expect(msg.text).toContain('WebGPU device lost');
     expect(msg.text).toContain('WebGL2');
-    expect(await byId(page, 'message').isVisible()).toBe(true);
+    // (the message itself fades after a few seconds, so whether it is still on screen depends on the machine's
+    // speed; that it was shown is what the hook's lastMessage records)
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('WebGL2');
 
     await loadScene(page, 'Leather Stiff', 12);

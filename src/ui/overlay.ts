@@ -78,9 +78,9 @@ export class Overlay {
   }
 
   /**
-   * A one-line message at the top of the page (as text: it may quote a link or a file); errors stay until dismissed
-   * or replaced, notices fade. `action`: a button beside it (e.g. Reset); a message with one stays until used or
-   * dismissed.
+   * A one-line message at the top of the page (as text: it may quote a link or a file); errors fade after 15 s,
+   * notices after 6 s, unless replaced or dismissed first. `action`: a button beside it (e.g. Reset); a message with
+   * one stays until used or dismissed.
    */
   message(text: string, kind: 'error' | 'notice' = 'error', action?: { label: string; run: () => void }): void {
     this.lastMessage = text;
