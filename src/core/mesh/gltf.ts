@@ -6,7 +6,7 @@
  * Refused with a line naming the file: compression extensions the file requires (Draco, meshopt), sparse
  * accessors, and anything malformed.
  */
-import { SceneError } from '../scene.js';
+import { MAX_INPUT_BYTES, SceneError } from '../scene.js';
 import type { TriangleMesh } from './triangle-mesh.js';
 
 /** Reads a file a .gltf names by a relative URI (its .bin buffer), or throws saying why it cannot. */
@@ -135,15 +135,25 @@ export function parseGltf(bytes: Uint8Array, source: string, readExternal?: Exte
     if (!want.includes(acc.type)) fail(`accessor ${index} is ${acc.type}, expected ${want.join(' or ')}`);
     const width = COMPONENTS[acc.type], size = BYTES[acc.componentType];
     if (!size) fail(`accessor ${index} has component type ${acc.componentType}, which is not a glTF type`);
-    const data = new Float64Array(acc.count * width);
-    if (acc.bufferView === undefined) return { data, count: acc.count, width };
+    if (!Number.isInteger(acc.count) || acc.count < 0) fail(`accessor ${index} has a count that is not a whole number`);
+    // an accessor without a buffer view is all zeros: as many as a file of the size cap could describe, at most
+    if (acc.bufferView === undefined) {
+      if (acc.count * width > MAX_INPUT_BYTES) fail(`accessor ${index} has ${acc.count} elements and no data`);
+      return { data: new Float64Array(acc.count * width), count: acc.count, width };
+    }
     const bv = doc.bufferViews?.[acc.bufferView];
     if (!bv) return fail(`buffer view ${acc.bufferView} does not exist`);
     const buf = buffer(bv.buffer);
     const stride = bv.byteStride ?? width * size;
     const base = (bv.byteOffset ?? 0) + (acc.byteOffset ?? 0);
+    const whole = (v: unknown) => Number.isInteger(v) && (v as number) >= 0;
+    if (!whole(stride) || stride < width * size || !whole(bv.byteOffset ?? 0) || !whole(acc.byteOffset ?? 0) || !whole(bv.byteLength)) {
+      fail(`accessor ${index} or its buffer view has an offset, length or stride that is not valid`);
+    }
     const last = base + (acc.count - 1) * stride + width * size;
+    // checked before anything is allocated: the count is the file's word, the buffer's length is a fact
     if (acc.count > 0 && (last > (bv.byteOffset ?? 0) + bv.byteLength || last > buf.length)) fail(`accessor ${index} reads past the end of its buffer`);
+    const data = new Float64Array(acc.count * width);
     const view = new DataView(buf.buffer, buf.byteOffset, buf.byteLength);
     for (let i = 0; i < acc.count; i++) {
       for (let k = 0; k < width; k++) {

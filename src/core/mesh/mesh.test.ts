@@ -294,3 +294,21 @@ describe('cloth.shape and cloth.mesh in a scene', () => {
     expect([...model.restPositions.slice(0, 3)]).toEqual([0.5, 2, 2.5]);
   });
 });
+
+describe('hostile glTF numbers', () => {
+  const enc = (doc: unknown) => new TextEncoder().encode(JSON.stringify(doc));
+  const base = {
+    asset: { version: '2.0' },
+    buffers: [{ byteLength: 36, uri: `data:application/octet-stream;base64,${Buffer.from(new Float32Array(9).buffer).toString('base64')}` }],
+    bufferViews: [{ buffer: 0, byteLength: 36 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+  };
+  it.each([
+    ['a count of a billion', { bufferView: 0, componentType: 5126, count: 1e9, type: 'VEC3' }, /accessor 0 reads past the end of its buffer/],
+    ['a billion elements and no data', { componentType: 5126, count: 1e9, type: 'VEC3' }, /accessor 0 has 1000000000 elements and no data/],
+    ['a negative offset', { bufferView: 0, byteOffset: -12, componentType: 5126, count: 3, type: 'VEC3' }, /offset, length or stride that is not valid/],
+    ['a fractional count', { bufferView: 0, componentType: 5126, count: 2.5, type: 'VEC3' }, /count that is not a whole number/],
+  ])('are refused before anything is allocated: %s', (_what, accessor, message) => {
+    expect(() => parseGltf(enc({ ...base, accessors: [accessor] }), 'x.gltf')).toThrow(message);
+  });
+});
