@@ -3,7 +3,7 @@
  * file reproduces), the simulation driver, the views of the cloths on screen ("slots") — and wires the jobs to it
  * and to the page: backend (backend.ts), slots (slots.ts), resolution sweep (sweep.ts, sweep-labels.ts), commands
  * from the panel, keyboard and pointer (commands.ts, shortcuts.ts), files (file-import.ts, file-export.ts), the
- * link (url-sync.ts) and the frame loop (loop.ts, hud-feed.ts).
+ * link (url-sync.ts) and the frame loop (loop.ts, hud-feed.ts); imported mesh files (meshes.ts, mesh-import.ts).
  * It holds no physics: everything it knows about the cloth comes from the core's model and the worker's frames.
  */
 import { SCENE_NAMES, builtinScene, type Scene } from '../core/index.js';
@@ -18,6 +18,8 @@ import { FileExport } from './file-export.js';
 import { FileImport } from './file-import.js';
 import { Interaction } from './interaction.js';
 import { FrameLoop } from './loop.js';
+import { MeshImport } from './mesh-import.js';
+import { MeshStore } from './meshes.js';
 import { shortcutListener } from './shortcuts.js';
 import type { SimDriver } from './sim-client.js';
 import { Slots } from './slots.js';
@@ -55,6 +57,9 @@ export class App {
   readonly panel: Panel;
   readonly interaction: Interaction;
   readonly fileImport: FileImport;
+  readonly meshImport: MeshImport;
+  /** the mesh files imported into this page, for scenes whose cloth is one (a link cannot carry them) */
+  readonly meshes = new MeshStore();
   readonly backend = new Backend(this);
   readonly slots = new Slots(this);
   readonly sweep = new Sweep(this);
@@ -75,6 +80,7 @@ export class App {
     if (!this.link.start()) this.slots.apply(builtinScene(SCENE_NAMES[0]), SCENE_NAMES[0]);
     this.panel = new Panel(this.commands);
     this.fileImport = new FileImport(this, root);
+    this.meshImport = new MeshImport(this, root);
 
     // capture phase: lil-gui stops key events from its controls, and shortcuts should work while one has focus
     window.addEventListener('keydown', shortcutListener(this.commands, this.overlay), { capture: true });

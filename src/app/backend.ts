@@ -3,10 +3,10 @@
  * driver that runs it; moving the cloths from one backend to the other; and what happens when the WebGPU device is
  * lost or a cloth blows up.
  */
-import { SCENE_NAMES, builtinScene } from '../core/index.js';
+import { SCENE_NAMES, SceneError, builtinScene } from '../core/index.js';
 import type { App } from './app.js';
 import { GpuSim } from './gpu-sim.js';
-import { capResolution } from './limits.js';
+import { capCloth } from './limits.js';
 import { refusal } from './refusal.js';
 import { SimClient, type SimDriver } from './sim-client.js';
 
@@ -42,7 +42,15 @@ export class Backend {
       const frame = app.sim.mirrors[0]?.frame ?? 0;
       this.gpuLost = true;
       const capBefore = app.capNote;
-      this.place(true);
+      try {
+        this.place(true);
+      } catch (e) {
+        // a cloth the CPU cannot take and cannot clamp (a mesh file of more particles than its cap)
+        if (!(e instanceof SceneError)) throw e;
+        this.toDefault();
+        app.overlay.message(`WebGPU device lost; switched to WebGL2. The CPU cannot take this cloth (${e.message}): showing the default scene instead.`);
+        return;
+      }
       app.overlay.message(app.capNote !== capBefore
         ? `WebGPU device lost; switched to WebGL2. The simulation moves to the CPU, which takes a smaller cloth (${app.capNote}): it restarts.`
         : `WebGPU device lost; switched to WebGL2. The simulation continues on the CPU from the last positions read back from the GPU (frame ${frame}).`,
@@ -70,7 +78,7 @@ export class Backend {
 
   private makeDriver(kind: 'cpu' | 'gpu'): SimDriver {
     const app = this.app;
-    const d: SimDriver = kind === 'gpu' && app.stage.device ? new GpuSim(app.stage.device) : new SimClient();
+    const d: SimDriver = kind === 'gpu' && app.stage.device ? new GpuSim(app.stage.device, app.meshes) : new SimClient(app.meshes);
     d.onFrame = () => { app.dirty = true; };
     d.onError = (m) => app.overlay.message(m, 'error');
     d.onUnstable = (slot, frame) => this.onUnstable(slot, frame);
@@ -90,10 +98,24 @@ export class Backend {
       'error', { label: 'Reset', run: () => app.commands.reset() });
   }
 
+  /** The default scene from its start, on the backend the choice asks for (after a scene that cannot go on). */
+  private toDefault(): void {
+    const app = this.app;
+    app.scene = builtinScene(SCENE_NAMES[0]);
+    app.sceneKey = SCENE_NAMES[0];
+    app.capNote = '';
+    app.sweep.index = 0;
+    app.slots.load();
+    app.slots.frameCamera(true);
+    app.hud?.clearPlot();
+    app.panel?.sync();
+    app.link.schedule();
+  }
+
   /**
    * Puts the simulation on the backend the choice and scene ask for. `keep`: the cloths go on from where they are
    * (positions, and velocities where the old backend has them) instead of restarting. Returns whether the driver
-   * changed.
+   * changed. A cloth the backend cannot take (a mesh file over its cap) throws SceneError before anything changes.
    */
   place(keep: boolean): boolean {
     const app = this.app;
@@ -148,12 +170,14 @@ export class Backend {
   }
 
   /**
-   * Clamps the scene to what the backend takes (README: CPU 256 faces per side, GPU 1024) and says so: a link, a
-   * file or a backend switch never builds a cloth that would freeze the page. Returns the note when it clamped.
+   * Clamps the scene to what the backend takes (README: CPU 256 faces per side, GPU 1024; a disc or tube as many
+   * particles) and says so: a link, a file or a backend switch never builds a cloth that would freeze the page.
+   * Returns the note when it clamped. A mesh file over the cap (or not imported) throws SceneError, and nothing
+   * changes.
    */
   capTo(kind: 'cpu' | 'gpu'): string {
     const app = this.app;
-    const { scene, note } = capResolution(app.scene, kind);
+    const { scene, note } = capCloth(app.scene, kind, (path) => app.meshes.particles(path));
     if (!note) return '';
     app.scene = scene;
     app.capNote = note;
@@ -166,6 +190,7 @@ export class Backend {
   /** The panel's backend choice: moves the cloths to that backend when it changes where they run. */
   set(choice: BackendChoice): void {
     const app = this.app;
+    const before = { choice: this.choice, inLink: this.inLink, note: this.note };
     this.choice = choice;
     this.inLink = true;
     const sweepBefore = app.sweep.list().length;
@@ -173,7 +198,16 @@ export class Backend {
     const capBefore = app.capNote;
     this.note = this.wanted().note;
     if (this.wanted().kind !== kindBefore) {
-      this.place(true);
+      try {
+        this.place(true);
+      } catch (e) {
+        // the other backend cannot take this cloth (a mesh file over its cap): stay, and say why
+        if (!(e instanceof SceneError)) throw e;
+        Object.assign(this, before);
+        app.panel.sync();
+        app.overlay.message(`backend not changed: ${e.message}`);
+        return;
+      }
       if (app.sweep.list().length !== sweepBefore) { app.sweep.index = 0; app.slots.load(); app.slots.frameCamera(true); }
     }
     const capped = app.capNote !== capBefore ? app.capNote : '';

@@ -12,6 +12,8 @@ import type { BackendChoice } from './backend.js';
 import type { InteractionHost } from './interaction.js';
 import { MAX_RESOLUTION } from './limits.js';
 import { refusal } from './refusal.js';
+import { withShape, type PanelShape } from './shape-change.js';
+import { sweeps } from './sweep.js';
 
 /** The app's commands: the panel's host (PanelHost) and the pointer's (InteractionHost). */
 export class Commands implements PanelHost, InteractionHost {
@@ -48,15 +50,21 @@ export class Commands implements PanelHost, InteractionHost {
     }
   }
 
-  /** A live change of one scene path (a panel control); false, with a message, when refused, and nothing changes. */
+  /**
+   * A live change of one scene path (a panel control); false, with a message, when refused, and nothing changes.
+   * `cloth.shape` (the Shape control) changes the cloth as shape-change.ts says (pins it cannot take dropped, with
+   * a notice; its lowest point where the old cloth's was).
+   */
   setPath(path: string, value: unknown): boolean {
     const app = this.app;
     let next: Scene;
+    let note = '';
     try {
       let base = app.scene;
       // particle-index pins belong to one resolution: a new resolution keeps only the presets
       if (path === 'cloth.resolution') base = { ...base, pins: base.pins.filter((p) => typeof p === 'string') };
-      next = setScenePath(base, path, value);
+      if (path === 'cloth.shape') ({ scene: next, note } = withShape(base, value as PanelShape, app.meshes.resolve));
+      else next = setScenePath(base, path, value);
     } catch (e) {
       app.overlay.message(e instanceof SceneError ? e.message.replace(/^--set /, '') : String(e));
       app.panel.sync();
@@ -80,6 +88,7 @@ export class Commands implements PanelHost, InteractionHost {
       app.overlay.message(why);
       return false;
     }
+    if (note) app.overlay.message(`${app.scene.cloth.shape}: ${note}`, 'notice');
     app.dirty = true;
     app.link.schedule();
     return true;
@@ -89,7 +98,7 @@ export class Commands implements PanelHost, InteractionHost {
   private applyPath(path: string, next: Scene): void {
     const app = this.app;
     app.scene = next;
-    if (path === 'cloth.resolution' || path === 'resolutionSweep') app.capNote = '';
+    if (path === 'cloth.resolution' || path === 'cloth.shape' || path === 'resolutionSweep') app.capNote = '';
     const capBefore = app.capNote;
     if (app.backend.wanted().kind !== app.sim.kind) {
       app.backend.place(true);
@@ -105,7 +114,7 @@ export class Commands implements PanelHost, InteractionHost {
     } else {
       scenes.forEach((s, k) => {
         // keep slot-local pins (pin tool on a sweep cloth) when only parameters change
-        const keep = app.scene.resolutionSweep?.length ? { ...s, pins: app.sim.mirrors[k].sim.scene.pins } : s;
+        const keep = sweeps(app.scene) ? { ...s, pins: app.sim.mirrors[k].sim.scene.pins } : s;
         const derived = path.startsWith('cloth.') || path === 'material.scaleWithResolution' || path === 'pins';
         const rebuilt = app.sim.setScene(k, derived ? s : keep);
         if (rebuilt) app.interaction.cancel();
@@ -121,7 +130,7 @@ export class Commands implements PanelHost, InteractionHost {
     const app = this.app;
     app.interaction.cancel();
     app.sweep.halted = false;
-    if (app.scene.resolutionSweep?.length && app.sweep.layout === 'sequence' && app.sweep.index !== 0) {
+    if (sweeps(app.scene) && app.sweep.layout === 'sequence' && app.sweep.index !== 0) {
       app.sweep.index = 0;
       app.slots.load();
     } else {
@@ -178,7 +187,7 @@ export class Commands implements PanelHost, InteractionHost {
   clearPins(): void {
     const app = this.app;
     this.setPath('pins', []);
-    if (app.scene.resolutionSweep?.length) app.sim.mirrors.forEach((m, k) => app.sim.setScene(k, { ...m.sim.scene, pins: [] }));
+    if (sweeps(app.scene)) app.sim.mirrors.forEach((m, k) => app.sim.setScene(k, { ...m.sim.scene, pins: [] }));
     app.panel.sync();
   }
 
@@ -210,7 +219,7 @@ export class Commands implements PanelHost, InteractionHost {
         pins.push(p);
       }
     }
-    if (app.scene.resolutionSweep?.length) {
+    if (sweeps(app.scene)) {
       try {
         app.sim.setScene(slot, { ...scene, pins });
       } catch (e) {
@@ -248,6 +257,11 @@ export class Commands implements PanelHost, InteractionHost {
   /** Opens the file picker for a scene document. */
   importJson(): void {
     this.app.fileImport.open();
+  }
+
+  /** Opens the file picker for a mesh file (OBJ, glTF) to make the cloth. */
+  importMesh(): void {
+    this.app.meshImport.open();
   }
 
   /** Copies the link to this scene. */

@@ -6,6 +6,7 @@ import { BufferAttribute, BufferGeometry, DoubleSide, Group, Mesh, MeshStandardM
 import { plainText } from '../core/index.js';
 import { fabricFor, fabricLook } from '../render/textures.js';
 import type { App } from './app.js';
+import { baseName, sceneMesh } from './meshes.js';
 
 /** The page's downloads. */
 export class FileExport {
@@ -27,10 +28,21 @@ export class FileExport {
     return plainText(this.app.scene.name, 60).replace(/[^\w.-]+/g, '-').replace(/^[.-]+/, '') || 'scene';
   }
 
-  /** Downloads the scene document (what an import or a link reproduces). */
+  /**
+   * Downloads the scene document (what an import or a link reproduces). A mesh cloth's document names its file
+   * (cloth.mesh) and does not hold it: the notice says that the file goes with it.
+   */
   exportJson(): void {
     const doc = { $schema: 'https://drape.dev/scene.schema.json', ...this.app.scene };
-    this.download(new Blob([JSON.stringify(doc, null, 2) + '\n'], { type: 'application/json' }), `${this.fileBase()}.json`);
+    const name = `${this.fileBase()}.json`;
+    this.download(new Blob([JSON.stringify(doc, null, 2) + '\n'], { type: 'application/json' }), name);
+    const mesh = sceneMesh(this.app.scene);
+    if (mesh !== null) {
+      const file = plainText(mesh, 80);
+      const where = baseName(mesh) === mesh ? 'next to it' : 'at that path, relative to it';
+      this.app.overlay.message(`Exported ${name}: it names the mesh file ${file} and does not hold it — keep the file ${where} ` +
+        '(drape run reads it from there; the app needs it imported too)', 'notice');
+    }
   }
 
   /** Downloads the view as it is drawn now, as PNG. */

@@ -13,6 +13,7 @@ import {
 } from '../core/index.js';
 import { GpuClothSolver } from '../gpu/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
+import type { MeshStore } from './meshes.js';
 import type { Mirror, SimDriver, SimStats } from './sim-client.js';
 
 /** background readback period [ms] (picking, HUD, fallback state) */
@@ -50,7 +51,8 @@ export class GpuSim implements SimDriver {
   private readGen = 0;
   private disposed = false;
 
-  constructor(readonly device: GPUDevice) {
+  /** `meshes`: the page's imported mesh files, for scenes whose cloth is one */
+  constructor(readonly device: GPUDevice, private readonly meshes: MeshStore) {
     void device.lost.then(() => { this.lost = true; });
   }
 
@@ -68,7 +70,7 @@ export class GpuSim implements SimDriver {
   /** Replaces every cloth; a scene the core refuses throws before anything changes. */
   load(scenes: Scene[]): void {
     // the mirror holds scene, model and read-back positions; the GPU steps, so no kernel memory
-    const sims = scenes.map((scene) => new Simulation(scene, { kernel: 'ts' }));
+    const sims = scenes.map((scene) => new Simulation(scene, { kernel: 'ts', meshes: this.meshes.resolve }));
     this.destroySolvers();
     this.mirrors.length = 0;
     for (const sim of sims) {

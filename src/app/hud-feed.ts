@@ -4,11 +4,14 @@ import type { HudInfo } from '../ui/hud.js';
 import { SCENE_LABELS } from '../ui/panel.js';
 import type { App } from './app.js';
 import { fitSideBySide } from './limits.js';
-import { SWEEP_STAGE_FRAMES } from './sweep.js';
+import { linkCannotCarry } from './mesh-import.js';
+import { sceneMesh } from './meshes.js';
+import { SWEEP_STAGE_FRAMES, sweepIgnored, sweeps } from './sweep.js';
 
 /**
  * The HUD's content now: sizes, backends (and why not the one asked for), solver and view, and the notes (unstable
- * cloths, a clamped resolution, a thinned side-by-side sweep). `fps` and `idle` come from the frame loop.
+ * cloths, a clamped resolution, a sweep the cloth's shape does not take, a thinned side-by-side sweep, a mesh cloth
+ * that a link cannot carry). `fps` and `idle` come from the frame loop.
  */
 export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
   const { sim, scene } = app;
@@ -24,8 +27,12 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
     if (m.unstableAt >= 0) notes.push(`${app.slots.clothName(k)}: unstable at frame ${m.unstableAt}, stopped — Reset (R) to start again`);
   });
   if (app.capNote) notes.push(app.capNote);
-  if (scene.resolutionSweep?.length && app.sweep.layout === 'side-by-side') {
-    const fit = fitSideBySide(scene.resolutionSweep, sim.kind);
+  const ignored = sweepIgnored(scene);
+  if (ignored) notes.push(ignored);
+  const mesh = sceneMesh(scene);
+  if (mesh !== null) notes.push(linkCannotCarry(mesh));
+  if (sweeps(scene) && app.sweep.layout === 'side-by-side') {
+    const fit = fitSideBySide(scene.resolutionSweep ?? [], sim.kind);
     if (fit.note) notes.push(fit.note);
   }
   return {
@@ -46,8 +53,11 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
     view: app.view,
     maxStrain: sim.stats.maxStrain,
     slots: sim.mirrors.length,
-    extra: sweep.length && app.sweep.layout === 'sequence'
-      ? `resolution ${app.sweep.index % sweep.length + 1} of ${sweep.length}, ${SWEEP_STAGE_FRAMES / 60} s each`
-      : Object.hasOwn(SCENE_LABELS, scene.name) ? undefined : `scene: ${plainText(scene.name, 100)}`,
+    extra: [
+      sweep.length && app.sweep.layout === 'sequence'
+        ? `resolution ${app.sweep.index % sweep.length + 1} of ${sweep.length}, ${SWEEP_STAGE_FRAMES / 60} s each`
+        : Object.hasOwn(SCENE_LABELS, scene.name) ? '' : `scene: ${plainText(scene.name, 100)}`,
+      mesh !== null ? `cloth: mesh ${plainText(mesh, 80)}` : scene.cloth.shape !== 'rectangle' ? `cloth: ${scene.cloth.shape}` : '',
+    ].filter(Boolean).join(' · ') || undefined,
   };
 }

@@ -1,6 +1,10 @@
 import { describe, expect, it } from 'vitest';
-import { builtinScene, setScenePath } from '../core/index.js';
-import { MAX_PARTICLES, MAX_RESOLUTION, capResolution, fitSideBySide, importSizeProblem, particlesOf } from './limits.js';
+import { SceneError, builtinScene, modelFor, setScenePath } from '../core/index.js';
+import {
+  MAX_PARTICLES, MAX_RESOLUTION, capCloth, capResolution, fitSideBySide, importSizeProblem, particlesOf, shapeParticles,
+} from './limits.js';
+
+const noMesh = (): number => { throw new Error('no mesh here'); };
 
 describe('backend size caps', () => {
   it('the CPU takes 256 faces per side and the GPU 1024, as documented', () => {
@@ -38,9 +42,61 @@ describe('backend size caps', () => {
     expect(gpu.list.reduce((a, r) => a + particlesOf(r), 0)).toBeLessThanOrEqual(MAX_PARTICLES.gpu);
   });
 
-  it('a scene file over 32 MiB is not read', () => {
+  it('a scene or mesh file over 32 MiB is not read', () => {
     expect(importSizeProblem(1000)).toBe('');
     expect(importSizeProblem(32 * 2 ** 20)).toBe('');
     expect(importSizeProblem(2 ** 30)).toBe('1024.0 MiB, more than the 32 MiB a scene file may be');
+    expect(importSizeProblem(33 * 2 ** 20, 'mesh file')).toBe('33.0 MiB, more than the 32 MiB a mesh file may be');
+  });
+});
+
+describe('caps by particles: discs, tubes and mesh files', () => {
+  const shaped = (shape: string, resolution: number, width = 1, height = 1) =>
+    setScenePath(setScenePath(setScenePath(setScenePath(builtinScene('cotton-basic'), 'cloth.shape', shape), 'cloth.resolution', resolution), 'cloth.width', width), 'cloth.height', height);
+
+  it('counts the particles of a generated cloth as the model builds it', () => {
+    for (const [shape, r, w, h] of [
+      ['rectangle', 16, 1, 1], ['disc', 1, 1, 1], ['disc', 32, 1, 1], ['disc', 33, 2, 1], ['tube', 32, 1, 1],
+      ['tube', 7, 0.2, 3], ['tube', 40, 3, 0.5], ['tube', 1, 1, 1],
+    ] as const) {
+      const s = shaped(shape, r, w, h);
+      expect(shapeParticles(s.cloth), `${shape} ${r} ${w}×${h}`).toBe(modelFor(s).particleCount);
+    }
+    expect(shapeParticles(shaped('disc', 32).cloth)).toBe(817); // 1 + 3K(K + 1), K = 16
+  });
+
+  it('a disc or tube over the backend\'s particles is clamped to the largest resolution that fits, with a note', () => {
+    const disc = shaped('disc', 1024);
+    const cpu = capCloth(disc, 'cpu', noMesh);
+    const r = cpu.scene.cloth.resolution;
+    expect(shapeParticles(cpu.scene.cloth)).toBeLessThanOrEqual(MAX_PARTICLES.cpu);
+    expect(shapeParticles(cpu.scene.cloth, r + 1)).toBeGreaterThan(MAX_PARTICLES.cpu);
+    expect(r).toBe(294); // K = 147: 65,269 particles
+    expect(cpu.note).toBe('disc of resolution 1024: 787,969 particles, more than the CPU backend takes (66,049), clamped to resolution 294 (65,269 particles); the GPU backend takes 1,050,625');
+    expect(disc.cloth.resolution).toBe(1024);
+    expect(capCloth(disc, 'gpu', noMesh)).toEqual({ scene: disc, note: '' });
+    // within the cap: the same scene (a disc of 256 faces across has fewer particles than the 256² grid)
+    const d256 = shaped('disc', 256);
+    expect(capCloth(d256, 'cpu', noMesh).scene).toBe(d256);
+    const tube = shaped('tube', 1024, 10, 10);
+    const t = capCloth(tube, 'cpu', noMesh);
+    expect(shapeParticles(t.scene.cloth)).toBeLessThanOrEqual(MAX_PARTICLES.cpu);
+    expect(t.note).toMatch(/^tube of resolution 1024: [\d,]+ particles, more than the CPU backend takes \(66,049\), clamped to resolution \d+/);
+  });
+
+  it('a rectangle is still capped by its resolution (and its sweep)', () => {
+    const big = setScenePath(builtinScene('cotton-basic'), 'cloth.resolution', 1024);
+    expect(capCloth(big, 'cpu', noMesh)).toEqual(capResolution(big, 'cpu'));
+  });
+
+  it('a mesh file is refused, not clamped, when it has more particles than the backend takes', () => {
+    const mesh = setScenePath(builtinScene('cotton-basic'), 'cloth.mesh', 'big.obj');
+    const count = (n: number) => (path: string) => { expect(path).toBe('big.obj'); return n; };
+    expect(capCloth(mesh, 'cpu', count(1258))).toEqual({ scene: mesh, note: '' });
+    expect(capCloth(mesh, 'cpu', count(257 ** 2))).toEqual({ scene: mesh, note: '' });
+    expect(() => capCloth(mesh, 'cpu', count(70_000))).toThrow(SceneError);
+    expect(() => capCloth(mesh, 'cpu', count(70_000)))
+      .toThrow('big.obj: 70,000 particles, more than the CPU backend takes (66,049); the GPU backend takes 1,050,625');
+    expect(capCloth(mesh, 'gpu', count(70_000)).note).toBe('');
   });
 });

@@ -2,9 +2,12 @@
  * How big a cloth each simulation backend takes (README, "The app"): the CPU worker up to 256 faces per side, the
  * GPU up to 1024. The scene schema allows 1024 everywhere (the CLI and the GPU run it), so a link, a file or a
  * backend switch can ask the CPU for a million-particle cloth — which would freeze the tab building it. The app
- * clamps such a scene to the backend's cap and says so. No DOM here: unit-tested in limits.test.ts.
+ * clamps such a scene to the backend's cap and says so. A rectangle is capped by its resolution; a disc or a tube
+ * by its particles (the same count as the largest rectangle: 257² on the CPU, 1025² on the GPU), its resolution
+ * lowered until it fits; a mesh file has its own particles, so a mesh over the cap is refused, not clamped.
+ * No DOM here: unit-tested in limits.test.ts.
  */
-import { MAX_INPUT_BYTES, type Scene } from '../core/index.js';
+import { MAX_INPUT_BYTES, SceneError, plainText, type Scene } from '../core/index.js';
 
 export type BackendKind = 'cpu' | 'gpu';
 
@@ -56,6 +59,64 @@ export function capResolution(scene: Scene, kind: BackendKind): Capped {
 export const particlesOf = (resolution: number): number => (resolution + 1) ** 2;
 
 /**
+ * Particles of a generated cloth (rectangle, disc, tube) of the scene's size at `resolution`, without building it:
+ * the generators' own counts (core/mesh/generators.ts; limits.test.ts holds them to the models they build).
+ */
+export function shapeParticles(cloth: Scene['cloth'], resolution = cloth.resolution): number {
+  switch (cloth.shape) {
+    case 'disc': {
+      // a centre vertex and K rings of 6k vertices
+      const K = Math.max(1, Math.ceil(resolution / 2));
+      return 1 + 3 * K * (K + 1);
+    }
+    case 'tube': {
+      // rings of M vertices, L + 1 of them, cells about square with `resolution` along the longer direction
+      const circumference = Math.PI * cloth.width;
+      const cell = Math.max(circumference, cloth.height) / resolution;
+      const M = Math.max(3, Math.round(circumference / cell));
+      const L = Math.max(1, Math.round(cloth.height / cell));
+      return M * (L + 1);
+    }
+    default:
+      // the seed's grid
+      return particlesOf(resolution);
+  }
+}
+
+const count = (n: number): string => n.toLocaleString('en');
+
+/**
+ * The scene with its cloth within what the backend takes: a rectangle by resolution (capResolution); a disc or a
+ * tube by particles, its resolution lowered to the largest that fits; a mesh file (its particles: `meshParticles`
+ * of its name) refused with a SceneError when over, since a mesh cannot be made coarser. The same scene object when
+ * nothing is over the cap.
+ */
+export function capCloth(scene: Scene, kind: BackendKind, meshParticles: (path: string) => number): Capped {
+  const c = scene.cloth, max = MAX_PARTICLES[kind];
+  const more = kind === 'cpu' ? `; the GPU backend takes ${count(MAX_PARTICLES.gpu)}` : '';
+  if (c.shape === 'rectangle') return capResolution(scene, kind);
+  if (c.shape === 'mesh') {
+    const n = meshParticles(c.mesh ?? '');
+    if (n <= max) return { scene, note: '' };
+    throw new SceneError(`${plainText(c.mesh ?? '', 200)}: ${count(n)} particles, more than the ${NAMES[kind]} backend takes (${count(max)})${more}`);
+  }
+  const n = shapeParticles(c);
+  if (n <= max) return { scene, note: '' };
+  // the largest resolution that fits (the counts grow with the resolution)
+  let lo = 1, hi = c.resolution;
+  while (lo < hi) {
+    const mid = Math.ceil((lo + hi) / 2);
+    if (shapeParticles(c, mid) <= max) lo = mid; else hi = mid - 1;
+  }
+  const r = lo;
+  return {
+    scene: { ...scene, cloth: { ...c, resolution: r } },
+    note: `${c.shape} of resolution ${c.resolution}: ${count(n)} particles, more than the ${NAMES[kind]} backend takes (${count(max)}), ` +
+      `clamped to resolution ${r} (${count(shapeParticles(c, r))} particles)${more}`,
+  };
+}
+
+/**
  * The resolutions of a sweep laid side by side that the backend takes together: the leading ones while the sum of
  * their particles stays within MAX_PARTICLES (at least the first), and a note when some were left out.
  */
@@ -76,10 +137,10 @@ export function fitSideBySide(resolutions: readonly number[], kind: BackendKind)
 }
 
 /**
- * Why a file of `bytes` is not read as a scene ('' when it may be): larger than the core's MAX_INPUT_BYTES (the
+ * Why a file of `bytes` is not read as a scene or mesh ('' when it may be): larger than the core's MAX_INPUT_BYTES (the
  * CLI's limit too), which reading would only spend the tab's memory on.
  */
-export function importSizeProblem(bytes: number): string {
+export function importSizeProblem(bytes: number, what = 'scene file'): string {
   if (bytes <= MAX_INPUT_BYTES) return '';
-  return `${(bytes / 2 ** 20).toFixed(1)} MiB, more than the ${MAX_INPUT_BYTES / 2 ** 20} MiB a scene file may be`;
+  return `${(bytes / 2 ** 20).toFixed(1)} MiB, more than the ${MAX_INPUT_BYTES / 2 ** 20} MiB a ${what} may be`;
 }

@@ -6,8 +6,14 @@
  * handled in order, so a command sent before an `advance` applies before those frames are stepped.
  */
 import type { Energy, Scene } from '../core/index.js';
+import type { MeshEntry } from './meshes.js';
 
 export type ToWorker =
+  /**
+   * an imported mesh file, sent before the first scene that names it (a scene's cloth.mesh resolves to it in the
+   * worker as in the page); a later one of the same name replaces it
+   */
+  | { type: 'mesh'; entry: MeshEntry }
   /** replace every slot with a fresh Simulation of each scene */
   | { type: 'load'; gen: number; scenes: Scene[] }
   /** change one slot's scene (Simulation.setScene: rebuilds only when the geometry changed) */

@@ -7,8 +7,9 @@
  * are overwritten by each frame from the worker. Changing its scene with `setScene` tells us, by the core's own
  * rule, whether the worker is rebuilding the cloth; frames of an older cloth are then dropped.
  */
-import { Simulation, type ClothState, type Energy, type Scene } from '../core/index.js';
+import { Simulation, type ClothState, type Energy, type Scene, type TriangleMesh } from '../core/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
+import { sceneMesh, type MeshStore } from './meshes.js';
 import type { FromWorker, ToWorker } from './protocol.js';
 
 
@@ -79,8 +80,11 @@ export class SimClient implements SimDriver {
   private nextId = 1;
   private loopInFlight = 0;
   private pending = new Map<number, () => void>();
+  /** the mesh files sent to the worker, by name (a newer import of the same name is sent again) */
+  private readonly sent = new Map<string, TriangleMesh>();
 
-  constructor() {
+  /** `meshes`: the page's imported mesh files, for scenes whose cloth is one (sent to the worker as needed) */
+  constructor(private readonly meshes: MeshStore) {
     this.worker = new Worker(new URL('./sim.worker.ts', import.meta.url), { type: 'module', name: 'drape-sim' });
     this.worker.onmessage = (e: MessageEvent<FromWorker>) => this.receive(e.data);
     this.worker.onerror = (e) => this.onError?.(`simulation worker: ${e.message || 'failed to start'}`);
@@ -90,16 +94,26 @@ export class SimClient implements SimDriver {
     this.worker.postMessage(msg);
   }
 
+  /** Sends the worker the mesh file a scene's cloth is made from, before the scene, unless it has it already. */
+  private sendMesh(scene: Scene): void {
+    const path = sceneMesh(scene);
+    const entry = path === null ? undefined : this.meshes.find(path);
+    if (!entry || this.sent.get(entry.name) === entry.mesh) return;
+    this.sent.set(entry.name, entry.mesh);
+    this.post({ type: 'mesh', entry });
+  }
+
   /**
    * Replaces every cloth (a new scene, or a different number of slots). A scene the core refuses (SceneError, e.g.
    * a collider cutting through the cloth) throws before anything changes.
    */
   load(scenes: Scene[]): void {
     // mirrors hold the scene and model for picking and the panel; they never step, so no kernel memory
-    const sims = scenes.map((scene) => new Simulation(scene, { kernel: 'ts' }));
+    const sims = scenes.map((scene) => new Simulation(scene, { kernel: 'ts', meshes: this.meshes.resolve }));
     const gen = ++this.gen;
     this.mirrors.length = 0;
     for (const sim of sims) this.mirrors.push({ sim, modelGen: gen, frame: 0, grabbed: -1, unstableAt: -1 });
+    for (const sim of sims) this.sendMesh(sim.scene);
     this.post({ type: 'load', gen, scenes: this.mirrors.map((m) => m.sim.scene) });
     this.clock.clear();
   }
@@ -110,6 +124,7 @@ export class SimClient implements SimDriver {
     const gen = ++this.gen;
     const rebuilt = m.sim.setScene(scene);
     if (rebuilt) { m.modelGen = gen; m.frame = 0; m.grabbed = -1; m.unstableAt = -1; }
+    this.sendMesh(m.sim.scene);
     this.post({ type: 'setScene', gen, slot, scene: m.sim.scene });
     return rebuilt;
   }

@@ -3,6 +3,7 @@
  * drawing. Dumb on purpose: it applies commands in order and steps when asked (the page owns the clock).
  */
 import { Simulation, energy, grab, maxStructuralStrain, release, type Energy } from '../core/index.js';
+import { MeshStore } from './meshes.js';
 import type { FromWorker, SlotFrame, ToWorker } from './protocol.js';
 
 interface Slot {
@@ -22,6 +23,8 @@ const ctx = self as unknown as {
 };
 
 let slots: Slot[] = [];
+/** the mesh files the page sent (`mesh` messages), for scenes whose cloth is one */
+const meshes = new MeshStore();
 
 function send(msg: FromWorker, transfer: Transferable[] = []): void {
   ctx.postMessage(msg, transfer);
@@ -54,8 +57,11 @@ function frameMessage(id: number, frames: number, stepMs: number): void {
 
 function handle(msg: ToWorker): void {
   switch (msg.type) {
+    case 'mesh':
+      meshes.add(msg.entry);
+      return;
     case 'load':
-      slots = msg.scenes.map((scene) => ({ sim: new Simulation(scene), gen: msg.gen }));
+      slots = msg.scenes.map((scene) => ({ sim: new Simulation(scene, { meshes: meshes.resolve }), gen: msg.gen }));
       return;
     case 'setScene': {
       const slot = slots[msg.slot];

@@ -5,6 +5,7 @@
 import { Vector3 } from 'three/webgpu';
 import { append, h } from '../ui/dom.js';
 import type { App } from './app.js';
+import { sweeps } from './sweep.js';
 
 /** The labels over a sweep's cloths (text only). */
 export class SweepLabels {
@@ -17,7 +18,7 @@ export class SweepLabels {
     const app = this.app;
     for (const l of this.labels) l.remove();
     this.labels = [];
-    if (!app.scene.resolutionSweep?.length) return;
+    if (!sweeps(app.scene)) return;
     app.sim.mirrors.forEach((m) => {
       const l = document.createElement('div');
       l.className = 'drape-label';

@@ -16,6 +16,22 @@ const SIDE_BY_SIDE_SPACING = 1.6;
 /** the Mesh Resolution scene on the GPU goes on past the CPU's 64 faces per side */
 export const GPU_SWEEP_EXTRA = [128, 256, 512, 1024];
 
+/**
+ * Whether a scene's cloths come from its resolution sweep: the sweep is of a rectangle's resolutions, so a disc,
+ * a tube or a mesh with one runs as it is (one cloth; sweepIgnored says so).
+ */
+export function sweeps(scene: Scene): boolean {
+  return !!scene.resolutionSweep?.length && scene.cloth.shape === 'rectangle';
+}
+
+/** The note for a scene with a sweep that its cloth does not take ('' when none). */
+export function sweepIgnored(scene: Scene): string {
+  if (!scene.resolutionSweep?.length || sweeps(scene)) return '';
+  const c = scene.cloth;
+  return `the resolution sweep is of a rectangle's resolutions: this ${c.shape} runs as it is` +
+    (c.shape === 'mesh' ? '' : ` (resolution ${c.resolution})`);
+}
+
 /** The sweep's layout and progress, and the slot scenes it makes. */
 export class Sweep {
   layout: SweepLayout = 'sequence';
@@ -31,7 +47,7 @@ export class Sweep {
    * 1024 faces per side (side by side keeps the scene's own list: a row of eleven cloths up to 1025² is too much).
    */
   list(): number[] {
-    const sweep = this.app.scene.resolutionSweep ?? [];
+    const sweep = sweeps(this.app.scene) ? this.app.scene.resolutionSweep ?? [] : [];
     // side by side: as many cloths as the backend simulates at once (see limits.ts)
     if (sweep.length && this.layout === 'side-by-side') return fitSideBySide(sweep, this.app.sim?.kind ?? 'cpu').list;
     if (!sweep.length || this.app.sim?.kind !== 'gpu' || this.layout !== 'sequence') return sweep;

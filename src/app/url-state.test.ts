@@ -24,6 +24,18 @@ describe('URL hash state', () => {
     expect(back.view).toEqual({ view: 'strain', sweep: 'side-by-side' });
   });
 
+  it('round-trips a mesh cloth (the link names the file; it cannot carry it)', () => {
+    for (const base of ['cotton-basic', '']) {
+      const scene = setScenePath(setScenePath(builtinScene('cotton-basic')!, 'cloth.mesh', 'tshirt.obj'), 'cloth.rotation', [-90, 0, 0]);
+      const hash = encodeHash({ scene, base, view: {} });
+      expect(hash).toContain('cloth.mesh=tshirt.obj');
+      expect(decodeHash(hash)!.scene).toEqual(scene);
+      // and a disc
+      const disc = setScenePath(builtinScene('cotton-basic')!, 'cloth.shape', 'disc');
+      expect(decodeHash(encodeHash({ scene: disc, base, view: {} }))!.scene).toEqual(disc);
+    }
+  });
+
   it('names the field of a bad value, and refuses unknown scenes and keys', () => {
     expect(() => decodeHash('#scene=nope')).toThrow(/unknown scene 'nope'/);
     expect(() => decodeHash('#scene=wind&material.damping=99')).toThrow(/link: material\.damping: must be <= 10/);

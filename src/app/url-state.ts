@@ -58,7 +58,12 @@ function encodeValue(v: Json): string {
 export function encodeHash(state: HashState): string {
   const parts: string[] = [];
   if (state.base) parts.push(`scene=${encodeURIComponent(state.base)}`);
-  for (const [path, value] of sceneDiff(state.scene, baseScene(state.base))) parts.push(`${path}=${encodeValue(value)}`);
+  const diff = sceneDiff(state.scene, baseScene(state.base));
+  for (const [path, value] of diff) {
+    // cloth.mesh makes the cloth a 'mesh' by itself (and 'cloth.shape=mesh' alone, read first, would be refused)
+    if (path === 'cloth.shape' && value === 'mesh' && diff.some(([p]) => p === 'cloth.mesh')) continue;
+    parts.push(`${path}=${encodeValue(value)}`);
+  }
   for (const k of VIEW_KEYS) {
     const v = state.view[k];
     if (v !== undefined) parts.push(`${k}=${encodeURIComponent(v)}`);

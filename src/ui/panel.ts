@@ -52,6 +52,8 @@ export interface PanelHost {
   setSweepLayout(layout: SweepLayout): void;
   exportJson(): void;
   importJson(): void;
+  /** the file picker for a mesh file (OBJ, glTF) that becomes the cloth */
+  importMesh(): void;
   copyLink(): void;
   screenshot(): void;
   exportObj(): void;
@@ -99,6 +101,16 @@ function logSliderFor(s: SchemaNumber): LogSlider | null {
 
 const RESOLUTIONS = [1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 512, 1024];
 
+/** the Shape control's generated shapes ('mesh' shows when the cloth is an imported file) */
+const SHAPE_LABELS: Record<string, string> = { Rectangle: 'rectangle', Disc: 'disc', Tube: 'tube' };
+
+/** a resolution as the menu shows it for a shape: faces per side, across a disc, along a tube */
+function resolutionLabel(r: number, shape: string): string {
+  if (shape === 'disc') return `${r} faces across`;
+  if (shape === 'tube') return `${r} faces along`;
+  return `${r} × ${r}  (${r * r} faces)`;
+}
+
 export class Panel {
   readonly gui: GUI;
   /** lil-gui binds to plain properties: one per control, keyed by scene path or action */
@@ -108,6 +120,7 @@ export class Panel {
   private playCtl!: Controller;
   private sweepFolder!: GUI;
   private resolutionCtl!: Controller;
+  private shapeCtl!: Controller;
 
   constructor(private readonly host: PanelHost) {
     this.gui = new GUI({ title: 'Drape', width: 300, injectStyles: false });
@@ -116,15 +129,17 @@ export class Panel {
     this.sync();
   }
 
-  private resolutionMax = 0;
+  /** the backend maximum and shape the resolution menu was made for */
+  private resolutionFor = '';
 
-  /** cloth resolutions up to the backend's maximum (1024 faces per side on the GPU) */
+  /** cloth resolutions up to the backend's maximum (1024 faces per side on the GPU), worded for the shape */
   private resolutionOptions(): Record<string, number> {
     const rs = schemaFor('cloth.resolution');
-    this.resolutionMax = this.host.maxResolution;
-    const hi = Math.min(rs.maximum ?? 1024, this.resolutionMax);
+    const shape = this.host.scene.cloth.shape;
+    this.resolutionFor = `${this.host.maxResolution} ${shape}`;
+    const hi = Math.min(rs.maximum ?? 1024, this.host.maxResolution);
     const out: Record<string, number> = {};
-    for (const r of RESOLUTIONS) if (r >= (rs.minimum ?? 1) && r <= hi) out[`${r} × ${r}  (${r * r} faces)`] = r;
+    for (const r of RESOLUTIONS) if (r >= (rs.minimum ?? 1) && r <= hi) out[resolutionLabel(r, shape)] = r;
     return out;
   }
 
@@ -156,6 +171,11 @@ export class Panel {
     this.addParam(this.sweepFolder, 'material.scaleWithResolution', 'scale with resolution', 'sweep.scaleWithResolution');
 
     const cloth = gui.addFolder('Cloth & material');
+    p['cloth.shape'] = 'rectangle';
+    this.shapeCtl = this.tag(cloth.add(p, 'cloth.shape', SHAPE_LABELS).name('shape')
+      .onChange((v: string) => { if (v !== 'mesh') host.setPath('cloth.shape', v); }), 'cloth.shape',
+    'rectangle (the grid; the pin presets need it), disc (diameter: width) or tube (diameter: width, length: height); rebuilds the cloth. A mesh file comes from "import mesh…"');
+    this.syncers.push(() => { p['cloth.shape'] = host.scene.cloth.shape; });
     p['cloth.resolution'] = 32;
     const rs = schemaFor('cloth.resolution');
     this.resolutionCtl = this.tag(cloth.add(p, 'cloth.resolution', this.resolutionOptions()).name('resolution')
@@ -235,6 +255,7 @@ export class Panel {
     const actions: [string, string, () => void][] = [
       ['exportJson', 'export scene JSON', () => host.exportJson()],
       ['importJson', 'import scene JSON…', () => host.importJson()],
+      ['importMesh', 'import mesh (OBJ, glTF)…', () => host.importMesh()],
       ['copyLink', 'copy link to this scene', () => host.copyLink()],
       ['screenshot', 'screenshot PNG', () => host.screenshot()],
       ['exportObj', 'export cloth OBJ', () => host.exportObj()],
@@ -307,11 +328,18 @@ export class Panel {
     this.sceneCtl.options(opts);
     p.sweep = host.sweepLayout;
     p.backend = host.backendChoice;
-    if (this.resolutionMax !== host.maxResolution) this.resolutionCtl.options(this.resolutionOptions());
+    const cloth = host.scene.cloth;
+    // an imported mesh shows in the Shape control by its file's name (as text)
+    const shapes: Record<string, string> = { ...SHAPE_LABELS };
+    if (cloth.shape === 'mesh') shapes[`Mesh: ${plainText(cloth.mesh ?? '', 60)}`] = 'mesh';
+    this.shapeCtl.options(shapes);
+    if (this.resolutionFor !== `${host.maxResolution} ${cloth.shape}`) this.resolutionCtl.options(this.resolutionOptions());
     for (const f of this.syncers) f();
-    const sweep = !!host.scene.resolutionSweep?.length;
+    // a sweep is of a rectangle's resolutions (another shape runs as it is); a mesh file has its own resolution
+    const sweep = !!host.scene.resolutionSweep?.length && cloth.shape === 'rectangle';
     this.sweepFolder.show(sweep);
-    this.resolutionCtl.enable(!sweep);
+    this.resolutionCtl.enable(!sweep && cloth.shape !== 'mesh');
+    this.resolutionCtl.name(cloth.shape === 'mesh' ? 'resolution: the mesh has its own' : 'resolution');
     this.updatePlay();
     for (const c of this.gui.controllersRecursive()) c.updateDisplay();
   }

@@ -1,0 +1,284 @@
+/**
+ * A cloth is any triangle mesh, in the app (issue 9): the example T-shirt (examples/tshirt.obj) imported through
+ * the panel's mesh file input drops onto the sphere on the CPU worker and on the GPU backend; a scene file naming
+ * it uses the imported file (and asks for it when it is not there); picking, grabbing, the pin tool and the exports
+ * work on it; a bad or too big file is refused with the cloth kept; the Shape control makes a disc and a tube, whose
+ * grid-only pin presets say why they cannot; a link says it cannot carry the mesh, and a link naming one asks for
+ * the file. Explicit steps on small cloths (SwiftShader is slow): nothing depends on the machine's speed.
+ */
+import { readFileSync } from 'node:fs';
+import type { Page } from 'playwright-core';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { launch, type Browser } from './browser.js';
+import { byId, centroid, choose, hook, loadScene, openApp, pause, press, setChecked, shoot, step, viewStats } from './helpers.js';
+
+const CPU = '?lite&backend=cpu';
+const TSHIRT_OBJ = readFileSync(new URL('../examples/tshirt.obj', import.meta.url));
+const TSHIRT_SCENE = readFileSync(new URL('../examples/tshirt.json', import.meta.url));
+/** the T-shirt: its vertices and triangles */
+const TSHIRT_PARTICLES = 1258;
+const TSHIRT_TRIANGLES = 2432;
+
+let browser: Browser;
+
+beforeAll(async () => {
+  browser = await launch('webgpu');
+});
+
+afterAll(async () => {
+  await browser?.close();
+});
+
+const message = (page: Page) => hook<{ text: string; kind: string }>(page, 'lastMessage');
+
+async function importMesh(page: Page, name: string, buffer: Buffer): Promise<void> {
+  await byId(page, 'import-mesh-file').setInputFiles({ name, mimeType: 'application/octet-stream', buffer });
+}
+
+async function importScene(page: Page, name: string, buffer: Buffer): Promise<void> {
+  await byId(page, 'import-file').setInputFiles({ name, mimeType: 'application/json', buffer });
+}
+
+/** every particle's position is a finite number */
+async function finite(page: Page): Promise<boolean> {
+  return (await hook<number[][]>(page, 'positions')).flat().every(Number.isFinite);
+}
+
+/** The T-shirt scene (examples/tshirt.json) after 3 s: a whole shirt at rest over the sphere, as in the CLI. */
+async function expectDraped(page: Page): Promise<void> {
+  expect(await hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
+  expect(await finite(page)).toBe(true);
+  const c = await centroid(page);
+  // the library and the CLI: centroid y 0.693 (src/cli/garment.test.ts)
+  expect(c[1]).toBeGreaterThan(0.66);
+  expect(c[1]).toBeLessThan(0.72);
+  expect(Math.hypot(c[0], c[2])).toBeLessThan(0.1);
+  const ys = (await hook<number[][]>(page, 'positions')).map((p) => p[1]);
+  expect(Math.max(...ys)).toBeGreaterThan(0.8);
+  expect(Math.max(...ys)).toBeLessThan(0.83);
+  expect(Math.min(...ys)).toBeGreaterThan(0.3);
+}
+
+/** a flat square grid of n × n vertices as OBJ text (a mesh that is valid but big) */
+function gridObj(n: number): string {
+  const lines: string[] = [];
+  for (let j = 0; j < n; j++) for (let i = 0; i < n; i++) lines.push(`v ${(i / (n - 1)).toFixed(5)} ${(j / (n - 1)).toFixed(5)} 0`);
+  for (let j = 0; j + 1 < n; j++) {
+    for (let i = 0; i + 1 < n; i++) {
+      const a = j * n + i + 1, b = a + 1, c = a + n, d = c + 1;
+      lines.push(`f ${a} ${b} ${d}`, `f ${a} ${d} ${c}`);
+    }
+  }
+  return lines.join('\n') + '\n';
+}
+
+describe('a mesh cloth in the app', () => {
+  it('imports the T-shirt as the cloth, and a scene file naming it drops it onto the sphere (CPU worker)', async () => {
+    const { page, errors } = await openApp(browser.context, '', CPU);
+    await pause(page);
+    await importMesh(page, 'tshirt.obj', TSHIRT_OBJ);
+    await expect.poll(() => hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
+    expect((await message(page)).text).toContain(`Imported mesh tshirt.obj: ${TSHIRT_PARTICLES.toLocaleString('en')} particles`);
+    const scene = await hook<any>(page, 'scene');
+    expect(scene.cloth.shape).toBe('mesh');
+    expect(scene.cloth.mesh).toBe('tshirt.obj');
+    expect(scene.pins).toEqual([]);
+    // the Shape control names the file; the resolution control says the mesh has its own
+    expect(await byId(page, 'cloth.shape').locator('select').inputValue()).toBe('Mesh: tshirt.obj');
+    expect(await byId(page, 'cloth.resolution').locator('select').isDisabled()).toBe(true);
+    expect(await byId(page, 'cloth.resolution').innerText()).toContain('the mesh has its own');
+    await step(page, 30);
+    expect(await finite(page)).toBe(true);
+
+    // the link names the file but cannot carry it: the HUD and the copy-link action say so
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('a link cannot carry an imported mesh (tshirt.obj)');
+    await expect.poll(() => page.evaluate(() => location.hash)).toContain('cloth.mesh=tshirt.obj');
+    await press(page, 'copyLink');
+    await expect.poll(async () => (await message(page)).text).toContain('a link cannot carry an imported mesh (tshirt.obj)');
+
+    // a scene file naming a mesh that is not imported asks for it, and changes nothing
+    await importScene(page, 'dress.json', Buffer.from(JSON.stringify({ name: 'dress', cloth: { mesh: 'dress.obj' } })));
+    await expect.poll(async () => (await message(page)).text).toContain('import the mesh file dress.obj too');
+    expect((await message(page)).text).toContain('Import refused — dress.json');
+    expect(await hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
+    expect((await hook<any>(page, 'scene')).cloth.mesh).toBe('tshirt.obj');
+
+    // the example scene names tshirt.obj: the imported file is used, laid flat and dropped on the sphere
+    await importScene(page, 'tshirt.json', TSHIRT_SCENE);
+    await expect.poll(() => hook(page, 'sceneName')).toBe('tshirt');
+    expect(await byId(page, 'scene').locator('select').inputValue()).toContain('Imported: tshirt');
+    await pause(page);
+    expect(await hook(page, 'frame')).toBe(0);
+    await step(page, 180);
+    await expectDraped(page);
+    const s = await viewStats(page);
+    expect(s.colours).toBeGreaterThan(20);
+    await shoot(page, 'mesh-tshirt-cpu');
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('picking, grabbing, the pin tool and the exports work on the mesh; bad and too big files are refused', async () => {
+    const { page, errors } = await openApp(browser.context, '', CPU);
+    await pause(page);
+    await importMesh(page, 'tshirt.obj', TSHIRT_OBJ);
+    await expect.poll(() => hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
+    await importScene(page, 'tshirt.json', TSHIRT_SCENE);
+    await expect.poll(() => hook(page, 'sceneName')).toBe('tshirt');
+    await pause(page);
+    await step(page, 120);
+
+    // grab the highest particle (the chest on top of the sphere, facing the camera) and lift it
+    const ys = (await hook<number[][]>(page, 'positions')).map((p) => p[1]);
+    const top = ys.indexOf(Math.max(...ys));
+    const at = await hook<{ x: number; y: number }>(page, 'screenOf', top);
+    await page.mouse.move(at.x, at.y);
+    await page.mouse.down();
+    const grabbed = await hook<number>(page, 'grabbed');
+    expect(grabbed).toBeGreaterThanOrEqual(0);
+    const y0 = (await hook<number[][]>(page, 'positions', [grabbed]))[0][1];
+    await page.mouse.move(at.x, at.y - 60, { steps: 6 });
+    await step(page, 20);
+    expect((await hook<number[][]>(page, 'positions', [grabbed]))[0][1]).toBeGreaterThan(y0 + 0.05);
+    await page.mouse.up();
+    expect(await hook(page, 'grabbed')).toBe(-1);
+    await step(page, 60);
+
+    // the pin tool pins the particle under the cursor; it stays put; a second click unpins it
+    await setChecked(page, 'pinTool', true);
+    const ys2 = (await hook<number[][]>(page, 'positions')).map((p) => p[1]);
+    const target = ys2.indexOf(Math.max(...ys2));
+    const where = await hook<{ x: number; y: number }>(page, 'screenOf', target);
+    await page.mouse.click(where.x, where.y);
+    const pinned = await hook<number[]>(page, 'pinned');
+    expect(pinned.length).toBe(1);
+    expect((await hook<any>(page, 'scene')).pins).toEqual(pinned);
+    const p0 = await hook<number[][]>(page, 'positions', pinned);
+    await step(page, 30);
+    expect(await hook<number[][]>(page, 'positions', pinned)).toEqual(p0);
+    const again = await hook<{ x: number; y: number }>(page, 'screenOf', pinned[0]);
+    await page.mouse.click(again.x, again.y);
+    expect(await hook<number[]>(page, 'pinned')).toEqual([]);
+    await setChecked(page, 'pinTool', false);
+
+    // exports: the scene names the mesh file (and says that the file goes with it); OBJ and glTF hold the shirt
+    const get = async (id: string) => {
+      const [dl] = await Promise.all([page.waitForEvent('download'), press(page, id)]);
+      return { name: dl.suggestedFilename(), data: readFileSync(await dl.path()) };
+    };
+    const json = await get('exportJson');
+    expect(json.name).toBe('tshirt.json');
+    const doc = JSON.parse(json.data.toString());
+    expect(doc.cloth.mesh).toBe('tshirt.obj');
+    expect((await message(page)).text).toContain('it names the mesh file tshirt.obj and does not hold it');
+    const obj = (await get('exportObj')).data.toString().split('\n');
+    expect(obj.filter((l) => l.startsWith('v ')).length).toBe(TSHIRT_PARTICLES);
+    expect(obj.filter((l) => l.startsWith('f ')).length).toBe(TSHIRT_TRIANGLES);
+    const glb = await get('exportGltf');
+    expect(glb.data.toString('ascii', 0, 4)).toBe('glTF');
+    const png = await get('screenshot');
+    expect(png.name).toBe('drape-tshirt.png');
+
+    // a file that is not a manifold mesh: refused naming the file, the shirt stays
+    const frame = await hook<number>(page, 'frame');
+    const fin = 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n';
+    await importMesh(page, 'fin.obj', Buffer.from(fin));
+    await expect.poll(async () => (await message(page)).text).toContain('Mesh import refused — fin.obj');
+    expect(await hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
+    expect(await hook(page, 'frame')).toBe(frame);
+    // more particles than the CPU backend takes (257²): refused, not clamped
+    await importMesh(page, 'big.obj', Buffer.from(gridObj(260)));
+    await expect.poll(async () => (await message(page)).text, { timeout: 60_000 }).toContain('big.obj: 67,600 particles, more than the CPU backend takes (66,049)');
+    expect(await hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
+    expect((await hook<any>(page, 'scene')).cloth.mesh).toBe('tshirt.obj');
+    await step(page, 10);
+    expect(await finite(page)).toBe(true);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('the Shape control makes a disc and a tube; grid-only pin presets say why they cannot', async () => {
+    const { page, errors } = await openApp(browser.context, '', CPU);
+    await loadScene(page, 'Cotton Basic');
+    await choose(page, 'cloth.shape', 'Disc');
+    await expect.poll(() => hook(page, 'particleCount')).toBe(817); // 1 + 3K(K + 1), K = 16 at resolution 32
+    expect((await hook<any>(page, 'scene')).cloth.shape).toBe('disc');
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('cloth: disc');
+    await step(page, 120);
+    expect(await finite(page)).toBe(true);
+    const c = await centroid(page);
+    expect(c[1]).toBeGreaterThan(0.3);
+    expect(c[1]).toBeLessThan(0.85);
+    await shoot(page, 'mesh-disc');
+
+    // a corner needs a rectangle: the core's words, and nothing pinned; the centre works
+    await setChecked(page, 'pin.top-left', true);
+    await expect.poll(async () => (await message(page)).text).toContain("pin preset 'top-left' names a corner or an edge of a rectangle");
+    expect(await hook<number[]>(page, 'pinned')).toEqual([]);
+    expect(await byId(page, 'pin.top-left').locator('input').isChecked()).toBe(false);
+    await setChecked(page, 'pin.center', true);
+    expect((await hook<number[]>(page, 'pinned')).length).toBe(1);
+
+    // the resolution control is the disc's: faces across
+    await choose(page, 'cloth.resolution', '16 faces across');
+    await expect.poll(() => hook(page, 'particleCount')).toBe(217); // K = 8
+    expect((await hook<any>(page, 'scene')).pins).toEqual(['center']);
+
+    await choose(page, 'cloth.shape', 'Tube');
+    await expect.poll(async () => (await hook<any>(page, 'scene')).cloth.shape).toBe('tube');
+    expect(await hook(page, 'particleCount')).toBe(96); // 16 around, 6 rings
+    await step(page, 120);
+    expect(await finite(page)).toBe(true);
+    await shoot(page, 'mesh-tube');
+
+    await choose(page, 'cloth.shape', 'Rectangle');
+    await expect.poll(() => hook(page, 'particleCount')).toBe(17 * 17);
+
+    // a sweep is of a rectangle's resolutions: a disc of the Mesh Resolution scene runs as it is, and says so
+    await loadScene(page, 'Mesh Resolution');
+    await choose(page, 'cloth.shape', 'Disc');
+    await expect.poll(async () => (await hook<any>(page, 'scene')).cloth.shape).toBe('disc');
+    expect(await hook(page, 'slots')).toBe(1);
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain("the resolution sweep is of a rectangle's resolutions");
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('a link naming a mesh file says to import it, and shows the rest of its scene with a rectangle', async () => {
+    const { page, errors } = await openApp(browser.context, '#scene=cotton-basic&cloth.mesh=tshirt.obj&material.damping=0.3', CPU);
+    const msg = await message(page);
+    expect(msg.text).toContain('the cloth is the mesh file tshirt.obj, which a link cannot carry: import the mesh file tshirt.obj');
+    expect(msg.kind).toBe('error');
+    expect(await byId(page, 'message').isVisible()).toBe(true);
+    const scene = await hook<any>(page, 'scene');
+    expect(scene.cloth.shape).toBe('rectangle');
+    expect(scene.material.damping).toBe(0.3);
+    expect(await hook(page, 'particleCount')).toBe(33 * 33);
+    // importing the file then shows it
+    await pause(page);
+    await importMesh(page, 'tshirt.obj', TSHIRT_OBJ);
+    await expect.poll(() => hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
+    expect((await hook<any>(page, 'scene')).material.damping).toBe(0.3);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('the T-shirt drops onto the sphere on the GPU backend too', async () => {
+    const { page, errors } = await openApp(browser.context, '', '?lite&backend=gpu');
+    const gpuReady = () => page.waitForFunction(() => (window as any).drape.simBackend() === 'gpu' && (window as any).drape.gpuDrawing(), null, { timeout: 30_000 });
+    await gpuReady();
+    await pause(page);
+    await importMesh(page, 'tshirt.obj', TSHIRT_OBJ);
+    await expect.poll(() => hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
+    await importScene(page, 'tshirt.json', TSHIRT_SCENE);
+    await expect.poll(() => hook(page, 'sceneName')).toBe('tshirt');
+    await gpuReady();
+    await pause(page);
+    expect(await hook(page, 'simBackend')).toBe('gpu');
+    await step(page, 180);
+    await expectDraped(page);
+    await shoot(page, 'mesh-tshirt-gpu');
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+});
