@@ -23,12 +23,17 @@ export interface Backend {
   readonly state: ClothState;
   /** threads sharing each substep now */
   readonly threads: number;
+  /** whether `state` holds the cloth as of the last frame stepped (false on the GPU between a frame and sync()) */
+  readonly current: boolean;
   /** Steps one frame of dt [s] with `params` (on the GPU: queued). */
   frame(model: ClothModel, params: SimParams, dt: number): void;
   /** Brings `state` up to date with the frames stepped (a no-op where the state is the backend's memory). */
   sync(): Promise<void>;
-  /** Says `state` was changed on the CPU (reset, pins, grab, a state copied in): the next frame starts from it. */
-  stateChanged(): void;
+  /**
+   * Says `state` was changed on the CPU: 'pins' (the pinned flags only: the cloth itself stays where the backend
+   * has it) or 'all' (a reset, a state copied in: the next frame starts from `state` as it is).
+   */
+  stateChanged(what: 'pins' | 'all'): void;
   /** Resolves once the backend runs at full strength (a kernel's helper threads started). */
   whenReady(): Promise<void>;
   /** Releases threads and device memory; the state stays readable. */
@@ -39,6 +44,7 @@ export interface Backend {
 export class TsBackend implements Backend {
   readonly kind = 'ts';
   readonly threads = 1;
+  readonly current = true;
   readonly state: ClothState;
   constructor(model: ClothModel) {
     this.state = createState(model);
@@ -58,6 +64,7 @@ export class TsBackend implements Backend {
  */
 export class WasmBackend implements Backend {
   readonly kind = 'wasm';
+  readonly current = true;
   /** the kernel, for its thread tuning (mode, spinLimit) */
   readonly kernel: XpbdKernel;
   private constructor(kernel: XpbdKernel) {

@@ -171,8 +171,11 @@ export class Simulation {
     if (next.state.positions.length !== this.state.positions.length) {
       throw new RangeError(`Simulation.useBackend: the backend holds ${next.state.positions.length / 3} particles, the cloth ${this.model.particleCount}`);
     }
+    if (!this.backendNow.current) {
+      throw new Error(`Simulation.useBackend: the ${this.backendNow.kind} backend has stepped frames the state does not hold yet; await sync() first`);
+    }
     copyState(this.state, next.state);
-    next.stateChanged();
+    next.stateChanged('all');
     this.backendNow.dispose();
     this.backendNow = next;
   }
@@ -215,7 +218,7 @@ export class Simulation {
   reset(): void {
     resetState(this.model, this.state);
     applyPins(this.state, resolvePins(this.model, this.scene.pins));
-    this.backendNow.stateChanged();
+    this.backendNow.stateChanged('all');
     this.frame = 0;
     this.unstableFrame = null;
   }
@@ -259,7 +262,7 @@ export class Simulation {
     this.params = params;
     if (rebuild || pinsChanged) {
       applyPins(this.state, pins);
-      this.backendNow.stateChanged();
+      this.backendNow.stateChanged(rebuild ? 'all' : 'pins');
     }
     return rebuild;
   }

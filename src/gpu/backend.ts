@@ -10,13 +10,19 @@ import { GpuClothSolver } from './solver.js';
 export class GpuBackend implements Backend {
   readonly kind = 'gpu';
   readonly threads = 1;
+  /** whether `state` holds the cloth as of the last frame (after sync(), until the next frame) */
+  current = true;
   readonly state: ClothState;
   /** the solver, for what only the GPU has (timings, traffic, normals) */
   readonly solver: GpuClothSolver;
-  private stale = true;
+  /** what of `state` the GPU has not seen: 'all' (send the whole cloth), 'pins' (only the pins), or nothing */
+  private unsent: 'all' | 'pins' | null = 'all';
+  /** the model the solver was made for: a backend steps no other */
+  private readonly model: ClothModel;
 
   private constructor(solver: GpuClothSolver, model: ClothModel) {
     this.solver = solver;
+    this.model = model;
     this.state = createState(model);
   }
 
@@ -25,21 +31,27 @@ export class GpuBackend implements Backend {
     return new GpuBackend(await GpuClothSolver.create(device, model), model);
   }
 
-  frame(_model: ClothModel, params: SimParams, dt: number): void {
-    if (this.stale) {
+  frame(model: ClothModel, params: SimParams, dt: number): void {
+    if (model !== this.model) throw new Error('GPU solver: this backend was made for another model');
+    if (this.unsent === 'all') {
       this.solver.setParams(params);
       this.solver.upload(this.state);
-      this.stale = false;
+    } else if (this.unsent === 'pins') {
+      this.solver.uploadPins(this.state);
     }
+    this.unsent = null;
     this.solver.step(this.state, params, dt);
+    this.current = false;
   }
 
-  sync(): Promise<void> {
-    return this.solver.read(this.state);
+  async sync(): Promise<void> {
+    await this.solver.read(this.state);
+    this.current = true;
   }
 
-  stateChanged(): void {
-    this.stale = true;
+  stateChanged(what: 'pins' | 'all'): void {
+    // a whole state replaces the cloth on the GPU; pins alone must not bring back an older cloth
+    if (what === 'all' || this.unsent === null) this.unsent = what;
   }
 
   whenReady(): Promise<void> {

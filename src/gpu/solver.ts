@@ -101,6 +101,12 @@ export class GpuClothSolver {
     this.refreshNormals();
   }
 
+  /** Copies only the pins (and tethers, recomputed first when `state.tethersStale`) from a CPU state. */
+  uploadPins(state: ClothState): void {
+    this.checkAlive();
+    this.buffers.writePins(state);
+  }
+
   /** Recomputes the vertex normals from the current positions (step does this itself; upload calls it). */
   refreshNormals(): void {
     this.checkAlive();

@@ -1,0 +1,56 @@
+/**
+ * The GPU as a core Backend: a Simulation steps on it like on the CPU, and what the CPU changes (pins, a reset, a
+ * cloth moved over) reaches the GPU without bringing back an older cloth. Same adapter rule as gpu.test.ts.
+ */
+import { afterAll, describe, expect, it } from 'vitest';
+import type {} from 'webgpu';
+import { Simulation, TsBackend, validateScene } from '../core/index.js';
+import { GpuBackend } from './backend.js';
+import { createNodeDevice } from './node.js';
+
+let device: GPUDevice | undefined;
+let reason = '';
+try {
+  ({ device } = await createNodeDevice());
+} catch (e) {
+  reason = (e as Error).message;
+}
+if (!device && process.env.CI) throw new Error(`GPU tests need a WebGPU adapter in CI: ${reason}`);
+if (!device) console.warn(`src/gpu/backend.test.ts skipped: ${reason}`);
+afterAll(() => device?.destroy());
+
+const scene = () => validateScene({ cloth: { resolution: 8 }, colliders: [] });
+
+describe.skipIf(!device)('GpuBackend', () => {
+  it('runs a Simulation like the CPU, and pins set after 30 frames hold the cloth where it has fallen to', async () => {
+    const cpu = new Simulation(scene(), { kernel: 'ts' });
+    const gpu = new Simulation(scene(), { kernel: 'ts' });
+    gpu.useBackend(await GpuBackend.create(device!, gpu.model));
+    expect(gpu.backend.kind).toBe('gpu');
+    for (const sim of [cpu, gpu]) {
+      sim.advance(30);
+      sim.set('pins', [0]);
+      sim.advance(10);
+    }
+    await gpu.sync();
+    const a = cpu.report().centroid, b = gpu.report().centroid;
+    // falling freely for half a second, then hanging from one corner: well below the start (1.2 m), as on the CPU
+    expect(b[1]).toBeLessThan(0);
+    for (let k = 0; k < 3; k++) expect(Math.abs(a[k] - b[k])).toBeLessThan(5e-3);
+    gpu.dispose();
+  });
+
+  it('refuses to move a cloth off the GPU before its frames are read back, and moves it after', async () => {
+    const sim = new Simulation(scene(), { kernel: 'ts' });
+    sim.useBackend(await GpuBackend.create(device!, sim.model));
+    sim.advance(20);
+    expect(() => sim.useBackend(new TsBackend(sim.model))).toThrow(/await sync\(\) first/);
+    await sim.sync();
+    const y = sim.report().centroid[1];
+    expect(y).toBeLessThan(1.2);
+    sim.useBackend(new TsBackend(sim.model));
+    expect(sim.report().centroid[1]).toBe(y);
+    sim.reset();
+    expect(sim.report().centroid[1]).toBeCloseTo(1.2, 6);
+  });
+});
