@@ -152,6 +152,20 @@ describe('the CLI runs a garment scene', () => {
     }
   });
 
+  it('a .gltf reads its buffers from its own folder only; a sweep over a mesh file is skipped, saying why', async () => {
+    const dir = mkdtempSync(join(tmpdir(), 'drape-garment-'));
+    const gltf = JSON.parse(readFileSync(fileURLToPath(new URL('../../examples/tshirt.gltf', import.meta.url)), 'utf8'));
+    writeFileSync(join(dir, 'escape.gltf'), JSON.stringify({ ...gltf, buffers: [{ byteLength: gltf.buffers[0].byteLength, uri: '../secret.bin' }] }));
+    writeFileSync(join(dir, 'escape.json'), JSON.stringify({ cloth: { mesh: 'escape.gltf' } }));
+    const r = await run('run', join(dir, 'escape.json'), '--frames', '1');
+    expect(r.code).toBe(2);
+    expect(r.err).toBe("drape: escape.gltf: buffer '../secret.bin' must be a file in the .gltf's folder or below it (a relative path)");
+    const sweep = await run('run', 'resolution', '--set', `cloth.mesh=${fileURLToPath(new URL('../../examples/tshirt.obj', import.meta.url))}`, '--set', 'cloth.rotation=[-90,0,0]', '--frames', '1', '--json');
+    expect(sweep.code, sweep.err).toBe(0);
+    expect(sweep.err).toMatch(/^drape: note: resolutionSweep skipped: the cloth is the mesh file .*tshirt\.obj, which has its own resolution$/);
+    expect(JSON.parse(sweep.out).sweep).toBeUndefined();
+  });
+
   it('the disc and the tube are shapes of the scene', async () => {
     const disc = JSON.parse((await run('run', '--set', 'cloth.shape=disc', '--set', 'cloth.resolution=8', '--frames', '5', '--json')).out);
     expect(disc).toMatchObject({ particles: 1 + 3 * 4 * 5, finite: true });

@@ -214,7 +214,10 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   if (values.solver !== undefined) sets.unshift(`solver.type=${values.solver}`);
   scene = applySets(scene, sets);
 
-  const sweep = scene.resolutionSweep && !sets.some((s) => s.startsWith('cloth.resolution=') || s.startsWith('cloth=')) ? scene.resolutionSweep : undefined;
+  const sweepAsked = scene.resolutionSweep && !sets.some((s) => s.startsWith('cloth.resolution=') || s.startsWith('cloth=')) ? scene.resolutionSweep : undefined;
+  // a mesh file has its own resolution: the sweep would run the same cloth again and again
+  const sweep = scene.cloth.shape === 'mesh' ? undefined : sweepAsked;
+  if (sweepAsked && !sweep) err(`drape: note: resolutionSweep skipped: the cloth is the mesh file ${plainText(scene.cloth.mesh ?? '', 200)}, which has its own resolution`);
   const gpu = backend === 'gpu' ? await openGpu() : undefined;
   let main: RunResult;
   const sweepRuns: RunResult[] = [];
@@ -250,7 +253,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   if (values.json) {
     out(safeJson({
       scene: scene.name, solver: scene.solver.type, backend, frames, substeps: scene.solver.substeps, ...fields, clamps,
-      ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.resolution ** 2, ...r })) } : {}),
+      ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.triangles / 2, ...r })) } : {}),
       ...(values.export && !exportError ? { exported: values.export } : {}),
       ...(exportError ? { exportError } : {}),
       resolvedScene: scene,
@@ -268,8 +271,8 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
     out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J`);
     if (sweep) {
-      out(`  resolution sweep (faces → resting height of the centroid):`);
-      for (const r of sweepRuns) out(`    ${String(r.resolution ** 2).padStart(5)} faces  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);
+      out(`  resolution sweep (triangles → resting height of the centroid):`);
+      for (const r of sweepRuns) out(`    ${String(r.triangles).padStart(6)} triangles  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);
     }
     if (values.export && !exportError) out(`  exported     ${values.export}`);
   }

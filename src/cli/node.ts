@@ -3,7 +3,7 @@
  * MAX_INPUT_BYTES, errors naming the file). A scene's cloth.mesh is read relative to the scene file's folder, a
  * .gltf's separate buffers relative to the .gltf.
  */
-import { dirname, isAbsolute, resolve } from 'node:path';
+import { dirname, isAbsolute, relative, resolve } from 'node:path';
 import { meshFormat, parseMeshFile, parseScene, type MeshResolver, type Scene, type TriangleMesh } from '../core/index.js';
 import { readInputBytes, readInputFile } from './files.js';
 import { UsageError } from './errors.js';
@@ -21,8 +21,11 @@ export function meshReader(baseDir = process.cwd()): MeshResolver {
       meshFormat(path); // a file of another kind is refused by its name, before it is opened
       const folder = dirname(file);
       mesh = parseMeshFile(readInputBytes(file, 'mesh file'), path, (uri) => {
-        if (isAbsolute(uri) || /^[a-z][a-z0-9+.-]*:/i.test(uri)) throw new UsageError(`${path}: buffer '${uri.slice(0, 100)}' must be a file next to the .gltf (a relative path)`);
-        return readInputBytes(resolve(folder, uri), 'glTF buffer');
+        const target = resolve(folder, uri), inside = relative(folder, target);
+        if (isAbsolute(uri) || /^[a-z][a-z0-9+.-]*:/i.test(uri) || inside.startsWith('..') || isAbsolute(inside)) {
+          throw new UsageError(`${path}: buffer '${uri.slice(0, 100)}' must be a file in the .gltf's folder or below it (a relative path)`);
+        }
+        return readInputBytes(target, 'glTF buffer');
       });
       cache.set(file, mesh);
     }

@@ -60,7 +60,12 @@ export function modelFor(scene: Scene, meshes?: MeshResolver): ClothModel {
       const mesh = prepareMesh(meshes(path), plainText(path, 200));
       const scaled = new Float32Array(mesh.positions.length);
       for (let j = 0; j < scaled.length; j++) scaled[j] = mesh.positions[j] * c.scale;
-      return buildMeshModel({ ...mesh, positions: placeMesh(scaled, c) }, swr);
+      const model = buildMeshModel({ ...mesh, positions: placeMesh(scaled, c) }, swr);
+      // a cloth smaller than its own contact thickness is a unit mistake, not a garment
+      if (model.size < 2 * c.thickness) {
+        throw new SceneError(`cloth.scale: ${plainText(path, 200)} is ${model.size.toPrecision(3)} m across at scale ${c.scale}, less than twice cloth.thickness (${c.thickness} m); cloth.scale is metres per unit of the file (0.01 for centimetres)`);
+      }
+      return model;
     }
   }
 }

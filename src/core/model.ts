@@ -133,6 +133,13 @@ function colourOffsets(colours: Uint8Array, count: number): Uint32Array {
   return offsets;
 }
 
+/** Distance of point c from the line through a and b, |ab| = `ab` [m]: a triangle's height over its edge ab. */
+function heightOver(p: Float32Array, a: number, b: number, c: number, ab: number): number {
+  const ux = p[3 * b] - p[3 * a], uy = p[3 * b + 1] - p[3 * a + 1], uz = p[3 * b + 2] - p[3 * a + 2];
+  const vx = p[3 * c] - p[3 * a], vy = p[3 * c + 1] - p[3 * a + 1], vz = p[3 * c + 2] - p[3 * a + 2];
+  return Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx) / ab;
+}
+
 function distance(p: Float32Array, a: number, b: number): number {
   const dx = p[3 * a] - p[3 * b];
   const dy = p[3 * a + 1] - p[3 * b + 1];
@@ -401,7 +408,7 @@ export function buildGridModel(spec: GridClothSpec): ClothModel {
  * gives a lattice of equilateral triangles (and the axis springs of the grid) the sheet's tensile stiffness. There
  * are no separate shear springs: a triangle lattice resists shear with its edges. Bend springs join the two corners
  * opposite each edge two triangles share; their factor follows the grid's skip-one springs, (s₀/ℓ)⁴·(|e|/ℓ) with
- * ℓ half the spring's rest length and s₀ = REFERENCE_SPACING. With `scaleWithResolution` off every factor is 1.
+ * ℓ half the pair's unfolded width (the mean of the two triangles' heights over the edge) and s₀ = REFERENCE_SPACING. With `scaleWithResolution` off every factor is 1.
  */
 export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean): ClothModel {
   const p = mesh.positions, tri = mesh.triangles, n = p.length / 3;
@@ -428,7 +435,10 @@ export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean)
     const c = bendingPairs[4 * k + 2], d = bendingPairs[4 * k + 3];
     bend[2 * k] = c;
     bend[2 * k + 1] = d;
-    const half = distance(p, c, d) / 2, hinge = distance(p, bendingPairs[4 * k], bendingPairs[4 * k + 1]);
+    // ℓ: half the pair's width unfolded (the two corners' distances from the hinge line), so that a pair folded
+    // flat in the rest shape (a pleat, a hem) is as stiff as when it lies open
+    const a = bendingPairs[4 * k], b = bendingPairs[4 * k + 1], hinge = distance(p, a, b);
+    const half = (heightOver(p, a, b, c, hinge) + heightOver(p, a, b, d, hinge)) / 2;
     bScale[k] = Math.pow(REFERENCE_SPACING / half, 4) * (hinge / half);
   }
   return buildModel({

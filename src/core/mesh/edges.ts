@@ -1,6 +1,7 @@
 /**
- * The edge table of a triangle mesh in flat arrays, built in linear time without hashing (a million-particle grid
- * has three million edges): each edge once, with the triangles on either side of it and the corners opposite it.
+ * The edge table of a triangle mesh in flat arrays, built without hashing in time linear in the mesh while vertices
+ * have few edges (a million-particle grid has three million edges): each edge once, with the triangles on either
+ * side of it and the corners opposite it.
  */
 
 /** Every edge of a mesh, each once; the arrays are indexed by edge. */
@@ -50,8 +51,12 @@ export function edgeTable(triangles: Uint32Array, n: number): EdgeTable {
   let overShared = -1, count = 0;
   for (let a = 0; a < n; a++) {
     const s = start[a], e = start[a + 1];
-    // insertion sort of the bucket by the higher vertex (then half-edge): buckets hold a vertex's few edges
-    for (let i = s + 1; i < e; i++) {
+    // sort the bucket by the higher vertex (then half-edge): insertion sort for a vertex's few edges, the library's
+    // sort for a fan of many (a file may have one; prepareMesh then refuses it)
+    if (e - s > 32) {
+      const sorted = Array.from(half.subarray(s, e)).sort((x, y) => high[x] - high[y] || x - y);
+      half.set(sorted, s);
+    } else for (let i = s + 1; i < e; i++) {
       const k = half[i], hk = high[k];
       let j = i - 1;
       while (j >= s && (high[half[j]] > hk || (high[half[j]] === hk && half[j] > k))) { half[j + 1] = half[j]; j--; }

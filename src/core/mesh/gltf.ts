@@ -6,8 +6,12 @@
  * Refused with a line naming the file: compression extensions the file requires (Draco, meshopt), sparse
  * accessors, and anything malformed.
  */
-import { MAX_INPUT_BYTES, SceneError } from '../scene.js';
+import { SceneError } from '../scene.js';
+import { MAX_MESH_PARTICLES } from './triangle-mesh.js';
 import type { TriangleMesh } from './triangle-mesh.js';
+
+/** Most vertices a file may bring before welding (files split vertices at seams; welding merges them back). */
+const MAX_FILE_VERTICES = 2 * MAX_MESH_PARTICLES;
 
 /** Reads a file a .gltf names by a relative URI (its .bin buffer), or throws saying why it cannot. */
 export type ExternalReader = (uri: string) => Uint8Array;
@@ -102,8 +106,29 @@ export function parseGltf(bytes: Uint8Array, source: string, readExternal?: Exte
   } catch (e) {
     return fail(`malformed glTF JSON (${(e as Error).message.split('\n')[0]})`);
   }
-  if (doc === null || typeof doc !== 'object') fail('malformed glTF: not a JSON object');
+  if (doc === null || typeof doc !== 'object' || Array.isArray(doc)) fail('malformed glTF: not a JSON object');
+  // a field of the wrong type (a number where a list belongs...) surfaces as a TypeError somewhere below: it is the
+  // file's fault, said in one line; errors of the host's file reading pass through as they are
+  let external: unknown;
+  try {
+    return readDocument(doc, bin, source, fail, readExternal && ((uri) => {
+      try {
+        return readExternal(uri);
+      } catch (e) {
+        external = e;
+        throw e;
+      }
+    }));
+  } catch (e) {
+    if (e instanceof SceneError || e === external) throw e;
+    return fail(`malformed glTF (${(e as Error).message.split('\n')[0].slice(0, 200)})`);
+  }
+}
+
+/** The meshes of a parsed glTF document (see parseGltf). */
+function readDocument(doc: Gltf, bin: Uint8Array | undefined, source: string, fail: (why: string) => never, readExternal?: ExternalReader): TriangleMesh {
   if (!String(doc.asset?.version ?? '').startsWith('2')) fail(`glTF version ${JSON.stringify(doc.asset?.version ?? null)}; only glTF 2 is read`);
+  if (doc.extensionsRequired !== undefined && !Array.isArray(doc.extensionsRequired)) fail('malformed glTF: extensionsRequired is not a list');
   const required = (doc.extensionsRequired ?? []).filter((e) => typeof e === 'string');
   if (required.length) fail(`needs the extension${required.length > 1 ? 's' : ''} ${required.map((e) => e.slice(0, 60)).join(', ')}, which Drape does not read; export without compression`);
 
@@ -113,6 +138,7 @@ export function parseGltf(bytes: Uint8Array, source: string, readExternal?: Exte
     if (b) return b;
     const spec = doc.buffers?.[i];
     if (!spec) return fail(`buffer ${i} does not exist`);
+    if (spec.uri !== undefined && typeof spec.uri !== 'string') return fail(`buffer ${i} has a uri that is not text`);
     if (spec.uri === undefined) {
       if (!bin || i !== 0) return fail(`buffer ${i} has no data (no uri, and not the .glb's binary chunk)`);
       b = bin;
@@ -120,7 +146,13 @@ export function parseGltf(bytes: Uint8Array, source: string, readExternal?: Exte
       b = dataUri(spec.uri, fail);
     } else {
       if (!readExternal) return fail(`buffer ${i} is a separate file (${spec.uri.slice(0, 100)}); import a .glb, or a .gltf with embedded buffers`);
-      b = readExternal(decodeURIComponent(spec.uri));
+      let uri: string;
+      try {
+        uri = decodeURIComponent(spec.uri);
+      } catch {
+        return fail(`buffer ${i} has a uri that is not a valid URI`);
+      }
+      b = readExternal(uri);
     }
     if (b.length < spec.byteLength) fail(`buffer ${i} holds ${b.length} bytes, fewer than its byteLength ${spec.byteLength}`);
     buffers.set(i, b);
@@ -137,10 +169,8 @@ export function parseGltf(bytes: Uint8Array, source: string, readExternal?: Exte
     if (!size) fail(`accessor ${index} has component type ${acc.componentType}, which is not a glTF type`);
     if (!Number.isInteger(acc.count) || acc.count < 0) fail(`accessor ${index} has a count that is not a whole number`);
     // an accessor without a buffer view is all zeros: as many as a file of the size cap could describe, at most
-    if (acc.bufferView === undefined) {
-      if (acc.count * width > MAX_INPUT_BYTES) fail(`accessor ${index} has ${acc.count} elements and no data`);
-      return { data: new Float64Array(acc.count * width), count: acc.count, width };
-    }
+    // without a buffer view an accessor is all zeros (or sparse, refused above): no cloth is made of that
+    if (acc.bufferView === undefined) return fail(`accessor ${index} has ${acc.count} elements and no data`);
     const bv = doc.bufferViews?.[acc.bufferView];
     if (!bv) return fail(`buffer view ${acc.bufferView} does not exist`);
     const buf = buffer(bv.buffer);
@@ -186,6 +216,8 @@ export function parseGltf(bytes: Uint8Array, source: string, readExternal?: Exte
       if (prim.attributes?.POSITION === undefined) fail(`a primitive of mesh ${meshIndex} has no POSITION`);
       const p = read(prim.attributes.POSITION, ['VEC3']);
       const t = prim.attributes.TEXCOORD_0 !== undefined ? read(prim.attributes.TEXCOORD_0, ['VEC2']) : undefined;
+      if (t && t.count !== p.count) fail(`mesh ${meshIndex} has ${t.count} texture coordinates for ${p.count} positions`);
+      if (positions.length / 3 + p.count > MAX_FILE_VERTICES) fail(`more than ${MAX_FILE_VERTICES} vertices (a cloth may have ${MAX_MESH_PARTICLES} once duplicates are welded)`);
       const base = positions.length / 3;
       for (let i = 0; i < p.count; i++) {
         const x = p.data[3 * i], y = p.data[3 * i + 1], z = p.data[3 * i + 2];
@@ -202,13 +234,20 @@ export function parseGltf(bytes: Uint8Array, source: string, readExternal?: Exte
         if (!Number.isInteger(idx[i]) || idx[i] < 0 || idx[i] >= p.count) fail(`mesh ${meshIndex} has an index ${idx[i]} outside its ${p.count} vertices`);
       }
       if (mode === 4) for (let i = 0; i + 2 < idx.length; i += 3) tri.push(base + idx[i], base + idx[i + 1], base + idx[i + 2]);
-      else if (mode === 5) for (let i = 0; i + 2 < idx.length; i++) tri.push(base + idx[i], base + idx[i + 1 + (i % 2)], base + idx[i + 2 - (i % 2)]);
+      else if (mode === 5) {
+        for (let i = 0; i + 2 < idx.length; i++) {
+          const a = idx[i], b = idx[i + 1 + (i % 2)], c = idx[i + 2 - (i % 2)];
+          // a strip restarts with triangles that repeat a vertex: they join nothing and are left out
+          if (a !== b && b !== c && c !== a) tri.push(base + a, base + b, base + c);
+        }
+      }
       else if (mode === 6) for (let i = 1; i + 1 < idx.length; i++) tri.push(base + idx[0], base + idx[i], base + idx[i + 1]);
       else fail(`a primitive of mesh ${meshIndex} has mode ${mode}, which is not a glTF mode`);
     }
   };
 
   const identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+  if (doc.scene !== undefined && !doc.scenes?.[doc.scene]) fail(`scene ${doc.scene} does not exist`);
   const roots = doc.scenes?.[doc.scene ?? 0]?.nodes;
   if (roots && doc.nodes) {
     const visited = new Set<number>();

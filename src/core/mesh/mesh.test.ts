@@ -312,3 +312,97 @@ describe('hostile glTF numbers', () => {
     expect(() => parseGltf(enc({ ...base, accessors: [accessor] }), 'x.gltf')).toThrow(message);
   });
 });
+
+describe('what a review found', () => {
+  const enc = (doc: unknown) => new TextEncoder().encode(JSON.stringify(doc));
+  const quadBuffer = `data:application/octet-stream;base64,${Buffer.from(new Float32Array([0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1]).buffer).toString('base64')}`;
+  const quad = {
+    asset: { version: '2.0' },
+    buffers: [{ byteLength: 48, uri: quadBuffer }],
+    bufferViews: [{ buffer: 0, byteLength: 48 }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: 4, type: 'VEC3' }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 }, mode: 6 }] }],
+  };
+  it.each([
+    ['scene nodes that are not a list', { scenes: [{ nodes: 5 }], nodes: [] }],
+    ['primitives that are not a list', { meshes: [{ primitives: 7 }] }],
+    ['a null primitive', { meshes: [{ primitives: [null] }] }],
+    ['meshes that are not a list', { meshes: {} }],
+  ])('a malformed glTF (%s) is one line naming the file', (_what, extra) => {
+    expect(error(() => parseGltf(enc({ ...quad, ...extra }), 'm.gltf'))).toMatch(/^m\.gltf: /);
+  });
+  it.each([
+    ['extensionsRequired as text', { extensionsRequired: 'KHR_draco_mesh_compression' }, /extensionsRequired is not a list/],
+    ['a uri that is a number', { buffers: [{ byteLength: 48, uri: 5 }] }, /buffer 0 has a uri that is not text/],
+    ['a scene that does not exist', { scene: 5, scenes: [{ nodes: [] }] }, /scene 5 does not exist/],
+  ])('glTF: %s', (_what, extra, message) => {
+    expect(error(() => parseGltf(enc({ ...quad, ...extra }), 'm.gltf'))).toMatch(message);
+  });
+  it('glTF: a malformed external uri is refused, and the host reader is not called', () => {
+    let called = false;
+    const doc = { ...quad, buffers: [{ byteLength: 48, uri: '%zz.bin' }] };
+    expect(error(() => parseGltf(enc(doc), 'm.gltf', () => { called = true; return new Uint8Array(48); }))).toMatch(/not a valid URI/);
+    expect(called).toBe(false);
+  });
+  it('glTF: texture coordinates must be as many as positions', () => {
+    const uv = `data:application/octet-stream;base64,${Buffer.from(new Float32Array(4).buffer).toString('base64')}`;
+    const doc = {
+      ...quad,
+      buffers: [quad.buffers[0], { byteLength: 16, uri: uv }],
+      bufferViews: [quad.bufferViews[0], { buffer: 1, byteLength: 16 }],
+      accessors: [quad.accessors[0], { bufferView: 1, componentType: 5126, count: 2, type: 'VEC2' }],
+      meshes: [{ primitives: [{ attributes: { POSITION: 0, TEXCOORD_0: 1 }, mode: 6 }] }],
+    };
+    expect(error(() => parseGltf(enc(doc), 'm.gltf'))).toMatch(/mesh 0 has 2 texture coordinates for 4 positions/);
+  });
+  it('glTF: a strip that restarts with repeated vertices leaves those triangles out', () => {
+    // two strips joined by the usual restart (…3, 3, 4…)
+    const six = new Float32Array([0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 1, 5, 0, 0, 6, 0, 0, 5, 0, 1, 6, 0, 1]);
+    const idx = new Uint16Array([0, 1, 2, 3, 3, 4, 4, 5, 6, 7]);
+    const bytes = new Uint8Array(six.byteLength + idx.byteLength);
+    bytes.set(new Uint8Array(six.buffer), 0);
+    bytes.set(new Uint8Array(idx.buffer), six.byteLength);
+    const doc = {
+      asset: { version: '2.0' },
+      buffers: [{ byteLength: bytes.length, uri: `data:application/octet-stream;base64,${Buffer.from(bytes).toString('base64')}` }],
+      bufferViews: [{ buffer: 0, byteLength: six.byteLength }, { buffer: 0, byteOffset: six.byteLength, byteLength: idx.byteLength }],
+      accessors: [{ bufferView: 0, componentType: 5126, count: 8, type: 'VEC3' }, { bufferView: 1, componentType: 5123, count: 10, type: 'SCALAR' }],
+      meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1, mode: 5 }] }],
+    };
+    const m = prepareMesh(parseGltf(enc(doc), 's.gltf'), 's.gltf');
+    expect(m.triangles.length / 3).toBe(4);
+    expect(buildMeshModel(m, true).pieceCount).toBe(2);
+  });
+  it('OBJ: vertex numbers are decimal integers', () => {
+    expect(error(() => parseObj('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0x3\n', 'h.obj'))).toMatch(/^h\.obj:4: face corner '0x3' does not start with a vertex number$/);
+  });
+  it('welding is relative to the edges too: a millimetre square far from a second piece keeps its shape', () => {
+    const far = mesh([0, 0, 0, 0.001, 0, 0, 0.001, 0, 0.001, 0, 0, 0.001, 1e4, 0, 0, 1e4 + 1, 0, 0, 1e4, 0, 1], [0, 1, 2, 0, 2, 3, 4, 6, 5]);
+    const m = prepareMesh(far, 'far.obj');
+    expect(m.positions.length / 3).toBe(7);
+  });
+  it('welding joins every duplicate of a sheet lying in one coordinate plane (300², every vertex given twice)', () => {
+    const k = 300, pos: number[] = [], tri: number[] = [];
+    for (let j = 0; j <= k; j++) for (let i = 0; i <= k; i++) pos.push(0, i / k, j / k);
+    const n = pos.length / 3;
+    for (let j = 0; j < 3 * n; j++) pos.push(pos[j]); // the duplicates a file split at seams would bring
+    const id = (i: number, j: number, copy: number) => copy * n + j * (k + 1) + i;
+    for (let j = 0; j < k; j++) for (let i = 0; i < k; i++) {
+      const c = (i + j) % 2; // alternate cells use the other copy: welding must join them
+      tri.push(id(i, j, c), id(i + 1, j, c), id(i + 1, j + 1, c), id(i, j, c), id(i + 1, j + 1, c), id(i, j + 1, c));
+    }
+    const m = prepareMesh(mesh(pos, tri), 'plane.obj');
+    expect(m.positions.length / 3).toBe(n);
+    expect(buildMeshModel(m, true).pieceCount).toBe(1);
+  });
+  it('a pair of triangles folded flat at rest (a pleat) gets the bend factor it has lying open', () => {
+    const open = buildMeshModel(prepareMesh(mesh([0, 0, 0, 1, 0, 0, 0.5, 0, 1, 0.5, 0, -1], [0, 1, 2, 0, 3, 1]), 'open'), true);
+    const fold = buildMeshModel(prepareMesh(mesh([0, 0, 0, 1, 0, 0, 0.5, 0, 1, 0.5, 0.0001, 1], [0, 1, 2, 0, 3, 1]), 'fold'), true);
+    const bendScale = (m: typeof open) => m.stiffnessScales[m.springKinds.indexOf(2)];
+    expect(bendScale(fold)).toBeCloseTo(bendScale(open), 6);
+  });
+  it('a mesh smaller than twice its contact thickness asks whether cloth.scale is right', () => {
+    const cm = mesh([0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1], [0, 1, 2, 0, 2, 3]);
+    expect(error(() => modelFor(validateScene({ cloth: { mesh: 'q.obj', scale: 0.001 } }), () => cm))).toMatch(/^cloth\.scale: q\.obj is 0\.00100 m across at scale 0\.001, less than twice cloth\.thickness/);
+  });
+});

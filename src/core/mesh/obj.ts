@@ -4,7 +4,10 @@
  * (normals, groups, materials, lines) is read past. Errors name the file and the line.
  */
 import { SceneError } from '../scene.js';
-import type { TriangleMesh } from './triangle-mesh.js';
+import { MAX_MESH_PARTICLES, type TriangleMesh } from './triangle-mesh.js';
+
+/** Most triangles a file may bring: a mesh of a cloth's most particles has about twice as many; this is twice that. */
+const MAX_FILE_TRIANGLES = 4 * MAX_MESH_PARTICLES;
 
 /** Parses OBJ text; `source` (the file name) starts every error message. The mesh is not yet prepared. */
 export function parseObj(text: string, source: string): TriangleMesh {
@@ -37,7 +40,8 @@ export function parseObj(text: string, source: string): TriangleMesh {
       for (let k = 1; k < words.length; k++) {
         const [vs, ts] = words[k].split('/');
         const nv = pos.length / 3, nt = tex.length / 2;
-        const vi = Number(vs), ti = ts ? Number(ts) : 0;
+        const integer = (w: string) => (/^-?\d{1,10}$/.test(w) ? Number(w) : NaN);
+        const vi = integer(vs), ti = ts ? integer(ts) : 0;
         if (!Number.isInteger(vi) || vi === 0) fail(ln + 1, `face corner '${words[k].slice(0, 30)}' does not start with a vertex number`);
         const v = vi > 0 ? vi - 1 : nv + vi;
         if (v < 0 || v >= nv) fail(ln + 1, `face uses vertex ${vi}, but only ${nv} are defined above it`);
@@ -50,6 +54,7 @@ export function parseObj(text: string, source: string): TriangleMesh {
         corners.push(v);
       }
       for (let k = 1; k + 1 < corners.length; k++) tri.push(corners[0], corners[k], corners[k + 1]);
+      if (tri.length > 3 * MAX_FILE_TRIANGLES) fail(ln + 1, `more than ${MAX_FILE_TRIANGLES} triangles`);
     }
   }
   const n = pos.length / 3;

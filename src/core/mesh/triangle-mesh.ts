@@ -28,16 +28,34 @@ export const MAX_VERTEX_EDGES = 12;
 
 /**
  * Distance below which two vertices are the same one, relative to the mesh's size [-]: files split vertices at
- * UV seams and normal creases, and the cloth must not come apart there.
+ * UV seams and normal creases, and the cloth must not come apart there. It is at most WELD_EDGE_FRACTION of the
+ * median edge, so that a small piece far from the rest keeps its shape.
  */
 export const WELD_TOLERANCE = 1e-6;
+/** Largest weld distance as a fraction of the mesh's median edge length [-]. */
+export const WELD_EDGE_FRACTION = 1e-3;
+
+/** The weld distance of a mesh [its units]: WELD_TOLERANCE of its size, at most WELD_EDGE_FRACTION of its median edge. */
+function weldTolerance(p: Float32Array, tri: Uint32Array, size: number): number {
+  const lengths = new Float64Array(tri.length);
+  let count = 0;
+  for (let k = 0; k < tri.length; k++) {
+    const a = 3 * tri[k], b = 3 * tri[k - (k % 3) + ((k % 3) + 1) % 3];
+    const l = Math.hypot(p[a] - p[b], p[a + 1] - p[b + 1], p[a + 2] - p[b + 2]);
+    if (l > 0) lengths[count++] = l;
+  }
+  const tol = WELD_TOLERANCE * size;
+  if (count === 0) return tol;
+  const sorted = lengths.subarray(0, count).sort();
+  return Math.min(tol, WELD_EDGE_FRACTION * sorted[count >> 1]);
+}
 
 const fail = (source: string, why: string): never => {
   throw new SceneError(`${source}: ${why}`);
 };
 
 /** Largest extent of a point set along any axis [m]. */
-function extent(p: Float32Array): { size: number; axis: number } {
+function extent(p: Float32Array): { size: number } {
   const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < p.length; i += 3) {
     for (let k = 0; k < 3; k++) {
@@ -45,40 +63,47 @@ function extent(p: Float32Array): { size: number; axis: number } {
       if (p[i + k] > hi[k]) hi[k] = p[i + k];
     }
   }
-  const d = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-  const axis = d[0] >= d[1] && d[0] >= d[2] ? 0 : d[1] >= d[2] ? 1 : 2;
-  return { size: d[axis], axis };
+  return { size: Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) };
 }
 
 /**
- * Representative of each vertex after welding those closer than `tol` [m]: vertices sorted along the axis of
- * largest extent, each compared with the ones that follow it within `tol` on that axis.
+ * Representative of each vertex after welding: each vertex joins the first earlier kept vertex within `tol` [file
+ * units], found through a hash of cells 4·tol wide (only the cells within `tol` of the vertex are looked in, and a
+ * cell holds only kept vertices, which are more than `tol` apart: at most 125 of them).
  */
-function weldMap(p: Float32Array, tol: number, axis: number): Uint32Array {
+function weldMap(p: Float32Array, tol: number): Uint32Array {
   const n = p.length / 3;
-  const parent = new Uint32Array(n);
-  for (let i = 0; i < n; i++) parent[i] = i;
-  const find = (i: number): number => {
-    while (parent[i] !== i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  const order = Array.from({ length: n }, (_, i) => i).sort((a, b) => p[3 * a + axis] - p[3 * b + axis] || a - b);
-  const tol2 = tol * tol;
-  for (let s = 0; s < n; s++) {
-    const a = order[s];
-    for (let t = s + 1; t < n; t++) {
-      const b = order[t];
-      if (p[3 * b + axis] - p[3 * a + axis] > tol) break;
-      const dx = p[3 * a] - p[3 * b], dy = p[3 * a + 1] - p[3 * b + 1], dz = p[3 * a + 2] - p[3 * b + 2];
-      if (dx * dx + dy * dy + dz * dz <= tol2) {
-        const ra = find(a), rb = find(b);
-        // the lower index survives, so that welding keeps the file's vertex order
-        if (ra !== rb) { if (ra < rb) parent[rb] = ra; else parent[ra] = rb; }
+  const rep = new Uint32Array(n);
+  const cells = new Map<string, number[]>();
+  const size = 4 * tol, tol2 = tol * tol;
+  const lo = [0, 0, 0], hi = [0, 0, 0], c = [0, 0, 0];
+  for (let i = 0; i < n; i++) {
+    for (let k = 0; k < 3; k++) {
+      const x = p[3 * i + k], cell = Math.floor(x / size);
+      c[k] = cell;
+      lo[k] = x - cell * size < tol ? -1 : 0;
+      hi[k] = (cell + 1) * size - x < tol ? 1 : 0;
+    }
+    let found = -1;
+    for (let dx = lo[0]; dx <= hi[0] && found < 0; dx++) {
+      for (let dy = lo[1]; dy <= hi[1] && found < 0; dy++) {
+        for (let dz = lo[2]; dz <= hi[2] && found < 0; dz++) {
+          const list = cells.get(`${c[0] + dx},${c[1] + dy},${c[2] + dz}`);
+          if (!list) continue;
+          for (const j of list) {
+            const ex = p[3 * i] - p[3 * j], ey = p[3 * i + 1] - p[3 * j + 1], ez = p[3 * i + 2] - p[3 * j + 2];
+            if (ex * ex + ey * ey + ez * ez <= tol2) { found = j; break; }
+          }
+        }
       }
     }
+    if (found >= 0) { rep[i] = found; continue; }
+    rep[i] = i;
+    const key = `${c[0]},${c[1]},${c[2]}`;
+    const list = cells.get(key);
+    if (list) list.push(i); else cells.set(key, [i]);
   }
-  for (let i = 0; i < n; i++) parent[i] = find(i);
-  return parent;
+  return rep;
 }
 
 /**
@@ -99,11 +124,12 @@ export function prepareMesh(mesh: TriangleMesh, source: string): TriangleMesh {
   for (let k = 0; k < inTri.length; k++) {
     if (inTri[k] >= n0) fail(source, `face ${Math.floor(k / 3) + 1} uses vertex ${inTri[k] + 1}, but there are only ${n0}`);
   }
-  const { size, axis } = extent(p);
+  const { size } = extent(p);
   if (!(size > 0)) fail(source, 'all vertices are at one point');
+  const tol = weldTolerance(p, inTri, size);
 
   // weld, then renumber the vertices the triangles use, in first-use order of the file's numbering
-  const rep = weldMap(p, WELD_TOLERANCE * size, axis);
+  const rep = weldMap(p, tol);
   const newIndex = new Int32Array(n0).fill(-1);
   let n = 0;
   const used = new Uint8Array(n0);
@@ -122,18 +148,20 @@ export function prepareMesh(mesh: TriangleMesh, source: string): TriangleMesh {
   const tri = new Uint32Array(inTri.length);
   for (let k = 0; k < inTri.length; k++) tri[k] = newIndex[rep[inTri[k]]];
 
-  // degenerate triangles
-  const minArea2 = (1e-12 * size * size) ** 2;
+  // degenerate triangles: two corners one vertex, or no area for their size (a sine of the widest angle below what
+  // float32 positions resolve)
   for (let t = 0; t < m; t++) {
     const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
     if (a === b || b === c || c === a) {
       const raw = inTri[3 * t] === inTri[3 * t + 1] || inTri[3 * t + 1] === inTri[3 * t + 2] || inTri[3 * t + 2] === inTri[3 * t];
-      fail(source, `face ${t + 1} is degenerate: two of its corners are the same vertex${raw ? '' : ` (after welding vertices closer than ${(WELD_TOLERANCE * size).toPrecision(2)} m)`}`);
+      fail(source, `face ${t + 1} is degenerate: two of its corners are the same vertex${raw ? '' : ` (after welding vertices closer than ${tol.toPrecision(2)} in the mesh's units)`}`);
     }
     const ux = positions[3 * b] - positions[3 * a], uy = positions[3 * b + 1] - positions[3 * a + 1], uz = positions[3 * b + 2] - positions[3 * a + 2];
     const vx = positions[3 * c] - positions[3 * a], vy = positions[3 * c + 1] - positions[3 * a + 1], vz = positions[3 * c + 2] - positions[3 * a + 2];
     const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
-    if (cx * cx + cy * cy + cz * cz <= 4 * minArea2) fail(source, `face ${t + 1} is degenerate: it has no area (its corners are in a line)`);
+    const wx = vx - ux, wy = vy - uy, wz = vz - uz;
+    const longest2 = Math.max(ux * ux + uy * uy + uz * uz, vx * vx + vy * vy + vz * vz, wx * wx + wy * wy + wz * wz);
+    if (Math.sqrt(cx * cx + cy * cy + cz * cz) <= 1e-7 * longest2) fail(source, `face ${t + 1} is degenerate: it has no area (its corners are in a line)`);
   }
 
   // edges: each shared by at most two triangles, and two triangles on one edge never with the same third corner
