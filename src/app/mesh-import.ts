@@ -67,7 +67,9 @@ export class MeshImport {
       app.slots.apply(withMesh(app.scene, name, app.meshes.resolve), app.sceneKey);
     } catch (e) {
       app.meshes.restore(name, before);
-      app.overlay.message(`Mesh import refused — ${shown}: ${refusal(e)}`);
+      // the caps name the file already ('big.obj: 67,600 particles, more than…')
+      const why = refusal(e);
+      app.overlay.message(`Mesh import refused — ${why.startsWith(`${plainText(name, 200)}: `) ? why : `${shown}: ${why}`}`);
       return false;
     }
     app.overlay.message(`Imported mesh ${shown}: ${entry.particles.toLocaleString('en')} particles. Note: ${linkCannotCarry(name)}.`, 'notice');
