@@ -89,6 +89,19 @@ async function expectDraped(page: Page): Promise<void> {
   expect(Math.min(...ys)).toBeGreaterThan(0.3);
 }
 
+/** Every view draws the cloth (the views read the model's triangles and springs, whatever the shape). */
+async function everyView(page: Page, tag: string): Promise<void> {
+  const views: [string, string][] = [['wireframe', 'Wireframe mesh'], ['particles', 'Particles'], ['springs', 'Springs by kind'], ['strain', 'Strain heat map'], ['shaded', 'Shaded']];
+  for (const [name, label] of views) {
+    await choose(page, 'view', label);
+    expect(await hook(page, 'view')).toBe(name);
+    await step(page, 2);
+    const s = await viewStats(page);
+    expect(s.colours, `${tag} ${name}`).toBeGreaterThan(20);
+    await shoot(page, `mesh-${tag}-${name}`);
+  }
+}
+
 /** a flat square grid of n × n vertices as OBJ text (a mesh that is valid but big) */
 function gridObj(n: number): string {
   const lines: string[] = [];
@@ -141,9 +154,8 @@ describe('a mesh cloth in the app', () => {
     expect(await hook(page, 'frame')).toBe(0);
     await step(page, 180);
     await expectDraped(page);
-    const s = await viewStats(page);
-    expect(s.colours).toBeGreaterThan(20);
     await shoot(page, 'mesh-tshirt-cpu');
+    await everyView(page, 'tshirt-cpu');
     expect(errors).toEqual([]);
     await page.close();
   });
@@ -294,7 +306,7 @@ describe('a mesh cloth in the app', () => {
     await page.close();
   });
 
-  it('the T-shirt drops onto the sphere on the GPU backend too', async () => {
+  it('the T-shirt drops onto the sphere on the GPU backend too, in every view; a mesh too big for the CPU stays on the GPU', async () => {
     const { page, errors } = await openApp(browser.context, '', '?lite&backend=gpu');
     const gpuReady = () => page.waitForFunction(() => (window as any).drape.simBackend() === 'gpu' && (window as any).drape.gpuDrawing(), null, { timeout: 30_000 });
     await gpuReady();
@@ -309,6 +321,17 @@ describe('a mesh cloth in the app', () => {
     await step(page, 180);
     await expectDraped(page);
     await shoot(page, 'mesh-tshirt-gpu');
+    await everyView(page, 'tshirt-gpu');
+    expect(await finite(page)).toBe(true);
+
+    // a mesh the GPU takes but the CPU does not (more than 257² particles): the backend switch says why and stays
+    await importMesh(page, 'big.obj', Buffer.from(gridObj(260)));
+    await expect.poll(() => hook(page, 'particleCount'), { timeout: 60_000 }).toBe(260 * 260);
+    await choose(page, 'backend', 'CPU (worker)');
+    await expect.poll(async () => (await message(page)).text).toContain('backend not changed: big.obj: 67,600 particles, more than the CPU backend takes (66,049)');
+    expect(await hook(page, 'simBackend')).toBe('gpu');
+    expect(await byId(page, 'backend').locator('select').inputValue()).toBe('GPU (WebGPU compute, xpbd)');
+    expect(await hook(page, 'particleCount')).toBe(260 * 260);
     expect(errors).toEqual([]);
     await page.close();
   });
