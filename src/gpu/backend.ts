@@ -1,8 +1,10 @@
 /**
  * The WebGPU solver as a core Backend (core/backend.ts), so that a Simulation runs on it like on the CPU:
  * `sim.useBackend(await GpuBackend.create(device, sim.model))`. The state is a CPU mirror: frames are queued on the
- * GPU, `sync()` reads the cloth back, and a change made to the mirror (reset, pins, grab release, a state copied
- * in) is uploaded before the next frame once `stateChanged()` says so.
+ * GPU, `sync()` reads the cloth back, and a change made to the mirror is sent at once when `stateChanged()` says so
+ * ('all': the whole cloth, e.g. a reset, so that views drawn from the GPU's buffers show it even while paused;
+ * 'pins': only the pins, so an older mirror never brings back an older cloth). The grab is read from the mirror by
+ * every frame.
  */
 import { createState, type Backend, type ClothModel, type ClothState, type SimParams } from '../core/index.js';
 import { GpuClothSolver } from './solver.js';
@@ -15,8 +17,6 @@ export class GpuBackend implements Backend {
   readonly state: ClothState;
   /** the solver, for what only the GPU has (timings, traffic, normals) */
   readonly solver: GpuClothSolver;
-  /** what of `state` the GPU has not seen: 'all' (send the whole cloth), 'pins' (only the pins), or nothing */
-  private unsent: 'all' | 'pins' | null = 'all';
   /** the model the solver was made for: a backend steps no other */
   private readonly model: ClothModel;
 
@@ -24,6 +24,7 @@ export class GpuBackend implements Backend {
     this.solver = solver;
     this.model = model;
     this.state = createState(model);
+    solver.upload(this.state);
   }
 
   /** A GPU backend for `model` on `device` (kernels compiled once per device); rejects naming the GPU's error. */
@@ -33,13 +34,6 @@ export class GpuBackend implements Backend {
 
   frame(model: ClothModel, params: SimParams, dt: number): void {
     if (model !== this.model) throw new Error('GPU solver: this backend was made for another model');
-    if (this.unsent === 'all') {
-      this.solver.setParams(params);
-      this.solver.upload(this.state);
-    } else if (this.unsent === 'pins') {
-      this.solver.uploadPins(this.state);
-    }
-    this.unsent = null;
     this.solver.step(this.state, params, dt);
     this.current = false;
   }
@@ -50,8 +44,12 @@ export class GpuBackend implements Backend {
   }
 
   stateChanged(what: 'pins' | 'all'): void {
-    // a whole state replaces the cloth on the GPU; pins alone must not bring back an older cloth
-    if (what === 'all' || this.unsent === null) this.unsent = what;
+    if (what === 'all') {
+      this.solver.upload(this.state);
+      this.current = true;
+    } else {
+      this.solver.uploadPins(this.state);
+    }
   }
 
   whenReady(): Promise<void> {
