@@ -1,5 +1,6 @@
 /**
- * The GPU backend of the page: one core Simulation (model, params, CPU bookkeeping) and one GpuClothSolver per
+ * The GPU backend of the page: one core Simulation per slot, running on a core GpuBackend (src/gpu/backend.ts:
+ * the same Backend interface the CLI and the library use; the Simulation's state is its CPU mirror), one per
  * slot, on the renderer's own GPUDevice, on the main thread. A frame is one command buffer the CPU only encodes;
  * the cloth is drawn straight from the solver's position and normal buffers (ClothView.attachGpu). Positions come
  * back to the CPU only asynchronously, at most ~10 times a second (every frame while a CPU-drawn view — springs,
@@ -9,9 +10,9 @@
  * on the GPU queue, time it cannot keep up with dropped.
  */
 import {
-  FRAME_DT, Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type Scene,
+  Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type Scene,
 } from '../core/index.js';
-import { GpuClothSolver } from '../gpu/index.js';
+import { GpuBackend, type GpuClothSolver } from '../gpu/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
 import type { MeshStore } from './meshes.js';
 import type { Mirror, SimDriver, SimStats } from './sim-client.js';
@@ -20,8 +21,9 @@ import type { Mirror, SimDriver, SimStats } from './sim-client.js';
 const READBACK_MS = 100;
 
 interface GpuSlot {
-  solver: GpuClothSolver | null;
-  /** model the solver was made for */
+  /** the slot's GPU backend (its Simulation runs on it once made) */
+  backend: GpuBackend | null;
+  /** model the backend was made for */
   model: ClothModel | null;
   /** creation in progress (for this model) */
   creating: ClothModel | null;
@@ -59,7 +61,7 @@ export class GpuSim implements SimDriver {
   /** the solver of a slot once compiled for its current model (views attach to its buffers) */
   solverOf(slot: number): GpuClothSolver | null {
     const s = this.slots[slot], m = this.mirrors[slot];
-    return s && m && s.solver && s.model === m.sim.model ? s.solver : null;
+    return s && m && s.backend && s.model === m.sim.model ? s.backend.solver : null;
   }
 
   /** all solvers compiled for their current models */
@@ -75,7 +77,7 @@ export class GpuSim implements SimDriver {
     this.mirrors.length = 0;
     for (const sim of sims) {
       this.mirrors.push({ sim, modelGen: 0, frame: 0, grabbed: -1, unstableAt: -1 });
-      this.slots.push({ solver: null, model: null, creating: null, stale: false, lastGood: sim.state.positions.slice() });
+      this.slots.push({ backend: null, model: null, creating: null, stale: false, lastGood: sim.state.positions.slice() });
     }
     this.readGen++;
     this.clock.clear();
@@ -95,18 +97,20 @@ export class GpuSim implements SimDriver {
     const model = m.sim.model;
     if (slot.model === model || slot.creating === model || this.lost) return;
     slot.creating = model;
-    GpuClothSolver.create(this.device, model).then((solver) => {
-      if (this.disposed || this.slots[k] !== slot || this.mirrors[k]?.sim.model !== model) { solver.destroy(); return; }
-      slot.solver?.destroy();
-      slot.solver = solver;
-      slot.model = model;
+    GpuBackend.create(this.device, model).then((backend) => {
+      if (this.disposed || this.slots[k] !== slot || this.mirrors[k]?.sim.model !== model) { backend.dispose(); return; }
       slot.creating = null;
       try {
-        solver.setParams(m.sim.params);
-        solver.upload(m.sim.state);
+        backend.solver.setParams(m.sim.params);
+        // the cloth moves onto the GPU as the mirror has it (the CPU backend it was built with is let go)
+        m.sim.useBackend(backend);
       } catch (e) {
+        backend.dispose();
         this.onError?.(`GPU solver: ${(e as Error).message}`);
+        return;
       }
+      slot.backend = backend;
+      slot.model = model;
       this.onFrame?.();
     }, (e: unknown) => {
       if (slot.creating === model) slot.creating = null;
@@ -122,8 +126,8 @@ export class GpuSim implements SimDriver {
       this.readGen++;
       const s = this.slots[slot];
       s.lastGood = m.sim.state.positions.slice();
-      s.solver?.destroy();
-      s.solver = null; s.model = null;
+      // (the Simulation let the old backend go when it rebuilt)
+      s.backend = null; s.model = null;
       this.ensureSolver(slot);
     }
     return rebuilt;
@@ -136,10 +140,9 @@ export class GpuSim implements SimDriver {
 
   resetSlot(slot: number): void {
     const m = this.mirrors[slot];
-    m.sim.reset(); m.frame = 0; m.grabbed = -1; m.unstableAt = -1;
+    m.sim.reset(); m.frame = 0; m.grabbed = -1; m.unstableAt = -1; // (the backend sends the reset cloth at once)
     this.slots[slot].lastGood = m.sim.state.positions.slice();
     this.readGen++;
-    this.solverOf(slot)?.upload(m.sim.state);
     this.onFrame?.();
   }
 
@@ -156,10 +159,11 @@ export class GpuSim implements SimDriver {
     const m = this.mirrors[slot];
     m.frame = frame;
     m.sim.frame = frame;
+    m.sim.unstableFrame = null;
     m.unstableAt = -1;
     this.slots[slot].lastGood = m.sim.state.positions.slice();
     this.readGen++;
-    this.solverOf(slot)?.upload(m.sim.state);
+    m.sim.backend.stateChanged('all');
   }
 
   grab(slot: number, particle: number, target: [number, number, number]): void {
@@ -194,10 +198,8 @@ export class GpuSim implements SimDriver {
   private encode(frames: number): void {
     for (let f = 0; f < frames; f++) {
       this.mirrors.forEach((m, k) => {
-        const solver = this.solverOf(k);
-        if (!solver || m.unstableAt >= 0) return;
-        solver.step(m.sim.state, m.sim.params, FRAME_DT);
-        m.sim.frame++;
+        if (!this.solverOf(k) || m.unstableAt >= 0) return;
+        m.sim.advance(1);
         m.frame = m.sim.frame;
       });
     }
@@ -233,13 +235,12 @@ export class GpuSim implements SimDriver {
     const gen = this.readGen;
     try {
       await Promise.all(this.mirrors.map(async (m, k) => {
-        const solver = this.solverOf(k);
-        if (!solver || m.unstableAt >= 0) return;
-        await solver.read(m.sim.state);
+        if (!this.solverOf(k) || m.unstableAt >= 0) return;
+        await m.sim.sync();
         // (synchronously after the read: nothing is drawn in between)
         const slot = this.slots[k];
         if (!isFinite3(m.sim.state)) {
-          this.stopUnstable(k, solver);
+          this.stopUnstable(k);
           return;
         }
         if (m.grabbed >= 0) m.sim.state.positions.set(m.sim.state.grabTarget, 3 * m.grabbed);
@@ -276,7 +277,7 @@ export class GpuSim implements SimDriver {
    * positions read back, on the CPU and on the GPU (which the views draw from), so nothing NaN is drawn (at most
    * the one readback period, ~0.1 s, in between), picked or exported. Reset starts it again.
    */
-  private stopUnstable(k: number, solver: GpuClothSolver): void {
+  private stopUnstable(k: number): void {
     const m = this.mirrors[k], slot = this.slots[k];
     m.unstableAt = m.frame;
     const st = m.sim.state;
@@ -287,12 +288,12 @@ export class GpuSim implements SimDriver {
     st.lambdas.fill(0);
     m.grabbed = -1;
     release(st);
-    solver.upload(st);
+    m.sim.backend.stateChanged('all');
     this.onUnstable?.(k, m.frame);
   }
 
   private destroySolvers(): void {
-    for (const s of this.slots) { s.solver?.destroy(); s.solver = null; s.creating = null; }
+    for (const s of this.slots) { s.backend?.dispose(); s.backend = null; s.creating = null; }
     this.slots = [];
   }
 
