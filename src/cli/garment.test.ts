@@ -66,10 +66,12 @@ describe('a garment from a mesh file drops onto the sphere', () => {
     expectDraped(sim.report(), 'mass-spring');
   });
 
-  it('the kernels agree: threads bit for bit, wasm (f32) and TypeScript within a millimetre', () => {
+  it('the kernels agree: threads bit for bit, wasm (f32) and TypeScript within the drop scenes\' parity tolerance', () => {
     const [ts, one, two] = ['TypeScript', 'wasm, 1 thread', 'wasm, 2 threads'].map((k) => reports[k]);
     expect(two.centroid).toEqual(one.centroid);
-    for (let k = 0; k < 3; k++) expect(Math.abs(one.centroid[k] - ts.centroid[k])).toBeLessThan(1e-3);
+    // f32 and f64 arithmetic part ways once the shirt folds over the sphere: the centroid tolerance of the drop
+    // scenes (docs/gpu.md, "Parity"), 5 mm on a 0.9 m garment
+    for (let k = 0; k < 3; k++) expect(Math.abs(one.centroid[k] - ts.centroid[k])).toBeLessThan(5e-3);
   });
 
   it('the glTF file gives the same cloth as the OBJ file, bit for bit', () => {
