@@ -54,7 +54,7 @@ const fail = (source: string, why: string): never => {
   throw new SceneError(`${source}: ${why}`);
 };
 
-/** Largest extent of a point set along any axis [m]. */
+/** Largest extent of a point set along any axis [the mesh's units]. */
 function extent(p: Float32Array): { size: number } {
   const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < p.length; i += 3) {
@@ -108,7 +108,8 @@ function weldMap(p: Float32Array, tol: number): Uint32Array {
 
 /**
  * Checks and cleans a mesh for simulation; `source` names it in errors (a file name, or 'cloth.shape disc').
- * Returns a new mesh: vertices closer than WELD_TOLERANCE × size welded (the first one's UV kept), vertices no
+ * Returns a new mesh: vertices closer than the weld distance welded (WELD_TOLERANCE of the size, at most
+ * WELD_EDGE_FRACTION of the median edge; the first one's UV kept), vertices no
  * triangle uses dropped, the triangles of each connected piece turned to agree with the piece's first triangle.
  * Throws SceneError for: no triangles, an index out of range, a non-finite position, a degenerate triangle (two
  * corners the same vertex, or no area), a triangle given twice, an edge shared by more than two triangles, a piece
@@ -128,7 +129,7 @@ export function prepareMesh(mesh: TriangleMesh, source: string): TriangleMesh {
   if (!(size > 0)) fail(source, 'all vertices are at one point');
   const tol = weldTolerance(p, inTri, size);
 
-  // weld, then renumber the vertices the triangles use, in first-use order of the file's numbering
+  // weld, then renumber the vertices the triangles use, keeping the file's order
   const rep = weldMap(p, tol);
   const newIndex = new Int32Array(n0).fill(-1);
   let n = 0;
