@@ -4,38 +4,25 @@
  */
 import { SCENE_NAMES, parseScene, plainText, type Scene } from '../core/index.js';
 import type { App } from './app.js';
-import { importSizeProblem } from './limits.js';
+import { FilePicker } from './file-picker.js';
 import { refusal } from './refusal.js';
 
 /** The scene-file import: file picker, size check, parse, load. */
 export class FileImport {
-  private readonly input: HTMLInputElement;
+  private readonly picker: FilePicker;
 
   /** Adds the (hidden) file input to `root`. */
   constructor(private readonly app: App, root: HTMLElement) {
-    this.input = document.createElement('input');
-    this.input.type = 'file';
-    this.input.accept = '.json,application/json';
-    this.input.hidden = true;
-    this.input.dataset.testid = 'import-file';
-    this.input.addEventListener('change', () => void this.read());
-    root.append(this.input);
+    this.picker = new FilePicker(app.overlay, root, {
+      accept: '.json,application/json', testid: 'import-file', what: 'scene file', refused: 'Import refused',
+      // the file's name is shown in messages: as text, with no control or direction-changing characters
+      onFile: async (file) => { this.importText(await file.text(), plainText(file.name, 80)); },
+    });
   }
 
   /** Opens the file picker. */
   open(): void {
-    this.input.value = '';
-    this.input.click();
-  }
-
-  private async read(): Promise<void> {
-    const file = this.input.files?.[0];
-    if (!file) return;
-    // the file's name is shown in messages: as text, with no control or direction-changing characters
-    const name = plainText(file.name, 80);
-    const tooBig = importSizeProblem(file.size);
-    if (tooBig) { this.app.overlay.message(`Import refused — ${name}: ${tooBig}`); return; }
-    this.importText(await file.text(), name);
+    this.picker.open();
   }
 
   /** Loads a scene document; an invalid one is refused with a message and changes nothing. */

@@ -4,9 +4,9 @@
  * scene's cloth (cloth.mesh; the rest of the scene stays). A file that is refused — unreadable, not a manifold
  * mesh, more particles than the backend takes, a cloth the colliders cut through — says why and changes nothing.
  */
-import { SceneError, plainText } from '../core/index.js';
+import { MESH_EXTENSIONS, SceneError, plainText } from '../core/index.js';
 import type { App } from './app.js';
-import { importSizeProblem } from './limits.js';
+import { FilePicker } from './file-picker.js';
 import { readMeshFile } from './meshes.js';
 import { refusal } from './refusal.js';
 import { withMesh } from './shape-change.js';
@@ -17,33 +17,19 @@ export const linkCannotCarry = (name: string): string =>
 
 /** The mesh-file import: file picker, size check, parse, store, load. */
 export class MeshImport {
-  private readonly input: HTMLInputElement;
+  private readonly picker: FilePicker;
 
   /** Adds the (hidden) file input to `root`. */
   constructor(private readonly app: App, root: HTMLElement) {
-    this.input = document.createElement('input');
-    this.input.type = 'file';
-    this.input.accept = '.obj,.gltf,.glb';
-    this.input.hidden = true;
-    this.input.dataset.testid = 'import-mesh-file';
-    this.input.addEventListener('change', () => void this.read());
-    root.append(this.input);
+    this.picker = new FilePicker(app.overlay, root, {
+      accept: MESH_EXTENSIONS.join(','), testid: 'import-mesh-file', what: 'mesh file', refused: 'Mesh import refused',
+      onFile: async (file) => { this.importBytes(new Uint8Array(await file.arrayBuffer()), file.name); },
+    });
   }
 
   /** Opens the file picker. */
   open(): void {
-    this.input.value = '';
-    this.input.click();
-  }
-
-  private async read(): Promise<void> {
-    const file = this.input.files?.[0];
-    if (!file) return;
-    // the file's name is shown in messages: as text, with no control or direction-changing characters
-    const shown = plainText(file.name, 80);
-    const tooBig = importSizeProblem(file.size, 'mesh file');
-    if (tooBig) { this.app.overlay.message(`Mesh import refused — ${shown}: ${tooBig}`); return; }
-    this.importBytes(new Uint8Array(await file.arrayBuffer()), file.name);
+    this.picker.open();
   }
 
   /**
