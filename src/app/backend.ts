@@ -66,10 +66,11 @@ export class Backend {
   wanted(): { kind: 'cpu' | 'gpu'; note: string } {
     const { stage, scene } = this.app;
     if (this.choice === 'cpu') return { kind: 'cpu', note: '' };
+    // what the scene needs comes before the adapter: it is the reason whatever the machine (auto says it too)
+    const sceneWhy = GpuSim.supports(scene);
     const why = this.gpuLost ? 'the WebGPU device was lost'
-      : stage.backend !== 'webgpu' || !stage.device ? 'no WebGPU adapter (WebGL2)'
-      : GpuSim.supports(scene);
-    if (why) return { kind: 'cpu', note: this.choice === 'gpu' || scene.solver.type !== 'xpbd' ? `GPU unavailable: ${why}` : '' };
+      : sceneWhy ?? (stage.backend !== 'webgpu' || !stage.device ? 'no WebGPU adapter (WebGL2)' : null);
+    if (why) return { kind: 'cpu', note: this.choice === 'gpu' || why === sceneWhy ? `GPU unavailable: ${why}` : '' };
     if (this.choice === 'auto' && stage.softwareAdapter) {
       return { kind: 'cpu', note: 'auto: the WebGPU adapter is a software fallback, slower than the CPU worker; choose GPU to use it anyway' };
     }

@@ -12,7 +12,7 @@
 import {
   Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type Scene,
 } from '../core/index.js';
-import { GpuBackend, type GpuClothSolver } from '../gpu/index.js';
+import { GpuBackend, sceneRefusal, type GpuClothSolver } from '../gpu/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
 import type { MeshStore } from './meshes.js';
 import type { Mirror, SimDriver, SimStats } from './sim-client.js';
@@ -84,12 +84,9 @@ export class GpuSim implements SimDriver {
     this.mirrors.forEach((_, k) => this.ensureSolver(k));
   }
 
-  /** Fails for what the GPU solver does not support (mass-spring, other colliders): the caller falls back. */
+  /** Fails for what the GPU solver does not support (mass-spring, other colliders: gpu/encoder.ts sceneRefusal): the caller falls back. */
   static supports(scene: Scene): string | null {
-    if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
-    const other = scene.colliders.find((c) => c.type !== 'sphere' && c.type !== 'floor') as { type: string } | undefined;
-    if (other) return `${other.type} colliders run on the CPU only`;
-    return null;
+    return sceneRefusal(scene);
   }
 
   private ensureSolver(k: number): void {

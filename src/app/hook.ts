@@ -48,6 +48,8 @@ export interface DrapeHook {
   screenOf(particle: number, slot?: number): { x: number; y: number };
   /** camera position */
   camera(): number[];
+  /** the collider meshes the stage draws, by type (the floor is the stage's own) */
+  colliders(): string[];
   /** the text of the last message shown in the page, and its kind */
   lastMessage(): { text: string; kind: string };
   /** text of the floating labels (Mesh Resolution scene) */
@@ -113,6 +115,7 @@ export function installHook(app: App): DrapeHook {
       return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
     },
     camera: () => app.stage.camera.position.toArray(),
+    colliders: () => app.stage.colliderNames(),
     lastMessage: () => ({ text: app.overlay.lastMessage, kind: app.overlay.lastMessageKind }),
     labels: () => [...app.overlay.labelLayer.querySelectorAll('.drape-label')].map((l) => (l as HTMLElement).innerText.replace(/\s+/g, ' ').trim()),
     stats: () => ({

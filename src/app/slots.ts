@@ -94,7 +94,7 @@ export class Slots {
     if (changed) this.rebuildViews();
   }
 
-  /** Fits the camera's framing to the cloths and their spheres; `moveCamera`: also go to the default view. */
+  /** Fits the camera's framing to the cloths and their colliders; `moveCamera`: also go to the default view. */
   frameCamera(moveCamera: boolean): void {
     const app = this.app;
     const box = new Box3();
@@ -102,10 +102,15 @@ export class Slots {
       const x = m.sim.model.restPositions;
       for (let i = 0; i < x.length; i += 3) box.expandByPoint(new Vector3(x[i], x[i + 1], x[i + 2]));
       for (const c of m.sim.scene.colliders) {
-        if (c.type === 'sphere') {
-          box.expandByPoint(new Vector3(c.center[0] - c.radius, c.center[1] - c.radius, c.center[2] - c.radius));
-          box.expandByPoint(new Vector3(c.center[0] + c.radius, c.center[1] + c.radius, c.center[2] + c.radius));
-        }
+        // each finite shape by a bounding sphere (a plane and the floor are everywhere)
+        const ball = (p: readonly number[], r: number) => {
+          box.expandByPoint(new Vector3(p[0] - r, p[1] - r, p[2] - r));
+          box.expandByPoint(new Vector3(p[0] + r, p[1] + r, p[2] + r));
+        };
+        if (c.type === 'sphere') ball(c.center, c.radius);
+        else if (c.type === 'box') ball(c.center, Math.hypot(...c.halfExtents));
+        else if (c.type === 'capsule') { ball(c.a, c.radius); ball(c.b, c.radius); }
+        else if (c.type === 'cylinder') ball(c.center, Math.hypot(c.radius, c.height / 2));
       }
     }
     const size = box.getSize(new Vector3());

@@ -3,7 +3,7 @@
  * shows on the backend in use, the slot scenes it makes — one after another (sequence) or side by side — and
  * moving the sequence on.
  */
-import { builtinScene, type Scene } from '../core/index.js';
+import { builtinScene, type ColliderSpec, type Scene, type Vec3 } from '../core/index.js';
 import type { SweepLayout } from '../ui/panel.js';
 import type { App } from './app.js';
 import { fitSideBySide } from './limits.js';
@@ -66,7 +66,7 @@ export class Sweep {
       delete next.resolutionSweep;
       next.cloth.resolution = res;
       next.cloth.position = [s.cloth.position[0] + dx, s.cloth.position[1], s.cloth.position[2]];
-      next.colliders = s.colliders.map((c) => (c.type === 'sphere' ? { ...c, center: [c.center[0] + dx, c.center[1], c.center[2]] } : c));
+      next.colliders = s.colliders.map((c) => shifted(c, dx));
       next.pins = s.pins.filter((p) => typeof p === 'string');
       return next;
     };
@@ -115,5 +115,16 @@ export class Sweep {
     }
     app.slots.frameCamera(true);
     app.link.schedule();
+  }
+}
+
+/** A collider moved dx along x with its cloth (side-by-side sweeps); a floor is the same everywhere. */
+function shifted(c: ColliderSpec, dx: number): ColliderSpec {
+  const x = (p: Vec3): Vec3 => [p[0] + dx, p[1], p[2]];
+  switch (c.type) {
+    case 'floor': return c;
+    case 'plane': return { ...c, point: x(c.point) };
+    case 'capsule': return { ...c, a: x(c.a), b: x(c.b) };
+    default: return { ...c, center: x(c.center) };
   }
 }

@@ -14,6 +14,22 @@ export interface Gpu {
   bench(sizes: number[], substeps: number, frames: number): Promise<GpuBenchResult[]>;
 }
 
+/**
+ * Why the GPU solver cannot take `scene`'s colliders (a shape it does not have), as the CLI's one-line usage error,
+ * or null; checked before a device is opened, so the answer does not depend on the machine (the solver is checked
+ * when the backend is made). Null too when the GPU module does not load (openGpu says that).
+ */
+export async function gpuRefusal(scene: Scene): Promise<string | null> {
+  let gpu: typeof import('../gpu/index.js');
+  try {
+    gpu = await import('../gpu/index.js');
+  } catch {
+    return null;
+  }
+  const why = gpu.colliderRefusal(scene);
+  return why && `--backend gpu: ${why}: use --backend cpu`;
+}
+
 export async function openGpu(): Promise<Gpu> {
   let node: typeof import('../gpu/node.js'), gpu: typeof import('../gpu/index.js');
   try {

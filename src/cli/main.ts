@@ -13,7 +13,7 @@ import {
 import { EXIT, UsageError } from './errors.js';
 import { checkOutputPath } from './files.js';
 import { loadSceneFile, meshReader } from './node.js';
-import { openGpu, type Gpu } from './gpu.js';
+import { gpuRefusal, openGpu, type Gpu } from './gpu.js';
 import { toOBJ } from './obj.js';
 import { cpuOptions, runBench, runGpuBench } from './bench.js';
 import { maxThreads } from './threads.js';
@@ -34,7 +34,7 @@ Built-in scenes: ${SCENE_NAMES.join(', ')}`,
 Simulates a built-in scene (default: custom) or a scene file for N frames of 1/60 s.
   --frames N            frames to simulate (default 180; 0 reports the start state)
   --solver S            xpbd | mass-spring (same as --set solver.type=S)
-  --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD, sphere and floor colliders)
+  --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD, sphere and floor colliders only)
   --kernel K            CPU XPBD kernel: wasm (WebAssembly SIMD, the default where available) or ts
   --threads N           threads of the wasm kernel (default: automatic, the cores available up to 8, but one
                         for cloths under 2500 particles; more than the cores is clamped)
@@ -218,6 +218,10 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   // a mesh file has its own resolution: the sweep would run the same cloth again and again
   const sweep = scene.cloth.shape === 'mesh' ? undefined : sweepAsked;
   if (sweepAsked && !sweep) err(`drape: note: resolutionSweep skipped: the cloth is the mesh file ${plainText(scene.cloth.mesh ?? '', 200)}, which has its own resolution`);
+  if (backend === 'gpu') {
+    const why = await gpuRefusal(scene);
+    if (why) throw new UsageError(why);
+  }
   const gpu = backend === 'gpu' ? await openGpu() : undefined;
   let main: RunResult;
   const sweepRuns: RunResult[] = [];

@@ -101,7 +101,7 @@ export const sceneSchema = {
     colliders: {
       type: 'array',
       maxItems: MAX_COLLIDERS,
-      description: 'static colliders the cloth rests on',
+      description: 'static colliders the cloth rests on: sphere, floor, plane (any angle), box, capsule, cylinder',
       default: [
         { type: 'sphere', center: [0, 0.5, 0], radius: 0.3 },
         { type: 'floor', height: 0 },
@@ -128,6 +128,54 @@ export const sceneSchema = {
             properties: {
               type: { const: 'floor' },
               height: { type: 'number', minimum: -1000, maximum: 1000, default: 0, description: 'height of the floor plane y = height [m]' },
+            },
+          },
+          {
+            type: 'object',
+            additionalProperties: false,
+            required: ['type'],
+            description: 'a half-space at any angle (a ramp, a wall): everything below the plane through point with the given normal',
+            properties: {
+              type: { const: 'plane' },
+              point: vec3('a point of the plane [m]', -1000, 1000, [0, 0, 0]),
+              normal: vec3('outward normal of the plane (any length but zero; the solid side is behind it) [-]', -1, 1, [0, 1, 0]),
+            },
+          },
+          {
+            type: 'object',
+            additionalProperties: false,
+            required: ['type'],
+            description: 'a solid box, turned like the cloth (Euler XYZ)',
+            properties: {
+              type: { const: 'box' },
+              center: vec3('centre [m]', -1000, 1000, [0, 0.35, 0]),
+              halfExtents: vec3('half the size along the box\'s own x, y, z axes [m]', 0.001, 100, [0.4, 0.35, 0.4]),
+              rotation: vec3('rotation about the centre, Euler XYZ as cloth.rotation [degrees]', -360, 360, [0, 0, 0]),
+            },
+          },
+          {
+            type: 'object',
+            additionalProperties: false,
+            required: ['type'],
+            description: 'a capsule: the points within radius of the segment from a to b (a limb, a rail)',
+            properties: {
+              type: { const: 'capsule' },
+              a: vec3('one end of the axis segment [m]', -1000, 1000, [-0.4, 0.5, 0]),
+              b: vec3('the other end of the axis segment (equal to a: a sphere) [m]', -1000, 1000, [0.4, 0.5, 0]),
+              radius: { type: 'number', minimum: 0.001, maximum: 100, default: 0.1, description: 'radius [m]' },
+            },
+          },
+          {
+            type: 'object',
+            additionalProperties: false,
+            required: ['type'],
+            description: 'a closed cylinder, caps included (a pedestal, a post)',
+            properties: {
+              type: { const: 'cylinder' },
+              center: vec3('centre (half way up the axis) [m]', -1000, 1000, [0, 0.25, 0]),
+              axis: vec3('direction of the axis (any length but zero) [-]', -1, 1, [0, 1, 0]),
+              radius: { type: 'number', minimum: 0.001, maximum: 100, default: 0.2, description: 'radius [m]' },
+              height: { type: 'number', minimum: 0.001, maximum: 200, default: 0.5, description: 'length along the axis, cap to cap [m]' },
             },
           },
         ],

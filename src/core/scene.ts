@@ -58,7 +58,14 @@ export interface Wind {
 
 export type ColliderSpec =
   | { type: 'sphere'; center: Vec3; radius: number }
-  | { type: 'floor'; height: number };
+  | { type: 'floor'; height: number }
+  | { type: 'plane'; point: Vec3; normal: Vec3 }
+  | { type: 'box'; center: Vec3; halfExtents: Vec3; rotation: Vec3 }
+  | { type: 'capsule'; a: Vec3; b: Vec3; radius: number }
+  | { type: 'cylinder'; center: Vec3; axis: Vec3; radius: number; height: number };
+
+/** The collider `type`s a scene may name, in the schema's order. */
+export const COLLIDER_TYPES = ['sphere', 'floor', 'plane', 'box', 'capsule', 'cylinder'] as const;
 
 /** Bad scene input: the message is one line and names the field. */
 export class SceneError extends Error {
@@ -100,7 +107,7 @@ function describe(e: ErrorObject): string {
       return `${field}: ${e.message}`;
     case 'discriminator':
       return p.error === 'mapping'
-        ? `${field}.type: must be one of "sphere", "floor"`
+        ? `${field}.type: must be one of ${COLLIDER_TYPES.map((t) => JSON.stringify(t)).join(', ')}`
         : `${field}.type: required`;
     default:
       return `${field}: ${e.message ?? 'invalid'}`;
@@ -157,6 +164,13 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
     throw new SceneError(`${source}: ${describe(pickError(errors))}`);
   }
   const scene = doc as unknown as Scene;
+  scene.colliders.forEach((c, k) => {
+    // directions must have a length (the schema bounds each component, not the vector)
+    const dir = c.type === 'plane' ? ['normal', c.normal] as const : c.type === 'cylinder' ? ['axis', c.axis] as const : null;
+    if (dir && !(Math.hypot(dir[1][0], dir[1][1], dir[1][2]) > 1e-9)) {
+      throw new SceneError(`${source}: colliders[${k}].${dir[0]}: must not be zero (a direction)`);
+    }
+  });
   if (scene.cloth.shape === 'mesh' && scene.cloth.mesh === undefined) {
     throw new SceneError(`${source}: cloth.mesh: required when cloth.shape is 'mesh' (the OBJ or glTF file of the cloth)`);
   }

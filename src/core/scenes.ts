@@ -36,6 +36,16 @@ const BUILTIN: Record<string, object> = {
     colliders: [{ type: 'floor', height: 0 }],
     pins: ['top-left', 'top-right', 'bottom-left', 'bottom-right'],
   },
+  tablecloth: {
+    name: 'tablecloth',
+    description: 'A cotton tablecloth falling on a table (a 90 × 60 × 75 cm box) on the floor',
+    cloth: { width: 1.4, height: 1.1, position: [0, 1, 0] },
+    material: fabrics.cotton,
+    colliders: [
+      { type: 'box', center: [0, 0.375, 0], halfExtents: [0.45, 0.375, 0.3], rotation: [0, 0, 0] },
+      { type: 'floor', height: 0 },
+    ],
+  },
   resolution: {
     name: 'resolution',
     description: 'The seed\'s mesh-resolution demo: the same cotton cloth dropped with 1 to 4096 faces',

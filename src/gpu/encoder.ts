@@ -5,7 +5,9 @@
  */
 import type {} from 'webgpu';
 import { runFrame, type FrameVars, type PhaseBackend } from '../core/frame.js';
+import { createColliders } from '../core/colliders/index.js';
 import type { ClothModel } from '../core/model.js';
+import type { Scene } from '../core/scene.js';
 import type { SimParams } from '../core/params.js';
 import { PHASE, PHASE_COUNT, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../core/schedule.js';
 import type { ClothState } from '../core/state.js';
@@ -19,6 +21,25 @@ function contactRefusal(params: SimParams): string | null {
   for (const shape of params.colliders) {
     if (!gpuCollider(shape)) return `collider type '${shape.type}' is not supported on the GPU (sphere, floor)`;
   }
+  return null;
+}
+
+/**
+ * Why the GPU cannot step this scene at all, in one line naming what it lacks (the solver, a collider shape and its
+ * place in the list), or null. The CLI says it before opening a device; the app's backend choice says it when it
+ * falls back to the CPU.
+ */
+export function sceneRefusal(scene: Scene): string | null {
+  if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
+  return colliderRefusal(scene);
+}
+
+/** The colliders' part of sceneRefusal. */
+export function colliderRefusal(scene: Scene): string | null {
+  if (scene.colliders.length > MAX_COLLIDERS) return `at most ${MAX_COLLIDERS} colliders (got ${scene.colliders.length})`;
+  const shapes = createColliders(scene.colliders);
+  const k = shapes.findIndex((shape) => !gpuCollider(shape));
+  if (k >= 0) return `${shapes[k].type} colliders run on the CPU only (colliders[${k}]; the GPU has sphere and floor)`;
   return null;
 }
 

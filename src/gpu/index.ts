@@ -4,6 +4,7 @@
  */
 export { GpuClothSolver, type SubstepTraffic } from './solver.js';
 export { GpuBackend } from './backend.js';
+export { colliderRefusal, sceneRefusal } from './encoder.js';
 export { benchGpu, measureCopyBandwidth, type GpuBenchResult } from './bench.js';
 export { kernelSource } from './shaders.js';
 export { triangleAdjacency } from './topology.js';

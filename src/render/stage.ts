@@ -3,12 +3,13 @@
  * controls, studio lighting with soft shadows, backdrop, floor and the collider shapes of the current scene.
  */
 import {
-  Color, DirectionalLight, Fog, Group, HemisphereLight, Mesh, MeshStandardNodeMaterial, PCFShadowMap,
-  PerspectiveCamera, PlaneGeometry, ACESFilmicToneMapping, Scene as ThreeScene, SphereGeometry, Vector3,
-  WebGPURenderer,
+  BoxGeometry, CapsuleGeometry, Color, CylinderGeometry, DirectionalLight, DoubleSide, Fog, Group, HemisphereLight,
+  Matrix4, Mesh, MeshStandardNodeMaterial, PCFShadowMap, PerspectiveCamera, PlaneGeometry, ACESFilmicToneMapping,
+  Quaternion, Scene as ThreeScene, SphereGeometry, Vector3, WebGPURenderer,
 } from 'three/webgpu';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ColliderSpec } from '../core/index.js';
+import { eulerXYZ } from '../core/mesh/generators.js';
 import { backdropTexture, floorTexture, repaintTextures } from './textures.js';
 
 export type BackendName = 'webgpu' | 'webgl2';
@@ -39,6 +40,8 @@ export class Stage {
   private readonly floor: Mesh;
   private readonly key: DirectionalLight;
   private readonly sphereMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0 });
+  /** a tilted plane is drawn as a large quad, seen from both sides */
+  private readonly planeMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0, side: DoubleSide });
   /** centre and size of what the camera frames */
   private focus = new Vector3(0, 0.6, 0);
   private extent = 1;
@@ -211,29 +214,63 @@ export class Stage {
     this.needsRender = true;
   }
 
-  /** Shows one sphere per sphere collider and puts the floor at the first floor's height (hidden if none). */
+  /**
+   * Shows a mesh per sphere, plane (a 20 m square), box, capsule and cylinder collider, named by its type, and puts
+   * the floor at the first floor's height.
+   */
   setColliders(colliders: readonly ColliderSpec[]): void {
     for (const c of [...this.colliderGroup.children]) {
       this.colliderGroup.remove(c);
       (c as Mesh).geometry.dispose();
     }
     let floor: number | null = null;
+    const up = new Vector3(0, 1, 0);
     for (const c of colliders) {
+      let m: Mesh | null = null;
       if (c.type === 'sphere') {
-        const m = new Mesh(new SphereGeometry(c.radius, 96, 48), this.sphereMaterial);
+        m = new Mesh(new SphereGeometry(c.radius, 96, 48), this.sphereMaterial);
         m.position.set(c.center[0], c.center[1], c.center[2]);
+      } else if (c.type === 'floor') {
+        if (floor === null) floor = c.height;
+      } else if (c.type === 'plane') {
+        // the half-space's surface as a 20 m square, centred on its point
+        m = new Mesh(new PlaneGeometry(20, 20), this.planeMaterial);
+        const n = new Vector3(c.normal[0], c.normal[1], c.normal[2]).normalize();
+        m.quaternion.setFromUnitVectors(new Vector3(0, 0, 1), n);
+        m.position.set(c.point[0], c.point[1], c.point[2]);
+      } else if (c.type === 'box') {
+        m = new Mesh(new BoxGeometry(2 * c.halfExtents[0], 2 * c.halfExtents[1], 2 * c.halfExtents[2]), this.sphereMaterial);
+        // the core's rotation matrix (eulerXYZ, row-major), as the physics uses it
+        const r = eulerXYZ(c.rotation);
+        m.quaternion.setFromRotationMatrix(new Matrix4().set(r[0], r[1], r[2], 0, r[3], r[4], r[5], 0, r[6], r[7], r[8], 0, 0, 0, 0, 1));
+        m.position.set(c.center[0], c.center[1], c.center[2]);
+      } else if (c.type === 'capsule') {
+        const axis = new Vector3(c.b[0] - c.a[0], c.b[1] - c.a[1], c.b[2] - c.a[2]);
+        const length = axis.length();
+        m = new Mesh(new CapsuleGeometry(c.radius, length, 16, 48), this.sphereMaterial);
+        if (length > 0) m.quaternion.copy(new Quaternion().setFromUnitVectors(up, axis.normalize()));
+        m.position.set((c.a[0] + c.b[0]) / 2, (c.a[1] + c.b[1]) / 2, (c.a[2] + c.b[2]) / 2);
+      } else if (c.type === 'cylinder') {
+        m = new Mesh(new CylinderGeometry(c.radius, c.radius, c.height, 96, 1), this.sphereMaterial);
+        m.quaternion.setFromUnitVectors(up, new Vector3(c.axis[0], c.axis[1], c.axis[2]).normalize());
+        m.position.set(c.center[0], c.center[1], c.center[2]);
+      }
+      if (m) {
         m.castShadow = true;
         m.receiveShadow = true;
-        m.name = 'sphere';
+        m.name = c.type;
         this.colliderGroup.add(m);
-      } else if (floor === null) {
-        floor = c.height;
       }
     }
     // a scene without a floor still gets a visual ground far below, so the studio does not look empty
     this.floor.position.y = floor ?? -0.001;
     this.floor.visible = true;
     this.needsRender = true;
+  }
+
+  /** The collider meshes drawn, by type, in the scene's order (the floor is not one: it is the stage's own). */
+  colliderNames(): string[] {
+    return this.colliderGroup.children.map((c) => c.name);
   }
 
   /** Fits lights, shadow camera and camera presets around a region [centre, size in m]. */

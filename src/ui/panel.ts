@@ -18,6 +18,7 @@ export const SCENE_LABELS: Record<string, string> = {
   custom: 'Custom Parameters',
   wind: 'Wind',
   pins: 'Pins',
+  tablecloth: 'Tablecloth',
   resolution: 'Mesh Resolution',
 };
 

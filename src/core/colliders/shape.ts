@@ -1,6 +1,6 @@
 /**
- * A static collider as the contact phase sees it. New shapes (box, capsule, mesh) implement this interface and
- * register a factory in colliders/index.ts; the solvers never name a shape.
+ * A static collider as the contact phase sees it. Shapes (sphere, floor, plane, box, capsule, cylinder) implement this interface
+ * and are built by createColliders in colliders/index.ts; the solvers never name a shape.
  */
 export interface ColliderShape {
   readonly type: string;
@@ -25,10 +25,11 @@ export interface ColliderShape {
    * Deepest point of triangle (a, b, c) with respect to this shape, for shapes whose surface can poke through a
    * triangle between its vertices (a sphere can; a half-space cannot, so it leaves this undefined).
    * Writes the barycentric weights of that point to `bary[0..2]` and the outward normal to `normal[0..2]`;
-   * returns its signed distance [m].
+   * returns its signed distance [m]. With `within`, a shape may return any value ≥ `within` (writing nothing) when
+   * the whole triangle is at least that far away.
    */
   triangleDeepest?(
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-    bary: Float64Array, normal: Float64Array,
+    bary: Float64Array, normal: Float64Array, within?: number,
   ): number;
 }

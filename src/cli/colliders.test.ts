@@ -1,0 +1,76 @@
+/** `drape run` with the analytic collider shapes: runs on the CPU; the GPU refuses them in one line; bad fields name themselves. */
+import { mkdtempSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { describe, expect, it } from 'vitest';
+import { main } from './main.js';
+
+async function run(...argv: string[]) {
+  const out: string[] = [], err: string[] = [];
+  const code = await main(argv, (s) => out.push(s), (s) => err.push(s));
+  return { code, out: out.join('\n'), err: err.join('\n') };
+}
+
+function sceneFile(colliders: object[]): string {
+  const dir = mkdtempSync(join(tmpdir(), 'drape-colliders-'));
+  const path = join(dir, 'scene.json');
+  writeFileSync(path, JSON.stringify({ name: 'shapes', cloth: { resolution: 8, position: [0, 0.9, 0] }, colliders }));
+  return path;
+}
+
+const box = { type: 'box', center: [0, 0.35, 0], halfExtents: [0.3, 0.35, 0.3], rotation: [0, 20, 0] };
+
+describe('drape run with the new collider shapes', () => {
+  it('a box scene runs on the CPU: the cloth lies on the box', async () => {
+    const r = await run('run', sceneFile([box, { type: 'floor', height: 0 }]), '--frames', '90', '--json');
+    expect(r.code).toBe(0);
+    const j = JSON.parse(r.out);
+    expect(j).toMatchObject({ backend: 'cpu', finite: true, particles: 81 });
+    expect(j.maxPenetration).toBeLessThanOrEqual(0.005);
+    // on the table top (0.7 m), its edges hanging, not on the floor
+    expect(j.bounds.max[1]).toBeGreaterThan(0.7);
+    expect(j.bounds.max[1]).toBeLessThan(0.8);
+    expect(j.centroid[1]).toBeGreaterThan(0.55);
+  });
+
+  it('the built-in tablecloth runs, and plane, capsule and cylinder scenes too', async () => {
+    expect((await run('run', 'tablecloth', '--frames', '10', '--set', 'cloth.resolution=8', '--json')).code).toBe(0);
+    for (const c of [{ type: 'plane', normal: [0.2, 1, 0] }, { type: 'capsule' }, { type: 'cylinder' }]) {
+      const r = await run('run', sceneFile([c]), '--frames', '30', '--json');
+      expect(r.code, JSON.stringify(c)).toBe(0);
+      expect(JSON.parse(r.out).finite).toBe(true);
+    }
+  });
+
+  it.each([['box', 0], ['capsule', 1], ['cylinder', 1], ['plane', 1]])('--backend gpu refuses a %s in one line naming it, exit 2', async (type, k) => {
+    const colliders = k === 0 ? [{ type }] : [{ type: 'sphere' }, { type }];
+    const r = await run('run', sceneFile(colliders), '--frames', '5', '--backend', 'gpu');
+    expect(r.code).toBe(2);
+    expect(r.out).toBe('');
+    expect(r.err.split('\n')).toHaveLength(1);
+    expect(r.err).toContain(`--backend gpu: ${type} colliders run on the CPU only (colliders[${k}]`);
+  });
+
+  it.each([
+    [{ type: 'box', halfExtents: [0.3, -1, 0.3] }, 'colliders[0].halfExtents[1]: must be >= 0.001'],
+    [{ type: 'box', rotation: [0, 400, 0] }, 'colliders[0].rotation[1]: must be <= 360'],
+    [{ type: 'capsule', a: [0, 0] }, 'colliders[0].a: must NOT have fewer than 3 items'],
+    [{ type: 'cylinder', axis: [0, 0, 0] }, 'colliders[0].axis: must not be zero'],
+    [{ type: 'cylinder', radius: 'wide' }, 'colliders[0].radius: must be number'],
+    [{ type: 'plane', up: [0, 1, 0] }, 'colliders[0].up: unknown key'],
+    [{ type: 'torus' }, 'colliders[0].type: must be one of "sphere", "floor", "plane", "box", "capsule", "cylinder"'],
+  ])('%j: exit 2, one line naming the field', async (c, message) => {
+    const r = await run('run', sceneFile([c]), '--frames', '1');
+    expect(r.code).toBe(2);
+    expect(r.err.split('\n')).toHaveLength(1);
+    expect(r.err).toContain(message);
+  });
+
+  it('--set reaches the new fields, with the same errors', async () => {
+    const path = sceneFile([box]);
+    expect((await run('run', path, '--frames', '5', '--set', 'colliders[0].halfExtents=[0.2,0.2,0.2]', '--json')).code).toBe(0);
+    const r = await run('run', path, '--frames', '5', '--set', 'colliders[0].halfExtents=[0.2,0,0.2]');
+    expect(r.code).toBe(2);
+    expect(r.err).toContain('colliders[0].halfExtents[1]: must be >= 0.001');
+  });
+});

@@ -1,0 +1,143 @@
+import { eulerXYZ } from '../mesh/generators.js';
+import { closestPointOnSegment, goldenDeepest, segmentTriangleClosest, vertexDeepest } from './convex.js';
+import type { ColliderShape } from './shape.js';
+
+/**
+ * An oriented box: centre, half extents along its own axes, turned by Euler XYZ angles [degrees] as cloth.rotation
+ * is (mesh/generators.ts eulerXYZ). Its edges are sharp (minCurvatureRadius 0), so triangle contact always runs.
+ */
+export class BoxCollider implements ColliderShape {
+  readonly type = 'box';
+  readonly minCurvatureRadius = 0;
+  /** rotation, row-major: world = R·local + centre */
+  readonly r: readonly number[];
+  /** radius of the bounding sphere [m] */
+  private readonly bound: number;
+  /** the 12 edges, world space: x0 y0 z0 x1 y1 z1 each */
+  private readonly edges = new Float64Array(72);
+  constructor(
+    readonly center: readonly [number, number, number],
+    readonly halfExtents: readonly [number, number, number],
+    readonly rotation: readonly [number, number, number] = [0, 0, 0],
+  ) {
+    this.r = eulerXYZ(rotation);
+    this.bound = Math.hypot(halfExtents[0], halfExtents[1], halfExtents[2]);
+    const corner = (k: number): number[] => {
+      const l = [k & 1 ? halfExtents[0] : -halfExtents[0], k & 2 ? halfExtents[1] : -halfExtents[1], k & 4 ? halfExtents[2] : -halfExtents[2]];
+      const r = this.r;
+      return [0, 1, 2].map((i) => center[i] + r[3 * i] * l[0] + r[3 * i + 1] * l[1] + r[3 * i + 2] * l[2]);
+    };
+    let e = 0;
+    for (let k = 0; k < 8; k++) {
+      for (const bit of [1, 2, 4]) {
+        if (k & bit) continue;
+        this.edges.set([...corner(k), ...corner(k | bit)], 6 * e++);
+      }
+    }
+  }
+
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
+    const dx = px - this.center[0], dy = py - this.center[1], dz = pz - this.center[2];
+    if (within !== Infinity) {
+      const far = this.bound + within;
+      if (far > 0 && dx * dx + dy * dy + dz * dz >= far * far) return within;
+    }
+    const r = this.r, h = this.halfExtents;
+    // local coordinates: Rᵀ·d
+    const q0 = r[0] * dx + r[3] * dy + r[6] * dz;
+    const q1 = r[1] * dx + r[4] * dy + r[7] * dz;
+    const q2 = r[2] * dx + r[5] * dy + r[8] * dz;
+    const e0 = Math.abs(q0) - h[0], e1 = Math.abs(q1) - h[1], e2 = Math.abs(q2) - h[2];
+    let l0: number, l1: number, l2: number, d: number;
+    if (e0 > 0 || e1 > 0 || e2 > 0) {
+      // outside: distance to the nearest point of the box
+      const o0 = Math.max(e0, 0), o1 = Math.max(e1, 0), o2 = Math.max(e2, 0);
+      d = Math.sqrt(o0 * o0 + o1 * o1 + o2 * o2);
+      l0 = (Math.sign(q0) * o0) / d; l1 = (Math.sign(q1) * o1) / d; l2 = (Math.sign(q2) * o2) / d;
+    } else {
+      // inside: the nearest face
+      l0 = 0; l1 = 0; l2 = 0;
+      if (e0 >= e1 && e0 >= e2) { d = e0; l0 = q0 < 0 ? -1 : 1; }
+      else if (e1 >= e2) { d = e1; l1 = q1 < 0 ? -1 : 1; }
+      else { d = e2; l2 = q2 < 0 ? -1 : 1; }
+    }
+    normal[0] = r[0] * l0 + r[1] * l1 + r[2] * l2;
+    normal[1] = r[3] * l0 + r[4] * l1 + r[5] * l2;
+    normal[2] = r[6] * l0 + r[7] * l1 + r[8] * l2;
+    return d;
+  }
+
+  /** Whether segment p–q meets the box (slabs in the box's frame). */
+  segmentHits(px: number, py: number, pz: number, qx: number, qy: number, qz: number): boolean {
+    const r = this.r, h = this.halfExtents;
+    const dx = px - this.center[0], dy = py - this.center[1], dz = pz - this.center[2];
+    const ex = qx - px, ey = qy - py, ez = qz - pz;
+    let lo = 0, hi = 1;
+    for (let i = 0; i < 3; i++) {
+      const o = r[i] * dx + r[3 + i] * dy + r[6 + i] * dz;
+      const v = r[i] * ex + r[3 + i] * ey + r[6 + i] * ez;
+      if (Math.abs(v) < 1e-300) {
+        if (Math.abs(o) > h[i]) return false;
+        continue;
+      }
+      let t0 = (-h[i] - o) / v, t1 = (h[i] - o) / v;
+      if (t0 > t1) { const t = t0; t0 = t1; t1 = t; }
+      lo = Math.max(lo, t0); hi = Math.min(hi, t1);
+      if (lo > hi) return false;
+    }
+    return true;
+  }
+
+  /**
+   * The vertex certificate (convex.ts) for a triangle on or beside a face; else, while the triangle is outside the
+   * box, the closest features: the closest pair of two disjoint convex polytopes is a vertex of one and the nearest
+   * point of the other, or a point on an edge of each, so the deepest point is a vertex of the triangle or the
+   * triangle's point nearest one of the box's 12 edges (segmentTriangleClosest, which also takes the box's corners
+   * as the edges' ends) — exact. A triangle that crosses the box (a vertex inside, an edge through it) goes to the
+   * golden-section search.
+   */
+  triangleDeepest(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, within = Infinity,
+  ): number {
+    const dv = vertexDeepest(this, a, ia, b, ib, c, ic, bary, normal, within);
+    if (!Number.isNaN(dv)) return dv;
+    const ax = a[ia], ay = a[ia + 1], az = a[ia + 2], bx = b[ib], by = b[ib + 1], bz = b[ib + 2];
+    const cx = c[ic], cy = c[ic + 1], cz = c[ic + 2];
+    // the deepest vertex, as vertexDeepest left it
+    const k = bary[0] === 1 ? 0 : bary[1] === 1 ? 1 : 2;
+    const vertex = k === 0 ? this.signedDistance(ax, ay, az, normal) : k === 1 ? this.signedDistance(bx, by, bz, normal) : this.signedDistance(cx, cy, cz, normal);
+    // crossing the box: a vertex in it, an edge of the triangle through it (or, below, an edge of the box through the triangle)
+    if (vertex <= 0 || this.segmentHits(ax, ay, az, bx, by, bz) || this.segmentHits(bx, by, bz, cx, cy, cz) || this.segmentHits(cx, cy, cz, ax, ay, az)) {
+      return goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+    }
+    let best = vertex, found = false;
+    const gx = (ax + bx + cx) / 3, gy = (ay + by + cy) / 3, gz = (az + bz + cz) / 3;
+    const reach = Math.sqrt(Math.max(
+      (ax - gx) ** 2 + (ay - gy) ** 2 + (az - gz) ** 2,
+      (bx - gx) ** 2 + (by - gy) ** 2 + (bz - gz) ** 2,
+      (cx - gx) ** 2 + (cy - gy) ** 2 + (cz - gz) ** 2,
+    ));
+    const E = this.edges;
+    for (let e = 0; e < 72; e += 6) {
+      // an edge farther from the triangle's centre than its reach plus the best so far cannot be nearer
+      const t = closestPointOnSegment(gx, gy, gz, [E[e], E[e + 1], E[e + 2]], [E[e + 3], E[e + 4], E[e + 5]]);
+      const qx = E[e] + t * (E[e + 3] - E[e]) - gx, qy = E[e + 1] + t * (E[e + 4] - E[e + 1]) - gy, qz = E[e + 2] + t * (E[e + 5] - E[e + 2]) - gz;
+      if (Math.sqrt(qx * qx + qy * qy + qz * qz) - reach >= best) continue;
+      const d2 = segmentTriangleClosest(E[e], E[e + 1], E[e + 2], E[e + 3], E[e + 4], E[e + 5], ax, ay, az, bx, by, bz, cx, cy, cz, edgeBary, seg);
+      if (d2 <= 1e-24) return goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+      if (d2 < best * best) {
+        best = Math.sqrt(d2); found = true;
+        bary[0] = edgeBary[0]; bary[1] = edgeBary[1]; bary[2] = edgeBary[2];
+      }
+    }
+    if (!found) return vertex;
+    return this.signedDistance(
+      bary[0] * ax + bary[1] * bx + bary[2] * cx, bary[0] * ay + bary[1] * by + bary[2] * cy, bary[0] * az + bary[1] * bz + bary[2] * cz,
+      normal,
+    );
+  }
+}
+
+const edgeBary = new Float64Array(3);
+const seg = new Float64Array(1);

@@ -1,0 +1,252 @@
+/**
+ * Triangle contact for convex shapes (box, capsule, cylinder): the deepest point of a triangle, i.e. the point of
+ * the triangle where the shape's signed distance is smallest.
+ *
+ * The signed distance of a convex set is a convex function, and the outward normal at a point is a subgradient of
+ * it (its gradient outside; inside, the normal of the nearest face, one of the active pieces of a max). Hence:
+ *
+ * - **Certificate at a vertex** (`vertexDeepest`): sd(p) ≥ sd(v) + n_v·(p − v) for every p. If the other vertices
+ *   lie on or above vertex v's tangent plane (n_v·(v_k − v) ≥ 0), the whole triangle does, and v is the deepest
+ *   point exactly. This is the common case: a triangle lying on a box's face or beside it, on a cylinder's cap.
+ * - **Otherwise** (a box edge or corner, a cylinder's rim or curved side under the triangle), `goldenDeepest`
+ *   minimises the convex f(u, v) = sd(a + u·(b − a) + v·(c − a)) over the triangle by nested golden-section searches:
+ *   F(u) = min over v ∈ [0, 1 − u] of f(u, v) is convex in u (partial minimisation of a convex function over a
+ *   set that depends affinely on u), so both searches are over unimodal functions. 12 iterations each shrink the
+ *   bracket to 0.618¹² ≈ 3·10⁻³ of an edge; the result is the best point evaluated (never deeper than the truth,
+ *   and sd is 1-Lipschitz, so at most 3·10⁻³ × the longest edge shallower: 0.1 mm on a 3 cm triangle, a fiftieth
+ *   of the default thickness). About 200 evaluations: it runs only where the two exact answers do not apply.
+ * - The capsule and the cylinder's curved side have an exact answer from the closest points of a segment (the
+ *   axis) and the triangle (`segmentTriangleClosest`).
+ *
+ * Tested against brute-force sampling of the triangle (colliders/shapes.test.ts).
+ */
+import { closestPointOnTriangle } from './sphere.js';
+import type { ColliderShape } from './shape.js';
+
+const scratchN = new Float64Array(3);
+const scratchB = new Float64Array(3);
+const segST = new Float64Array(2);
+
+/**
+ * Closest points of segments p1–q1 and p2–q2 (Ericson, Real-Time Collision Detection, §5.1.9): parameters s (on
+ * the first) and t (on the second) to `out[0..1]`; returns the squared distance.
+ */
+export function segmentSegmentClosest(
+  p1x: number, p1y: number, p1z: number, q1x: number, q1y: number, q1z: number,
+  p2x: number, p2y: number, p2z: number, q2x: number, q2y: number, q2z: number,
+  out: Float64Array,
+): number {
+  const d1x = q1x - p1x, d1y = q1y - p1y, d1z = q1z - p1z;
+  const d2x = q2x - p2x, d2y = q2y - p2y, d2z = q2z - p2z;
+  const rx = p1x - p2x, ry = p1y - p2y, rz = p1z - p2z;
+  const a = d1x * d1x + d1y * d1y + d1z * d1z;
+  const e = d2x * d2x + d2y * d2y + d2z * d2z;
+  const f = d2x * rx + d2y * ry + d2z * rz;
+  let s: number, t: number;
+  const eps = 1e-300;
+  if (a <= eps && e <= eps) {
+    s = 0; t = 0;
+  } else if (a <= eps) {
+    s = 0; t = Math.min(Math.max(f / e, 0), 1);
+  } else {
+    const c = d1x * rx + d1y * ry + d1z * rz;
+    if (e <= eps) {
+      t = 0; s = Math.min(Math.max(-c / a, 0), 1);
+    } else {
+      const b = d1x * d2x + d1y * d2y + d1z * d2z;
+      const denom = a * e - b * b;
+      s = denom > 1e-15 * a * e ? Math.min(Math.max((b * f - c * e) / denom, 0), 1) : 0;
+      t = (b * s + f) / e;
+      if (t < 0) { t = 0; s = Math.min(Math.max(-c / a, 0), 1); }
+      else if (t > 1) { t = 1; s = Math.min(Math.max((b - c) / a, 0), 1); }
+    }
+  }
+  out[0] = s; out[1] = t;
+  const dx = p1x + d1x * s - (p2x + d2x * t), dy = p1y + d1y * s - (p2y + d2y * t), dz = p1z + d1z * s - (p2z + d2z * t);
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/**
+ * Closest points of segment p–q and triangle (a, b, c): the barycentric weights of the triangle's point to `bary`,
+ * the segment's parameter to `seg[0]`; returns the squared distance (0 where the segment crosses the triangle).
+ * The closest pair of two convex polytopes is a vertex and the other's closest point, or two edges: so the segment
+ * crossing the triangle, its end points against the triangle, and the segment against the triangle's three edges.
+ */
+export function segmentTriangleClosest(
+  px: number, py: number, pz: number, qx: number, qy: number, qz: number,
+  ax: number, ay: number, az: number, bx: number, by: number, bz: number, cx: number, cy: number, cz: number,
+  bary: Float64Array, seg: Float64Array,
+): number {
+  const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;
+  const nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+  const nn = nx * nx + ny * ny + nz * nz;
+  if (nn > 0) {
+    const d0 = nx * (px - ax) + ny * (py - ay) + nz * (pz - az);
+    const d1 = nx * (qx - ax) + ny * (qy - ay) + nz * (qz - az);
+    if ((d0 <= 0 && d1 >= 0) || (d0 >= 0 && d1 <= 0)) {
+      if (d0 !== d1) {
+        const t = d0 / (d0 - d1);
+        const ix = px + t * (qx - px) - ax, iy = py + t * (qy - py) - ay, iz = pz + t * (qz - pz) - az;
+        // barycentric of the crossing: (n · (ab × ai)) / |n|² etc.
+        const w = (nx * (aby * iz - abz * iy) + ny * (abz * ix - abx * iz) + nz * (abx * iy - aby * ix)) / nn;
+        const v = (nx * (iy * acz - iz * acy) + ny * (iz * acx - ix * acz) + nz * (ix * acy - iy * acx)) / nn;
+        if (v >= 0 && w >= 0 && v + w <= 1) {
+          bary[0] = 1 - v - w; bary[1] = v; bary[2] = w; seg[0] = t;
+          return 0;
+        }
+      }
+    }
+  }
+  let best = Infinity;
+  // end points against the triangle
+  for (let k = 0; k < 2; k++) {
+    const ex = k ? qx : px, ey = k ? qy : py, ez = k ? qz : pz;
+    closestPointOnTriangle(ex, ey, ez, ax, ay, az, bx, by, bz, cx, cy, cz, scratchB);
+    const tx = scratchB[0] * ax + scratchB[1] * bx + scratchB[2] * cx - ex;
+    const ty = scratchB[0] * ay + scratchB[1] * by + scratchB[2] * cy - ey;
+    const tz = scratchB[0] * az + scratchB[1] * bz + scratchB[2] * cz - ez;
+    const d2 = tx * tx + ty * ty + tz * tz;
+    if (d2 < best) { best = d2; bary[0] = scratchB[0]; bary[1] = scratchB[1]; bary[2] = scratchB[2]; seg[0] = k; }
+  }
+  // the segment against each edge
+  for (let k = 0; k < 3; k++) {
+    const ux = k === 0 ? ax : k === 1 ? bx : cx, uy = k === 0 ? ay : k === 1 ? by : cy, uz = k === 0 ? az : k === 1 ? bz : cz;
+    const vx = k === 0 ? bx : k === 1 ? cx : ax, vy = k === 0 ? by : k === 1 ? cy : ay, vz = k === 0 ? bz : k === 1 ? cz : az;
+    const d2 = segmentSegmentClosest(px, py, pz, qx, qy, qz, ux, uy, uz, vx, vy, vz, segST);
+    if (d2 < best) {
+      best = d2;
+      const t = segST[1];
+      bary[0] = 0; bary[1] = 0; bary[2] = 0;
+      bary[k] = 1 - t; bary[(k + 1) % 3] = t;
+      seg[0] = segST[0];
+    }
+  }
+  return best;
+}
+
+/**
+ * The certificate above: if some vertex's tangent plane has the whole triangle on or above it, that vertex is the
+ * deepest point: its weights go to `bary`, its normal to `normal`, and its signed distance is returned. If the
+ * tangent planes show that the whole triangle is at least `within` away, that bound (≥ within) is returned.
+ * Otherwise NaN (and `bary` holds the deepest vertex, `normal` its normal).
+ */
+export function vertexDeepest(
+  shape: ColliderShape,
+  a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+  bary: Float64Array, normal: Float64Array, within = Infinity,
+): number {
+  const ax = a[ia], ay = a[ia + 1], az = a[ia + 2];
+  const bx = b[ib], by = b[ib + 1], bz = b[ib + 2];
+  const cx = c[ic], cy = c[ic + 1], cz = c[ic + 2];
+  let best = Infinity, bestK = 0, certified = false, certK = -1, certD = Infinity, bound = -Infinity;
+  let n0 = 0, n1 = 0, n2 = 0;
+  for (let k = 0; k < 3; k++) {
+    const vx = k === 0 ? ax : k === 1 ? bx : cx, vy = k === 0 ? ay : k === 1 ? by : cy, vz = k === 0 ? az : k === 1 ? bz : cz;
+    const d = shape.signedDistance(vx, vy, vz, scratchN);
+    const nx = scratchN[0], ny = scratchN[1], nz = scratchN[2];
+    const nv = nx * vx + ny * vy + nz * vz;
+    // the other vertices' height above this vertex's tangent plane (0.1 µm of rounding allowed)
+    const lowest = Math.min(nx * ax + ny * ay + nz * az, nx * bx + ny * by + nz * bz, nx * cx + ny * cy + nz * cz) - nv;
+    // the tangent plane bounds the signed distance over the whole triangle from below
+    bound = Math.max(bound, d + Math.min(lowest, 0));
+    if (lowest >= -1e-7 && d < certD) { certified = true; certK = k; certD = d; n0 = nx; n1 = ny; n2 = nz; }
+    if (!certified && d < best) { best = d; bestK = k; normal[0] = nx; normal[1] = ny; normal[2] = nz; }
+  }
+  if (certified) {
+    bary[0] = certK === 0 ? 1 : 0; bary[1] = certK === 1 ? 1 : 0; bary[2] = certK === 2 ? 1 : 0;
+    normal[0] = n0; normal[1] = n1; normal[2] = n2;
+    return certD;
+  }
+  bary[0] = bestK === 0 ? 1 : 0; bary[1] = bestK === 1 ? 1 : 0; bary[2] = bestK === 2 ? 1 : 0;
+  // no point of the triangle is nearer than `within`: the caller needs no more
+  return bound >= within ? bound : NaN;
+}
+
+const GOLDEN = (Math.sqrt(5) - 1) / 2;
+/** golden-section iterations of each of the two nested searches */
+export const GOLDEN_ITERATIONS = 12;
+
+/**
+ * Minimises the convex signed distance over triangle (a, b, c) by nested golden-section searches (see the file's
+ * comment): the best point found goes to `bary` and its normal to `normal`; returns its signed distance.
+ */
+export function goldenDeepest(
+  shape: ColliderShape,
+  a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+  bary: Float64Array, normal: Float64Array,
+): number {
+  const ax = a[ia], ay = a[ia + 1], az = a[ia + 2];
+  const ux = b[ib] - ax, uy = b[ib + 1] - ay, uz = b[ib + 2] - az;
+  const vx = c[ic] - ax, vy = c[ic + 1] - ay, vz = c[ic + 2] - az;
+  let bestU = 0, bestV = 0, bestD = Infinity;
+  const f = (u: number, v: number): number => {
+    const d = shape.signedDistance(ax + u * ux + v * vx, ay + u * uy + v * vy, az + u * uz + v * vz, scratchN);
+    if (d < bestD) { bestD = d; bestU = u; bestV = v; }
+    return d;
+  };
+  const inner = (u: number): number => {
+    let lo = 0, hi = 1 - u;
+    let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
+    let f1 = f(u, x1), f2 = f(u, x2);
+    for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
+      if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = f(u, x1); }
+      else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = f(u, x2); }
+    }
+    // the ends of the range: a minimum on the triangle's boundary is found exactly
+    return Math.min(f1, f2, f(u, 0), f(u, 1 - u));
+  };
+  let lo = 0, hi = 1;
+  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
+  let f1 = inner(x1), f2 = inner(x2);
+  for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
+    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = inner(x1); }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = inner(x2); }
+  }
+  inner(0); inner(1);
+  bary[0] = 1 - bestU - bestV; bary[1] = bestU; bary[2] = bestV;
+  return shape.signedDistance(ax + bestU * ux + bestV * vx, ay + bestU * uy + bestV * vy, az + bestU * uz + bestV * vz, normal);
+}
+
+/** The deepest point of a triangle for a convex shape: the vertex certificate, else the golden-section search. */
+export function convexTriangleDeepest(
+  shape: ColliderShape,
+  a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+  bary: Float64Array, normal: Float64Array, within = Infinity,
+): number {
+  const d = vertexDeepest(shape, a, ia, b, ib, c, ic, bary, normal, within);
+  return Number.isNaN(d) ? goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal) : d;
+}
+
+/** Parameter in [0, 1] of the point of segment a–b closest to p. */
+export function closestPointOnSegment(
+  px: number, py: number, pz: number, a: readonly number[], b: readonly number[],
+): number {
+  const ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const uu = ux * ux + uy * uy + uz * uz;
+  if (uu === 0) return 0;
+  const t = ((px - a[0]) * ux + (py - a[1]) * uy + (pz - a[2]) * uz) / uu;
+  return t < 0 ? 0 : t > 1 ? 1 : t;
+}
+
+/**
+ * Where a shape's axis (direction u) crosses a triangle, the deepest point has no closest-point direction: the
+ * normal is the triangle's normal with its component along the axis removed (the way off the axis that is
+ * shortest), the triangle's own normal if that leaves nothing. Returns −radius.
+ */
+export function axisCrossingNormal(
+  a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+  ux: number, uy: number, uz: number, normal: Float64Array, radius: number,
+): number {
+  const abx = b[ib] - a[ia], aby = b[ib + 1] - a[ia + 1], abz = b[ib + 2] - a[ia + 2];
+  const acx = c[ic] - a[ia], acy = c[ic + 1] - a[ia + 1], acz = c[ic + 2] - a[ia + 2];
+  let nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+  const uu = ux * ux + uy * uy + uz * uz;
+  if (uu > 0) {
+    const k = (nx * ux + ny * uy + nz * uz) / uu;
+    const sx = nx - k * ux, sy = ny - k * uy, sz = nz - k * uz;
+    if (sx * sx + sy * sy + sz * sz > 1e-6 * (nx * nx + ny * ny + nz * nz)) { nx = sx; ny = sy; nz = sz; }
+  }
+  const l = Math.hypot(nx, ny, nz) || 1;
+  normal[0] = nx / l; normal[1] = ny / l; normal[2] = nz / l;
+  return -radius;
+}

@@ -1,0 +1,103 @@
+import { axisCrossingNormal, goldenDeepest, segmentTriangleClosest, vertexDeepest } from './convex.js';
+import type { ColliderShape } from './shape.js';
+
+const bary2 = new Float64Array(3);
+const seg = new Float64Array(1);
+
+/**
+ * A closed cylinder: centre, axis direction, radius and height (caps included). Its rims are sharp
+ * (minCurvatureRadius 0). Triangle contact: the vertex certificate (a triangle on a cap), then the triangle's point
+ * closest to the axis, which is the exact answer where it lies against the curved side (sd ≥ ρ − r everywhere, ρ
+ * the distance to the axis line, with equality there), else the golden-section search (convex.ts).
+ */
+export class CylinderCollider implements ColliderShape {
+  readonly type = 'cylinder';
+  readonly minCurvatureRadius = 0;
+  /** unit axis */
+  readonly ux: number; readonly uy: number; readonly uz: number;
+  /** half the height [m] */
+  readonly halfHeight: number;
+  /** a unit vector perpendicular to the axis */
+  private readonly px: number; private readonly py: number; private readonly pz: number;
+  private readonly bound: number;
+  constructor(
+    readonly center: readonly [number, number, number],
+    axis: readonly [number, number, number],
+    readonly radius: number,
+    readonly height: number,
+  ) {
+    const l = Math.hypot(axis[0], axis[1], axis[2]);
+    if (!(l > 0)) throw new RangeError('cylinder axis must not be zero');
+    const ux = axis[0] / l, uy = axis[1] / l, uz = axis[2] / l;
+    this.ux = ux; this.uy = uy; this.uz = uz;
+    this.halfHeight = height / 2;
+    const ax = Math.abs(ux), ay = Math.abs(uy), az = Math.abs(uz);
+    let px: number, py: number, pz: number;
+    if (ay <= ax && ay <= az) { px = -uz; py = 0; pz = ux; }
+    else if (ax <= az) { px = 0; py = uz; pz = -uy; }
+    else { px = uy; py = -ux; pz = 0; }
+    const pl = Math.hypot(px, py, pz);
+    this.px = px / pl; this.py = py / pl; this.pz = pz / pl;
+    this.bound = Math.hypot(radius, this.halfHeight);
+  }
+
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
+    const dx = px - this.center[0], dy = py - this.center[1], dz = pz - this.center[2];
+    if (within !== Infinity) {
+      const far = this.bound + within;
+      if (far > 0 && dx * dx + dy * dy + dz * dz >= far * far) return within;
+    }
+    const y = dx * this.ux + dy * this.uy + dz * this.uz;
+    const rx = dx - y * this.ux, ry = dy - y * this.uy, rz = dz - y * this.uz;
+    const rho = Math.sqrt(rx * rx + ry * ry + rz * rz);
+    let hx: number, hy: number, hz: number;
+    if (rho > 1e-12) { hx = rx / rho; hy = ry / rho; hz = rz / rho; }
+    else { hx = this.px; hy = this.py; hz = this.pz; }
+    const sy = y < 0 ? -1 : 1;
+    const er = rho - this.radius, ey = Math.abs(y) - this.halfHeight;
+    if (er > 0 || ey > 0) {
+      const or = Math.max(er, 0), oy = Math.max(ey, 0);
+      const d = Math.sqrt(or * or + oy * oy);
+      normal[0] = (or * hx + oy * sy * this.ux) / d;
+      normal[1] = (or * hy + oy * sy * this.uy) / d;
+      normal[2] = (or * hz + oy * sy * this.uz) / d;
+      return d;
+    }
+    if (er >= ey) { normal[0] = hx; normal[1] = hy; normal[2] = hz; return er; }
+    normal[0] = sy * this.ux; normal[1] = sy * this.uy; normal[2] = sy * this.uz;
+    return ey;
+  }
+
+  triangleDeepest(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array,
+  ): number {
+    const d = vertexDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+    if (!Number.isNaN(d)) return d;
+    // the triangle's point closest to the axis line (a segment reaching past every vertex's projection)
+    const cx = this.center[0], cy = this.center[1], cz = this.center[2];
+    const reach = this.halfHeight + 1 + Math.max(
+      Math.hypot(a[ia] - cx, a[ia + 1] - cy, a[ia + 2] - cz),
+      Math.hypot(b[ib] - cx, b[ib + 1] - cy, b[ib + 2] - cz),
+      Math.hypot(c[ic] - cx, c[ic + 1] - cy, c[ic + 2] - cz),
+    );
+    const d2 = segmentTriangleClosest(
+      cx - reach * this.ux, cy - reach * this.uy, cz - reach * this.uz,
+      cx + reach * this.ux, cy + reach * this.uy, cz + reach * this.uz,
+      a[ia], a[ia + 1], a[ia + 2], b[ib], b[ib + 1], b[ib + 2], c[ic], c[ic + 1], c[ic + 2],
+      bary2, seg,
+    );
+    const qx = bary2[0] * a[ia] + bary2[1] * b[ib] + bary2[2] * c[ic];
+    const qy = bary2[0] * a[ia + 1] + bary2[1] * b[ib + 1] + bary2[2] * c[ic + 1];
+    const qz = bary2[0] * a[ia + 2] + bary2[1] * b[ib + 2] + bary2[2] * c[ic + 2];
+    const y = (qx - cx) * this.ux + (qy - cy) * this.uy + (qz - cz) * this.uz;
+    const er = Math.sqrt(d2) - this.radius, ey = Math.abs(y) - this.halfHeight;
+    if (ey <= 0 && er >= ey) {
+      // on the curved side: sd = ρ − r there, and ρ − r ≤ sd everywhere, so this is the deepest point
+      bary[0] = bary2[0]; bary[1] = bary2[1]; bary[2] = bary2[2];
+      if (d2 > 1e-24) return this.signedDistance(qx, qy, qz, normal);
+      return axisCrossingNormal(a, ia, b, ib, c, ic, this.ux, this.uy, this.uz, normal, this.radius);
+    }
+    return goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+  }
+}

@@ -1,0 +1,25 @@
+import type { ColliderShape } from './shape.js';
+
+/**
+ * The half-space below a plane through `point` with outward unit normal `normal` (a ramp, a wall, a floor at any
+ * angle). A triangle's deepest point in a half-space is a vertex, so particle contact suffices.
+ */
+export class PlaneCollider implements ColliderShape {
+  readonly type = 'plane';
+  readonly minCurvatureRadius = Infinity;
+  /** unit outward normal */
+  readonly nx: number; readonly ny: number; readonly nz: number;
+  /** n·point: the plane is n·p = offset */
+  readonly offset: number;
+  constructor(point: readonly number[], normal: readonly number[]) {
+    const l = Math.hypot(normal[0], normal[1], normal[2]);
+    if (!(l > 0)) throw new RangeError('plane normal must not be zero');
+    this.nx = normal[0] / l; this.ny = normal[1] / l; this.nz = normal[2] / l;
+    this.offset = this.nx * point[0] + this.ny * point[1] + this.nz * point[2];
+  }
+
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array): number {
+    normal[0] = this.nx; normal[1] = this.ny; normal[2] = this.nz;
+    return this.nx * px + this.ny * py + this.nz * pz - this.offset;
+  }
+}
