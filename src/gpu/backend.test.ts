@@ -6,17 +6,9 @@ import { afterAll, describe, expect, it } from 'vitest';
 import type {} from 'webgpu';
 import { Simulation, TsBackend, validateScene } from '../core/index.js';
 import { GpuBackend } from './backend.js';
-import { createNodeDevice } from './node.js';
+import { testDevice } from './test-device.js';
 
-let device: GPUDevice | undefined;
-let reason = '';
-try {
-  ({ device } = await createNodeDevice());
-} catch (e) {
-  reason = (e as Error).message;
-}
-if (!device && process.env.CI) throw new Error(`GPU tests need a WebGPU adapter in CI: ${reason}`);
-if (!device) console.warn(`src/gpu/backend.test.ts skipped: ${reason}`);
+const device = (await testDevice('src/gpu/backend.test.ts'))?.device;
 afterAll(() => device?.destroy());
 
 const scene = () => validateScene({ cloth: { resolution: 8 }, colliders: [] });

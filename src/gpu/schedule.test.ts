@@ -8,18 +8,10 @@ import type {} from 'webgpu';
 import { FRAME_DT, Simulation, builtinScene, copyState, createState, grab, type ColliderShape, type Scene } from '../core/index.js';
 import { PHASE, PHASES, PhaseLog, assignPhases, solverPhases, type PhaseName } from '../core/schedule.js';
 import { GPU_PHASES } from './encoder.js';
-import { createNodeDevice } from './node.js';
+import { testDevice } from './test-device.js';
 import { GpuClothSolver } from './solver.js';
 
-let gpu: { device: GPUDevice; adapter: string } | undefined;
-let reason = '';
-try {
-  gpu = await createNodeDevice();
-} catch (e) {
-  reason = (e as Error).message;
-}
-if (!gpu && process.env.CI) throw new Error(`GPU tests need a WebGPU adapter in CI: ${reason}`);
-if (!gpu) console.warn(`src/gpu/schedule.test.ts: device tests skipped: ${reason}`);
+const gpu = await testDevice('src/gpu/schedule.test.ts');
 
 /** The hanging flag in gusts, pinned along one edge (tethers), over a floor: 3 substeps of 2 iterations. */
 function windyScene(edit: (s: Scene) => void = () => {}): Scene {
