@@ -12,21 +12,13 @@ import {
   maxPenetration, modelFor, release, resolveParams, resolvePins, step, validateScene,
   type ClothModel, type ClothState, type Scene, type SimParams,
 } from '../core/index.js';
-import { createNodeDevice } from './node.js';
+import { testDevice } from './test-device.js';
 import { benchGpu } from './bench.js';
 import { GpuClothSolver } from './solver.js';
 import { sceneRefusal } from './encoder.js';
 
-let gpu: { device: GPUDevice; adapter: string } | undefined;
-let reason = '';
-try {
-  gpu = await createNodeDevice();
-} catch (e) {
-  reason = (e as Error).message;
-}
-if (!gpu && process.env.CI) throw new Error(`GPU tests need a WebGPU adapter in CI: ${reason}`);
-if (!gpu) console.warn(`src/gpu/gpu.test.ts skipped: ${reason}`);
-else console.log(`GPU tests on: ${gpu.adapter}`);
+const gpu = await testDevice('src/gpu/gpu.test.ts');
+if (gpu) console.log(`GPU tests on: ${gpu.adapter}`);
 
 /** faces per side of the parity cloths: 169 particles, quick on SwiftShader */
 const RES = 12;
