@@ -7,7 +7,7 @@
 import { STRUCTURAL, SHEAR, BEND } from './layout.generated.js';
 import { eulerXYZ } from './mesh/generators.js';
 import type { TriangleMesh } from './mesh/triangle-mesh.js';
-import { edgeTable } from './mesh/edges.js';
+import { edgeTable, type EdgeTable } from './mesh/edges.js';
 
 /** The three spring kinds of the seed design; their ids (STRUCTURAL, SHEAR, BEND) come from the one table. */
 export const SPRING_KINDS = ['structural', 'shear', 'bend'] as const;
@@ -98,6 +98,8 @@ export interface ModelInput {
   /** optional per-spring stiffness factors per kind (default 1) */
   stiffnessScales?: readonly [Float32Array, Float32Array, Float32Array];
   grid?: GridInfo;
+  /** meshTopology of these triangles, when the caller has it already (else derived here) */
+  topology?: MeshTopology;
 }
 
 const MAX_COLOURS = 32;
@@ -147,9 +149,11 @@ function distance(p: Float32Array, a: number, b: number): number {
   return Math.sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+/** What meshTopology derives from the triangles (see ClothModel). */
+export interface MeshTopology { edges: Uint32Array; bendingPairs: Uint32Array; pieces: Uint32Array; pieceCount: number }
+
 /** Edges, bending pairs and connected pieces of a triangle mesh (see ClothModel), from its edge table. */
-export function meshTopology(triangles: Uint32Array, n: number): { edges: Uint32Array; bendingPairs: Uint32Array; pieces: Uint32Array; pieceCount: number } {
-  const table = edgeTable(triangles, n);
+export function meshTopology(triangles: Uint32Array, n: number, table: EdgeTable = edgeTable(triangles, n)): MeshTopology {
   let shared = 0;
   for (let e = 0; e < table.count; e++) if (table.faces[2 * e + 1] >= 0) shared++;
   const bendingPairs = new Uint32Array(4 * shared);
@@ -277,7 +281,8 @@ export function buildModel(input: ModelInput): ClothModel {
     }
   }
   const size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-3);
-  const topology = meshTopology(triangles, n);
+  // the same for the triangles in any order: a caller that derived it already passes it on
+  const topology = input.topology ?? meshTopology(triangles, n);
 
   return {
     particleCount: n,
@@ -412,8 +417,9 @@ export function buildGridModel(spec: GridClothSpec): ClothModel {
  */
 export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean): ClothModel {
   const p = mesh.positions, tri = mesh.triangles, n = p.length / 3;
-  const { edges, bendingPairs } = meshTopology(tri, n);
   const table = edgeTable(tri, n);
+  const topology = meshTopology(tri, n, table);
+  const { edges, bendingPairs } = topology;
   const triArea = (t: number) => {
     const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
     const ux = p[3 * b] - p[3 * a], uy = p[3 * b + 1] - p[3 * a + 1], uz = p[3 * b + 2] - p[3 * a + 2];
@@ -447,5 +453,6 @@ export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean)
     triangles: tri,
     springs: [edges, new Uint32Array(0), bend],
     stiffnessScales: scaleWithResolution ? [sScale, new Float32Array(0), bScale] : undefined,
+    topology,
   });
 }
