@@ -37,7 +37,7 @@ const BOTH = ['xpbd', 'mass-spring'];
  * The phase schedule of one frame, in order: [name, scope, solvers, when, repeat, what it does]. A phase's id is its
  * row (0, 1, …), so ascending ids are the order and a set of phases is a bit mask. `scope`: 'frame-start' (once,
  * before the substeps), 'substep' (every substep), 'frame-end' (once, after them). `solvers`: the solver types whose
- * frame has it. `when`: 'always', 'wind' (the wind blows) or 'grab' (a particle is grabbed). `repeat`: the solvers
+ * frame has it. `when`: 'always', 'wind' (the wind blows), 'grab' (a particle is grabbed) or 'carried' (a collider carries pins). `repeat`: the solvers
  * for which it runs solver.iterations passes per substep (else one). Every backend walks this list (core/frame.ts
  * runFrame); docs/architecture.md says where a new phase goes in each.
  */
@@ -46,6 +46,7 @@ export const PHASES = [
   ['wind', 'substep', BOTH, 'wind', [], 'wind force per triangle on the air velocity relative to it, into the force accumulator'],
   ['springForces', 'substep', ['mass-spring'], 'always', [], 'Hooke spring forces with damping along each spring'],
   ['integrate', 'substep', BOTH, 'always', [], 'position Verlet (Taylor start) with gravity and any accumulated forces'],
+  ['carry', 'substep', BOTH, 'carried', [], 'particles pinned to a collider carried to where it is at the end of the substep'],
   ['grab', 'substep', BOTH, 'grab', [], 'the grabbed particle carried part of the way to its target'],
   ['distance', 'substep', ['xpbd'], 'always', ['xpbd'], 'XPBD distance constraints, colour batch by colour batch'],
   ['tethers', 'substep', BOTH, 'always', [], 'long-range attachments to the nearest pin'],

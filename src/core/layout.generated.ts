@@ -35,33 +35,36 @@ export const PHASE = {
   springForces: 2,
   /** substep: position Verlet (Taylor start) with gravity and any accumulated forces */
   integrate: 3,
+  /** substep: particles pinned to a collider carried to where it is at the end of the substep */
+  carry: 4,
   /** substep: the grabbed particle carried part of the way to its target */
-  grab: 4,
+  grab: 5,
   /** substep: XPBD distance constraints, colour batch by colour batch */
-  distance: 5,
+  distance: 6,
   /** substep: long-range attachments to the nearest pin */
-  tethers: 6,
+  tethers: 7,
   /** substep: stretch limiting of structural and shear springs */
-  stretchLimit: 7,
+  stretchLimit: 8,
   /** substep: collider contact with friction: per collider, its particles, then its triangles where needed */
-  contact: 8,
+  contact: 9,
   /** frame-end: v = (x − x_prev)/h of the last substep */
-  velocities: 9,
+  velocities: 10,
 } as const;
 /** Phases in the schedule. */
-export const PHASE_COUNT = 10;
+export const PHASE_COUNT = 11;
 /** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */
 export const SCHEDULE = [
   { id: 0, name: 'begin', scope: 'frame-start', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v' },
   { id: 1, name: 'wind', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'wind', repeat: [], doc: 'wind force per triangle on the air velocity relative to it, into the force accumulator' },
   { id: 2, name: 'springForces', scope: 'substep', solvers: ['mass-spring'], when: 'always', repeat: [], doc: 'Hooke spring forces with damping along each spring' },
   { id: 3, name: 'integrate', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'position Verlet (Taylor start) with gravity and any accumulated forces' },
-  { id: 4, name: 'grab', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'grab', repeat: [], doc: 'the grabbed particle carried part of the way to its target' },
-  { id: 5, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'always', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
-  { id: 6, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'long-range attachments to the nearest pin' },
-  { id: 7, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
-  { id: 8, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'collider contact with friction: per collider, its particles, then its triangles where needed' },
-  { id: 9, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
+  { id: 4, name: 'carry', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'carried', repeat: [], doc: 'particles pinned to a collider carried to where it is at the end of the substep' },
+  { id: 5, name: 'grab', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'grab', repeat: [], doc: 'the grabbed particle carried part of the way to its target' },
+  { id: 6, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'always', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
+  { id: 7, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'long-range attachments to the nearest pin' },
+  { id: 8, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
+  { id: 9, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'collider contact with friction: per collider, its particles, then its triangles where needed' },
+  { id: 10, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
 ] as const;
 /** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */
 export const KERNEL_MAX_ITERATIONS = 255;
@@ -94,7 +97,7 @@ export const CTRL = {
   DESC: 48,
   /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
   TRACE_COUNT: 56,
-  /** i32 × 10: the ids of those phases, in the order thread 0 ran them */
+  /** i32 × 11: the ids of those phases, in the order thread 0 ran them */
   TRACE: 60,
   /** f64: substep length [s] */
   H: 104,

@@ -1,6 +1,40 @@
-import { createColliders, type ColliderShape } from './colliders/index.js';
+import { createColliders, type PosedCollider } from './colliders/index.js';
 import type { ClothModel } from './model.js';
-import type { Scene, SolverType } from './scene.js';
+import { resolvePins } from './pins.js';
+import { SceneError, type Scene, type SolverType } from './scene.js';
+
+/** Particles carried by colliders: particle i = particles[k] sits at local[3k..3k+2] in collider[k]'s own frame. */
+export interface Carried {
+  readonly particles: Uint32Array;
+  readonly collider: Uint16Array;
+  /** position in the collider's frame [m] (where its rest position is in the collider's pose at time 0) */
+  readonly local: Float64Array;
+}
+
+/** The particles the colliders carry (`colliders[k].pins`): each at its rest position relative to its collider at time 0. */
+function carriedBy(model: ClothModel, scene: Scene, colliders: readonly PosedCollider[]): Carried {
+  const owner = new Map<number, number>();
+  scene.colliders.forEach((c, k) => {
+    for (const i of resolvePins(model, c.pins ?? [], `colliders[${k}].pins`)) {
+      const other = owner.get(i);
+      if (other !== undefined) throw new SceneError(`colliders[${k}].pins: particle ${i} is carried by colliders[${other}] already`);
+      owner.set(i, k);
+    }
+  });
+  const particles = new Uint32Array(owner.size), collider = new Uint16Array(owner.size), local = new Float64Array(3 * owner.size);
+  const R = new Float64Array(9), o = new Float64Array(3), x = model.restPositions;
+  let n = 0;
+  for (const [i, k] of [...owner].sort((a, b) => a[0] - b[0])) {
+    colliders[k].poseAt(0, R, o);
+    const dx = x[3 * i] - o[0], dy = x[3 * i + 1] - o[1], dz = x[3 * i + 2] - o[2];
+    particles[n] = i; collider[n] = k;
+    local[3 * n] = R[0] * dx + R[3] * dy + R[6] * dz;
+    local[3 * n + 1] = R[1] * dx + R[4] * dy + R[7] * dz;
+    local[3 * n + 2] = R[2] * dx + R[5] * dy + R[8] * dz;
+    n++;
+  }
+  return { particles, collider, local };
+}
 
 /** Length of one simulated frame [s]: frames are 1/60 s everywhere (CLI, app, benchmarks). */
 export const FRAME_DT = 1 / 60;
@@ -47,7 +81,9 @@ export interface SimParams {
     airDensity: number;
     gusts: { enabled: boolean; amplitude: number; frequency: number; seed: number };
   };
-  colliders: ColliderShape[];
+  colliders: PosedCollider[];
+  /** particles pinned to a collider and carried with it (the `carry` phase) */
+  carried: Carried;
   /** one line per value that had to be clamped, for the UI and CLI to show; empty when none */
   clamps: string[];
 }
@@ -116,6 +152,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): S
   const len = Math.hypot(d[0], d[1], d[2]);
   const direction = new Float64Array(len > 0 ? [d[0] / len, d[1] / len, d[2] / len] : [0, 0, 0]);
 
+  const colliders = createColliders(scene.colliders);
   return {
     solver: scene.solver.type,
     substeps,
@@ -138,7 +175,8 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): S
       airDensity: scene.wind.airDensity,
       gusts: { ...scene.wind.gusts },
     },
-    colliders: createColliders(scene.colliders),
+    colliders,
+    carried: carriedBy(model, scene, colliders),
     clamps,
   };
 }

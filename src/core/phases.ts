@@ -13,6 +13,7 @@ import { windVelocity } from './wind.js';
 const wind = new Float64Array(3);
 const normal = new Float64Array(3);
 const bary = new Float64Array(3);
+const surface = new Float64Array(3);
 
 /**
  * Start of a step of substep length h: effective inverse masses, tethers if the pins changed, and previous
@@ -109,6 +110,26 @@ export function integrate(state: ClothState, params: SimParams, h: number, withF
   }
 }
 
+/**
+ * Carries the particles pinned to colliders (params.carried) to where their colliders put them at time t1 [s], the
+ * end of the substep (they are pinned: integrate left them where they were and set x_prev there, so their velocity
+ * over the substep is the collider's).
+ */
+export function carryPinned(state: ClothState, params: SimParams, t0: number, t1: number): void {
+  const { particles, collider, local } = params.carried;
+  const x = state.positions, colliders = params.colliders;
+  let last = -1;
+  for (let k = 0; k < particles.length; k++) {
+    const shape = colliders[collider[k]];
+    if (collider[k] !== last) { shape.moveTo(t0, t1); last = collider[k]; }
+    const R = shape.R, o = shape.o, lx = local[3 * k], ly = local[3 * k + 1], lz = local[3 * k + 2];
+    const j = 3 * particles[k];
+    x[j] = R[0] * lx + R[1] * ly + R[2] * lz + o[0];
+    x[j + 1] = R[3] * lx + R[4] * ly + R[5] * lz + o[1];
+    x[j + 2] = R[6] * lx + R[7] * ly + R[8] * lz + o[2];
+  }
+}
+
 /** Moves the grabbed particle a fraction of the way from `from` to the grab target (kinematic). */
 export function moveGrabbed(state: ClothState, fx: number, fy: number, fz: number, fraction: number): void {
   const g = state.grabbed;
@@ -152,6 +173,10 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
  * triangles of a particle), so the constraints that follow drag the rest of the cloth along no faster. And of the
  * outward motion left after the push-out, the part the push-out made (at most its depth) also moves x_prev: it is
  * not velocity. A particle arriving from outside ends with zero normal velocity, as before.
+ *
+ * A moving collider is first put where it is at the substep's end (PosedCollider.moveTo), and every motion above is
+ * taken relative to its surface (the surface point's own motion over the substep subtracted): a collider moving
+ * into the cloth pushes it at once and gives it its speed, and friction drags the cloth along a moving surface.
  */
 export function collide(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
@@ -161,13 +186,19 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams,
   const triangleRecover = recover / Math.max(1, model.maxTriangleValence);
   const n = model.particleCount;
   for (const shape of params.colliders) {
+    shape.moveTo(state.time, state.time + h);
+    const moving = shape.moving;
     for (let i = 0; i < n; i++) {
       if (w[i] === 0) continue;
       const j = 3 * i;
       const d = shape.signedDistance(x[j], x[j + 1], x[j + 2], normal, th);
       if (d >= th) continue;
-      // motion over the substep so far, its normal part, and the push-out
-      const mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
+      // motion over the substep so far relative to the surface, its normal part, and the push-out
+      let mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
+      if (moving) {
+        shape.surfaceMotion(x[j], x[j + 1], x[j + 2], surface);
+        mx -= surface[0]; my -= surface[1]; mz -= surface[2];
+      }
       const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
       const depth = Math.min(th - d, Math.max(-mn, 0) + recover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
@@ -193,9 +224,18 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams,
       const denom = wa * bary[0] + wb * bary[1] + wc * bary[2];
       if (denom === 0) continue;
       // motion of the contact point over the substep so far, treated as a particle's above
-      const mx = bary[0] * (x[3 * a] - xp[3 * a]) + bary[1] * (x[3 * b] - xp[3 * b]) + bary[2] * (x[3 * c] - xp[3 * c]);
-      const my = bary[0] * (x[3 * a + 1] - xp[3 * a + 1]) + bary[1] * (x[3 * b + 1] - xp[3 * b + 1]) + bary[2] * (x[3 * c + 1] - xp[3 * c + 1]);
-      const mz = bary[0] * (x[3 * a + 2] - xp[3 * a + 2]) + bary[1] * (x[3 * b + 2] - xp[3 * b + 2]) + bary[2] * (x[3 * c + 2] - xp[3 * c + 2]);
+      let mx = bary[0] * (x[3 * a] - xp[3 * a]) + bary[1] * (x[3 * b] - xp[3 * b]) + bary[2] * (x[3 * c] - xp[3 * c]);
+      let my = bary[0] * (x[3 * a + 1] - xp[3 * a + 1]) + bary[1] * (x[3 * b + 1] - xp[3 * b + 1]) + bary[2] * (x[3 * c + 1] - xp[3 * c + 1]);
+      let mz = bary[0] * (x[3 * a + 2] - xp[3 * a + 2]) + bary[1] * (x[3 * b + 2] - xp[3 * b + 2]) + bary[2] * (x[3 * c + 2] - xp[3 * c + 2]);
+      if (moving) {
+        shape.surfaceMotion(
+          bary[0] * x[3 * a] + bary[1] * x[3 * b] + bary[2] * x[3 * c],
+          bary[0] * x[3 * a + 1] + bary[1] * x[3 * b + 1] + bary[2] * x[3 * c + 1],
+          bary[0] * x[3 * a + 2] + bary[1] * x[3 * b + 2] + bary[2] * x[3 * c + 2],
+          surface,
+        );
+        mx -= surface[0]; my -= surface[1]; mz -= surface[2];
+      }
       const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
       const depth = Math.min(th - d, Math.max(-mn, 0) + triangleRecover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];

@@ -1,5 +1,5 @@
 import type { ClothModel } from './model.js';
-import { SceneError, type PinPreset } from './scene.js';
+import { SceneError, type PinPreset, type Scene } from './scene.js';
 import type { ClothState } from './state.js';
 
 /**
@@ -53,22 +53,29 @@ function nearestToMiddle(model: ClothModel): number {
  * Resolves a scene's pin list (presets and indices) to particle indices, without duplicates. Throws a SceneError
  * naming the entry (pins[k]) for an index the cloth does not have or a preset it cannot take.
  */
-export function resolvePins(model: ClothModel, pins: readonly (PinPreset | number)[]): number[] {
+export function resolvePins(model: ClothModel, pins: readonly (PinPreset | number)[], field = 'pins'): number[] {
   const set = new Set<number>();
   const n = model.particleCount;
   pins.forEach((p, k) => {
     if (typeof p === 'number') {
-      if (p >= n) throw new SceneError(`pins[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
+      if (p >= n) throw new SceneError(`${field}[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
       set.add(p);
       return;
     }
     try {
       for (const i of presetParticles(model, p)) set.add(i);
     } catch (e) {
-      if (e instanceof SceneError) throw new SceneError(`pins[${k}]: ${e.message}`);
+      if (e instanceof SceneError) throw new SceneError(`${field}[${k}]: ${e.message}`);
       throw e;
     }
   });
+  return [...set].sort((a, b) => a - b);
+}
+
+/** Every pinned particle of a scene: its `pins` and those its colliders carry (`colliders[k].pins`), in order. */
+export function scenePins(model: ClothModel, scene: Scene): number[] {
+  const set = new Set(resolvePins(model, scene.pins));
+  scene.colliders.forEach((c, k) => { for (const i of resolvePins(model, c.pins ?? [], `colliders[${k}].pins`)) set.add(i); });
   return [...set].sort((a, b) => a - b);
 }
 

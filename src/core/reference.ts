@@ -7,7 +7,7 @@
 import type { FrameVars } from './frame.js';
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
-import { accumulateWind, beginStep, collide, integrate, limitStretch, moveGrabbed, updateVelocities } from './phases.js';
+import { accumulateWind, beginStep, carryPinned, collide, integrate, limitStretch, moveGrabbed, updateVelocities } from './phases.js';
 import { PHASE, PHASES, phasePasses, type PhaseName } from './schedule.js';
 import { accumulateSpringForces } from './solvers/mass-spring.js';
 import { solveDistanceConstraints } from './solvers/xpbd.js';
@@ -35,6 +35,7 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
     frame.forced = true;
   },
   integrate: (_model, state, params, frame) => integrate(state, params, frame.h, frame.forced),
+  carry: (_model, state, params, frame) => carryPinned(state, params, state.time, state.time + frame.h),
   grab(_model, state, _params, frame) {
     const from = frame.grabFrom;
     moveGrabbed(state, from[0], from[1], from[2], (frame.sub + 1) / frame.substeps);

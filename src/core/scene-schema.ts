@@ -20,6 +20,61 @@ export const PIN_PRESETS = [
   'top-edge', 'bottom-edge', 'left-edge', 'right-edge',
 ] as const;
 
+/** Most keys of one collider's motion. */
+export const MAX_KEYFRAMES = 10000;
+
+/** A pin list: presets or particle indices (the scene's `pins`, a collider's `pins`). */
+const pinList = (description: string) => ({
+  type: 'array',
+  default: [],
+  maxItems: 1050625,
+  description,
+  items: {
+    anyOf: [
+      { enum: [...PIN_PRESETS] },
+      { type: 'integer', minimum: 0 },
+    ],
+  },
+});
+
+/** What every collider may have besides its shape: a motion and pins it carries. */
+const colliderCommon = {
+  motion: {
+    type: 'object',
+    additionalProperties: false,
+    required: ['keyframes'],
+    description: 'keyframed motion relative to the placement above: turned about pivot by rotation, then moved by translation; ' +
+      'translation and Euler angles are interpolated linearly between keys (0° to 360° spins once at constant speed); the first and last key hold outside their times',
+    properties: {
+      keyframes: {
+        type: 'array',
+        minItems: 1,
+        maxItems: MAX_KEYFRAMES,
+        description: 'the keys, in order of time',
+        items: {
+          type: 'object',
+          additionalProperties: false,
+          required: ['time'],
+          properties: {
+            time: { type: 'number', minimum: 0, maximum: 1e6, description: 'time of the key [s]; not before the previous key\'s' },
+            translation: vec3('translation from the placement [m]', -1000, 1000, [0, 0, 0]),
+            rotation: vec3('rotation about the pivot, Euler XYZ as cloth.rotation [degrees]', -36000, 36000, [0, 0, 0]),
+          },
+        },
+      },
+      pivot: {
+        description: 'the point the rotation turns about [m]; absent: the collider\'s centre (a sphere\'s, box\'s or cylinder\'s centre, the middle of a capsule\'s axis, a plane\'s point, (0, height, 0) for a floor)',
+        type: 'array',
+        items: { type: 'number', minimum: -1000, maximum: 1000 },
+        minItems: 3,
+        maxItems: 3,
+      },
+      loop: { type: 'boolean', default: false, description: 'repeat the keys, the last key\'s time being the period (it must be > 0)' },
+    },
+  },
+  pins: pinList('particles pinned to this collider, carried with it as it moves (presets or indices, as the scene\'s pins)'),
+} as const;
+
 export const sceneSchema = {
   $schema: 'http://json-schema.org/draft-07/schema#',
   $id: 'https://drape.dev/scene.schema.json',
@@ -101,7 +156,7 @@ export const sceneSchema = {
     colliders: {
       type: 'array',
       maxItems: MAX_COLLIDERS,
-      description: 'static colliders the cloth rests on: sphere, floor, plane (any angle), box, capsule, cylinder',
+      description: 'colliders the cloth meets: sphere, floor, plane (any angle), box, capsule, cylinder; each may move (motion keys, or a pose the library sets each frame) and carry pins',
       default: [
         { type: 'sphere', center: [0, 0.5, 0], radius: 0.3 },
         { type: 'floor', height: 0 },
@@ -117,6 +172,7 @@ export const sceneSchema = {
             required: ['type'],
             properties: {
               type: { const: 'sphere' },
+              ...colliderCommon,
               center: vec3('centre [m]', -1000, 1000, [0, 0.5, 0]),
               radius: { type: 'number', minimum: 0.001, maximum: 100, default: 0.3, description: 'radius [m]' },
             },
@@ -127,6 +183,7 @@ export const sceneSchema = {
             required: ['type'],
             properties: {
               type: { const: 'floor' },
+              ...colliderCommon,
               height: { type: 'number', minimum: -1000, maximum: 1000, default: 0, description: 'height of the floor plane y = height [m]' },
             },
           },
@@ -137,6 +194,7 @@ export const sceneSchema = {
             description: 'a half-space at any angle (a ramp, a wall): everything below the plane through point with the given normal',
             properties: {
               type: { const: 'plane' },
+              ...colliderCommon,
               point: vec3('a point of the plane [m]', -1000, 1000, [0, 0, 0]),
               normal: vec3('outward normal of the plane (any length but zero; the solid side is behind it) [-]', -1, 1, [0, 1, 0]),
             },
@@ -148,6 +206,7 @@ export const sceneSchema = {
             description: 'a solid box, turned like the cloth (Euler XYZ)',
             properties: {
               type: { const: 'box' },
+              ...colliderCommon,
               center: vec3('centre [m]', -1000, 1000, [0, 0.35, 0]),
               halfExtents: vec3('half the size along the box\'s own x, y, z axes [m]', 0.001, 100, [0.4, 0.35, 0.4]),
               rotation: vec3('rotation about the centre, Euler XYZ as cloth.rotation [degrees]', -360, 360, [0, 0, 0]),
@@ -160,6 +219,7 @@ export const sceneSchema = {
             description: 'a capsule: the points within radius of the segment from a to b (a limb, a rail)',
             properties: {
               type: { const: 'capsule' },
+              ...colliderCommon,
               a: vec3('one end of the axis segment [m]', -1000, 1000, [-0.4, 0.5, 0]),
               b: vec3('the other end of the axis segment (equal to a: a sphere) [m]', -1000, 1000, [0.4, 0.5, 0]),
               radius: { type: 'number', minimum: 0.001, maximum: 100, default: 0.1, description: 'radius [m]' },
@@ -172,6 +232,7 @@ export const sceneSchema = {
             description: 'a closed cylinder, caps included (a pedestal, a post)',
             properties: {
               type: { const: 'cylinder' },
+              ...colliderCommon,
               center: vec3('centre (half way up the axis) [m]', -1000, 1000, [0, 0.25, 0]),
               axis: vec3('direction of the axis (any length but zero) [-]', -1, 1, [0, 1, 0]),
               radius: { type: 'number', minimum: 0.001, maximum: 100, default: 0.2, description: 'radius [m]' },
@@ -187,17 +248,6 @@ export const sceneSchema = {
       items: { type: 'integer', minimum: 1, maximum: 1024 },
       description: 'optional: run the scene once per resolution listed (faces per side), e.g. the seed\'s 1 → 4096 faces demo',
     },
-    pins: {
-      type: 'array',
-      default: [],
-      maxItems: 1050625,
-      description: `pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) or particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding)`,
-      items: {
-        anyOf: [
-          { enum: [...PIN_PRESETS] },
-          { type: 'integer', minimum: 0 },
-        ],
-      },
-    },
+    pins: pinList(`pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) or particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding)`),
   },
 } as const;

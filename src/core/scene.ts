@@ -56,13 +56,21 @@ export interface Wind {
   gusts: { enabled: boolean; amplitude: number; frequency: number; seed: number };
 }
 
-export type ColliderSpec =
+/** What every collider may have besides its shape (scene-schema.ts colliderCommon). */
+export interface ColliderCommon {
+  /** keyframed motion relative to the placement */
+  motion?: { keyframes: { time: number; translation: Vec3; rotation: Vec3 }[]; pivot?: Vec3; loop: boolean };
+  /** particles pinned to the collider and carried with it (a validated scene has it, [] by default) */
+  pins?: (PinPreset | number)[];
+}
+
+export type ColliderSpec = ColliderCommon & (
   | { type: 'sphere'; center: Vec3; radius: number }
   | { type: 'floor'; height: number }
   | { type: 'plane'; point: Vec3; normal: Vec3 }
   | { type: 'box'; center: Vec3; halfExtents: Vec3; rotation: Vec3 }
   | { type: 'capsule'; a: Vec3; b: Vec3; radius: number }
-  | { type: 'cylinder'; center: Vec3; axis: Vec3; radius: number; height: number };
+  | { type: 'cylinder'; center: Vec3; axis: Vec3; radius: number; height: number });
 
 /** The collider `type`s a scene may name, in the schema's order. */
 export const COLLIDER_TYPES = ['sphere', 'floor', 'plane', 'box', 'capsule', 'cylinder'] as const;
@@ -128,7 +136,7 @@ function pickError(errors: ErrorObject[]): ErrorObject {
  */
 export const MAX_INPUT_BYTES = 32 * 2 ** 20;
 
-/** Deepest nesting a scene document may have: the schema's own is 4 (colliders[0].center[0]). */
+/** Deepest nesting a scene document may have: the schema's own is 6 (colliders[0].motion.keyframes[0].rotation[0]). */
 const MAX_DEPTH = 32;
 
 /** Refuses absurdly nested documents before anything recursive (structuredClone, the validator) sees them. */
@@ -137,7 +145,7 @@ function checkDepth(input: object, source: string): void {
   while (stack.length) {
     const [v, depth] = stack.pop()!;
     if (v === null || typeof v !== 'object') continue;
-    if (depth > MAX_DEPTH) throw new SceneError(`${source}: nested more than ${MAX_DEPTH} levels deep; a scene is at most 4`);
+    if (depth > MAX_DEPTH) throw new SceneError(`${source}: nested more than ${MAX_DEPTH} levels deep; a scene is at most 6`);
     for (const child of Object.values(v)) if (child !== null && typeof child === 'object') stack.push([child, depth + 1]);
   }
 }
@@ -170,6 +178,15 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
     if (dir && !(Math.hypot(dir[1][0], dir[1][1], dir[1][2]) > 1e-9)) {
       throw new SceneError(`${source}: colliders[${k}].${dir[0]}: must not be zero (a direction)`);
     }
+    const keys = c.motion?.keyframes ?? [];
+    for (let i = 1; i < keys.length; i++) {
+      if (keys[i].time < keys[i - 1].time) {
+        throw new SceneError(`${source}: colliders[${k}].motion.keyframes[${i}].time: must not be before the previous key's (${keys[i - 1].time} s)`);
+      }
+    }
+    if (c.motion?.loop && !(keys[keys.length - 1].time > 0)) {
+      throw new SceneError(`${source}: colliders[${k}].motion.loop: needs a last key after time 0 (its time is the period)`);
+    }
   });
   if (scene.cloth.shape === 'mesh' && scene.cloth.mesh === undefined) {
     throw new SceneError(`${source}: cloth.mesh: required when cloth.shape is 'mesh' (the OBJ or glTF file of the cloth)`);
@@ -180,11 +197,13 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
   // other shapes check their pins when the model is built (pins.ts resolvePins)
   if (scene.cloth.shape !== 'rectangle') return scene;
   const n = (scene.cloth.resolution + 1) ** 2;
-  scene.pins.forEach((p, k) => {
+  const check = (pins: readonly (PinPreset | number)[], field: string) => pins.forEach((p, k) => {
     if (typeof p === 'number' && p >= n) {
-      throw new SceneError(`${source}: pins[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
+      throw new SceneError(`${source}: ${field}[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
     }
   });
+  check(scene.pins, 'pins');
+  scene.colliders.forEach((c, k) => check(c.pins ?? [], `colliders[${k}].pins`));
   return scene;
 }
 

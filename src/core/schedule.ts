@@ -19,8 +19,8 @@ export type PhaseName = keyof typeof PHASE;
 export type PhaseId = (typeof PHASE)[PhaseName];
 /** When a phase runs: once before the substeps, every substep, or once after them. */
 export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
-/** What a phase needs to be part of a frame: nothing, the wind blowing, or a grabbed particle. */
-export type PhaseCondition = 'always' | 'wind' | 'grab';
+/** What a phase needs to be part of a frame: nothing, the wind blowing, a grabbed particle, or pins a collider carries. */
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -54,6 +54,7 @@ export const SCOPE_PHASES: Readonly<Record<PhaseScope, number>> = {
 };
 const WIND_PHASES = maskOf((p) => p.when === 'wind');
 const GRAB_PHASES = maskOf((p) => p.when === 'grab');
+const CARRY_PHASES = maskOf((p) => p.when === 'carried');
 
 /** The mask of the phases a frame of `solver` has. */
 export function solverPhases(solver: SolverType): number {
@@ -62,11 +63,12 @@ export function solverPhases(solver: SolverType): number {
   return mask;
 }
 
-/** The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab). */
+/** The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab, carried pins). */
 export function framePhases(state: ClothState, params: SimParams): number {
   let mask = solverPhases(params.solver);
   if (!params.wind.enabled) mask &= ~WIND_PHASES;
   if (state.grabbed < 0) mask &= ~GRAB_PHASES;
+  if (params.carried.particles.length === 0) mask &= ~CARRY_PHASES;
   return mask;
 }
 
@@ -110,7 +112,8 @@ export function assignPhases(backend: BackendPhases, model: ClothModel, params: 
     if (backend.sharesMemory) return 0;
     throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs ${backend.where} (params.solver is '${params.solver}')`);
   }
-  const wanted = solverPhases(params.solver);
+  // the phases these params can make a frame run (the wind and a grab come and go; carried pins are the scene's)
+  const wanted = solverPhases(params.solver) & ~(params.carried.particles.length === 0 ? CARRY_PHASES : 0);
   let own = 0;
   for (let id = 0; id < PHASE_COUNT; id++) {
     const bit = 1 << id;

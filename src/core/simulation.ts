@@ -7,13 +7,14 @@ import type { ClothModel } from './model.js';
 import { modelFor, type MeshResolver } from './cloth-shape.js';
 import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrain, type Bounds, type Energy } from './metrics.js';
 import { FRAME_DT, resolveParams, type SimParams } from './params.js';
-import { applyPins, resolvePins } from './pins.js';
+import { applyPins, scenePins } from './pins.js';
 import { setScenePath, validateScene, type Scene } from './scene.js';
 import { plainText } from './text.js';
 import { checkPlacement } from './placement.js';
 import { copyState, resetState, type ClothState } from './state.js';
 import type { HelperSpawner } from './wasm/xpbd-wasm.js';
 import { TsBackend, WasmBackend, type Backend } from './backend.js';
+import type { ColliderPose } from './colliders/pose.js';
 
 /** Where a Simulation runs the XPBD substeps on the CPU. */
 export type CpuKernel = 'wasm' | 'ts';
@@ -81,6 +82,19 @@ function allFinite(x: Float32Array): boolean {
   return s - s === 0;
 }
 
+/** Throws a TypeError naming the field of a collider pose that is not a finite 3-vector. */
+function checkPose(pose: ColliderPose): void {
+  if (pose === null || typeof pose !== 'object') throw new TypeError('Simulation.setColliderPose: pose must be an object or null');
+  for (const key of ['translation', 'rotation', 'velocity', 'angularVelocity'] as const) {
+    const v = pose[key];
+    if (v === undefined) continue;
+    if (!Array.isArray(v) && !ArrayBuffer.isView(v) || (v as ArrayLike<number>).length !== 3 ||
+        !Array.from(v as ArrayLike<number>).every((c) => typeof c === 'number' && Number.isFinite(c) && Math.abs(c) <= 1e6)) {
+      throw new TypeError(`Simulation.setColliderPose: pose.${key} must be three finite numbers (|value| ≤ 1e6)`);
+    }
+  }
+}
+
 /** The options as given, or an Error naming the one that is wrong. */
 function checkOptions(options: SimulationOptions): SimulationOptions {
   if (options === null || typeof options !== 'object') throw new TypeError('Simulation: options must be an object');
@@ -125,7 +139,7 @@ export class Simulation {
     this.scene = validateScene(scene);
     this.model = modelFor(this.scene, this.options.meshes);
     this.params = resolveParams(this.model, this.scene);
-    const pins = resolvePins(this.model, this.scene.pins);
+    const pins = scenePins(this.model, this.scene);
     checkPlacement(this.model, this.params.colliders, pins, this.scene.material.stretchFactor, sceneLabel(this.scene));
     this.backendNow = this.newBackend();
     applyPins(this.state, pins);
@@ -217,7 +231,8 @@ export class Simulation {
   /** Back to the start pose with the scene's pins. */
   reset(): void {
     resetState(this.model, this.state);
-    applyPins(this.state, resolvePins(this.model, this.scene.pins));
+    applyPins(this.state, scenePins(this.model, this.scene));
+    for (const c of this.params.colliders) c.setDrive(0, null);
     this.backendNow.stateChanged('all');
     this.frame = 0;
     this.unstableFrame = null;
@@ -239,8 +254,8 @@ export class Simulation {
     const rebuild = needsRebuild(prev, next);
     const model = rebuild ? modelFor(next, this.options.meshes) : this.model;
     const params = resolveParams(model, next);
-    const pinsChanged = JSON.stringify(prev.pins) !== JSON.stringify(next.pins);
-    const pins = resolvePins(model, next.pins);
+    const pins = scenePins(model, next);
+    const pinsChanged = rebuild || JSON.stringify(pins) !== JSON.stringify(scenePins(this.model, prev));
     // a scene whose cloth cannot start outside its colliders is refused, and nothing changes
     if (rebuild || pinsChanged || JSON.stringify(prev.colliders) !== JSON.stringify(next.colliders) ||
         prev.material.stretchFactor !== next.material.stretchFactor) {
@@ -259,12 +274,39 @@ export class Simulation {
       if (moved.kind !== this.backendNow.kind) this.useBackend(moved);
       else moved.dispose();
     }
+    // colliders the library drives keep their drive while the scene keeps them
+    if (!rebuild) {
+      params.colliders.forEach((c, k) => {
+        const was = this.params.colliders[k];
+        if (was?.driven && next.colliders[k].type === prev.colliders[k].type) c.takeDrive(was);
+      });
+    }
     this.params = params;
     if (rebuild || pinsChanged) {
       applyPins(this.state, pins);
       this.backendNow.stateChanged(rebuild ? 'all' : 'pins');
     }
     return rebuild;
+  }
+
+  /**
+   * Drives collider `index` from now on (without revalidating the scene): its pose now — translation from the
+   * scene's placement [m] and rotation about its pivot, Euler XYZ [degrees] — and the velocity [m/s] and angular
+   * velocity [rad/s, world axes, about the pivot] it keeps over the next frames, until the next call. Call it each
+   * frame with the pose and velocity of whatever moves the collider (an animated body); the substeps move it on at
+   * that velocity, and friction drags the cloth with the moving surface. `null` gives the collider back to its
+   * scene motion (reset() does that for every collider). On the GPU backend, moving colliders are refused.
+   */
+  setColliderPose(index: number, pose: ColliderPose | null): void {
+    const colliders = this.params.colliders;
+    if (!Number.isInteger(index) || index < 0 || index >= colliders.length) {
+      throw new RangeError(`Simulation.setColliderPose: index must be an integer 0…${colliders.length - 1} (the scene has ${colliders.length} colliders), got ${String(index)}`);
+    }
+    if (pose !== null) checkPose(pose);
+    if (pose !== null && this.backendNow.kind === 'gpu') {
+      throw new Error('Simulation.setColliderPose: moving colliders run on the CPU only; the GPU backend has static spheres and floors');
+    }
+    colliders[index].setDrive(this.state.time, pose);
   }
 
   report(): Report {

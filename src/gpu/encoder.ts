@@ -19,7 +19,10 @@ import { gpuCollider, type UniformTables } from './uniforms.js';
 function contactRefusal(params: SimParams): string | null {
   if (params.colliders.length > MAX_COLLIDERS) return `at most ${MAX_COLLIDERS} colliders (got ${params.colliders.length})`;
   for (const shape of params.colliders) {
-    if (!gpuCollider(shape)) return `collider type '${shape.type}' is not supported on the GPU (sphere, floor)`;
+    if (!gpuCollider(shape)) {
+      return shape.animated ? `a moving ${shape.type} collider is not supported on the GPU (it has static spheres and floors)`
+        : `collider type '${shape.type}' is not supported on the GPU (sphere, floor)`;
+    }
   }
   return null;
 }
@@ -39,7 +42,12 @@ export function colliderRefusal(scene: Scene): string | null {
   if (scene.colliders.length > MAX_COLLIDERS) return `at most ${MAX_COLLIDERS} colliders (got ${scene.colliders.length})`;
   const shapes = createColliders(scene.colliders);
   const k = shapes.findIndex((shape) => !gpuCollider(shape));
-  if (k >= 0) return `${shapes[k].type} colliders run on the CPU only (colliders[${k}]; the GPU has sphere and floor)`;
+  if (k >= 0) {
+    return shapes[k].animated ? `moving colliders run on the CPU only (colliders[${k}] has motion; the GPU has static sphere and floor)`
+      : `${shapes[k].type} colliders run on the CPU only (colliders[${k}]; the GPU has sphere and floor)`;
+  }
+  const carried = scene.colliders.findIndex((c) => (c.pins ?? []).length > 0);
+  if (carried >= 0) return `pins carried by a collider run on the CPU only (colliders[${carried}].pins)`;
   return null;
 }
 

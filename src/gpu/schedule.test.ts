@@ -5,8 +5,9 @@
  */
 import { afterAll, describe, expect, test } from 'vitest';
 import type {} from 'webgpu';
-import { FRAME_DT, Simulation, builtinScene, copyState, createState, grab, type ColliderShape, type Scene } from '../core/index.js';
+import { FRAME_DT, Simulation, builtinScene, copyState, createState, grab, type Scene } from '../core/index.js';
 import { PHASE, PHASES, PhaseLog, assignPhases, solverPhases, type PhaseName } from '../core/schedule.js';
+import { createColliders } from '../core/colliders/index.js';
 import { GPU_PHASES } from './encoder.js';
 import { testDevice } from './test-device.js';
 import { GpuClothSolver } from './solver.js';
@@ -35,14 +36,20 @@ function expected(substeps: number, wind: boolean, grabbed: boolean): PhaseName[
 describe('what the GPU implements of the schedule', () => {
   test('every phase of an XPBD frame: none is left to the TypeScript reference', () => {
     const sim = new Simulation(windyScene(), { kernel: 'ts' });
-    expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(solverPhases('xpbd'));
+    // but carry, which a frame runs only for pins a collider carries (none here)
+    expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(solverPhases('xpbd') & ~(1 << PHASE.carry));
+  });
+
+  test('pins a collider carries: refused by name (the GPU has no carry phase)', () => {
+    const sim = new Simulation(windyScene((s) => { s.colliders = [{ type: 'floor', height: -1, pins: ['top-left'] }]; }), { kernel: 'ts' });
+    expect(() => assignPhases(GPU_PHASES, sim.model, sim.params)).toThrow(/GPU solver: it does not implement phase 'carry'/);
   });
 
   test('what it lacks it cannot leave to the reference (its cloth is in GPU memory): refused, saying why', () => {
     const sim = new Simulation(windyScene((s) => { s.solver.type = 'mass-spring'; }), { kernel: 'ts' });
     expect(() => assignPhases(GPU_PHASES, sim.model, sim.params)).toThrow(/GPU solver: only the xpbd solver runs on the GPU/);
     const xpbd = new Simulation(windyScene(), { kernel: 'ts' });
-    const box = { type: 'box', minCurvatureRadius: 0, signedDistance: () => 1 } satisfies ColliderShape;
+    const [box] = createColliders([{ type: 'box', center: [0, 3, 0], halfExtents: [0.1, 0.1, 0.1], rotation: [0, 0, 0] }]);
     const params = { ...xpbd.params, colliders: [...xpbd.params.colliders, box] };
     expect(() => assignPhases(GPU_PHASES, xpbd.model, params)).toThrow(/collider type 'box' is not supported on the GPU/);
   });

@@ -4,7 +4,7 @@
  * per contact pass (written with the params), with the lists of those passes the encoder dispatches.
  */
 import type {} from 'webgpu';
-import { FloorCollider, SphereCollider, type ColliderShape } from '../core/colliders/index.js';
+import type { PosedCollider } from '../core/colliders/index.js';
 import { BEND, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import { needsTriangleContact } from '../core/phases.js';
@@ -33,11 +33,15 @@ export interface BatchRecords {
   readonly stretch: boolean;
 }
 
-/** A collider as the GPU's `Collider` struct holds it, or null for a shape the GPU does not know. */
-export function gpuCollider(shape: ColliderShape): { kind: number; data4: [number, number, number, number] } | null {
-  if (shape instanceof SphereCollider) return { kind: COLLIDER_SPHERE, data4: [shape.cx, shape.cy, shape.cz, shape.radius] };
-  if (shape instanceof FloorCollider) return { kind: COLLIDER_FLOOR, data4: [shape.height, 0, 0, 0] };
-  return null;
+/**
+ * A collider as the GPU's `Collider` struct holds it, or null for one the GPU does not know: it knows spheres and
+ * level floors that do not move (their kernel records, PosedCollider.kernelRecord).
+ */
+export function gpuCollider(shape: PosedCollider): { kind: number; data4: [number, number, number, number] } | null {
+  const r = shape.kernelRecord;
+  if (!r) return null;
+  if (r[0] === COLLIDER_SPHERE) return { kind: COLLIDER_SPHERE, data4: [r[1], r[2], r[3], r[4]] };
+  return { kind: COLLIDER_FLOOR, data4: [r[1], 0, 0, 0] };
 }
 
 /** The uniform buffers of one cloth, their bind group, and the pass lists of the current params. */

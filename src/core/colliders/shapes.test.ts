@@ -183,19 +183,36 @@ describe('scenes name the shapes', () => {
     expect(items.oneOf.map((o) => o.properties.type.const)).toEqual([...COLLIDER_TYPES]);
     for (const o of items.oneOf) {
       for (const [key, field] of Object.entries(o.properties)) {
-        if (key === 'type') continue;
+        // motion and pins are every collider's (checked below)
+        if (key === 'type' || key === 'motion' || key === 'pins') continue;
         expect(field.description, `${o.properties.type.const}.${key}`).toMatch(/\[.+\]$/); // ends with its unit
         expect(field.default, `${o.properties.type.const}.${key}`).toBeDefined();
       }
     }
   });
+  it('every collider may move and carry pins: the motion\'s fields have units, the keys defaults', () => {
+    const items = (sceneSchema.properties.colliders as unknown as { items: { oneOf: { properties: Record<string, unknown> }[] } }).items;
+    type Field = { description?: string; default?: unknown; properties?: Record<string, Field>; items?: Field };
+    for (const o of items.oneOf) {
+      const motion = o.properties.motion as Field;
+      const key = motion.properties!.keyframes.items!.properties!;
+      expect(key.time.description).toMatch(/\[s\]/);
+      for (const f of ['translation', 'rotation']) {
+        expect(key[f].description).toMatch(/\[.+\]$/);
+        expect(key[f].default).toEqual([0, 0, 0]);
+      }
+      expect(motion.properties!.pivot.description).toMatch(/\[m\]/);
+      expect(motion.properties!.loop.default).toBe(false);
+      expect((o.properties.pins as Field).default).toEqual([]);
+    }
+  });
   it('every field has its default, and createColliders builds each', () => {
     const s = validateScene({ colliders: [{ type: 'plane' }, { type: 'box' }, { type: 'capsule' }, { type: 'cylinder' }] });
     expect(s.colliders).toEqual([
-      { type: 'plane', point: [0, 0, 0], normal: [0, 1, 0] },
-      { type: 'box', center: [0, 0.35, 0], halfExtents: [0.4, 0.35, 0.4], rotation: [0, 0, 0] },
-      { type: 'capsule', a: [-0.4, 0.5, 0], b: [0.4, 0.5, 0], radius: 0.1 },
-      { type: 'cylinder', center: [0, 0.25, 0], axis: [0, 1, 0], radius: 0.2, height: 0.5 },
+      { type: 'plane', point: [0, 0, 0], normal: [0, 1, 0], pins: [] },
+      { type: 'box', center: [0, 0.35, 0], halfExtents: [0.4, 0.35, 0.4], rotation: [0, 0, 0], pins: [] },
+      { type: 'capsule', a: [-0.4, 0.5, 0], b: [0.4, 0.5, 0], radius: 0.1, pins: [] },
+      { type: 'cylinder', center: [0, 0.25, 0], axis: [0, 1, 0], radius: 0.2, height: 0.5, pins: [] },
     ]);
     expect(createColliders(s.colliders).map((c) => c.type)).toEqual(['plane', 'box', 'capsule', 'cylinder']);
   });

@@ -34,20 +34,22 @@ export const PHASE_WIND: i32 = 1;
 export const PHASE_SPRING_FORCES: i32 = 2;
 /** substep: position Verlet (Taylor start) with gravity and any accumulated forces */
 export const PHASE_INTEGRATE: i32 = 3;
+/** substep: particles pinned to a collider carried to where it is at the end of the substep */
+export const PHASE_CARRY: i32 = 4;
 /** substep: the grabbed particle carried part of the way to its target */
-export const PHASE_GRAB: i32 = 4;
+export const PHASE_GRAB: i32 = 5;
 /** substep: XPBD distance constraints, colour batch by colour batch */
-export const PHASE_DISTANCE: i32 = 5;
+export const PHASE_DISTANCE: i32 = 6;
 /** substep: long-range attachments to the nearest pin */
-export const PHASE_TETHERS: i32 = 6;
+export const PHASE_TETHERS: i32 = 7;
 /** substep: stretch limiting of structural and shear springs */
-export const PHASE_STRETCH_LIMIT: i32 = 7;
+export const PHASE_STRETCH_LIMIT: i32 = 8;
 /** substep: collider contact with friction: per collider, its particles, then its triangles where needed */
-export const PHASE_CONTACT: i32 = 8;
+export const PHASE_CONTACT: i32 = 9;
 /** frame-end: v = (x − x_prev)/h of the last substep */
-export const PHASE_VELOCITIES: i32 = 9;
+export const PHASE_VELOCITIES: i32 = 10;
 /** Phases in the schedule. */
-export const PHASE_COUNT: i32 = 10;
+export const PHASE_COUNT: i32 = 11;
 
 // The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.
 /** sequence number of the substep's first phase: first bit */
@@ -94,7 +96,7 @@ export const SPIN_LIMIT: usize = 40;
 export const DESC: usize = 48;
 /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
 export const TRACE_COUNT: usize = 56;
-/** i32 × 10: the ids of those phases, in the order thread 0 ran them */
+/** i32 × 11: the ids of those phases, in the order thread 0 ran them */
 export const TRACE: usize = 60;
 /** f64: substep length [s] */
 export const H: usize = 104;

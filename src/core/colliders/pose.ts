@@ -1,0 +1,286 @@
+/**
+ * A collider where it is now: its shape in the shape's own frame (colliders/*.ts built at the origin: a sphere's
+ * centre, a box's centre and axes, a capsule's or cylinder's axis along y, a plane through the origin facing +y),
+ * placed in the world by the scene (centre, rotation, axis…) and moved by its motion: keyframes from the scene
+ * (`colliders[k].motion`) or a pose and velocity the library sets each frame (Simulation.setColliderPose).
+ *
+ * The motion is a rigid transform relative to the scene's placement, turning about `pivot` (default: the
+ * collider's centre) and then translating: M(t)·p = R_m(t)·(p − pivot) + pivot + T(t). World = M(t)·placement·local.
+ * Keyframes interpolate translation and Euler XYZ angles linearly (so one key at 0° and one at 360° spin the
+ * collider once at constant angular velocity about one axis), hold the first and last key outside their range, or
+ * repeat with `loop`. A drive from the library moves on with constant velocity and angular velocity [rad/s]
+ * (about the pivot, world axes) from the time it was set.
+ *
+ * The contact phase calls `moveTo(t0, t1)` once per substep: the collider is where it is at the substep's end t1,
+ * and `surfaceMotion` says how far the surface point now at p moved over the substep (p minus where that material
+ * point was at t0), so friction acts on the cloth's motion relative to the surface and a collider moving into the
+ * cloth carries it along (phases.ts collide()).
+ */
+import { COLLIDER_FLOOR, COLLIDER_SPHERE } from '../layout.generated.js';
+import { eulerXYZInto } from '../mesh/generators.js';
+import type { ColliderShape } from './shape.js';
+import { FloorCollider } from './floor.js';
+import { SphereCollider } from './sphere.js';
+
+export type Vec3 = readonly [number, number, number];
+
+/** One key of a collider's motion (the scene's `colliders[k].motion.keyframes`). */
+export interface ColliderKeyframe {
+  /** time [s] */
+  time: number;
+  /** translation from the scene's placement [m] */
+  translation: Vec3;
+  /** rotation about the pivot, Euler XYZ [degrees] */
+  rotation: Vec3;
+}
+
+/** A collider's keyframed motion (the scene's `colliders[k].motion`). */
+export interface ColliderMotion {
+  keyframes: ColliderKeyframe[];
+  /** the point the rotation turns about [m]; absent: the collider's centre */
+  pivot?: Vec3;
+  /** repeat the keys with the last key's time as the period */
+  loop: boolean;
+}
+
+/** A collider's pose and velocity set through the library: where it is now, and how it moves from now on. */
+export interface ColliderPose {
+  /** translation from the scene's placement [m] (default 0) */
+  translation?: Vec3;
+  /** rotation about the pivot, Euler XYZ [degrees] (default 0) */
+  rotation?: Vec3;
+  /** velocity of the translation [m/s] (default 0) */
+  velocity?: Vec3;
+  /** angular velocity about the pivot, world axes [rad/s] (default 0) */
+  angularVelocity?: Vec3;
+}
+
+/** Where a drive started: the motion at time t0 and its velocities. */
+interface Drive {
+  t0: number;
+  translation: Float64Array;
+  rotation: Float64Array;
+  velocity: Float64Array;
+  angularVelocity: Float64Array;
+}
+
+/** r = a·b for row-major 3×3 matrices (r may not alias a or b). */
+function mul3(a: ArrayLike<number>, b: ArrayLike<number>, r: Float64Array): void {
+  for (let i = 0; i < 3; i++) {
+    for (let j = 0; j < 3; j++) r[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
+  }
+}
+
+/** Rotation by |w|·dt about w (Rodrigues) into r. */
+function axisAngle(wx: number, wy: number, wz: number, dt: number, r: Float64Array): void {
+  const l = Math.hypot(wx, wy, wz);
+  const angle = l * dt;
+  if (!(l > 0) || angle === 0) { r.set(IDENTITY); return; }
+  const x = wx / l, y = wy / l, z = wz / l, c = Math.cos(angle), s = Math.sin(angle), k = 1 - c;
+  r[0] = c + k * x * x; r[1] = k * x * y - s * z; r[2] = k * x * z + s * y;
+  r[3] = k * y * x + s * z; r[4] = c + k * y * y; r[5] = k * y * z - s * x;
+  r[6] = k * z * x - s * y; r[7] = k * z * y + s * x; r[8] = c + k * z * z;
+}
+
+const IDENTITY = [1, 0, 0, 0, 1, 0, 0, 0, 1];
+const scratchN = new Float64Array(3);
+const scratchTri = new Float32Array(9);
+const scratchR = new Float64Array(9);
+const scratchR2 = new Float64Array(9);
+const scratchE = new Float64Array(3);
+const scratchT = new Float64Array(3);
+const scratchE9 = new Float64Array(9);
+
+/** Vertex (v[iv..]) in the frame world = R·local + o, to s[at..]. */
+function toLocal(v: Float32Array, iv: number, R: Float64Array, o: Float64Array, s: Float32Array, at: number): void {
+  const dx = v[iv] - o[0], dy = v[iv + 1] - o[1], dz = v[iv + 2] - o[2];
+  s[at] = R[0] * dx + R[3] * dy + R[6] * dz;
+  s[at + 1] = R[1] * dx + R[4] * dy + R[7] * dz;
+  s[at + 2] = R[2] * dx + R[5] * dy + R[8] * dz;
+}
+
+/** A collider shape in its own frame, placed and moved in the world (see the file's comment). */
+export class PosedCollider implements ColliderShape {
+  readonly type: string;
+  readonly minCurvatureRadius: number;
+  /** world = R·local + o at the end of the current substep; R row-major */
+  readonly R = new Float64Array(9);
+  readonly o = new Float64Array(3);
+  /** where a surface point now at p was at the substep's start: RD·p + oD (identity while it does not move) */
+  readonly RD = new Float64Array(IDENTITY);
+  readonly oD = new Float64Array(3);
+  /** whether the surface moved over the current substep */
+  moving = false;
+  private readonly placeR: Float64Array;
+  private readonly placeO: Float64Array;
+  readonly pivot: Float64Array;
+  private readonly keyTimes: Float64Array;
+  private readonly keyValues: Float64Array;
+  private readonly loop: boolean;
+  private drive: Drive | null = null;
+  private readonly R0 = new Float64Array(9);
+  private readonly o0 = new Float64Array(3);
+
+  constructor(
+    /** the shape in its own frame */
+    readonly local: ColliderShape,
+    /** the scene's placement: world = placeR·local + placeO before any motion */
+    placeR: ArrayLike<number>, placeO: Vec3,
+    motion?: ColliderMotion,
+  ) {
+    this.type = local.type;
+    this.minCurvatureRadius = local.minCurvatureRadius;
+    this.placeR = new Float64Array(placeR);
+    this.placeO = new Float64Array(placeO);
+    this.pivot = new Float64Array(motion?.pivot ?? placeO);
+    const keys = motion?.keyframes ?? [];
+    this.keyTimes = new Float64Array(keys.map((k) => k.time));
+    this.keyValues = new Float64Array(keys.flatMap((k) => [...k.translation, ...k.rotation]));
+    this.loop = (motion?.loop ?? false) && keys.length > 1 && keys[keys.length - 1].time > 0;
+    if (!local.triangleDeepest) this.triangleDeepest = undefined;
+    this.poseAt(0, this.R, this.o);
+  }
+
+  /** Whether the library drives it (setDrive). */
+  get driven(): boolean {
+    return this.drive !== null;
+  }
+
+  /** Takes over the drive of `other` (the same collider in params rebuilt for a changed scene). */
+  takeDrive(other: PosedCollider): void {
+    this.drive = other.drive;
+    this.R.set(other.R); this.o.set(other.o);
+  }
+
+  /** Whether the collider can move: it has keyframes or a drive. */
+  get animated(): boolean {
+    return this.keyTimes.length > 0 || this.drive !== null;
+  }
+
+  /**
+   * Drives the collider from time t [s] on: the pose (motion from the scene's placement) at t, and the velocities it
+   * keeps until the next call; null gives it back to its scene motion. Every field of `pose` must be finite (the
+   * caller checks).
+   */
+  setDrive(t: number, pose: ColliderPose | null): void {
+    if (!pose) { this.drive = null; this.poseAt(t, this.R, this.o); return; }
+    const v = (a: Vec3 | undefined) => new Float64Array(a ?? [0, 0, 0]);
+    this.drive = { t0: t, translation: v(pose.translation), rotation: v(pose.rotation), velocity: v(pose.velocity), angularVelocity: v(pose.angularVelocity) };
+    this.poseAt(t, this.R, this.o);
+  }
+
+  /** The motion at time t: translation to `tr`, rotation matrix to `rm`. */
+  private motionAt(t: number, tr: Float64Array, rm: Float64Array): void {
+    const d = this.drive;
+    if (d) {
+      const dt = t - d.t0;
+      for (let k = 0; k < 3; k++) tr[k] = d.translation[k] + d.velocity[k] * dt;
+      axisAngle(d.angularVelocity[0], d.angularVelocity[1], d.angularVelocity[2], dt, scratchR2);
+      eulerXYZInto(d.rotation[0], d.rotation[1], d.rotation[2], scratchE9);
+      mul3(scratchR2, scratchE9, rm);
+      return;
+    }
+    const times = this.keyTimes, vals = this.keyValues, n = times.length;
+    if (n === 0) { tr.fill(0); rm.set(IDENTITY); return; }
+    if (this.loop) {
+      const period = times[n - 1];
+      t -= Math.floor(t / period) * period;
+    }
+    // the key at or before t (binary search), and the fraction towards the next
+    let lo = 0, hi = n - 1;
+    if (t <= times[0]) hi = 0;
+    else if (t >= times[n - 1]) lo = hi = n - 1;
+    else {
+      while (hi - lo > 1) {
+        const mid = (lo + hi) >> 1;
+        if (times[mid] <= t) lo = mid; else hi = mid;
+      }
+    }
+    const f = hi === lo || times[hi] === times[lo] ? 0 : (t - times[lo]) / (times[hi] - times[lo]);
+    const a = 6 * (hi === 0 ? 0 : lo), b = 6 * hi;
+    for (let k = 0; k < 3; k++) {
+      tr[k] = vals[a + k] + f * (vals[b + k] - vals[a + k]);
+      scratchE[k] = vals[a + 3 + k] + f * (vals[b + 3 + k] - vals[a + 3 + k]);
+    }
+    eulerXYZInto(scratchE[0], scratchE[1], scratchE[2], rm);
+  }
+
+  /** The world transform of the shape's frame at time t: world = r·local + o. */
+  poseAt(t: number, r: Float64Array, o: Float64Array): void {
+    const pr = this.placeR, po = this.placeO, c = this.pivot;
+    if (!this.animated) { r.set(pr); o.set(po); return; }
+    const rm = scratchR;
+    this.motionAt(t, scratchT, rm);
+    mul3(rm, pr, r);
+    const qx = po[0] - c[0], qy = po[1] - c[1], qz = po[2] - c[2];
+    for (let k = 0; k < 3; k++) o[k] = rm[3 * k] * qx + rm[3 * k + 1] * qy + rm[3 * k + 2] * qz + c[k] + scratchT[k];
+  }
+
+  /** Puts the collider where it is at the end t1 of a substep that began at t0 [s], and its surface motion over it. */
+  moveTo(t0: number, t1: number): void {
+    if (!this.animated) { this.moving = false; return; }
+    const R = this.R, o = this.o, R0 = this.R0, o0 = this.o0, RD = this.RD, oD = this.oD;
+    this.poseAt(t0, R0, o0);
+    this.poseAt(t1, R, o);
+    // p at t1 came from R0·Rᵀ·(p − o) + o0
+    for (let i = 0; i < 3; i++) {
+      for (let j = 0; j < 3; j++) RD[3 * i + j] = R0[3 * i] * R[3 * j] + R0[3 * i + 1] * R[3 * j + 1] + R0[3 * i + 2] * R[3 * j + 2];
+    }
+    for (let i = 0; i < 3; i++) oD[i] = o0[i] - (RD[3 * i] * o[0] + RD[3 * i + 1] * o[1] + RD[3 * i + 2] * o[2]);
+    let moved = false;
+    for (let k = 0; k < 9 && !moved; k++) moved = RD[k] !== IDENTITY[k];
+    this.moving = moved || oD[0] !== 0 || oD[1] !== 0 || oD[2] !== 0;
+  }
+
+  /** How far the surface point now at p moved over the current substep [m], to out[0..2]. */
+  surfaceMotion(px: number, py: number, pz: number, out: Float64Array): void {
+    const D = this.RD, oD = this.oD;
+    out[0] = px - (D[0] * px + D[1] * py + D[2] * pz + oD[0]);
+    out[1] = py - (D[3] * px + D[4] * py + D[5] * pz + oD[1]);
+    out[2] = pz - (D[6] * px + D[7] * py + D[8] * pz + oD[2]);
+  }
+
+  /**
+   * [COLLIDER_SPHERE, cx, cy, cz, r] or [COLLIDER_FLOOR, height, 0, 0, 0] for a sphere or a level floor that does
+   * not move: the shapes the WebAssembly kernel's contact knows; undefined for any other (its contact then runs in
+   * the TypeScript reference).
+   */
+  get kernelRecord(): readonly number[] | undefined {
+    if (this.animated) return undefined;
+    const l = this.local, R = this.R, o = this.o;
+    if (l instanceof SphereCollider) return [COLLIDER_SPHERE, o[0], o[1], o[2], l.radius];
+    if (l instanceof FloorCollider && R[4] === 1) return [COLLIDER_FLOOR, o[1], 0, 0, 0];
+    return undefined;
+  }
+
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
+    const R = this.R;
+    const dx = px - this.o[0], dy = py - this.o[1], dz = pz - this.o[2];
+    const n = scratchN;
+    const d = this.local.signedDistance(
+      R[0] * dx + R[3] * dy + R[6] * dz, R[1] * dx + R[4] * dy + R[7] * dz, R[2] * dx + R[5] * dy + R[8] * dz, n, within,
+    );
+    if (d < within) {
+      normal[0] = R[0] * n[0] + R[1] * n[1] + R[2] * n[2];
+      normal[1] = R[3] * n[0] + R[4] * n[1] + R[5] * n[2];
+      normal[2] = R[6] * n[0] + R[7] * n[1] + R[8] * n[2];
+    }
+    return d;
+  }
+
+  triangleDeepest?(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, within?: number,
+  ): number {
+    const R = this.R, o = this.o, s = scratchTri;
+    toLocal(a, ia, R, o, s, 0); toLocal(b, ib, R, o, s, 3); toLocal(c, ic, R, o, s, 6);
+    const n = scratchN;
+    const d = this.local.triangleDeepest!(s, 0, s, 3, s, 6, bary, n, within);
+    if (within === undefined || d < within) {
+      normal[0] = R[0] * n[0] + R[1] * n[1] + R[2] * n[2];
+      normal[1] = R[3] * n[0] + R[4] * n[1] + R[5] * n[2];
+      normal[2] = R[6] * n[0] + R[7] * n[1] + R[8] * n[2];
+    }
+    return d;
+  }
+}
