@@ -16,7 +16,13 @@
  * point was at t0), so friction acts on the cloth's motion relative to the surface and a collider moving into the
  * cloth carries it along (phases.ts collide()).
  */
-import { COLLIDER_FLOOR, COLLIDER_SPHERE } from '../layout.generated.js';
+import {
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
+} from '../layout.generated.js';
+import { BoxCollider } from './box.js';
+import { CapsuleCollider } from './capsule.js';
+import { CylinderCollider } from './cylinder.js';
+import { PlaneCollider } from './plane.js';
 import { eulerXYZInto } from '../mesh/generators.js';
 import type { ColliderShape } from './shape.js';
 import { FloorCollider } from './floor.js';
@@ -99,10 +105,29 @@ function toLocal(v: Float32Array, iv: number, R: Float64Array, o: Float64Array, 
   s[at + 2] = R[2] * dx + R[5] * dy + R[8] * dz;
 }
 
+/** The type id and numbers of a shape built in its own frame by createColliders (colliders/index.ts). */
+function kernelShape(l: ColliderShape): [number, [number, number, number]] {
+  if (l instanceof SphereCollider) return [COLLIDER_SPHERE, [l.radius, 0, 0]];
+  if (l instanceof FloorCollider) return [COLLIDER_FLOOR, [0, 0, 0]];
+  if (l instanceof PlaneCollider) return [COLLIDER_PLANE, [0, 0, 0]];
+  if (l instanceof BoxCollider) return [COLLIDER_BOX, [l.halfExtents[0], l.halfExtents[1], l.halfExtents[2]]];
+  if (l instanceof CapsuleCollider) return [COLLIDER_CAPSULE, [l.b[1], l.radius, 0]];
+  if (l instanceof CylinderCollider) return [COLLIDER_CYLINDER, [l.radius, l.halfHeight, 0]];
+  return [0, [0, 0, 0]];
+}
+
 /** A collider shape in its own frame, placed and moved in the world (see the file's comment). */
 export class PosedCollider implements ColliderShape {
   readonly type: string;
   readonly minCurvatureRadius: number;
+  /** the shape's type id (COLLIDER_* of layout.generated.ts), what a kernel's record says first */
+  readonly typeId: number;
+  /**
+   * the shape's numbers in its own frame, as kernels read them: a sphere's radius; a box's half extents; a capsule's
+   * half length (its axis runs along y from −that to +that) and radius; a cylinder's radius and half height; none
+   * for a floor or a plane (the half-space y < 0)
+   */
+  readonly shapeParams: readonly [number, number, number];
   /** world = R·local + o at the end of the current substep; R row-major */
   readonly R = new Float64Array(9);
   readonly o = new Float64Array(3);
@@ -130,6 +155,7 @@ export class PosedCollider implements ColliderShape {
   ) {
     this.type = local.type;
     this.minCurvatureRadius = local.minCurvatureRadius;
+    [this.typeId, this.shapeParams] = kernelShape(local);
     this.placeR = new Float64Array(placeR);
     this.placeO = new Float64Array(placeO);
     this.pivot = new Float64Array(motion?.pivot ?? placeO);

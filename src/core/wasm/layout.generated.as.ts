@@ -10,6 +10,14 @@ export const BEND: i32 = 2;
 export const COLLIDER_SPHERE: i32 = 1;
 /** collider type id of a floor (a horizontal plane) */
 export const COLLIDER_FLOOR: i32 = 2;
+/** collider type id of a plane: the half-space y < 0 of its own frame */
+export const COLLIDER_PLANE: i32 = 3;
+/** collider type id of a box: half extents along its own axes */
+export const COLLIDER_BOX: i32 = 4;
+/** collider type id of a capsule: its axis from y = −half length to + half length of its own frame, and radius */
+export const COLLIDER_CAPSULE: i32 = 5;
+/** collider type id of a closed cylinder: radius and half height, its axis along its own y */
+export const COLLIDER_CYLINDER: i32 = 6;
 /** most colliders in a scene (schema), in the kernel's control block and in the GPU uniforms */
 export const MAX_COLLIDERS: i32 = 64;
 /** f64 per collider record in the kernel: type id, then up to five shape numbers */
