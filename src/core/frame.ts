@@ -52,7 +52,7 @@ export function runFrame(
   f.sub = 0;
   f.forced = false;
   const own = backend ? assignPhases(backend.phases, model, params) : 0;
-  const phases = framePhases(state, params);
+  const phases = framePhases(model, state, params);
   runPhases(phases & SCOPE_PHASES['frame-start'], own, backend, model, state, params, log);
   const g = state.grabbed, x = state.positions, from = f.grabFrom;
   if (g >= 0) { from[0] = x[3 * g]; from[1] = x[3 * g + 1]; from[2] = x[3 * g + 2]; }

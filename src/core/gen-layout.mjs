@@ -20,20 +20,43 @@ export const CONSTANTS = [
   ['STRUCTURAL', 0, 'spring kind: along the grid lines (ClothModel.springKinds, colour batches, the kernel)'],
   ['SHEAR', 1, 'spring kind: across a quad'],
   ['BEND', 2, 'spring kind: skip-one, for bending (no stretch cap)'],
-  ['COLLIDER_SPHERE', 1, 'collider type id of a sphere: ColliderShape.kernelRecord[0], the GPU Collider.kind'],
+  ['COLLIDER_SPHERE', 1, 'collider type id of a sphere: PosedCollider.typeId, the kernel record\'s TYPE, the GPU Collider.kind'],
   ['COLLIDER_FLOOR', 2, 'collider type id of a floor (a horizontal plane)'],
   ['COLLIDER_PLANE', 3, 'collider type id of a plane: the half-space y < 0 of its own frame'],
   ['COLLIDER_BOX', 4, 'collider type id of a box: half extents along its own axes'],
   ['COLLIDER_CAPSULE', 5, 'collider type id of a capsule: its axis from y = −half length to + half length of its own frame, and radius'],
   ['COLLIDER_CYLINDER', 6, 'collider type id of a closed cylinder: radius and half height, its axis along its own y'],
   ['MAX_COLLIDERS', 64, 'most colliders in a scene (schema), in the kernel\'s control block and in the GPU uniforms'],
-  ['COLLIDER_RECORD_FLOATS', 6, 'f64 per collider record in the kernel: type id, then up to five shape numbers'],
   ['KERNEL_MAX_THREADS', 16, 'most threads one kernel runs (one run counter each in the control block)'],
   ['KERNEL_FLAG_FORCES', 1, 'kernel substep flag: external forces (wind) to integrate'],
   ['KERNEL_FLAG_ACCUMULATE', 2, 'kernel substep flag: λ accumulates across iterations'],
   ['KERNEL_FLAG_STORE_LAMBDA', 4, 'kernel substep flag: λ is written back'],
   ['KERNEL_FLAG_TRACE', 8, 'kernel substep flag: thread 0 lists the phases it runs in TRACE (tests)'],
 ];
+
+/**
+ * A collider record of the WebAssembly kernel's control block (PosedCollider.writeRecord, contact.as.ts), f64s in
+ * order: [field, count, what it is]. Generates COLLIDER_RECORD_<FIELD> (its first float) and
+ * COLLIDER_RECORD_FLOATS (the record's length).
+ */
+export const COLLIDER_RECORD = [
+  ['TYPE', 1, 'the shape\'s type id (COLLIDER_*)'],
+  ['MOVING', 1, '1 where the surface moves over the substep (then RD, OD apply), else 0'],
+  ['EXACT', 1, '1 where the collider also has triangle contact (then its particle contact runs in f64, one particle at a time), else 0'],
+  ['SHAPE', 3, 'the shape\'s numbers in its own frame (PosedCollider.shapeParams) [m]'],
+  ['R', 9, 'rotation of its frame at the substep\'s end, row-major: world = R·local + O'],
+  ['O', 3, 'origin of its frame at the substep\'s end [m]'],
+  ['RD', 9, 'where a surface point now at p was at the substep\'s start: RD·p + OD (row-major)'],
+  ['OD', 3, 'the translation of that map [m]'],
+];
+{
+  let at = 0;
+  for (const [field, count, doc] of COLLIDER_RECORD) {
+    CONSTANTS.push([`COLLIDER_RECORD_${field}`, at, `collider record field at this f64 offset: ${doc}`]);
+    at += count;
+  }
+  CONSTANTS.push(['COLLIDER_RECORD_FLOATS', at, 'f64 per collider record in the kernel (COLLIDER_RECORD in gen-layout.mjs)']);
+}
 const C = Object.fromEntries(CONSTANTS.map(([name, value]) => [name, value]));
 
 const BOTH = ['xpbd', 'mass-spring'];
@@ -41,7 +64,7 @@ const BOTH = ['xpbd', 'mass-spring'];
  * The phase schedule of one frame, in order: [name, scope, solvers, when, repeat, what it does]. A phase's id is its
  * row (0, 1, …), so ascending ids are the order and a set of phases is a bit mask. `scope`: 'frame-start' (once,
  * before the substeps), 'substep' (every substep), 'frame-end' (once, after them). `solvers`: the solver types whose
- * frame has it. `when`: 'always', 'wind' (the wind blows), 'grab' (a particle is grabbed) or 'carried' (a collider carries pins). `repeat`: the solvers
+ * frame has it. `when`: 'always', 'wind' (the wind blows), 'grab' (a particle is grabbed), 'carried' (a collider carries pins) or 'triangles' (a collider needs triangle contact at this mesh size: phases.ts needsTriangleContact). `repeat`: the solvers
  * for which it runs solver.iterations passes per substep (else one). Every backend walks this list (core/frame.ts
  * runFrame); docs/architecture.md says where a new phase goes in each.
  */
@@ -55,7 +78,8 @@ export const PHASES = [
   ['distance', 'substep', ['xpbd'], 'always', ['xpbd'], 'XPBD distance constraints, colour batch by colour batch'],
   ['tethers', 'substep', BOTH, 'always', [], 'long-range attachments to the nearest pin'],
   ['stretchLimit', 'substep', BOTH, 'always', ['mass-spring'], 'stretch limiting of structural and shear springs'],
-  ['contact', 'substep', BOTH, 'always', [], 'collider contact with friction: per collider, its particles, then its triangles where needed'],
+  ['contact', 'substep', BOTH, 'always', [], 'particle contact with friction against every collider, in order'],
+  ['contactTriangles', 'substep', BOTH, 'triangles', [], 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size'],
   ['velocities', 'frame-end', BOTH, 'always', [], 'v = (x − x_prev)/h of the last substep'],
 ];
 
@@ -105,7 +129,7 @@ export const CONTROL = [
   ['FRICTION', 'f64', 1, 'kinetic friction coefficient [-]'],
   ['STATIC_FRICTION', 'f64', 1, 'static friction coefficient [-]'],
   ['DEPENETRATION', 'f64', 1, 'depenetrationSpeed [m/s]'],
-  ['COLLIDER_RECORDS', 'f64', C.MAX_COLLIDERS * C.COLLIDER_RECORD_FLOATS, 'MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS: type id, then cx, cy, cz, r (sphere) or height (floor)'],
+  ['COLLIDER_RECORDS', 'f64', C.MAX_COLLIDERS * C.COLLIDER_RECORD_FLOATS, 'MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep'],
   ['PHASE', 'i32', 1, 'sequence number of the open phase (grows by one per phase, wraps)', true],
   ['DONE', 'i32', 1, 'chunks of the open phase completed and reported', true],
   ['PHASE_SLEEPERS', 'i32', 1, 'threads asleep waiting for a phase', true],

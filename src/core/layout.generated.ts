@@ -6,7 +6,7 @@ export const STRUCTURAL = 0;
 export const SHEAR = 1;
 /** spring kind: skip-one, for bending (no stretch cap) */
 export const BEND = 2;
-/** collider type id of a sphere: ColliderShape.kernelRecord[0], the GPU Collider.kind */
+/** collider type id of a sphere: PosedCollider.typeId, the kernel record's TYPE, the GPU Collider.kind */
 export const COLLIDER_SPHERE = 1;
 /** collider type id of a floor (a horizontal plane) */
 export const COLLIDER_FLOOR = 2;
@@ -20,8 +20,6 @@ export const COLLIDER_CAPSULE = 5;
 export const COLLIDER_CYLINDER = 6;
 /** most colliders in a scene (schema), in the kernel's control block and in the GPU uniforms */
 export const MAX_COLLIDERS = 64;
-/** f64 per collider record in the kernel: type id, then up to five shape numbers */
-export const COLLIDER_RECORD_FLOATS = 6;
 /** most threads one kernel runs (one run counter each in the control block) */
 export const KERNEL_MAX_THREADS = 16;
 /** kernel substep flag: external forces (wind) to integrate */
@@ -32,6 +30,24 @@ export const KERNEL_FLAG_ACCUMULATE = 2;
 export const KERNEL_FLAG_STORE_LAMBDA = 4;
 /** kernel substep flag: thread 0 lists the phases it runs in TRACE (tests) */
 export const KERNEL_FLAG_TRACE = 8;
+/** collider record field at this f64 offset: the shape's type id (COLLIDER_*) */
+export const COLLIDER_RECORD_TYPE = 0;
+/** collider record field at this f64 offset: 1 where the surface moves over the substep (then RD, OD apply), else 0 */
+export const COLLIDER_RECORD_MOVING = 1;
+/** collider record field at this f64 offset: 1 where the collider also has triangle contact (then its particle contact runs in f64, one particle at a time), else 0 */
+export const COLLIDER_RECORD_EXACT = 2;
+/** collider record field at this f64 offset: the shape's numbers in its own frame (PosedCollider.shapeParams) [m] */
+export const COLLIDER_RECORD_SHAPE = 3;
+/** collider record field at this f64 offset: rotation of its frame at the substep's end, row-major: world = R·local + O */
+export const COLLIDER_RECORD_R = 6;
+/** collider record field at this f64 offset: origin of its frame at the substep's end [m] */
+export const COLLIDER_RECORD_O = 15;
+/** collider record field at this f64 offset: where a surface point now at p was at the substep's start: RD·p + OD (row-major) */
+export const COLLIDER_RECORD_RD = 18;
+/** collider record field at this f64 offset: the translation of that map [m] */
+export const COLLIDER_RECORD_OD = 27;
+/** f64 per collider record in the kernel (COLLIDER_RECORD in gen-layout.mjs) */
+export const COLLIDER_RECORD_FLOATS = 30;
 
 /** Phase ids, in schedule order (PHASES in gen-layout.mjs): a set of phases is a mask of `1 << id`. */
 export const PHASE = {
@@ -53,13 +69,15 @@ export const PHASE = {
   tethers: 7,
   /** substep: stretch limiting of structural and shear springs */
   stretchLimit: 8,
-  /** substep: collider contact with friction: per collider, its particles, then its triangles where needed */
+  /** substep: particle contact with friction against every collider, in order */
   contact: 9,
+  /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
+  contactTriangles: 10,
   /** frame-end: v = (x − x_prev)/h of the last substep */
-  velocities: 10,
+  velocities: 11,
 } as const;
 /** Phases in the schedule. */
-export const PHASE_COUNT = 11;
+export const PHASE_COUNT = 12;
 /** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */
 export const SCHEDULE = [
   { id: 0, name: 'begin', scope: 'frame-start', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v' },
@@ -71,8 +89,9 @@ export const SCHEDULE = [
   { id: 6, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'always', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
   { id: 7, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'long-range attachments to the nearest pin' },
   { id: 8, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
-  { id: 9, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'collider contact with friction: per collider, its particles, then its triangles where needed' },
-  { id: 10, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
+  { id: 9, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
+  { id: 10, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
+  { id: 11, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
 ] as const;
 /** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */
 export const KERNEL_MAX_ITERATIONS = 255;
@@ -105,41 +124,41 @@ export const CTRL = {
   DESC: 48,
   /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
   TRACE_COUNT: 56,
-  /** i32 × 11: the ids of those phases, in the order thread 0 ran them */
+  /** i32 × 12: the ids of those phases, in the order thread 0 ran them */
   TRACE: 60,
   /** f64: substep length [s] */
-  H: 104,
+  H: 112,
   /** f64: ½ on the very first substep (Taylor start), else 1 */
-  TAYLOR: 112,
+  TAYLOR: 120,
   /** f64 × 3: gravitational acceleration [m/s²] */
-  GRAVITY: 120,
+  GRAVITY: 128,
   /** f64 × 3: where the grabbed particle is this substep [m] */
-  GRAB_AT: 144,
+  GRAB_AT: 152,
   /** f64: stretchFactor [-] */
-  STRETCH: 168,
+  STRETCH: 176,
   /** f64: damping β [N·s/m] */
-  DAMPING: 176,
+  DAMPING: 184,
   /** f64: contact thickness [m] */
-  THICKNESS: 184,
+  THICKNESS: 192,
   /** f64: kinetic friction coefficient [-] */
-  FRICTION: 192,
+  FRICTION: 200,
   /** f64: static friction coefficient [-] */
-  STATIC_FRICTION: 200,
+  STATIC_FRICTION: 208,
   /** f64: depenetrationSpeed [m/s] */
-  DEPENETRATION: 208,
-  /** f64 × 384: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS: type id, then cx, cy, cz, r (sphere) or height (floor) */
-  COLLIDER_RECORDS: 216,
+  DEPENETRATION: 216,
+  /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
+  COLLIDER_RECORDS: 224,
   /** i32: sequence number of the open phase (grows by one per phase, wraps) */
-  PHASE: 3328,
+  PHASE: 15616,
   /** i32: chunks of the open phase completed and reported */
-  DONE: 3392,
+  DONE: 15680,
   /** i32: threads asleep waiting for a phase */
-  PHASE_SLEEPERS: 3456,
+  PHASE_SLEEPERS: 15744,
   /** i64 × 16: per thread, on its own line: (phase << 32) | next chunk of its run (stride RUN_STRIDE) */
-  RUNS: 3520,
+  RUNS: 15808,
 } as const;
 
 /** Bytes of the control block; the kernel's arrays follow it. */
-export const CTRL_BYTES = 4544;
+export const CTRL_BYTES = 16832;
 /** Bytes between the threads' run counters. */
 export const RUN_STRIDE = 64;

@@ -163,9 +163,11 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
 }
 
 /**
- * Contact against every collider, for a substep of h [s]: particles first (pushed out to the contact thickness
- * along the surface normal, with friction), then triangles for shapes whose surface can poke between vertices (the
- * deepest point of the triangle is pushed out, its correction shared by barycentric weight and inverse mass).
+ * Particle contact against every collider, for a substep of h [s] (the `contact` phase): each particle within the
+ * contact thickness of a collider is pushed out along the surface normal, with friction. `collideTriangles` (the
+ * `contactTriangles` phase, next in the schedule) then does the triangles of shapes whose surface can poke between
+ * vertices (the deepest point of the triangle is pushed out, its correction shared by barycentric weight and
+ * inverse mass).
  *
  * Overlaps are resolved without launching the cloth. The push-out undoes at once whatever the contact point moved
  * into the surface during this substep; an overlap it did not move into (a cloth that begins inside a collider, or
@@ -178,12 +180,10 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
  * taken relative to its surface (the surface point's own motion over the substep subtracted): a collider moving
  * into the cloth pushes it at once and gives it its speed, and friction drags the cloth along a moving surface.
  */
-export function collide(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
+export function collideParticles(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
   const th = params.thickness;
   const recover = params.depenetrationSpeed * h;
-  // a particle can be the contact point of every triangle around it: they share its recovery
-  const triangleRecover = recover / Math.max(1, model.maxTriangleValence);
   const n = model.particleCount;
   for (const shape of params.colliders) {
     shape.moveTo(state.time, state.time + h);
@@ -210,8 +210,26 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams,
       const made = Math.min(mn + depth, depth);
       if (made > 0) { xp[j] += made * normal[0]; xp[j + 1] += made * normal[1]; xp[j + 2] += made * normal[2]; }
     }
+  }
+}
+
+/**
+ * Triangle contact against every collider that needs it at this mesh size (needsTriangleContact), for a substep of
+ * h [s] (the `contactTriangles` phase, after `contact`): the deepest point of each triangle near the surface is
+ * pushed out to the contact thickness as a particle is (collideParticles), with friction relative to the surface,
+ * its correction shared by barycentric weight and inverse mass so that Σ bary_i·Δx_i is the wanted displacement.
+ */
+export function collideTriangles(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
+  const x = state.positions, xp = state.previousPositions, w = state.invMass;
+  const th = params.thickness;
+  // a particle can be the contact point of every triangle around it: they share its recovery
+  const triangleRecover = (params.depenetrationSpeed * h) / Math.max(1, model.maxTriangleValence);
+  for (const shape of params.colliders) {
     const triangleDeepest = shape.triangleDeepest;
     if (!triangleDeepest || !needsTriangleContact(model, shape, th)) continue;
+    // idempotent: where collideParticles put it for this substep
+    shape.moveTo(state.time, state.time + h);
+    const moving = shape.moving;
     const tri = model.triangles;
     const reach = th + 2 * model.maxTriangleEdge;
     for (let t = 0; t < tri.length; t += 3) {

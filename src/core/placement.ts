@@ -1,6 +1,6 @@
 /**
  * Whether a scene's cloth can start where the scene puts it. A cloth whose start pose lies partly inside a
- * collider is pushed out at its first contact (at rest: phases.ts collide() turns no push-out into velocity). That
+ * collider is pushed out at its first contact (at rest: phases.ts collideParticles() turns no push-out into velocity). That
  * is fine while the pushed-out cloth is still a cloth; the line is drawn where it is not:
  *   - a pinned particle inside a collider (a pin cannot be pushed out);
  *   - a particle that cannot be outside every collider at once (pushed out of one, it is inside another);

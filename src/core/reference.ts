@@ -7,7 +7,7 @@
 import type { FrameVars } from './frame.js';
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
-import { accumulateWind, beginStep, carryPinned, collide, integrate, limitStretch, moveGrabbed, updateVelocities } from './phases.js';
+import { accumulateWind, beginStep, carryPinned, collideParticles, collideTriangles, integrate, limitStretch, moveGrabbed, updateVelocities } from './phases.js';
 import { PHASE, PHASES, phasePasses, type PhaseName } from './schedule.js';
 import { accumulateSpringForces } from './solvers/mass-spring.js';
 import { solveDistanceConstraints } from './solvers/xpbd.js';
@@ -52,6 +52,7 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
     const passes = phasePasses(PHASE.stretchLimit, params);
     for (let it = 0; it < passes; it++) limitStretch(model, state, params);
   },
-  contact: (model, state, params, frame) => collide(model, state, params, frame.h),
+  contact: (model, state, params, frame) => collideParticles(model, state, params, frame.h),
+  contactTriangles: (model, state, params, frame) => collideTriangles(model, state, params, frame.h),
   velocities: (_model, state, _params, frame) => updateVelocities(state, frame.h),
 });

@@ -81,12 +81,14 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     expect(log.names()).toEqual(['begin (reference)', ...substep, ...substep, ...substep, 'velocities (reference)']);
   });
 
-  it('the kernel: triangle contact on a coarse cloth over the sphere is left to TypeScript (the whole contact phase)', () => {
+  it('the kernel: triangle contact on a coarse cloth over the sphere is left to TypeScript (its own phase, after the kernel\'s particle contact)', () => {
     const s = builtinScene('resolution'); // one face on the sphere: contact needs triangles
     const sim = new Simulation(s, { kernel: 'wasm' });
-    expect(assignPhases(KERNEL_PHASES, sim.model, sim.params) & (1 << PHASE.contact)).toBe(0);
+    const own = assignPhases(KERNEL_PHASES, sim.model, sim.params);
+    expect(own & (1 << PHASE.contact)).not.toBe(0);
+    expect(own & (1 << PHASE.contactTriangles)).toBe(0);
     const log = loggedFrame(sim, false);
-    const substep = ['integrate', 'distance', 'tethers', 'stretchLimit', 'contact (reference)'];
+    const substep = ['integrate', 'distance', 'tethers', 'stretchLimit', 'contact', 'contactTriangles (reference)'];
     expect(log.names()).toEqual(['begin (reference)', ...Array.from({ length: s.solver.substeps }, () => substep).flat(), 'velocities (reference)']);
     // and the cloth still comes to rest on the sphere
     sim.advance(180);
@@ -139,7 +141,8 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     expect(() => assignPhases(remote, sim.model, sim.params)).toThrow(/remote: it does not implement phase 'tethers'/);
     expect(() => assignPhases({ ...remote, phases: all, refusal: () => 'no such shape' }, sim.model, sim.params)).toThrow(/remote: no such shape/);
     expect(() => assignPhases({ ...remote, solvers: ['mass-spring'] }, sim.model, sim.params)).toThrow(/remote: only the mass-spring solver runs remotely \(params.solver is 'xpbd'\)/);
-    // all the XPBD frame's phases that these params can run (no pins carried by a collider: no carry)
-    expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params)).toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry));
+    // not the phases these params never make a frame run: no carried pins, no collider that needs triangle contact
+    expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params))
+      .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles));
   });
 });

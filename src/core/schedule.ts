@@ -8,6 +8,7 @@
 import { PHASE, PHASE_COUNT, SCHEDULE } from './layout.generated.js';
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
+import { needsTriangleContact } from './phases.js';
 import type { SolverType } from './scene.js';
 import type { ClothState } from './state.js';
 
@@ -19,8 +20,11 @@ export type PhaseName = keyof typeof PHASE;
 export type PhaseId = (typeof PHASE)[PhaseName];
 /** When a phase runs: once before the substeps, every substep, or once after them. */
 export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
-/** What a phase needs to be part of a frame: nothing, the wind blowing, a grabbed particle, or pins a collider carries. */
-export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried';
+/**
+ * What a phase needs to be part of a frame: nothing, the wind blowing, a grabbed particle, pins a collider carries,
+ * or a collider whose surface can poke between the cloth's vertices (phases.ts needsTriangleContact).
+ */
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -55,6 +59,7 @@ export const SCOPE_PHASES: Readonly<Record<PhaseScope, number>> = {
 const WIND_PHASES = maskOf((p) => p.when === 'wind');
 const GRAB_PHASES = maskOf((p) => p.when === 'grab');
 const CARRY_PHASES = maskOf((p) => p.when === 'carried');
+const TRIANGLE_PHASES = maskOf((p) => p.when === 'triangles');
 
 /** The mask of the phases a frame of `solver` has. */
 export function solverPhases(solver: SolverType): number {
@@ -63,13 +68,23 @@ export function solverPhases(solver: SolverType): number {
   return mask;
 }
 
-/** The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab, carried pins). */
-export function framePhases(state: ClothState, params: SimParams): number {
+/**
+ * The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab, carried pins,
+ * a collider that needs triangle contact on this model).
+ */
+export function framePhases(model: ClothModel, state: ClothState, params: SimParams): number {
   let mask = solverPhases(params.solver);
   if (!params.wind.enabled) mask &= ~WIND_PHASES;
   if (state.grabbed < 0) mask &= ~GRAB_PHASES;
   if (params.carried.particles.length === 0) mask &= ~CARRY_PHASES;
+  if (!anyTriangleContact(model, params)) mask &= ~TRIANGLE_PHASES;
   return mask;
+}
+
+/** Whether some collider of params needs triangle contact on this model (phases.ts needsTriangleContact). */
+export function anyTriangleContact(model: ClothModel, params: SimParams): boolean {
+  for (const shape of params.colliders) if (needsTriangleContact(model, shape, params.thickness)) return true;
+  return false;
 }
 
 /** Passes of phase `id` per substep: params.iterations where the schedule repeats it for params.solver, else 1. */
@@ -112,8 +127,10 @@ export function assignPhases(backend: BackendPhases, model: ClothModel, params: 
     if (backend.sharesMemory) return 0;
     throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs ${backend.where} (params.solver is '${params.solver}')`);
   }
-  // the phases these params can make a frame run (the wind and a grab come and go; carried pins are the scene's)
-  const wanted = solverPhases(params.solver) & ~(params.carried.particles.length === 0 ? CARRY_PHASES : 0);
+  // the phases these params can make a frame run (the wind and a grab come and go; carried pins are the scene's,
+  // triangle contact the scene's and the mesh's)
+  const wanted = solverPhases(params.solver) & ~(params.carried.particles.length === 0 ? CARRY_PHASES : 0) &
+    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES);
   let own = 0;
   for (let id = 0; id < PHASE_COUNT; id++) {
     const bit = 1 << id;

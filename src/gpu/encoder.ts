@@ -62,8 +62,9 @@ export const GPU_PHASES: BackendPhases = {
   sharesMemory: false,
   solvers: ['xpbd'],
   phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) |
-    (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.contact) | (1 << PHASE.velocities),
-  refusal: (id: PhaseId, _model: ClothModel, params: SimParams) => (id === PHASE.contact ? contactRefusal(params) : null),
+    (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
+  refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
+    (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null),
 };
 
 /** Encodes a cloth's frames: the frame loop's phases as dispatches. */
@@ -142,8 +143,12 @@ export class FrameEncoder implements PhaseBackend {
           break;
         }
         case PHASE.contact:
-          for (const c of u.collidePasses) this.dispatch(c.kernel, c.count, so, c.record * RECORD_STRIDE);
+        case PHASE.contactTriangles: {
+          // the particle passes (every collider, in order), then in the next phase the triangle passes
+          const kernel = id === PHASE.contact ? 'collideParticles' : 'collideTriangles';
+          for (const c of u.collidePasses) if (c.kernel === kernel) this.dispatch(c.kernel, c.count, so, c.record * RECORD_STRIDE);
           break;
+        }
         case PHASE.velocities: this.dispatch('velocities', particles, so, 0); break;
         default: continue; // not a GPU phase: assignPhases never hands it one
       }

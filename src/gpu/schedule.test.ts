@@ -36,8 +36,11 @@ function expected(substeps: number, wind: boolean, grabbed: boolean): PhaseName[
 describe('what the GPU implements of the schedule', () => {
   test('every phase of an XPBD frame: none is left to the TypeScript reference', () => {
     const sim = new Simulation(windyScene(), { kernel: 'ts' });
-    // but carry, which a frame runs only for pins a collider carries (none here)
-    expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(solverPhases('xpbd') & ~(1 << PHASE.carry));
+    // but carry, which a frame runs only for pins a collider carries (none here), and triangle contact, only for a
+    // collider that needs it at this mesh size (none here; with one, the GPU runs it)
+    expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(solverPhases('xpbd') & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles));
+    const coarse = new Simulation(windyScene((s) => { s.cloth.resolution = 1; s.colliders = [{ type: 'sphere', center: [0, 0, 0], radius: 0.3 }]; }), { kernel: 'ts' });
+    expect(assignPhases(GPU_PHASES, coarse.model, coarse.params)).toBe(solverPhases('xpbd') & ~(1 << PHASE.carry));
   });
 
   test('pins a collider carries: refused by name (the GPU has no carry phase)', () => {

@@ -1,5 +1,5 @@
 import { eulerXYZ } from '../mesh/generators.js';
-import { closestPointOnSegment, goldenDeepest, segmentTriangleClosest, vertexDeepest } from './convex.js';
+import { goldenDeepest, segmentTriangleClosest, vertexDeepest } from './convex.js';
 import type { ColliderShape } from './shape.js';
 
 /**
@@ -13,6 +13,8 @@ export class BoxCollider implements ColliderShape {
   readonly r: readonly number[];
   /** radius of the bounding sphere [m] */
   private readonly bound: number;
+  /** whether it is turned at all (false: its axes are the frame's, as every box PosedCollider holds) */
+  private readonly turned: boolean;
   /** the 12 edges, world space: x0 y0 z0 x1 y1 z1 each */
   private readonly edges = new Float64Array(72);
   constructor(
@@ -21,6 +23,7 @@ export class BoxCollider implements ColliderShape {
     readonly rotation: readonly [number, number, number] = [0, 0, 0],
   ) {
     this.r = eulerXYZ(rotation);
+    this.turned = rotation[0] !== 0 || rotation[1] !== 0 || rotation[2] !== 0;
     this.bound = Math.hypot(halfExtents[0], halfExtents[1], halfExtents[2]);
     const corner = (k: number): number[] => {
       const l = [k & 1 ? halfExtents[0] : -halfExtents[0], k & 2 ? halfExtents[1] : -halfExtents[1], k & 4 ? halfExtents[2] : -halfExtents[2]];
@@ -42,11 +45,11 @@ export class BoxCollider implements ColliderShape {
       const far = this.bound + within;
       if (far > 0 && dx * dx + dy * dy + dz * dz >= far * far) return within;
     }
-    const r = this.r, h = this.halfExtents;
+    const r = this.r, h = this.halfExtents, turned = this.turned;
     // local coordinates: Rᵀ·d
-    const q0 = r[0] * dx + r[3] * dy + r[6] * dz;
-    const q1 = r[1] * dx + r[4] * dy + r[7] * dz;
-    const q2 = r[2] * dx + r[5] * dy + r[8] * dz;
+    const q0 = turned ? r[0] * dx + r[3] * dy + r[6] * dz : dx;
+    const q1 = turned ? r[1] * dx + r[4] * dy + r[7] * dz : dy;
+    const q2 = turned ? r[2] * dx + r[5] * dy + r[8] * dz : dz;
     const e0 = Math.abs(q0) - h[0], e1 = Math.abs(q1) - h[1], e2 = Math.abs(q2) - h[2];
     let l0: number, l1: number, l2: number, d: number;
     if (e0 > 0 || e1 > 0 || e2 > 0) {
@@ -61,6 +64,7 @@ export class BoxCollider implements ColliderShape {
       else if (e1 >= e2) { d = e1; l1 = q1 < 0 ? -1 : 1; }
       else { d = e2; l2 = q2 < 0 ? -1 : 1; }
     }
+    if (!turned) { normal[0] = l0; normal[1] = l1; normal[2] = l2; return d; }
     normal[0] = r[0] * l0 + r[1] * l1 + r[2] * l2;
     normal[1] = r[3] * l0 + r[4] * l1 + r[5] * l2;
     normal[2] = r[6] * l0 + r[7] * l1 + r[8] * l2;
@@ -121,8 +125,10 @@ export class BoxCollider implements ColliderShape {
     const E = this.edges;
     for (let e = 0; e < 72; e += 6) {
       // an edge farther from the triangle's centre than its reach plus the best so far cannot be nearer
-      const t = closestPointOnSegment(gx, gy, gz, [E[e], E[e + 1], E[e + 2]], [E[e + 3], E[e + 4], E[e + 5]]);
-      const qx = E[e] + t * (E[e + 3] - E[e]) - gx, qy = E[e + 1] + t * (E[e + 4] - E[e + 1]) - gy, qz = E[e + 2] + t * (E[e + 5] - E[e + 2]) - gz;
+      const ux = E[e + 3] - E[e], uy = E[e + 4] - E[e + 1], uz = E[e + 5] - E[e + 2];
+      const uu = ux * ux + uy * uy + uz * uz;
+      const t = uu > 0 ? Math.min(Math.max(((gx - E[e]) * ux + (gy - E[e + 1]) * uy + (gz - E[e + 2]) * uz) / uu, 0), 1) : 0;
+      const qx = E[e] + t * ux - gx, qy = E[e + 1] + t * uy - gy, qz = E[e + 2] + t * uz - gz;
       if (Math.sqrt(qx * qx + qy * qy + qz * qz) - reach >= best) continue;
       const d2 = segmentTriangleClosest(E[e], E[e + 1], E[e + 2], E[e + 3], E[e + 4], E[e + 5], ax, ay, az, bx, by, bz, cx, cy, cz, edgeBary, seg);
       if (d2 <= 1e-24) return goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal);

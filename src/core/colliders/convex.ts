@@ -175,36 +175,52 @@ export function goldenDeepest(
   a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
   bary: Float64Array, normal: Float64Array,
 ): number {
-  const ax = a[ia], ay = a[ia + 1], az = a[ia + 2];
-  const ux = b[ib] - ax, uy = b[ib + 1] - ay, uz = b[ib + 2] - az;
-  const vx = c[ic] - ax, vy = c[ic + 1] - ay, vz = c[ic + 2] - az;
-  let bestU = 0, bestV = 0, bestD = Infinity;
-  const f = (u: number, v: number): number => {
-    const d = shape.signedDistance(ax + u * ux + v * vx, ay + u * uy + v * vy, az + u * uz + v * vz, scratchN);
-    if (d < bestD) { bestD = d; bestU = u; bestV = v; }
-    return d;
-  };
-  const inner = (u: number): number => {
-    let lo = 0, hi = 1 - u;
-    let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
-    let f1 = f(u, x1), f2 = f(u, x2);
-    for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
-      if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = f(u, x1); }
-      else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = f(u, x2); }
-    }
-    // the ends of the range: a minimum on the triangle's boundary is found exactly
-    return Math.min(f1, f2, f(u, 0), f(u, 1 - u));
-  };
+  const g = golden;
+  g.shape = shape;
+  g.ax = a[ia]; g.ay = a[ia + 1]; g.az = a[ia + 2];
+  g.ux = b[ib] - g.ax; g.uy = b[ib + 1] - g.ay; g.uz = b[ib + 2] - g.az;
+  g.vx = c[ic] - g.ax; g.vy = c[ic + 1] - g.ay; g.vz = c[ic + 2] - g.az;
+  g.bestU = 0; g.bestV = 0; g.bestD = Infinity;
   let lo = 0, hi = 1;
   let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
-  let f1 = inner(x1), f2 = inner(x2);
+  let f1 = goldenInner(x1), f2 = goldenInner(x2);
   for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
-    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = inner(x1); }
-    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = inner(x2); }
+    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = goldenInner(x1); }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = goldenInner(x2); }
   }
-  inner(0); inner(1);
-  bary[0] = 1 - bestU - bestV; bary[1] = bestU; bary[2] = bestV;
-  return shape.signedDistance(ax + bestU * ux + bestV * vx, ay + bestU * uy + bestV * vy, az + bestU * uz + bestV * vz, normal);
+  goldenInner(0); goldenInner(1);
+  const u = g.bestU, v = g.bestV;
+  g.shape = null;
+  bary[0] = 1 - u - v; bary[1] = u; bary[2] = v;
+  return shape.signedDistance(g.ax + u * g.ux + v * g.vx, g.ay + u * g.uy + v * g.vy, g.az + u * g.uz + v * g.vz, normal);
+}
+
+/** The search's triangle (a + u·(b − a) + v·(c − a)), shape and best point so far: module state, no closure per call. */
+const golden = {
+  shape: null as ColliderShape | null,
+  ax: 0, ay: 0, az: 0, ux: 0, uy: 0, uz: 0, vx: 0, vy: 0, vz: 0,
+  bestU: 0, bestV: 0, bestD: Infinity,
+};
+
+/** f(u, v): the signed distance at (u, v), remembered if it is the best so far. */
+function goldenF(u: number, v: number): number {
+  const g = golden;
+  const d = g.shape!.signedDistance(g.ax + u * g.ux + v * g.vx, g.ay + u * g.uy + v * g.vy, g.az + u * g.uz + v * g.vz, scratchN);
+  if (d < g.bestD) { g.bestD = d; g.bestU = u; g.bestV = v; }
+  return d;
+}
+
+/** F(u) = min over v ∈ [0, 1 − u] of f(u, v), by golden-section search, the ends of the range included. */
+function goldenInner(u: number): number {
+  let lo = 0, hi = 1 - u;
+  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
+  let f1 = goldenF(u, x1), f2 = goldenF(u, x2);
+  for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
+    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = goldenF(u, x1); }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = goldenF(u, x2); }
+  }
+  // the ends of the range: a minimum on the triangle's boundary is found exactly
+  return Math.min(f1, f2, goldenF(u, 0), goldenF(u, 1 - u));
 }
 
 /** The deepest point of a triangle for a convex shape: the vertex certificate, else the golden-section search. */

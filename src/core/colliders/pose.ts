@@ -14,10 +14,11 @@
  * The contact phase calls `moveTo(t0, t1)` once per substep: the collider is where it is at the substep's end t1,
  * and `surfaceMotion` says how far the surface point now at p moved over the substep (p minus where that material
  * point was at t0), so friction acts on the cloth's motion relative to the surface and a collider moving into the
- * cloth carries it along (phases.ts collide()).
+ * cloth carries it along (phases.ts collideParticles()).
  */
 import {
-  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_RECORD_EXACT, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O,
+  COLLIDER_RECORD_OD, COLLIDER_RECORD_R, COLLIDER_RECORD_RD, COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_SPHERE,
 } from '../layout.generated.js';
 import { BoxCollider } from './box.js';
 import { CapsuleCollider } from './capsule.js';
@@ -268,8 +269,8 @@ export class PosedCollider implements ColliderShape {
 
   /**
    * [COLLIDER_SPHERE, cx, cy, cz, r] or [COLLIDER_FLOOR, height, 0, 0, 0] for a sphere or a level floor that does
-   * not move: the shapes the WebAssembly kernel's contact knows; undefined for any other (its contact then runs in
-   * the TypeScript reference).
+   * not move: the encoding the GPU's uniforms take (gpu/uniforms.ts gpuCollider); undefined for any other shape or
+   * motion. The WebAssembly kernel reads the full record instead (writeRecord).
    */
   get kernelRecord(): readonly number[] | undefined {
     if (this.animated) return undefined;
@@ -277,6 +278,23 @@ export class PosedCollider implements ColliderShape {
     if (l instanceof SphereCollider) return [COLLIDER_SPHERE, o[0], o[1], o[2], l.radius];
     if (l instanceof FloorCollider && R[4] === 1) return [COLLIDER_FLOOR, o[1], 0, 0, 0];
     return undefined;
+  }
+
+  /**
+   * The WebAssembly kernel's record of the collider for the current substep (after moveTo) to out[at…]: the fields
+   * of COLLIDER_RECORD (gen-layout.mjs), COLLIDER_RECORD_FLOATS numbers. `exact`: the collider also has triangle
+   * contact (its particle contact then runs in f64).
+   */
+  writeRecord(out: Float64Array, at: number, exact: boolean): void {
+    out[at + COLLIDER_RECORD_TYPE] = this.typeId;
+    out[at + COLLIDER_RECORD_MOVING] = this.moving ? 1 : 0;
+    out[at + COLLIDER_RECORD_EXACT] = exact ? 1 : 0;
+    const p = this.shapeParams;
+    out[at + COLLIDER_RECORD_SHAPE] = p[0]; out[at + COLLIDER_RECORD_SHAPE + 1] = p[1]; out[at + COLLIDER_RECORD_SHAPE + 2] = p[2];
+    out.set(this.R, at + COLLIDER_RECORD_R);
+    out.set(this.o, at + COLLIDER_RECORD_O);
+    out.set(this.RD, at + COLLIDER_RECORD_RD);
+    out.set(this.oD, at + COLLIDER_RECORD_OD);
   }
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {

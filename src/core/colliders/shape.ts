@@ -10,12 +10,6 @@ export interface ColliderShape {
    */
   readonly minCurvatureRadius: number;
   /**
-   * The shape as a record of the WebAssembly kernel's particle contact (wasm/xpbd.as.ts): [COLLIDER_SPHERE, cx, cy,
-   * cz, r] for a sphere, [COLLIDER_FLOOR, height, 0, 0, 0] for a floor (ids from layout.generated.ts), at most
-   * COLLIDER_RECORD_FLOATS numbers. A shape without one is handled by the TypeScript contact phase.
-   */
-  readonly kernelRecord?: readonly number[];
-  /**
    * Signed distance of point p from the surface [m] (negative inside), and the outward unit normal of the
    * closest surface point written to `normal[0..2]`. With `within`, a shape may return any value ≥ `within`
    * without writing the normal when the point is at least that far away (the contact loop's early out).

@@ -1,4 +1,3 @@
-import { COLLIDER_SPHERE } from '../layout.generated.js';
 import type { ColliderShape } from './shape.js';
 
 /**
@@ -52,15 +51,12 @@ export class SphereCollider implements ColliderShape {
   get minCurvatureRadius(): number {
     return this.radius;
   }
-  readonly kernelRecord: readonly number[];
   constructor(
     /** centre x [m] */ readonly cx: number,
     /** centre y [m] */ readonly cy: number,
     /** centre z [m] */ readonly cz: number,
     /** radius [m] */ readonly radius: number,
-  ) {
-    this.kernelRecord = [COLLIDER_SPHERE, cx, cy, cz, radius];
-  }
+  ) {}
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
     const dx = px - this.cx, dy = py - this.cy, dz = pz - this.cz;

@@ -4,11 +4,8 @@
  * on a ramp slides or stays as Coulomb's law says.
  */
 import { describe, expect, it } from 'vitest';
-import { FRAME_DT } from '../params.js';
-import { PhaseLog } from '../schedule.js';
-import { validateScene, type ColliderSpec, type Scene, type SolverType } from '../scene.js';
+import { validateScene, type ColliderSpec, type SolverType } from '../scene.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
-import { WasmBackend } from '../backend.js';
 
 const CASES: [SolverType, CpuKernel][] = [['xpbd', 'ts'], ['xpbd', 'wasm'], ['mass-spring', 'ts']];
 const cotton = { mass: 0.12, structuralStiffness: 8600, shearStiffness: 56, bendStiffness: 0.74, damping: 0.1, stretchFactor: 1.05, friction: 0.3, staticFriction: 0.4 };
@@ -140,20 +137,6 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const expected = 0.5 * 9.81 * (Math.sin(t) - cotton.friction * Math.cos(t));
     expect(slide(deg) / expected).toBeGreaterThan(0.98);
     expect(slide(deg) / expected).toBeLessThan(1.02);
-  });
-});
-
-describe('the WebAssembly kernel leaves contact with the new shapes to the TypeScript reference', () => {
-  it.each(['plane', 'box', 'capsule', 'cylinder'] as const)('%s: contact runs in the reference, the rest in the kernel', (type) => {
-    const sc: Scene = validateScene({ cloth: { resolution: 8 }, colliders: [{ type }] });
-    const sim = new Simulation(sc, { kernel: 'wasm' });
-    expect(sim.backend).toBeInstanceOf(WasmBackend);
-    const log = new PhaseLog();
-    (sim.backend as WasmBackend).kernel.frame(sim.model, sim.state, sim.params, FRAME_DT, log);
-    const names = log.names();
-    expect(names).toContain('contact (reference)');
-    expect(names).not.toContain('contact');
-    expect(names).toContain('distance');
   });
 });
 

@@ -6,7 +6,7 @@ export const STRUCTURAL: i32 = 0;
 export const SHEAR: i32 = 1;
 /** spring kind: skip-one, for bending (no stretch cap) */
 export const BEND: i32 = 2;
-/** collider type id of a sphere: ColliderShape.kernelRecord[0], the GPU Collider.kind */
+/** collider type id of a sphere: PosedCollider.typeId, the kernel record's TYPE, the GPU Collider.kind */
 export const COLLIDER_SPHERE: i32 = 1;
 /** collider type id of a floor (a horizontal plane) */
 export const COLLIDER_FLOOR: i32 = 2;
@@ -20,8 +20,6 @@ export const COLLIDER_CAPSULE: i32 = 5;
 export const COLLIDER_CYLINDER: i32 = 6;
 /** most colliders in a scene (schema), in the kernel's control block and in the GPU uniforms */
 export const MAX_COLLIDERS: i32 = 64;
-/** f64 per collider record in the kernel: type id, then up to five shape numbers */
-export const COLLIDER_RECORD_FLOATS: i32 = 6;
 /** most threads one kernel runs (one run counter each in the control block) */
 export const KERNEL_MAX_THREADS: i32 = 16;
 /** kernel substep flag: external forces (wind) to integrate */
@@ -32,6 +30,24 @@ export const KERNEL_FLAG_ACCUMULATE: i32 = 2;
 export const KERNEL_FLAG_STORE_LAMBDA: i32 = 4;
 /** kernel substep flag: thread 0 lists the phases it runs in TRACE (tests) */
 export const KERNEL_FLAG_TRACE: i32 = 8;
+/** collider record field at this f64 offset: the shape's type id (COLLIDER_*) */
+export const COLLIDER_RECORD_TYPE: i32 = 0;
+/** collider record field at this f64 offset: 1 where the surface moves over the substep (then RD, OD apply), else 0 */
+export const COLLIDER_RECORD_MOVING: i32 = 1;
+/** collider record field at this f64 offset: 1 where the collider also has triangle contact (then its particle contact runs in f64, one particle at a time), else 0 */
+export const COLLIDER_RECORD_EXACT: i32 = 2;
+/** collider record field at this f64 offset: the shape's numbers in its own frame (PosedCollider.shapeParams) [m] */
+export const COLLIDER_RECORD_SHAPE: i32 = 3;
+/** collider record field at this f64 offset: rotation of its frame at the substep's end, row-major: world = R·local + O */
+export const COLLIDER_RECORD_R: i32 = 6;
+/** collider record field at this f64 offset: origin of its frame at the substep's end [m] */
+export const COLLIDER_RECORD_O: i32 = 15;
+/** collider record field at this f64 offset: where a surface point now at p was at the substep's start: RD·p + OD (row-major) */
+export const COLLIDER_RECORD_RD: i32 = 18;
+/** collider record field at this f64 offset: the translation of that map [m] */
+export const COLLIDER_RECORD_OD: i32 = 27;
+/** f64 per collider record in the kernel (COLLIDER_RECORD in gen-layout.mjs) */
+export const COLLIDER_RECORD_FLOATS: i32 = 30;
 
 // Phase ids, in schedule order (PHASES in gen-layout.mjs): a set of phases is a mask of 1 << id.
 /** frame-start: effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v */
@@ -52,12 +68,14 @@ export const PHASE_DISTANCE: i32 = 6;
 export const PHASE_TETHERS: i32 = 7;
 /** substep: stretch limiting of structural and shear springs */
 export const PHASE_STRETCH_LIMIT: i32 = 8;
-/** substep: collider contact with friction: per collider, its particles, then its triangles where needed */
+/** substep: particle contact with friction against every collider, in order */
 export const PHASE_CONTACT: i32 = 9;
+/** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
+export const PHASE_CONTACT_TRIANGLES: i32 = 10;
 /** frame-end: v = (x − x_prev)/h of the last substep */
-export const PHASE_VELOCITIES: i32 = 10;
+export const PHASE_VELOCITIES: i32 = 11;
 /** Phases in the schedule. */
-export const PHASE_COUNT: i32 = 11;
+export const PHASE_COUNT: i32 = 12;
 
 // The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.
 /** sequence number of the substep's first phase: first bit */
@@ -104,37 +122,37 @@ export const SPIN_LIMIT: usize = 40;
 export const DESC: usize = 48;
 /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
 export const TRACE_COUNT: usize = 56;
-/** i32 × 11: the ids of those phases, in the order thread 0 ran them */
+/** i32 × 12: the ids of those phases, in the order thread 0 ran them */
 export const TRACE: usize = 60;
 /** f64: substep length [s] */
-export const H: usize = 104;
+export const H: usize = 112;
 /** f64: ½ on the very first substep (Taylor start), else 1 */
-export const TAYLOR: usize = 112;
+export const TAYLOR: usize = 120;
 /** f64 × 3: gravitational acceleration [m/s²] */
-export const GRAVITY: usize = 120;
+export const GRAVITY: usize = 128;
 /** f64 × 3: where the grabbed particle is this substep [m] */
-export const GRAB_AT: usize = 144;
+export const GRAB_AT: usize = 152;
 /** f64: stretchFactor [-] */
-export const STRETCH: usize = 168;
+export const STRETCH: usize = 176;
 /** f64: damping β [N·s/m] */
-export const DAMPING: usize = 176;
+export const DAMPING: usize = 184;
 /** f64: contact thickness [m] */
-export const THICKNESS: usize = 184;
+export const THICKNESS: usize = 192;
 /** f64: kinetic friction coefficient [-] */
-export const FRICTION: usize = 192;
+export const FRICTION: usize = 200;
 /** f64: static friction coefficient [-] */
-export const STATIC_FRICTION: usize = 200;
+export const STATIC_FRICTION: usize = 208;
 /** f64: depenetrationSpeed [m/s] */
-export const DEPENETRATION: usize = 208;
-/** f64 × 384: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS: type id, then cx, cy, cz, r (sphere) or height (floor) */
-export const COLLIDER_RECORDS: usize = 216;
+export const DEPENETRATION: usize = 216;
+/** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
+export const COLLIDER_RECORDS: usize = 224;
 /** i32: sequence number of the open phase (grows by one per phase, wraps) */
-export const PHASE: usize = 3328;
+export const PHASE: usize = 15616;
 /** i32: chunks of the open phase completed and reported */
-export const DONE: usize = 3392;
+export const DONE: usize = 15680;
 /** i32: threads asleep waiting for a phase */
-export const PHASE_SLEEPERS: usize = 3456;
+export const PHASE_SLEEPERS: usize = 15744;
 /** i64 × 16: per thread, on its own line: (phase << 32) | next chunk of its run (stride RUN_STRIDE) */
-export const RUNS: usize = 3520;
+export const RUNS: usize = 15808;
 /** Bytes between the threads' run counters. */
 export const RUN_STRIDE: usize = 64;

@@ -3,8 +3,9 @@
  * kernel's memory, so the TypeScript reference (reference.ts) and the kernel work on the same arrays with no copy.
  * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
  * (KERNEL_PHASES: integration, the grab, the distance constraints, tethers, stretch limiting, and particle contact
- * against colliders that have a kernel record) and runs each substep's run of them in one call; the phases it lacks
- * (the start and end of a frame, wind, triangle contact) run in TypeScript in their place in the schedule.
+ * against every analytic collider, moving or not) and runs each substep's run of them in one call; the phases it
+ * lacks (the start and end of a frame, wind, carried pins, triangle contact) run in TypeScript in their place in the
+ * schedule.
  *
  * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
  * (a Web Worker or a Node worker thread each) with helperInit(); until every helper has checked in, substeps run
@@ -26,16 +27,14 @@ import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
 /**
- * Why the kernel cannot do contact against these colliders, or null: it does particle contact against shapes with
- * a kernel record (ColliderShape.kernelRecord), so not when one has none or needs triangle contact at this mesh size.
+ * Why the kernel cannot do particle contact against these colliders, or null: it knows every analytic shape
+ * (PosedCollider.typeId, the COLLIDER_* ids), moving or not, up to MAX_COLLIDERS of them. (Triangle contact is
+ * the next phase, contactTriangles, which the kernel does not implement: it runs in TypeScript.)
  */
-function contactRefusal(model: ClothModel, params: SimParams): string | null {
+function contactRefusal(params: SimParams): string | null {
   const shapes = params.colliders;
   if (shapes.length > MAX_COLLIDERS) return 'more colliders than the control block holds';
-  for (let k = 0; k < shapes.length; k++) {
-    if (!shapes[k].kernelRecord) return 'a collider without a kernel record';
-    if (needsTriangleContact(model, shapes[k], params.thickness)) return 'a collider that needs triangle contact';
-  }
+  for (let k = 0; k < shapes.length; k++) if (shapes[k].typeId === 0) return 'a collider shape without a kernel type id';
   return null;
 }
 
@@ -47,7 +46,7 @@ export const KERNEL_PHASES: BackendPhases = {
   solvers: ['xpbd'],
   phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.tethers) |
     (1 << PHASE.stretchLimit) | (1 << PHASE.contact),
-  refusal: (id: PhaseId, model: ClothModel, params: SimParams) => (id === PHASE.contact ? contactRefusal(model, params) : null),
+  refusal: (id: PhaseId, _model: ClothModel, params: SimParams) => (id === PHASE.contact ? contactRefusal(params) : null),
 };
 
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
@@ -261,8 +260,8 @@ export class XpbdKernel implements PhaseBackend {
     this.helpers.length = 0;
   }
 
-  /** Per-frame scalars, the collider records when contact is the kernel's, and (new params) the compliances. */
-  private upload(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
+  /** Per-frame scalars and (new params) the compliances. */
+  private upload(state: ClothState, params: SimParams, h: number): void {
     if (params !== this.paramsSeen) {
       this.alpha.set(params.compliance);
       this.paramsSeen = params;
@@ -281,10 +280,6 @@ export class XpbdKernel implements PhaseBackend {
     i[CTRL.GRABBED / 4] = state.grabbed;
     // the schema's iterations (≤ 20) fit the substep descriptor's field
     i[CTRL.ITERATIONS / 4] = Math.min(KERNEL_MAX_ITERATIONS, phasePasses(PHASE.distance, params));
-    const shapes = params.colliders;
-    const contact = contactRefusal(model, params) === null;
-    if (contact) for (let k = 0; k < shapes.length; k++) f.set(shapes[k].kernelRecord!, CTRL.COLLIDER_RECORDS / 8 + k * COLLIDER_RECORD_FLOATS);
-    i[CTRL.COLLIDERS / 4] = contact ? shapes.length : 0;
   }
 
   /**
@@ -298,15 +293,16 @@ export class XpbdKernel implements PhaseBackend {
     const parallel = timed && this.mode.next();
     this.ctrlI32[CTRL.THREADS / 4] = parallel ? this.threads : 1;
     const t0 = timed ? performance.now() : 0;
-    this.upload(model, state, params, dt / params.substeps);
+    this.upload(state, params, dt / params.substeps);
     runFrame(model, state, params, dt, this, log);
     if (timed) this.mode.record((performance.now() - t0) / params.substeps);
   }
 
   /**
-   * The kernel's phases of `mask` (of one substep: frame.sub) in one substep() call; it lists what it ran for `log`.
+   * The kernel's phases of `mask` (of one substep: frame.sub, starting at state.time) in one substep() call, with
+   * the colliders' records of this substep when it has contact; it lists what it ran for `log`.
    */
-  run(mask: number, _model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
+  run(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
     const f = this.ctrlF64, i = this.ctrlI32;
     const accumulate = phasePasses(PHASE.distance, params) > 1;
     // λ starts from zero in every substep where it accumulates across passes
@@ -320,6 +316,15 @@ export class XpbdKernel implements PhaseBackend {
       f[CTRL.GRAB_AT / 8] = from[0] + (t[0] - from[0]) * frac;
       f[CTRL.GRAB_AT / 8 + 1] = from[1] + (t[1] - from[1]) * frac;
       f[CTRL.GRAB_AT / 8 + 2] = from[2] + (t[2] - from[2]) * frac;
+    }
+    if ((mask & (1 << PHASE.contact)) !== 0) {
+      // each collider where it is at the substep's end, and its surface motion over the substep
+      const shapes = params.colliders;
+      for (let k = 0; k < shapes.length; k++) {
+        shapes[k].moveTo(state.time, state.time + frame.h);
+        shapes[k].writeRecord(f, CTRL.COLLIDER_RECORDS / 8 + k * COLLIDER_RECORD_FLOATS, needsTriangleContact(model, shapes[k], params.thickness));
+      }
+      i[CTRL.COLLIDERS / 4] = shapes.length;
     }
     i[CTRL.SUBSTEP_PHASES / 4] = mask;
     this.exports.substep();
