@@ -1,3 +1,4 @@
+import type { MeshResolver } from './cloth-shape.js';
 import { createColliders, type ColliderShape } from './colliders/index.js';
 import type { ClothModel } from './model.js';
 import type { Scene, SolverType } from './scene.js';
@@ -59,7 +60,7 @@ const MASS_SPRING_DAMPING_MARGIN = 0.5;
 
 const fmt = (v: number) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
 
-export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): SimParams {
+export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, meshes?: MeshResolver): SimParams {
   const m = scene.material;
   const n = model.particleCount;
   const springCount = model.restLengths.length;
@@ -138,7 +139,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): S
       airDensity: scene.wind.airDensity,
       gusts: { ...scene.wind.gusts },
     },
-    colliders: createColliders(scene.colliders),
+    colliders: createColliders(scene.colliders, meshes),
     clamps,
   };
 }

@@ -42,6 +42,11 @@ export class TriangleBvh {
   readonly stack: Uint32Array;
   /** squared distance of the last `closest` hit */
   d2 = Infinity;
+  /**
+   * Unit normals of the triangles in leaf order (xyz), when the owner has them: `closest` then skips a triangle
+   * whose plane is already farther than the best (a dot product before the closest-point test).
+   */
+  normals: Float32Array | null = null;
 
   constructor(positions: Float32Array, triangles: Uint32Array) {
     const m = triangles.length / 3;
@@ -209,7 +214,7 @@ export class TriangleBvh {
    * Ties go to the triangle met first. Nearer child first; a node no nearer than the best so far is skipped.
    */
   closest(px: number, py: number, pz: number, max2: number, bary: Float64Array): number {
-    const nodes = this.nodes, tri = this.triangles, p = this.positions, stack = this.stack;
+    const nodes = this.nodes, tri = this.triangles, p = this.positions, stack = this.stack, nrm = this.normals;
     let best2 = max2, best = -1, top = 0;
     let n = 0;
     if (this.boxDistance2(0, px, py, pz) >= best2) return -1;
@@ -219,6 +224,10 @@ export class TriangleBvh {
         const first = nodes[2 * n];
         for (let t = first; t < first + count; t++) {
           const a = 3 * tri[3 * t], b = 3 * tri[3 * t + 1], c = 3 * tri[3 * t + 2];
+          if (nrm) {
+            const h = nrm[3 * t] * (px - p[a]) + nrm[3 * t + 1] * (py - p[a + 1]) + nrm[3 * t + 2] * (pz - p[a + 2]);
+            if (h * h >= best2) continue;
+          }
           closestPointOnTriangle(px, py, pz, p[a], p[a + 1], p[a + 2], p[b], p[b + 1], p[b + 2], p[c], p[c + 1], p[c + 2], scratchBary);
           const u = scratchBary[0], v = scratchBary[1], w = scratchBary[2];
           const dx = u * p[a] + v * p[b] + w * p[c] - px;

@@ -48,6 +48,9 @@ export const MAX_COLLIDER_TRIANGLES = 1_000_000;
 /** An edge whose faces turn by more than this [degrees] is sharp: it pokes into a cloth triangle of size e by ~e·sin(θ/2)/2. */
 export const SHARP_EDGE_DEGREES = 1;
 
+/** Cells of the coarse distance grid along the longest side of the mesh's box. */
+export const GRID_CELLS = 32;
+
 /** per-triangle flag: the triangle belongs to a closed piece (signed distance) */
 const SIGNED = 1;
 /** per-triangle flag: the triangle owns edge e (corner e → e + 1) and it is sharp: SHARP_EDGE << e */
@@ -82,6 +85,16 @@ export class MeshCollider implements ColliderShape {
   readonly openPieces: number;
   /** triangles dropped for having no area */
   readonly dropped: number;
+  /**
+   * A coarse grid over the root box (GRID_CELLS along its longest side): the signed distance at each cell's centre.
+   * sd is 1-Lipschitz, so a cell whose centre is more than `cellReach` (half its diagonal) from the surface is wholly
+   * on that side: a point there farther out than `within` needs no BVH query, and a point with nothing within
+   * `within` needs the unbounded query (for its sign) only where the grid cannot say it is outside.
+   */
+  readonly grid: Float32Array;
+  readonly gridCells: readonly [number, number, number];
+  private readonly cell: readonly [number, number, number];
+  private readonly cellReach: number;
 
   /**
    * A collider from a mesh in the local frame [m] (already scaled); `source` names it in errors (SceneError: no
@@ -237,6 +250,19 @@ export class MeshCollider implements ColliderShape {
         this.neighbours[3 * i + k] = nb[3 * t + k] < 0 ? -1 : inverse[nb[3 * t + k]];
       }
     }
+    this.bvh.normals = this.faceNormals;
+
+    // the grid of centre distances
+    const B = this.bvh.bounds, ext = [B[3] - B[0], B[4] - B[1], B[5] - B[2]], longest = Math.max(...ext);
+    const cells = ext.map((e) => Math.max(1, Math.ceil((GRID_CELLS * e) / longest))) as [number, number, number];
+    this.gridCells = cells;
+    this.cell = [ext[0] / cells[0], ext[1] / cells[1], ext[2] / cells[2]];
+    this.cellReach = 0.5 * Math.hypot(...this.cell) * (1 + 1e-6) + 1e-9 * longest;
+    this.grid = new Float32Array(cells[0] * cells[1] * cells[2]);
+    for (let k = 0, g = 0; k < cells[2]; k++) for (let j = 0; j < cells[1]; j++) for (let i = 0; i < cells[0]; i++, g++) {
+      const t = this.bvh.closest(B[0] + (i + 0.5) * this.cell[0], B[1] + (j + 0.5) * this.cell[1], B[2] + (k + 0.5) * this.cell[2], Infinity, bary);
+      this.grid[g] = this.distanceTo(t, B[0] + (i + 0.5) * this.cell[0], B[1] + (j + 0.5) * this.cell[1], B[2] + (k + 0.5) * this.cell[2], vn);
+    }
   }
 
   /** Triangles (after dropping those without area). */
@@ -248,10 +274,17 @@ export class MeshCollider implements ColliderShape {
     const bvh = this.bvh;
     let t: number;
     if (within > 0 && within !== Infinity) {
+      // the grid's bound: the centre's distance less the cell's reach
+      const B = bvh.bounds;
+      const i = Math.floor((px - B[0]) / this.cell[0]), j = Math.floor((py - B[1]) / this.cell[1]), k = Math.floor((pz - B[2]) / this.cell[2]);
+      const c = this.gridCells, inGrid = i >= 0 && j >= 0 && k >= 0 && i < c[0] && j < c[1] && k < c[2];
+      const centre = inGrid ? this.grid[i + c[0] * (j + c[1] * k)] : 0;
+      if (inGrid && centre - this.cellReach >= within) return within;
       t = bvh.closest(px, py, pz, within * within, bary);
       if (t < 0) {
-        // nothing within reach: outside, unless the point is in the box of a closed piece
-        if (this.closedPieces === 0 || bvh.boxDistance2(0, px, py, pz) > 0) return within;
+        // nothing within reach: outside, unless the point may be inside a closed piece (in its box, and the grid
+        // cannot say it is out)
+        if (this.closedPieces === 0 || !inGrid || centre > this.cellReach) return within;
         t = bvh.closest(px, py, pz, Infinity, bary);
       }
     } else {
@@ -306,6 +339,11 @@ export class MeshCollider implements ColliderShape {
     if (this.sharpEdges === 0) return this.vertexDeepest(a, ia, b, ib, c, ic, baryOut, normal);
     const lx = Math.min(ax, bx, cx), ly = Math.min(ay, by, cy), lz = Math.min(az, bz, cz);
     const hx = Math.max(ax, bx, cx), hy = Math.max(ay, by, cy), hz = Math.max(az, bz, cz);
+    // the triangle's unit normal and plane offset: an edge wholly farther than the best from its plane is skipped
+    let tnx = (by - ay) * (cz - az) - (bz - az) * (cy - ay), tny = (bz - az) * (cx - ax) - (bx - ax) * (cz - az), tnz = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+    const tl = Math.hypot(tnx, tny, tnz);
+    if (tl > 0) { tnx /= tl; tny /= tl; tnz /= tl; }
+    const toff = tnx * ax + tny * ay + tnz * az;
     const bvh = this.bvh, nodes = bvh.nodes, bounds = bvh.bounds, tri = bvh.triangles, p = bvh.positions, stack = bvh.stack;
     const flags = this.flags;
     const bound2 = within === Infinity ? Infinity : Math.max(within, 0) ** 2;
@@ -334,6 +372,10 @@ export class MeshCollider implements ColliderShape {
             const gy = Math.max(Math.min(p[s + 1], p[q + 1]) - hy, ly - Math.max(p[s + 1], p[q + 1]), 0);
             const gz = Math.max(Math.min(p[s + 2], p[q + 2]) - hz, lz - Math.max(p[s + 2], p[q + 2]), 0);
             if (gx * gx + gy * gy + gz * gz > best2) continue;
+            if (tl > 0) {
+              const hs = tnx * p[s] + tny * p[s + 1] + tnz * p[s + 2] - toff, hq = tnx * p[q] + tny * p[q + 1] + tnz * p[q + 2] - toff;
+              if ((hs > 0 && hq > 0 && Math.min(hs, hq) ** 2 > best2) || (hs < 0 && hq < 0 && Math.max(hs, hq) ** 2 > best2)) continue;
+            }
             const d2 = segmentTriangleClosest(
               p[s], p[s + 1], p[s + 2], p[q], p[q + 1], p[q + 2], ax, ay, az, bx, by, bz, cx, cy, cz, edgeBary, segT,
             );

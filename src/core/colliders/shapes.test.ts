@@ -179,11 +179,13 @@ describe('the deepest point of a triangle, against sampling the triangle', () =>
 
 describe('scenes name the shapes', () => {
   it('COLLIDER_TYPES is the schema\'s list, and every field of every shape has a description and a default', () => {
-    const items = (sceneSchema.properties.colliders as unknown as { items: { oneOf: { properties: Record<string, { const?: string; description?: string; default?: unknown }> }[] } }).items;
+    const items = (sceneSchema.properties.colliders as unknown as { items: { oneOf: { required: string[]; properties: Record<string, { const?: string; description?: string; default?: unknown }> }[] } }).items;
     expect(items.oneOf.map((o) => o.properties.type.const)).toEqual([...COLLIDER_TYPES]);
     for (const o of items.oneOf) {
       for (const [key, field] of Object.entries(o.properties)) {
         if (key === 'type') continue;
+        // a required field (a mesh collider's file) has no default, and no unit
+        if (o.required.includes(key)) { expect(field.description).toBeTruthy(); expect(field.default).toBeUndefined(); continue; }
         expect(field.description, `${o.properties.type.const}.${key}`).toMatch(/\[.+\]$/); // ends with its unit
         expect(field.default, `${o.properties.type.const}.${key}`).toBeDefined();
       }
@@ -200,7 +202,7 @@ describe('scenes name the shapes', () => {
     expect(createColliders(s.colliders).map((c) => c.type)).toEqual(['plane', 'box', 'capsule', 'cylinder']);
   });
   it.each([
-    [{ type: 'cone' }, 'colliders[0].type: must be one of "sphere", "floor", "plane", "box", "capsule", "cylinder"'],
+    [{ type: 'cone' }, 'colliders[0].type: must be one of "sphere", "floor", "plane", "box", "capsule", "cylinder", "mesh"'],
     [{ type: 'box', halfExtents: [0.1, 0, 0.1] }, 'colliders[0].halfExtents[1]: must be >= 0.001'],
     [{ type: 'box', size: 1 }, 'colliders[0].size: unknown key'],
     [{ type: 'capsule', radius: -1 }, 'colliders[0].radius: must be >= 0.001'],
