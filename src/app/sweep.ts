@@ -125,6 +125,7 @@ function shifted(c: ColliderSpec, dx: number): ColliderSpec {
     case 'floor': return c;
     case 'plane': return { ...c, point: x(c.point) };
     case 'capsule': return { ...c, a: x(c.a), b: x(c.b) };
+    case 'mesh': return { ...c, position: x(c.position) };
     default: return { ...c, center: x(c.center) };
   }
 }

@@ -58,7 +58,7 @@ describe('drape run with the new collider shapes', () => {
     [{ type: 'cylinder', axis: [0, 0, 0] }, 'colliders[0].axis: must not be zero'],
     [{ type: 'cylinder', radius: 'wide' }, 'colliders[0].radius: must be number'],
     [{ type: 'plane', up: [0, 1, 0] }, 'colliders[0].up: unknown key'],
-    [{ type: 'torus' }, 'colliders[0].type: must be one of "sphere", "floor", "plane", "box", "capsule", "cylinder"'],
+    [{ type: 'torus' }, 'colliders[0].type: must be one of "sphere", "floor", "plane", "box", "capsule", "cylinder", "mesh"'],
   ])('%j: exit 2, one line naming the field', async (c, message) => {
     const r = await run('run', sceneFile([c]), '--frames', '1');
     expect(r.code).toBe(2);
@@ -72,5 +72,57 @@ describe('drape run with the new collider shapes', () => {
     const r = await run('run', path, '--frames', '5', '--set', 'colliders[0].halfExtents=[0.2,0,0.2]');
     expect(r.code).toBe(2);
     expect(r.err).toContain('colliders[0].halfExtents[1]: must be >= 0.001');
+  });
+});
+
+/** A folder with scene.json and a unit cube OBJ (standing on y = 0 in the file's own coordinates). */
+function meshSceneFile(collider: object, objText?: string): string {
+  const dir = mkdtempSync(join(tmpdir(), 'drape-mesh-collider-'));
+  writeFileSync(join(dir, 'cube.obj'), objText ?? [
+    'v -0.3 0 -0.3', 'v 0.3 0 -0.3', 'v 0.3 0 0.3', 'v -0.3 0 0.3', 'v -0.3 0.6 -0.3', 'v 0.3 0.6 -0.3', 'v 0.3 0.6 0.3', 'v -0.3 0.6 0.3',
+    'f 1 2 3 4', 'f 5 8 7 6', 'f 1 5 6 2', 'f 2 6 7 3', 'f 3 7 8 4', 'f 4 8 5 1',
+  ].join('\n'));
+  const path = join(dir, 'scene.json');
+  writeFileSync(path, JSON.stringify({ name: 'mesh', cloth: { resolution: 8, position: [0, 0.9, 0] }, colliders: [collider, { type: 'floor', height: 0 }] }));
+  return path;
+}
+
+describe('drape run with a mesh collider', () => {
+  it('a cube OBJ next to the scene file: the cloth lies on it, in the file\'s own coordinates', async () => {
+    const r = await run('run', meshSceneFile({ type: 'mesh', mesh: 'cube.obj' }), '--frames', '90', '--json');
+    expect(r.code, r.err).toBe(0);
+    const j = JSON.parse(r.out);
+    expect(j).toMatchObject({ backend: 'cpu', finite: true, particles: 81 });
+    expect(j.maxPenetration).toBeLessThanOrEqual(0.005);
+    expect(j.bounds.max[1]).toBeGreaterThan(0.6);
+    expect(j.bounds.max[1]).toBeLessThan(0.7);
+  });
+
+  it('scale, position and rotation place it', async () => {
+    const r = await run('run', meshSceneFile({ type: 'mesh', mesh: 'cube.obj', scale: 0.5, position: [0, 0.2, 0], rotation: [0, 45, 0] }), '--frames', '90', '--json');
+    expect(r.code, r.err).toBe(0);
+    const top = JSON.parse(r.out).bounds.max[1];
+    expect(top).toBeGreaterThan(0.5); // 0.2 + 0.3
+    expect(top).toBeLessThan(0.6);
+  });
+
+  it.each([
+    [{ type: 'mesh' }, undefined, 'colliders[0].mesh: required'],
+    [{ type: 'mesh', mesh: 'missing.obj' }, undefined, 'colliders[0].mesh: '],
+    [{ type: 'mesh', mesh: 'cube.stl' }, undefined, 'colliders[0].mesh: cube.stl: not a mesh file'],
+    [{ type: 'mesh', mesh: 'cube.obj' }, 'v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3', 'colliders[0].mesh: cube.obj: no triangle has any area'],
+    [{ type: 'mesh', mesh: 'cube.obj', scale: 0 }, undefined, 'colliders[0].scale: must be >= 0.000001'],
+  ])('%j: exit 2, one line naming the field', async (c, obj, message) => {
+    const r = await run('run', meshSceneFile(c, obj), '--frames', '1');
+    expect(r.code).toBe(2);
+    expect(r.err.split('\n')).toHaveLength(1);
+    expect(r.err).toContain(message);
+  });
+
+  it('--backend gpu refuses a mesh collider in one line naming it, exit 2', async () => {
+    const r = await run('run', meshSceneFile({ type: 'mesh', mesh: 'cube.obj' }), '--frames', '5', '--backend', 'gpu');
+    expect(r.code).toBe(2);
+    expect(r.err.split('\n')).toHaveLength(1);
+    expect(r.err).toContain('--backend gpu: mesh colliders run on the CPU only (colliders[0]');
   });
 });

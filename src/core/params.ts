@@ -1,3 +1,4 @@
+import type { MeshResolver } from './cloth-shape.js';
 import { createColliders, type PosedCollider } from './colliders/index.js';
 import type { ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
@@ -95,7 +96,7 @@ const MASS_SPRING_DAMPING_MARGIN = 0.5;
 
 const fmt = (v: number) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
 
-export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): SimParams {
+export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, meshes?: MeshResolver): SimParams {
   const m = scene.material;
   const n = model.particleCount;
   const springCount = model.restLengths.length;
@@ -152,7 +153,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT): S
   const len = Math.hypot(d[0], d[1], d[2]);
   const direction = new Float64Array(len > 0 ? [d[0] / len, d[1] / len, d[2] / len] : [0, 0, 0]);
 
-  const colliders = createColliders(scene.colliders);
+  const colliders = createColliders(scene.colliders, meshes);
   return {
     solver: scene.solver.type,
     substeps,

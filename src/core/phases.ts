@@ -240,7 +240,8 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       if (d >= th) continue;
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
       const denom = wa * bary[0] + wb * bary[1] + wc * bary[2];
-      if (denom === 0) continue;
+      // (not > 0: nothing free to move, or weights of a triangle too degenerate to have any)
+      if (!(denom > 0)) continue;
       // motion of the contact point over the substep so far, treated as a particle's above
       let mx = bary[0] * (x[3 * a] - xp[3 * a]) + bary[1] * (x[3 * b] - xp[3 * b]) + bary[2] * (x[3 * c] - xp[3 * c]);
       let my = bary[0] * (x[3 * a + 1] - xp[3 * a + 1]) + bary[1] * (x[3 * b + 1] - xp[3 * b + 1]) + bary[2] * (x[3 * c + 1] - xp[3 * c + 1]);

@@ -156,7 +156,7 @@ export const sceneSchema = {
     colliders: {
       type: 'array',
       maxItems: MAX_COLLIDERS,
-      description: 'colliders the cloth meets: sphere, floor, plane (any angle), box, capsule, cylinder; each may move (motion keys, or a pose the library sets each frame) and carry pins',
+      description: 'colliders the cloth meets: sphere, floor, plane (any angle), box, capsule, cylinder, mesh (a file); each may move (motion keys, or a pose the library sets each frame) and carry pins',
       default: [
         { type: 'sphere', center: [0, 0.5, 0], radius: 0.3 },
         { type: 'floor', height: 0 },
@@ -237,6 +237,20 @@ export const sceneSchema = {
               axis: vec3('direction of the axis (any length but zero) [-]', -1, 1, [0, 1, 0]),
               radius: { type: 'number', minimum: 0.001, maximum: 100, default: 0.2, description: 'radius [m]' },
               height: { type: 'number', minimum: 0.001, maximum: 200, default: 0.5, description: 'length along the axis, cap to cap [m]' },
+            },
+          },
+          {
+            type: 'object',
+            additionalProperties: false,
+            required: ['type', 'mesh'],
+            description: 'a triangle mesh from a file (a figure, a chair, a bowl, a terrain), kept in the file\'s own coordinates (a figure standing on y = 0 stays there): closed pieces are solids, open ones two-sided shells the cloth stays off on either side. Runs on the CPU only',
+            properties: {
+              type: { const: 'mesh' },
+              ...colliderCommon,
+              mesh: { type: 'string', minLength: 1, maxLength: 1000, description: 'OBJ or glTF (.obj, .gltf, .glb) file of the collider, relative to the scene file; at most 1,000,000 triangles' },
+              scale: { type: 'number', minimum: 1e-6, maximum: 1e6, default: 1, description: 'metres per unit of the mesh file: 0.01 for centimetres, 0.001 for millimetres, 0.0254 for inches [m]' },
+              position: vec3('where the file\'s origin goes [m]', -1000, 1000, [0, 0, 0]),
+              rotation: vec3('rotation about the file\'s origin, Euler XYZ as cloth.rotation [degrees]', -360, 360, [0, 0, 0]),
             },
           },
         ],

@@ -70,10 +70,11 @@ export type ColliderSpec = ColliderCommon & (
   | { type: 'plane'; point: Vec3; normal: Vec3 }
   | { type: 'box'; center: Vec3; halfExtents: Vec3; rotation: Vec3 }
   | { type: 'capsule'; a: Vec3; b: Vec3; radius: number }
-  | { type: 'cylinder'; center: Vec3; axis: Vec3; radius: number; height: number });
+  | { type: 'cylinder'; center: Vec3; axis: Vec3; radius: number; height: number }
+  | { type: 'mesh'; mesh: string; scale: number; position: Vec3; rotation: Vec3 });
 
 /** The collider `type`s a scene may name, in the schema's order. */
-export const COLLIDER_TYPES = ['sphere', 'floor', 'plane', 'box', 'capsule', 'cylinder'] as const;
+export const COLLIDER_TYPES = ['sphere', 'floor', 'plane', 'box', 'capsule', 'cylinder', 'mesh'] as const;
 
 /** Bad scene input: the message is one line and names the field. */
 export class SceneError extends Error {

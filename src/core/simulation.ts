@@ -138,7 +138,7 @@ export class Simulation {
     this.options = checkOptions(options);
     this.scene = validateScene(scene);
     this.model = modelFor(this.scene, this.options.meshes);
-    this.params = resolveParams(this.model, this.scene);
+    this.params = resolveParams(this.model, this.scene, FRAME_DT, this.options.meshes);
     const pins = scenePins(this.model, this.scene);
     checkPlacement(this.model, this.params.colliders, pins, this.scene.material.stretchFactor, sceneLabel(this.scene));
     this.backendNow = this.newBackend();
@@ -253,7 +253,7 @@ export class Simulation {
     const prev = this.scene;
     const rebuild = needsRebuild(prev, next);
     const model = rebuild ? modelFor(next, this.options.meshes) : this.model;
-    const params = resolveParams(model, next);
+    const params = resolveParams(model, next, FRAME_DT, this.options.meshes);
     const pins = scenePins(model, next);
     const pinsChanged = rebuild || JSON.stringify(pins) !== JSON.stringify(scenePins(this.model, prev));
     // a scene whose cloth cannot start outside its colliders is refused, and nothing changes

@@ -1,4 +1,5 @@
 /** The GPU solver's answer for the collider shapes it does not have: one line naming the shape, for the CLI and the app. */
+import { cubeMesh } from '../core/colliders/mesh-shapes.js';
 import { describe, expect, it } from 'vitest';
 import { COLLIDER_TYPES, createColliders, validateScene } from '../core/index.js';
 import { sceneRefusal } from './encoder.js';
@@ -15,8 +16,13 @@ describe('sceneRefusal', () => {
   });
   it('follows gpuCollider: a type is refused exactly when the GPU has no encoding for it', () => {
     for (const type of COLLIDER_TYPES) {
-      const scene = validateScene({ colliders: [{ type }] });
-      expect(sceneRefusal(scene) === null, type).toBe(gpuCollider(createColliders(scene.colliders)[0]) !== null);
+      // a mesh collider names its file (read here from memory)
+      const scene = validateScene({ colliders: [type === 'mesh' ? { type, mesh: 'cube.obj' } : { type }] });
+      expect(sceneRefusal(scene) === null, type).toBe(gpuCollider(createColliders(scene.colliders, () => cubeMesh())[0]) !== null);
     }
+  });
+  it('refuses a mesh collider by name and place, without reading its file', () => {
+    const scene = validateScene({ colliders: [{ type: 'sphere' }, { type: 'mesh', mesh: 'never-read.obj' }] });
+    expect(sceneRefusal(scene)).toBe('mesh colliders run on the CPU only (colliders[1]; the GPU has sphere and floor)');
   });
 });

@@ -40,6 +40,9 @@ export function sceneRefusal(scene: Scene): string | null {
 /** The colliders' part of sceneRefusal. */
 export function colliderRefusal(scene: Scene): string | null {
   if (scene.colliders.length > MAX_COLLIDERS) return `at most ${MAX_COLLIDERS} colliders (got ${scene.colliders.length})`;
+  // a mesh collider is refused by its type, before its file is read
+  const mesh = scene.colliders.findIndex((c) => c.type === 'mesh');
+  if (mesh >= 0) return `mesh colliders run on the CPU only (colliders[${mesh}]; the GPU has sphere and floor)`;
   const shapes = createColliders(scene.colliders);
   const k = shapes.findIndex((shape) => !gpuCollider(shape));
   if (k >= 0) {

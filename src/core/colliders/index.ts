@@ -1,8 +1,10 @@
+import type { MeshResolver } from '../cloth-shape.js';
 import type { ColliderSpec } from '../scene.js';
 import { BoxCollider } from './box.js';
 import { CapsuleCollider } from './capsule.js';
 import { CylinderCollider } from './cylinder.js';
 import { FloorCollider } from './floor.js';
+import { loadMeshCollider } from './mesh.js';
 import { PlaneCollider } from './plane.js';
 import { eulerXYZ } from '../mesh/generators.js';
 import { PosedCollider } from './pose.js';
@@ -16,6 +18,8 @@ export { PlaneCollider } from './plane.js';
 export { BoxCollider } from './box.js';
 export { CapsuleCollider } from './capsule.js';
 export { CylinderCollider } from './cylinder.js';
+export { MeshCollider, meshCollider, MAX_COLLIDER_TRIANGLES, SHARP_EDGE_DEGREES } from './mesh.js';
+export { TriangleBvh } from './bvh.js';
 
 const IDENTITY = [1, 0, 0, 0, 1, 0, 0, 0, 1];
 
@@ -40,8 +44,8 @@ export function frameOfAxis(u: readonly number[]): number[] {
  * Builds the colliders a scene's `colliders` list describes: each shape in its own frame (centred at the origin,
  * its axis or normal along y), placed where the scene puts it, moving as its `motion` says (pose.ts).
  */
-export function createColliders(specs: readonly ColliderSpec[]): PosedCollider[] {
-  return specs.map((s) => {
+export function createColliders(specs: readonly ColliderSpec[], meshes?: MeshResolver): PosedCollider[] {
+  return specs.map((s, k) => {
     switch (s.type) {
       case 'sphere':
         return new PosedCollider(new SphereCollider(0, 0, 0, s.radius), IDENTITY, s.center, s.motion);
@@ -59,6 +63,9 @@ export function createColliders(specs: readonly ColliderSpec[]): PosedCollider[]
       }
       case 'cylinder':
         return new PosedCollider(new CylinderCollider([0, 0, 0], [0, 1, 0], s.radius, s.height), frameOfAxis(s.axis), s.center, s.motion);
+      case 'mesh':
+        // built in the file's frame × scale, its origin placed at `position`
+        return new PosedCollider(loadMeshCollider(s.mesh, s.scale, `colliders[${k}].mesh`, meshes), eulerXYZ(s.rotation), s.position, s.motion);
     }
   });
 }

@@ -11,6 +11,7 @@ import { segmentSegmentClosest, segmentTriangleClosest } from './convex.js';
 import { CylinderCollider } from './cylinder.js';
 import { createColliders, type ColliderShape } from './index.js';
 import { PlaneCollider } from './plane.js';
+import { closestPointOnTriangle } from './sphere.js';
 
 const n = new Float64Array(3);
 function sd(shape: ColliderShape, p: number[]): [number, number[]] {
@@ -177,14 +178,29 @@ describe('the deepest point of a triangle, against sampling the triangle', () =>
   });
 });
 
+describe('degenerate triangles', () => {
+  it('the closest point of a triangle with two vertices at one point (a cloth crushed flat) is a finite point of it', () => {
+    const bary = new Float64Array(3);
+    // a = b: the face region's weights were 0/0 (NaN, which then moved the cloth to NaN)
+    const a = [0.32964012026786804, 0.10480558127164841, 0.6883440017700195];
+    closestPointOnTriangle(-0.664289659299075, -0.8352917385227836, -0.3671013275764734,
+      a[0], a[1], a[2], a[0], a[1], a[2], -1.9578124284744263, 0.4629322290420532, -0.6855067610740662, bary);
+    expect([...bary].every(Number.isFinite)).toBe(true);
+    expect(bary[0] + bary[1] + bary[2]).toBeCloseTo(1, 12);
+    for (let k = 0; k < 3; k++) expect(bary[k]).toBeGreaterThanOrEqual(0);
+  });
+});
+
 describe('scenes name the shapes', () => {
   it('COLLIDER_TYPES is the schema\'s list, and every field of every shape has a description and a default', () => {
-    const items = (sceneSchema.properties.colliders as unknown as { items: { oneOf: { properties: Record<string, { const?: string; description?: string; default?: unknown }> }[] } }).items;
+    const items = (sceneSchema.properties.colliders as unknown as { items: { oneOf: { required: string[]; properties: Record<string, { const?: string; description?: string; default?: unknown }> }[] } }).items;
     expect(items.oneOf.map((o) => o.properties.type.const)).toEqual([...COLLIDER_TYPES]);
     for (const o of items.oneOf) {
       for (const [key, field] of Object.entries(o.properties)) {
         // motion and pins are every collider's (checked below)
         if (key === 'type' || key === 'motion' || key === 'pins') continue;
+        // a required field (a mesh collider's file) has no default, and no unit
+        if (o.required.includes(key)) { expect(field.description).toBeTruthy(); expect(field.default).toBeUndefined(); continue; }
         expect(field.description, `${o.properties.type.const}.${key}`).toMatch(/\[.+\]$/); // ends with its unit
         expect(field.default, `${o.properties.type.const}.${key}`).toBeDefined();
       }
@@ -217,7 +233,7 @@ describe('scenes name the shapes', () => {
     expect(createColliders(s.colliders).map((c) => c.type)).toEqual(['plane', 'box', 'capsule', 'cylinder']);
   });
   it.each([
-    [{ type: 'cone' }, 'colliders[0].type: must be one of "sphere", "floor", "plane", "box", "capsule", "cylinder"'],
+    [{ type: 'cone' }, 'colliders[0].type: must be one of "sphere", "floor", "plane", "box", "capsule", "cylinder", "mesh"'],
     [{ type: 'box', halfExtents: [0.1, 0, 0.1] }, 'colliders[0].halfExtents[1]: must be >= 0.001'],
     [{ type: 'box', size: 1 }, 'colliders[0].size: unknown key'],
     [{ type: 'capsule', radius: -1 }, 'colliders[0].radius: must be >= 0.001'],

@@ -3,7 +3,8 @@ import type { ColliderShape } from './shape.js';
 /**
  * Closest point of triangle (a, b, c) to point p, as barycentric weights written to `bary`.
  * Region tests on the triangle's Voronoi regions (vertex, edge, face), as in Ericson, Real-Time Collision
- * Detection (2005), §5.1.5.
+ * Detection (2005), §5.1.5; a degenerate triangle (two vertices at one point, or all on a line) gets finite
+ * weights of a point of it, never 0/0.
  */
 export function closestPointOnTriangle(
   px: number, py: number, pz: number,
@@ -24,7 +25,8 @@ export function closestPointOnTriangle(
   if (d3 >= 0 && d4 <= d3) { bary[0] = 0; bary[1] = 1; bary[2] = 0; return; }
   const vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const v = d1 / (d1 - d3);
+    // (a zero-length edge, a = b, gives 0/0: its end a)
+    const v = d1 - d3 > 0 ? d1 / (d1 - d3) : 0;
     bary[0] = 1 - v; bary[1] = v; bary[2] = 0; return;
   }
   const cpx = px - cx, cpy = py - cy, cpz = pz - cz;
@@ -33,16 +35,24 @@ export function closestPointOnTriangle(
   if (d6 >= 0 && d5 <= d6) { bary[0] = 0; bary[1] = 0; bary[2] = 1; return; }
   const vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const w = d2 / (d2 - d6);
+    const w = d2 - d6 > 0 ? d2 / (d2 - d6) : 0;
     bary[0] = 1 - w; bary[1] = 0; bary[2] = w; return;
   }
   const va = d3 * d6 - d5 * d4;
   if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-    const w = (d4 - d3) / (d4 - d3 + (d5 - d6));
+    const e = d4 - d3 + (d5 - d6);
+    const w = e > 0 ? (d4 - d3) / e : 0;
     bary[0] = 0; bary[1] = 1 - w; bary[2] = w; return;
   }
-  const denom = 1 / (va + vb + vc);
-  const v = vb * denom, w = vc * denom;
+  const sum = va + vb + vc;
+  if (!(sum > 0)) {
+    // a degenerate (collinear) triangle whose rounding reached the face region: its nearest vertex
+    const da = apx * apx + apy * apy + apz * apz, db = bpx * bpx + bpy * bpy + bpz * bpz, dc = cpx * cpx + cpy * cpy + cpz * cpz;
+    const k = da <= db && da <= dc ? 0 : db <= dc ? 1 : 2;
+    bary[0] = k === 0 ? 1 : 0; bary[1] = k === 1 ? 1 : 0; bary[2] = k === 2 ? 1 : 0;
+    return;
+  }
+  const v = vb / sum, w = vc / sum;
   bary[0] = 1 - v - w; bary[1] = v; bary[2] = w;
 }
 

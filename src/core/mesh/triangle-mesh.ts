@@ -36,7 +36,7 @@ export const WELD_TOLERANCE = 1e-6;
 export const WELD_EDGE_FRACTION = 1e-3;
 
 /** The weld distance of a mesh [its units]: WELD_TOLERANCE of its size, at most WELD_EDGE_FRACTION of its median edge. */
-function weldTolerance(p: Float32Array, tri: Uint32Array, size: number): number {
+export function weldTolerance(p: Float32Array, tri: Uint32Array, size: number): number {
   const lengths = new Float64Array(tri.length);
   let count = 0;
   for (let k = 0; k < tri.length; k++) {
@@ -71,7 +71,7 @@ function extent(p: Float32Array): { size: number } {
  * units], found through a hash of cells 4·tol wide (only the cells within `tol` of the vertex are looked in, and a
  * cell holds only kept vertices, which are more than `tol` apart: at most 125 of them).
  */
-function weldMap(p: Float32Array, tol: number): Uint32Array {
+export function weldMap(p: Float32Array, tol: number): Uint32Array {
   const n = p.length / 3;
   const rep = new Uint32Array(n);
   const cells = new Map<string, number[]>();
