@@ -159,6 +159,8 @@ export class Backend {
         m.sim.state.positions.set(st.positions);
         m.sim.state.previousPositions.set(st.positions);
         m.sim.state.velocities.fill(0);
+        m.sim.state.residuals.fill(0);
+        m.sim.state.previousResiduals.fill(0);
         app.sim.upload(k, from.frame);
       }
     });

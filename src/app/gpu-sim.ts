@@ -282,6 +282,8 @@ export class GpuSim implements SimDriver {
     st.positions.set(good);
     st.previousPositions.set(good);
     st.velocities.fill(0);
+    st.residuals.fill(0);
+    st.previousResiduals.fill(0);
     st.lambdas.fill(0);
     m.grabbed = -1;
     release(st);

@@ -94,6 +94,9 @@ function handle(msg: ToWorker): void {
       st.positions.set(msg.positions);
       st.previousPositions.set(msg.previous);
       st.velocities.set(msg.velocities);
+      // positions come as float32: nothing finer than that
+      st.residuals.fill(0);
+      st.previousResiduals.fill(0);
       st.time = msg.time;
       st.substeps = msg.substeps;
       st.tethersStale = true;

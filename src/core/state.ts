@@ -9,6 +9,14 @@ export interface ClothState {
   readonly positions: Float32Array;
   /** positions at the start of the last substep [m], stride 3 */
   readonly previousPositions: Float32Array;
+  /**
+   * the part of each position finer than float32 resolves [m], stride 3: the position is positions + residuals.
+   * Integration keeps what rounding to float32 drops here, so that the small steps of gravity (g·h², 7·10⁻⁸ m at 200
+   * substeps) are not lost against a position's last bit (1.2·10⁻⁷ m at 1 m, 6·10⁻⁵ m at 1 km) (phases.ts integrate)
+   */
+  readonly residuals: Float32Array;
+  /** the residuals of previousPositions [m], stride 3 */
+  readonly previousResiduals: Float32Array;
   /** velocities at the end of the last step [m/s], stride 3 (a step derives them from positions) */
   readonly velocities: Float32Array;
   /** 1 where a particle is pinned (does not move), else 0 */
@@ -42,6 +50,8 @@ export interface ClothState {
 export interface StateArrays {
   positions: Float32Array;
   previousPositions: Float32Array;
+  residuals: Float32Array;
+  previousResiduals: Float32Array;
   velocities: Float32Array;
   invMass: Float32Array;
   forces: Float32Array;
@@ -59,6 +69,8 @@ export function createState(model: ClothModel, arrays?: StateArrays): ClothState
   const a: StateArrays = arrays ?? {
     positions: new Float32Array(3 * n),
     previousPositions: new Float32Array(3 * n),
+    residuals: new Float32Array(3 * n),
+    previousResiduals: new Float32Array(3 * n),
     velocities: new Float32Array(3 * n),
     invMass: new Float32Array(n),
     forces: new Float32Array(3 * n),
@@ -84,6 +96,8 @@ export function createState(model: ClothModel, arrays?: StateArrays): ClothState
 export function resetState(model: ClothModel, state: ClothState): void {
   state.positions.set(model.restPositions);
   state.previousPositions.set(model.restPositions);
+  state.residuals.fill(0);
+  state.previousResiduals.fill(0);
   state.velocities.fill(0);
   state.lambdas.fill(0);
   state.grabbed = -1;
@@ -140,6 +154,8 @@ export function release(state: ClothState): void {
 export function copyState(from: ClothState, to: ClothState): void {
   to.positions.set(from.positions);
   to.previousPositions.set(from.previousPositions);
+  to.residuals.set(from.residuals);
+  to.previousResiduals.set(from.previousResiduals);
   to.velocities.set(from.velocities);
   to.pinned.set(from.pinned);
   to.tethersStale = true;

@@ -32,7 +32,7 @@ export class ClothBuffers {
     const adjacency = triangleAdjacency(model);
 
     const counts: Record<BufferName, number> = {
-      positions: n, previous: n, velocities: n, invMass: n, baseInvMass: n, pinned: n,
+      positions: n, previous: n, residuals: n, previousResiduals: n, velocities: n, invMass: n, baseInvMass: n, pinned: n,
       springs: springCount, springData: springCount, lambdas: springCount, tethers: n,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
       normals: n, grabStart: 1,
@@ -92,11 +92,13 @@ export class ClothBuffers {
     if (springCount) this.device.queue.writeBuffer(this.buffers.springData, 0, data);
   }
 
-  /** A state's positions, previous positions and velocities. */
+  /** A state's positions, previous positions, their residuals and velocities. */
   writeParticles(state: ClothState): void {
     const q = this.device.queue;
     q.writeBuffer(this.buffers.positions, 0, toVec4(state.positions));
     q.writeBuffer(this.buffers.previous, 0, toVec4(state.previousPositions));
+    q.writeBuffer(this.buffers.residuals, 0, toVec4(state.residuals));
+    q.writeBuffer(this.buffers.previousResiduals, 0, toVec4(state.previousResiduals));
     q.writeBuffer(this.buffers.velocities, 0, toVec4(state.velocities));
   }
 

@@ -36,6 +36,10 @@ export const BUFFERS = {
   positions: { type: 'vec4f', bytes: 16 },
   /** positions at the start of the current substep [m] (x − h·v at the start of a frame) */
   previous: { type: 'vec4f', bytes: 16 },
+  /** the part of each position finer than float32 [m] (ClothState.residuals; precision.wgsl) */
+  residuals: { type: 'vec4f', bytes: 16 },
+  /** the residuals of `previous` [m] */
+  previousResiduals: { type: 'vec4f', bytes: 16 },
   /** [m/s] per particle, of the last substep of the last frame */
   velocities: { type: 'vec4f', bytes: 16 },
   /** effective inverse mass of this frame [1/kg]: 0 for pinned and grabbed particles (written by `prepare`) */
@@ -80,8 +84,9 @@ export const KERNELS = {
   prepare: {
     bindings: [
       ['baseInvMass', 'read'], ['pinned', 'read'], ['invMass', 'read_write'], ['positions', 'read'],
-      ['previous', 'read_write'], ['velocities', 'read'],
+      ['previous', 'read_write'], ['velocities', 'read'], ['residuals', 'read'], ['previousResiduals', 'read_write'],
     ],
+    libs: ['precision'],
   },
   /** accumulateWind, per triangle: F = ½ρ|v|(v·n)·area·n on the relative air velocity */
   wind: {
@@ -94,11 +99,12 @@ export const KERNELS = {
   integrate: {
     bindings: [
       ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['triForces', 'read'],
-      ['adjacency', 'read'],
+      ['adjacency', 'read'], ['residuals', 'read_write'], ['previousResiduals', 'read_write'],
     ],
+    libs: ['precision'],
   },
   /** moveGrabbed: the grabbed particle, one thread */
-  grab: { bindings: [['positions', 'read_write'], ['grabStart', 'read']] },
+  grab: { bindings: [['positions', 'read_write'], ['grabStart', 'read'], ['residuals', 'read_write']] },
   /** solveDistanceConstraints for one colour batch */
   solve: {
     bindings: [
@@ -125,7 +131,11 @@ export const KERNELS = {
     libs: ['colliders'],
   },
   /** updateVelocities, once per frame */
-  velocities: { bindings: [['positions', 'read'], ['previous', 'read'], ['velocities', 'read_write']] },
+  velocities: {
+    bindings: [
+      ['positions', 'read'], ['previous', 'read'], ['velocities', 'read_write'], ['residuals', 'read'], ['previousResiduals', 'read'],
+    ],
+  },
   /** vertex normals for rendering */
   normals: {
     bindings: [['positions', 'read'], ['triangles', 'read'], ['adjacency', 'read'], ['normals', 'read_write']],

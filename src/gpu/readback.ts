@@ -52,6 +52,10 @@ export class Readback {
       fromVec4(all.subarray(0, 4 * n), state.positions);
       fromVec4(all.subarray(4 * n, 8 * n), state.previousPositions);
       fromVec4(all.subarray(8 * n, 12 * n), state.velocities);
+      // the positions' residuals stay on the GPU: a state read back holds its positions to float32 (what a move
+      // to the CPU loses is below a position's last bit, once)
+      state.residuals.fill(0);
+      state.previousResiduals.fill(0);
       if (lambdaBytes) state.lambdas.set(all.subarray(12 * n, 12 * n + this.model.restLengths.length));
     } finally {
       staging.unmap();

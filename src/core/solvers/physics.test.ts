@@ -34,14 +34,23 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     for (let i = 0; i < sim.model.particleCount; i++) expect(Math.abs(sim.state.positions[3 * i + 1] - exact)).toBeLessThan(2e-4);
   });
 
-  it('free fall with 20 substeps stays within the float32 round-off bound', () => {
-    const sim = newSim(scene('custom', (s) => { s.colliders = []; s.solver.type = solver; s.cloth.resolution = 2; }));
-    const y0 = sim.state.positions[1];
-    sim.advance(60);
-    const n = 60 * sim.params.substeps;
-    const bound = 4 * 2 ** -24 * Math.pow(n, 1.5); // ~ulp(4 m)·N^1.5
-    expect(Math.abs(sim.state.positions[1] - (y0 - 0.5 * 9.81))).toBeLessThan(bound);
-    expect(bound).toBeLessThan(0.02);
+  it.each([
+    [1.2, 1], [1.2, 20], [1.2, 200], [100, 20], [300, 200], [-1000, 200], [1000, 1],
+  ])('free fall at y = %d m with %d substeps matches ½gt² (float32 positions keep their residuals)', (y, substeps) => {
+    // before the residuals: 7 % short at 200 substeps near the origin, 12 % long at 100 m, nothing fell at 300 m
+    const sim = newSim(scene('custom', (s) => {
+      s.colliders = []; s.solver = { ...s.solver, type: solver, substeps }; s.cloth.resolution = 2; s.cloth.position = [0, y, 0];
+    }));
+    const x = sim.state.positions, r = sim.state.residuals;
+    const y0 = x[1] + r[1];
+    for (const frames of [15, 45]) {
+      sim.advance(frames);
+      const t = sim.state.time, fell = y0 - (x[1] + r[1]);
+      // what is left is the residual's own float32 rounding, 2⁻²⁴ of up to half a position's last bit per step
+      // (2·10⁻¹² m at 1 km), integrated twice over up to 9000 steps: ≤ 10⁻⁵ of the fall (measured 1.8·10⁻⁶ at −1 km,
+      // 200 substeps; 0 to 10⁻⁷ elsewhere). The issue asked for 0.5 %.
+      expect(Math.abs(fell / (0.5 * 9.81 * t * t) - 1)).toBeLessThan(1e-5);
+    }
   });
 
   it.each([[100, 1], [2000, 0.2], [50, 4]])('a mass on a spring (k=%d N/m, M=%d kg) keeps its period 2π√(m/k) within 1%%', (k, M) => {
@@ -279,7 +288,8 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const sim = newSim(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 20; }));
     sim.advance(90);
     sim.set(path, value);
-    sim.advance(120);
+    // pushed out, the cloth may slide off the grown sphere onto the floor before it rests (mass-spring: at 2.5 s)
+    sim.advance(240);
     const r = sim.report();
     expect(r.finite).toBe(true);
     for (let k = 0; k < 3; k++) {

@@ -5,6 +5,10 @@
 export let X: usize = 0;
 /** previous positions, f32 × 3n */
 export let XP: usize = 0;
+/** residuals of the positions (the part finer than f32), f32 × 3n */
+export let XR: usize = 0;
+/** residuals of the previous positions, f32 × 3n */
+export let XPR: usize = 0;
 /** inverse masses, f32 × n */
 export let W: usize = 0;
 /** forces, f32 × 3n */
@@ -30,9 +34,9 @@ export let N: i32 = 0;
 
 /** Sets the arrays' byte offsets and the counts (the caller's layout, the same in every instance). */
 export function configure(
-  x: usize, xp: usize, w: usize, f: usize, lambda: usize, anchor: usize, tlen: usize,
+  x: usize, xp: usize, xr: usize, xpr: usize, w: usize, f: usize, lambda: usize, anchor: usize, tlen: usize,
   springs: usize, rest: usize, alpha: usize, batches: usize, batchCount: i32, particles: i32,
 ): void {
-  X = x; XP = xp; W = w; F = f; LAMBDA = lambda; ANCHOR = anchor; TLEN = tlen;
+  X = x; XP = xp; XR = xr; XPR = xpr; W = w; F = f; LAMBDA = lambda; ANCHOR = anchor; TLEN = tlen;
   SPRINGS = springs; REST = rest; ALPHA = alpha; BATCHES = batches; BATCH_COUNT = batchCount; N = particles;
 }

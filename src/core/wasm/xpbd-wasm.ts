@@ -162,7 +162,7 @@ export class XpbdKernel implements PhaseBackend {
     const n = model.particleCount, m = model.restLengths.length, nb = model.batches.length;
     let at = CTRL_BYTES;
     const take = (bytes: number) => { const p = at; at += Math.ceil(bytes / 16) * 16; return p; };
-    const X = take(12 * n), XP = take(12 * n), V = take(12 * n), W = take(4 * n), F = take(12 * n);
+    const X = take(12 * n), XP = take(12 * n), XR = take(12 * n), XPR = take(12 * n), V = take(12 * n), W = take(4 * n), F = take(12 * n);
     const LAMBDA = take(4 * m), ANCHOR = take(4 * n), TLEN = take(4 * n);
     const SPRINGS = take(8 * m), REST = take(4 * m), ALPHA = take(4 * m), BATCHES = take(12 * nb);
     const pages = Math.ceil(at / 65536);
@@ -170,7 +170,7 @@ export class XpbdKernel implements PhaseBackend {
       ? new WebAssembly.Memory({ initial: pages, maximum: pages, shared: true })
       : new WebAssembly.Memory({ initial: pages });
     const buf = this.memory.buffer;
-    this.layout = [X, XP, W, F, LAMBDA, ANCHOR, TLEN, SPRINGS, REST, ALPHA, BATCHES, nb, n];
+    this.layout = [X, XP, XR, XPR, W, F, LAMBDA, ANCHOR, TLEN, SPRINGS, REST, ALPHA, BATCHES, nb, n];
     this.exports = instantiateKernel(module, this.memory, this.layout);
     this.ctrlI32 = new Int32Array(buf, 0, CTRL_BYTES / 4);
     this.ctrlF64 = new Float64Array(buf, 0, CTRL_BYTES / 8);
@@ -184,6 +184,8 @@ export class XpbdKernel implements PhaseBackend {
     this.state = createState(model, {
       positions: new Float32Array(buf, X, 3 * n),
       previousPositions: new Float32Array(buf, XP, 3 * n),
+      residuals: new Float32Array(buf, XR, 3 * n),
+      previousResiduals: new Float32Array(buf, XPR, 3 * n),
       velocities: new Float32Array(buf, V, 3 * n),
       invMass: new Float32Array(buf, W, n),
       forces: new Float32Array(buf, F, 3 * n),

@@ -7,5 +7,7 @@
 fn main(@builtin(global_invocation_id) gid: vec3u) {
   if (gid.x != 0u || globals.grabbed < 0) { return; }
   let x0 = grabStart[0].xyz;
-  positions[u32(globals.grabbed)] = vec4f(x0 + (globals.grabTarget - x0) * sub.grabFraction, 0.0);
+  let g = u32(globals.grabbed);
+  positions[g] = vec4f(x0 + (globals.grabTarget - x0) * sub.grabFraction, 0.0);
+  residuals[g] = vec4f(0.0);
 }
