@@ -217,7 +217,7 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams,
     for (let t = 0; t < tri.length; t += 3) {
       const a = tri[t], b = tri[t + 1], c = tri[t + 2];
       // every point of a triangle stretched at most 2× lies within `reach` of vertex a
-      if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal, reach) > reach) continue;
+      if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal, reach) >= reach) continue;
       const d = triangleDeepest.call(shape, x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);
       if (d >= th) continue;
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
