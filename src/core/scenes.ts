@@ -32,7 +32,7 @@ function colliders(m: SceneMannequin): ColliderSpec[] {
 }
 
 /** The skirt: a tube round the waist, its top ring carried by the pelvis. */
-const skirtCloth = { shape: 'tube', orientation: 'hanging', resolution: 32, width: 0.38, height: 0.55, position: [0, 0.755, 0], rotation: [0, 0, 0] } as const;
+const skirtCloth = { shape: 'tube', orientation: 'hanging', resolution: 24, width: 0.38, height: 0.55, position: [0, 0.755, 0], rotation: [0, 0, 0] } as const;
 /** The top ring of a hanging tube: its particles (the generator's vertex order, which the model keeps) at the top. */
 function topRing(cloth: typeof skirtCloth): number[] {
   const x = tubeMesh(cloth).positions;
@@ -88,8 +88,9 @@ const BUILTIN: Record<string, object | (() => object)> = {
   cape: () => ({
     name: 'cape',
     description: 'A cotton cape hanging from the shoulders of a mannequin that turns 70° to either side and back',
-    cloth: { orientation: 'hanging', resolution: 24, width: 0.7, height: 1, position: [0, 0.92, -0.15] },
+    cloth: { orientation: 'hanging', resolution: 20, width: 0.7, height: 1, position: [0, 0.92, -0.15] },
     material: fabrics.cotton,
+    solver: { substeps: 10 },
     colliders: [...colliders(MANNEQUINS.cape()), { type: 'floor', height: 0 }],
   }),
   skirt: () => ({
@@ -97,6 +98,7 @@ const BUILTIN: Record<string, object | (() => object)> = {
     description: 'A silk skirt (a tube) held at the waist of a mannequin walking in place',
     cloth: skirtCloth,
     material: fabrics.silk,
+    solver: { substeps: 10 },
     colliders: [...colliders(MANNEQUINS.skirt()), { type: 'floor', height: 0 }],
   }),
   resolution: {
