@@ -39,7 +39,7 @@ describe('the mannequin in the app', () => {
   it('cape: the mannequin is drawn, turns as the cloth runs, and its animation is a control', async () => {
     const { page, errors } = await openApp(browser.context);
     await pause(page);
-    await loadScene(page, 'Cape (mannequin turning)');
+    await loadScene(page, 'Cape');
     await expect.poll(() => hook(page, 'sceneName')).toBe('cape');
     await pause(page);
     expect(await hook(page, 'colliders')).toEqual(['sphere', ...Array(14).fill('capsule')]);

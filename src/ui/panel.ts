@@ -21,8 +21,8 @@ export const SCENE_LABELS: Record<string, string> = {
   wind: 'Wind',
   pins: 'Pins',
   tablecloth: 'Tablecloth',
-  cape: 'Cape (mannequin turning)',
-  skirt: 'Skirt (mannequin walking)',
+  cape: 'Cape',
+  skirt: 'Skirt',
   resolution: 'Mesh Resolution',
 };
 
