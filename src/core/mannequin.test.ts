@@ -11,7 +11,7 @@ import {
   forwardKinematics, mannequinAngles, mannequinColliders, type MannequinOptions,
 } from './mannequin.js';
 import { validateScene, type SolverType } from './scene.js';
-import { builtinMannequin, builtinScene, withMannequin } from './scenes.js';
+import { builtinMannequin, builtinScene, sceneMannequin, withMannequin } from './scenes.js';
 import { Simulation, type CpuKernel } from './simulation.js';
 
 const CASES: [SolverType, CpuKernel][] = [['xpbd', 'ts'], ['xpbd', 'wasm'], ['mass-spring', 'ts']];
@@ -134,6 +134,11 @@ describe('the mannequin (forward kinematics and keys)', () => {
     expect(still.colliders[MANNEQUIN_PELVIS].pins).toEqual(scene.colliders[MANNEQUIN_PELVIS].pins);
     expect(still.colliders.every((c) => c.motion === undefined)).toBe(true);
     expect(still.colliders.at(-1)).toEqual(scene.colliders.at(-1));
+    // read back from the colliders (as the app does for a link): the pose and animation they were made with
+    expect(sceneMannequin(scene, 'skirt')?.options).toMatchObject({ pose: 'stand', animation: 'walk' });
+    expect(sceneMannequin(withMannequin(scene, m, { pose: 't-pose', animation: 'turn' }), 'skirt')?.options).toMatchObject({ pose: 't-pose', animation: 'turn' });
+    expect(sceneMannequin({ ...scene, colliders: scene.colliders.slice(1) }, 'skirt')).toBeUndefined();
+    expect(sceneMannequin(scene, 'cape')).toBeUndefined();
   });
 });
 
