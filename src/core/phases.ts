@@ -14,6 +14,8 @@ const wind = new Float64Array(3);
 const normal = new Float64Array(3);
 const bary = new Float64Array(3);
 const surface = new Float64Array(3);
+/** the cloth's bounding box this substep: min x, y, z, max x, y, z */
+const box = new Float64Array(6);
 
 /**
  * Start of a step of substep length h: effective inverse masses, tethers if the pins changed, and previous
@@ -185,8 +187,22 @@ export function collide(model: ClothModel, state: ClothState, params: SimParams,
   // a particle can be the contact point of every triangle around it: they share its recovery
   const triangleRecover = recover / Math.max(1, model.maxTriangleValence);
   const n = model.particleCount;
+  // the cloth's box (pinned particles too: a triangle from a pin to a free particle can touch): every particle and
+  // triangle point the contact below can move lies in it
+  box[0] = box[1] = box[2] = Infinity; box[3] = box[4] = box[5] = -Infinity;
+  for (let i = 0; i < n; i++) {
+    for (let k = 0; k < 3; k++) {
+      const v = x[3 * i + k];
+      if (v < box[k]) box[k] = v;
+      if (v > box[3 + k]) box[3 + k] = v;
+    }
+  }
   for (const shape of params.colliders) {
     shape.moveTo(state.time, state.time + h);
+    // a shape whose bounding ball is farther than the thickness from that box touches nothing this substep
+    const o = shape.o, reachBall = shape.boundingRadius + th;
+    const gx = Math.max(box[0] - o[0], 0, o[0] - box[3]), gy = Math.max(box[1] - o[1], 0, o[1] - box[4]), gz = Math.max(box[2] - o[2], 0, o[2] - box[5]);
+    if (gx * gx + gy * gy + gz * gz > reachBall * reachBall) continue;
     const moving = shape.moving;
     for (let i = 0; i < n; i++) {
       if (w[i] === 0) continue;
