@@ -1,8 +1,8 @@
 /**
  * The mannequin in the app: the `cape` scene loads from the scene menu, draws the mannequin's 15 parts, the cape
  * runs on the CPU worker, the drawn mannequin turns with the simulated time (its meshes posed from the same
- * keyframes the physics uses), and the panel's Mannequin controls pose it anew with the cloth going on. No errors,
- * no CSP violations. Explicit steps: nothing depends on the machine's speed.
+ * keyframes the physics uses), and the panel's Mannequin controls pose it anew with the cloth going on (and the link
+ * says so). No errors, no CSP violations. Explicit steps: nothing depends on the machine's speed.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
@@ -62,6 +62,8 @@ describe('the mannequin in the app', () => {
     // the animation control: 'none' holds the pose, so the mannequin is drawn back where it stands, the cloth going on
     await choose(page, 'mannequin.animation', 'none');
     await expect.poll(() => hook(page, 'mannequin')).toEqual({ pose: 'stand', animation: 'none' });
+    // the link says so in one key
+    await expect.poll(() => page.evaluate(() => location.hash)).toBe('#scene=cape&mannequin=stand,none');
     expect(await hook(page, 'frame')).toBeGreaterThanOrEqual(60);
     await step(page, 1);
     const held = (await drawnPoses(page))[chest];
