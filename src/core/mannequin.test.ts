@@ -124,6 +124,19 @@ describe('the mannequin (forward kinematics and keys)', () => {
     expect(chestAngle(4)).toBeCloseTo(0, 1);
   });
 
+  it('the skirt is carried by its whole top ring at the waist, the cape by its top edge at the shoulders', () => {
+    for (const [name, carrier, y] of [['skirt', MANNEQUIN_PELVIS, 1.03], ['cape', MANNEQUIN_CHEST, 1.42]] as const) {
+      const sim = new Simulation(builtinScene(name), { kernel: 'ts' });
+      const x = sim.model.restPositions, { particles, collider } = sim.params.carried;
+      let top = -Infinity;
+      for (let i = 1; i < x.length; i += 3) top = Math.max(top, x[i]);
+      const ring = Array.from({ length: x.length / 3 }, (_, i) => i).filter((i) => x[3 * i + 1] > top - 1e-6);
+      expect(top).toBeCloseTo(y, 5);
+      expect([...particles]).toEqual(ring);
+      expect(new Set(collider)).toEqual(new Set([carrier]));
+    }
+  });
+
   it('withMannequin re-poses a scene\'s mannequin and keeps its cloth, pins and other colliders', () => {
     const scene = builtinScene('skirt');
     const m = builtinMannequin('skirt')!;
