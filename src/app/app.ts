@@ -6,7 +6,7 @@
  * link (url-sync.ts) and the frame loop (loop.ts, hud-feed.ts); imported mesh files (meshes.ts, mesh-import.ts).
  * It holds no physics: everything it knows about the cloth comes from the core's model and the worker's frames.
  */
-import { SCENE_NAMES, builtinScene, type Scene } from '../core/index.js';
+import { SCENE_NAMES, builtinScene, type Scene, type SceneMannequin } from '../core/index.js';
 import type { ClothView, ViewName } from '../render/cloth-view.js';
 import { Stage } from '../render/stage.js';
 import { Hud } from '../ui/hud.js';
@@ -41,6 +41,8 @@ export class App {
   scene!: Scene;
   /** the scene dropdown's value: a built-in name, or '' for an imported scene */
   sceneKey = 'cotton-basic';
+  /** the scene's mannequin (a built-in scene's, as its colliders pose it now), or null: the panel's Mannequin controls */
+  mannequin: SceneMannequin | null = null;
   view: ViewName = 'shaded';
   pinTool = false;
   /** what the backend's size cap changed in the scene ('' when nothing): shown in the HUD until the next scene */

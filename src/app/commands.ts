@@ -3,7 +3,9 @@
  * parameter at a time, pins), play, pause, step, reset, view and camera, and the file and link buttons, which it
  * hands to their jobs. It is the panel's host and the pointer's; it reads the app's state and sends commands.
  */
-import { SceneError, builtinScene, isBuiltinScene, resolvePins, setScenePath, type PinPreset, type Scene } from '../core/index.js';
+import {
+  SceneError, builtinScene, isBuiltinScene, resolvePins, setScenePath, withMannequin, type MannequinOptions, type PinPreset, type Scene,
+} from '../core/index.js';
 import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import type { CameraPreset } from '../render/stage.js';
 import type { PanelHost, SweepLayout } from '../ui/panel.js';
@@ -28,6 +30,29 @@ export class Commands implements PanelHost, InteractionHost {
   get backendChoice() { return this.app.backend.choice; }
   get sim() { return this.app.sim; }
   get camera() { return this.app.stage.camera; }
+
+  /** the scene's mannequin's pose and animation, or null when it has none */
+  get mannequin(): MannequinOptions | null {
+    return this.app.mannequin?.options ?? null;
+  }
+
+  /**
+   * The Mannequin controls: the mannequin posed or moved anew (its colliders made again by mannequinColliders), the
+   * cloth going on as it is. A pose that cuts through the cloth is refused with a message, and nothing changes.
+   */
+  setMannequin(change: MannequinOptions): void {
+    const app = this.app, m = app.mannequin;
+    if (!m) return;
+    let next: Scene;
+    try {
+      next = withMannequin(app.scene, m, change);
+    } catch (e) {
+      app.overlay.message(refusal(e));
+      return;
+    }
+    if (this.setPath('colliders', next.colliders)) app.mannequin = { ...m, options: { ...m.options, ...change } };
+    app.panel.sync();
+  }
 
   /** largest resolution the panel offers now */
   get maxResolution(): number {

@@ -50,6 +50,10 @@ export interface DrapeHook {
   camera(): number[];
   /** the collider meshes the stage draws, by type (the floor is the stage's own) */
   colliders(): string[];
+  /** where each drawn collider mesh is now: position and quaternion (x, y, z, w), in the order of colliders() */
+  colliderPoses(): { position: number[]; quaternion: number[] }[];
+  /** the scene's mannequin's pose and animation, or null when it has none */
+  mannequin(): { pose?: string; animation?: string } | null;
   /** the text of the last message shown in the page, and its kind */
   lastMessage(): { text: string; kind: string };
   /** text of the floating labels (Mesh Resolution scene) */
@@ -116,6 +120,8 @@ export function installHook(app: App): DrapeHook {
     },
     camera: () => app.stage.camera.position.toArray(),
     colliders: () => app.stage.colliderNames(),
+    colliderPoses: () => app.stage.colliderPoses(),
+    mannequin: () => (app.mannequin ? { ...app.mannequin.options } : null),
     lastMessage: () => ({ text: app.overlay.lastMessage, kind: app.overlay.lastMessageKind }),
     labels: () => [...app.overlay.labelLayer.querySelectorAll('.drape-label')].map((l) => (l as HTMLElement).innerText.replace(/\s+/g, ' ').trim()),
     stats: () => ({

@@ -3,6 +3,7 @@
  * only when something changed, and measures the frame rate; the energy plot and the HUD text are refreshed a few
  * times a second.
  */
+import { FRAME_DT } from '../core/index.js';
 import type { App } from './app.js';
 import { GpuSim } from './gpu-sim.js';
 import { hudInfo } from './hud-feed.js';
@@ -46,6 +47,11 @@ export class FrameLoop {
     const redraw = app.dirty;
     if (app.dirty) {
       app.sim.mirrors.forEach((m, k) => app.views[k]?.update(m.sim.state, m.grabbed));
+      // colliders that move are drawn where they are at their cloth's time (the mirrors hold the same keyframes)
+      app.stage.poseColliders(
+        app.sim.mirrors.flatMap((m) => m.sim.params.colliders),
+        app.sim.mirrors.flatMap((m) => m.sim.params.colliders.map(() => m.frame * FRAME_DT)),
+      );
       app.dirty = false;
     }
     const moved = app.stage.updateControls();

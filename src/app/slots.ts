@@ -3,7 +3,7 @@
  * simulation, one view per slot, framing the camera, and putting things back after a refused change.
  */
 import { Box3, Vector3 } from 'three/webgpu';
-import { SceneError, type Scene } from '../core/index.js';
+import { SceneError, sceneMannequin, type Scene } from '../core/index.js';
 import { ClothView } from '../render/cloth-view.js';
 import { fabricFor, fabricLook } from '../render/textures.js';
 import type { App } from './app.js';
@@ -23,6 +23,7 @@ export class Slots {
     const before = { scene: app.scene as Scene | undefined, sceneKey: app.sceneKey, sweepIndex: app.sweep.index, capNote: app.capNote };
     app.scene = scene;
     app.sceneKey = key;
+    app.mannequin = sceneMannequin(scene, key) ?? null;
     app.sweep.index = 0;
     app.capNote = '';
     app.sweep.halted = false;
@@ -32,6 +33,7 @@ export class Slots {
       if (!(e instanceof SceneError) || !before.scene) throw e;
       app.scene = before.scene;
       app.sceneKey = before.sceneKey;
+      app.mannequin = sceneMannequin(before.scene, before.sceneKey) ?? null;
       app.sweep.index = before.sweepIndex;
       app.capNote = before.capNote;
       this.restore();

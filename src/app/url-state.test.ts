@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { builtinScene, setScenePath } from '../core/index.js';
+import { builtinMannequin, builtinScene, setScenePath, withMannequin } from '../core/index.js';
 import { decodeHash, encodeHash } from './url-state.js';
 
 describe('URL hash state', () => {
@@ -22,6 +22,17 @@ describe('URL hash state', () => {
     expect(back.scene).toEqual(scene);
     expect(back.base).toBe('cotton-basic');
     expect(back.view).toEqual({ view: 'strain', sweep: 'side-by-side' });
+  });
+
+  it('a mannequin posed anew is one key, not its colliders\' keys, and reads back as the same scene', () => {
+    const scene = setScenePath(withMannequin(builtinScene('cape'), builtinMannequin('cape')!, { pose: 't-pose', animation: 'walk' }), 'material.damping', 0.3);
+    const hash = encodeHash({ scene, base: 'cape', view: {} });
+    expect(hash).toBe('#scene=cape&mannequin=t-pose,walk&material.damping=0.3');
+    expect(decodeHash(hash)!.scene).toEqual(scene);
+    // unchanged: no key; a bad value or a scene without a mannequin: one line naming the key
+    expect(encodeHash({ scene: builtinScene('cape'), base: 'cape', view: {} })).toBe('#scene=cape');
+    expect(() => decodeHash('#scene=cape&mannequin=sit,walk')).toThrow(/^link: mannequin: must be pose,animation with pose one of stand, t-pose/);
+    expect(() => decodeHash('#scene=pins&mannequin=stand,walk')).toThrow("link: mannequin: scene 'pins' has no mannequin");
   });
 
   it('round-trips a mesh cloth (the link names the file; it cannot carry it)', () => {

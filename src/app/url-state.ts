@@ -5,8 +5,15 @@
  *   #scene=silk-drape&material.damping=0.3&wind.enabled=true&pins=["top-left"]&view=strain
  *
  * Values are JSON when they parse (numbers, booleans, arrays), otherwise strings. No DOM here: unit-tested.
+ *
+ * A scene whose mannequin (cape, skirt) was posed anew says so in one key, `mannequin=t-pose,walk` (pose,
+ * animation), instead of its colliders' keys: the diff is then taken against the built-in scene with its mannequin
+ * so posed (core withMannequin), and reading the link poses it so before any other key.
  */
-import { SCENE_NAMES, SceneError, builtinScene, isBuiltinScene, defaultScene, parseSetValue, setScenePath, type Scene } from '../core/index.js';
+import {
+  MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, SCENE_NAMES, SceneError, builtinMannequin, builtinScene, isBuiltinScene, defaultScene,
+  parseSetValue, sceneMannequin, setScenePath, withMannequin, type MannequinAnimation, type MannequinPose, type Scene,
+} from '../core/index.js';
 
 /** hash keys that are not scene paths */
 export const VIEW_KEYS = ['view', 'sweep', 'backend'] as const;
@@ -58,7 +65,14 @@ function encodeValue(v: Json): string {
 export function encodeHash(state: HashState): string {
   const parts: string[] = [];
   if (state.base) parts.push(`scene=${encodeURIComponent(state.base)}`);
-  const diff = sceneDiff(state.scene, baseScene(state.base));
+  let base = baseScene(state.base);
+  // a mannequin posed or moved anew: one key, and the diff against the built-in so posed
+  const now = sceneMannequin(state.scene, state.base)?.options, was = builtinMannequin(state.base)?.options;
+  if (now && was && (now.pose !== was.pose || now.animation !== was.animation)) {
+    parts.push(`mannequin=${now.pose},${now.animation}`);
+    base = withMannequin(base, builtinMannequin(state.base)!, now);
+  }
+  const diff = sceneDiff(state.scene, base);
   for (const [path, value] of diff) {
     // cloth.mesh makes the cloth a 'mesh' by itself (and 'cloth.shape=mesh' alone, read first, would be refused)
     if (path === 'cloth.shape' && value === 'mesh' && diff.some(([p]) => p === 'cloth.mesh')) continue;
@@ -88,9 +102,11 @@ export function decodeHash(hash: string): HashState | null {
   const sceneKey = pairs.find(([k]) => k === 'scene');
   const base = sceneKey ? sceneKey[1] : '';
   let scene = baseScene(base);
+  const posed = pairs.find(([k]) => k === 'mannequin');
+  if (posed) scene = posedMannequin(scene, base, posed[1]);
   const view: HashState['view'] = {};
   for (const [key, raw] of pairs) {
-    if (key === 'scene') continue;
+    if (key === 'scene' || key === 'mannequin') continue;
     if ((VIEW_KEYS as readonly string[]).includes(key)) { view[key as ViewKey] = raw; continue; }
     try {
       scene = setScenePath(scene, key, parseSetValue(raw));
@@ -102,6 +118,17 @@ export function decodeHash(hash: string): HashState | null {
     }
   }
   return { scene, base, view };
+}
+
+/** The built-in `base` with its mannequin posed as a link's `mannequin=pose,animation` says. */
+function posedMannequin(scene: Scene, base: string, value: string): Scene {
+  const m = builtinMannequin(base);
+  if (!m) throw new SceneError(`link: mannequin: scene '${base}' has no mannequin`);
+  const [pose, animation, ...rest] = value.split(',');
+  if (rest.length || !(MANNEQUIN_POSES as readonly string[]).includes(pose) || !(MANNEQUIN_ANIMATIONS as readonly string[]).includes(animation)) {
+    throw new SceneError(`link: mannequin: must be pose,animation with pose one of ${MANNEQUIN_POSES.join(', ')} and animation one of ${MANNEQUIN_ANIMATIONS.join(', ')}`);
+  }
+  return withMannequin(scene, m, { pose: pose as MannequinPose, animation: animation as MannequinAnimation });
 }
 
 function safeDecode(s: string): string {

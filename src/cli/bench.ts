@@ -3,7 +3,7 @@
  * JoltPhysics.js on the very same cloth (same particles, masses, constraints and compliances) in the same run.
  */
 import { availableParallelism, cpus } from 'node:os';
-import { builtinScene, Simulation, WasmBackend, type Scene, type SimulationOptions } from '../core/index.js';
+import { builtinScene, FRAME_DT, Simulation, WasmBackend, type Scene, type SimulationOptions } from '../core/index.js';
 import type { Gpu } from './gpu.js';
 import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
 import { whileBusy } from './busy.js';
@@ -259,6 +259,77 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
       const b = r.busy!;
       out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${fmt(b.xpbd.msPerFrame)} | ${b.xpbd.threads} | ${fmt(100 * b.xpbd.aloneFraction, 0)} % | ${fmt(b.xpbd1.msPerFrame)} | ${fmt(b.ratio)} |`);
     }
+  }
+  return rows;
+}
+
+export interface SceneBenchOptions {
+  /** built-in scene names, timed as they are (their cloth, resolution, substeps and colliders) */
+  scenes: string[];
+  frames: number;
+  warmup: number;
+  /** threads of the WebAssembly XPBD kernel */
+  threads: number | 'auto';
+  json: boolean;
+}
+
+/** One built-in scene timed on each CPU solver, and what the GPU says of it. */
+interface SceneRow {
+  scene: string;
+  particles: number;
+  colliders: number;
+  substeps: number;
+  xpbd: Timing & { kernel: string; threads: number };
+  xpbdTs: Timing;
+  massSpring: Timing;
+  /** why the GPU solver refuses the scene, null when it takes it (not timed here), 'n/a' when the GPU module does not load */
+  gpuRefusal: string | null;
+}
+
+/**
+ * `drape bench --scenes A,B`: built-in scenes as they are (the app's resolution and substeps), ms per frame for
+ * XPBD in the WebAssembly kernel (with the TypeScript phases it leaves, e.g. contact with moving or non-sphere
+ * colliders), XPBD in TypeScript and mass-spring; and whether the GPU solver takes the scene. A 60 Hz frame has
+ * 16.7 ms: below it the scene runs in real time.
+ */
+export async function runSceneBench(opts: SceneBenchOptions, out: (s: string) => void): Promise<SceneRow[]> {
+  const rows: SceneRow[] = [];
+  // the GPU module is loaded only when asked for (as `drape run` does): a machine without it still times the CPU
+  let refusal: (scene: Scene) => string | null = () => 'n/a';
+  try {
+    ({ sceneRefusal: refusal } = await import('../gpu/index.js'));
+  } catch { /* the 'n/a' above */ }
+  for (const name of opts.scenes) {
+    const scene = builtinScene(name);
+    const ms = { ...scene, solver: { ...scene.solver, type: 'mass-spring' as const } };
+    const xpbd = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(opts.threads));
+    rows.push({
+      scene: name,
+      particles: xpbd.sim.model.particleCount,
+      colliders: scene.colliders.length,
+      substeps: scene.solver.substeps,
+      xpbd: { ...timing(xpbd), kernel: xpbd.kernel, threads: xpbd.threads },
+      xpbdTs: timing(await timeDrape(scene, opts.frames, opts.warmup, { kernel: 'ts' })),
+      massSpring: timing(await timeDrape(ms, opts.frames, opts.warmup, { kernel: 'ts' })),
+      gpuRefusal: refusal(scene),
+    });
+  }
+  const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  if (opts.json) {
+    out(JSON.stringify({ machine, frames: opts.frames, warmup: opts.warmup, threads: opts.threads, rows }));
+    return rows;
+  }
+  const budget = 1000 * FRAME_DT;
+  out(`drape bench --scenes — built-in scenes as they are; ${opts.frames} timed frames after ${opts.warmup}; ${machine}`);
+  out(`real time: a frame in under ${fmt(budget, 1)} ms; stable = finite and the centroid within 10 cloth sizes of its start`);
+  out('');
+  out('| scene | particles | colliders | substeps | XPBD (wasm kernel) ms/frame | XPBD TypeScript ms/frame | mass-spring ms/frame | stable (XPBD / TS / mass-spring) | GPU |');
+  out('|---|---|---|---|---|---|---|---|---|');
+  const ok = (t: Timing) => (t.stable ? 'yes' : t.finite ? 'NO (flew off)' : 'NO (NaN)');
+  for (const r of rows) {
+    out(`| ${r.scene} | ${r.particles} | ${r.colliders} | ${r.substeps} | ${fmt(r.xpbd.msPerFrame)} (${r.xpbd.kernel}, ${r.xpbd.threads} thread${r.xpbd.threads === 1 ? '' : 's'}) | ` +
+      `${fmt(r.xpbdTs.msPerFrame)} | ${fmt(r.massSpring.msPerFrame)} | ${ok(r.xpbd)} / ${ok(r.xpbdTs)} / ${ok(r.massSpring)} | ` +
+      `${r.gpuRefusal === null ? 'takes it (time with --backend gpu)' : r.gpuRefusal === 'n/a' ? 'n/a (GPU module not loaded)' : `refused: ${r.gpuRefusal}`} |`);
   }
   return rows;
 }

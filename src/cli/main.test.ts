@@ -60,6 +60,17 @@ describe('drape CLI', () => {
     for (const t of [row.xpbd, row.xpbd1, row.xpbdTs, row.massSpring]) expect(t.msPerFrame).toBeGreaterThan(0);
   });
 
+  it('bench --scenes times built-in scenes as they are on each CPU solver and says what the GPU makes of them', async () => {
+    const r = await run('bench', '--scenes', 'skirt,pins', '--frames', '2', '--warmup', '0', '--json');
+    expect(r.code).toBe(0);
+    const [skirt, pins] = JSON.parse(r.out).rows;
+    expect(skirt).toMatchObject({ scene: 'skirt', colliders: 16, substeps: 10, xpbd: { kernel: 'wasm', finite: true }, xpbdTs: { finite: true }, massSpring: { finite: true } });
+    expect(skirt.gpuRefusal).toMatch(/^moving colliders run on the CPU only/);
+    expect(pins.gpuRefusal).toBeNull();
+    const table = await run('bench', '--scenes', 'pins', '--frames', '1', '--warmup', '0');
+    expect(table.out).toMatch(/^\| pins \| 1089 \| 1 \| 20 \| [\d.]+ \(wasm, 1 thread\) \| [\d.]+ \| [\d.]+ \| yes \/ yes \/ yes \| takes it/m);
+  });
+
   it('bench times the default threads against one thread on a machine it keeps busy', async () => {
     const r = await run('bench', '--sizes', '51', '--frames', '3', '--warmup', '1', '--no-peer');
     expect(r.code).toBe(0);
@@ -103,6 +114,8 @@ describe('drape CLI', () => {
     [['run', '--backend', 'quantum'], /--backend: must be cpu or gpu/],
     [['run', '--backend', 'gpu', '--solver', 'mass-spring', '--frames', '1'], /only the xpbd solver runs on the GPU/],
     [['bench', '--sizes', '64,x'], /--sizes: must be an integer/],
+    [['bench', '--scenes', 'cape,nope'], /--scenes: unknown scene 'nope' \(built-in scenes: .*cape, skirt/],
+    [['bench', '--scenes', 'cape', '--backend', 'gpu'], /--scenes: times the CPU solvers/],
     [['run', '--kernel', 'gpu'], /--kernel: must be wasm or ts/],
     [['run', '--threads', '0'], /--threads: must be an integer in 1…1024/],
     [['fly'], /unknown command 'fly'/],

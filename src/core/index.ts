@@ -4,7 +4,11 @@ export * from './state.js';
 export * from './params.js';
 export * from './scene.js';
 export { sceneSchema, PIN_PRESETS } from './scene-schema.js';
-export { SCENE_NAMES, builtinScene, isBuiltinScene } from './scenes.js';
+export { SCENE_NAMES, builtinScene, isBuiltinScene, builtinMannequin, sceneMannequin, withMannequin, type SceneMannequin } from './scenes.js';
+export {
+  mannequinColliders, mannequinAngles, forwardKinematics, animationPeriod, MANNEQUIN_PARTS, MANNEQUIN_CHEST, MANNEQUIN_PELVIS,
+  MANNEQUIN_POSES, MANNEQUIN_ANIMATIONS, type MannequinOptions, type MannequinPose, type MannequinAnimation, type JointAngles,
+} from './mannequin.js';
 export * from './metrics.js';
 export * from './pins.js';
 export * from './pick.js';

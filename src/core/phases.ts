@@ -14,6 +14,8 @@ const wind = new Float64Array(3);
 const normal = new Float64Array(3);
 const bary = new Float64Array(3);
 const surface = new Float64Array(3);
+/** the cloth's bounding box this substep: min x, y, z, max x, y, z */
+const box = new Float64Array(6);
 
 /**
  * Start of a step of substep length h: effective inverse masses, tethers if the pins changed, and previous
@@ -214,8 +216,22 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
   const th = params.thickness;
   const recover = params.depenetrationSpeed * h;
   const n = model.particleCount;
+  // the cloth's box (pinned particles too: a triangle from a pin to a free particle can touch): every particle and
+  // triangle point the contact below can move lies in it
+  box[0] = box[1] = box[2] = Infinity; box[3] = box[4] = box[5] = -Infinity;
+  for (let i = 0; i < n; i++) {
+    for (let k = 0; k < 3; k++) {
+      const v = x[3 * i + k];
+      if (v < box[k]) box[k] = v;
+      if (v > box[3 + k]) box[3 + k] = v;
+    }
+  }
   for (const shape of params.colliders) {
     shape.moveTo(state.time, state.time + h);
+    // a shape whose bounding ball is farther than the thickness from that box touches nothing this substep
+    const o = shape.o, reachBall = shape.boundingRadius + th;
+    const gx = Math.max(box[0] - o[0], 0, o[0] - box[3]), gy = Math.max(box[1] - o[1], 0, o[1] - box[4]), gz = Math.max(box[2] - o[2], 0, o[2] - box[5]);
+    if (gx * gx + gy * gy + gz * gz > reachBall * reachBall) continue;
     const moving = shape.moving;
     for (let i = 0; i < n; i++) {
       if (w[i] === 0) continue;
@@ -264,7 +280,7 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
     for (let t = 0; t < tri.length; t += 3) {
       const a = tri[t], b = tri[t + 1], c = tri[t + 2];
       // every point of a triangle stretched at most 2× lies within `reach` of vertex a
-      if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal, reach) > reach) continue;
+      if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal, reach) >= reach) continue;
       const d = triangleDeepest.call(shape, x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);
       if (d >= th) continue;
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];

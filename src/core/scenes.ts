@@ -2,7 +2,11 @@
  * Built-in scenes shared by the CLI, the tests and the app. Material values and their sources: docs/materials.md.
  * Each is a partial scene document; everything it leaves out takes the schema's defaults.
  */
-import { SceneError, validateScene, type Scene } from './scene.js';
+import {
+  MANNEQUIN_ANIMATIONS, MANNEQUIN_CHEST, MANNEQUIN_PARTS, MANNEQUIN_PELVIS, MANNEQUIN_POSES, mannequinColliders, type MannequinOptions,
+} from './mannequin.js';
+import { tubeMesh } from './mesh/generators.js';
+import { SceneError, validateScene, type ColliderSpec, type PinPreset, type Scene } from './scene.js';
 
 const fabrics = {
   cotton: { mass: 0.12, structuralStiffness: 8600, shearStiffness: 56, bendStiffness: 0.74, damping: 0.1, stretchFactor: 1.05, friction: 0.3, staticFriction: 0.4 },
@@ -11,9 +15,44 @@ const fabrics = {
   rubber: { mass: 0.38, structuralStiffness: 600, shearStiffness: 200, bendStiffness: 0.75, damping: 0.2, stretchFactor: 1.8, friction: 0.8, staticFriction: 1.0 },
 } as const;
 
+/**
+ * A scene's mannequin (mannequin.ts): how it stands and moves, and the pins its colliders carry. Its colliders are
+ * the scene's first MANNEQUIN_PARTS.length; `carrier` is the one that carries `pins`.
+ */
+export interface SceneMannequin {
+  options: MannequinOptions;
+  /** which of the mannequin's colliders carries the cloth's pins (MANNEQUIN_CHEST, MANNEQUIN_PELVIS) */
+  carrier: number;
+  pins: (PinPreset | number)[];
+}
+
+/** The colliders of a mannequin, its pins on the carrier. */
+function colliders(m: SceneMannequin): ColliderSpec[] {
+  return mannequinColliders(m.options).map((c, k) => (k === m.carrier ? { ...c, pins: m.pins } : c));
+}
+
+/** The skirt: a tube round the waist, its top ring carried by the pelvis. */
+const skirtCloth = { shape: 'tube', orientation: 'hanging', resolution: 24, width: 0.38, height: 0.55, position: [0, 0.755, 0], rotation: [0, 0, 0] } as const;
+/** The top ring of a hanging tube: its particles (the generator's vertex order, which the model keeps) at the top. */
+function topRing(cloth: typeof skirtCloth): number[] {
+  const x = tubeMesh(cloth).positions;
+  let top = -Infinity;
+  for (let i = 1; i < x.length; i += 3) top = Math.max(top, x[i]);
+  const ring: number[] = [];
+  for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > top - 1e-6) ring.push(i);
+  return ring;
+}
+
+/** The mannequins of the built-in scenes that have one, by scene name. */
+const MANNEQUINS: Record<string, () => SceneMannequin> = {
+  cape: () => ({ options: { pose: 'stand', animation: 'turn' }, carrier: MANNEQUIN_CHEST, pins: ['top-edge'] }),
+  skirt: () => ({ options: { pose: 'stand', animation: 'walk' }, carrier: MANNEQUIN_PELVIS, pins: topRing(skirtCloth) }),
+};
+
 const drop = (name: string, description: string, material: object) => ({ name, description, material });
 
-const BUILTIN: Record<string, object> = {
+/** The built-in scene documents; a function makes its document when asked (the mannequin's keys are work to make). */
+const BUILTIN: Record<string, object | (() => object)> = {
   'cotton-basic': drop('cotton-basic', 'A 1 m cotton sheet dropped on a sphere', fabrics.cotton),
   'silk-drape': drop('silk-drape', 'Light, soft silk dropped on a sphere', fabrics.silk),
   'leather-stiff': drop('leather-stiff', 'Heavy, stiff garment leather dropped on a sphere', fabrics.leather),
@@ -46,6 +85,22 @@ const BUILTIN: Record<string, object> = {
       { type: 'floor', height: 0 },
     ],
   },
+  cape: () => ({
+    name: 'cape',
+    description: 'A cotton cape hanging from the shoulders of a mannequin that turns 70° to either side and back',
+    cloth: { orientation: 'hanging', resolution: 20, width: 0.7, height: 1, position: [0, 0.92, -0.15] },
+    material: fabrics.cotton,
+    solver: { substeps: 10 },
+    colliders: [...colliders(MANNEQUINS.cape()), { type: 'floor', height: 0 }],
+  }),
+  skirt: () => ({
+    name: 'skirt',
+    description: 'A silk skirt (a tube) held at the waist of a mannequin walking in place',
+    cloth: skirtCloth,
+    material: fabrics.silk,
+    solver: { substeps: 10 },
+    colliders: [...colliders(MANNEQUINS.skirt()), { type: 'floor', height: 0 }],
+  }),
   resolution: {
     name: 'resolution',
     description: 'The seed\'s mesh-resolution demo: the same cotton cloth dropped with 1 to 4096 faces',
@@ -68,5 +123,40 @@ export function builtinScene(name: string): Scene {
   if (!isBuiltinScene(name)) {
     throw new SceneError(`unknown scene '${String(name).slice(0, 100)}' (built-in scenes: ${SCENE_NAMES.join(', ')})`);
   }
-  return validateScene(BUILTIN[name], `scene '${name}'`);
+  const doc = BUILTIN[name];
+  return validateScene(typeof doc === 'function' ? doc() : doc, `scene '${name}'`);
+}
+
+/** The mannequin of a built-in scene (a fresh copy), or undefined when it has none. */
+export function builtinMannequin(name: string): SceneMannequin | undefined {
+  if (!isBuiltinScene(name) || !Object.hasOwn(MANNEQUINS, name)) return undefined;
+  return MANNEQUINS[name]();
+}
+
+/**
+ * `scene` with its mannequin (the first MANNEQUIN_PARTS.length colliders, as `mannequin` made them) posed and moved
+ * as `options` say instead, carrying the same pins; the cloth and everything else kept. Validated: a cloth the new
+ * pose cuts through is refused when the simulation takes the scene.
+ */
+export function withMannequin(scene: Scene, mannequin: SceneMannequin, options: MannequinOptions): Scene {
+  const m = { ...mannequin, options: { ...mannequin.options, ...options } };
+  return validateScene({ ...scene, colliders: [...colliders(m), ...scene.colliders.slice(MANNEQUIN_PARTS.length)] }, `scene '${scene.name}'`);
+}
+
+/**
+ * The mannequin of a scene that started as built-in `name`, with the pose and animation its colliders have now
+ * (a link or an edit may have changed them); undefined when `name` has none or the scene's first colliders are not
+ * a mannequin of that kind any more.
+ */
+export function sceneMannequin(scene: Scene, name: string): SceneMannequin | undefined {
+  const base = builtinMannequin(name);
+  if (!base) return undefined;
+  const now = JSON.stringify(scene.colliders.slice(0, MANNEQUIN_PARTS.length));
+  for (const pose of MANNEQUIN_POSES) {
+    for (const animation of MANNEQUIN_ANIMATIONS) {
+      const m = { ...base, options: { ...base.options, pose, animation } };
+      if (JSON.stringify(validateScene({ colliders: colliders(m) }).colliders) === now) return m;
+    }
+  }
+  return undefined;
 }

@@ -8,7 +8,7 @@ import {
   Quaternion, Scene as ThreeScene, SphereGeometry, Vector3, WebGPURenderer,
 } from 'three/webgpu';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { ColliderSpec } from '../core/index.js';
+import type { ColliderSpec, PosedCollider } from '../core/index.js';
 import { eulerXYZ } from '../core/mesh/generators.js';
 import { backdropTexture, floorTexture, repaintTextures } from './textures.js';
 
@@ -42,6 +42,12 @@ export class Stage {
   private readonly sphereMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0 });
   /** a tilted plane is drawn as a large quad, seen from both sides */
   private readonly planeMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0, side: DoubleSide });
+  /** the scene collider each drawn mesh shows (an index into setColliders' list), and its geometry's turn into the collider's frame */
+  private drawn: { mesh: Mesh; index: number; fix: Matrix4 | null }[] = [];
+  private readonly poseR = new Float64Array(9);
+  private readonly poseO = new Float64Array(3);
+  private readonly poseM = new Matrix4();
+  private readonly poseBefore = new Matrix4();
   /** centre and size of what the camera frames */
   private focus = new Vector3(0, 0.6, 0);
   private extent = 1;
@@ -223,10 +229,13 @@ export class Stage {
       this.colliderGroup.remove(c);
       (c as Mesh).geometry.dispose();
     }
+    this.drawn = [];
     let floor: number | null = null;
     const up = new Vector3(0, 1, 0);
-    for (const c of colliders) {
+    colliders.forEach((c, index) => {
       let m: Mesh | null = null;
+      // a plane's quad lies in its xy plane; the collider's frame has the plane's normal along y
+      let fix: Matrix4 | null = null;
       if (c.type === 'sphere') {
         m = new Mesh(new SphereGeometry(c.radius, 96, 48), this.sphereMaterial);
         m.position.set(c.center[0], c.center[1], c.center[2]);
@@ -238,6 +247,7 @@ export class Stage {
         const n = new Vector3(c.normal[0], c.normal[1], c.normal[2]).normalize();
         m.quaternion.setFromUnitVectors(new Vector3(0, 0, 1), n);
         m.position.set(c.point[0], c.point[1], c.point[2]);
+        fix = new Matrix4().makeRotationX(-Math.PI / 2);
       } else if (c.type === 'box') {
         m = new Mesh(new BoxGeometry(2 * c.halfExtents[0], 2 * c.halfExtents[1], 2 * c.halfExtents[2]), this.sphereMaterial);
         // the core's rotation matrix (eulerXYZ, row-major), as the physics uses it
@@ -260,12 +270,44 @@ export class Stage {
         m.receiveShadow = true;
         m.name = c.type;
         this.colliderGroup.add(m);
+        this.drawn.push({ mesh: m, index, fix });
       }
-    }
+    });
     // a scene without a floor still gets a visual ground far below, so the studio does not look empty
     this.floor.position.y = floor ?? -0.001;
     this.floor.visible = true;
     this.needsRender = true;
+  }
+
+  /**
+   * Draws the colliders where they are at each one's time [s]: `colliders[k]` is setColliders' k-th spec as the
+   * simulation built it (keyframes evaluated here as the physics does: PosedCollider.poseAt; a still one at its
+   * placement, which may have changed with the scene), `times[k]` the simulated time of its cloth. Returns whether
+   * anything moved.
+   */
+  poseColliders(colliders: readonly PosedCollider[], times: readonly number[]): boolean {
+    let moved = false;
+    const R = this.poseR, o = this.poseO, M = this.poseM;
+    for (const d of this.drawn) {
+      const c = colliders[d.index];
+      if (!c) continue;
+      c.poseAt(times[d.index] ?? 0, R, o);
+      // the shape's own frame (its mesh's geometry is built the same way: centred, axis along y)
+      M.set(R[0], R[1], R[2], o[0], R[3], R[4], R[5], o[1], R[6], R[7], R[8], o[2], 0, 0, 0, 1);
+      if (d.fix) M.multiply(d.fix);
+      const m = d.mesh;
+      this.poseBefore.copy(m.matrix);
+      M.decompose(m.position, m.quaternion, m.scale);
+      m.updateMatrix();
+      if (!m.matrix.equals(this.poseBefore)) moved = true;
+    }
+    if (moved) this.needsRender = true;
+    return moved;
+  }
+
+  /** Where a drawn collider mesh is: its position and quaternion (x, y, z, w), in the scene's order of drawn meshes. */
+  colliderPoses(): { position: number[]; quaternion: number[] }[] {
+    return this.drawn.map((d) => ({ position: d.mesh.position.toArray(), quaternion: d.mesh.quaternion.toArray() }));
   }
 
   /** The collider meshes drawn, by type, in the scene's order (the floor is not one: it is the stage's own). */

@@ -6,7 +6,9 @@
 import GUI, { type Controller } from 'lil-gui';
 // lil-gui's stylesheet as a file of the build: the panel injects no <style> element (the site's CSP has no inline styles)
 import 'lil-gui/dist/lil-gui.css';
-import { SCENE_NAMES, plainText, sceneSchema, type PinPreset, type Scene } from '../core/index.js';
+import {
+  MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, SCENE_NAMES, plainText, sceneSchema, type MannequinOptions, type PinPreset, type Scene,
+} from '../core/index.js';
 import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import type { CameraPreset } from '../render/stage.js';
 
@@ -19,6 +21,8 @@ export const SCENE_LABELS: Record<string, string> = {
   wind: 'Wind',
   pins: 'Pins',
   tablecloth: 'Tablecloth',
+  cape: 'Cape',
+  skirt: 'Skirt',
   resolution: 'Mesh Resolution',
 };
 
@@ -36,6 +40,10 @@ export interface PanelHost {
   readonly sweepLayout: SweepLayout;
   /** simulation backend asked for: auto, gpu, cpu */
   readonly backendChoice: 'auto' | 'gpu' | 'cpu';
+  /** the scene's mannequin's pose and animation; null when the scene has no mannequin (the controls hide) */
+  readonly mannequin: MannequinOptions | null;
+  /** poses or moves the mannequin anew, the cloth going on */
+  setMannequin(change: MannequinOptions): void;
   /** largest cloth resolution offered (the GPU goes further) */
   readonly maxResolution: number;
   setBackend(choice: 'auto' | 'gpu' | 'cpu'): void;
@@ -122,6 +130,7 @@ export class Panel {
   private sweepFolder!: GUI;
   private resolutionCtl!: Controller;
   private shapeCtl!: Controller;
+  private mannequinFolder!: GUI;
 
   constructor(private readonly host: PanelHost) {
     this.gui = new GUI({ title: 'Drape', width: 300, injectStyles: false });
@@ -170,6 +179,20 @@ export class Panel {
     this.tag(this.sweepFolder.add(p, 'sweep', { 'one after another': 'sequence', 'side by side': 'side-by-side' })
       .name('layout').onChange((v: SweepLayout) => host.setSweepLayout(v)), 'sweep');
     this.addParam(this.sweepFolder, 'material.scaleWithResolution', 'scale with resolution', 'sweep.scaleWithResolution');
+
+    this.mannequinFolder = gui.addFolder('Mannequin');
+    p['mannequin.pose'] = 'stand';
+    this.tag(this.mannequinFolder.add(p, 'mannequin.pose', [...MANNEQUIN_POSES]).name('pose')
+      .onChange((v: MannequinOptions['pose']) => host.setMannequin({ pose: v })), 'mannequin.pose',
+    'the joints\' pose: stand (arms a little away from the body) or t-pose (arms out level)');
+    p['mannequin.animation'] = 'none';
+    this.tag(this.mannequinFolder.add(p, 'mannequin.animation', [...MANNEQUIN_ANIMATIONS]).name('animation')
+      .onChange((v: MannequinOptions['animation']) => host.setMannequin({ animation: v })), 'mannequin.animation',
+    'none (holds the pose), walk (a walk cycle in place) or turn (70° to either side and back, every 4 s); the cloth goes on as it is');
+    this.syncers.push(() => {
+      p['mannequin.pose'] = host.mannequin?.pose ?? 'stand';
+      p['mannequin.animation'] = host.mannequin?.animation ?? 'none';
+    });
 
     const cloth = gui.addFolder('Cloth & material');
     p['cloth.shape'] = 'rectangle';
@@ -339,6 +362,7 @@ export class Panel {
     // a sweep is of a rectangle's resolutions (another shape runs as it is); a mesh file has its own resolution
     const sweep = !!host.scene.resolutionSweep?.length && cloth.shape === 'rectangle';
     this.sweepFolder.show(sweep);
+    this.mannequinFolder.show(host.mannequin !== null);
     this.resolutionCtl.enable(!sweep && cloth.shape !== 'mesh');
     this.resolutionCtl.name(cloth.shape === 'mesh' ? 'resolution: the mesh has its own' : 'resolution');
     this.updatePlay();

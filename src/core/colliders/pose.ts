@@ -129,6 +129,8 @@ export class PosedCollider implements ColliderShape {
    * for a floor or a plane (the half-space y < 0)
    */
   readonly shapeParams: readonly [number, number, number];
+  /** radius of a ball about `o` that holds the whole shape [m] (Infinity for a floor or a plane) */
+  readonly boundingRadius: number;
   /** world = R·local + o at the end of the current substep; R row-major */
   readonly R = new Float64Array(9);
   readonly o = new Float64Array(3);
@@ -157,6 +159,9 @@ export class PosedCollider implements ColliderShape {
     this.type = local.type;
     this.minCurvatureRadius = local.minCurvatureRadius;
     [this.typeId, this.shapeParams] = kernelShape(local);
+    const [p0, p1, p2] = this.shapeParams;
+    this.boundingRadius = this.typeId === COLLIDER_SPHERE ? p0 : this.typeId === COLLIDER_BOX ? Math.hypot(p0, p1, p2)
+      : this.typeId === COLLIDER_CAPSULE ? p0 + p1 : this.typeId === COLLIDER_CYLINDER ? Math.hypot(p0, p1) : Infinity;
     this.placeR = new Float64Array(placeR);
     this.placeO = new Float64Array(placeO);
     this.pivot = new Float64Array(motion?.pivot ?? placeO);
