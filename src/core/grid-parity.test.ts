@@ -7,7 +7,7 @@ const fixture = JSON.parse(readFileSync(new URL('./fixtures/grid-parity.json', i
   scenes: Record<string, { particles: number; centroid: number[]; min: number[]; max: number[] }>;
 };
 
-describe('built-in grid scenes give the result they gave before cloths became triangle meshes', () => {
+describe('built-in scenes give the result recorded in the fixture (first recorded before cloths became triangle meshes)', () => {
   it('the fixture covers every built-in scene', () => {
     expect(Object.keys(fixture.scenes).sort()).toEqual([...SCENE_NAMES].sort());
   });
