@@ -126,7 +126,7 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
 
   // A tablecloth on a box table: it lands around frame 10, so contact (box triangle contact: closest features and
   // the golden-section search) is on from there. At frame 30: seen 1.1e-2 m, centroid 4.2e-4 m; the CPU's own spread
-  // 1.3e-2 m, 7.4e-4 m → 5 cm and 5 mm, the drop scenes' tolerances.
+  // 2.5e-2 m, 6.3e-4 m (scripts/gpu-collider-parity.mjs) → 5 cm and 5 mm, the drop scenes' tolerances.
   test('tablecloth (a box): 5 cm and centroid 5 mm at frame 30', async () => {
     const p = await pair(scene('tablecloth'));
     await p.advance(30);

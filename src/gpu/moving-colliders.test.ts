@@ -52,8 +52,8 @@ function drop(y: number, colliders: object[]): Scene {
 const floor = { type: 'floor', height: 0 };
 
 // Dropped for 1 s (60 frames), the cloth checked every 15: GPU–CPU seen ≤ 2.5e-3 m per particle (capsule; box
-// 1.5e-3, cylinder 1.0e-3, its side 9.6e-5, plane 2.8e-5) and ≤ 4e-5 m centroid, the CPU's own spread ≤ 1.2e-2 m
-// (capsule) and ≤ 2.3e-4 m centroid → 2 cm and 1 mm. Penetration into the exact shape (maxPenetration: particles,
+// 1.5e-3, cylinder 1.0e-3, its side 9.5e-5, plane 2.8e-5) and ≤ 3.9e-5 m centroid, the CPU's own spread ≤ 1.2e-2 m
+// (capsule) and ≤ 2.1e-4 m centroid (scripts/gpu-collider-parity.mjs) → 2 cm and 1 mm. Penetration into the exact shape (maxPenetration: particles,
 // and triangles by the reference's own triangle contact) seen 0 → ≤ 1 mm, a fifth of the contact thickness.
 const DROPS: [string, Scene][] = [
   ['a tilted plane', drop(0.5, [{ type: 'plane', point: [0, 0.3, 0], normal: [0.3, 1, 0.1] }])],
@@ -105,7 +105,7 @@ function clearanceAboveBox(state: ClothState, center: number[], half: number[]):
 }
 
 describe.skipIf(!gpu)('moving colliders and carried pins on the GPU', () => {
-  // GPU–CPU seen ≤ 2e-6 m over 2 s (the cloth rides the box: no chaos) → 1e-4 m.
+  // GPU–CPU seen ≤ 2.0e-6 m (the cloth rides the box: no chaos; the CPU's own spread 1.8e-6 m) → 1e-4 m.
   it('a cloth lying on a box that moves 0.2 m (keyframes, 0.2 m/s) moves with it, on top of it, as on the CPU', async () => {
     const { cpu, gpu: g } = await pair(onTable({ keyframes: [{ time: 0.5 }, { time: 1.5, translation: [0.2, 0, 0] }] }));
     cpu.advance(30);
@@ -145,8 +145,9 @@ describe.skipIf(!gpu)('moving colliders and carried pins on the GPU', () => {
     expect(maxDistance(g.state, cpu.state)).toBeLessThan(1e-4);
   });
 
-  // Pins: where the turn puts them, to f32 rounding (seen ≤ 1e-7 m) → 1e-5 m. The cape: GPU–CPU seen ≤ 4.7e-3 m,
-  // centroid ≤ 2.9e-4 m, the CPU's own spread ≤ 3.5e-3 m, ≤ 1.9e-4 m → 2 cm, 2 mm.
+  // Pins: where the turn puts them, to f32 rounding (seen ≤ 2.1e-8 m) → 1e-5 m. The cape: GPU–CPU seen ≤ 6.4e-3 m,
+  // centroid ≤ 2.9e-4 m, the CPU's own spread ≤ 4.9e-3 m, ≤ 1.5e-4 m → 2 cm, 2 mm. Nearest the capsule: seen 5.4 mm
+  // from its surface (the contact thickness is 5 mm) → outside it.
   it('a cape pinned to a capsule that turns 90° in 0.75 s: its pins exactly where the turn puts them, out of it, as on the CPU', async () => {
     const scene = validateScene({
       name: 'cape',
