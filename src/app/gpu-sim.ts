@@ -84,7 +84,7 @@ export class GpuSim implements SimDriver {
     this.mirrors.forEach((_, k) => this.ensureSolver(k));
   }
 
-  /** Fails for what the GPU solver does not support (mass-spring, other colliders: gpu/encoder.ts sceneRefusal): the caller falls back. */
+  /** Fails for what the GPU solver does not support (mass-spring, a collider shape it lacks: gpu/encoder.ts sceneRefusal): the caller falls back. */
   static supports(scene: Scene): string | null {
     return sceneRefusal(scene);
   }

@@ -34,7 +34,7 @@ Built-in scenes: ${SCENE_NAMES.join(', ')}`,
 Simulates a built-in scene (default: custom) or a scene file for N frames of 1/60 s.
   --frames N            frames to simulate (default 180; 0 reports the start state)
   --solver S            xpbd | mass-spring (same as --set solver.type=S)
-  --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD, sphere and floor colliders only)
+  --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD only)
   --kernel K            CPU XPBD kernel: wasm (WebAssembly SIMD, the default where available) or ts
   --threads N           threads of the wasm kernel (default: automatic, the cores available up to 8, but one
                         for cloths under 2500 particles; more than the cores is clamped)

@@ -295,7 +295,8 @@ export class Simulation {
    * velocity [rad/s, world axes, about the pivot] it keeps over the next frames, until the next call. Call it each
    * frame with the pose and velocity of whatever moves the collider (an animated body); the substeps move it on at
    * that velocity, and friction drags the cloth with the moving surface. `null` gives the collider back to its
-   * scene motion (reset() does that for every collider). On the GPU backend, moving colliders are refused.
+   * scene motion (reset() does that for every collider). Every backend reads the drive from params.colliders each
+   * frame (the GPU backend puts the collider's pose of each substep in the frame it submits).
    */
   setColliderPose(index: number, pose: ColliderPose | null): void {
     const colliders = this.params.colliders;
@@ -303,9 +304,6 @@ export class Simulation {
       throw new RangeError(`Simulation.setColliderPose: index must be an integer 0…${colliders.length - 1} (the scene has ${colliders.length} colliders), got ${String(index)}`);
     }
     if (pose !== null) checkPose(pose);
-    if (pose !== null && this.backendNow.kind === 'gpu') {
-      throw new Error('Simulation.setColliderPose: moving colliders run on the CPU only; the GPU backend has static spheres and floors');
-    }
     colliders[index].setDrive(this.state.time, pose);
   }
 

@@ -1,7 +1,8 @@
 /**
  * The cloth's storage buffers on the GPU (layout.ts BUFFERS) and each kernel's bind group over them: made for a
  * model with its static data (springs, triangles, adjacency, the rest pose), then written from the CPU: the
- * params' per-particle and per-spring values, a state's particles, its pins and tethers.
+ * params' per-particle and per-spring values, a state's particles, its pins and tethers. The colliders' buffers
+ * (their poses, the particles they carry) depend on the params and grow on demand (`reserve`).
  */
 import type {} from 'webgpu';
 import type { ClothModel } from '../core/model.js';
@@ -17,6 +18,7 @@ export class ClothBuffers {
   readonly buffers: Record<BufferName, GPUBuffer>;
   /** group 1 of each kernel */
   readonly storageGroups: Record<KernelName, GPUBindGroup>;
+  private readonly storageLayouts: Record<KernelName, GPUBindGroupLayout>;
   /** whether any particle has a tether anchor (the tethers kernel has work), as of the last writePins */
   hasTethers = false;
   private readonly device: GPUDevice;
@@ -26,6 +28,7 @@ export class ClothBuffers {
   constructor(device: GPUDevice, model: ClothModel, storageLayouts: Record<KernelName, GPUBindGroupLayout>) {
     this.device = device;
     this.model = model;
+    this.storageLayouts = storageLayouts;
     const n = model.particleCount;
     const springCount = model.restLengths.length;
     const triangleCount = model.triangles.length / 3;
@@ -35,7 +38,7 @@ export class ClothBuffers {
       positions: n, previous: n, residuals: n, previousResiduals: n, velocities: n, invMass: n, baseInvMass: n, pinned: n,
       springs: springCount, springData: springCount, lambdas: springCount, tethers: n,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
-      normals: n, grabStart: 1,
+      normals: n, grabStart: 1, colliders: 1, carried: 1,
     };
     const extraUsage: Partial<Record<BufferName, number>> = {
       positions: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC,
@@ -47,11 +50,7 @@ export class ClothBuffers {
     };
     const buffers = {} as Record<BufferName, GPUBuffer>;
     for (const name of Object.keys(BUFFERS) as BufferName[]) {
-      buffers[name] = device.createBuffer({
-        label: `drape ${name}`,
-        size: Math.max(16, Math.ceil((counts[name] * BUFFERS[name].bytes) / 4) * 4),
-        usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST | (extraUsage[name] ?? 0),
-      });
+      buffers[name] = this.createBuffer(name, counts[name], extraUsage[name] ?? 0);
     }
     this.buffers = buffers;
 
@@ -68,13 +67,37 @@ export class ClothBuffers {
     q.writeBuffer(buffers.tethers, 0, tethers);
 
     this.storageGroups = {} as Record<KernelName, GPUBindGroup>;
+    for (const kernel of Object.keys(KERNELS) as KernelName[]) this.storageGroups[kernel] = this.makeGroup(kernel);
+  }
+
+  private createBuffer(name: BufferName, count: number, extraUsage: number): GPUBuffer {
+    return this.device.createBuffer({
+      label: `drape ${name}`,
+      size: Math.max(16, Math.ceil((count * BUFFERS[name].bytes) / 4) * 4),
+      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST | extraUsage,
+    });
+  }
+
+  private makeGroup(kernel: KernelName): GPUBindGroup {
+    const spec: KernelSpec = KERNELS[kernel];
+    return this.device.createBindGroup({
+      label: `drape ${kernel}`,
+      layout: this.storageLayouts[kernel],
+      entries: spec.bindings.map(([name], i) => ({ binding: i, resource: { buffer: this.buffers[name] } })),
+    });
+  }
+
+  /**
+   * Room for `count` elements in buffer `name` (its contents are lost when it grows, and the bind groups of the
+   * kernels that read it are made anew). Call it before encoding a frame that uses it, never during.
+   */
+  reserve(name: 'colliders' | 'carried', count: number): void {
+    if (count * BUFFERS[name].bytes <= this.buffers[name].size) return;
+    this.buffers[name].destroy();
+    this.buffers[name] = this.createBuffer(name, count, 0);
     for (const kernel of Object.keys(KERNELS) as KernelName[]) {
       const spec: KernelSpec = KERNELS[kernel];
-      this.storageGroups[kernel] = device.createBindGroup({
-        label: `drape ${kernel}`,
-        layout: storageLayouts[kernel],
-        entries: spec.bindings.map(([name], i) => ({ binding: i, resource: { buffer: buffers[name] } })),
-      });
+      if (spec.bindings.some(([b]) => b === name)) this.storageGroups[kernel] = this.makeGroup(kernel);
     }
   }
 

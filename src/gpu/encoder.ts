@@ -12,17 +12,18 @@ import type { SimParams } from '../core/params.js';
 import { PHASE, PHASE_COUNT, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../core/schedule.js';
 import type { ClothState } from '../core/state.js';
 import type { ClothBuffers } from './buffers.js';
-import { MAX_COLLIDERS, MAX_WORKGROUPS_X, RECORD_STRIDE, WORKGROUP_SIZE, type KernelName } from './layout.js';
-import { gpuCollider, type UniformTables } from './uniforms.js';
+import { gpuCollider, type ColliderTables } from './colliders.js';
+import { MAX_WORKGROUPS_X, RECORD_STRIDE, WORKGROUP_SIZE, type KernelName } from './layout.js';
+import type { UniformTables } from './uniforms.js';
 
-/** Why the GPU cannot do contact against these colliders (it knows spheres and floors), or null. */
+/** The shapes the GPU has, for its refusals. */
+const GPU_SHAPES = 'sphere, floor, plane, box, capsule and cylinder';
+
+/** Why the GPU cannot do contact against these colliders (a shape its kernels do not know), or null. */
 function contactRefusal(params: SimParams): string | null {
-  if (params.colliders.length > MAX_COLLIDERS) return `at most ${MAX_COLLIDERS} colliders (got ${params.colliders.length})`;
-  for (const shape of params.colliders) {
-    if (!gpuCollider(shape)) {
-      return shape.animated ? `a moving ${shape.type} collider is not supported on the GPU (it has static spheres and floors)`
-        : `collider type '${shape.type}' is not supported on the GPU (sphere, floor)`;
-    }
+  const colliders = params.colliders;
+  for (let k = 0; k < colliders.length; k++) {
+    if (gpuCollider(colliders[k]) === null) return `collider type '${colliders[k].type}' is not supported on the GPU (it has ${GPU_SHAPES})`;
   }
   return null;
 }
@@ -37,21 +38,17 @@ export function sceneRefusal(scene: Scene): string | null {
   return colliderRefusal(scene);
 }
 
-/** The colliders' part of sceneRefusal. */
+/**
+ * The colliders' part of sceneRefusal: a shape the GPU's kernels do not know, named with its place in the list.
+ * Every collider the GPU knows may move and carry pins.
+ */
 export function colliderRefusal(scene: Scene): string | null {
-  if (scene.colliders.length > MAX_COLLIDERS) return `at most ${MAX_COLLIDERS} colliders (got ${scene.colliders.length})`;
   // a mesh collider is refused by its type, before its file is read
   const mesh = scene.colliders.findIndex((c) => c.type === 'mesh');
-  if (mesh >= 0) return `mesh colliders run on the CPU only (colliders[${mesh}]; the GPU has sphere and floor)`;
+  if (mesh >= 0) return `mesh colliders run on the CPU only (colliders[${mesh}]; the GPU has ${GPU_SHAPES})`;
   const shapes = createColliders(scene.colliders);
-  const k = shapes.findIndex((shape) => !gpuCollider(shape));
-  if (k >= 0) {
-    return shapes[k].animated ? `moving colliders run on the CPU only (colliders[${k}] has motion; the GPU has static sphere and floor)`
-      : `${shapes[k].type} colliders run on the CPU only (colliders[${k}]; the GPU has sphere and floor)`;
-  }
-  const carried = scene.colliders.findIndex((c) => (c.pins ?? []).length > 0);
-  if (carried >= 0) return `pins carried by a collider run on the CPU only (colliders[${carried}].pins)`;
-  return null;
+  const k = shapes.findIndex((shape) => gpuCollider(shape) === null);
+  return k >= 0 ? `${shapes[k].type} colliders run on the CPU only (colliders[${k}]; the GPU has ${GPU_SHAPES})` : null;
 }
 
 /**
@@ -64,11 +61,14 @@ export const GPU_PHASES: BackendPhases = {
   where: 'on the GPU',
   sharesMemory: false,
   solvers: ['xpbd'],
-  phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) |
-    (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
+  phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.carry) | (1 << PHASE.grab) |
+    (1 << PHASE.distance) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.contact) |
+    (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
   refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
     (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null),
 };
+
+const CARRY_OR_CONTACT = (1 << PHASE.carry) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles);
 
 /** Encodes a cloth's frames: the frame loop's phases as dispatches. */
 export class FrameEncoder implements PhaseBackend {
@@ -79,28 +79,31 @@ export class FrameEncoder implements PhaseBackend {
   private readonly pipelines: Record<KernelName, GPUComputePipeline>;
   private readonly buffers: ClothBuffers;
   private readonly uniforms: UniformTables;
+  private readonly colliders: ColliderTables;
   /** the compute pass of the frame being encoded */
   private pass: GPUComputePassEncoder | undefined;
 
   /** An encoder over a cloth's buffers and uniform tables. */
   constructor(
     device: GPUDevice, model: ClothModel, pipelines: Record<KernelName, GPUComputePipeline>, buffers: ClothBuffers,
-    uniforms: UniformTables,
+    uniforms: UniformTables, colliders: ColliderTables,
   ) {
     this.device = device;
     this.model = model;
     this.pipelines = pipelines;
     this.buffers = buffers;
     this.uniforms = uniforms;
+    this.colliders = colliders;
   }
 
   /**
    * Encodes and submits one frame of dt [s]: the frame's inputs written, the grabbed particle's start copied, the
    * frame loop's phases dispatched in one compute pass (timed with `timestampWrites` where given), then the vertex
-   * normals. The frame loop counts state.time and state.substeps; `log` receives the phases encoded.
+   * normals; the colliders' poses of its substeps (made as they are encoded) written before the submit. The frame
+   * loop counts state.time and state.substeps; `log` receives the phases encoded.
    */
   frame(state: ClothState, params: SimParams, dt: number, timestampWrites: GPUComputePassTimestampWrites | undefined, log: PhaseLog | undefined): void {
-    this.uniforms.writeFrame(state, params, dt);
+    this.uniforms.writeFrame(state, params, dt, this.colliders.beginFrame(params));
     const encoder = this.device.createCommandEncoder({ label: 'drape step' });
     const grabbed = state.grabbed;
     if (grabbed >= 0 && grabbed < this.model.particleCount) {
@@ -111,6 +114,7 @@ export class FrameEncoder implements PhaseBackend {
     this.dispatch('normals', this.model.particleCount, 0, 0);
     this.pass.end();
     this.pass = undefined;
+    this.colliders.endFrame(params);
     this.device.queue.submit([encoder.finish()]);
   }
 
@@ -119,6 +123,8 @@ export class FrameEncoder implements PhaseBackend {
     const so = frame.sub * RECORD_STRIDE;
     const particles = model.particleCount;
     const u = this.uniforms;
+    // the colliders where they are at this substep's end (state.time is its start), for carry and contact
+    if ((mask & CARRY_OR_CONTACT) !== 0) this.colliders.poseSubstep(params, frame.sub, state.time, frame.h);
     for (let id = 0; id < PHASE_COUNT; id++) {
       if ((mask & (1 << id)) === 0) continue;
       switch (id) {
@@ -129,6 +135,7 @@ export class FrameEncoder implements PhaseBackend {
           break;
         case PHASE.wind: this.dispatch('wind', model.triangles.length / 3, so, 0); break;
         case PHASE.integrate: this.dispatch('integrate', particles, so, 0); break;
+        case PHASE.carry: this.dispatch('carry', params.carried.particles.length, so, 0); break;
         case PHASE.grab: this.dispatch('grab', 1, so, 0); break;
         case PHASE.distance: {
           const passes = phasePasses(PHASE.distance, params);

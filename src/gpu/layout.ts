@@ -8,13 +8,15 @@
  * w = 0. The CPU keeps stride 3; upload/read convert.
  */
 
-import { COLLIDER_FLOOR, COLLIDER_SPHERE, MAX_COLLIDERS } from '../core/layout.generated.js';
+import {
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE, GOLDEN_ITERATIONS,
+} from '../core/layout.generated.js';
 
 /**
- * Shared with the CPU through the one table (core/gen-layout.mjs): collider type ids, and the colliders the
- * uniform block holds (the schema's most).
+ * Shared with the CPU through the one table (core/gen-layout.mjs): the collider type ids the GPU knows, and the
+ * golden-section iterations of triangle contact.
  */
-export { COLLIDER_FLOOR, COLLIDER_SPHERE, MAX_COLLIDERS };
+export { COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE, GOLDEN_ITERATIONS };
 
 /** Threads per workgroup of every kernel (1-D). */
 export const WORKGROUP_SIZE = 64;
@@ -29,6 +31,71 @@ export const RECORD_STRIDE = 256;
 /** Flags of a solve pass record. */
 export const PASS_CAP = 1; // apply the hard stretch cap (structural and shear batches)
 export const PASS_READ_LAMBDA = 2; // start from the accumulated λ (second and later iterations)
+
+/**
+ * Structs, each one list of fields in declaration order: the WGSL declaration and the byte offsets the solver writes
+ * at are both derived from it (`structLayout`, WGSL's layout rules, which for these types are the same in uniform
+ * and storage buffers), so they cannot drift apart. Uniforms: `Globals` is written by setParams and (the grab) by
+ * every step; `Substep` is one record per substep at RECORD_STRIDE, selected with a dynamic offset; `Pass` likewise,
+ * one record per solve batch / collider pass. Storage: `Collider` (the `colliders` buffer) and `Carry` (`carried`).
+ */
+type Field = readonly [name: string, type: string, doc: string];
+
+/** Alignment and size [bytes] of the WGSL types the structs use (WGSL §"Memory layout"). */
+const TYPES: Record<string, { align: number; size: number }> = {
+  f32: { align: 4, size: 4 }, u32: { align: 4, size: 4 }, i32: { align: 4, size: 4 },
+  vec3f: { align: 16, size: 12 }, vec4f: { align: 16, size: 16 },
+};
+
+type Layout<F extends readonly Field[]> = { readonly [K in F[number][0]]: number } & { readonly size: number };
+
+/** Byte offset of every field and the struct's size, by WGSL's rules for uniform buffers. */
+function structLayout<const F extends readonly Field[]>(fields: F): Layout<F> {
+  const out: Record<string, number> = {};
+  let at = 0, align = 1;
+  for (const [name, type] of fields) {
+    const t = TYPES[type];
+    if (!t) throw new Error(`layout: no WGSL layout for ${type}`);
+    at = Math.ceil(at / t.align) * t.align;
+    out[name] = at;
+    at += t.size;
+    align = Math.max(align, t.align);
+  }
+  out.size = Math.ceil(at / align) * align;
+  return out as Layout<F>;
+}
+
+/** The WGSL declaration of a struct. */
+function wgslStruct(name: string, fields: readonly Field[]): string {
+  return `struct ${name} {\n${fields.map(([f, type, doc]) => `  ${f}: ${type}, // ${doc}`).join('\n')}\n}`;
+}
+
+/**
+ * A collider in one substep (colliders.ts writes it from its PosedCollider): its shape in its own frame, where that
+ * frame is at the substep's end, and how its surface moved over the substep.
+ */
+const COLLIDER_FIELDS = [
+  ['pose0', 'vec4f', 'world = R·local + o at the end of the substep (PosedCollider.R, .o): row 0 of R, o.x in w [m]'],
+  ['pose1', 'vec4f', 'row 1 of R, o.y in w [m]'],
+  ['pose2', 'vec4f', 'row 2 of R, o.z in w [m]'],
+  ['motion0', 'vec4f', 'the surface motion over the substep at world point p is M·p + m [m], M = I − RD, m = −oD (PosedCollider.surfaceMotion): row 0 of M, m.x in w; zero while it does not move'],
+  ['motion1', 'vec4f', 'row 1 of M, m.y in w [m]'],
+  ['motion2', 'vec4f', 'row 2 of M, m.z in w [m]'],
+  ['shape', 'vec4f', 'PosedCollider.shapeParams in xyz [m]: sphere radius; box half extents; capsule half length, radius; cylinder radius, half height'],
+  ['kind', 'u32', 'COLLIDER_* type id'],
+  ['moving', 'u32', '1 when its surface moved over the substep (PosedCollider.moving)'],
+  ['_p0', 'u32', 'padding'], ['_p1', 'u32', 'padding'],
+] as const satisfies readonly Field[];
+
+/** A particle a collider carries (params.carried): the carry kernel puts it at R·local + o of its collider. */
+const CARRY_FIELDS = [
+  ['local', 'vec3f', 'its position in the collider\'s own frame [m]'],
+  ['particle', 'u32', 'the particle'],
+  ['collider', 'u32', 'the collider, an index into params.colliders'],
+] as const satisfies readonly Field[];
+
+export const COLLIDER = structLayout(COLLIDER_FIELDS);
+export const CARRY = structLayout(CARRY_FIELDS);
 
 /** Storage buffers: WGSL element type and bytes per element. */
 export const BUFFERS = {
@@ -66,6 +133,13 @@ export const BUFFERS = {
   normals: { type: 'vec4f', bytes: 16 },
   /** position of the grabbed particle at the start of the frame (1 element) */
   grabStart: { type: 'vec4f', bytes: 16 },
+  /**
+   * every collider's pose and surface motion: one record per collider (params.colliders order) while none moves,
+   * else one per collider per substep of the frame (Substep.colliderBase says where a substep's start)
+   */
+  colliders: { type: 'Collider', bytes: COLLIDER.size },
+  /** the particles colliders carry (params.carried), Globals.carriedCount of them */
+  carried: { type: 'Carry', bytes: CARRY.size },
 } as const;
 export type BufferName = keyof typeof BUFFERS;
 
@@ -118,17 +192,23 @@ export const KERNELS = {
   },
   /** solveTethers */
   tethers: { bindings: [['positions', 'read_write'], ['invMass', 'read'], ['tethers', 'read']] },
+  /** carryPinned: each carried particle to where its collider puts it at the substep's end */
+  carry: {
+    bindings: [['positions', 'read_write'], ['carried', 'read'], ['colliders', 'read'], ['residuals', 'read_write']],
+    libs: ['colliders'],
+  },
   /** collide, particle part, for a run of colliders */
   collideParticles: {
-    bindings: [['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read']],
+    bindings: [['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['colliders', 'read']],
     libs: ['colliders'],
   },
   /** collide, triangle part, for one collider and one triangle colour */
   collideTriangles: {
     bindings: [
       ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['triangles', 'read'],
+      ['colliders', 'read'],
     ],
-    libs: ['colliders'],
+    libs: ['colliders', 'triangleContact'],
   },
   /** updateVelocities, once per frame */
   velocities: {
@@ -142,51 +222,6 @@ export const KERNELS = {
   },
 } as const satisfies Record<string, KernelSpec>;
 export type KernelName = keyof typeof KERNELS;
-
-/**
- * Uniform structs, each one list of fields in declaration order: the WGSL declaration and the byte offsets the
- * solver writes at are both derived from it (`structLayout`, WGSL's uniform layout rules), so they cannot drift
- * apart. `Globals` is written by setParams and (the grab) by every step; `Substep` is one record per substep at
- * RECORD_STRIDE, selected with a dynamic offset; `Pass` likewise, one record per solve batch / collider pass.
- */
-type Field = readonly [name: string, type: string, doc: string];
-
-/** Alignment and size [bytes] of the WGSL types the uniform structs use (WGSL §"Memory layout"). */
-const TYPES: Record<string, { align: number; size: number }> = {
-  f32: { align: 4, size: 4 }, u32: { align: 4, size: 4 }, i32: { align: 4, size: 4 },
-  vec3f: { align: 16, size: 12 }, vec4f: { align: 16, size: 16 },
-  Collider: { align: 16, size: 32 },
-  [`array<Collider, ${MAX_COLLIDERS}>`]: { align: 16, size: 32 * MAX_COLLIDERS },
-};
-
-type Layout<F extends readonly Field[]> = { readonly [K in F[number][0]]: number } & { readonly size: number };
-
-/** Byte offset of every field and the struct's size, by WGSL's rules for uniform buffers. */
-function structLayout<const F extends readonly Field[]>(fields: F): Layout<F> {
-  const out: Record<string, number> = {};
-  let at = 0, align = 1;
-  for (const [name, type] of fields) {
-    const t = TYPES[type];
-    if (!t) throw new Error(`layout: no WGSL layout for ${type}`);
-    at = Math.ceil(at / t.align) * t.align;
-    out[name] = at;
-    at += t.size;
-    align = Math.max(align, t.align);
-  }
-  out.size = Math.ceil(at / align) * align;
-  return out as Layout<F>;
-}
-
-/** The WGSL declaration of a struct. */
-function wgslStruct(name: string, fields: readonly Field[]): string {
-  return `struct ${name} {\n${fields.map(([f, type, doc]) => `  ${f}: ${type}, // ${doc}`).join('\n')}\n}`;
-}
-
-const COLLIDER_FIELDS = [
-  ['data', 'vec4f', 'sphere: centre xyz, radius [m]; floor: height in x [m]'],
-  ['kind', 'u32', 'COLLIDER_SPHERE or COLLIDER_FLOOR'],
-  ['_p0', 'u32', 'padding'], ['_p1', 'u32', 'padding'], ['_p2', 'u32', 'padding'],
-] as const satisfies readonly Field[];
 
 const GLOBALS_FIELDS = [
   ['gravity', 'vec3f', '[m/s²]'],
@@ -202,8 +237,8 @@ const GLOBALS_FIELDS = [
   ['grabTarget', 'vec3f', '[m]'],
   ['particleCount', 'u32', 'particles of the model'],
   ['triangleCount', 'u32', 'triangles of the model'],
-  ['colliderCount', 'u32', 'colliders in use'],
-  ['colliders', `array<Collider, ${MAX_COLLIDERS}>`, 'the scene\'s colliders in order'],
+  ['colliderCount', 'u32', 'colliders in use (params.colliders)'],
+  ['carriedCount', 'u32', 'particles the colliders carry (params.carried)'],
 ] as const satisfies readonly Field[];
 
 const SUBSTEP_FIELDS = [
@@ -217,6 +252,7 @@ const SUBSTEP_FIELDS = [
   ['windOn', 'u32', '1 when the wind blows'],
   ['recover', 'f32', 'depenetrationSpeed·h: most a collider overlap the cloth did not move into is undone [m]'],
   ['recoverTriangle', 'f32', 'recover / model.maxTriangleValence: the same for triangle contact [m]'],
+  ['colliderBase', 'u32', 'this substep\'s first record in the colliders buffer: 0 while no collider moves, else substep × colliderCount'],
 ] as const satisfies readonly Field[];
 
 const PASS_FIELDS = [
@@ -229,7 +265,6 @@ const PASS_FIELDS = [
 export const GLOBALS = structLayout(GLOBALS_FIELDS);
 export const SUBSTEP = structLayout(SUBSTEP_FIELDS);
 export const PASS = structLayout(PASS_FIELDS);
-export const COLLIDER_BYTES = structLayout(COLLIDER_FIELDS).size;
 
 /** WGSL text of the shared declarations, prepended to every kernel. */
 export function wgslPreamble(): string {
@@ -237,10 +272,17 @@ export function wgslPreamble(): string {
 const WG: u32 = ${WORKGROUP_SIZE}u;
 const COLLIDER_SPHERE: u32 = ${COLLIDER_SPHERE}u;
 const COLLIDER_FLOOR: u32 = ${COLLIDER_FLOOR}u;
+const COLLIDER_PLANE: u32 = ${COLLIDER_PLANE}u;
+const COLLIDER_BOX: u32 = ${COLLIDER_BOX}u;
+const COLLIDER_CAPSULE: u32 = ${COLLIDER_CAPSULE}u;
+const COLLIDER_CYLINDER: u32 = ${COLLIDER_CYLINDER}u;
+const GOLDEN_ITERATIONS: u32 = ${GOLDEN_ITERATIONS}u;
 const PASS_CAP: u32 = ${PASS_CAP}u;
 const PASS_READ_LAMBDA: u32 = ${PASS_READ_LAMBDA}u;
 
 ${wgslStruct('Collider', COLLIDER_FIELDS)}
+
+${wgslStruct('Carry', CARRY_FIELDS)}
 
 ${wgslStruct('Globals', GLOBALS_FIELDS)}
 

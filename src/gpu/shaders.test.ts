@@ -3,7 +3,7 @@ import { readFileSync } from 'node:fs';
 import { describe, expect, test } from 'vitest';
 import { buildGridModel, builtinScene, modelFor } from '../core/index.js';
 import { GENERATED_FILE, generateShaderModule } from './gen-shaders.mjs';
-import { BUFFERS, GLOBALS, KERNELS, PASS, RECORD_STRIDE, SUBSTEP, type KernelName } from './layout.js';
+import { BUFFERS, CARRY, COLLIDER, GLOBALS, KERNELS, PASS, RECORD_STRIDE, SUBSTEP, type KernelName } from './layout.js';
 import { kernelSource } from './shaders.js';
 import { WGSL_SOURCES } from './shaders.generated.js';
 import { triangleAdjacency } from './topology.js';
@@ -38,7 +38,14 @@ describe('shaders', () => {
     expect(PASS.size).toBeLessThanOrEqual(RECORD_STRIDE);
     expect(GLOBALS.size % 16).toBe(0);
     expect(GLOBALS.grabTarget % 16).toBe(0);
-    expect(GLOBALS.colliders % 16).toBe(0);
+  });
+
+  test('storage structs: records as long as their WGSL array stride, vec4 rows where the kernels expect them', () => {
+    expect(BUFFERS.colliders.bytes).toBe(COLLIDER.size);
+    expect(COLLIDER.size).toBe(128);
+    expect([COLLIDER.pose0, COLLIDER.pose1, COLLIDER.pose2, COLLIDER.motion0, COLLIDER.motion1, COLLIDER.motion2, COLLIDER.shape]).toEqual([0, 16, 32, 48, 64, 80, 96]);
+    expect(BUFFERS.carried.bytes).toBe(CARRY.size);
+    expect([CARRY.local, CARRY.particle, CARRY.collider, CARRY.size]).toEqual([0, 12, 16, 32]);
   });
 });
 

@@ -13,6 +13,7 @@ import type { SimParams } from '../core/params.js';
 import { assignPhases, type PhaseLog } from '../core/schedule.js';
 import type { ClothState } from '../core/state.js';
 import { ClothBuffers } from './buffers.js';
+import { ColliderTables } from './colliders.js';
 import { FrameEncoder, GPU_PHASES } from './encoder.js';
 import { kernelsFor, type Kernels } from './kernels.js';
 import { Readback } from './readback.js';
@@ -29,6 +30,7 @@ export class GpuClothSolver {
   readonly model: ClothModel;
   private readonly buffers: ClothBuffers;
   private readonly uniforms: UniformTables;
+  private readonly colliders: ColliderTables;
   private readonly encoder: FrameEncoder;
   private readonly readback: Readback;
   private params: SimParams | undefined;
@@ -61,7 +63,8 @@ export class GpuClothSolver {
     this.model = model;
     this.buffers = new ClothBuffers(device, model, kernels.storageLayouts);
     this.uniforms = new UniformTables(device, model, kernels.uniformLayout);
-    this.encoder = new FrameEncoder(device, model, kernels.pipelines, this.buffers, this.uniforms);
+    this.colliders = new ColliderTables(device, this.buffers);
+    this.encoder = new FrameEncoder(device, model, kernels.pipelines, this.buffers, this.uniforms, this.colliders);
     this.readback = new Readback(device, model, this.buffers);
   }
 
@@ -80,7 +83,8 @@ export class GpuClothSolver {
    * Takes new parameters (stiffness, damping, mass, gravity, wind, colliders, substeps, iterations...) without
    * rebuilding anything but the uniform tables. `step` calls it by itself when handed a different params object;
    * call it after changing a params object in place. Throws for what the GPU does not implement (GPU_PHASES: the
-   * mass-spring solver, collider types other than sphere and floor, more than 64 colliders).
+   * mass-spring solver, a collider type its kernels do not know). Colliders may move (keyframes, or a drive the
+   * library sets on params.colliders: read every frame) and carry pins.
    */
   setParams(params: SimParams): void {
     this.checkAlive();
@@ -88,6 +92,7 @@ export class GpuClothSolver {
     this.params = params;
     this.buffers.writeParams(params);
     this.uniforms.setParams(params);
+    this.colliders.setParams(params);
   }
 
   /**

@@ -4,6 +4,7 @@
  */
 import type { ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
+import { CARRY, COLLIDER } from './layout.js';
 import type { BatchRecords, CollidePass } from './uniforms.js';
 
 /** Bytes one substep's kernels read and write, as written (each element access counted once per thread). */
@@ -31,9 +32,13 @@ export function substepTraffic(model: ClothModel, params: SimParams, collidePass
   if (hasTethers) add('tethers', n * (8 + 4 + 16 + 16 + 16));
   const stretchSprings = model.springCounts[0] + model.springCounts[1];
   add('limitStretch', stretchSprings * (8 + 8 + 8 + 32)); // springs, rest, w×2, x×2 in (written only when over)
+  const carried = params.carried.particles.length;
+  if (carried > 0) add('carry', carried * (CARRY.size + COLLIDER.size + 16)); // its record, its collider's, the position written
   for (const c of collidePasses) {
-    if (c.kernel === 'collideParticles') add('collideParticles', n * (4 + 16 + 16 + 16));
-    else add('collideTriangles', c.count * (12 + 48 + 48)); // indices, positions and previous positions of 3 particles
+    // w, x and x_prev in, x out, and each collider's record
+    if (c.kernel === 'collideParticles') add('collideParticles', n * (4 + 16 + 16 + 16 + c.colliders * COLLIDER.size));
+    // indices, positions and previous positions of 3 particles, the collider's record
+    else add('collideTriangles', c.count * (12 + 48 + 48 + COLLIDER.size));
   }
   add('perFrame', (n * (4 + 4 + 4 + 16 + 16 + 16) + n * 48) / params.substeps); // prepare + velocities, per substep
   let total = 0;
@@ -46,7 +51,7 @@ export function dispatchesPerFrame(
   params: SimParams, batchRecords: readonly BatchRecords[], collidePasses: readonly CollidePass[], hasTethers: boolean,
 ): number {
   const stretchBatches = batchRecords.filter((r) => r.stretch).length;
-  const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + params.iterations * batchRecords.length + stretchBatches +
-    (hasTethers ? 1 : 0) + collidePasses.length;
+  const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) +
+    params.iterations * batchRecords.length + stretchBatches + (hasTethers ? 1 : 0) + collidePasses.length;
   return 3 + params.substeps * perSubstep;
 }

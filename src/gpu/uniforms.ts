@@ -4,15 +4,12 @@
  * per contact pass (written with the params), with the lists of those passes the encoder dispatches.
  */
 import type {} from 'webgpu';
-import type { PosedCollider } from '../core/colliders/index.js';
 import { BEND, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import { needsTriangleContact } from '../core/phases.js';
 import type { ClothState } from '../core/state.js';
 import { windVelocity } from '../core/wind.js';
-import {
-  COLLIDER_BYTES, COLLIDER_FLOOR, COLLIDER_SPHERE, GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SUBSTEP,
-} from './layout.js';
+import { GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SUBSTEP } from './layout.js';
 
 /** A run of contact work in one substep: particles against colliders [first, last), or one triangle colour. */
 export interface CollidePass {
@@ -21,6 +18,8 @@ export interface CollidePass {
   readonly record: number;
   /** threads: particles or triangles */
   readonly count: number;
+  /** colliders each thread meets: last − first, or 1 */
+  readonly colliders: number;
 }
 
 /** Pass-record indices of one constraint batch: first iteration (λ from 0), later ones (λ accumulated). */
@@ -31,17 +30,6 @@ export interface BatchRecords {
   readonly count: number;
   /** structural or shear: stretch limiting runs over it */
   readonly stretch: boolean;
-}
-
-/**
- * A collider as the GPU's `Collider` struct holds it, or null for one the GPU does not know: it knows spheres and
- * level floors that do not move (their kernel records, PosedCollider.kernelRecord).
- */
-export function gpuCollider(shape: PosedCollider): { kind: number; data4: [number, number, number, number] } | null {
-  const r = shape.kernelRecord;
-  if (!r) return null;
-  if (r[0] === COLLIDER_SPHERE) return { kind: COLLIDER_SPHERE, data4: [r[1], r[2], r[3], r[4]] };
-  return { kind: COLLIDER_FLOOR, data4: [r[1], 0, 0, 0] };
 }
 
 /** The uniform buffers of one cloth, their bind group, and the pass lists of the current params. */
@@ -97,8 +85,8 @@ export class UniformTables {
   }
 
   /**
-   * Globals and pass records for `params` (every collider must have a gpuCollider form), and room for
-   * params.substeps substep records.
+   * Globals and pass records for `params` (every collider of a type the GPU knows: colliders.ts gpuCollider), and
+   * room for params.substeps substep records.
    */
   setParams(params: SimParams): void {
     const model = this.model;
@@ -114,14 +102,9 @@ export class UniformTables {
     g.setFloat32(GLOBALS.reach, params.thickness + 2 * model.maxTriangleEdge, true);
     g.setFloat32(GLOBALS.windK, (0.25 * params.wind.airDensity) / 3, true);
     g.setUint32(GLOBALS.colliderCount, params.colliders.length, true);
-    const triangleShapes: boolean[] = [];
-    params.colliders.forEach((shape, k) => {
-      const at = GLOBALS.colliders + k * COLLIDER_BYTES;
-      const { kind, data4 } = gpuCollider(shape)!;
-      for (let j = 0; j < 4; j++) g.setFloat32(at + 4 * j, data4[j], true);
-      g.setUint32(at + 16, kind, true);
-      triangleShapes.push(kind === COLLIDER_SPHERE && needsTriangleContact(model, shape, params.thickness));
-    });
+    g.setUint32(GLOBALS.carriedCount, params.carried.particles.length, true);
+    // shapes whose surface can poke between a triangle's vertices (not a half-space), as the CPU decides
+    const triangleShapes = params.colliders.map((shape) => needsTriangleContact(model, shape, params.thickness));
     q.writeBuffer(this.globalsBuffer, 0, this.globals);
 
     // pass records: constraint batches (two variants each), then contact
@@ -138,12 +121,12 @@ export class UniformTables {
     const shapes = params.colliders.length;
     for (let k = 0; k < shapes; k++) {
       if (!triangleShapes[k] && k + 1 < shapes) continue;
-      this.collidePasses.push({ kernel: 'collideParticles', record: records.length, count: model.particleCount });
+      this.collidePasses.push({ kernel: 'collideParticles', record: records.length, count: model.particleCount, colliders: k + 1 - first });
       records.push([first, k + 1, 0, 0]);
       first = k + 1;
       if (!triangleShapes[k]) continue;
       for (const b of model.triangleBatches) {
-        this.collidePasses.push({ kernel: 'collideTriangles', record: records.length, count: b.end - b.start });
+        this.collidePasses.push({ kernel: 'collideTriangles', record: records.length, count: b.end - b.start, colliders: 1 });
         records.push([b.start, b.end, 0, k]);
       }
     }
@@ -175,9 +158,10 @@ export class UniformTables {
 
   /**
    * A frame's per-frame inputs: the grab (particle, target) and one record per substep of dt [s], with the CPU's own
-   * time accumulation (gusts) and Taylor start, as the frame loop will count them from `state`.
+   * time accumulation (gusts) and Taylor start, as the frame loop will count them from `state`; substep k's
+   * colliders start at record k × `colliderStride` of the colliders buffer (ColliderTables.beginFrame).
    */
-  writeFrame(state: ClothState, params: SimParams, dt: number): void {
+  writeFrame(state: ClothState, params: SimParams, dt: number, colliderStride: number): void {
     const q = this.device.queue;
     const n = params.substeps;
     const h = dt / n;
@@ -204,6 +188,7 @@ export class UniformTables {
       sv.setUint32(at + SUBSTEP.windOn, windOn ? 1 : 0, true);
       sv.setFloat32(at + SUBSTEP.recover, params.depenetrationSpeed * h, true);
       sv.setFloat32(at + SUBSTEP.recoverTriangle, (params.depenetrationSpeed * h) / Math.max(1, this.model.maxTriangleValence), true);
+      sv.setUint32(at + SUBSTEP.colliderBase, sub * colliderStride, true);
       t += h;
     }
     q.writeBuffer(this.substepBuffer, 0, this.substepData, 0, n * RECORD_STRIDE);

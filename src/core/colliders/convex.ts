@@ -20,6 +20,7 @@
  *
  * Tested against brute-force sampling of the triangle (colliders/shapes.test.ts).
  */
+import { GOLDEN_ITERATIONS } from '../layout.generated.js';
 import { closestPointOnTriangle } from './sphere.js';
 import type { ColliderShape } from './shape.js';
 
@@ -163,8 +164,6 @@ export function vertexDeepest(
 }
 
 const GOLDEN = (Math.sqrt(5) - 1) / 2;
-/** golden-section iterations of each of the two nested searches */
-export const GOLDEN_ITERATIONS = 12;
 
 /**
  * Minimises the convex signed distance over triangle (a, b, c) by nested golden-section searches (see the file's

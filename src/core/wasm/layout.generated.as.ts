@@ -18,8 +18,10 @@ export const COLLIDER_BOX: i32 = 4;
 export const COLLIDER_CAPSULE: i32 = 5;
 /** collider type id of a closed cylinder: radius and half height, its axis along its own y */
 export const COLLIDER_CYLINDER: i32 = 6;
-/** most colliders in a scene (schema), in the kernel's control block and in the GPU uniforms */
+/** most colliders in a scene (schema) and in the kernel's control block */
 export const MAX_COLLIDERS: i32 = 64;
+/** golden-section iterations of each of the two nested searches of triangle contact (colliders/convex.ts goldenDeepest, the GPU's triangleContact.wgsl) */
+export const GOLDEN_ITERATIONS: i32 = 12;
 /** most threads one kernel runs (one run counter each in the control block) */
 export const KERNEL_MAX_THREADS: i32 = 16;
 /** kernel substep flag: external forces (wind) to integrate */

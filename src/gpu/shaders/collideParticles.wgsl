@@ -1,8 +1,10 @@
-// collide (phases.ts), particle part, for colliders [batch.start, batch.end) in order: a particle closer than the
-// contact thickness is pushed out along the surface normal (at once for what it moved in this substep, at most
-// sub.recover for an overlap it did not move into), position-based friction removes (part of) its tangential
-// motion over the substep, and the outward motion the push-out made moves x_prev too (not velocity). One thread
-// per particle.
+// collide (phases.ts), particle part, for colliders [batch.start, batch.end) in order, each where it is at the end
+// of this substep (its record at sub.colliderBase): a particle closer than the contact thickness is pushed out along
+// the surface normal (at once for what it moved into the surface in this substep, at most sub.recover for an
+// overlap it did not move into), position-based friction removes (part of) its tangential motion over the substep,
+// and the outward motion the push-out made moves x_prev too (not velocity). Every motion is taken relative to the
+// collider's surface (its own motion over the substep subtracted), so a moving collider pushes and drags the cloth.
+// One thread per particle.
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
@@ -15,10 +17,13 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   var moved = false;
   var movedPrev = false;
   for (var k = batch.start; k < batch.end; k++) {
+    let c = colliders[sub.colliderBase + k];
     var n: vec3f;
-    let d = shapeDistance(globals.colliders[k], x, &n);
+    let d = colliderDistance(c, x, &n);
     if (d >= th) { continue; }
-    let m = x - xp;
+    // motion over the substep so far relative to the surface, its normal part, and the push-out
+    var m = x - xp;
+    if (c.moving != 0u) { m -= surfaceMotion(c, x); }
     let mn = dot(m, n);
     let depth = min(th - d, max(-mn, 0.0) + sub.recover);
     let t = m - mn * n;

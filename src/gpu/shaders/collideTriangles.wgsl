@@ -1,14 +1,16 @@
-// collide (phases.ts), triangle part, for collider globals.colliders[batch.flags] and the triangles of one colour,
-// [batch.start, batch.end) (core sorts triangles by colour): they share no vertex, so each thread owns its three
-// particles for the dispatch (Gauss–Seidel over colours, as the constraint solve; no float atomics). The deepest
-// point of the triangle is pushed out to the contact thickness as a particle is (collideParticles), with friction;
-// the correction is shared by barycentric weight and inverse mass so that Σ bary_i·Δx_i is the wanted displacement.
+// collide (phases.ts), triangle part, for collider batch.flags (its record at sub.colliderBase: where it is at the
+// end of this substep) and the triangles of one colour, [batch.start, batch.end) (core sorts triangles by colour):
+// they share no vertex, so each thread owns its three particles for the dispatch (Gauss–Seidel over colours, as the
+// constraint solve; no float atomics). The deepest point of the triangle (triangleContact.wgsl, in the collider's
+// own frame) is pushed out to the contact thickness as a particle is (collideParticles), with friction on its motion
+// relative to the surface; the correction is shared by barycentric weight and inverse mass so that Σ bary_i·Δx_i is
+// the wanted displacement.
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
   let t = batch.start + flatIndex(gid, nwg);
   if (t >= batch.end) { return; }
-  let shape = globals.colliders[batch.flags];
+  let shape = colliders[sub.colliderBase + batch.flags];
   let a = triangles[3u * t];
   let b = triangles[3u * t + 1u];
   let c = triangles[3u * t + 2u];
@@ -17,24 +19,25 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   let xc = positions[c].xyz;
   var n: vec3f;
   // every point of a triangle stretched at most 2× lies within `reach` of vertex a
-  if (shapeDistance(shape, xa, &n) > globals.reach) { return; }
-  // only spheres get here (a half-space's deepest point is a vertex)
-  let bary = closestPointOnTriangle(shape.data.xyz, xa, xb, xc);
-  let q = bary.x * xa + bary.y * xb + bary.z * xc;
-  let d = shapeDistance(shape, q, &n);
+  if (colliderDistance(shape, xa, &n) > globals.reach) { return; }
   let th = globals.thickness;
-  if (d >= th) { return; }
+  let deep = triangleDeepest(shape, toLocal(shape, xa), toLocal(shape, xb), toLocal(shape, xc), th);
+  if (deep.d >= th) { return; }
+  let d = deep.d;
+  let bary = deep.bary;
+  n = toWorldDirection(shape, deep.n);
   let wa = invMass[a] * bary.x;
   let wb = invMass[b] * bary.y;
   let wc = invMass[c] * bary.z;
   let denom = wa * bary.x + wb * bary.y + wc * bary.z;
   if (denom == 0.0) { return; }
-  // motion of the contact point over the substep so far, treated as a particle's (collideParticles), the
-  // recovery shared among the triangles of a particle
+  // motion of the contact point over the substep so far, relative to the surface, treated as a particle's
+  // (collideParticles), the recovery shared among the triangles of a particle
   let pa = previous[a].xyz;
   let pb = previous[b].xyz;
   let pc = previous[c].xyz;
-  let m = bary.x * (xa - pa) + bary.y * (xb - pb) + bary.z * (xc - pc);
+  var m = bary.x * (xa - pa) + bary.y * (xb - pb) + bary.z * (xc - pc);
+  if (shape.moving != 0u) { m -= surfaceMotion(shape, bary.x * xa + bary.y * xb + bary.z * xc); }
   let mn = dot(m, n);
   let depth = min(th - d, max(-mn, 0.0) + sub.recoverTriangle);
   let tang = m - mn * n;

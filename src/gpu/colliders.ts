@@ -1,0 +1,150 @@
+/**
+ * The colliders as the GPU's kernels read them: the `colliders` buffer (layout.ts `Collider`: each collider's shape
+ * in its own frame, where that frame is at the end of a substep, and how its surface moved over the substep) and
+ * the `carried` buffer (layout.ts `Carry`: the particles colliders carry, params.carried).
+ *
+ * While no collider moves, the buffer holds one record per collider, written when the params change, and every
+ * substep reads those (Substep.colliderBase = 0). While one moves (keyframes, or a drive the library sets:
+ * PosedCollider.animated), the encoder puts every collider where it is at the end of each substep it encodes
+ * (`poseSubstep`: PosedCollider.moveTo(state.time, state.time + h), as the TypeScript contact and carry phases do),
+ * one record per collider per substep, and the frame's records are written before its command buffer is submitted
+ * (Substep.colliderBase = substep × colliders). So the GPU's colliders are exactly the CPU's PosedColliders, pose
+ * by pose, and the CPU's colliders stand where the frame left them (what views and reports read).
+ */
+import type {} from 'webgpu';
+import type { PosedCollider } from '../core/colliders/index.js';
+import type { SimParams } from '../core/params.js';
+import type { ClothBuffers } from './buffers.js';
+import {
+  CARRY, COLLIDER, COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
+} from './layout.js';
+
+/** The collider types the GPU's kernels know (colliders.wgsl, triangleContact.wgsl). */
+const GPU_TYPES: readonly number[] = [COLLIDER_SPHERE, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER];
+
+/** Byte offsets of the rows of R (with o) and of M (with m) in a record. */
+const POSE_ROWS = [COLLIDER.pose0, COLLIDER.pose1, COLLIDER.pose2];
+const MOTION_ROWS = [COLLIDER.motion0, COLLIDER.motion1, COLLIDER.motion2];
+
+/**
+ * The type id the GPU's kernels know a collider by (PosedCollider.typeId), or null for a shape they do not know
+ * (the GPU then refuses the contact phase: encoder.ts).
+ */
+export function gpuCollider(shape: PosedCollider): number | null {
+  return GPU_TYPES.includes(shape.typeId) ? shape.typeId : null;
+}
+
+/** The colliders' GPU records of one cloth: written with the params, and per frame while a collider moves. */
+export class ColliderTables {
+  private readonly device: GPUDevice;
+  private readonly buffers: ClothBuffers;
+  /** the records of the frame being encoded (or the static ones), CPU side */
+  private data = new ArrayBuffer(COLLIDER.size);
+  private view = new DataView(this.data);
+  /** colliders in the params */
+  private count = 0;
+  /** whether this frame's records are per substep (some collider moves) */
+  private perSubstep = false;
+  /** the last substep of this frame whose records are made (−1: none yet) */
+  private posed = -1;
+  /** whether the buffer holds the static records of the current params */
+  private staticCurrent = false;
+
+  constructor(device: GPUDevice, buffers: ClothBuffers) {
+    this.device = device;
+    this.buffers = buffers;
+  }
+
+  /** The carried particles of `params`; the collider records are written by the next frame. */
+  setParams(params: SimParams): void {
+    this.count = params.colliders.length;
+    this.staticCurrent = false;
+    const { particles, collider, local } = params.carried;
+    const n = particles.length;
+    if (n === 0) return;
+    this.buffers.reserve('carried', n);
+    const table = new DataView(new ArrayBuffer(n * CARRY.size));
+    for (let k = 0; k < n; k++) {
+      const at = k * CARRY.size;
+      for (let j = 0; j < 3; j++) table.setFloat32(at + CARRY.local + 4 * j, local[3 * k + j], true);
+      table.setUint32(at + CARRY.particle, particles[k], true);
+      table.setUint32(at + CARRY.collider, collider[k], true);
+    }
+    this.device.queue.writeBuffer(this.buffers.buffers.carried, 0, table.buffer);
+  }
+
+  /**
+   * Before a frame of `params.substeps` substeps is encoded: makes room for its records, writes the static ones if
+   * they are not in the buffer yet, and returns how many records each substep's start is after the last one's
+   * (Substep.colliderBase = substep × that): the collider count while one moves, else 0.
+   */
+  beginFrame(params: SimParams): number {
+    const n = this.count;
+    this.posed = -1;
+    const colliders = params.colliders;
+    let moves = false;
+    for (let k = 0; k < n && !moves; k++) moves = colliders[k].animated;
+    this.perSubstep = moves;
+    if (!this.perSubstep) {
+      if (!this.staticCurrent && n > 0) {
+        this.buffers.reserve('colliders', n);
+        this.ensureData(n);
+        for (let k = 0; k < n; k++) this.encode(colliders[k], k, false);
+        this.device.queue.writeBuffer(this.buffers.buffers.colliders, 0, this.data, 0, n * COLLIDER.size);
+      }
+      this.staticCurrent = true;
+      return 0;
+    }
+    this.staticCurrent = false;
+    const records = n * params.substeps;
+    this.buffers.reserve('colliders', records);
+    this.ensureData(records);
+    return n;
+  }
+
+  /**
+   * The records of substep `sub`, which starts at t0 [s] and lasts h [s]: every collider moved to where it is at
+   * the substep's end (PosedCollider.moveTo), once per substep however many phases ask. Nothing while none moves.
+   */
+  poseSubstep(params: SimParams, sub: number, t0: number, h: number): void {
+    if (!this.perSubstep || this.posed === sub) return;
+    this.posed = sub;
+    const base = sub * this.count, colliders = params.colliders;
+    for (let k = 0; k < this.count; k++) {
+      const c = colliders[k];
+      c.moveTo(t0, t0 + h);
+      this.encode(c, base + k, c.moving);
+    }
+  }
+
+  /** After the frame is encoded, before it is submitted: its per-substep records to the GPU. */
+  endFrame(params: SimParams): void {
+    if (!this.perSubstep) return;
+    this.device.queue.writeBuffer(this.buffers.buffers.colliders, 0, this.data, 0, this.count * params.substeps * COLLIDER.size);
+  }
+
+  private ensureData(records: number): void {
+    if (this.data.byteLength >= records * COLLIDER.size) return;
+    this.data = new ArrayBuffer(records * COLLIDER.size);
+    this.view = new DataView(this.data);
+  }
+
+  /** Record `r`: the collider's pose and shape as it is now, and its surface motion if `moving` (else zero). */
+  private encode(c: PosedCollider, r: number, moving: boolean): void {
+    const v = this.view, at = r * COLLIDER.size, R = c.R, o = c.o, D = c.RD, oD = c.oD;
+    const rows = POSE_ROWS, motion = MOTION_ROWS;
+    for (let i = 0; i < 3; i++) {
+      for (let j = 0; j < 3; j++) {
+        v.setFloat32(at + rows[i] + 4 * j, R[3 * i + j], true);
+        // M = I − RD in f64 first: the motion M·p + m is small, and would be lost to f32 rounding of p − RD·p
+        v.setFloat32(at + motion[i] + 4 * j, moving ? (i === j ? 1 : 0) - D[3 * i + j] : 0, true);
+      }
+      v.setFloat32(at + rows[i] + 12, o[i], true);
+      v.setFloat32(at + motion[i] + 12, moving ? -oD[i] : 0, true);
+      v.setFloat32(at + COLLIDER.shape + 4 * i, c.shapeParams[i], true);
+    }
+    v.setFloat32(at + COLLIDER.shape + 12, 0, true);
+    v.setUint32(at + COLLIDER.kind, c.typeId, true);
+    v.setUint32(at + COLLIDER.moving, moving ? 1 : 0, true);
+  }
+}
