@@ -65,7 +65,8 @@ describe('drape CLI', () => {
     expect(r.code).toBe(0);
     const [skirt, pins] = JSON.parse(r.out).rows;
     expect(skirt).toMatchObject({ scene: 'skirt', colliders: 16, substeps: 10, xpbd: { kernel: 'wasm', finite: true }, xpbdTs: { finite: true }, massSpring: { finite: true } });
-    expect(skirt.gpuRefusal).toMatch(/^moving colliders run on the CPU only/);
+    // the GPU takes both (moving capsules and carried pins included)
+    expect(skirt.gpuRefusal).toBeNull();
     expect(pins.gpuRefusal).toBeNull();
     const table = await run('bench', '--scenes', 'pins', '--frames', '1', '--warmup', '0');
     expect(table.out).toMatch(/^\| pins \| 1089 \| 1 \| 20 \| [\d.]+ \(wasm, 1 thread\) \| [\d.]+ \| [\d.]+ \| yes \/ yes \/ yes \| takes it/m);

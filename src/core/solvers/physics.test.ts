@@ -187,8 +187,11 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const rnd = () => ((seed = (Math.imul(seed, 1664525) + 1013904223) >>> 0) / 2 ** 32);
     const range = (lo: number, hi: number, log = false) => (log ? Math.exp(Math.log(lo) + rnd() * (Math.log(hi) - Math.log(lo))) : lo + rnd() * (hi - lo));
     const mat = sceneSchema.properties.material.properties;
+    // the material, solver and forces are what is random here: the mannequin's scenes (sixteen moving shapes, the
+    // slowest contact there is) are left to their own tests
+    const names = SCENE_NAMES.filter((name) => name !== 'cape' && name !== 'skirt');
     for (let trial = 0; trial < 200; trial++) {
-      const sc = builtinScene(SCENE_NAMES[trial % SCENE_NAMES.length]);
+      const sc = builtinScene(names[trial % names.length]);
       sc.solver = { ...sc.solver, type: solver, substeps: Math.round(range(1, 40)), iterations: Math.round(range(1, 3)) };
       // a scene that pins particles by index (the skirt's waist) keeps its resolution: another would refuse its pins
       const resolution = Math.round(range(1, 12));
@@ -291,8 +294,8 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const sim = newSim(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 20; }));
     sim.advance(90);
     sim.set(path, value);
-    // pushed out, the cloth may slide off the grown sphere onto the floor before it rests (mass-spring: at 2.5 s)
-    sim.advance(240);
+    // pushed out, the cloth may slide off the grown sphere onto the floor before it rests (mass-spring: by 2.5 s)
+    sim.advance(150);
     const r = sim.report();
     expect(r.finite).toBe(true);
     for (let k = 0; k < 3; k++) {
