@@ -273,19 +273,6 @@ export class PosedCollider implements ColliderShape {
   }
 
   /**
-   * [COLLIDER_SPHERE, cx, cy, cz, r] or [COLLIDER_FLOOR, height, 0, 0, 0] for a sphere or a level floor that does
-   * not move: the encoding the GPU's uniforms take (gpu/uniforms.ts gpuCollider); undefined for any other shape or
-   * motion. The WebAssembly kernel reads the full record instead (writeRecord).
-   */
-  get kernelRecord(): readonly number[] | undefined {
-    if (this.animated) return undefined;
-    const l = this.local, R = this.R, o = this.o;
-    if (l instanceof SphereCollider) return [COLLIDER_SPHERE, o[0], o[1], o[2], l.radius];
-    if (l instanceof FloorCollider && R[4] === 1) return [COLLIDER_FLOOR, o[1], 0, 0, 0];
-    return undefined;
-  }
-
-  /**
    * The WebAssembly kernel's record of the collider for the current substep (after moveTo) to out[at…]: the fields
    * of COLLIDER_RECORD (gen-layout.mjs), COLLIDER_RECORD_FLOATS numbers. `exact`: the collider also has triangle
    * contact (its particle contact then runs in f64).
