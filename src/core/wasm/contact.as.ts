@@ -1,7 +1,7 @@
 // Particle contact against the collider records of the control block, four particles at a time in f32x4 lanes.
 import { W, X, XP } from './arrays.as';
 import {
-  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_RECORD_EXACT, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O,
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_RECORD_EXACT, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O,
   COLLIDER_RECORD_OD, COLLIDER_RECORD_R, COLLIDER_RECORD_RD, COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_RECORDS,
   COLLIDER_SPHERE, COLLIDERS, DEPENETRATION, FRICTION, H, STATIC_FRICTION, THICKNESS,
 } from './layout.generated.as';
@@ -147,15 +147,16 @@ export function collideParticles(p0: i32, p1: i32): void {
     const rec = COLLIDER_RECORDS + <usize>c * COLLIDER_BYTES;
     const type = <i32>field(rec, COLLIDER_RECORD_TYPE);
     const moving = field(rec, COLLIDER_RECORD_MOVING) != 0;
-    // box and cylinder always have triangle contact (sharp edges), a sphere or capsule on a coarse cloth too: such
-    // a collider's particles go one by one in f64 (f32 lanes under a triangle pass let a cloth resting on a sphere
-    // creep off it: measured, docs/physics.md)
-    const lanes = field(rec, COLLIDER_RECORD_EXACT) == 0;
+    // lanes have the half-spaces (floor, plane) and the sphere; every other shape, and a shape that also has
+    // triangle contact (f32 lanes under a triangle pass let a cloth resting on a sphere creep off it: measured,
+    // docs/physics.md), goes one particle at a time in f64 (localDistance)
+    const lanes = field(rec, COLLIDER_RECORD_EXACT) == 0 &&
+      (type == COLLIDER_SPHERE || type == COLLIDER_FLOOR || type == COLLIDER_PLANE);
     const s0 = field(rec, COLLIDER_RECORD_SHAPE), s1 = field(rec, COLLIDER_RECORD_SHAPE, 1), s2 = field(rec, COLLIDER_RECORD_SHAPE, 2);
     const bound = boundingRadius(type, s0, s1, s2);
     const far = bound < 0 ? -1 : bound + th;
     const vFar2 = f32x4.splat(far > 0 ? <f32>(far * far) : Infinity);
-    const vs0 = f32x4.splat(<f32>s0), vs1 = f32x4.splat(<f32>s1);
+    const vs0 = f32x4.splat(<f32>s0);
     const R = COLLIDER_RECORD_R, D = COLLIDER_RECORD_RD;
     const r0 = f32x4.splat(<f32>field(rec, R)), r1 = f32x4.splat(<f32>field(rec, R, 1)), r2 = f32x4.splat(<f32>field(rec, R, 2));
     const r3 = f32x4.splat(<f32>field(rec, R, 3)), r4 = f32x4.splat(<f32>field(rec, R, 4)), r5 = f32x4.splat(<f32>field(rec, R, 5));
@@ -167,8 +168,6 @@ export function collideParticles(p0: i32, p1: i32): void {
     const d6 = f32x4.splat(<f32>field(rec, D, 6)), d7 = f32x4.splat(<f32>field(rec, D, 7)), d8 = f32x4.splat(<f32>field(rec, D, 8));
     const e0 = f32x4.splat(<f32>field(rec, COLLIDER_RECORD_OD)), e1 = f32x4.splat(<f32>field(rec, COLLIDER_RECORD_OD, 1));
     const e2 = f32x4.splat(<f32>field(rec, COLLIDER_RECORD_OD, 2));
-    // the normal of a point on a capsule's axis (the TypeScript shape's perpendicular)
-    const axisZ = f32x4.splat(s0 <= 0 ? 0 : -1), axisY = f32x4.splat(s0 <= 0 ? 1 : 0);
     let i = p0;
     for (; lanes && i + 4 <= p1; i += 4) {
       const o = <usize>i * 12;
@@ -183,8 +182,7 @@ export function collideParticles(p0: i32, p1: i32): void {
       }
       // the particles in the shape's own frame: Rᵀ·(p − o)
       const qx = dot3(r0, r3, r6, dx, dy, dz), qy = dot3(r1, r4, r7, dx, dy, dz), qz = dot3(r2, r5, r8, dx, dy, dz);
-      // signed distance and outward normal in that frame (localDistance() in lanes): floor and plane (y < 0),
-      // sphere, capsule
+      // signed distance and outward normal in that frame (localDistance() in lanes): floor and plane (y < 0), sphere
       let lx = zero, ly = one, lz = zero, d = qy;
       if (type == COLLIDER_SPHERE) {
         const dd = f32x4.sqrt(dot3(qx, qy, qz, qx, qy, qz));

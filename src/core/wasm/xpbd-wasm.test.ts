@@ -110,6 +110,23 @@ describe('xpbd wasm kernel', () => {
     expect(b.maxPenetration).toBeLessThanOrEqual(1e-3);
   });
 
+  it.each(['box', 'capsule', 'cylinder'])('%s on a cloth finer than its thickness (no triangle contact): the kernel has the shape, not a plane through it', (name) => {
+    // 3.1 cm edges under a 5 cm thickness: the shape's sharp edges cannot poke between vertices, so only particle
+    // contact runs; 4.5 cm above the shape's top, every particle touches it in the first frame
+    const sc = validateScene({
+      name: 'fine', cloth: { resolution: 16, width: 0.5, height: 0.5, position: [0, 0.845, 0], thickness: 0.05 },
+      solver: { type: 'xpbd' }, colliders: [SHAPES[name as keyof typeof SHAPES]],
+    });
+    const [ts, wasm] = pair(sc);
+    const log = new PhaseLog();
+    ts.advance(1);
+    (wasm.backend as WasmBackend).kernel.frame(wasm.model, wasm.state, wasm.params, FRAME_DT, log);
+    expect(log.names()).toContain('contact');
+    expect(log.names().some((n) => n.startsWith('contactTriangles'))).toBe(false);
+    // the push-out is 5 mm: a kernel that missed the shape would be that far off
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-4);
+  });
+
   it('several iterations per substep accumulate λ as in TypeScript', () => {
     const sc = builtinScene('pins')!;
     sc.cloth.resolution = 10;
