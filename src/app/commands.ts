@@ -50,7 +50,12 @@ export class Commands implements PanelHost, InteractionHost {
       app.overlay.message(refusal(e));
       return;
     }
-    if (this.setPath('colliders', next.colliders)) app.mannequin = { ...m, options: { ...m.options, ...change } };
+    if (this.setPath('colliders', next.colliders)) {
+      app.mannequin = { ...m, options: { ...m.options, ...change } };
+      // the new motion has the body somewhere else now: the pins it carries would jump there in one substep and
+      // fling the cloth, so the cloth starts again with the body
+      this.reset();
+    }
     app.panel.sync();
   }
 

@@ -254,6 +254,11 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
       // the outward normal motion the push-out made (mn + depth, at most depth) is not velocity
       const made = Math.min(mn + depth, depth);
       if (made > 0) { xp[j] += made * normal[0]; xp[j + 1] += made * normal[1]; xp[j + 2] += made * normal[2]; }
+      // the box still holds the cloth for the colliders after this one
+      for (let k = 0; k < 3; k++) {
+        if (x[j + k] < box[k]) box[k] = x[j + k];
+        if (x[j + k] > box[3 + k]) box[3 + k] = x[j + k];
+      }
     }
   }
 }

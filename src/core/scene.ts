@@ -1,4 +1,5 @@
 import { Ajv, type ErrorObject } from 'ajv';
+import { eulerXYZ } from './mesh/generators.js';
 import { PIN_PRESETS, sceneSchema } from './scene-schema.js';
 
 export type Vec3 = [number, number, number];
@@ -184,9 +185,16 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
       if (keys[i].time < keys[i - 1].time) {
         throw new SceneError(`${source}: colliders[${k}].motion.keyframes[${i}].time: must not be before the previous key's (${keys[i - 1].time} s)`);
       }
+      // a jump is not a motion: contact would take it as the surface's speed and fling the cloth
+      if (keys[i].time === keys[i - 1].time && !samePose(keys[i], keys[i - 1])) {
+        throw new SceneError(`${source}: colliders[${k}].motion.keyframes[${i}]: at the time of the key before it, it must be that pose (a collider cannot jump)`);
+      }
     }
     if (c.motion?.loop && !(keys[keys.length - 1].time > 0)) {
       throw new SceneError(`${source}: colliders[${k}].motion.loop: needs a last key after time 0 (its time is the period)`);
+    }
+    if (c.motion?.loop && (keys[0].time !== 0 || !samePose(keys[0], keys[keys.length - 1]))) {
+      throw new SceneError(`${source}: colliders[${k}].motion.loop: the keys must start at time 0 and end in the pose they start in (else the collider jumps at each repeat)`);
     }
   });
   if (scene.cloth.shape === 'mesh' && scene.cloth.mesh === undefined) {
@@ -206,6 +214,13 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
   check(scene.pins, 'pins');
   scene.colliders.forEach((c, k) => check(c.pins ?? [], `colliders[${k}].pins`));
   return scene;
+}
+
+/** Whether two keys put a collider in the same pose: equal translations, and Euler angles that turn alike (0° and 360°). */
+function samePose(a: { translation: Vec3; rotation: Vec3 }, b: { translation: Vec3; rotation: Vec3 }): boolean {
+  const ra = eulerXYZ(a.rotation), rb = eulerXYZ(b.rotation);
+  const size = 1 + Math.max(...a.translation.map(Math.abs), ...b.translation.map(Math.abs));
+  return a.translation.every((v, i) => Math.abs(v - b.translation[i]) <= 1e-9 * size) && ra.every((v, i) => Math.abs(v - rb[i]) <= 1e-9);
 }
 
 /** Parses JSON text into a validated scene; malformed JSON gives a SceneError with the position. */

@@ -144,8 +144,9 @@ describe('keyframes and drives (colliders/pose.ts)', () => {
     expect(at(c, 0).o).toEqual([1, 2, 3]);
     expect(at(c, 2).o).toEqual([2, 2, 1]);
     expect(at(c, 9).o).toEqual([3, 2, -1]);
-    const looped = sphere({ keyframes: keys, loop: true });
-    for (const [t, want] of [[3.5, [1, 2, 3]], [5, [2, 2, 1]], [8, [2, 2, 1]]] as const) {
+    // a loop starts at 0 and ends where it starts: out 2 s, back 2 s
+    const looped = sphere({ keyframes: [{ time: 0 }, { time: 2, translation: [2, 0, -4] }, { time: 4 }], loop: true });
+    for (const [t, want] of [[4.5, [1.5, 2, 2]], [5, [2, 2, 1]], [7, [2, 2, 1]], [9, [2, 2, 1]]] as const) {
       at(looped, t).o.forEach((v, k) => expect(v).toBeCloseTo(want[k], 12));
     }
   });
@@ -181,6 +182,8 @@ describe('keyframes and drives (colliders/pose.ts)', () => {
     [{ keyframes: [] }, 'colliders[0].motion.keyframes: must NOT have fewer than 1 items'],
     [{ keyframes: [{ time: 0, rotation: [0, 0] }] }, 'colliders[0].motion.keyframes[0].rotation: must NOT have fewer than 3 items'],
     [{ keys: [] }, 'colliders[0].motion.keyframes: required'],
+    [{ keyframes: [{ time: 1 }, { time: 1, translation: [0, 0.1, 0] }] }, 'colliders[0].motion.keyframes[1]: at the time of the key before it, it must be that pose (a collider cannot jump)'],
+    [{ keyframes: [{ time: 0 }, { time: 1, translation: [0.1, 0, 0] }], loop: true }, 'colliders[0].motion.loop: the keys must start at time 0 and end in the pose they start in'],
   ])('%j is refused in one line naming the field', (motion, message) => {
     expect(() => validateScene({ colliders: [{ type: 'sphere', motion }] })).toThrow(SceneError);
     expect(() => validateScene({ colliders: [{ type: 'sphere', motion }] })).toThrow(message);

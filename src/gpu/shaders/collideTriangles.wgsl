@@ -30,7 +30,8 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   let wb = invMass[b] * bary.y;
   let wc = invMass[c] * bary.z;
   let denom = wa * bary.x + wb * bary.y + wc * bary.z;
-  if (denom == 0.0) { return; }
+  // (not > 0: nothing free to move, or weights too degenerate to have any; NaN included)
+  if (!(denom > 0.0)) { return; }
   // motion of the contact point over the substep so far, relative to the surface, treated as a particle's
   // (collideParticles), the recovery shared among the triangles of a particle
   let pa = previous[a].xyz;
