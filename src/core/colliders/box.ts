@@ -4,7 +4,8 @@ import type { ColliderShape } from './shape.js';
 
 /**
  * An oriented box: centre, half extents along its own axes, turned by Euler XYZ angles [degrees] as cloth.rotation
- * is (mesh/generators.ts eulerXYZ). Its edges are sharp (minCurvatureRadius 0), so triangle contact always runs.
+ * is (mesh/generators.ts eulerXYZ). Its edges are sharp (minCurvatureRadius 0), so triangle contact runs unless the
+ * cloth's edges are shorter than its thickness (phases.ts needsTriangleContact).
  */
 export class BoxCollider implements ColliderShape {
   readonly type = 'box';

@@ -132,8 +132,9 @@ function contactParticle(i: i32, rec: usize, far: f64, th: f64, recover: f64): v
  * transform, R and O) is pushed out along the normal, then friction removes (static) or reduces (kinetic) its
  * tangential motion over the substep relative to the surface (less the surface point's own motion, p − (RD·p + OD),
  * for a moving collider), and the outward motion the push-out made moves x_prev too (a push-out never launches the
- * cloth). Four particles at a time in f32x4 lanes; the last 1–3 particles of the cloth, and every particle of a
- * collider that also has triangle contact (the record's EXACT), one by one in f64 (contactParticle).
+ * cloth). Floors, planes and spheres four particles at a time in f32x4 lanes; the last 1–3 particles of the cloth,
+ * every particle of another shape and of a collider that also has triangle contact (the record's EXACT), one by
+ * one in f64 (contactParticle).
  */
 export function collideParticles(p0: i32, p1: i32): void {
   const x = X, xp = XP, w = W;
