@@ -25,7 +25,8 @@ function carriedBy(model: ClothModel, scene: Scene, colliders: readonly PosedCol
   const particles = new Uint32Array(owner.size), collider = new Uint16Array(owner.size), local = new Float64Array(3 * owner.size);
   const R = new Float64Array(9), o = new Float64Array(3), x = model.restPositions;
   let n = 0;
-  for (const [i, k] of [...owner].sort((a, b) => a[0] - b[0])) {
+  // by collider, then particle: the carry phase poses each collider once per substep
+  for (const [i, k] of [...owner].sort((a, b) => a[1] - b[1] || a[0] - b[0])) {
     colliders[k].poseAt(0, R, o);
     const dx = x[3 * i] - o[0], dy = x[3 * i + 1] - o[1], dz = x[3 * i + 2] - o[2];
     particles[n] = i; collider[n] = k;
