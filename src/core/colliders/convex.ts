@@ -222,6 +222,137 @@ function goldenInner(u: number): number {
   return Math.min(f1, f2, goldenF(u, 0), goldenF(u, 1 - u));
 }
 
+/** A convex shape with a support mapping: the point of the shape farthest in a direction. */
+export interface SupportShape extends ColliderShape {
+  /** The shape's point farthest along (dx, dy, dz) (any one where several are) to `out[0..2]`. */
+  support(dx: number, dy: number, dz: number, out: Float64Array): void;
+}
+
+const scratchQ = new Float64Array(3);
+const scratchQ2 = new Float64Array(3);
+
+/**
+ * Minimum of the convex signed distance along edge a + s·(b − a), s ∈ [0, 1], by golden-section search
+ * (EDGE_ITERATIONS: the bracket shrinks to 0.618²⁰ ≈ 7·10⁻⁵ of the edge), the ends included. Returns the
+ * distance; the parameter of the best point to `at[0]`.
+ */
+function edgeDeepest(
+  shape: ColliderShape, ax: number, ay: number, az: number, bx: number, by: number, bz: number, at: Float64Array,
+): number {
+  const e = edge;
+  e.shape = shape; e.ax = ax; e.ay = ay; e.az = az; e.ux = bx - ax; e.uy = by - ay; e.uz = bz - az;
+  let bestT = 0, best = edgeF(0);
+  const fb = edgeF(1);
+  if (fb < best) { best = fb; bestT = 1; }
+  let lo = 0, hi = 1;
+  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
+  let f1 = edgeF(x1), f2 = edgeF(x2);
+  for (let k = 0; k < EDGE_ITERATIONS; k++) {
+    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = edgeF(x1); }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = edgeF(x2); }
+  }
+  if (f1 < best) { best = f1; bestT = x1; }
+  if (f2 < best) { best = f2; bestT = x2; }
+  e.shape = null;
+  at[0] = bestT;
+  return best;
+}
+/** The edge edgeDeepest searches (a + t·u) and its shape: module state, no closure per call. */
+const edge = { shape: null as ColliderShape | null, ax: 0, ay: 0, az: 0, ux: 0, uy: 0, uz: 0 };
+function edgeF(t: number): number {
+  const e = edge;
+  return e.shape!.signedDistance(e.ax + t * e.ux, e.ay + t * e.uy, e.az + t * e.uz, scratchN);
+}
+const EDGE_ITERATIONS = 20;
+const edgeAt = new Float64Array(1);
+/** supportDeepest's vertices: signed distance and normal of each */
+const boundary = new Float64Array(12);
+
+/**
+ * The deepest point of triangle T = (a, b, c) for a convex shape C with a support mapping, exact wherever T does not
+ * cross C (the common case: a cloth resting on a rim or an edge). Where C lies wholly on one side of T's plane,
+ * the plane's point nearest C is the projection p of C's support point towards the plane; if p is in T it is the
+ * answer (the closest pair of T and C has T's point in T's interior exactly then). Otherwise, and where the plane
+ * cuts C but C ∩ plane (a convex set: the support points' chord crosses the plane in it) misses T, the minimum of
+ * the convex distance over T lies on T's boundary: the vertices and the three edges (edgeDeepest). If C ∩ plane
+ * meets T, or an edge reaches into C, T crosses C and the golden-section search over the whole triangle decides.
+ * `bary` and `normal` as triangleDeepest; returns the signed distance.
+ */
+export function supportDeepest(
+  shape: SupportShape,
+  a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+  bary: Float64Array, normal: Float64Array,
+): number {
+  const ax = a[ia], ay = a[ia + 1], az = a[ia + 2];
+  const bx = b[ib], by = b[ib + 1], bz = b[ib + 2];
+  const cx = c[ic], cy = c[ic + 1], cz = c[ic + 2];
+  const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;
+  const nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+  const nn = nx * nx + ny * ny + nz * nz;
+  if (!(nn > 1e-30)) return goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal);
+  const hi = scratchQ, lo = scratchQ2;
+  shape.support(nx, ny, nz, hi);
+  shape.support(-nx, -ny, -nz, lo);
+  // heights above the plane, in units of |n|
+  const hHi = nx * (hi[0] - ax) + ny * (hi[1] - ay) + nz * (hi[2] - az);
+  const hLo = nx * (lo[0] - ax) + ny * (lo[1] - ay) + nz * (lo[2] - az);
+  // the candidate point of the plane: C's point nearest it, projected; or, where the plane cuts C, a point of C ∩ plane
+  let px: number, py: number, pz: number;
+  const cuts = hLo <= 0 && hHi >= 0;
+  if (cuts) {
+    const t = hHi > hLo ? -hLo / (hHi - hLo) : 0;
+    px = lo[0] + t * (hi[0] - lo[0]); py = lo[1] + t * (hi[1] - lo[1]); pz = lo[2] + t * (hi[2] - lo[2]);
+  } else {
+    const q = hLo > 0 ? lo : hi, h = (hLo > 0 ? hLo : hHi) / nn;
+    px = q[0] - h * nx; py = q[1] - h * ny; pz = q[2] - h * nz;
+  }
+  // its barycentric weights (n · (ab × ap)) / |n|² etc.
+  const qx = px - ax, qy = py - ay, qz = pz - az;
+  const w = (nx * (aby * qz - abz * qy) + ny * (abz * qx - abx * qz) + nz * (abx * qy - aby * qx)) / nn;
+  const v = (nx * (qy * acz - qz * acy) + ny * (qz * acx - qx * acz) + nz * (qx * acy - qy * acx)) / nn;
+  const inside = v >= 0 && w >= 0 && v + w <= 1;
+  if (inside) {
+    if (cuts) return goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal);
+    bary[0] = 1 - v - w; bary[1] = v; bary[2] = w;
+    return shape.signedDistance(px, py, pz, normal);
+  }
+  // on the boundary: the vertices, then the edges. Along an edge the distance is convex: where it does not fall
+  // on leaving an end (n·(other end − end) ≥ 0) the edge's minimum is that end; and the tangent planes at the ends
+  // bound it from below, so an edge that cannot beat the best so far is not searched
+  const V = boundary;
+  for (let k = 0; k < 3; k++) {
+    V[4 * k] = shape.signedDistance(k === 0 ? ax : k === 1 ? bx : cx, k === 0 ? ay : k === 1 ? by : cy, k === 0 ? az : k === 1 ? bz : cz, scratchN);
+    V[4 * k + 1] = scratchN[0]; V[4 * k + 2] = scratchN[1]; V[4 * k + 3] = scratchN[2];
+  }
+  let best = V[0], b0 = 1, b1 = 0, b2 = 0;
+  if (V[4] < best) { best = V[4]; b0 = 0; b1 = 1; }
+  if (V[8] < best) { best = V[8]; b0 = 0; b1 = 0; b2 = 1; }
+  for (let e = 0; e < 3; e++) {
+    const i = e, j = (e + 1) % 3;
+    const ex = (j === 0 ? ax : j === 1 ? bx : cx) - (i === 0 ? ax : i === 1 ? bx : cx);
+    const ey = (j === 0 ? ay : j === 1 ? by : cy) - (i === 0 ? ay : i === 1 ? by : cy);
+    const ez = (j === 0 ? az : j === 1 ? bz : cz) - (i === 0 ? az : i === 1 ? bz : cz);
+    const si = V[4 * i + 1] * ex + V[4 * i + 2] * ey + V[4 * i + 3] * ez;
+    const sj = -(V[4 * j + 1] * ex + V[4 * j + 2] * ey + V[4 * j + 3] * ez);
+    if (si >= 0 || sj >= 0) continue;
+    if (Math.max(V[4 * i] + si, V[4 * j] + sj) >= best) continue;
+    const d = e === 0 ? edgeDeepest(shape, ax, ay, az, bx, by, bz, edgeAt)
+      : e === 1 ? edgeDeepest(shape, bx, by, bz, cx, cy, cz, edgeAt)
+        : edgeDeepest(shape, cx, cy, cz, ax, ay, az, edgeAt);
+    if (d < best) {
+      best = d;
+      const t = edgeAt[0];
+      b0 = e === 0 ? 1 - t : e === 1 ? 0 : t;
+      b1 = e === 0 ? t : e === 1 ? 1 - t : 0;
+      b2 = e === 0 ? 0 : e === 1 ? t : 1 - t;
+    }
+  }
+  // a vertex or an edge reaching into C: T crosses it
+  if (best <= 0) return goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal);
+  bary[0] = b0; bary[1] = b1; bary[2] = b2;
+  return shape.signedDistance(b0 * ax + b1 * bx + b2 * cx, b0 * ay + b1 * by + b2 * cy, b0 * az + b1 * bz + b2 * cz, normal);
+}
+
 /** The deepest point of a triangle for a convex shape: the vertex certificate, else the golden-section search. */
 export function convexTriangleDeepest(
   shape: ColliderShape,

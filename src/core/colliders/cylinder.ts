@@ -1,5 +1,4 @@
-import { axisCrossingNormal, goldenDeepest, segmentTriangleClosest, vertexDeepest } from './convex.js';
-import type { ColliderShape } from './shape.js';
+import { axisCrossingNormal, segmentTriangleClosest, supportDeepest, vertexDeepest, type SupportShape } from './convex.js';
 
 const bary2 = new Float64Array(3);
 const seg = new Float64Array(1);
@@ -8,9 +7,10 @@ const seg = new Float64Array(1);
  * A closed cylinder: centre, axis direction, radius and height (caps included). Its rims are sharp
  * (minCurvatureRadius 0). Triangle contact: the vertex certificate (a triangle on a cap), then the triangle's point
  * closest to the axis, which is the exact answer where it lies against the curved side (sd ≥ ρ − r everywhere, ρ
- * the distance to the axis line, with equality there), else the golden-section search (convex.ts).
+ * the distance to the axis line, with equality there), else (a rim under the triangle) the support-point method,
+ * exact while the triangle does not cross the cylinder, and the golden-section search where it does (convex.ts).
  */
-export class CylinderCollider implements ColliderShape {
+export class CylinderCollider implements SupportShape {
   readonly type = 'cylinder';
   readonly minCurvatureRadius = 0;
   /** unit axis */
@@ -70,9 +70,9 @@ export class CylinderCollider implements ColliderShape {
 
   triangleDeepest(
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-    bary: Float64Array, normal: Float64Array,
+    bary: Float64Array, normal: Float64Array, within = Infinity,
   ): number {
-    const d = vertexDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+    const d = vertexDeepest(this, a, ia, b, ib, c, ic, bary, normal, within);
     if (!Number.isNaN(d)) return d;
     // the triangle's point closest to the axis line (a segment reaching past every vertex's projection)
     const cx = this.center[0], cy = this.center[1], cz = this.center[2];
@@ -98,6 +98,17 @@ export class CylinderCollider implements ColliderShape {
       if (d2 > 1e-24) return this.signedDistance(qx, qy, qz, normal);
       return axisCrossingNormal(a, ia, b, ib, c, ic, this.ux, this.uy, this.uz, normal, this.radius);
     }
-    return goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+    return supportDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+  }
+
+  /** The point farthest along d: on the cap d points to (either, for d ⊥ axis), at the rim's point towards d. */
+  support(dx: number, dy: number, dz: number, out: Float64Array): void {
+    const y = dx * this.ux + dy * this.uy + dz * this.uz;
+    const rx = dx - y * this.ux, ry = dy - y * this.uy, rz = dz - y * this.uz;
+    const rho = Math.sqrt(rx * rx + ry * ry + rz * rz);
+    const s = (y < 0 ? -this.halfHeight : this.halfHeight), r = rho > 1e-12 * Math.sqrt(dx * dx + dy * dy + dz * dz) ? this.radius / rho : 0;
+    out[0] = this.center[0] + s * this.ux + r * rx;
+    out[1] = this.center[1] + s * this.uy + r * ry;
+    out[2] = this.center[2] + s * this.uz + r * rz;
   }
 }

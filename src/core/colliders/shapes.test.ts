@@ -125,6 +125,35 @@ function rng(seed: number): () => number {
 }
 
 describe('the deepest point of a triangle, against sampling the triangle', () => {
+  it('cylinder: triangles of a cloth lying over the rim (3 cm, tilted, just clear of it) are met exactly', () => {
+    const cyl = new CylinderCollider([0, 0.25, 0], [0, 1, 0], 0.2, 0.5);
+    const rand = rng(5);
+    const x = new Float32Array(9), bary = new Float64Array(3), normal = new Float64Array(3), nn = new Float64Array(3);
+    const N = 200;
+    for (let trial = 0; trial < 100; trial++) {
+      // a rim point, a plane through a point 1–6 mm outside it, tilted 0–40° down and outwards
+      const phi = rand() * 2 * Math.PI, tilt = rand() * 0.7, gap = 0.001 + 0.005 * rand();
+      const r = [Math.cos(phi), 0, Math.sin(phi)];
+      const n = [r[0] * Math.sin(tilt), Math.cos(tilt), r[2] * Math.sin(tilt)];
+      const o = [0.2 * r[0] + gap * n[0], 0.5 + gap * n[1], 0.2 * r[2] + gap * n[2]];
+      const t1 = [-r[2], 0, r[0]], t2 = [n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]];
+      for (let v = 0; v < 3; v++) {
+        const u = (rand() - 0.5) * 0.03, w = (rand() - 0.5) * 0.03;
+        for (let k = 0; k < 3; k++) x[3 * v + k] = o[k] + u * t1[k] + w * t2[k];
+      }
+      let brute = Infinity;
+      for (let i = 0; i <= N; i++) {
+        for (let j = 0; i + j <= N; j++) {
+          const u = i / N, w = j / N, t = 1 - u - w;
+          brute = Math.min(brute, cyl.signedDistance(t * x[0] + u * x[3] + w * x[6], t * x[1] + u * x[4] + w * x[7], t * x[2] + u * x[5] + w * x[8], nn));
+        }
+      }
+      const d = cyl.triangleDeepest(x, 0, x, 3, x, 6, bary, normal);
+      expect(d).toBeLessThanOrEqual(brute + 3e-6);
+      expect(d).toBeGreaterThanOrEqual(brute - 0.03 / N);
+    }
+  });
+
   const shapes: [string, ColliderShape][] = [
     ['box', new BoxCollider([0.1, 0.3, -0.2], [0.3, 0.2, 0.25], [20, 35, -10])],
     ['capsule', new CapsuleCollider([-0.3, 0.2, 0.1], [0.25, 0.4, -0.1], 0.15)],
@@ -135,7 +164,7 @@ describe('the deepest point of a triangle, against sampling the triangle', () =>
     const rand = rng(11);
     const x = new Float32Array(9), bary = new Float64Array(3), normal = new Float64Array(3), nn = new Float64Array(3);
     const N = 60;
-    let worst = 0, crossed = 0, bounded = 0;
+    let worst = 0, crossed = 0, bounded = 0, clear = 0;
     for (let trial = 0; trial < 600; trial++) {
       // a centre near the shape's surface (within 10 cm of the bounding region), vertices up to 12 cm from it
       const c = [(rand() - 0.5) * 0.9, 0.25 + (rand() - 0.5) * 0.8, (rand() - 0.5) * 0.9];
@@ -155,6 +184,8 @@ describe('the deepest point of a triangle, against sampling the triangle', () =>
       // … and never deeper than the triangle is: the sampled minimum is within a grid step of the true one
       expect(d).toBeGreaterThanOrEqual(brute - edge / N - 1e-9);
       worst = Math.max(worst, d - brute);
+      // clear of the shape the answer is exact (the searches along edges close to 7·10⁻⁵ of an edge)
+      if (brute > 1e-3) { expect(d).toBeLessThanOrEqual(brute + 1e-4 * edge + 1e-9); clear++; }
       // the point returned is on the triangle, and d and the normal are the shape's there
       expect(Math.min(bary[0], bary[1], bary[2])).toBeGreaterThanOrEqual(-1e-12);
       expect(bary[0] + bary[1] + bary[2]).toBeCloseTo(1, 12);
@@ -173,6 +204,7 @@ describe('the deepest point of a triangle, against sampling the triangle', () =>
     }
     // the sample exercises penetrating triangles too
     expect(bounded).toBeGreaterThan(30);
+    expect(clear).toBeGreaterThan(100);
     expect(crossed).toBeLessThan(60);
     expect(worst).toBeLessThan(0.003);
   });
