@@ -79,6 +79,20 @@ export interface ClothModel {
    * two corners c, d opposite it
    */
   readonly bendingPairs: Uint32Array;
+  /**
+   * bending hinges for the isometric bending model (Bergou et al. 2006): the bending pairs as quadruples
+   * (x0, x1, x2, x3), shared edge x0–x1 and wings x2, x3, sorted by colour (hingeBatches)
+   */
+  readonly hinges: Uint32Array;
+  /**
+   * the hinge's stencil K (4 per hinge, from the rest triangles' angles): C = Σ K_i x_i is a vector of length
+   * |e|·2 sin(θ/2), θ the dihedral angle; zero while the two triangles lie flat, whatever their shapes [-]
+   */
+  readonly hingeWeights: Float32Array;
+  /** rest area of the hinge's two triangles, A_e [m²]; the bending energy is ½·B·|C|²/A_e (docs/physics.md) */
+  readonly hingeAreas: Float32Array;
+  /** colour batches of hinges (in hinges, not indices); hinges of a batch share no particle */
+  readonly hingeBatches: readonly TriangleBatch[];
   /** connected piece of each particle, 0 … pieceCount − 1 (for per-piece material and pins) */
   readonly pieces: Uint32Array;
   /** number of connected pieces [-] */
@@ -183,6 +197,51 @@ export function meshTopology(triangles: Uint32Array, n: number, table: EdgeTable
   return { edges: table.ends, bendingPairs, pieces, pieceCount };
 }
 
+/** Cotangent of the angle between u and v. */
+function cotangent(ux: number, uy: number, uz: number, vx: number, vy: number, vz: number): number {
+  const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+  return (ux * vx + uy * vy + uz * vz) / Math.sqrt(cx * cx + cy * cy + cz * cz);
+}
+
+/**
+ * The hinges of the isometric bending model (Bergou, Wardetzky, Harmon, Zorin & Grinspun 2006, "A Quadratic
+ * Bending Model for Inextensible Surfaces"), one per bending pair (x0, x1, x2, x3): with α0, α1 the angles of
+ * triangle (x0, x1, x2) at x0 and x1, and β0, β1 those of (x0, x1, x3),
+ *   K = (cot α1 + cot β1, cot α0 + cot β0, −cot α0 − cot α1, −cot β0 − cot β1),
+ * so that C = Σ K_i x_i = −|e|·(û2 + û3), û_k the unit vector in triangle k from the edge to its wing: zero for a
+ * flat pair, |e|·2 sin(θ/2) for a dihedral angle θ. The angles are the rest triangles' (intrinsic: the same for a
+ * pair that rests folded), so K stays fixed while the cloth bends without stretching. A pair with a degenerate
+ * triangle gets K = 0 (no bending). Coloured like springs (no two hinges of a batch share a particle).
+ */
+function buildHinges(pairs: Uint32Array, p: Float32Array, n: number): Pick<ClothModel, 'hinges' | 'hingeWeights' | 'hingeAreas' | 'hingeBatches'> {
+  const m = pairs.length / 4;
+  const { colours, count } = colourElements(pairs, 4, n);
+  const offsets = colourOffsets(colours, count);
+  const hingeBatches: TriangleBatch[] = [];
+  for (let c = 0; c < count; c++) hingeBatches.push({ start: offsets[c], end: offsets[c + 1] });
+  const hinges = new Uint32Array(4 * m), hingeWeights = new Float32Array(4 * m), hingeAreas = new Float32Array(m);
+  const fill = offsets.slice(0, count);
+  for (let h = 0; h < m; h++) {
+    const dst = fill[colours[h]]++;
+    const i0 = pairs[4 * h], i1 = pairs[4 * h + 1], i2 = pairs[4 * h + 2], i3 = pairs[4 * h + 3];
+    hinges.set([i0, i1, i2, i3], 4 * dst);
+    const x0 = 3 * i0, x1 = 3 * i1, x2 = 3 * i2, x3 = 3 * i3;
+    const ex = p[x1] - p[x0], ey = p[x1 + 1] - p[x0 + 1], ez = p[x1 + 2] - p[x0 + 2];
+    const a2x = p[x2] - p[x0], a2y = p[x2 + 1] - p[x0 + 1], a2z = p[x2 + 2] - p[x0 + 2];
+    const a3x = p[x3] - p[x0], a3y = p[x3 + 1] - p[x0 + 1], a3z = p[x3 + 2] - p[x0 + 2];
+    const b2x = p[x2] - p[x1], b2y = p[x2 + 1] - p[x1 + 1], b2z = p[x2 + 2] - p[x1 + 2];
+    const b3x = p[x3] - p[x1], b3y = p[x3 + 1] - p[x1 + 1], b3z = p[x3 + 2] - p[x1 + 2];
+    const ca0 = cotangent(ex, ey, ez, a2x, a2y, a2z), ca1 = cotangent(-ex, -ey, -ez, b2x, b2y, b2z);
+    const cb0 = cotangent(ex, ey, ez, a3x, a3y, a3z), cb1 = cotangent(-ex, -ey, -ez, b3x, b3y, b3z);
+    const area2 = 0.5 * Math.hypot(ey * a2z - ez * a2y, ez * a2x - ex * a2z, ex * a2y - ey * a2x);
+    const area3 = 0.5 * Math.hypot(ey * a3z - ez * a3y, ez * a3x - ex * a3z, ex * a3y - ey * a3x);
+    hingeAreas[dst] = area2 + area3;
+    const k = [ca1 + cb1, ca0 + cb0, -ca0 - ca1, -cb0 - cb1];
+    if (k.every(Number.isFinite) && area2 > 0 && area3 > 0) hingeWeights.set(k, 4 * dst);
+  }
+  return { hinges, hingeWeights, hingeAreas, hingeBatches };
+}
+
 /** Builds a model from any particle/spring/triangle set (the grid builder and tests use it). */
 export function buildModel(input: ModelInput): ClothModel {
   const { restPositions } = input;
@@ -283,6 +342,7 @@ export function buildModel(input: ModelInput): ClothModel {
   const size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-3);
   // the same for the triangles in any order: a caller that derived it already passes it on
   const topology = input.topology ?? meshTopology(triangles, n);
+  const hinges = buildHinges(topology.bendingPairs, restPositions, n);
 
   return {
     particleCount: n,
@@ -301,6 +361,7 @@ export function buildModel(input: ModelInput): ClothModel {
     maxTriangleValence,
     area,
     ...topology,
+    ...hinges,
     grid: input.grid,
     size,
   };

@@ -1,8 +1,8 @@
 import type { MeshResolver } from './cloth-shape.js';
 import { createColliders, type PosedCollider } from './colliders/index.js';
-import type { ClothModel } from './model.js';
+import { BEND, REFERENCE_SPACING, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
-import { SceneError, type Scene, type SolverType } from './scene.js';
+import { SceneError, type BendingModel, type Scene, type SolverType } from './scene.js';
 
 /** Particles carried by colliders: particle i = particles[k] sits at local[3k..3k+2] in collider[k]'s own frame. */
 export interface Carried {
@@ -61,6 +61,12 @@ export interface SimParams {
   stiffness: Float32Array;
   /** XPBD compliance of each spring, 1/stiffness [m/N]; Infinity for a spring with no stiffness */
   compliance: Float32Array;
+  /** the xpbd solver's bending model (solver.bending; the mass-spring solver always uses springs) */
+  bending: BendingModel;
+  /** bending rigidity B of the sheet [N·m] (material.bendStiffness / BEND_SPRING_PER_RIGIDITY) */
+  bendingRigidity: number;
+  /** XPBD compliance of each bending hinge, A_e / B [m²/(N·m)]; Infinity where B = 0 or the hinge has no stencil */
+  hingeCompliance: Float32Array;
   /** spring damping on relative velocity [N·s/m] (after any stability clamp) */
   damping: number;
   /** mass-spring stretch limit: max length / rest length of structural and shear springs [-] */
@@ -94,6 +100,13 @@ export interface SimParams {
 const MASS_SPRING_STIFFNESS_MARGIN = 1;
 /** and h·max_i(w_i·Σc) ≤ this for the explicit spring damping (stable below 1). */
 const MASS_SPRING_DAMPING_MARGIN = 0.5;
+
+/**
+ * The skip-one bend spring's stiffness at the reference spacing per unit bending rigidity [m⁻²]: k_b = 9·B /
+ * (l_ref⁴·κ_c²) with l_ref = 1/32 m and κ_c = 10 m⁻¹ (docs/materials.md, "Bend spring"). material.bendStiffness
+ * is k_b; the hinge model takes B = k_b / this.
+ */
+export const BEND_SPRING_PER_RIGIDITY = 9 / (REFERENCE_SPACING ** 4 * 100);
 
 const fmt = (v: number) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
 
@@ -147,8 +160,19 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     }
   }
 
+  // the xpbd solver bends with springs or with hinges, not both
+  const bending: BendingModel = scene.solver.type === 'xpbd' ? scene.solver.bending : 'springs';
+  if (bending === 'hinges') for (let s = 0; s < springCount; s++) if (model.springKinds[s] === BEND) stiffness[s] = 0;
   const compliance = new Float32Array(springCount);
   for (let s = 0; s < springCount; s++) compliance[s] = stiffness[s] > 0 ? 1 / stiffness[s] : Infinity;
+  const bendingRigidity = m.bendStiffness / BEND_SPRING_PER_RIGIDITY;
+  const hingeCount = model.hingeAreas.length;
+  const hingeCompliance = new Float32Array(hingeCount);
+  for (let e = 0; e < hingeCount; e++) {
+    const k = model.hingeWeights;
+    const stencil = k[4 * e] !== 0 || k[4 * e + 1] !== 0 || k[4 * e + 2] !== 0 || k[4 * e + 3] !== 0;
+    hingeCompliance[e] = bendingRigidity > 0 && stencil ? model.hingeAreas[e] / bendingRigidity : Infinity;
+  }
 
   const d = scene.wind.direction;
   const len = Math.hypot(d[0], d[1], d[2]);
@@ -164,6 +188,9 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     particleInvMass,
     stiffness,
     compliance,
+    bending,
+    bendingRigidity,
+    hingeCompliance,
     damping,
     stretchFactor: m.stretchFactor,
     friction: m.friction,

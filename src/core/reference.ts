@@ -10,7 +10,7 @@ import type { SimParams } from './params.js';
 import { accumulateWind, beginStep, carryPinned, collideParticles, collideTriangles, integrate, limitStretch, moveGrabbed, updateVelocities } from './phases.js';
 import { PHASE, PHASES, phasePasses, type PhaseName } from './schedule.js';
 import { accumulateSpringForces } from './solvers/mass-spring.js';
-import { solveDistanceConstraints } from './solvers/xpbd.js';
+import { solveBending, solveDistanceConstraints } from './solvers/xpbd.js';
 import type { ClothState } from './state.js';
 import { solveTethers } from './tethers.js';
 
@@ -46,6 +46,12 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
     const accumulate = passes > 1;
     if (accumulate) state.lambdas.fill(0);
     for (let it = 0; it < passes; it++) solveDistanceConstraints(model, state, params, frame.h, accumulate);
+  },
+  bending(model, state, params, frame) {
+    const passes = phasePasses(PHASE.bending, params);
+    const accumulate = passes > 1;
+    if (accumulate) state.hingeLambdas.fill(0);
+    for (let it = 0; it < passes; it++) solveBending(model, state, params, frame.h, accumulate);
   },
   tethers: (_model, state, params) => solveTethers(state, params),
   stretchLimit(model, state, params) {

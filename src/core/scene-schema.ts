@@ -127,6 +127,7 @@ export const sceneSchema = {
         type: { enum: ['xpbd', 'mass-spring'], default: 'xpbd', description: "'xpbd' (Macklin et al. 2016, small steps 2019) or 'mass-spring' (the seed: Verlet, Hooke springs, stretch limiting)" },
         substeps: { type: 'integer', minimum: 1, maximum: 200, default: 20, description: 'substeps per 1/60 s frame [-]' },
         iterations: { type: 'integer', minimum: 1, maximum: 20, default: 1, description: 'constraint passes per substep (XPBD: Gauss–Seidel sweeps; mass-spring: stretch-limiting passes) [-]' },
+        bending: { enum: ['springs', 'hinges'], default: 'springs', description: "the xpbd solver's bending model: 'springs' (the seed's skip-one bend springs) or 'hinges' (the isometric bending model of Bergou et al. 2006 on the triangles' hinges: energy ½·B·κ² per area, B = material.bendStiffness / 94 372 m⁻² [N·m]); the mass-spring solver always bends with springs" },
         depenetrationSpeed: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'fastest the cloth is pushed out of a collider it did not move into (a cloth that starts inside one, or that a collider is moved into); contact the cloth moves into is undone at once [m/s]' },
       },
     },

@@ -26,7 +26,7 @@ export interface Scene {
     thickness: number;
   };
   material: Material;
-  solver: { type: SolverType; substeps: number; iterations: number; depenetrationSpeed: number };
+  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; depenetrationSpeed: number };
   gravity: Vec3;
   wind: Wind;
   colliders: ColliderSpec[];
@@ -36,6 +36,8 @@ export interface Scene {
 }
 
 export type SolverType = 'xpbd' | 'mass-spring';
+/** `solver.bending`: the xpbd solver's bending model */
+export type BendingModel = 'springs' | 'hinges';
 
 export interface Material {
   structuralStiffness: number;

@@ -22,9 +22,10 @@ export type PhaseId = (typeof PHASE)[PhaseName];
 export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
 /**
  * What a phase needs to be part of a frame: nothing, the wind blowing, a grabbed particle, pins a collider carries,
- * or a collider whose surface can poke between the cloth's vertices (phases.ts needsTriangleContact).
+ * a collider whose surface can poke between the cloth's vertices (phases.ts needsTriangleContact), or the hinge
+ * bending model (solver.bending 'hinges').
  */
-export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles';
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'hinges';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -60,6 +61,7 @@ const WIND_PHASES = maskOf((p) => p.when === 'wind');
 const GRAB_PHASES = maskOf((p) => p.when === 'grab');
 const CARRY_PHASES = maskOf((p) => p.when === 'carried');
 const TRIANGLE_PHASES = maskOf((p) => p.when === 'triangles');
+const HINGE_PHASES = maskOf((p) => p.when === 'hinges');
 
 /** The mask of the phases a frame of `solver` has. */
 export function solverPhases(solver: SolverType): number {
@@ -70,7 +72,7 @@ export function solverPhases(solver: SolverType): number {
 
 /**
  * The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab, carried pins,
- * a collider that needs triangle contact on this model).
+ * a collider that needs triangle contact on this model, hinge bending).
  */
 export function framePhases(model: ClothModel, state: ClothState, params: SimParams): number {
   let mask = solverPhases(params.solver);
@@ -78,6 +80,7 @@ export function framePhases(model: ClothModel, state: ClothState, params: SimPar
   if (state.grabbed < 0) mask &= ~GRAB_PHASES;
   if (params.carried.particles.length === 0) mask &= ~CARRY_PHASES;
   if (!anyTriangleContact(model, params)) mask &= ~TRIANGLE_PHASES;
+  if (params.bending !== 'hinges') mask &= ~HINGE_PHASES;
   return mask;
 }
 

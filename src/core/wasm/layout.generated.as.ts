@@ -66,18 +66,20 @@ export const PHASE_CARRY: i32 = 4;
 export const PHASE_GRAB: i32 = 5;
 /** substep: XPBD distance constraints, colour batch by colour batch */
 export const PHASE_DISTANCE: i32 = 6;
+/** substep: XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch */
+export const PHASE_BENDING: i32 = 7;
 /** substep: long-range attachments to the nearest pin */
-export const PHASE_TETHERS: i32 = 7;
+export const PHASE_TETHERS: i32 = 8;
 /** substep: stretch limiting of structural and shear springs */
-export const PHASE_STRETCH_LIMIT: i32 = 8;
+export const PHASE_STRETCH_LIMIT: i32 = 9;
 /** substep: particle contact with friction against every collider, in order */
-export const PHASE_CONTACT: i32 = 9;
+export const PHASE_CONTACT: i32 = 10;
 /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-export const PHASE_CONTACT_TRIANGLES: i32 = 10;
+export const PHASE_CONTACT_TRIANGLES: i32 = 11;
 /** frame-end: v = (x − x_prev)/h of the last substep */
-export const PHASE_VELOCITIES: i32 = 11;
+export const PHASE_VELOCITIES: i32 = 12;
 /** Phases in the schedule. */
-export const PHASE_COUNT: i32 = 12;
+export const PHASE_COUNT: i32 = 13;
 
 // The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.
 /** sequence number of the substep's first phase: first bit */
@@ -124,7 +126,7 @@ export const SPIN_LIMIT: usize = 40;
 export const DESC: usize = 48;
 /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
 export const TRACE_COUNT: usize = 56;
-/** i32 × 12: the ids of those phases, in the order thread 0 ran them */
+/** i32 × 13: the ids of those phases, in the order thread 0 ran them */
 export const TRACE: usize = 60;
 /** f64: substep length [s] */
 export const H: usize = 112;
