@@ -38,7 +38,7 @@ Simulates a built-in scene (default: custom) or a scene file for N frames of 1/6
   --kernel K            CPU XPBD kernel: wasm (WebAssembly SIMD, the default where available) or ts
   --threads N           threads of the wasm kernel (default: automatic, the cores available up to 8, but one
                         for cloths under 2500 particles; more than the cores is clamped)
-  --set PATH=VALUE      change any scene path, e.g. material.bendStiffness=2, wind.direction=[1,0,0],
+  --set PATH=VALUE      change any scene path, e.g. material.fabric=silk, wind.direction=[1,0,0],
                         colliders=[] ; VALUE is JSON when it parses, else a string (repeatable)
   --json                print exactly one JSON object
   --export FILE.obj     write the cloth at the last frame as Wavefront OBJ

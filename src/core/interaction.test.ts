@@ -52,7 +52,8 @@ describe('picking, pins and live changes', () => {
     expect(s.set('cloth.resolution', 8)).toBe(true);
     expect(s.model.particleCount).toBe(81);
     expect(s.state.pinned[40]).toBe(1); // the centre pin follows the new grid
-    expect(() => s.set('material.mass', -1)).toThrow(/^Simulation\.set\('material\.mass'\): must be >= 0\.001$/);
-    expect(s.scene.material.mass).toBeGreaterThan(0); // a rejected change leaves the scene as it was
+    expect(() => s.set('material.mass', -1)).toThrow(/^Simulation\.set\('material\.mass'\): must be >= 0\.00001$/);
+    expect(s.scene.material.arealDensity).toBeGreaterThan(0); // a rejected change leaves the scene as it was
+    expect(s.scene.material.mass).toBeUndefined();
   });
 });

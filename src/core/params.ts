@@ -1,6 +1,7 @@
 import type { MeshResolver } from './cloth-shape.js';
 import { createColliders, type PosedCollider } from './colliders/index.js';
-import { BEND, REFERENCE_SPACING, type ClothModel } from './model.js';
+import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
+import { BEND, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
 import { SceneError, type BendingModel, type Scene, type SolverType } from './scene.js';
 
@@ -53,7 +54,7 @@ export interface SimParams {
   iterations: number;
   /** gravitational acceleration [m/s²] */
   gravity: Float64Array;
-  /** mass of the whole cloth [kg] */
+  /** mass of the whole cloth [kg]: material.mass, or material.arealDensity × the model's rest area */
   mass: number;
   /** inverse mass of each particle when free [1/kg] */
   particleInvMass: Float32Array;
@@ -63,7 +64,7 @@ export interface SimParams {
   compliance: Float32Array;
   /** the xpbd solver's bending model (solver.bending; the mass-spring solver always uses springs) */
   bending: BendingModel;
-  /** bending rigidity B of the sheet [N·m] (material.bendStiffness / BEND_SPRING_PER_RIGIDITY) */
+  /** bending rigidity B of the sheet [N·m] (material.bendingRigidity) */
   bendingRigidity: number;
   /** XPBD compliance of each bending hinge, A_e / B [m²/(N·m)]; Infinity where B = 0 or the hinge has no stencil */
   hingeCompliance: Float32Array;
@@ -101,12 +102,6 @@ const MASS_SPRING_STIFFNESS_MARGIN = 1;
 /** and h·max_i(w_i·Σc) ≤ this for the explicit spring damping (stable below 1). */
 const MASS_SPRING_DAMPING_MARGIN = 0.5;
 
-/**
- * The skip-one bend spring's stiffness at the reference spacing per unit bending rigidity [m⁻²]: k_b = 9·B /
- * (l_ref⁴·κ_c²) with l_ref = 1/32 m and κ_c = 10 m⁻¹ (docs/materials.md, "Bend spring"). material.bendStiffness
- * is k_b; the hinge model takes B = k_b / this.
- */
-export const BEND_SPRING_PER_RIGIDITY = 9 / (REFERENCE_SPACING ** 4 * 100);
 
 const fmt = (v: number) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
 
@@ -114,11 +109,13 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
   const m = scene.material;
   const n = model.particleCount;
   const springCount = model.restLengths.length;
-  const kindK = [m.structuralStiffness, m.shearStiffness, m.bendStiffness];
+  // the bend springs' constant at the reference spacing, from B (docs/materials.md, "Bend spring")
+  const kindK = [m.structuralStiffness, m.shearStiffness, m.bendingRigidity * BEND_SPRING_PER_RIGIDITY];
+  const mass = m.mass ?? (m.arealDensity ?? 0) * model.area;
   const clamps: string[] = [];
 
   const particleInvMass = new Float32Array(n);
-  for (let i = 0; i < n; i++) particleInvMass[i] = 1 / (m.mass * model.massWeights[i]);
+  for (let i = 0; i < n; i++) particleInvMass[i] = 1 / (mass * model.massWeights[i]);
 
   const stiffness = new Float32Array(springCount);
   for (let s = 0; s < springCount; s++) stiffness[s] = kindK[model.springKinds[s]] * model.stiffnessScales[s];
@@ -165,7 +162,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
   if (bending === 'hinges') for (let s = 0; s < springCount; s++) if (model.springKinds[s] === BEND) stiffness[s] = 0;
   const compliance = new Float32Array(springCount);
   for (let s = 0; s < springCount; s++) compliance[s] = stiffness[s] > 0 ? 1 / stiffness[s] : Infinity;
-  const bendingRigidity = m.bendStiffness / BEND_SPRING_PER_RIGIDITY;
+  const bendingRigidity = m.bendingRigidity;
   const hingeCount = model.hingeAreas.length;
   const hingeCompliance = new Float32Array(hingeCount);
   for (let e = 0; e < hingeCount; e++) {
@@ -184,7 +181,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     substeps,
     iterations: scene.solver.iterations,
     gravity: new Float64Array(scene.gravity),
-    mass: m.mass,
+    mass,
     particleInvMass,
     stiffness,
     compliance,

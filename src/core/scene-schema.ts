@@ -5,6 +5,7 @@
  */
 
 import { MAX_COLLIDERS } from './layout.generated.js';
+import { FABRIC_NAMES } from './fabrics.js';
 
 const vec3 = (description: string, min: number, max: number, dflt: readonly number[]) => ({
   description,
@@ -108,11 +109,14 @@ export const sceneSchema = {
       additionalProperties: false,
       default: {},
       properties: {
+        fabric: { enum: FABRIC_NAMES, description: 'a named fabric (docs/materials.md): it fills every material field this scene does not set itself (a schema default never counts as set); setting it with --set or in the app puts every field back to that fabric\'s' },
+        arealDensity: { type: 'number', minimum: 0.005, maximum: 10, default: 0.12, description: 'mass per unit area of the fabric; the cloth\'s mass is this × its rest area (not with material.mass) [kg/m²]' },
+        mass: { type: 'number', minimum: 1e-5, maximum: 100, description: 'mass of the whole cloth, instead of arealDensity (the older path; not with material.arealDensity; by default the cloth weighs arealDensity × its area) [kg]' },
         structuralStiffness: { type: 'number', minimum: 1, maximum: 1e6, default: 8600, description: 'tensile stiffness of the sheet (force per unit width per unit strain) = per-spring Hooke constant of structural springs on square cells [N/m]' },
         shearStiffness: { type: 'number', minimum: 0, maximum: 1e6, default: 56, description: 'in-plane shear stiffness: per-spring Hooke constant of the diagonal springs [N/m]' },
-        bendStiffness: { type: 'number', minimum: 0, maximum: 1e5, default: 0.74, description: 'Hooke constant of the skip-one bend springs at the reference spacing of 1/32 m; scaled to other spacings when scaleWithResolution is on [N/m]' },
+        bendingRigidity: { type: 'number', minimum: 0, maximum: 1, default: 7.85e-6, description: 'bending rigidity of the sheet per unit width, B (KES-FB2), which the hinges bend with and the bend springs are derived from: k_b = 94 372 m⁻² × B at the reference spacing of 1/32 m (not with material.bendStiffness) [N·m]' },
+        bendStiffness: { type: 'number', minimum: 0, maximum: 1e5, description: 'Hooke constant of the skip-one bend springs at the reference spacing of 1/32 m, instead of bendingRigidity (the older path: B = this / 94 372 m⁻²; not with material.bendingRigidity) [N/m]' },
         damping: { type: 'number', minimum: 0, maximum: 10, default: 0.1, description: 'damping along every spring on the relative velocity of its ends [N·s/m]' },
-        mass: { type: 'number', minimum: 0.001, maximum: 100, default: 0.12, description: 'mass of the whole cloth [kg]' },
         stretchFactor: { type: 'number', minimum: 1, maximum: 2, default: 1.05, description: 'longest a structural or shear spring may get, as a multiple of its rest length (mass-spring stretch limiting) [-]' },
         friction: { type: 'number', minimum: 0, maximum: 2, default: 0.3, description: 'kinetic Coulomb friction coefficient against colliders [-]' },
         staticFriction: { type: 'number', minimum: 0, maximum: 2, default: 0.4, description: 'static Coulomb friction coefficient against colliders (at least the kinetic one is used) [-]' },
@@ -127,7 +131,7 @@ export const sceneSchema = {
         type: { enum: ['xpbd', 'mass-spring'], default: 'xpbd', description: "'xpbd' (Macklin et al. 2016, small steps 2019) or 'mass-spring' (the seed: Verlet, Hooke springs, stretch limiting)" },
         substeps: { type: 'integer', minimum: 1, maximum: 200, default: 20, description: 'substeps per 1/60 s frame [-]' },
         iterations: { type: 'integer', minimum: 1, maximum: 20, default: 1, description: 'constraint passes per substep (XPBD: Gauss–Seidel sweeps; mass-spring: stretch-limiting passes) [-]' },
-        bending: { enum: ['springs', 'hinges'], default: 'springs', description: "the xpbd solver's bending model: 'springs' (the seed's skip-one bend springs) or 'hinges' (the isometric bending model of Bergou et al. 2006 on the triangles' hinges: energy ½·B·κ² per area, B = material.bendStiffness / 94 372 m⁻² [N·m]); the mass-spring solver always bends with springs" },
+        bending: { enum: ['springs', 'hinges'], default: 'springs', description: "the xpbd solver's bending model: 'springs' (the seed's skip-one bend springs) or 'hinges' (the isometric bending model of Bergou et al. 2006 on the triangles' hinges: energy ½·B·κ² per area, B = material.bendingRigidity); the mass-spring solver always bends with springs" },
         depenetrationSpeed: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'fastest the cloth is pushed out of a collider it did not move into (a cloth that starts inside one, or that a collider is moved into); contact the cloth moves into is undone at once [m/s]' },
       },
     },

@@ -47,7 +47,8 @@ describe('scenes', () => {
   it('an empty document is a full scene with every default from the schema', () => {
     const s = defaultScene();
     expect(s.cloth.resolution).toBe(sceneSchema.properties.cloth.properties.resolution.default);
-    expect(s.material.mass).toBe(sceneSchema.properties.material.properties.mass.default);
+    expect(s.material.arealDensity).toBe(sceneSchema.properties.material.properties.arealDensity.default);
+    expect(s.material.mass).toBeUndefined();
     expect(s.solver.type).toBe('xpbd');
     expect(s.colliders.map((c) => c.type)).toEqual(['sphere', 'floor']);
     expect(s.wind.gusts.enabled).toBe(false);
@@ -56,7 +57,7 @@ describe('scenes', () => {
   it('the paths the CLI documents for --set all exist', () => {
     const s = defaultScene() as unknown as Record<string, Record<string, unknown>>;
     for (const path of ['cloth.resolution', 'cloth.width', 'cloth.height', 'material.structuralStiffness', 'material.shearStiffness',
-      'material.bendStiffness', 'material.damping', 'material.mass', 'material.stretchFactor', 'material.friction', 'solver.type',
+      'material.bendingRigidity', 'material.damping', 'material.arealDensity', 'material.stretchFactor', 'material.friction', 'solver.type',
       'solver.substeps', 'wind.enabled', 'wind.strength', 'wind.direction', 'gravity', 'colliders', 'pins']) {
       const [a, b] = path.split('.');
       expect(b === undefined ? s[a] : s[a][b], path).not.toBeUndefined();
@@ -90,10 +91,10 @@ describe('scenes', () => {
     expect(parseSetValue('true')).toBe(true);
     expect(parseSetValue('mass-spring')).toBe('mass-spring');
     const s = defaultScene();
-    expect(setScenePath(s, 'material.bendStiffness', 2).material.bendStiffness).toBe(2);
+    expect(setScenePath(s, 'material.bendingRigidity', 2e-5).material.bendingRigidity).toBe(2e-5);
     expect(setScenePath(s, 'colliders[0].radius', 0.5).colliders[0]).toMatchObject({ radius: 0.5 });
     expect(setScenePath(s, 'colliders', []).colliders).toEqual([]);
-    expect(s.material.bendStiffness).not.toBe(2); // the input is not changed
+    expect(s.material.bendingRigidity).not.toBe(2e-5); // the input is not changed
     expect(() => setScenePath(s, 'material.nope', 1)).toThrow(/^--set material\.nope: unknown key$/);
     expect(() => setScenePath(s, 'cloth.resolution', 'fine')).toThrow(/^--set cloth\.resolution: must be integer$/);
     expect(() => setScenePath(s, 'colliders.0.radius', 0)).toThrow(/^--set colliders\.0\.radius: must be >= 0\.001$/);

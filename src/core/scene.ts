@@ -1,5 +1,6 @@
 import { Ajv, type ErrorObject } from 'ajv';
 import { eulerXYZ } from './mesh/generators.js';
+import { BEND_SPRING_PER_RIGIDITY, FABRICS, FABRIC_FIELDS, type FabricName } from './fabrics.js';
 import { PIN_PRESETS, sceneSchema } from './scene-schema.js';
 
 export type Vec3 = [number, number, number];
@@ -39,12 +40,19 @@ export type SolverType = 'xpbd' | 'mass-spring';
 /** `solver.bending`: the xpbd solver's bending model */
 export type BendingModel = 'springs' | 'hinges';
 
+/**
+ * A validated material: a fabric's measured quantities and the tuning values (scene-schema.ts). Exactly one of
+ * `arealDensity` and `mass` is present (mass where the scene gave the whole cloth's mass); `bendStiffness`, the
+ * older path for the bend, is read as bendingRigidity and never appears here.
+ */
 export interface Material {
+  fabric?: FabricName;
+  arealDensity?: number;
+  mass?: number;
   structuralStiffness: number;
   shearStiffness: number;
-  bendStiffness: number;
+  bendingRigidity: number;
   damping: number;
-  mass: number;
   stretchFactor: number;
   friction: number;
   staticFriction: number;
@@ -167,6 +175,17 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
   // a cloth given by a mesh file is a 'mesh' without saying so
   const cloth = doc.cloth as Record<string, unknown> | undefined;
   if (cloth && typeof cloth === 'object' && cloth.mesh !== undefined && cloth.shape === undefined) cloth.shape = 'mesh';
+  // what the scene sets itself, before the schema's defaults fill the rest
+  const raw = doc.material !== null && typeof doc.material === 'object' && !Array.isArray(doc.material) ? doc.material as Record<string, unknown> : null;
+  const given = (k: string) => raw !== null && Object.hasOwn(raw, k);
+  for (const [a, b] of ALIASES) {
+    if (given(a) && given(b)) throw new SceneError(`${source}: material.${b}: give either material.${a} or material.${b}, not both (${ALIAS_MEANING[b]})`);
+  }
+  // a named fabric fills every field the scene leaves out (an unknown name is the schema's to refuse)
+  const fabric = raw && typeof raw.fabric === 'string' && Object.hasOwn(FABRICS, raw.fabric) ? FABRICS[raw.fabric as FabricName] : null;
+  if (raw && fabric) {
+    for (const k of FABRIC_FIELDS) if (!given(k) && !given(ALIAS_OF[k] ?? '')) raw[k] = fabric[k];
+  }
   if (!validateFn(doc)) {
     const errors = validateFn.errors ?? [];
     const pinErr = errors.find((e) => e.instancePath.startsWith('/pins/'));
@@ -176,6 +195,13 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
     throw new SceneError(`${source}: ${describe(pickError(errors))}`);
   }
   const scene = doc as unknown as Scene;
+  // the older paths: the whole cloth's mass stands instead of the areal density; the bend spring is read as B
+  const m = scene.material as Material & { bendStiffness?: number };
+  if (given('mass')) delete m.arealDensity;
+  if (m.bendStiffness !== undefined) {
+    m.bendingRigidity = m.bendStiffness / BEND_SPRING_PER_RIGIDITY;
+    delete m.bendStiffness;
+  }
   scene.colliders.forEach((c, k) => {
     // directions must have a length (the schema bounds each component, not the vector)
     const dir = c.type === 'plane' ? ['normal', c.normal] as const : c.type === 'cylinder' ? ['axis', c.axis] as const : null;
@@ -217,6 +243,14 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
   scene.colliders.forEach((c, k) => check(c.pins ?? [], `colliders[${k}].pins`));
   return scene;
 }
+
+/** The older material paths and the field each stands for: [old, new]. Only one of a pair may be given. */
+const ALIASES = [['mass', 'arealDensity'], ['bendStiffness', 'bendingRigidity']] as const;
+const ALIAS_OF: Partial<Record<string, string>> = { arealDensity: 'mass', bendingRigidity: 'bendStiffness', mass: 'arealDensity', bendStiffness: 'bendingRigidity' };
+const ALIAS_MEANING: Record<string, string> = {
+  arealDensity: 'the whole cloth\'s mass [kg], or its mass per area [kg/m²]',
+  bendingRigidity: 'the bend spring\'s constant at 1/32 m [N/m], or the bending rigidity B [N·m]',
+};
 
 /** Whether two keys put a collider in the same pose: equal translations, and Euler angles that turn alike (0° and 360°). */
 function samePose(a: { translation: Vec3; rotation: Vec3 }, b: { translation: Vec3; rotation: Vec3 }): boolean {
@@ -285,6 +319,13 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     node = next as Record<string, unknown>;
   }
   (node as Record<string, unknown>)[keys[keys.length - 1]] = value;
+  const material = doc.material as Record<string, unknown> | undefined;
+  if (keys.length === 2 && keys[0] === 'material' && material && typeof material === 'object') {
+    // one path of a pair replaces the other; a named fabric puts every field it has back to its value
+    const partner = ALIAS_OF[keys[1]];
+    if (partner) delete material[partner];
+    if (keys[1] === 'fabric') for (const k of [...FABRIC_FIELDS, 'mass', 'bendStiffness']) delete material[k];
+  }
   // the shape and the mesh file go together: a mesh file makes the cloth a 'mesh', another shape drops the file
   const cloth = doc.cloth as Record<string, unknown> | undefined;
   if (keys.length === 2 && keys[0] === 'cloth' && cloth && typeof cloth === 'object') {

@@ -104,7 +104,9 @@ interface LogSlider { lo: number; hi: number; zeroAllowed: boolean }
 function logSliderFor(s: SchemaNumber): LogSlider | null {
   const min = s.minimum ?? 0, max = s.maximum ?? 1;
   if (min > 0 && max / min >= 1000) return { lo: Math.log10(min), hi: Math.log10(max), zeroAllowed: false };
-  if (min === 0 && max >= 1000) return { lo: Math.log10(max) - 7, hi: Math.log10(max), zeroAllowed: true };
+  // from zero over many decades (a spring constant up to 10⁵ N/m, a bending rigidity whose default is 10⁻⁵ of its top)
+  const wide = max >= 1000 || (typeof s.default === 'number' && s.default > 0 && max / s.default >= 1e4);
+  if (min === 0 && wide) return { lo: Math.log10(max) - 7, hi: Math.log10(max), zeroAllowed: true };
   return null;
 }
 
@@ -205,11 +207,12 @@ export class Panel {
     this.resolutionCtl = this.tag(cloth.add(p, 'cloth.resolution', this.resolutionOptions()).name('resolution')
       .onChange((v: number) => host.setPath('cloth.resolution', Number(v))), 'cloth.resolution', rs.description);
     this.syncers.push(() => { p['cloth.resolution'] = host.scene.cloth.resolution; });
+    this.addParam(cloth, 'material.fabric', 'fabric');
     this.addParam(cloth, 'material.structuralStiffness', 'structural', undefined, 'N/m');
     this.addParam(cloth, 'material.shearStiffness', 'shear', undefined, 'N/m');
-    this.addParam(cloth, 'material.bendStiffness', 'bend', undefined, 'N/m');
+    this.addParam(cloth, 'material.bendingRigidity', 'bend', undefined, 'N·m');
     this.addParam(cloth, 'material.damping', 'damping', undefined, 'N·s/m');
-    this.addParam(cloth, 'material.mass', 'mass', undefined, 'kg');
+    this.addParam(cloth, 'material.arealDensity', 'density', undefined, 'kg/m²');
     this.addParam(cloth, 'material.stretchFactor', 'stretch factor');
     this.addParam(cloth, 'material.friction', 'friction');
     this.addParam(cloth, 'material.staticFriction', 'static friction');

@@ -6,7 +6,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { buildGridModel, type ClothModel } from '../model.js';
-import { BEND_SPRING_PER_RIGIDITY } from '../params.js';
+import { BEND_SPRING_PER_RIGIDITY } from '../fabrics.js';
 import { validateScene } from '../scene.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
 
