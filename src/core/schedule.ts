@@ -131,9 +131,9 @@ export function assignPhases(backend: BackendPhases, model: ClothModel, params: 
     throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs ${backend.where} (params.solver is '${params.solver}')`);
   }
   // the phases these params can make a frame run (the wind and a grab come and go; carried pins are the scene's,
-  // triangle contact the scene's and the mesh's)
+  // triangle contact the scene's and the mesh's, hinge bending the scene's solver.bending)
   const wanted = solverPhases(params.solver) & ~(params.carried.particles.length === 0 ? CARRY_PHASES : 0) &
-    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES);
+    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES) & ~(params.bending === 'hinges' ? 0 : HINGE_PHASES);
   let own = 0;
   for (let id = 0; id < PHASE_COUNT; id++) {
     const bit = 1 << id;

@@ -1,8 +1,9 @@
 /**
  * The cloth's storage buffers on the GPU (layout.ts BUFFERS) and each kernel's bind group over them: made for a
  * model with its static data (springs, triangles, adjacency, the rest pose), then written from the CPU: the
- * params' per-particle and per-spring values, a state's particles, its pins and tethers. The colliders' buffers
- * (their poses, the particles they carry) depend on the params and grow on demand (`reserve`).
+ * params' per-particle, per-spring and per-hinge values, a state's particles, its pins and tethers. The colliders'
+ * buffers (their poses, the particles they carry) depend on the params and grow on demand (`reserve`); the bending
+ * hinges' are made with their static data on the first params that bend with hinges (`writeParams`).
  */
 import type {} from 'webgpu';
 import type { ClothModel } from '../core/model.js';
@@ -11,6 +12,9 @@ import type { ClothState } from '../core/state.js';
 import { updateTethers } from '../core/tethers.js';
 import { BUFFERS, KERNELS, VEC4, type BufferName, type KernelName, type KernelSpec } from './layout.js';
 import { triangleAdjacency } from './topology.js';
+
+/** The buffers of the bending hinges: placeholders until params first use the hinge model. */
+const HINGE_BUFFERS = ['hinges', 'hingeWeights', 'hingeCompliance', 'hingeLambdas'] as const;
 
 /** The storage buffers of one cloth and the kernels' bind groups over them. */
 export class ClothBuffers {
@@ -21,6 +25,8 @@ export class ClothBuffers {
   private readonly storageLayouts: Record<KernelName, GPUBindGroupLayout>;
   /** whether any particle has a tether anchor (the tethers kernel has work), as of the last writePins */
   hasTethers = false;
+  /** whether the hinge buffers hold the model's hinges (made by the first writeParams with the hinge model) */
+  private hingesMade = false;
   private readonly device: GPUDevice;
   private readonly model: ClothModel;
 
@@ -37,6 +43,8 @@ export class ClothBuffers {
     const counts: Record<BufferName, number> = {
       positions: n, previous: n, residuals: n, previousResiduals: n, velocities: n, invMass: n, baseInvMass: n, pinned: n,
       springs: springCount, springData: springCount, lambdas: springCount, tethers: n,
+      // placeholders: a cloth that bends with springs spends nothing on hinges (makeHinges)
+      hinges: 0, hingeWeights: 0, hingeCompliance: 0, hingeLambdas: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
       normals: n, grabStart: 1, colliders: 1, carried: 1,
     };
@@ -95,13 +103,41 @@ export class ClothBuffers {
     if (count * BUFFERS[name].bytes <= this.buffers[name].size) return;
     this.buffers[name].destroy();
     this.buffers[name] = this.createBuffer(name, count, 0);
+    this.regroup([name]);
+  }
+
+  /** Makes anew the bind groups of the kernels that read any of `names` (after those buffers were replaced). */
+  private regroup(names: readonly BufferName[]): void {
     for (const kernel of Object.keys(KERNELS) as KernelName[]) {
       const spec: KernelSpec = KERNELS[kernel];
-      if (spec.bindings.some(([b]) => b === name)) this.storageGroups[kernel] = this.makeGroup(kernel);
+      if (spec.bindings.some(([b]) => names.includes(b))) this.storageGroups[kernel] = this.makeGroup(kernel);
     }
   }
 
-  /** The params' per-particle inverse masses and per-spring rest length and compliance (−1: no constraint). */
+  /**
+   * The hinge buffers at the model's size, with its hinges and their stencils (model.hinges, model.hingeWeights):
+   * made once, on the first params with the hinge model, so that a cloth bending with springs spends no GPU memory
+   * on them (48 B per hinge, about 3 hinges per particle). Like `reserve`, never during a frame's encoding.
+   */
+  private makeHinges(): void {
+    if (this.hingesMade) return;
+    this.hingesMade = true;
+    const model = this.model;
+    const hingeCount = model.hingeAreas.length;
+    if (hingeCount === 0) return;
+    for (const name of HINGE_BUFFERS) {
+      this.buffers[name].destroy();
+      this.buffers[name] = this.createBuffer(name, name === 'hingeLambdas' ? 3 * hingeCount : hingeCount, 0);
+    }
+    this.device.queue.writeBuffer(this.buffers.hinges, 0, bytes(model.hinges));
+    this.device.queue.writeBuffer(this.buffers.hingeWeights, 0, bytes(model.hingeWeights));
+    this.regroup(HINGE_BUFFERS);
+  }
+
+  /**
+   * The params' per-particle inverse masses, per-spring rest length and compliance, and, with the hinge model,
+   * per-hinge compliance (−1 for both: no constraint); the hinge buffers made first if they are not yet.
+   */
   writeParams(params: SimParams): void {
     const model = this.model;
     this.device.queue.writeBuffer(this.buffers.baseInvMass, 0, bytes(params.particleInvMass));
@@ -113,6 +149,15 @@ export class ClothBuffers {
       data[2 * s + 1] = Number.isFinite(c) ? c : -1;
     }
     if (springCount) this.device.queue.writeBuffer(this.buffers.springData, 0, data);
+    const hingeCount = model.hingeAreas.length;
+    if (params.bending !== 'hinges' || hingeCount === 0) return; // the bending phase runs for no other model
+    this.makeHinges();
+    const hinge = new Float32Array(hingeCount);
+    for (let e = 0; e < hingeCount; e++) {
+      const c = params.hingeCompliance[e];
+      hinge[e] = Number.isFinite(c) ? c : -1;
+    }
+    this.device.queue.writeBuffer(this.buffers.hingeCompliance, 0, hinge);
   }
 
   /** A state's positions, previous positions, their residuals and velocities. */

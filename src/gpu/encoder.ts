@@ -52,9 +52,9 @@ export function colliderRefusal(scene: Scene): string | null {
 }
 
 /**
- * The phases of the schedule the GPU implements: every phase of XPBD. Its cloth lives in GPU buffers, so it cannot
- * leave a phase to the TypeScript reference: a frame that needs one is refused (the mass-spring solver, a collider
- * shape it does not know).
+ * The phases of the schedule the GPU implements: every phase of XPBD, hinge bending (solver.bending 'hinges')
+ * included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript reference: a frame that
+ * needs one is refused (the mass-spring solver, a collider shape it does not know).
  */
 export const GPU_PHASES: BackendPhases = {
   name: 'GPU solver',
@@ -62,8 +62,8 @@ export const GPU_PHASES: BackendPhases = {
   sharesMemory: false,
   solvers: ['xpbd'],
   phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.carry) | (1 << PHASE.grab) |
-    (1 << PHASE.distance) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.contact) |
-    (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
+    (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) |
+    (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
   refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
     (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null),
 };
@@ -141,6 +141,16 @@ export class FrameEncoder implements PhaseBackend {
           const passes = phasePasses(PHASE.distance, params);
           for (let it = 0; it < passes; it++) {
             for (const r of u.batchRecords) this.dispatch('solve', r.count, so, (it === 0 ? r.first : r.later) * RECORD_STRIDE);
+          }
+          break;
+        }
+        case PHASE.bending: {
+          // batch by batch like the springs; hingeRecords is empty unless params.bending is 'hinges'
+          const passes = phasePasses(PHASE.bending, params);
+          for (let it = 0; it < passes; it++) {
+            for (const r of u.hingeRecords) {
+              this.dispatch('bending', r.count, so, (it === 0 ? r.first : r.later) * RECORD_STRIDE);
+            }
           }
           break;
         }

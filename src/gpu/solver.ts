@@ -80,11 +80,12 @@ export class GpuClothSolver {
   get triangleColourCount(): number { return this.model.triangleBatches.length; }
 
   /**
-   * Takes new parameters (stiffness, damping, mass, gravity, wind, colliders, substeps, iterations...) without
-   * rebuilding anything but the uniform tables. `step` calls it by itself when handed a different params object;
-   * call it after changing a params object in place. Throws for what the GPU does not implement (GPU_PHASES: the
-   * mass-spring solver, a collider type its kernels do not know). Colliders may move (keyframes, or a drive the
-   * library sets on params.colliders: read every frame) and carry pins.
+   * Takes new parameters (stiffness, damping, mass, gravity, wind, colliders, substeps, iterations, the bending
+   * model...) without rebuilding anything but the uniform tables (and, on the first params with the hinge model, the
+   * hinges' buffers). `step` calls it by itself when handed a different params object; call it after changing a
+   * params object in place. Throws for what the GPU does not implement (GPU_PHASES: the mass-spring solver, a
+   * collider type its kernels do not know). Colliders may move (keyframes, or a drive the library sets on
+   * params.colliders: read every frame) and carry pins.
    */
   setParams(params: SimParams): void {
     this.checkAlive();
@@ -147,7 +148,8 @@ export class GpuClothSolver {
 
   /** Dispatches one frame encodes (for reports). */
   dispatchesPerFrame(params: SimParams): number {
-    return dispatchesPerFrame(params, this.uniforms.batchRecords, this.uniforms.collidePasses, this.buffers.hasTethers);
+    const u = this.uniforms;
+    return dispatchesPerFrame(params, u.batchRecords, u.hingeRecords, u.collidePasses, this.buffers.hasTethers);
   }
 
   /** Frees every GPU buffer. The solver cannot be used afterwards. */

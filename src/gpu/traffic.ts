@@ -5,7 +5,7 @@
 import type { ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import { CARRY, COLLIDER } from './layout.js';
-import type { BatchRecords, CollidePass } from './uniforms.js';
+import type { BatchRecords, CollidePass, HingeBatchRecords } from './uniforms.js';
 
 /** Bytes one substep's kernels read and write, as written (each element access counted once per thread). */
 export interface SubstepTraffic {
@@ -29,6 +29,14 @@ export function substepTraffic(model: ClothModel, params: SimParams, collidePass
   solve *= params.iterations;
   solve += S * 4 * (params.iterations - 1); // λ read after the first pass
   add('solve', solve);
+  if (params.bending === 'hinges') {
+    const H = model.hingeAreas.length;
+    let bending = H * (16 + 16 + 4 + 16 + 64 + 64); // hinge, K, compliance, w×4, x×4 in and out
+    bending += H * 12; // λ written
+    bending *= params.iterations;
+    bending += H * 12 * (params.iterations - 1); // λ read after the first pass
+    add('bending', bending);
+  }
   if (hasTethers) add('tethers', n * (8 + 4 + 16 + 16 + 16));
   const stretchSprings = model.springCounts[0] + model.springCounts[1];
   add('limitStretch', stretchSprings * (8 + 8 + 8 + 32)); // springs, rest, w×2, x×2 in (written only when over)
@@ -46,12 +54,17 @@ export function substepTraffic(model: ClothModel, params: SimParams, collidePass
   return { total, byKernel: by };
 }
 
-/** Dispatches one frame encodes with nothing grabbed (prepare, velocities and normals once; the rest per substep). */
+/**
+ * Dispatches one frame encodes with nothing grabbed (prepare, velocities and normals once; the rest per substep);
+ * `hingeRecords` is empty unless params.bending is 'hinges'.
+ */
 export function dispatchesPerFrame(
-  params: SimParams, batchRecords: readonly BatchRecords[], collidePasses: readonly CollidePass[], hasTethers: boolean,
+  params: SimParams, batchRecords: readonly BatchRecords[], hingeRecords: readonly HingeBatchRecords[],
+  collidePasses: readonly CollidePass[], hasTethers: boolean,
 ): number {
   const stretchBatches = batchRecords.filter((r) => r.stretch).length;
   const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) +
-    params.iterations * batchRecords.length + stretchBatches + (hasTethers ? 1 : 0) + collidePasses.length;
+    params.iterations * (batchRecords.length + hingeRecords.length) + stretchBatches + (hasTethers ? 1 : 0) +
+    collidePasses.length;
   return 3 + params.substeps * perSubstep;
 }

@@ -1,7 +1,8 @@
 /**
  * The uniform tables every kernel reads (group 0, layout.ts): `Globals` (the params, and the grab of each frame),
- * one `Substep` record per substep (written every frame), and one `Pass` record per constraint batch variant and
- * per contact pass (written with the params), with the lists of those passes the encoder dispatches.
+ * one `Substep` record per substep (written every frame), and one `Pass` record per constraint batch variant, per
+ * hinge batch variant and per contact pass (written with the params), with the lists of those passes the encoder
+ * dispatches.
  */
 import type {} from 'webgpu';
 import { BEND, type ClothModel } from '../core/model.js';
@@ -32,12 +33,24 @@ export interface BatchRecords {
   readonly stretch: boolean;
 }
 
+/** Pass-record indices of one colour batch of bending hinges: first pass (λ from 0), later ones (λ accumulated). */
+export interface HingeBatchRecords {
+  /** its Pass record for a substep's first pass (λ from 0) */
+  readonly first: number;
+  /** its Pass record for the later passes (PASS_READ_LAMBDA) */
+  readonly later: number;
+  /** hinges in the batch (threads) */
+  readonly count: number;
+}
+
 /** The uniform buffers of one cloth, their bind group, and the pass lists of the current params. */
 export class UniformTables {
   /** group 0 over the three tables (replaced when a table grows) */
   group: GPUBindGroup;
   /** the constraint batches' records, in model.batches order */
   batchRecords: BatchRecords[] = [];
+  /** the hinge batches' records, in model.hingeBatches order; none unless params.bending is 'hinges' */
+  hingeRecords: HingeBatchRecords[] = [];
   /** the contact passes of a substep, in order */
   collidePasses: CollidePass[] = [];
   private readonly device: GPUDevice;
@@ -107,7 +120,8 @@ export class UniformTables {
     const triangleShapes = params.colliders.map((shape) => needsTriangleContact(model, shape, params.thickness));
     q.writeBuffer(this.globalsBuffer, 0, this.globals);
 
-    // pass records: constraint batches (two variants each), then contact
+    // pass records: constraint batches (two variants each), hinge batches (two each, only for the hinge model:
+    // the bending phase runs for no other), then contact
     const records: number[][] = []; // [start, end, cap(float), flags]
     this.batchRecords = model.batches.map((b) => {
       const cap = b.kind === BEND ? 0 : PASS_CAP;
@@ -115,6 +129,12 @@ export class UniformTables {
       records.push([b.start, b.end, params.stretchFactor, cap]);
       records.push([b.start, b.end, params.stretchFactor, cap | PASS_READ_LAMBDA]);
       return { first: at, later: at + 1, count: b.end - b.start, stretch: b.kind !== BEND };
+    });
+    this.hingeRecords = params.bending !== 'hinges' ? [] : model.hingeBatches.map((b) => {
+      const at = records.length;
+      records.push([b.start, b.end, 0, 0]);
+      records.push([b.start, b.end, 0, PASS_READ_LAMBDA]);
+      return { first: at, later: at + 1, count: b.end - b.start };
     });
     this.collidePasses = [];
     let first = 0;
