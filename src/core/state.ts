@@ -28,7 +28,7 @@ export interface ClothState {
   /** XPBD Lagrange multipliers (compliant part) of the last substep, one per spring [N·s²]; f = λ/h² */
   readonly lambdas: Float32Array;
   /**
-   * XPBD Lagrange multipliers of the bending hinges (solver.bending 'hinges'), 3 per hinge [N·s²·m⁻¹·m²]: where
+   * XPBD Lagrange multipliers of the bending hinges (solver.bending 'hinges'), 3 per hinge [N·s²]: where
    * solver.iterations > 1 they accumulate over a substep's passes
    */
   readonly hingeLambdas: Float32Array;
