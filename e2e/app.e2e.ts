@@ -164,6 +164,14 @@ describe('WebGPU page', () => {
     // the worker steps the cloth in the WebAssembly SIMD kernel, and the HUD says so
     await step(page, 10);
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('CPU (worker, WebAssembly SIMD)');
+    // a named fabric puts every material field back to its values; the hinge bending model is a choice
+    await choose(page, 'material.fabric', 'silk');
+    await choose(page, 'solver.bending', 'hinges');
+    const silk = await hook<any>(page, 'scene');
+    expect(silk.material).toMatchObject({ fabric: 'silk', arealDensity: 0.061, bendingRigidity: 1.96e-6, damping: 0.05 });
+    expect(silk.solver.bending).toBe('hinges');
+    await step(page, 30);
+    expect((await centroid(page)).every(Number.isFinite)).toBe(true);
   });
 
   it('V cycles all five views and names each on screen', async () => {

@@ -1,14 +1,13 @@
 #!/usr/bin/env node
-// The Peirce cantilever (ASTM D1388) table of docs/physics.md, "Bending": a 10 cm square sheet of cotton
-// (ρ_A = 0.12 kg/m², B from bendStiffness 0.74 N/m) clamped along one side (the pinned rows) so that an overhang of
+// The Peirce cantilever (ASTM D1388) table of docs/physics.md, "Bending at the hinges": a 10 cm square sheet of
+// cotton (the fabric: ρ_A = 0.12 kg/m², B = 7.85·10⁻⁶ N·m) clamped along one side (the pinned rows) so that an overhang of
 // about 2c sticks out, c = (B/(ρ_A·g))^(1/3) its bending length; after 10 s the chord from the clamp to the tip is
 // measured, and c is recovered from Peirce's relation c = L·(cos(θ/2)/(8·tan θ))^(1/3) (θ = 41.5° where L = 2c).
 // Per bending model, mesh size and solver setting. Needs `npm run build` (it reads dist/).
 //   node scripts/cantilever.mjs
-import { BEND_SPRING_PER_RIGIDITY, Simulation, validateScene } from '../dist/core/index.js';
+import { FABRICS, Simulation, validateScene } from '../dist/core/index.js';
 
-const W = 0.1, RHO = 0.12, KB = 0.74;
-const B = KB / BEND_SPRING_PER_RIGIDITY;
+const W = 0.1, RHO = FABRICS.cotton.arealDensity, B = FABRICS.cotton.bendingRigidity;
 const c = Math.cbrt(B / (RHO * 9.81));
 
 function measure(bending, faces, substeps, iterations) {
@@ -18,7 +17,7 @@ function measure(bending, faces, substeps, iterations) {
   for (let j = 0; j <= faces - free; j++) for (let i = 0; i <= faces; i++) pins.push(j * (faces + 1) + i);
   const scene = validateScene({
     cloth: { resolution: faces, width: W, height: W, position: [0, 1, 0] },
-    material: { mass: RHO * W * W, bendStiffness: KB, damping: 0.01 },
+    material: { fabric: 'cotton', damping: 0.01 },
     solver: { bending, substeps, iterations },
     colliders: [],
     pins,
