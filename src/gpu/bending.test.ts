@@ -6,7 +6,7 @@
 import { afterAll, describe, expect, test } from 'vitest';
 import type {} from 'webgpu';
 import {
-  FRAME_DT, applyPins, builtinScene, centroid, copyState, createState, modelFor, resolveParams, scenePins, step,
+  BEND_SPRING_PER_RIGIDITY, FRAME_DT, applyPins, builtinScene, centroid, copyState, createState, modelFor, resolveParams, scenePins, step,
   validateScene, type ClothModel, type Scene,
 } from '../core/index.js';
 import { testDevice } from './test-device.js';
@@ -47,6 +47,9 @@ function bentness(model: ClothModel, x: Float32Array): number {
  * The hammock scene as a 16² cloth hung from two corners of one edge (it swings down and folds), bending with
  * hinges with bending rigidity B [N·m], `iterations` passes per substep.
  */
+/** the stiff cloth's bending rigidity: a bend spring of 1000 N/m at 1/32 m [N·m] */
+const STIFF = 1000 / BEND_SPRING_PER_RIGIDITY;
+
 function hinged(B: number, iterations: number): Scene {
   const s = builtinScene('pins');
   s.cloth.resolution = 16;
@@ -82,8 +85,8 @@ describe.skipIf(!gpu)('hinge bending on the GPU', () => {
   // iterations: seen ≤ 1.9e-4 m (spread ≤ 1.5e-4 m) → 1e-3 m, the pins scene's; centroid seen ≤ 9.4e-6 m (spread
   // ≤ 1.3e-5 m) → 1e-4 m; the bentness seen ≤ 7e-4 apart (relative) → 1e-2.
   test.each([1, 2])('%i iteration(s): as on the CPU, and a stiff cloth stays flatter by as much as there', async (iterations) => {
-    // B = 0.01 N·m (a bend spring of ~940 N/m): stiff enough to keep a 1 m cotton sheet flat through its swing; 0: no hinge is solved
-    const stiff = await run(hinged(0.01, iterations), 30);
+    // B = 0.0106 N·m (a bend spring of 1000 N/m): stiff enough to keep a 1 m cotton sheet flat through its swing; 0: no hinge is solved
+    const stiff = await run(hinged(STIFF, iterations), 30);
     const soft = await run(hinged(0, iterations), 30);
     for (const r of [stiff, soft]) {
       expect(maxDistance(r.gpu.positions, r.cpu.positions)).toBeLessThan(1e-3);
@@ -100,7 +103,7 @@ describe.skipIf(!gpu)('hinge bending on the GPU', () => {
   // The hinge buffers are made on the first params with the hinge model: here after 10 frames of bend springs.
   // Seen 2.1e-5 m at frame 20 → 1e-3 m (0.5 m without the bending kernel's bind group made anew).
   test('switched on mid-run (a live parameter change): as on the CPU', async () => {
-    const sc = hinged(0.01, 1);
+    const sc = hinged(STIFF, 1);
     sc.solver.bending = 'springs';
     const r = await run(sc, 10);
     sc.solver.bending = 'hinges';
@@ -114,7 +117,7 @@ describe.skipIf(!gpu)('hinge bending on the GPU', () => {
   });
 
   test('its traffic and dispatches are counted, and only for the hinge model', async () => {
-    const sc = hinged(0.01, 2);
+    const sc = hinged(STIFF, 2);
     const r = await run(sc, 1);
     const hinges = r.model.hingeAreas.length;
     const withHinges = r.solver.substepTraffic().byKernel.bending;
