@@ -253,13 +253,13 @@ export class GpuSim implements SimDriver {
     }
     if (gen !== this.readGen) return;
     const s = this.stats;
-    const total = { kinetic: 0, gravitational: 0, elastic: 0 };
+    const total = { kinetic: 0, gravitational: 0, elastic: 0, bending: 0 };
     let maxStrain = 0;
     const clamps = new Set<string>();
     for (const m of this.mirrors) {
       if (m.unstableAt >= 0) continue;
       const e = energy(m.sim.model, m.sim.state, m.sim.params);
-      total.kinetic += e.kinetic; total.gravitational += e.gravitational; total.elastic += e.elastic;
+      total.kinetic += e.kinetic; total.gravitational += e.gravitational; total.elastic += e.elastic; total.bending += e.bending;
       maxStrain = Math.max(maxStrain, maxStructuralStrain(m.sim.model, m.sim.state));
       for (const c of m.sim.params.clamps) clamps.add(c);
     }

@@ -33,7 +33,7 @@ function send(msg: FromWorker, transfer: Transferable[] = []): void {
 function frameMessage(id: number, frames: number, stepMs: number): void {
   const out: SlotFrame[] = [];
   const transfer: Transferable[] = [];
-  const total: Energy = { kinetic: 0, gravitational: 0, elastic: 0 };
+  const total: Energy = { kinetic: 0, gravitational: 0, elastic: 0, bending: 0 };
   let maxStrain = 0;
   const clamps = new Set<string>();
   for (const s of slots) {
@@ -48,6 +48,7 @@ function frameMessage(id: number, frames: number, stepMs: number): void {
     total.kinetic += e.kinetic;
     total.gravitational += e.gravitational;
     total.elastic += e.elastic;
+    total.bending += e.bending;
     maxStrain = Math.max(maxStrain, maxStructuralStrain(sim.model, sim.state));
     for (const c of sim.params.clamps) clamps.add(c);
   }

@@ -23,7 +23,7 @@ describe('drape CLI', () => {
       'maxStrain', 'maxPenetration', 'centroid', 'bounds', 'energy']) expect(j, k).toHaveProperty(k);
     expect(j).toMatchObject({ scene: 'cotton-basic', solver: 'xpbd', backend: 'cpu', frames: 30, particles: 81, triangles: 128, finite: true });
     expect(j.centroid).toHaveLength(3);
-    expect(Object.keys(j.energy)).toEqual(['kinetic', 'gravitational', 'elastic']);
+    expect(Object.keys(j.energy)).toEqual(['kinetic', 'gravitational', 'elastic', 'bending']);
   });
 
   it('--kernel and --threads choose how the CPU steps XPBD, and the JSON says what ran', async () => {

@@ -131,7 +131,7 @@ interface RunResult {
   maxPenetration: number;
   centroid: number[];
   bounds: { min: number[]; max: number[] };
-  energy: { kinetic: number; gravitational: number; elastic: number };
+  energy: { kinetic: number; gravitational: number; elastic: number; bending: number };
   clamps: string[];
   sim: Simulation;
 }
@@ -167,7 +167,7 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
     maxPenetration: round(r.maxPenetration),
     centroid: vec(r.centroid),
     bounds: { min: vec(r.bounds.min), max: vec(r.bounds.max) },
-    energy: { kinetic: round(r.energy.kinetic), gravitational: round(r.energy.gravitational), elastic: round(r.energy.elastic) },
+    energy: { kinetic: round(r.energy.kinetic), gravitational: round(r.energy.gravitational), elastic: round(r.energy.elastic), bending: round(r.energy.bending) },
     clamps: sim.params.clamps,
     sim,
   };
@@ -275,7 +275,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     out(`  max strain   ${(main.maxStrain * 100).toFixed(2)} % (structural)`);
     out(`  penetration  ${(main.maxPenetration * 1000).toFixed(3)} mm`);
     out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
-    out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J`);
+    out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J (bending ${f(main.energy.bending)} J)`);
     if (sweep) {
       out(`  resolution sweep (triangles → resting height of the centroid):`);
       for (const r of sweepRuns) out(`    ${String(r.triangles).padStart(6)} triangles  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);

@@ -1,6 +1,6 @@
 /** Read-only measurements of a running cloth: energy, strain, penetration, extent. */
-import { STRUCTURAL, type ClothModel } from './model.js';
-import { FRAME_DT, type SimParams } from './params.js';
+import { BEND, STRUCTURAL, type ClothModel } from './model.js';
+import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
 
 export interface Energy {
@@ -9,41 +9,53 @@ export interface Energy {
   /** Σ −m·(g · x) [J], zero at the origin */
   gravitational: number;
   /**
-   * elastic energy of the springs [J]: mass-spring Σ ½·k·(|d| − L)²; XPBD Σ ½·α·f² with the force the solver
-   * applied in the last substep, f = λ/h² (the same thing once the constraints converge; while they have not, the
-   * length error of a stiff spring is solver lag, not stored energy)
+   * elastic energy stored in the cloth's shape [J], from the positions for every solver: Σ ½·k·(|d| − L)² over the
+   * springs with the stiffness they act with (params.stiffness) and, with the hinge bending model, Σ ½·|C|²/α over
+   * the hinges (solvers/xpbd.ts solveBending). A constraint the solver leaves unconverged shows as energy: a cloth
+   * stretched beyond what its load explains is visibly overstretched here
    */
   elastic: number;
+  /** the part of `elastic` in bending [J]: the bend springs, or the hinges */
+  bending: number;
 }
 
-/** Energy of the cloth; `dt` is the frame length the state was stepped with (for XPBD's f = λ/h²). */
-export function energy(model: ClothModel, state: ClothState, params: SimParams, dt = FRAME_DT): Energy {
+/** Energy of the cloth (see Energy), from its positions and velocities. */
+export function energy(model: ClothModel, state: ClothState, params: SimParams): Energy {
   const x = state.positions, v = state.velocities, mw = model.massWeights;
   const g = params.gravity;
-  let kinetic = 0, gravitational = 0, elastic = 0;
+  let kinetic = 0, gravitational = 0, elastic = 0, bending = 0;
   for (let i = 0; i < model.particleCount; i++) {
     const m = params.mass * mw[i];
     const j = 3 * i;
     if (!state.pinned[i]) kinetic += 0.5 * m * (v[j] * v[j] + v[j + 1] * v[j + 1] + v[j + 2] * v[j + 2]);
     gravitational -= m * (g[0] * x[j] + g[1] * x[j + 1] + g[2] * x[j + 2]);
   }
-  if (params.solver === 'xpbd') {
-    const h = dt / params.substeps;
-    const lambdas = state.lambdas, compliance = params.compliance;
-    for (let s = 0; s < lambdas.length; s++) {
-      const f = lambdas[s] / (h * h);
-      if (compliance[s] !== Infinity) elastic += 0.5 * compliance[s] * f * f;
-    }
-    return { kinetic, gravitational, elastic };
-  }
-  const sp = model.springs, rest = model.restLengths, k = params.stiffness;
+  const sp = model.springs, rest = model.restLengths, k = params.stiffness, kinds = model.springKinds;
   for (let s = 0; s < rest.length; s++) {
+    if (!(k[s] > 0)) continue;
     const a = 3 * sp[2 * s], b = 3 * sp[2 * s + 1];
     const len = Math.hypot(x[a] - x[b], x[a + 1] - x[b + 1], x[a + 2] - x[b + 2]);
-    const e = len - rest[s];
-    elastic += 0.5 * k[s] * e * e;
+    const e = 0.5 * k[s] * (len - rest[s]) ** 2;
+    elastic += e;
+    if (kinds[s] === BEND) bending += e;
   }
-  return { kinetic, gravitational, elastic };
+  if (params.bending === 'hinges') {
+    const hinges = model.hinges, K = model.hingeWeights, compliance = params.hingeCompliance;
+    let hinged = 0;
+    for (let e = 0; e < compliance.length; e++) {
+      if (compliance[e] === Infinity) continue;
+      let c2 = 0;
+      for (let d = 0; d < 3; d++) {
+        let c = 0;
+        for (let q = 0; q < 4; q++) c += K[4 * e + q] * x[3 * hinges[4 * e + q] + d];
+        c2 += c * c;
+      }
+      hinged += (0.5 * c2) / compliance[e];
+    }
+    bending += hinged;
+    elastic += hinged;
+  }
+  return { kinetic, gravitational, elastic, bending };
 }
 
 /** Largest (length − rest)/rest over structural springs [-]. */

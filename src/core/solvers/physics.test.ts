@@ -148,19 +148,25 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     }
   });
 
-  it('total energy never grows without wind or grabbing', () => {
+  // the elastic energy is the cloth's shape, from its positions (metrics.ts): where a solver converges, total
+  // energy never grows; XPBD at the default settings does not converge, and its unresolved stretch shows as energy
+  // (docs/physics.md, "Energy": measured below, and fixed by issue 10's converged stretch)
+  it('total energy never grows without wind or grabbing (mass-spring); XPBD\'s unconverged stretch shows in it', () => {
     const sim = newSim(scene('cotton-basic', (s) => { s.solver.type = solver; s.cloth.resolution = 16; }));
     const total = () => { const e = sim.report().energy; return e.kinetic + e.gravitational + e.elastic; };
     const e0 = total();
-    let prev = e0;
+    let prev = e0, rise = 0;
     for (let f = 0; f < 240; f++) {
       sim.advance(1);
       const e = total();
-      // slack: contact push-out can lift a particle by what it sank within one substep (measured ≤ 1e-5·E0)
-      expect(e).toBeLessThanOrEqual(prev + 1e-4 * Math.abs(e0));
+      rise = Math.max(rise, e - prev);
       prev = e;
     }
     expect(prev).toBeLessThan(e0);
+    // slack: contact push-out can lift a particle by what it sank within one substep (measured ≤ 1e-5·E0)
+    if (solver === 'mass-spring') expect(rise).toBeLessThanOrEqual(1e-4 * Math.abs(e0));
+    // measured 0.53·E0 in the frame the cloth lands: stretch XPBD leaves, shown rather than hidden
+    else expect(rise).toBeGreaterThan(0.1 * Math.abs(e0));
   });
 
   it('a grabbed particle follows its target, and the cloth keeps its momentum when released', () => {
