@@ -4,7 +4,7 @@
  * hands to their jobs. It is the panel's host and the pointer's; it reads the app's state and sends commands.
  */
 import {
-  SceneError, builtinScene, isBuiltinScene, resolvePins, setScenePath, withMannequin, type MannequinOptions, type PinPreset, type Scene,
+  SceneError, builtinScene, isBuiltinScene, resolvePins, setScenePath, withMannequin, type MannequinOptions, type PinEntry, type PinPreset, type Scene,
 } from '../core/index.js';
 import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import type { CameraPreset } from '../render/stage.js';
@@ -228,21 +228,21 @@ export class Commands implements PanelHost, InteractionHost {
     this.app.panel.sync();
   }
 
-  /** Pin tool: pins or unpins one particle; presets it breaks up become particle lists. */
+  /** Pin tool: pins or unpins one particle; presets and regions it breaks up become particle lists. */
   togglePin(slot: number, particle: number): void {
     const app = this.app;
     const m = app.sim.mirrors[slot];
     const scene = m.sim.scene;
     const pinned = new Set(resolvePins(m.sim.model, scene.pins));
     const on = !pinned.has(particle);
-    let pins: (PinPreset | number)[];
+    let pins: PinEntry[];
     if (on) {
       pins = [...scene.pins, particle];
     } else {
       pins = [];
       for (const p of scene.pins) {
         if (p === particle) continue;
-        if (typeof p === 'string') {
+        if (typeof p !== 'number') {
           const members = resolvePins(m.sim.model, [p]);
           if (members.includes(particle)) { pins.push(...members.filter((i) => i !== particle)); continue; }
         }

@@ -11,7 +11,7 @@
  */
 import {
   SceneError, defaultScene, discMesh, modelFor, placeMesh, plainText, setScenePath, tubeMesh,
-  type MeshResolver, type PinPreset, type Scene,
+  type MeshResolver, type PinEntry, type Scene,
 } from '../core/index.js';
 
 /** shapes the panel offers ('mesh' comes from an import) */
@@ -70,12 +70,13 @@ function startingAt(scene: Scene, bottom: number, meshes: MeshResolver): Scene {
 }
 
 /** The pins a cloth of `shape` can take from `pins`, and a note on the ones it cannot. */
-function pinsFor(pins: readonly (PinPreset | number)[], shape: Scene['cloth']['shape']): { pins: (PinPreset | number)[]; note: string } {
-  const kept: (PinPreset | number)[] = [], presets: string[] = [];
+function pinsFor(pins: readonly PinEntry[], shape: Scene['cloth']['shape']): { pins: PinEntry[]; note: string } {
+  const kept: PinEntry[] = [], presets: string[] = [];
   let indices = 0;
   for (const p of pins) {
     if (typeof p === 'number') indices++;
-    else if (shape === 'rectangle' || p === 'center') kept.push(p);
+    // a region is where particles start, whatever the shape
+    else if (typeof p === 'object' || shape === 'rectangle' || p === 'center') kept.push(p);
     else presets.push(p);
   }
   const why: string[] = [];

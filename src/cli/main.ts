@@ -7,7 +7,7 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { parseArgs } from 'node:util';
 import {
-  builtinScene, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneSchema, setScenePath, Simulation,
+  builtinScene, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneSchema, setScenePath, Simulation,
   type MeshResolver, type Scene, type SimulationOptions,
 } from '../core/index.js';
 import { EXIT, UsageError } from './errors.js';
@@ -32,7 +32,7 @@ Built-in scenes: ${SCENE_NAMES.join(', ')}`,
   run: `drape run [SCENE|file.json] [options]
 
 Simulates a built-in scene (default: custom) or a scene file for N frames of 1/60 s.
-  --frames N            frames to simulate (default 180; 0 reports the start state)
+  --frames N            frames to simulate (default: the scene's duration, 3 s unless it says; 0 reports the start)
   --solver S            xpbd | mass-spring (same as --set solver.type=S)
   --backend B           cpu (default) or gpu (WebGPU through Dawn; XPBD only)
   --kernel K            CPU XPBD kernel: wasm (WebAssembly SIMD, the default where available) or ts
@@ -132,6 +132,8 @@ interface RunResult {
   centroid: number[];
   bounds: { min: number[]; max: number[] };
   energy: { kinetic: number; gravitational: number; elastic: number; bending: number };
+  /** the scene's standard fabric test, measured at the last frame (numbers rounded as the rest) */
+  test?: Record<string, string | number>;
   clamps: string[];
   sim: Simulation;
 }
@@ -168,6 +170,7 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
     centroid: vec(r.centroid),
     bounds: { min: vec(r.bounds.min), max: vec(r.bounds.max) },
     energy: { kinetic: round(r.energy.kinetic), gravitational: round(r.energy.gravitational), elastic: round(r.energy.elastic), bending: round(r.energy.bending) },
+    ...(r.test ? { test: Object.fromEntries(Object.entries(r.test).map(([k, v]) => [k, typeof v === 'number' ? round(v) : v])) } : {}),
     clamps: sim.params.clamps,
     sim,
   };
@@ -199,7 +202,8 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   });
   if (values.help) { out(HELP.run); return 0; }
   if (positionals.length > 1) throw new UsageError(`run: one scene at a time, got ${positionals.join(', ')}`);
-  const frames = intArg('frames', values.frames, 180, 0, 1_000_000);
+  // checked before anything is loaded; without --frames the scene's duration decides (below)
+  const framesAsked = values.frames === undefined ? undefined : intArg('frames', values.frames, 180, 0, 1_000_000);
   const backend = checkBackend(values.backend);
   const options: SimulationOptions = {
     ...cpuOptions(threadsArg(values.threads, err)),
@@ -215,6 +219,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   const sets = values.set ?? [];
   if (values.solver !== undefined) sets.unshift(`solver.type=${values.solver}`);
   scene = applySets(scene, sets);
+  const frames = framesAsked ?? Math.max(1, Math.round(scene.duration / FRAME_DT));
 
   const sweepAsked = scene.resolutionSweep && !sets.some((s) => s.startsWith('cloth.resolution=') || s.startsWith('cloth=')) ? scene.resolutionSweep : undefined;
   // a mesh file has its own resolution: the sweep would run the same cloth again and again
@@ -276,6 +281,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     out(`  penetration  ${(main.maxPenetration * 1000).toFixed(3)} mm`);
     out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
     out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J (bending ${f(main.energy.bending)} J)`);
+    if (main.test) out(`  test         ${Object.entries(main.test).map(([k, v]) => `${k} ${typeof v === 'number' ? f(v) : plainText(String(v), 40)}`).join(', ')}`);
     if (sweep) {
       out(`  resolution sweep (triangles → resting height of the centroid):`);
       for (const r of sweepRuns) out(`    ${String(r.triangles).padStart(6)} triangles  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);

@@ -3,6 +3,7 @@ export * from './model.js';
 export * from './state.js';
 export * from './params.js';
 export * from './fabrics.js';
+export * from './textile-tests.js';
 export * from './scene.js';
 export { sceneSchema, PIN_PRESETS } from './scene-schema.js';
 export { SCENE_NAMES, builtinScene, isBuiltinScene, builtinMannequin, sceneMannequin, withMannequin, type SceneMannequin } from './scenes.js';

@@ -1,5 +1,5 @@
 import type { ClothModel } from './model.js';
-import { SceneError, type PinPreset, type Scene } from './scene.js';
+import { SceneError, type PinEntry, type PinPreset, type Scene } from './scene.js';
 import type { ClothState } from './state.js';
 
 /**
@@ -50,16 +50,28 @@ function nearestToMiddle(model: ClothModel): number {
 }
 
 /**
- * Resolves a scene's pin list (presets and indices) to particle indices, without duplicates. Throws a SceneError
- * naming the entry (pins[k]) for an index the cloth does not have or a preset it cannot take.
+ * Resolves a scene's pin list (presets, indices and regions) to particle indices, without duplicates. Throws a
+ * SceneError naming the entry (pins[k]) for an index the cloth does not have, a preset it cannot take or a region
+ * no particle starts in.
  */
-export function resolvePins(model: ClothModel, pins: readonly (PinPreset | number)[], field = 'pins'): number[] {
+export function resolvePins(model: ClothModel, pins: readonly PinEntry[], field = 'pins'): number[] {
   const set = new Set<number>();
   const n = model.particleCount;
   pins.forEach((p, k) => {
     if (typeof p === 'number') {
       if (p >= n) throw new SceneError(`${field}[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
       set.add(p);
+      return;
+    }
+    if (typeof p === 'object') {
+      const x = model.restPositions;
+      let found = 0;
+      for (let i = 0; i < n; i++) {
+        let inside = true;
+        for (let d = 0; d < 3; d++) if (!(x[3 * i + d] >= p.min[d] && x[3 * i + d] <= p.max[d])) inside = false;
+        if (inside) { set.add(i); found++; }
+      }
+      if (found === 0) throw new SceneError(`${field}[${k}]: no particle starts in the region from [${p.min.join(', ')}] to [${p.max.join(', ')}] m`);
       return;
     }
     try {

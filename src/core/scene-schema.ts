@@ -24,7 +24,7 @@ export const PIN_PRESETS = [
 /** Most keys of one collider's motion. */
 export const MAX_KEYFRAMES = 10000;
 
-/** A pin list: presets or particle indices (the scene's `pins`, a collider's `pins`). */
+/** A pin list: presets, particle indices or regions (the scene's `pins`, a collider's `pins`). */
 const pinList = (description: string) => ({
   type: 'array',
   default: [],
@@ -34,6 +34,16 @@ const pinList = (description: string) => ({
     anyOf: [
       { enum: [...PIN_PRESETS] },
       { type: 'integer', minimum: 0 },
+      {
+        type: 'object',
+        additionalProperties: false,
+        required: ['min', 'max'],
+        description: 'a region: every particle whose start position lies in the box from min to max (any shape, any resolution)',
+        properties: {
+          min: vec3('the box\'s lowest corner [m]', -1000, 1000, [0, 0, 0]),
+          max: vec3('the box\'s highest corner [m]', -1000, 1000, [0, 0, 0]),
+        },
+      },
     ],
   },
 });
@@ -73,7 +83,7 @@ const colliderCommon = {
       loop: { type: 'boolean', default: false, description: 'repeat the keys, the last key\'s time being the period (it must be > 0)' },
     },
   },
-  pins: pinList('particles pinned to this collider, carried with it as it moves (presets or indices, as the scene\'s pins)'),
+  pins: pinList('particles pinned to this collider, carried with it as it moves (presets, indices or regions, as the scene\'s pins)'),
 } as const;
 
 export const sceneSchema = {
@@ -261,12 +271,41 @@ export const sceneSchema = {
         ],
       },
     },
+    duration: { type: 'number', minimum: 0.01, maximum: 3600, default: 3, description: 'how long `drape run` simulates when it is not given --frames (rounded to whole 1/60 s frames) [s]' },
+    test: {
+      description: 'the standard fabric test this scene is; the report (--json, the app\'s HUD) then gives its measurement as test.*',
+      type: 'object',
+      required: ['type'],
+      discriminator: { propertyName: 'type' },
+      oneOf: [
+        {
+          type: 'object',
+          additionalProperties: false,
+          description: 'ASTM D1388 / Peirce cantilever: a strip clamped (pinned) flat, overhanging an edge; reports test.overhang [m], test.chordAngle [degrees] and test.bendingLength [m], the bending length that angle gives (heavy elastica)',
+          properties: {
+            type: { const: 'cantilever' },
+            edge: vec3('a point of the clamp\'s edge: where the overhang starts [m]', -1000, 1000, [0, 0, 0]),
+            direction: vec3('the direction the strip overhangs in (its horizontal part is used) [-]', -1, 1, [0, 0, 1]),
+          },
+        },
+        {
+          type: 'object',
+          additionalProperties: false,
+          description: 'BS 5058 / ISO 9073-9 Cusick drape: a disc on a pedestal; reports test.projectedArea [m²], test.drapeCoefficient [-] and test.folds [-]',
+          properties: {
+            type: { const: 'cusick' },
+            center: vec3('a point of the pedestal\'s (vertical) axis [m]', -1000, 1000, [0, 0, 0]),
+            pedestalRadius: { type: 'number', minimum: 0.001, maximum: 10, default: 0.09, description: 'radius of the pedestal\'s top [m]' },
+          },
+        },
+      ],
+    },
     resolutionSweep: {
       type: 'array',
       maxItems: 16,
       items: { type: 'integer', minimum: 1, maximum: 1024 },
       description: 'optional: run the scene once per resolution listed (faces per side), e.g. the seed\'s 1 → 4096 faces demo',
     },
-    pins: pinList(`pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) or particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding)`),
+    pins: pinList(`pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding) or regions ({ min, max }: the particles that start in that box)`),
   },
 } as const;

@@ -7,6 +7,10 @@ export type Vec3 = [number, number, number];
 /** `cloth.shape` (the list: CLOTH_SHAPES in cloth-shape.ts) */
 export type ClothShape = 'rectangle' | 'disc' | 'tube' | 'mesh';
 export type PinPreset = (typeof PIN_PRESETS)[number];
+/** A pin region: every particle whose start position lies in the box from `min` to `max` [m]. */
+export interface PinRegion { min: Vec3; max: Vec3 }
+/** One entry of a pin list: a preset, a particle index or a region. */
+export type PinEntry = PinPreset | number | PinRegion;
 
 /** Field meanings, units and defaults: see scene-schema.ts (the one source). */
 export interface Scene {
@@ -31,10 +35,19 @@ export interface Scene {
   gravity: Vec3;
   wind: Wind;
   colliders: ColliderSpec[];
-  pins: (PinPreset | number)[];
+  pins: PinEntry[];
   /** optional list of resolutions (faces per side) to run the scene at, one after another */
   resolutionSweep?: number[];
+  /** how long `drape run` simulates when it is not given --frames [s] */
+  duration: number;
+  /** the standard fabric test the scene is (textile-tests.ts): what the report's `test` measures */
+  test?: SceneTest;
 }
+
+/** `test`: a cantilever (ASTM D1388) or a Cusick drape (BS 5058) and where its fixture is. */
+export type SceneTest =
+  | { type: 'cantilever'; edge: Vec3; direction: Vec3 }
+  | { type: 'cusick'; center: Vec3; pedestalRadius: number };
 
 export type SolverType = 'xpbd' | 'mass-spring';
 /** `solver.bending`: the xpbd solver's bending model */
@@ -72,7 +85,7 @@ export interface ColliderCommon {
   /** keyframed motion relative to the placement */
   motion?: { keyframes: { time: number; translation: Vec3; rotation: Vec3 }[]; pivot?: Vec3; loop: boolean };
   /** particles pinned to the collider and carried with it (a validated scene has it, [] by default) */
-  pins?: (PinPreset | number)[];
+  pins?: PinEntry[];
 }
 
 export type ColliderSpec = ColliderCommon & (
@@ -234,7 +247,7 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
   // other shapes check their pins when the model is built (pins.ts resolvePins)
   if (scene.cloth.shape !== 'rectangle') return scene;
   const n = (scene.cloth.resolution + 1) ** 2;
-  const check = (pins: readonly (PinPreset | number)[], field: string) => pins.forEach((p, k) => {
+  const check = (pins: readonly PinEntry[], field: string) => pins.forEach((p, k) => {
     if (typeof p === 'number' && p >= n) {
       throw new SceneError(`${source}: ${field}[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
     }

@@ -7,7 +7,7 @@ import {
   MANNEQUIN_ANIMATIONS, MANNEQUIN_CHEST, MANNEQUIN_PARTS, MANNEQUIN_PELVIS, MANNEQUIN_POSES, mannequinColliders, type MannequinOptions,
 } from './mannequin.js';
 import { tubeMesh } from './mesh/generators.js';
-import { SceneError, validateScene, type ColliderSpec, type PinPreset, type Scene } from './scene.js';
+import { SceneError, validateScene, type ColliderSpec, type PinEntry, type Scene } from './scene.js';
 
 
 /**
@@ -18,7 +18,7 @@ export interface SceneMannequin {
   options: MannequinOptions;
   /** which of the mannequin's colliders carries the cloth's pins (MANNEQUIN_CHEST, MANNEQUIN_PELVIS) */
   carrier: number;
-  pins: (PinPreset | number)[];
+  pins: PinEntry[];
 }
 
 /** The colliders of a mannequin, its pins on the carrier. */
@@ -43,6 +43,9 @@ const MANNEQUINS: Record<string, () => SceneMannequin> = {
   cape: () => ({ options: { pose: 'stand', animation: 'turn' }, carrier: MANNEQUIN_CHEST, pins: ['top-edge'] }),
   skirt: () => ({ options: { pose: 'stand', animation: 'walk' }, carrier: MANNEQUIN_PELVIS, pins: topRing(skirtCloth) }),
 };
+
+/** Where the cantilever's clamp ends [m]: the strip's far end (z = 0.04) less 3.76 cm, twice cotton's bending length. */
+const CANTILEVER_EDGE = 0.04 - 0.0376;
 
 const drop = (name: string, description: string, material: object) => ({ name, description, material });
 
@@ -96,6 +99,26 @@ const BUILTIN: Record<string, object | (() => object)> = {
     solver: { substeps: 10 },
     colliders: [...colliders(MANNEQUINS.skirt()), { type: 'floor', height: 0 }],
   }),
+  cantilever: {
+    name: 'cantilever',
+    description: 'ASTM D1388 / Peirce cantilever: a 2.5 cm cotton strip clamped flat, 3.76 cm (twice cotton\'s bending length) overhanging the edge; reports the bending length its tip angle gives',
+    cloth: { width: 0.025, height: 0.08, resolution: 32, position: [0, 0.5, 0] },
+    material: { fabric: 'cotton' },
+    colliders: [{ type: 'floor', height: 0 }],
+    // the clamp: every particle that starts behind the edge, 4.24 cm of the 8 cm strip
+    pins: [{ min: [-1, 0, -1], max: [1, 1, CANTILEVER_EDGE] }],
+    duration: 6,
+    test: { type: 'cantilever', edge: [0, 0.5, CANTILEVER_EDGE], direction: [0, 0, 1] },
+  },
+  cusick: {
+    name: 'cusick',
+    description: 'BS 5058 / ISO 9073-9 Cusick drape: a 30 cm cotton disc on an 18 cm pedestal; reports the drape coefficient and the folds',
+    cloth: { shape: 'disc', width: 0.3, resolution: 48, position: [0, 0.506, 0] },
+    material: { fabric: 'cotton' },
+    colliders: [{ type: 'cylinder', center: [0, 0.25, 0], axis: [0, 1, 0], radius: 0.09, height: 0.5 }, { type: 'floor', height: 0 }],
+    duration: 6,
+    test: { type: 'cusick', center: [0, 0, 0], pedestalRadius: 0.09 },
+  },
   resolution: {
     name: 'resolution',
     description: 'The seed\'s mesh-resolution demo: the same cotton cloth dropped with 1 to 4096 faces',

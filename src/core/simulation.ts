@@ -15,6 +15,7 @@ import { copyState, resetState, type ClothState } from './state.js';
 import type { HelperSpawner } from './wasm/xpbd-wasm.js';
 import { TsBackend, WasmBackend, type Backend } from './backend.js';
 import type { ColliderPose } from './colliders/pose.js';
+import { measureTest, type TestResult } from './textile-tests.js';
 
 /** Where a Simulation runs the XPBD substeps on the CPU. */
 export type CpuKernel = 'wasm' | 'ts';
@@ -51,6 +52,8 @@ export interface Report {
   centroid: [number, number, number];
   bounds: Bounds;
   energy: Energy;
+  /** the scene's standard fabric test measured now (textile-tests.ts), when the scene is one */
+  test?: TestResult;
 }
 
 /** Whether going from scene `prev` to `next` needs a new model (and so restarts the cloth): a change of geometry. */
@@ -319,6 +322,7 @@ export class Simulation {
       centroid: centroid(state),
       bounds: bounds(state),
       energy: energy(model, state, params),
+      ...(this.scene.test ? { test: measureTest(model, state, this.scene) } : {}),
     };
   }
 }
