@@ -90,6 +90,17 @@ describe('WebGPU page', () => {
     expect(mid[1]).toBeLessThan(1.45); // the hammock sags
     expect(mid[1]).toBeGreaterThan(0.5);
     await shoot(page, 'scene-pins');
+
+    // the standard fabric tests show what they measure
+    await loadScene(page, 'Cantilever (ASTM D1388)', 16);
+    await step(page, 60);
+    await expect.poll(() => byId(page, 'hud-test').innerText()).toMatch(/^cantilever: tip \d+\.\d° below the edge, 3\.76 cm out → bending length \d+\.\d\d cm$/);
+    await loadScene(page, 'Cusick Drape (BS 5058)');
+    await choose(page, 'cloth.resolution', '24 faces across');
+    await page.waitForFunction(() => (window as any).drape.frame() === 0);
+    await step(page, 60);
+    await expect.poll(() => byId(page, 'hud-test').innerText()).toMatch(/^Cusick drape: coefficient 0\.\d{3}, \d+ folds?$/);
+    await shoot(page, 'scene-cusick');
     expect(errors).toEqual([]);
   });
 

@@ -1,5 +1,5 @@
 /** What the HUD shows: the app's and the simulation's state, gathered into the HUD's fields and notes. */
-import { plainText } from '../core/index.js';
+import { measureTest, plainText, type TestResult } from '../core/index.js';
 import type { HudInfo } from '../ui/hud.js';
 import { SCENE_LABELS } from '../ui/panel.js';
 import type { App } from './app.js';
@@ -35,8 +35,12 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
     const fit = fitSideBySide(scene.resolutionSweep ?? [], sim.kind);
     if (fit.note) notes.push(fit.note);
   }
+  // the standard fabric test the scene is, measured on the first cloth as the page has it now
+  const first = sim.mirrors[0];
+  const measured = scene.test && first && first.unstableAt < 0 ? measureTest(first.sim.model, first.sim.state, scene) : undefined;
   return {
     notes,
+    test: measured ? testLine(measured) : undefined,
     fps,
     idle,
     backend: app.stage.backend === 'webgpu' ? 'WebGPU' : 'WebGL2',
@@ -60,4 +64,12 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
       mesh !== null ? `cloth: mesh ${plainText(mesh, 80)}` : scene.cloth.shape !== 'rectangle' ? `cloth: ${scene.cloth.shape}` : '',
     ].filter(Boolean).join(' · ') || undefined,
   };
+}
+
+/** One line for the HUD: what a fabric test measures now. */
+function testLine(t: TestResult): string {
+  if (t.type === 'cantilever') {
+    return `cantilever: tip ${t.chordAngle.toFixed(1)}° below the edge, ${(100 * t.overhang).toFixed(2)} cm out → bending length ${(100 * t.bendingLength).toFixed(2)} cm`;
+  }
+  return `Cusick drape: coefficient ${t.drapeCoefficient.toFixed(3)}, ${t.folds} fold${t.folds === 1 ? '' : 's'}`;
 }

@@ -26,6 +26,23 @@ describe('drape CLI', () => {
     expect(Object.keys(j.energy)).toEqual(['kinetic', 'gravitational', 'elastic', 'bending']);
   });
 
+  it('a scene runs for its duration without --frames, and a fabric test scene reports test.* (JSON and text)', async () => {
+    const plain = JSON.parse((await run('run', 'cotton-basic', '--set', 'cloth.resolution=4', '--json')).out);
+    expect(plain.frames).toBe(180); // the default duration, 3 s
+    expect(plain).not.toHaveProperty('test');
+    const r = await run('run', 'cantilever', '--set', 'cloth.resolution=8', '--set', 'duration=0.25', '--set', 'material.fabric=silk', '--json');
+    expect(r.code, r.err).toBe(0);
+    const j = JSON.parse(r.out);
+    expect(j.frames).toBe(15);
+    expect(j.resolvedScene.material).toMatchObject({ fabric: 'silk', arealDensity: 0.061 });
+    expect(j.test).toMatchObject({ type: 'cantilever', overhang: 0.0376 });
+    expect(j.test.bendingLength).toBeGreaterThan(0);
+    const c = JSON.parse((await run('run', 'cusick', '--set', 'cloth.resolution=12', '--frames', '0', '--json')).out);
+    expect(c.test.drapeCoefficient).toBeCloseTo(1, 1); // flat at the start
+    const text = await run('run', 'cusick', '--set', 'cloth.resolution=12', '--frames', '2');
+    expect(text.out).toMatch(/\n  test +type cusick, projectedArea [\d.]+, drapeCoefficient [\d.]+, folds \d+/);
+  });
+
   it('--kernel and --threads choose how the CPU steps XPBD, and the JSON says what ran', async () => {
     const args = ['run', 'cotton-basic', '--frames', '10', '--set', 'cloth.resolution=8', '--json'];
     const ts = JSON.parse((await run(...args, '--kernel', 'ts')).out);

@@ -281,7 +281,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     out(`  penetration  ${(main.maxPenetration * 1000).toFixed(3)} mm`);
     out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
     out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J (bending ${f(main.energy.bending)} J)`);
-    if (main.test) out(`  test         ${Object.entries(main.test).map(([k, v]) => `${k} ${typeof v === 'number' ? f(v) : plainText(String(v), 40)}`).join(', ')}`);
+    if (main.test) out(`  test         ${Object.entries(main.test).map(([k, v]) => `${k} ${typeof v === 'number' ? (Number.isInteger(v) ? v : f(v)) : plainText(String(v), 40)}`).join(', ')}`);
     if (sweep) {
       out(`  resolution sweep (triangles → resting height of the centroid):`);
       for (const r of sweepRuns) out(`    ${String(r.triangles).padStart(6)} triangles  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);

@@ -32,6 +32,8 @@ export interface HudInfo {
   slots: number;
   /** another line of the text block (a scene's name: shown as text, never as markup) */
   extra?: string;
+  /** what the scene's fabric test measures now (a cantilever's bending length, a Cusick drape coefficient) */
+  test?: string;
   /** what the app had to do or stop (a clamped resolution, an unstable cloth), shown as warnings */
   notes?: string[];
 }
@@ -112,6 +114,7 @@ export class Hud {
     ];
     if (i.slots > 1) lines.push([`${i.slots} cloths side by side (totals)`]);
     if (i.extra) lines.push([i.extra]);
+    if (i.test) lines.push([h('span', { testid: 'hud-test' }, i.test)]);
     setLines(this.text, lines);
     const status: Child[][] = [];
     const ok = (t: string) => [h('span', 'ok', t)];

@@ -23,6 +23,8 @@ export const SCENE_LABELS: Record<string, string> = {
   tablecloth: 'Tablecloth',
   cape: 'Cape',
   skirt: 'Skirt',
+  cantilever: 'Cantilever (ASTM D1388)',
+  cusick: 'Cusick Drape (BS 5058)',
   resolution: 'Mesh Resolution',
 };
 

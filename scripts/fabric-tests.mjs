@@ -1,0 +1,34 @@
+#!/usr/bin/env node
+// The standard fabric tests for every named fabric (docs/physics.md, "The standard fabric tests"): the built-in
+// `cantilever` and `cusick` scenes with material.fabric set, for each bending model, at the scenes' own resolution
+// and duration and the default solver settings. Cantilever: the bending length the tip's chord gives against
+// c = (B/(ρ_A·g))^(1/3). Cusick: drape coefficient and folds. Needs `npm run build` (it reads dist/).
+//   node scripts/fabric-tests.mjs
+import { FABRICS, FABRIC_NAMES, Simulation, builtinScene, setScenePath } from '../dist/core/index.js';
+
+const run = (name, fabric, bending) => {
+  let scene = setScenePath(builtinScene(name), 'material.fabric', fabric);
+  scene = setScenePath(scene, 'solver.bending', bending);
+  const sim = new Simulation(scene);
+  sim.advance(Math.round(scene.duration * 60));
+  const r = sim.report();
+  sim.dispose();
+  return r.test;
+};
+
+console.log('| fabric | c theory [cm] | springs: chord → c / c_theory | hinges: chord → c / c_theory | Cusick springs: DC, folds | Cusick hinges: DC, folds |');
+console.log('|---|---|---|---|---|---|');
+for (const fabric of FABRIC_NAMES) {
+  const f = FABRICS[fabric];
+  const c = Math.cbrt(f.bendingRigidity / (f.arealDensity * 9.81));
+  const cells = [];
+  for (const bending of ['springs', 'hinges']) {
+    const t = run('cantilever', fabric, bending);
+    cells.push(`${t.chordAngle.toFixed(1)}° → ${(t.bendingLength / c).toFixed(2)}`);
+  }
+  for (const bending of ['springs', 'hinges']) {
+    const t = run('cusick', fabric, bending);
+    cells.push(`${t.drapeCoefficient.toFixed(2)}, ${t.folds}`);
+  }
+  console.log(`| ${fabric} | ${(100 * c).toFixed(2)} | ${cells.join(' | ')} |`);
+}

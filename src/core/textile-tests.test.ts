@@ -1,0 +1,103 @@
+/**
+ * The standard fabric tests (textile-tests.ts): the heavy elastica behind the cantilever's bending length, the
+ * Cusick measurement on shapes whose answer is known, the scenes, and pins by region that hold a clamp at any
+ * resolution.
+ */
+import { describe, expect, it } from 'vitest';
+import { resolvePins } from './pins.js';
+import { validateScene } from './scene.js';
+import { builtinScene } from './scenes.js';
+import { Simulation } from './simulation.js';
+import { countFolds, elasticaChordAngle, elasticaLoad, measureTest, type CantileverResult, type CusickResult } from './textile-tests.js';
+
+const deg = (r: number) => (r * 180) / Math.PI;
+
+describe('the heavy elastica', () => {
+  it('gives Peirce\'s 41.5° at an overhang of twice the bending length (λ = 8), as ASTM D1388 rests on', () => {
+    expect(deg(elasticaChordAngle(8))).toBeCloseTo(41.5, 1);
+    expect(elasticaLoad((41.5 * Math.PI) / 180)).toBeCloseTo(8, 1);
+  });
+  it('is the small-deflection beam for a light load: tip drop wL⁴/(8B), a chord of atan(λ/8)', () => {
+    for (const lambda of [0.001, 0.01]) expect(elasticaChordAngle(lambda) / Math.atan(lambda / 8)).toBeCloseTo(1, 3);
+  });
+  it('the chord falls further as the load grows, and elasticaLoad inverts it', () => {
+    let prev = 0;
+    for (const lambda of [0.1, 1, 4, 8, 20, 60, 200, 1000]) {
+      const t = elasticaChordAngle(lambda);
+      expect(t).toBeGreaterThan(prev);
+      prev = t;
+      expect(elasticaLoad(t) / lambda).toBeCloseTo(1, 4);
+    }
+  });
+});
+
+describe('what the tests measure', () => {
+  it('a cantilever strip held straight at α below the edge reads a chord of α and the bending length that gives', () => {
+    const sim = new Simulation(builtinScene('cantilever'), { kernel: 'ts' });
+    const edge = sim.scene.test!.type === 'cantilever' ? sim.scene.test!.edge : [0, 0, 0];
+    const x = sim.state.positions, alpha = (30 * Math.PI) / 180;
+    for (let i = 0; i < sim.model.particleCount; i++) {
+      const out = x[3 * i + 2] - edge[2];
+      if (sim.state.pinned[i] || out <= 0) continue;
+      x[3 * i + 1] = edge[1] - out * Math.sin(alpha);
+      x[3 * i + 2] = edge[2] + out * Math.cos(alpha);
+    }
+    const r = sim.report().test as CantileverResult;
+    expect(r.overhang).toBeCloseTo(0.0376, 4);
+    expect(r.chordAngle).toBeCloseTo(30, 3);
+    expect(r.bendingLength / (0.0376 / Math.cbrt(elasticaLoad(alpha)))).toBeCloseTo(1, 5);
+  });
+
+  it('a Cusick disc lying flat covers its own area (coefficient 1, no folds); one hanging as a cylinder at the pedestal\'s edge, none', () => {
+    const sim = new Simulation(builtinScene('cusick'), { kernel: 'ts' });
+    const flat = sim.report().test as CusickResult;
+    expect(flat.projectedArea / sim.model.area).toBeCloseTo(1, 2);
+    expect(flat.drapeCoefficient).toBeCloseTo(1, 2);
+    expect(flat.folds).toBe(0);
+    // every particle moved in to the pedestal's radius: the shadow is the pedestal's
+    const x = sim.state.positions;
+    for (let i = 0; i < sim.model.particleCount; i++) {
+      const r = Math.hypot(x[3 * i], x[3 * i + 2]);
+      if (r > 0.09) { x[3 * i] *= 0.09 / r; x[3 * i + 2] *= 0.09 / r; }
+    }
+    const hanging = measureTest(sim.model, sim.state, sim.scene) as CusickResult;
+    expect(Math.abs(hanging.drapeCoefficient)).toBeLessThan(0.01);
+  });
+
+  it('folds are the peaks of the silhouette\'s radius round the rim', () => {
+    const profile = (k: number, amplitude: number, noise = 0) => Float64Array.from({ length: 360 }, (_, d) =>
+      0.12 + amplitude * Math.cos((k * d * Math.PI) / 180) + noise * Math.sin(d * 1.7) * Math.cos(d * 2.9));
+    for (const k of [4, 6, 9, 12]) expect(countFolds(profile(k, 0.01, 3e-4))).toBe(k);
+    expect(countFolds(profile(8, 5e-4))).toBe(0); // ripples under 2 mm are not folds
+  });
+});
+
+describe('the scenes run to their duration and report their test', () => {
+  it.each(['cantilever', 'cusick'])('%s', (name) => {
+    const scene = builtinScene(name);
+    expect(scene.duration).toBeGreaterThan(3);
+    const sim = new Simulation(validateScene({ ...scene, cloth: { ...scene.cloth, resolution: 12 } }), { kernel: 'ts' });
+    sim.advance(20);
+    const t = sim.report().test!;
+    expect(t.type).toBe(name);
+    for (const v of Object.values(t)) if (typeof v === 'number') expect(Number.isFinite(v)).toBe(true);
+  });
+});
+
+describe('pins by region', () => {
+  it('hold the particles that start in the box, at any resolution and on any shape; an empty box is an error naming it', () => {
+    const clamp = { min: [-1, 0, -1] as [number, number, number], max: [1, 2, 0] as [number, number, number] };
+    for (const resolution of [4, 8, 16]) {
+      const sim = new Simulation(validateScene({ cloth: { resolution, position: [0, 1, 0] }, colliders: [], pins: [clamp] }), { kernel: 'ts' });
+      const pinned = resolvePins(sim.model, sim.scene.pins);
+      // every particle with z ≤ 0: rows 0 … resolution/2 of the grid
+      expect(pinned.length).toBe((resolution / 2 + 1) * (resolution + 1));
+      for (const i of pinned) expect(sim.model.restPositions[3 * i + 2]).toBeLessThanOrEqual(0);
+    }
+    const disc = new Simulation(validateScene({ cloth: { shape: 'disc', position: [0, 1, 0] }, colliders: [], pins: [clamp] }), { kernel: 'ts' });
+    expect(disc.state.pinned.reduce((a, b) => a + b, 0)).toBeGreaterThan(10);
+    expect(() => new Simulation(validateScene({ colliders: [], pins: ['center', { min: [5, 5, 5], max: [6, 6, 6] }] }), { kernel: 'ts' }))
+      .toThrow('pins[1]: no particle starts in the region from [5, 5, 5] to [6, 6, 6] m');
+    expect(() => validateScene({ pins: [{ min: [0, 0, 0] }] })).toThrow(/pins\[0\]/);
+  });
+});
