@@ -1,0 +1,124 @@
+#!/usr/bin/env node
+// Issue 10 (converged stretch and bending): the Projective Dynamics prototype (scripts/pd-solver.mjs) on the two
+// setups of scripts/solver-study-common.mjs, over the model and parameters the library builds for the same scenes.
+//
+//   hanging: a 1 m sheet pinned along its top row (rubber k = 600 N/m, ρ_A = 0.38; cotton k = 8600, ρ_A = 0.12):
+//     elongation / theory ρ_A g L²/(2k), the middle half's strain / theory, and elongation / the discrete model's
+//     converged equilibrium (a static PD solve, no inertia, 200 local/global iterations: what any converged solver
+//     of this spring grid must give; the shear springs make it stiffer than k alone). Frames to settle (as
+//     hanging-strain.mjs: chunks of 30 frames, drift < 0.1 % and kinetic energy < 1e-6·mgL), ms per frame while
+//     settling, factor time, envelope size.
+//   cantilever: the Peirce cantilever with hinge bending, 10 s, chord angle → c / c (1.00 wanted, ±10 %).
+//   timing: ms per frame of the direct solver at 32², 64², 128² and of Chebyshev-Jacobi.
+//
+//   newton: the cantilever's converged answer for the same discrete energy (static Newton): the model's own error.
+//
+// Parts (--part): hanging, cantilever, newton, all (default: those three, ~3 min on a free core; the 128² rows are
+// most of it), jacobi (Chebyshev-accelerated Jacobi on both setups; not in 'all').
+//   npx tsc -p tsconfig.build.json && node scripts/pd-study.mjs [--part hanging] [--faces 16,32,64,128]
+//       [--settings 1x3,1x10] [--fabrics rubber,cotton] [--bending springs|hinges (the hanging sheet's bending model)]
+import { modelFor, resolveParams, scenePins } from '../dist/core/index.js';
+import { PDSolver, newtonStatic } from './pd-solver.mjs';
+import {
+  arg, cantileverScene, hangingScene, hangingTheory, kinetic, measureCantilever, measureHanging, pct, CANTILEVER,
+} from './solver-study-common.mjs';
+
+const part = arg('part', 'all');
+
+function solverFor(scene, opts) {
+  const model = modelFor(scene);
+  const params = resolveParams(model, scene);
+  const pinned = new Uint8Array(model.particleCount);
+  for (const i of scenePins(model, scene)) pinned[i] = 1;
+  return new PDSolver(model, params, pinned, model.restPositions, opts);
+}
+
+/** Runs frames until settled (or maxFrames): returns { frames, ke, drift, ms }. */
+function settle(pd, faces, maxFrames, mgl) {
+  const t0 = performance.now();
+  let frames = 0, prev = NaN, drift = NaN, ke = NaN;
+  while (frames < maxFrames) {
+    for (let f = 0; f < 30; f++) pd.frame();
+    frames += 30;
+    const m = measureHanging(pd.x, faces);
+    ke = kinetic(pd.v, pd.mass);
+    drift = (m.elongation - prev) / m.elongation;
+    prev = m.elongation;
+    if (frames >= 60 && Math.abs(drift) < 0.001 && ke < 1e-6 * mgl) break;
+  }
+  return { frames, ke, drift, ms: (performance.now() - t0) / frames };
+}
+
+function hanging(global) {
+  const fabrics = arg('fabrics', 'rubber,cotton').split(',');
+  const facesList = arg('faces', global === 'direct' ? '16,32,64,128' : '16,32,64').split(',').map(Number);
+  const settings = arg('settings', global === 'direct' ? '1x3,1x10' : '1x20,1x50,4x20').split(',').map((s) => s.split('x').map(Number));
+  console.log(`\nPD (${global === 'direct' ? 'direct envelope Cholesky, RCM order' : 'Chebyshev-accelerated Jacobi'}) hanging sheet`);
+  for (const fabric of fabrics) {
+    const th = hangingTheory(fabric);
+    console.log(`\n${fabric}: theory elongation ${(1000 * th.elongation).toFixed(3)} mm`);
+    console.log('| faces | substeps × iterations | converged discrete [mm] (/theory) | frames | KE [J] | elongation [mm] | ratio to theory | middle strain ratio | ratio to converged | ms/frame | factor ms | envelope | ρ |');
+    console.log('|---|---|---|---|---|---|---|---|---|---|---|---|---|');
+    for (const faces of facesList) {
+      const scene = hangingScene(fabric, faces, 1, 1, arg('bending', 'springs')); // default 'springs': the energy of XPBD's run
+      const ref = solverFor(scene, { static: true, iterations: 200 });
+      ref.frame();
+      const refEl = measureHanging(ref.x, faces).elongation;
+      const mgl = scene.material.mass * 9.81;
+      for (const [substeps, iterations] of settings) {
+        const pd = solverFor(scene, { substeps, iterations, global });
+        const s = settle(pd, faces, faces >= 128 ? 240 : 600, mgl);
+        const m = measureHanging(pd.x, faces);
+        console.log(`| ${faces}² | ${substeps} × ${iterations} | ${(1000 * refEl).toFixed(3)} (${(refEl / th.elongation).toFixed(2)}) | ${s.frames} | ${s.ke.toExponential(1)} | ` +
+          `${(1000 * m.elongation).toFixed(3)} | ${(m.elongation / th.elongation).toFixed(2)} | ${(m.strainMid / th.strainMid).toFixed(2)} | ` +
+          `${(m.elongation / refEl).toFixed(3)} | ${s.ms.toFixed(1)} | ${pd.factorMs.toFixed(0)} | ${pd.envelope ?? '-'} | ${pd.opts.rho?.toFixed(5) ?? '-'} |`);
+      }
+    }
+  }
+}
+
+function cantilever(global) {
+  const facesList = arg('faces', '16,32,64').split(',').map(Number);
+  const settings = arg('settings', global === 'direct' ? '1x5,1x10,1x20,4x10' : '1x20,1x50,1x100').split(',').map((s) => s.split('x').map(Number));
+  console.log(`\nPD (${global}) Peirce cantilever, hinges: B = ${CANTILEVER.B.toExponential(3)} N·m, c = ${(100 * CANTILEVER.c).toFixed(2)} cm; chord angle (41.5° wanted) → c / c, ms per frame`);
+  console.log(`| faces | ${settings.map(([s, i]) => `${s} × ${i}`).join(' | ')} |`);
+  console.log(`|---|${settings.map(() => '---').join('|')}|`);
+  for (const faces of facesList) {
+    const cells = settings.map(([substeps, iterations]) => {
+      const { scene, free, L } = cantileverScene(faces, 1, 1, 'hinges');
+      const pd = solverFor(scene, { substeps, iterations, global });
+      const t0 = performance.now();
+      for (let f = 0; f < 600; f++) pd.frame();
+      const ms = (performance.now() - t0) / 600;
+      const m = measureCantilever(pd.x, faces, free, L);
+      return `${m.deg.toFixed(1)}° → ${m.ratio.toFixed(2)} (${ms.toFixed(1)} ms)`;
+    });
+    console.log(`| ${faces}² | ${cells.join(' | ')} |`);
+  }
+}
+
+/**
+ * The cantilever's converged answer for the same discrete energy (hinges, springs, gravity): Newton's method on the
+ * static problem (pd-solver.mjs newtonStatic), started from where PD at 10 × 10 is after 10 s. Tells whether a miss
+ * is the model's or the solver's.
+ */
+function newtonCantilever() {
+  const facesList = arg('faces', '16,32,64').split(',').map(Number);
+  console.log('\nCantilever, converged static equilibrium of the discrete model (Newton, from PD 10 × 10 after 10 s)');
+  console.log('| faces | chord angle | c / c | Newton iterations | |gradient| [N] | seconds |');
+  console.log('|---|---|---|---|---|---|');
+  for (const faces of facesList) {
+    const { scene, free, L } = cantileverScene(faces, 1, 1, 'hinges');
+    const pd = solverFor(scene, { substeps: 10, iterations: 10 });
+    for (let f = 0; f < 600; f++) pd.frame();
+    const t0 = performance.now();
+    const r = newtonStatic(pd, 150);
+    const m = measureCantilever(pd.x, faces, free, L);
+    console.log(`| ${faces}² | ${m.deg.toFixed(1)}° | ${m.ratio.toFixed(3)} | ${r.iterations} | ${r.gnorm.toExponential(1)} | ${((performance.now() - t0) / 1000).toFixed(1)} |`);
+  }
+}
+
+if (part === 'all' || part === 'hanging') hanging('direct');
+if (part === 'all' || part === 'newton') newtonCantilever();
+if (part === 'all' || part === 'cantilever') cantilever('direct');
+if (part === 'jacobi') { hanging('jacobi'); cantilever('jacobi'); }
