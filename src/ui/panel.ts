@@ -112,6 +112,9 @@ function logSliderFor(s: SchemaNumber): LogSlider | null {
   return null;
 }
 
+/** What a control says when its field is absent because the scene gives it by an older path. */
+const NOT_SET: Record<string, string> = { 'material.arealDensity': 'from the whole cloth\'s mass (material.mass)' };
+
 const RESOLUTIONS = [1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 512, 1024];
 
 /** the Shape control's generated shapes ('mesh' shows when the cloth is an imported file) */
@@ -330,9 +333,10 @@ export class Panel {
         });
         ctl.domElement.classList.add('drape-log');
         this.syncers.push(() => {
-          const v = get(host.scene, path) as number;
-          p[id] = toSlider(v);
-          ctl.name(`${label} ${fmt(v)}${unit ? ' ' + unit : ''}`);
+          const v = get(host.scene, path) as number | undefined;
+          // a field the scene leaves to its older path (material.mass for the density) has no value to show
+          p[id] = typeof v === 'number' ? toSlider(v) : log.lo;
+          ctl.name(typeof v === 'number' ? `${label} ${fmt(v)}${unit ? ' ' + unit : ''}` : `${label}: ${NOT_SET[path] ?? 'not set'}`);
         });
       } else {
         p[id] = 0;
