@@ -6,7 +6,7 @@
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
-import { byId, hook, openApp, pause, shoot, step, viewStats } from './helpers.js';
+import { byId, hook, openApp, pause, shoot, step } from './helpers.js';
 
 let browser: Browser;
 
@@ -73,10 +73,9 @@ describe('collider shapes in the app', () => {
     expect(Math.min(...x.map(boxDistance))).toBeLessThan(0.01);
     expect(Math.min(...x.map(capsuleDistance))).toBeLessThan(0.01);
 
-    const s = await viewStats(page);
+    const s = await shoot(page, 'colliders-box-capsule');
     expect(s.colours).toBeGreaterThan(20);
     expect(s.lumaStd).toBeGreaterThan(4);
-    await shoot(page, 'colliders-box-capsule');
     expect(errors).toEqual([]);
     await page.close();
   });
