@@ -59,7 +59,9 @@ describe('WebGPU page', () => {
     for (const [label, name] of DROP_SCENES) {
       await loadScene(page, label, 16);
       expect(await hook(page, 'sceneName')).toBe(name);
-      await step(page, 200);
+      // 1.5 s: every one has fallen the 0.4 m onto the sphere and lies on it by frame 60 (in the CLI the centroids
+      // are then within a centimetre of where they rest)
+      await step(page, 90);
       const [lo, hi] = await yRange(page);
       const c = await centroid(page);
       // resting on the sphere (top at 0.8 m), not on the floor and not floating
@@ -114,8 +116,8 @@ describe('WebGPU page', () => {
     expect(await hook(page, 'slots')).toBe(7);
     const labels = await hook<string[]>(page, 'labels');
     expect(labels.map((l) => l.match(/([\d,]+) faces?/)?.[1])).toEqual(['1', '4', '16', '64', '256', '1,024', '4,096']);
-    await step(page, 100);
-    const fine = await centroid(page, 6); // 4096 faces: draped
+    await step(page, 60);
+    const fine = await centroid(page, 6); // 4096 faces: draped (in the CLI, centroid y 0.578 at frame 60, as at rest)
     expect(fine[1]).toBeGreaterThan(0.3);
     expect(fine[1]).toBeLessThan(0.8);
     await shoot(page, 'scene-resolution-side-by-side');
