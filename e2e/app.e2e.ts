@@ -203,15 +203,8 @@ describe('WebGPU page', () => {
     expect(await hook(page, 'grabbed')).toBe(-1);
     await step(page, 60);
     expect((await hook<number[][]>(page, 'positions', [grabbed]))[0][1]).toBeLessThan(y0 + 0.08); // let go: falls back
-
-    // dragging empty space orbits
-    await page.mouse.move(120, 560);
-    await page.mouse.down();
-    await page.mouse.move(220, 540, { steps: 5 });
-    await page.mouse.up();
-    await page.waitForTimeout(300);
-    expect(await hook<number[]>(page, 'camera')).not.toEqual(cam);
-    await page.keyboard.press('4');
+    // (that dragging empty space does orbit, so that the camera check above can fail: the last test, since the
+    // orbit's damping then moves the camera, redrawing, for dozens of frames)
   });
 
   it('the pin tool pins a clicked particle, which then stays put; a second click unpins it', async () => {
@@ -392,12 +385,20 @@ describe('WebGPU page', () => {
     expect(await byId(bad.page, 'message').isVisible()).toBe(true);
     expect(await hook(bad.page, 'sceneName')).toBe('cotton-basic');
     await shoot(bad.page, 'bad-link');
+    expect(bad.errors).toEqual([]);
     await bad.page.close();
+    // (a link's out-of-range value is refused with the field's name: src/app/url-state.test.ts; the page's part,
+    // the message and the default scene for a link refused at load, is the same as here: security.e2e.ts)
+  });
 
-    const badValue = await openApp(browser.context, '#scene=wind&material.damping=99', CPU);
-    expect((await hook<any>(badValue.page, 'lastMessage')).text).toContain('material.damping: must be <= 10');
-    expect(await hook(badValue.page, 'sceneName')).toBe('cotton-basic');
-    await badValue.page.close();
+  it('dragging empty space orbits the camera', async () => {
+    await loadScene(page, 'Pins', 16);
+    const cam = await hook<number[]>(page, 'camera');
+    await page.mouse.move(120, 560);
+    await page.mouse.down();
+    await page.mouse.move(220, 540, { steps: 5 });
+    await page.mouse.up();
+    await expect.poll(() => hook<number[]>(page, 'camera')).not.toEqual(cam);
   });
 
   it('logged no console errors along the way', () => {
