@@ -1,7 +1,7 @@
 /** Page helpers for the browser tests: open the app, drive the panel by its test ids, read window.drape. */
 import { mkdirSync, writeFileSync } from 'node:fs';
 import type { BrowserContext, Locator, Page } from 'playwright-core';
-import { inject } from 'vitest';
+import { expect, inject } from 'vitest';
 import { collectErrors } from './browser.js';
 import { crop, decodePng, imageStats } from './png.js';
 
@@ -92,11 +92,14 @@ export async function setNumber(page: Page, id: string, value: number): Promise<
 }
 
 /**
- * Clicks a panel control with the mouse. Without the wait for two steady animation frames that Playwright makes
- * first: the panel does not move, and on SwiftShader each frame the change just made draws takes about a second.
+ * Clicks a panel control once it is visible, in the page (element.click(): the click event lil-gui listens to).
+ * A mouse click first waits for two steady animation frames, and on SwiftShader a frame drawing the change just
+ * made takes about a second; a mouse click without that wait can land on another control while a folder of the
+ * panel opens or a control appears.
  */
 async function clickControl(control: Locator): Promise<void> {
-  await control.click({ force: true });
+  await expect.poll(() => control.isVisible(), { interval: POLL_MS }).toBe(true);
+  await control.evaluate((e: HTMLElement) => e.click());
 }
 
 export async function setChecked(page: Page, id: string, on: boolean): Promise<void> {
