@@ -4,12 +4,11 @@
  * (`?backend=cpu`), which is what these tests time for; the GPU backend has its own tests in gpu.e2e.ts. Cloths are small and runs short: SwiftShader is slow;
  * the loop is paused and frames are stepped explicitly, so results do not depend on this machine's speed.
  */
-import { readFileSync } from 'node:fs';
 import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
 import {
-  byId, centroid, choose, hook, loadScene, openApp, pause, press, setChecked, setNumber, shoot, step, viewStats, writeJson,
+  byId, centroid, choose, download, hook, loadScene, openApp, pause, press, setChecked, setNumber, shoot, step, viewStats, writeJson,
 } from './helpers.js';
 import { decodePng, imageStats } from './png.js';
 
@@ -331,11 +330,7 @@ describe('WebGPU page', () => {
   it('exports the scene as JSON, a screenshot PNG, and the cloth as OBJ and glTF', async () => {
     await loadScene(page, 'Leather Stiff', 8);
     await step(page, 30);
-    const get = async (id: string) => {
-      const [dl] = await Promise.all([page.waitForEvent('download'), press(page, id)]);
-      const path = await dl.path();
-      return { name: dl.suggestedFilename(), data: readFileSync(path) };
-    };
+    const get = (id: string) => download(page, id);
     const json = await get('exportJson');
     expect(json.name).toBe('leather-stiff.json');
     const doc = JSON.parse(json.data.toString());

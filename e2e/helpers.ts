@@ -79,6 +79,17 @@ export async function gpuReady(page: Page): Promise<void> {
   }
 }
 
+/**
+ * Presses a panel button that downloads a file, and returns the file's name and bytes (read as a stream: that
+ * works whether the browser was launched here or is the suite's shared one, see browser.ts).
+ */
+export async function download(page: Page, id: string): Promise<{ name: string; data: Buffer }> {
+  const [dl] = await Promise.all([page.waitForEvent('download'), press(page, id)]);
+  const chunks: Buffer[] = [];
+  for await (const chunk of await dl.createReadStream()) chunks.push(chunk as Buffer);
+  return { name: dl.suggestedFilename(), data: Buffer.concat(chunks) };
+}
+
 /** Picks an option of a dropdown control by its label. */
 export async function choose(page: Page, id: string, label: string): Promise<void> {
   await byId(page, id).locator('select').selectOption({ label });

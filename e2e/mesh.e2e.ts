@@ -10,7 +10,7 @@ import { readFileSync } from 'node:fs';
 import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
-import { byId, centroid, choose, gpuReady, hook, loadScene, openApp, pause, press, setChecked, shoot, step, type Opened } from './helpers.js';
+import { byId, centroid, choose, download, gpuReady, hook, loadScene, openApp, pause, press, setChecked, shoot, step, type Opened } from './helpers.js';
 
 const CPU = '?lite&backend=cpu';
 const TSHIRT_OBJ = readFileSync(new URL('../examples/tshirt.obj', import.meta.url));
@@ -220,10 +220,7 @@ describe('a mesh cloth in the app', () => {
     expect(await hook(page, 'grabbed')).toBe(-1);
 
     // exports: the scene names the mesh file (and says that the file goes with it); OBJ and glTF hold the shirt
-    const get = async (id: string) => {
-      const [dl] = await Promise.all([page.waitForEvent('download'), press(page, id)]);
-      return { name: dl.suggestedFilename(), data: readFileSync(await dl.path()) };
-    };
+    const get = (id: string) => download(page, id);
     const json = await get('exportJson');
     expect(json.name).toBe('tshirt.json');
     const doc = JSON.parse(json.data.toString());

@@ -8,12 +8,11 @@
  * - a cloth that stops being finite is stopped, shown at its last finite shape, with Reset; exports refuse.
  * Small cloths and explicit steps: SwiftShader is slow, and nothing here depends on the machine's speed.
  */
-import { readFileSync } from 'node:fs';
 import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { inject } from 'vitest';
 import { launch, collectErrors, type Browser } from './browser.js';
-import { byId, hook, loadScene, openApp, pause, press, step, type Opened } from './helpers.js';
+import { byId, download, hook, loadScene, openApp, pause, press, step, type Opened } from './helpers.js';
 
 const CPU = '?lite&backend=cpu';
 /** the HUD and banner follow the render loop, which SwiftShader on a busy machine runs slowly: poll generously */
@@ -129,9 +128,9 @@ describe('hostile scene names', () => {
 
     // the name goes into exported files as one plain line
     await hook(page, 'import', JSON.stringify({ name: 'evil\nv 1 2 3\n<script>', cloth: { resolution: 2 } }));
-    const [dl] = await Promise.all([page.waitForEvent('download'), press(page, 'exportObj')]);
-    const obj = readFileSync(await dl.path()).toString();
-    expect(dl.suggestedFilename()).toBe('evil-v-1-2-3-script-.obj');
+    const dl = await download(page, 'exportObj');
+    const obj = dl.data.toString();
+    expect(dl.name).toBe('evil-v-1-2-3-script-.obj');
     expect(obj.split('\n')[0]).toBe("# Drape cloth, scene 'evil\ufffdv 1 2 3\ufffd<script>'");
     expect(obj.split('\n').filter((l) => l.startsWith('v ')).length).toBe(9);
     expect(errors).toEqual([]);
