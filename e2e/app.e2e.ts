@@ -4,12 +4,11 @@
  * (`?backend=cpu`), which is what these tests time for; the GPU backend has its own tests in gpu.e2e.ts. Cloths are small and runs short: SwiftShader is slow;
  * the loop is paused and frames are stepped explicitly, so results do not depend on this machine's speed.
  */
-import { readFileSync } from 'node:fs';
 import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
 import {
-  byId, centroid, choose, hook, loadScene, openApp, pause, press, setChecked, setNumber, shoot, step, viewStats, writeJson,
+  byId, centroid, choose, download, hook, loadScene, openApp, pause, press, setChecked, setNumber, shoot, step, viewStats, writeJson,
 } from './helpers.js';
 import { decodePng, imageStats } from './png.js';
 
@@ -59,7 +58,9 @@ describe('WebGPU page', () => {
     for (const [label, name] of DROP_SCENES) {
       await loadScene(page, label, 16);
       expect(await hook(page, 'sceneName')).toBe(name);
-      await step(page, 200);
+      // 1.5 s: every one has fallen the 0.4 m onto the sphere and lies on it by frame 60 (in the CLI the centroids
+      // are then within a centimetre of where they rest)
+      await step(page, 90);
       const [lo, hi] = await yRange(page);
       const c = await centroid(page);
       // resting on the sphere (top at 0.8 m), not on the floor and not floating
@@ -125,8 +126,8 @@ describe('WebGPU page', () => {
     expect(await hook(page, 'slots')).toBe(7);
     const labels = await hook<string[]>(page, 'labels');
     expect(labels.map((l) => l.match(/([\d,]+) faces?/)?.[1])).toEqual(['1', '4', '16', '64', '256', '1,024', '4,096']);
-    await step(page, 100);
-    const fine = await centroid(page, 6); // 4096 faces: draped
+    await step(page, 60);
+    const fine = await centroid(page, 6); // 4096 faces: draped (in the CLI, centroid y 0.578 at frame 60, as at rest)
     expect(fine[1]).toBeGreaterThan(0.3);
     expect(fine[1]).toBeLessThan(0.8);
     await shoot(page, 'scene-resolution-side-by-side');
@@ -220,15 +221,8 @@ describe('WebGPU page', () => {
     expect(await hook(page, 'grabbed')).toBe(-1);
     await step(page, 60);
     expect((await hook<number[][]>(page, 'positions', [grabbed]))[0][1]).toBeLessThan(y0 + 0.08); // let go: falls back
-
-    // dragging empty space orbits
-    await page.mouse.move(120, 560);
-    await page.mouse.down();
-    await page.mouse.move(220, 540, { steps: 5 });
-    await page.mouse.up();
-    await page.waitForTimeout(300);
-    expect(await hook<number[]>(page, 'camera')).not.toEqual(cam);
-    await page.keyboard.press('4');
+    // (that dragging empty space does orbit, so that the camera check above can fail: the last test, since the
+    // orbit's damping then moves the camera, redrawing, for dozens of frames)
   });
 
   it('the pin tool pins a clicked particle, which then stays put; a second click unpins it', async () => {
@@ -355,11 +349,7 @@ describe('WebGPU page', () => {
   it('exports the scene as JSON, a screenshot PNG, and the cloth as OBJ and glTF', async () => {
     await loadScene(page, 'Leather Stiff', 8);
     await step(page, 30);
-    const get = async (id: string) => {
-      const [dl] = await Promise.all([page.waitForEvent('download'), press(page, id)]);
-      const path = await dl.path();
-      return { name: dl.suggestedFilename(), data: readFileSync(path) };
-    };
+    const get = (id: string) => download(page, id);
     const json = await get('exportJson');
     expect(json.name).toBe('leather-stiff.json');
     const doc = JSON.parse(json.data.toString());
@@ -409,12 +399,20 @@ describe('WebGPU page', () => {
     expect(await byId(bad.page, 'message').isVisible()).toBe(true);
     expect(await hook(bad.page, 'sceneName')).toBe('cotton-basic');
     await shoot(bad.page, 'bad-link');
+    expect(bad.errors).toEqual([]);
     await bad.page.close();
+    // (a link's out-of-range value is refused with the field's name: src/app/url-state.test.ts; the page's part,
+    // the message and the default scene for a link refused at load, is the same as here: security.e2e.ts)
+  });
 
-    const badValue = await openApp(browser.context, '#scene=wind&material.damping=99', CPU);
-    expect((await hook<any>(badValue.page, 'lastMessage')).text).toContain('material.damping: must be <= 10');
-    expect(await hook(badValue.page, 'sceneName')).toBe('cotton-basic');
-    await badValue.page.close();
+  it('dragging empty space orbits the camera', async () => {
+    await loadScene(page, 'Pins', 16);
+    const cam = await hook<number[]>(page, 'camera');
+    await page.mouse.move(120, 560);
+    await page.mouse.down();
+    await page.mouse.move(220, 540, { steps: 5 });
+    await page.mouse.up();
+    await expect.poll(() => hook<number[]>(page, 'camera')).not.toEqual(cam);
   });
 
   it('logged no console errors along the way', () => {

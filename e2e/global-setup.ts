@@ -1,7 +1,9 @@
 /** Builds the site once (as users get it from `npm run build`) and serves dist/web on a free localhost port. */
 import type { Server } from 'node:http';
+import type { BrowserServer } from 'playwright-core';
 import { build } from 'vite';
 import type { TestProject } from 'vitest/node';
+import { launchServer, SHARED_KINDS, type BrowserKind } from './browser.js';
 import { serve } from './server.js';
 
 let server: Server | undefined;
@@ -22,12 +24,20 @@ export default async function setup(project: TestProject): Promise<() => Promise
   const s = await serve('dist/web');
   server = s.server;
   project.provide('baseURL', s.url);
-  console.log(`e2e: built and serving dist/web at ${s.url} (${Date.now() - t0} ms)`);
-  return async () => { await new Promise<void>((r) => server?.close(() => r())); };
+  // the browsers several files use, started once (browser.ts)
+  const browsers = await Promise.all(SHARED_KINDS.map(launchServer));
+  project.provide('browsers', Object.fromEntries(SHARED_KINDS.map((k, i) => [k, browsers[i].wsEndpoint()])));
+  console.log(`e2e: built and serving dist/web at ${s.url}, browsers started (${Date.now() - t0} ms)`);
+  return async () => {
+    await Promise.all(browsers.map((b: BrowserServer) => b.close()));
+    await new Promise<void>((r) => server?.close(() => r()));
+  };
 }
 
 declare module 'vitest' {
   export interface ProvidedContext {
     baseURL: string;
+    /** the WebSocket endpoint of each browser the suite shares (browser.ts) */
+    browsers: Partial<Record<BrowserKind, string>>;
   }
 }

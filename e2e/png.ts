@@ -45,6 +45,16 @@ export function decodePng(buf: Buffer): Image {
   return { width, height, rgba: out };
 }
 
+/** A rectangle of an image (in its pixels). */
+export function crop(img: Image, r: { x: number; y: number; width: number; height: number }): Image {
+  const out = new Uint8Array(r.width * r.height * 4);
+  for (let y = 0; y < r.height; y++) {
+    const from = 4 * ((r.y + y) * img.width + r.x);
+    out.set(img.rgba.subarray(from, from + 4 * r.width), 4 * y * r.width);
+  }
+  return { width: r.width, height: r.height, rgba: out };
+}
+
 /** Distinct colours (quantised to 5 bits a channel) and luminance spread over a grid of samples. */
 export function imageStats(img: Image): { colours: number; lumaStd: number } {
   const seen = new Set<number>();
