@@ -1,6 +1,6 @@
 import { Ajv, type ErrorObject } from 'ajv';
 import { eulerXYZ } from './mesh/generators.js';
-import { BEND_SPRING_PER_RIGIDITY, FABRICS, FABRIC_FIELDS, type FabricName } from './fabrics.js';
+import { BEND_SPRING_PER_RIGIDITY, FABRICS, FABRIC_FIELDS, type FabricName, type FabricValues } from './fabrics.js';
 import { PIN_PRESETS, sceneSchema } from './scene-schema.js';
 
 export type Vec3 = [number, number, number];
@@ -58,17 +58,10 @@ export type BendingModel = 'springs' | 'hinges';
  * `arealDensity` and `mass` is present (mass where the scene gave the whole cloth's mass); `bendStiffness`, the
  * older path for the bend, is read as bendingRigidity and never appears here.
  */
-export interface Material {
+export interface Material extends Omit<FabricValues, 'arealDensity'> {
   fabric?: FabricName;
   arealDensity?: number;
   mass?: number;
-  structuralStiffness: number;
-  shearStiffness: number;
-  bendingRigidity: number;
-  damping: number;
-  stretchFactor: number;
-  friction: number;
-  staticFriction: number;
   scaleWithResolution: boolean;
 }
 

@@ -71,11 +71,11 @@ function cantilever(model: ClothModel, state: ClothState, edge: readonly number[
  * The heavy elastica, clamped horizontally at s = 0 and free at s = L, in units of L (σ = s/L): φ the slope below
  * the horizontal and m = φ′ the bending moment over B obey φ′ = m, m′ = −λ·(1 − σ)·cos φ (the weight beyond σ, times
  * its lever), with φ(0) = 0 and no moment at the free end, m(1) = 0; ξ′ = cos φ, η′ = −sin φ. λ = ρ_A·g·L³/B =
- * (L/c)³. Solved by shooting on the clamp's moment m(0) ∈ [0, λ/2] (RK4, N steps; bisection on the sign of m(1), a
+ * (L/c)³. Solved by shooting on the clamp's moment m(0) ∈ [0, λ/2] (RK4, N steps: 200 put θ(8) within 0.01° of 1000; bisection on the sign of m(1), a
  * moment that turns negative before the tip counting as too small and a slope past vertical as too large). Returns the
  * chord angle atan(−η(1)/ξ(1)) [rad].
  */
-export function elasticaChordAngle(lambda: number, N = 1000): number {
+export function elasticaChordAngle(lambda: number, N = 200): number {
   const shoot = (m0: number, out?: Float64Array): number => {
     let phi = 0, m = m0, xi = 0, eta = 0;
     const h = 1 / N;
@@ -102,7 +102,7 @@ export function elasticaChordAngle(lambda: number, N = 1000): number {
     return m;
   };
   let lo = 0, hi = lambda / 2;
-  for (let k = 0; k < 80; k++) {
+  for (let k = 0; k < 56; k++) {
     const mid = 0.5 * (lo + hi);
     if (shoot(mid) < 0) lo = mid; else hi = mid;
   }
@@ -112,18 +112,27 @@ export function elasticaChordAngle(lambda: number, N = 1000): number {
 }
 
 /**
- * λ = (L/c)³ for which the heavy elastica's chord falls θ [rad] (bisection in log λ; θ grows with λ), within
+ * λ = (L/c)³ for which the heavy elastica's chord falls θ [rad] (θ grows with λ; solved in log λ), within
  * 10⁻⁴ … 10³ (chords of 0.007° … 82°: beyond, the strip hangs straight down and the angle says little).
  */
 export function elasticaLoad(theta: number): number {
   if (!(theta > 0)) return 0;
-  let lo = Math.log(1e-4), hi = Math.log(1e3);
-  if (theta >= elasticaChordAngle(Math.exp(hi))) return Math.exp(hi);
-  for (let k = 0; k < 40; k++) {
-    const mid = 0.5 * (lo + hi);
-    if (elasticaChordAngle(Math.exp(mid)) < theta) lo = mid; else hi = mid;
+  // regula falsi (Illinois) in log λ: the chord is smooth and monotone there, ~10 solves instead of bisection's 40
+  let a = Math.log(1e-4), b = Math.log(1e3);
+  let fa = elasticaChordAngle(Math.exp(a)) - theta, fb = elasticaChordAngle(Math.exp(b)) - theta;
+  if (fb <= 0) return Math.exp(b);
+  if (fa >= 0) return Math.exp(a);
+  let last = 0, c = b;
+  for (let k = 0; k < 100; k++) {
+    c = b - (fb * (b - a)) / (fb - fa);
+    const fc = elasticaChordAngle(Math.exp(c)) - theta;
+    if (fc === 0 || Math.abs(fc) < 1e-13) break;
+    // the end on c's side moves to c; an end kept twice in a row has its value halved (so both ends close in)
+    if (fc > 0) { b = c; fb = fc; if (last === 1) fa /= 2; last = 1; }
+    else { a = c; fa = fc; if (last === -1) fb /= 2; last = -1; }
+    if (b - a < 1e-12) break;
   }
-  return Math.exp(0.5 * (lo + hi));
+  return Math.exp(c);
 }
 
 /** Side of the cells the projected area is counted on [m]: 0.5 mm, a 30 cm specimen in 600 × 600 cells. */
