@@ -21,12 +21,12 @@ export const FABRICS = {
 };
 
 /** The hanging-sheet scene (1 m, pinned top row, no colliders). */
-export function hangingScene(fabric, faces, substeps, iterations, bending = 'springs') {
+export function hangingScene(fabric, faces, substeps, iterations, bending = 'springs', stretch = 'gauss-seidel') {
   return validateScene({
     name: `hanging-${fabric}`,
     cloth: { resolution: faces, width: 1, height: 1, orientation: 'hanging', position: [0, 1.5, 0] },
     material: FABRICS[fabric],
-    solver: { type: 'xpbd', substeps, iterations, bending },
+    solver: { type: 'xpbd', substeps, iterations, bending, stretch },
     colliders: [],
     pins: ['top-edge'],
   });
@@ -64,7 +64,7 @@ export const CANTILEVER = (() => {
 })();
 
 /** The Peirce cantilever scene (as scripts/cantilever.mjs) and its overhang: { scene, free, L }. */
-export function cantileverScene(faces, substeps, iterations, bending = 'hinges') {
+export function cantileverScene(faces, substeps, iterations, bending = 'hinges', stretch = 'gauss-seidel') {
   const { W, RHO, KB, c } = CANTILEVER;
   const free = Math.round((2 * c) / (W / faces));
   const L = (free * W) / faces;
@@ -73,7 +73,7 @@ export function cantileverScene(faces, substeps, iterations, bending = 'hinges')
   const scene = validateScene({
     cloth: { resolution: faces, width: W, height: W, position: [0, 1, 0] },
     material: { mass: RHO * W * W, bendStiffness: KB, damping: 0.01 },
-    solver: { type: 'xpbd', bending, substeps, iterations },
+    solver: { type: 'xpbd', bending, substeps, iterations, stretch },
     colliders: [],
     pins,
   });

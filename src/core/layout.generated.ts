@@ -65,23 +65,25 @@ export const PHASE = {
   carry: 4,
   /** substep: the grabbed particle carried part of the way to its target */
   grab: 5,
+  /** substep: the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system */
+  globalStretch: 6,
   /** substep: XPBD distance constraints, colour batch by colour batch */
-  distance: 6,
+  distance: 7,
   /** substep: XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch */
-  bending: 7,
+  bending: 8,
   /** substep: long-range attachments to the nearest pin */
-  tethers: 8,
+  tethers: 9,
   /** substep: stretch limiting of structural and shear springs */
-  stretchLimit: 9,
+  stretchLimit: 10,
   /** substep: particle contact with friction against every collider, in order */
-  contact: 10,
+  contact: 11,
   /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-  contactTriangles: 11,
+  contactTriangles: 12,
   /** frame-end: v = (x − x_prev)/h of the last substep */
-  velocities: 12,
+  velocities: 13,
 } as const;
 /** Phases in the schedule. */
-export const PHASE_COUNT = 13;
+export const PHASE_COUNT = 14;
 /** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */
 export const SCHEDULE = [
   { id: 0, name: 'begin', scope: 'frame-start', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v' },
@@ -90,13 +92,14 @@ export const SCHEDULE = [
   { id: 3, name: 'integrate', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'position Verlet (Taylor start) with gravity and any accumulated forces' },
   { id: 4, name: 'carry', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'carried', repeat: [], doc: 'particles pinned to a collider carried to where it is at the end of the substep' },
   { id: 5, name: 'grab', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'grab', repeat: [], doc: 'the grabbed particle carried part of the way to its target' },
-  { id: 6, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'always', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
-  { id: 7, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'hinges', repeat: ['xpbd'], doc: 'XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch' },
-  { id: 8, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'long-range attachments to the nearest pin' },
-  { id: 9, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
-  { id: 10, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
-  { id: 11, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
-  { id: 12, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
+  { id: 6, name: 'globalStretch', scope: 'substep', solvers: ['xpbd'], when: 'global', repeat: ['xpbd'], doc: 'the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system' },
+  { id: 7, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'local', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
+  { id: 8, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'hinges', repeat: ['xpbd'], doc: 'XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch' },
+  { id: 9, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
+  { id: 10, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
+  { id: 11, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
+  { id: 12, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
+  { id: 13, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
 ] as const;
 /** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */
 export const KERNEL_MAX_ITERATIONS = 255;
@@ -129,30 +132,30 @@ export const CTRL = {
   DESC: 48,
   /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
   TRACE_COUNT: 56,
-  /** i32 × 13: the ids of those phases, in the order thread 0 ran them */
+  /** i32 × 14: the ids of those phases, in the order thread 0 ran them */
   TRACE: 60,
   /** f64: substep length [s] */
-  H: 112,
+  H: 120,
   /** f64: ½ on the very first substep (Taylor start), else 1 */
-  TAYLOR: 120,
+  TAYLOR: 128,
   /** f64 × 3: gravitational acceleration [m/s²] */
-  GRAVITY: 128,
+  GRAVITY: 136,
   /** f64 × 3: where the grabbed particle is this substep [m] */
-  GRAB_AT: 152,
+  GRAB_AT: 160,
   /** f64: stretchFactor [-] */
-  STRETCH: 176,
+  STRETCH: 184,
   /** f64: damping β [N·s/m] */
-  DAMPING: 184,
+  DAMPING: 192,
   /** f64: contact thickness [m] */
-  THICKNESS: 192,
+  THICKNESS: 200,
   /** f64: kinetic friction coefficient [-] */
-  FRICTION: 200,
+  FRICTION: 208,
   /** f64: static friction coefficient [-] */
-  STATIC_FRICTION: 208,
+  STATIC_FRICTION: 216,
   /** f64: depenetrationSpeed [m/s] */
-  DEPENETRATION: 216,
+  DEPENETRATION: 224,
   /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-  COLLIDER_RECORDS: 224,
+  COLLIDER_RECORDS: 232,
   /** i32: sequence number of the open phase (grows by one per phase, wraps) */
   PHASE: 15616,
   /** i32: chunks of the open phase completed and reported */

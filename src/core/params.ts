@@ -3,7 +3,7 @@ import { createColliders, type PosedCollider } from './colliders/index.js';
 import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
 import { BEND, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
-import { SceneError, type BendingModel, type Scene, type SolverType } from './scene.js';
+import { SceneError, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
 
 /** Particles carried by colliders: particle i = particles[k] sits at local[3k..3k+2] in collider[k]'s own frame. */
 export interface Carried {
@@ -64,6 +64,8 @@ export interface SimParams {
   compliance: Float32Array;
   /** the xpbd solver's bending model (solver.bending; the mass-spring solver always uses springs) */
   bending: BendingModel;
+  /** how the xpbd solver solves its springs (solver.stretch; 'gauss-seidel' for the mass-spring solver, unused there) */
+  stretch: StretchSolve;
   /** bending rigidity B of the sheet [N·m] (material.bendingRigidity) */
   bendingRigidity: number;
   /** XPBD compliance of each bending hinge, A_e / B [m²/(N·m)]; Infinity where B = 0 or the hinge has no stencil */
@@ -186,6 +188,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     stiffness,
     compliance,
     bending,
+    stretch: scene.solver.type === 'xpbd' ? scene.solver.stretch : 'gauss-seidel',
     bendingRigidity,
     hingeCompliance,
     damping,

@@ -10,6 +10,7 @@ import type { SimParams } from './params.js';
 import { accumulateWind, beginStep, carryPinned, collideParticles, collideTriangles, integrate, limitStretch, moveGrabbed, updateVelocities } from './phases.js';
 import { PHASE, PHASES, phasePasses, type PhaseName } from './schedule.js';
 import { accumulateSpringForces } from './solvers/mass-spring.js';
+import { solveGlobalStretch } from './solvers/global-stretch.js';
 import { solveBending, solveDistanceConstraints } from './solvers/xpbd.js';
 import type { ClothState } from './state.js';
 import { solveTethers } from './tethers.js';
@@ -40,6 +41,7 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
     const from = frame.grabFrom;
     moveGrabbed(state, from[0], from[1], from[2], (frame.sub + 1) / frame.substeps);
   },
+  globalStretch: (model, state, params, frame) => solveGlobalStretch(model, state, params, frame.h, phasePasses(PHASE.globalStretch, params)),
   distance(model, state, params, frame) {
     const passes = phasePasses(PHASE.distance, params);
     // λ accumulates across the passes of a substep (it starts from zero in each)

@@ -142,6 +142,7 @@ export const sceneSchema = {
         substeps: { type: 'integer', minimum: 1, maximum: 200, default: 20, description: 'substeps per 1/60 s frame [-]' },
         iterations: { type: 'integer', minimum: 1, maximum: 20, default: 1, description: 'constraint passes per substep (XPBD: Gauss–Seidel sweeps; mass-spring: stretch-limiting passes) [-]' },
         bending: { enum: ['springs', 'hinges'], default: 'springs', description: "the xpbd solver's bending model: 'springs' (the seed's skip-one bend springs) or 'hinges' (the isometric bending model of Bergou et al. 2006 on the triangles' hinges: energy ½·B·κ² per area, B = material.bendingRigidity); the mass-spring solver always bends with springs" },
+        stretch: { enum: ['gauss-seidel', 'global'], default: 'gauss-seidel', description: "how the xpbd solver solves its springs each substep: 'gauss-seidel' (XPBD, one spring at a time, solver.iterations sweeps) or 'global' (all together: solver.iterations local/global passes of Projective Dynamics, Bouaziz et al. 2014, on a system factored once; converges where a sweep lets a fine or soft cloth overstretch, so the tethers and the stretch limit are not applied; CPU backends only)" },
         depenetrationSpeed: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'fastest the cloth is pushed out of a collider it did not move into (a cloth that starts inside one, or that a collider is moved into); contact the cloth moves into is undone at once [m/s]' },
       },
     },

@@ -31,7 +31,7 @@ export interface Scene {
     thickness: number;
   };
   material: Material;
-  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; depenetrationSpeed: number };
+  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; depenetrationSpeed: number };
   gravity: Vec3;
   wind: Wind;
   colliders: ColliderSpec[];
@@ -52,6 +52,8 @@ export type SceneTest =
 export type SolverType = 'xpbd' | 'mass-spring';
 /** `solver.bending`: the xpbd solver's bending model */
 export type BendingModel = 'springs' | 'hinges';
+/** `solver.stretch`: how the xpbd solver solves its springs (one at a time, or together: solvers/global-stretch.ts) */
+export type StretchSolve = 'gauss-seidel' | 'global';
 
 /**
  * A validated material: a fabric's measured quantities and the tuning values (scene-schema.ts). Exactly one of

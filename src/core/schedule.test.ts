@@ -19,7 +19,8 @@ import { KERNEL_PHASES } from './wasm/xpbd-wasm.js';
 function expected(solver: SolverType, substeps: number, wind: boolean, grabbed: boolean): PhaseName[] {
   const runs = (name: PhaseName) => {
     const p = PHASES[PHASE[name]];
-    return p.solvers.includes(solver) && (p.when === 'always' || (p.when === 'wind' && wind) || (p.when === 'grab' && grabbed));
+    // the scenes here solve their springs one at a time (solver.stretch 'gauss-seidel': the 'local' phases)
+    return p.solvers.includes(solver) && (p.when === 'always' || p.when === 'local' || (p.when === 'wind' && wind) || (p.when === 'grab' && grabbed));
   };
   const of = (scope: string) => PHASES.filter((p) => p.scope === scope && runs(p.name)).map((p) => p.name);
   return [...of('frame-start'), ...Array.from({ length: substeps }, () => of('substep')).flat(), ...of('frame-end')];
@@ -142,10 +143,15 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     expect(() => assignPhases({ ...remote, phases: all, refusal: () => 'no such shape' }, sim.model, sim.params)).toThrow(/remote: no such shape/);
     expect(() => assignPhases({ ...remote, solvers: ['mass-spring'] }, sim.model, sim.params)).toThrow(/remote: only the mass-spring solver runs remotely \(params.solver is 'xpbd'\)/);
     // not the phases these params never make a frame run: no carried pins, no collider that needs triangle contact,
-    // no hinge bending (solver.bending 'springs')
+    // no hinge bending (solver.bending 'springs'), no global stretch step (solver.stretch 'gauss-seidel')
     expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
-        ~(1 << PHASE.bending));
+        ~(1 << PHASE.bending) & ~(1 << PHASE.globalStretch));
+    // with the springs solved together, the global step instead of the sweep, the tethers and the stretch limit
+    const together = new Simulation(windyScene('xpbd', (s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
+    expect(assignPhases({ ...remote, phases: all }, together.model, together.params))
+      .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
+        ~(1 << PHASE.bending) & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit));
     // so a backend without the bending phase takes the springs' bending, and is refused the hinges'
     const noHinges = { ...remote, phases: all & ~(1 << PHASE.bending) };
     expect(() => assignPhases(noHinges, sim.model, sim.params)).not.toThrow();

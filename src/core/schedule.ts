@@ -23,9 +23,10 @@ export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
 /**
  * What a phase needs to be part of a frame: nothing, the wind blowing, a grabbed particle, pins a collider carries,
  * a collider whose surface can poke between the cloth's vertices (phases.ts needsTriangleContact), or the hinge
- * bending model (solver.bending 'hinges').
+ * bending model (solver.bending 'hinges'), the springs solved together (solver.stretch 'global') or one at a time
+ * ('gauss-seidel').
  */
-export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'hinges';
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'hinges' | 'global' | 'local';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -62,6 +63,13 @@ const GRAB_PHASES = maskOf((p) => p.when === 'grab');
 const CARRY_PHASES = maskOf((p) => p.when === 'carried');
 const TRIANGLE_PHASES = maskOf((p) => p.when === 'triangles');
 const HINGE_PHASES = maskOf((p) => p.when === 'hinges');
+const GLOBAL_PHASES = maskOf((p) => p.when === 'global');
+const LOCAL_PHASES = maskOf((p) => p.when === 'local');
+
+/** The phases the params' stretch solve leaves out: the Gauss–Seidel distance pass or the global step. */
+function stretchExcluded(params: SimParams): number {
+  return params.stretch === 'global' ? LOCAL_PHASES : GLOBAL_PHASES;
+}
 
 /** The mask of the phases a frame of `solver` has. */
 export function solverPhases(solver: SolverType): number {
@@ -72,7 +80,7 @@ export function solverPhases(solver: SolverType): number {
 
 /**
  * The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab, carried pins,
- * a collider that needs triangle contact on this model, hinge bending).
+ * a collider that needs triangle contact on this model, hinge bending, the stretch solve).
  */
 export function framePhases(model: ClothModel, state: ClothState, params: SimParams): number {
   let mask = solverPhases(params.solver);
@@ -81,6 +89,7 @@ export function framePhases(model: ClothModel, state: ClothState, params: SimPar
   if (params.carried.particles.length === 0) mask &= ~CARRY_PHASES;
   if (!anyTriangleContact(model, params)) mask &= ~TRIANGLE_PHASES;
   if (params.bending !== 'hinges') mask &= ~HINGE_PHASES;
+  mask &= ~stretchExcluded(params);
   return mask;
 }
 
@@ -131,9 +140,11 @@ export function assignPhases(backend: BackendPhases, model: ClothModel, params: 
     throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs ${backend.where} (params.solver is '${params.solver}')`);
   }
   // the phases these params can make a frame run (the wind and a grab come and go; carried pins are the scene's,
-  // triangle contact the scene's and the mesh's, hinge bending the scene's solver.bending)
+  // triangle contact the scene's and the mesh's, hinge bending the scene's solver.bending, the stretch solve its
+  // solver.stretch)
   const wanted = solverPhases(params.solver) & ~(params.carried.particles.length === 0 ? CARRY_PHASES : 0) &
-    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES) & ~(params.bending === 'hinges' ? 0 : HINGE_PHASES);
+    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES) & ~(params.bending === 'hinges' ? 0 : HINGE_PHASES) &
+    ~stretchExcluded(params);
   let own = 0;
   for (let id = 0; id < PHASE_COUNT; id++) {
     const bit = 1 << id;

@@ -35,6 +35,7 @@ function contactRefusal(params: SimParams): string | null {
  */
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
+  if (scene.solver.stretch === 'global') return 'the global stretch step (solver.stretch \'global\') runs on the CPU only';
   return colliderRefusal(scene);
 }
 
@@ -54,7 +55,7 @@ export function colliderRefusal(scene: Scene): string | null {
 /**
  * The phases of the schedule the GPU implements: every phase of XPBD, hinge bending (solver.bending 'hinges')
  * included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript reference: a frame that
- * needs one is refused (the mass-spring solver, a collider shape it does not know).
+ * needs one is refused (the mass-spring solver, the global stretch step, a collider shape it does not know).
  */
 export const GPU_PHASES: BackendPhases = {
   name: 'GPU solver',
