@@ -28,6 +28,22 @@ describe('grid cloth model', () => {
     }
   });
 
+  it('cloth.imperfection bulges a grid out of its plane by sin(πu)·sin(πv) × its height, zero on the edges; 0 is exactly flat', () => {
+    const flat = buildGridModel(spec(8, { orientation: 'hanging', imperfection: 0 }));
+    const plain = buildGridModel(spec(8, { orientation: 'hanging' }));
+    expect(flat.restPositions).toEqual(plain.restPositions);
+    for (let p = 0; p < 81; p++) expect(flat.restPositions[3 * p + 2]).toBe(0);
+    const bulged = buildGridModel(spec(8, { orientation: 'hanging', imperfection: 0.002 }));
+    for (let j = 0; j <= 8; j++) for (let i = 0; i <= 8; i++) {
+      const p = 9 * j + i;
+      expect(bulged.restPositions[3 * p + 2]).toBeCloseTo(0.002 * Math.sin((Math.PI * i) / 8) * Math.sin((Math.PI * j) / 8), 9);
+      expect(bulged.restPositions[3 * p]).toBe(plain.restPositions[3 * p]);
+      expect(bulged.restPositions[3 * p + 1]).toBe(plain.restPositions[3 * p + 1]);
+    }
+    const lying = buildGridModel(spec(8, { imperfection: 0.002 }));
+    expect(lying.restPositions[3 * 40 + 1]).toBeCloseTo(1.002, 6); // the centre, along +y when horizontal
+  });
+
   it('colour batches hold one kind each and no two springs of a batch share a particle', () => {
     const m = buildGridModel(spec(16));
     let covered = 0;

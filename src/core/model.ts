@@ -383,6 +383,11 @@ export interface GridClothSpec {
   rotation: readonly [number, number, number];
   /** bend and stretch stiffness scaling to keep continuum behaviour (true) or the seed's per-spring one (false) */
   scaleWithResolution: boolean;
+  /**
+   * height of a smooth bulge sin(πu)·sin(πv) out of the cloth's plane (u, v ∈ [0, 1] across it, zero on its
+   * edges), before the rotation; the start pose and the rest shape both have it [m]; 0 or absent: flat
+   */
+  imperfection?: number;
 }
 
 /** Spacing at which material stiffnesses are given: a 1 m cloth at 32 faces per side [m]. */
@@ -401,6 +406,7 @@ export function buildGridModel(spec: GridClothSpec): ClothModel {
   const dx = spec.width / r, dy = spec.height / r;
   const R = eulerXYZ(spec.rotation);
   const [px, py, pz] = spec.position;
+  const bulge = spec.imperfection ?? 0;
   const pos = new Float32Array(3 * n);
   const uvs = new Float32Array(2 * n);
   for (let j = 0; j < ny; j++) {
@@ -408,11 +414,13 @@ export function buildGridModel(spec: GridClothSpec): ClothModel {
       const p = j * nx + i;
       const u = i * dx - spec.width / 2; // along +x
       const v = j * dy - spec.height / 2; // row index grows away from row 0
+      // out of the plane: +y when horizontal, +z when hanging (exactly 0 for a flat cloth)
+      const off = bulge === 0 ? 0 : bulge * Math.sin((Math.PI * i) / r) * Math.sin((Math.PI * j) / r);
       let lx: number, ly: number, lz: number;
       if (spec.orientation === 'horizontal') {
-        lx = u; ly = 0; lz = v; // row 0 at -z
+        lx = u; ly = off; lz = v; // row 0 at -z
       } else {
-        lx = u; ly = -v; lz = 0; // row 0 at the top
+        lx = u; ly = -v; lz = off; // row 0 at the top
       }
       pos[3 * p] = px + R[0] * lx + R[1] * ly + R[2] * lz;
       pos[3 * p + 1] = py + R[3] * lx + R[4] * ly + R[5] * lz;

@@ -112,6 +112,7 @@ export const sceneSchema = {
         position: vec3('centre of the cloth at the start (of its bounding box, for a mesh) [m]', -1000, 1000, [0, 1.2, 0]),
         rotation: vec3('extra rotation about the centre, Euler XYZ [degrees]', -360, 360, [0, 0, 0]),
         thickness: { type: 'number', minimum: 0, maximum: 0.1, default: 0.005, description: 'contact thickness: how far the cloth surface is kept from colliders [m]' },
+        imperfection: { type: 'number', minimum: 0, maximum: 0.1, default: 0, description: "how far a rectangle's start (and rest) shape bulges out of its plane: sin(πu)·sin(πv) across it times this, zero on its edges (not for other shapes). A real cloth is never flat; an exactly flat one in a plane that holds gravity and every other force (a flag on a pole with no wind) can never buckle out of it, and stays up on its in-plane stiffness [m]" },
       },
     },
     material: {

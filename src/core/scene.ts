@@ -29,6 +29,8 @@ export interface Scene {
     position: Vec3;
     rotation: Vec3;
     thickness: number;
+    /** a rectangle's out-of-plane bulge at the start, 0 for flat [m] */
+    imperfection: number;
   };
   material: Material;
   solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; depenetrationSpeed: number };

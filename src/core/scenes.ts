@@ -59,7 +59,8 @@ const BUILTIN: Record<string, object | (() => object)> = {
   wind: {
     name: 'wind',
     description: 'A flag pinned along one edge, in gusty wind',
-    cloth: { orientation: 'hanging', width: 1.5, height: 1, position: [0, 2, 0] },
+    // a millimetre's bulge: a real flag is never flat; an exactly flat one cannot buckle and droop (docs/physics.md)
+    cloth: { orientation: 'hanging', width: 1.5, height: 1, position: [0, 2, 0], imperfection: 0.001 },
     material: { fabric: 'cotton' },
     wind: { enabled: true, strength: 8, direction: [1, 0, 0.2], gusts: { enabled: true, amplitude: 0.5, frequency: 0.4, seed: 7 } },
     colliders: [{ type: 'floor', height: 0 }],
