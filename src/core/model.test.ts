@@ -1,5 +1,9 @@
+import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { BEND, buildGridModel, SHEAR, STRUCTURAL, type GridClothSpec } from './model.js';
+import { parseMeshFile } from './cloth-shape.js';
+import { discMesh, tubeMesh } from './mesh/generators.js';
+import { prepareMesh } from './mesh/triangle-mesh.js';
+import { BEND, buildGridModel, buildMeshModel, lumpedMassWeights, SHEAR, STRUCTURAL, type GridClothSpec } from './model.js';
 
 const spec = (resolution: number, extra: Partial<GridClothSpec> = {}): GridClothSpec => ({
   resolution, width: 1, height: 1, orientation: 'horizontal', position: [0, 1, 0], rotation: [0, 0, 0], scaleWithResolution: true, ...extra,
@@ -62,12 +66,65 @@ describe('grid cloth model', () => {
     expect(m.batches.length).toBe(12); // 2 colours per direction: the greedy order keeps grids minimal
   });
 
-  it('mass weights are lumped areas that sum to one (corner ¼, edge ½, interior 1 of a cell share)', () => {
-    const m = buildGridModel(spec(4));
-    const sum = m.massWeights.reduce((a, b) => a + b, 0);
-    expect(sum).toBeCloseTo(1, 6);
-    expect(m.massWeights[0] * 16).toBeCloseTo(1 / 3, 6); // a corner touching one triangle... of 2 per cell: ⅓ of ½ cell
-    expect(m.massWeights[2 * 5 + 2] * 16).toBeCloseTo(1, 6); // interior particle: six triangles × ⅓ × ½ cell
+  it('mass weights are mixed Voronoi areas that sum to one (corner ¼, edge ½, interior 1 of a cell)', () => {
+    for (const [width, height] of [[1, 1], [2, 1]]) {
+      const m = buildGridModel(spec(4, { width, height }));
+      const sum = m.massWeights.reduce((a, b) => a + b, 0);
+      expect(sum).toBeCloseTo(1, 6);
+      const cell = (i: number, j: number) => m.massWeights[5 * j + i] * 16;
+      // all four corners alike, whichever way the cells' diagonals run (a third of each triangle gave ⅙ and ⅓)
+      for (const [i, j] of [[0, 0], [4, 0], [0, 4], [4, 4]]) expect(cell(i, j), `corner ${i},${j}`).toBeCloseTo(1 / 4, 6);
+      for (const [i, j] of [[2, 0], [0, 2], [4, 1], [3, 4]]) expect(cell(i, j), `edge ${i},${j}`).toBeCloseTo(1 / 2, 6);
+      expect(cell(2, 2)).toBeCloseTo(1, 6);
+      expect(cell(1, 3)).toBeCloseTo(1, 6);
+    }
+  });
+
+  it('the lumping does not depend on the way a cell is split, nor on the order of a triangle\'s corners', () => {
+    const p = new Float32Array([0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0]);
+    const one = lumpedMassWeights(p, new Uint32Array([0, 1, 2, 0, 2, 3]), 4);
+    const other = lumpedMassWeights(p, new Uint32Array([1, 3, 0, 3, 1, 2]), 4);
+    expect(one.area).toBeCloseTo(2, 12);
+    for (let i = 0; i < 4; i++) {
+      expect(one.weights[i]).toBeCloseTo(1 / 4, 7);
+      expect(other.weights[i]).toBeCloseTo(1 / 4, 7);
+    }
+  });
+
+  it('one triangle: acute parts are its Voronoi regions, an obtuse corner gets ½ and the others ¼ (Meyer et al. 2003)', () => {
+    // equilateral: a third each
+    const eq = lumpedMassWeights(new Float32Array([0, 0, 0, 1, 0, 0, 0.5, Math.sqrt(3) / 2, 0]), new Uint32Array([0, 1, 2]), 3);
+    for (let i = 0; i < 3; i++) expect(eq.weights[i]).toBeCloseTo(1 / 3, 6);
+    // an acute scalene triangle, (0,0), (4,0), (1,3): the Voronoi parts (|PR|²·cot Q + |PQ|²·cot R)/8 of area 6
+    const sc = lumpedMassWeights(new Float32Array([0, 0, 0, 4, 0, 0, 1, 3, 0]), new Uint32Array([0, 1, 2]), 3);
+    // cot at (0,0) = 1/3, at (4,0) = 1, at (1,3) = 1/2; |ab|² = 16, |bc|² = 18, |ca|² = 10
+    const want = [(10 * 1 + 16 * 0.5) / 8, (16 * 0.5 + 18 / 3) / 8, (18 / 3 + 10 * 1) / 8];
+    for (let i = 0; i < 3; i++) expect(sc.weights[i]).toBeCloseTo(want[i] / 6, 6);
+    // obtuse at (0,0): (0,0), (3,0), (−1,1)
+    const ob = lumpedMassWeights(new Float32Array([0, 0, 0, 3, 0, 0, -1, 1, 0]), new Uint32Array([2, 0, 1]), 3);
+    expect([...ob.weights].map((w) => +w.toFixed(6))).toEqual([0.5, 0.25, 0.25]);
+    expect(ob.area).toBeCloseTo(1.5, 12);
+  });
+
+  it('mass shares sum to 1 on a rectangle, a disc, a tube and a mesh file; a particle outside every triangle gets the mean', () => {
+    const rect = buildGridModel(spec(37, { width: 1.3, height: 0.7, rotation: [20, 30, 40] }));
+    const disc = buildMeshModel(prepareMesh(discMesh({ ...spec(24), width: 1.1 }), 'disc'), true);
+    const tube = buildMeshModel(prepareMesh(tubeMesh({ ...spec(24), width: 0.4, height: 0.6, orientation: 'hanging' }), 'tube'), true);
+    const shirt = buildMeshModel(prepareMesh(parseMeshFile(readFileSync(new URL('../../examples/tshirt.obj', import.meta.url)), 'tshirt.obj'), 'tshirt.obj'), true);
+    for (const [name, m] of [['rectangle', rect], ['disc', disc], ['tube', tube], ['tshirt.obj', shirt]] as const) {
+      let sum = 0, min = Infinity;
+      for (const w of m.massWeights) { sum += w; min = Math.min(min, w); }
+      // stored as float32: each share to 2⁻²⁴ of itself
+      expect(Math.abs(sum - 1), name).toBeLessThan(2e-7 * Math.sqrt(m.particleCount));
+      expect(min, name).toBeGreaterThan(0);
+      // and each share is the particle's part of the area, which adds up to the model's area
+      const { area } = lumpedMassWeights(m.restPositions, m.triangles, m.particleCount);
+      expect(area, name).toBeCloseTo(m.area, 10);
+    }
+    // hand-built: a triangle and a particle of its own
+    const stray = lumpedMassWeights(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 5, 5]), new Uint32Array([0, 1, 2]), 4);
+    expect(stray.weights.reduce((a, b) => a + b, 0)).toBeCloseTo(1, 7);
+    expect(stray.weights[3]).toBeCloseTo(1 / 4, 7); // the mean of the other three
   });
 
   it('hanging orientation puts row 0 at the top; rotation and position move the cloth', () => {

@@ -45,7 +45,7 @@ export interface ClothModel {
   readonly restPositions: Float32Array;
   /** texture coordinates, uv interleaved (stride 2), in [0, 1] */
   readonly uvs: Float32Array;
-  /** each particle's share of the cloth's mass (lumped Voronoi area / total area); sums to 1 */
+  /** each particle's share of the cloth's mass (its mixed Voronoi area / total area: lumpedMassWeights); sums to 1 */
   readonly massWeights: Float32Array;
   /** spring end points, pairs (a, b), sorted by kind then colour */
   readonly springs: Uint32Array;
@@ -242,43 +242,80 @@ function buildHinges(pairs: Uint32Array, p: Float32Array, n: number): Pick<Cloth
   return { hinges, hingeWeights, hingeAreas, hingeBatches };
 }
 
+/**
+ * Each particle's share of the cloth's area, and the area [m²]: the mixed Voronoi areas of Meyer, Desbrun, Schröder
+ * & Barr 2003 ("Discrete Differential-Geometry Operators for Triangulated 2-Manifolds", §3.3, the A_mixed of their
+ * Fig. 4). A triangle with no obtuse angle gives each corner the part of it nearer that corner than the other two
+ * (its Voronoi region within the triangle): for the corner P of triangle PQR, (|PR|²·cot Q + |PQ|²·cot R)/8. An
+ * obtuse triangle, whose circumcentre lies outside it, gives its obtuse corner half its area and the other two a
+ * quarter each. Either way the three parts add up to the triangle's area, and the parts depend on the triangle's
+ * shape only, not on the order or the way a quad was split: a right isosceles triangle gives its right-angle
+ * corner ½ and the others ¼, so each corner of a rectangle gets ¼ of the cell whichever way its diagonal runs
+ * (the old lumping, a third of each triangle to each corner, gave two corners 1/6 of the cell and two 1/3), an
+ * edge particle ½ and an interior one a whole cell. The parts of each triangle are rescaled to add up to its area
+ * exactly (in f64: rounding is all they can differ by), and the shares are divided by their sum, so they add up to
+ * 1 to rounding. A particle that belongs to no triangle (only models built by hand have them) gets the mean share
+ * of those that do, or all get 1/n when no triangle has area.
+ */
+export function lumpedMassWeights(p: Float32Array, triangles: Uint32Array, n: number): { weights: Float32Array; area: number } {
+  const acc = new Float64Array(n);
+  let area = 0;
+  for (let t = 0; t < triangles.length; t += 3) {
+    const a = triangles[t], b = triangles[t + 1], c = triangles[t + 2];
+    // edge vectors ab, bc, ca
+    const abx = p[3 * b] - p[3 * a], aby = p[3 * b + 1] - p[3 * a + 1], abz = p[3 * b + 2] - p[3 * a + 2];
+    const bcx = p[3 * c] - p[3 * b], bcy = p[3 * c + 1] - p[3 * b + 1], bcz = p[3 * c + 2] - p[3 * b + 2];
+    const cax = p[3 * a] - p[3 * c], cay = p[3 * a + 1] - p[3 * c + 1], caz = p[3 * a + 2] - p[3 * c + 2];
+    const cx = aby * caz - abz * cay, cy = abz * cax - abx * caz, cz = abx * cay - aby * cax;
+    const ta = 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
+    if (!(ta > 0)) continue;
+    area += ta;
+    // the dot products of the two edges at each corner (their sign: the angle is obtuse where it is negative)
+    const da = -(abx * cax + aby * cay + abz * caz), db = -(abx * bcx + aby * bcy + abz * bcz), dc = -(bcx * cax + bcy * cay + bcz * caz);
+    let pa: number, pb: number, pc: number;
+    if (da < 0) { pa = ta / 2; pb = pc = ta / 4; }
+    else if (db < 0) { pb = ta / 2; pa = pc = ta / 4; }
+    else if (dc < 0) { pc = ta / 2; pa = pb = ta / 4; }
+    else {
+      // cot of the angle at a corner = its dot product / (2·area); Voronoi part of P = (|PR|² cot Q + |PQ|² cot R)/8
+      const ab2 = abx * abx + aby * aby + abz * abz, bc2 = bcx * bcx + bcy * bcy + bcz * bcz, ca2 = cax * cax + cay * cay + caz * caz;
+      const s = 1 / (16 * ta);
+      pa = (ca2 * db + ab2 * dc) * s;
+      pb = (ab2 * dc + bc2 * da) * s;
+      pc = (bc2 * da + ca2 * db) * s;
+      const fix = ta / (pa + pb + pc);
+      pa *= fix; pb *= fix; pc *= fix;
+    }
+    acc[a] += pa; acc[b] += pb; acc[c] += pc;
+  }
+  let covered = 0, sum = 0;
+  for (let i = 0; i < n; i++) if (acc[i] > 0) { covered++; sum += acc[i]; }
+  if (covered === 0) return { weights: new Float32Array(n).fill(1 / n), area };
+  if (covered < n) {
+    const mean = sum / covered;
+    for (let i = 0; i < n; i++) if (!(acc[i] > 0)) { acc[i] = mean; sum += mean; }
+  }
+  const weights = new Float32Array(n);
+  for (let i = 0; i < n; i++) weights[i] = acc[i] / sum;
+  return { weights, area };
+}
+
 /** Builds a model from any particle/spring/triangle set (the grid builder and tests use it). */
 export function buildModel(input: ModelInput): ClothModel {
   const { restPositions } = input;
   const n = restPositions.length / 3;
   if (!Number.isInteger(n) || n < 1) throw new Error('model: restPositions must hold 3 floats per particle');
 
-  // lumped masses: a third of each triangle's area to each of its vertices
-  const massWeights = new Float32Array(n);
-  let area = 0;
+  const { weights: massWeights, area } = lumpedMassWeights(restPositions, input.triangles, n);
   let maxTriangleEdge = 0;
   const valence = new Uint32Array(n);
   for (let t = 0; t < input.triangles.length; t += 3) {
     const a = input.triangles[t], b = input.triangles[t + 1], c = input.triangles[t + 2];
-    const ux = restPositions[3 * b] - restPositions[3 * a];
-    const uy = restPositions[3 * b + 1] - restPositions[3 * a + 1];
-    const uz = restPositions[3 * b + 2] - restPositions[3 * a + 2];
-    const vx = restPositions[3 * c] - restPositions[3 * a];
-    const vy = restPositions[3 * c + 1] - restPositions[3 * a + 1];
-    const vz = restPositions[3 * c + 2] - restPositions[3 * a + 2];
-    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
-    const ta = 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
-    area += ta;
-    massWeights[a] += ta / 3;
-    massWeights[b] += ta / 3;
-    massWeights[c] += ta / 3;
     maxTriangleEdge = Math.max(maxTriangleEdge, distance(restPositions, a, b), distance(restPositions, b, c), distance(restPositions, c, a));
     valence[a]++; valence[b]++; valence[c]++;
   }
   let maxTriangleValence = 0;
   for (let i = 0; i < n; i++) maxTriangleValence = Math.max(maxTriangleValence, valence[i]);
-  if (area > 0) {
-    for (let i = 0; i < n; i++) massWeights[i] /= area;
-  } else {
-    massWeights.fill(1 / n);
-  }
-  // a particle that belongs to no triangle still needs mass
-  for (let i = 0; i < n; i++) if (massWeights[i] === 0) massWeights[i] = 1 / n;
 
   // sort springs by kind, then colour
   let total = 0;

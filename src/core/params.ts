@@ -1,7 +1,7 @@
 import type { MeshResolver } from './cloth-shape.js';
 import { createColliders, type PosedCollider } from './colliders/index.js';
 import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
-import { BEND, type ClothModel } from './model.js';
+import { BEND, SPRING_KINDS, STRUCTURAL, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
 import { SceneError, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
 
@@ -70,8 +70,10 @@ export interface SimParams {
   bendingRigidity: number;
   /** XPBD compliance of each bending hinge, A_e / B [m²/(N·m)]; Infinity where B = 0 or the hinge has no stencil */
   hingeCompliance: Float32Array;
-  /** spring damping on relative velocity [N·s/m] (after any stability clamp) */
+  /** spring damping on relative velocity [N·s/m] (material.damping; the xpbd solver's β) */
   damping: number;
+  /** the mass-spring solver's damping of each spring [N·s/m]: `damping`, lowered where the stability limit needs it */
+  springDamping: Float64Array;
   /** mass-spring stretch limit: max length / rest length of structural and shear springs [-] */
   stretchFactor: number;
   /** kinetic friction coefficient [-] */
@@ -99,11 +101,59 @@ export interface SimParams {
   clamps: string[];
 }
 
-/** Safety margin of the explicit mass-spring step: h²·max_i(w_i·Σk) ≤ this (Verlet is stable below 2). */
+/**
+ * Safety margins of the explicit mass-spring step (see limitPerSpring): every particle keeps w_i·Σk ≤ this / h²
+ * (so h²·λ_max(M⁻¹K) ≤ 2, where Verlet is stable below 4) and w_i·Σc ≤ this / h for the spring damping (so
+ * h·λ_max(M⁻¹C) ≤ 1, stable below 2). For a mode of both K and C (eigenvalues ω², γ; they share their modes where
+ * c/k is the same on every spring) that gives h²ω² + 2hγ ≤ 4 even with both at their bounds, the damped Verlet
+ * step's own stability condition (its trace and determinant: det = 1 − hγ, and 1 + det ≥ |trace| =
+ * |2 − h²ω² − hγ|), so the two limits do not add up to an unstable pair.
+ */
 const MASS_SPRING_STIFFNESS_MARGIN = 1;
-/** and h·max_i(w_i·Σc) ≤ this for the explicit spring damping (stable below 1). */
 const MASS_SPRING_DAMPING_MARGIN = 0.5;
 
+/**
+ * Limits per-spring coefficients (stiffness k [N/m] or damping c [N·s/m], in place) so that at every particle
+ * w_i·Σ_{springs at i} value ≤ limit, lowering only the springs at the particles that need it:
+ * f_i = min(1, limit / (w_i·Σ_i value)), and each spring is scaled by min(f_a, f_b) of its two ends.
+ *
+ * Why this keeps the explicit step stable: the step is stable while h²·λ_max(M⁻¹K) (and h·λ_max(M⁻¹C)) stays
+ * below a bound. M⁻¹K is similar to the symmetric M^-½·K·M^-½, so its eigenvalues are real, and by Gershgorin's
+ * theorem in block form (Feingold & Varga 1962: 3×3 blocks, spectral norms) each lies within the sum of row i's
+ * block norms for some i: the diagonal block w_i·Σ_s k_s·d̂_s d̂_sᵀ and one block w_i·k_s·d̂_s d̂_sᵀ per neighbour,
+ * each of norm ≤ w_i·k_s (a spring's Hessian k·(d̂d̂ᵀ + (1 − L/|d|)(I − d̂d̂ᵀ)) has norm k from half its rest length
+ * up), so λ_max ≤ 2·max_i(w_i·Σ_s k_s). After the scaling, row i sums to 2·w_i·Σ_s k_s·min(f_a, f_b) ≤
+ * 2·f_i·w_i·Σ_s k_s ≤ 2·limit: the same bound the global clamp (every spring scaled by the worst particle's f)
+ * gave, while springs whose two ends both satisfy the bound keep their full value. The same argument holds for the
+ * damping matrix C (the same structure with c_s for k_s).
+ *
+ * Returns how many springs were lowered, the smallest factor, and the smallest factor of each spring kind.
+ */
+function limitPerSpring(model: ClothModel, invMass: Float32Array, values: Float32Array | Float64Array, limit: number): { limited: number; worst: number; worstByKind: [number, number, number] } {
+  const n = model.particleCount, springs = model.springs, m = values.length;
+  const sum = new Float64Array(n);
+  for (let s = 0; s < m; s++) {
+    sum[springs[2 * s]] += values[s];
+    sum[springs[2 * s + 1]] += values[s];
+  }
+  const f = new Float64Array(n);
+  for (let i = 0; i < n; i++) {
+    const load = invMass[i] * sum[i];
+    f[i] = load > limit ? limit / load : 1;
+  }
+  let limited = 0, worst = 1;
+  const worstByKind: [number, number, number] = [1, 1, 1];
+  for (let s = 0; s < m; s++) {
+    const g = Math.min(f[springs[2 * s]], f[springs[2 * s + 1]]);
+    if (g >= 1 || values[s] === 0) continue;
+    values[s] *= g;
+    limited++;
+    if (g < worst) worst = g;
+    const kind = model.springKinds[s];
+    if (g < worstByKind[kind]) worstByKind[kind] = g;
+  }
+  return { limited, worst, worstByKind };
+}
 
 const fmt = (v: number) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
 
@@ -124,38 +174,28 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
 
   const substeps = scene.solver.substeps;
   const h = dt / substeps;
-  let damping = m.damping;
+  const damping = m.damping;
 
+  const springDamping = new Float64Array(springCount).fill(damping);
   if (scene.solver.type === 'mass-spring') {
-    // Explicit integration is stable only while h·ω stays small. Gershgorin bounds the largest eigenvalue of
-    // M⁻¹K by 2·max_i(w_i·Σ_springs k): scale all stiffnesses down together if the step cannot carry them.
-    const kSum = new Float64Array(n);
-    for (let s = 0; s < springCount; s++) {
-      kSum[model.springs[2 * s]] += stiffness[s];
-      kSum[model.springs[2 * s + 1]] += stiffness[s];
-    }
-    let worst = 0;
-    let springsAtWorst = 0;
-    const count = new Uint16Array(n);
-    for (let s = 0; s < 2 * springCount; s++) count[model.springs[s]]++;
-    for (let i = 0; i < n; i++) {
-      const v = particleInvMass[i] * kSum[i];
-      if (v > worst) worst = v;
-      if (particleInvMass[i] * count[i] > springsAtWorst) springsAtWorst = particleInvMass[i] * count[i];
-    }
-    const limit = MASS_SPRING_STIFFNESS_MARGIN / (h * h);
-    if (worst > limit) {
-      const f = limit / worst;
-      for (let s = 0; s < springCount; s++) stiffness[s] *= f;
+    const kindNames = SPRING_KINDS;
+    const k = limitPerSpring(model, particleInvMass, stiffness, MASS_SPRING_STIFFNESS_MARGIN / (h * h));
+    if (k.limited > 0) {
+      const kinds = k.worstByKind.map((f, kind) => {
+        if (f >= 1) return '';
+        return kind === STRUCTURAL ? `structural ×${fmt(f)}: ${fmt(kindK[kind] * f)} of ${fmt(kindK[kind])} N/m` : `${kindNames[kind]} ×${fmt(f)}`;
+      }).filter(Boolean);
       clamps.push(
-        `mass-spring: stiffness scaled by ${fmt(f)} for stability at ${substeps} substeps ` +
-        `(structural ${fmt(m.structuralStiffness * f)} N/m); raise solver.substeps or use xpbd for the full value`,
+        `mass-spring: ${k.limited} of ${springCount} springs limited for stability at ${substeps} substeps, ` +
+        `to ×${fmt(k.worst)} at worst (${kinds.join('; ')}); raise solver.substeps or use xpbd for the full value`,
       );
     }
-    const dLimit = MASS_SPRING_DAMPING_MARGIN / (h * springsAtWorst);
-    if (damping > dLimit) {
-      clamps.push(`mass-spring: damping limited to ${fmt(dLimit)} N·s/m for stability (asked ${fmt(damping)})`);
-      damping = dLimit;
+    const d = limitPerSpring(model, particleInvMass, springDamping, MASS_SPRING_DAMPING_MARGIN / h);
+    if (d.limited > 0) {
+      clamps.push(
+        `mass-spring: damping limited on ${d.limited} of ${springCount} springs for stability, ` +
+        `the most to ${fmt(damping * d.worst)} N·s/m (asked ${fmt(damping)})`,
+      );
     }
   }
 
@@ -192,6 +232,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     bendingRigidity,
     hingeCompliance,
     damping,
+    springDamping,
     stretchFactor: m.stretchFactor,
     friction: m.friction,
     staticFriction: Math.max(m.staticFriction, m.friction),

@@ -93,11 +93,13 @@ const DROPS: [string, ColliderSpec, (p: number[]) => number][] = [
 describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
   it.each(DROPS)('a cloth dropped on a %s comes to rest outside it', (_name, shape, exact) => {
     const colliders: ColliderSpec[] = [shape, { type: 'floor', height: 0 }];
-    // 12 faces per side (8 cm triangles: triangle contact runs at every edge of the mesh), 3 s: landed and settled
+    // 12 faces per side (8 cm triangles: triangle contact runs at every edge of the mesh), 3 s: landed and settled;
+    // mass-spring 4 s (on the cube, since its stability limit became local and left the springs up to 3× stiffer, it
+    // was still sliding over an edge at 3 s: RMS speed where it touches 0.14 m/s at 2 s, 0.051 at 3 s, 0.0013 at 4 s)
     const sc = validateScene({ cloth: { resolution: 12, position: [0, 0.9, 0] }, material: cotton, solver: { type: solver }, colliders });
     const sim = new Simulation(sc, { kernel, meshes });
     expect(sim.kernel).toBe(kernel);
-    sim.advance(180);
+    sim.advance(solver === 'mass-spring' ? 240 : 180);
     expect(sim.state.positions.every(Number.isFinite)).toBe(true);
     const { depth, nearest } = penetration(sim, exact);
     expect(depth).toBeLessThanOrEqual(sc.cloth.thickness);

@@ -3,8 +3,9 @@
  * tolerance that comes from the numbers (float32 round-off, discretisation), not from what the code happens to do.
  */
 import { describe, expect, it } from 'vitest';
-import { buildModel } from '../model.js';
-import { FRAME_DT, resolveParams } from '../params.js';
+import { buildModel, type ClothModel } from '../model.js';
+import { modelFor } from '../cloth-shape.js';
+import { FRAME_DT, resolveParams, type SimParams } from '../params.js';
 import { SceneError, validateScene, type Scene, type SolverType } from '../scene.js';
 import { builtinScene, SCENE_NAMES } from '../scenes.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
@@ -334,5 +335,110 @@ describe('scene behaviour shared by both solvers', () => {
       sim.advance(30);
       expect(sim.report().finite, `${name}/${solver}/${kernel}`).toBe(true);
     }
+  });
+});
+
+describe('the mass-spring stability limit is local (params.ts limitPerSpring)', () => {
+  const hanging = (material: object, substeps = 20) => validateScene({
+    solver: { type: 'mass-spring', substeps }, colliders: [], cloth: { resolution: 16, orientation: 'hanging' }, material,
+  });
+  /** the stiffness each spring would have without a limit: the same scene solved with xpbd, which has none */
+  const unlimited = (model: ClothModel, sc: Scene) => resolveParams(model, { ...sc, solver: { ...sc.solver, type: 'xpbd', bending: 'springs' } }).stiffness;
+  const touches = (model: ClothModel, s: number, set: (i: number) => boolean) => set(model.springs[2 * s]) || set(model.springs[2 * s + 1]);
+  /** largest eigenvalue of M⁻¹K at rest, by power iteration (the matrix is similar to a symmetric one, so it converges) */
+  const largestEigenvalue = (model: ClothModel, invMass: Float32Array, k: Float32Array) => {
+    const n = model.particleCount, x0 = model.restPositions;
+    let v = new Float64Array(3 * n).map((_, i) => Math.sin(1.7 * i + 0.3)), lambda = 0;
+    for (let it = 0; it < 2000; it++) {
+      const y = new Float64Array(3 * n);
+      for (let s = 0; s < k.length; s++) {
+        const a = model.springs[2 * s], b = model.springs[2 * s + 1];
+        const d = [0, 1, 2].map((c) => x0[3 * a + c] - x0[3 * b + c]), len = Math.hypot(...d);
+        const dot = [0, 1, 2].reduce((t, c) => t + (d[c] / len) * (v[3 * a + c] - v[3 * b + c]), 0);
+        for (let c = 0; c < 3; c++) { y[3 * a + c] += k[s] * dot * d[c] / len; y[3 * b + c] -= k[s] * dot * d[c] / len; }
+      }
+      for (let i = 0; i < n; i++) for (let c = 0; c < 3; c++) y[3 * i + c] *= invMass[i];
+      const norm = Math.hypot(...y);
+      lambda = norm / Math.hypot(...v);
+      v = y.map((e) => e / norm);
+    }
+    return lambda;
+  };
+  /** hang the cloth from its top corners for 4 s and return the fastest speed of the given particles at the end */
+  const hangAndMeasure = (model: ClothModel, params: SimParams, watch: number[]) => {
+    const backend = new TsBackend(model);
+    setPinned(backend.state, 0, true);
+    setPinned(backend.state, 16, true);
+    for (let f = 0; f < 240; f++) backend.frame(model, params, FRAME_DT);
+    const v = backend.state.velocities;
+    expect(v.every(Number.isFinite)).toBe(true);
+    return Math.max(...watch.map((i) => Math.hypot(v[3 * i], v[3 * i + 1], v[3 * i + 2])));
+  };
+
+  it('one light particle limits only its own springs, and the cloth stays stable; at full stiffness it would not', () => {
+    const sc = hanging({ arealDensity: 0.2, structuralStiffness: 50, shearStiffness: 5, bendingRigidity: 1e-6, damping: 0.01 });
+    const base = modelFor(sc);
+    const light = 8 * 17 + 8; // the middle particle, at 1/100 of its mass
+    const w = Float32Array.from(base.massWeights);
+    w[light] /= 100;
+    const model: ClothModel = { ...base, massWeights: w };
+    const params = resolveParams(model, sc), full = unlimited(model, sc);
+    const atLight = (i: number) => i === light;
+    let limited = 0;
+    for (let s = 0; s < full.length; s++) {
+      if (touches(model, s, atLight)) { expect(params.stiffness[s]).toBeLessThan(0.1 * full[s]); limited++; }
+      else expect(params.stiffness[s], `spring ${s}`).toBe(full[s]); // every other spring at full stiffness
+    }
+    expect(limited).toBe(12); // 4 structural, 4 shear, 4 bend
+    expect(params.clamps[0]).toMatch(/^mass-spring: 12 of 1566 springs limited for stability at 20 substeps, to ×0\.0\d+ at worst \(structural ×/);
+    // the step's bound: h²·λ_max(M⁻¹K) ≤ 2 (Gershgorin), Verlet's limit being 4 (measured 0.50)
+    const h = FRAME_DT / 20;
+    expect(h * h * largestEigenvalue(model, params.particleInvMass, params.stiffness)).toBeLessThanOrEqual(2);
+    // hanging, the light particle comes to rest (measured 5 mm/s after 4 s) ...
+    expect(hangAndMeasure(model, params, [light])).toBeLessThan(0.05);
+    // ... where its springs at full stiffness (h²·λ_max = 9.8) shake it at metres per second (measured 10.7 m/s)
+    expect(h * h * largestEigenvalue(model, params.particleInvMass, full)).toBeGreaterThan(4);
+    expect(hangAndMeasure(model, { ...params, stiffness: full }, [light])).toBeGreaterThan(1);
+  });
+
+  it('a cloth at few substeps limits its edge springs only, the interior keeps its full stiffness, and it hangs still', () => {
+    // rubber at 16² and 25 substeps: the interior's w·Σk is just under 1/h², the lighter-loaded edges are over it
+    const sc = hanging({ fabric: 'rubber' }, 25);
+    const model = modelFor(sc), params = resolveParams(model, sc), full = unlimited(model, sc);
+    const edge = (i: number) => i % 17 === 0 || i % 17 === 16 || i < 17 || i >= 16 * 17;
+    let limited = 0, kept = 0;
+    for (let s = 0; s < full.length; s++) {
+      if (params.stiffness[s] < full[s]) { limited++; expect(touches(model, s, edge), `spring ${s}`).toBe(true); }
+      if (!touches(model, s, edge)) { expect(params.stiffness[s]).toBe(full[s]); kept++; }
+    }
+    expect(limited).toBeGreaterThan(0);
+    expect(kept).toBeGreaterThan(0.7 * full.length);
+    expect(params.clamps[0]).toContain(`mass-spring: ${limited} of ${full.length} springs limited for stability at 25 substeps`);
+    const h = FRAME_DT / 25; // measured h²·λ_max = 1.18
+    expect(h * h * largestEigenvalue(model, params.particleInvMass, params.stiffness)).toBeLessThanOrEqual(2);
+    // still swinging slowly on its corners after 4 s (measured 0.068 m/s at most), not shaking apart
+    const all = [...Array(model.particleCount).keys()];
+    expect(hangAndMeasure(model, params, all)).toBeLessThan(0.2);
+  });
+
+  it('the damping limit is local too: a light particle lowers its own springs\' damping only', () => {
+    // 0.02 N·s/m: h·w_i·Σc = 0.34 at an edge particle, 0.43 at a corner, 25 at the light one
+    const sc = hanging({ arealDensity: 0.2, structuralStiffness: 50, shearStiffness: 5, bendingRigidity: 1e-6, damping: 0.02 });
+    const base = modelFor(sc);
+    const light = 8 * 17 + 8;
+    const w = Float32Array.from(base.massWeights);
+    w[light] /= 100;
+    const model: ClothModel = { ...base, massWeights: w };
+    const params = resolveParams(model, sc);
+    const h = FRAME_DT / 20;
+    for (let s = 0; s < model.restLengths.length; s++) {
+      if (touches(model, s, (i) => i === light)) expect(params.springDamping[s]).toBeLessThan(0.002);
+      else expect(params.springDamping[s]).toBe(0.02);
+    }
+    // at every particle h·w_i·Σc ≤ ½
+    const sum = new Float64Array(model.particleCount);
+    for (let s = 0; s < model.restLengths.length; s++) { sum[model.springs[2 * s]] += params.springDamping[s]; sum[model.springs[2 * s + 1]] += params.springDamping[s]; }
+    for (let i = 0; i < model.particleCount; i++) expect(h * params.particleInvMass[i] * sum[i]).toBeLessThanOrEqual(0.5 * (1 + 1e-9));
+    expect(params.clamps.some((c) => c.startsWith('mass-spring: damping limited on 12 of 1566 springs'))).toBe(true);
   });
 });
