@@ -1,7 +1,7 @@
 import type { MeshResolver } from './cloth-shape.js';
 import { createColliders, type PosedCollider } from './colliders/index.js';
 import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
-import { BEND, SPRING_KINDS, STRUCTURAL, type ClothModel } from './model.js';
+import { BEND, SHEAR, SPRING_KINDS, STRUCTURAL, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
 import { SceneError, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
 
@@ -157,12 +157,27 @@ function limitPerSpring(model: ClothModel, invMass: Float32Array, values: Float3
 
 const fmt = (v: number) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
 
+/**
+ * The axis springs' constant k_s [N/m] of a square grid that also has both diagonals (shear springs, k_d) for which
+ * the sheet's tensile stiffness is k. In a uniform strain the diagonals store k_d·((ε_x + ε_y)²/2 + 2ε_xy²) per unit
+ * area beside the axis springs' ½k_s(ε_x² + ε_y²), so the shear stiffness is k_d and, pulled along an axis and free to
+ * contract across it, the sheet's stiffness is k_s + k_d·k_s/(k_s + k_d). Solved for k_s: the positive root of
+ * k_s² + (2k_d − k)·k_s − k·k_d = 0. (Without this, rubber's diagonals made its sheet 1.3 times as stiff as its k.)
+ */
+export function axisSpringStiffness(k: number, kd: number): number {
+  if (!(kd > 0) || !(k > 0)) return k;
+  const b = 2 * kd - k;
+  // the positive root, written so that it does not cancel when k_d ≫ k
+  return b >= 0 ? (2 * k * kd) / (b + Math.sqrt(b * b + 4 * k * kd)) : (-b + Math.sqrt(b * b + 4 * k * kd)) / 2;
+}
+
 export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, meshes?: MeshResolver): SimParams {
   const m = scene.material;
   const n = model.particleCount;
   const springCount = model.restLengths.length;
   // the bend springs' constant at the reference spacing, from B (docs/materials.md, "Bend spring")
-  const kindK = [m.structuralStiffness, m.shearStiffness, m.bendingRigidity * BEND_SPRING_PER_RIGIDITY];
+  const axis = m.scaleWithResolution && model.springCounts[SHEAR] > 0 ? axisSpringStiffness(m.structuralStiffness, m.shearStiffness) : m.structuralStiffness;
+  const kindK = [axis, m.shearStiffness, m.bendingRigidity * BEND_SPRING_PER_RIGIDITY];
   const mass = m.mass ?? (m.arealDensity ?? 0) * model.area;
   const clamps: string[] = [];
 

@@ -105,15 +105,16 @@ function elongation(sim: Simulation, faces: number): number {
 }
 
 describe.each<CpuKernel>(['ts', 'wasm'])('solver.stretch "global" (xpbd), %s kernel', (kernel) => {
-  it.each([16, 32])('a rubber sheet hanging from its top edge at %i faces a side, default substeps: its length grows by ρ_A·g·L²/(2k), within 25 percent', (faces) => {
+  it.each([16, 32])('a rubber sheet hanging from its top edge at %i faces a side, default substeps: its length grows by ρ_A·g·L²/(2k), within 5 percent (the issue asks 25)', (faces) => {
     // XPBD's sweep at the same settings: 1.06× at 16², 1.99× at 32², 5.9× at 64², 8.2× at 128² (docs/physics.md)
     const rubber = { arealDensity: 0.38, structuralStiffness: 600, shearStiffness: 200 };
     const sim = new Simulation(hanging(rubber, faces), { kernel });
     sim.advance(240);
     const theory = (0.38 * 9.81) / (2 * 600);
+    // measured 0.97 at 16², 0.99 at 32² (the pinned top row cannot contract sideways, which stiffens the top a little)
     const ratio = elongation(sim, faces) / theory;
-    expect(ratio).toBeGreaterThan(0.75);
-    expect(ratio).toBeLessThan(1.25);
+    expect(ratio).toBeGreaterThan(0.95);
+    expect(ratio).toBeLessThan(1.05);
     expect(sim.report().energy.kinetic).toBeLessThan(1e-6 * 0.38 * 9.81);
   });
 
