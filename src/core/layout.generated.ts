@@ -67,7 +67,7 @@ export const PHASE = {
   grab: 5,
   /** substep: XPBD distance constraints, colour batch by colour batch */
   distance: 6,
-  /** substep: XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch */
+  /** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
   bending: 7,
   /** substep: long-range attachments to the nearest pin */
   tethers: 8,
@@ -91,7 +91,7 @@ export const SCHEDULE = [
   { id: 4, name: 'carry', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'carried', repeat: [], doc: 'particles pinned to a collider carried to where it is at the end of the substep' },
   { id: 5, name: 'grab', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'grab', repeat: [], doc: 'the grabbed particle carried part of the way to its target' },
   { id: 6, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'always', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
-  { id: 7, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'hinges', repeat: ['xpbd'], doc: 'XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch' },
+  { id: 7, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'stencils', repeat: ['xpbd'], doc: 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch' },
   { id: 8, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'long-range attachments to the nearest pin' },
   { id: 9, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
   { id: 10, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
