@@ -61,7 +61,7 @@ export interface BendingStencils {
   readonly areas: Float32Array;
   /** colour batches (in stencils); stencils of a batch share no particle */
   readonly batches: readonly TriangleBatch[];
-  /** most entries of one stencil (4 for hinges; 1 + the most edges at an interior vertex for the Laplacian) */
+  /** most entries of one stencil (4 for hinges; 1 + the most weighted neighbours of an interior vertex for the Laplacian) */
   readonly maxSize: number;
 }
 
