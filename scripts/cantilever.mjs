@@ -1,5 +1,6 @@
 #!/usr/bin/env node
-// The Peirce cantilever (ASTM D1388) table of docs/physics.md, "Bending at the hinges": a 10 cm square sheet of
+// The Peirce cantilever (ASTM D1388) table of docs/physics.md, "Bending at the hinges" (and "Isotropic bending"),
+// for every bending model: a 10 cm square sheet of
 // cotton (the fabric: ρ_A = 0.12 kg/m², B = 7.85·10⁻⁶ N·m) clamped along one side (the pinned rows) so that an overhang of
 // about 2c sticks out, c = (B/(ρ_A·g))^(1/3) its bending length; after 10 s the chord from the clamp to the tip is
 // measured, and c is recovered from Peirce's relation c = L·(cos(θ/2)/(8·tan θ))^(1/3) (θ = 41.5° where L = 2c).
@@ -39,7 +40,7 @@ console.log(`cotton: B = ${B.toExponential(3)} N·m, c = ${(100 * c).toFixed(2)}
 const settings = [[20, 1], [100, 4]];
 console.log(`| model | faces | ${settings.map(([s, i]) => `${s} substeps × ${i}`).join(' | ')} |`);
 console.log(`|---|---|${settings.map(() => '---').join('|')}|`);
-for (const bending of ['springs', 'hinges']) {
+for (const bending of ['springs', 'hinges', 'laplacian']) {
   for (const faces of [16, 32, 64]) {
     console.log(`| ${bending} | ${faces}² | ${settings.map(([s, i]) => measure(bending, faces, s, i)).join(' | ')} |`);
   }

@@ -16,17 +16,18 @@ const run = (name, fabric, bending) => {
   return r.test;
 };
 
-console.log('| fabric | c theory [cm] | springs: chord → c / c_theory | hinges: chord → c / c_theory | Cusick springs: DC, folds | Cusick hinges: DC, folds |');
-console.log('|---|---|---|---|---|---|');
+const MODELS = ['springs', 'hinges', 'laplacian'];
+console.log(`| fabric | c theory [cm] | ${MODELS.map((m) => `${m}: chord → c / c_theory`).join(' | ')} | ${MODELS.map((m) => `Cusick ${m}: DC, folds`).join(' | ')} |`);
+console.log(`|---|---|${MODELS.map(() => '---|---|').join('')}`);
 for (const fabric of FABRIC_NAMES) {
   const f = FABRICS[fabric];
   const c = Math.cbrt(f.bendingRigidity / (f.arealDensity * 9.81));
   const cells = [];
-  for (const bending of ['springs', 'hinges']) {
+  for (const bending of MODELS) {
     const t = run('cantilever', fabric, bending);
     cells.push(`${t.chordAngle.toFixed(1)}° → ${(t.bendingLength / c).toFixed(2)}`);
   }
-  for (const bending of ['springs', 'hinges']) {
+  for (const bending of MODELS) {
     const t = run('cusick', fabric, bending);
     cells.push(`${t.drapeCoefficient.toFixed(2)}, ${t.folds}`);
   }

@@ -4,11 +4,12 @@
 // the library (dist/), and steps its own float64 arrays. Not integrated into the core.
 //
 // Per substep h, with x̃ = x + h·v + h²·g the prediction, it minimises
-//   (1/2h²)·|M^½(x − x̃)|² + Σ_springs ½·k_s·|x_a − x_b − d_s|² + Σ_hinges ½·(B/A_e)·|Σ K_i x_i|²
+//   (1/2h²)·|M^½(x − x̃)|² + Σ_springs ½·k_s·|x_a − x_b − d_s|² + Σ_stencils ½·(B/A)·|Σ K_i x_i|²
 // over x, and over d_s with |d_s| = L_s (the local step: d_s = L_s·(x_a − x_b)/|x_a − x_b|). The springs are the
 // model's springs with params.stiffness (structural, shear, and the skip-one bend springs unless solver.bending
-// is 'hinges', where params gives them 0); the hinges (Bergou et al. 2006, model.hingeWeights) are quadratic in x,
-// so they sit in the system matrix exactly and need no local step. Pinned particles are not unknowns: their terms
+// is a stencil model, where params gives them 0); the bending stencils (model.stencils: Bergou et al. 2006's hinges
+// or the cotangent Laplacian's vertices, CSR) are quadratic in x, so they sit in the system matrix exactly and need
+// no local step. Pinned particles are not unknowns: their terms
 // go to the right-hand side. The global step solves
 //   A·x = M/h²·x̃ + Σ k_s·S_sᵀ·d_s + (pinned terms),   A = M/h² + Σ k_s·S_sᵀS_s + Σ (B/A_e)·K_eK_eᵀ,
 // one scalar matrix for the three coordinates, constant while the mesh, h, the stiffnesses and the pins are:
@@ -144,22 +145,24 @@ export class PDSolver {
       sp.push(a, b); sk.push(k); sl.push(model.restLengths[s]);
     }
     this.springs = Int32Array.from(sp); this.k = Float64Array.from(sk); this.rest = Float64Array.from(sl);
-    const hs = [], hw = [], hK = [];
-    if (params.bending === 'hinges') {
-      for (let e = 0; e < model.hingeAreas.length; e++) {
-        const a = params.hingeCompliance[e];
+    // the bending stencils of params.bending (CSR: stencil e over hinges[hOff[e]] … hinges[hOff[e + 1] − 1])
+    const hs = [], hw = [], hK = [], ho = [0];
+    if (params.bending !== 'springs') {
+      const st = model.stencils[params.bending];
+      for (let e = 0; e < st.areas.length; e++) {
+        const a = params.stencilCompliance[e];
         if (!(a < Infinity) || !(a > 0)) continue;
-        const idx = model.hinges.subarray(4 * e, 4 * e + 4);
+        const idx = st.vertices.subarray(st.offsets[e], st.offsets[e + 1]);
         if (idx.every((i) => pinned[i])) continue;
-        hs.push(...idx); hw.push(1 / a); hK.push(...model.hingeWeights.subarray(4 * e, 4 * e + 4));
+        hs.push(...idx); hw.push(1 / a); hK.push(...st.weights.subarray(st.offsets[e], st.offsets[e + 1])); ho.push(hs.length);
       }
     }
-    this.hinges = Int32Array.from(hs); this.hw = Float64Array.from(hw); this.hK = Float64Array.from(hK);
+    this.hinges = Int32Array.from(hs); this.hw = Float64Array.from(hw); this.hK = Float64Array.from(hK); this.hOff = Int32Array.from(ho);
     // free particles, in RCM order
     const adj = Array.from({ length: n }, () => new Set());
     const link = (a, b) => { if (!pinned[a] && !pinned[b] && a !== b) { adj[a].add(b); adj[b].add(a); } };
     for (let s = 0; s < this.k.length; s++) link(this.springs[2 * s], this.springs[2 * s + 1]);
-    for (let e = 0; e < this.hw.length; e++) for (let p = 0; p < 4; p++) for (let q = p + 1; q < 4; q++) link(this.hinges[4 * e + p], this.hinges[4 * e + q]);
+    for (let e = 0; e < this.hw.length; e++) for (let p = ho[e]; p < ho[e + 1]; p++) for (let q = p + 1; q < ho[e + 1]; q++) link(this.hinges[p], this.hinges[q]);
     const freeIds = [];
     for (let i = 0; i < n; i++) if (!pinned[i]) freeIds.push(i);
     const local = new Int32Array(n).fill(-1);
@@ -211,13 +214,14 @@ export class PDSolver {
         for (let c = 0; c < 3; c++) this.bPin[3 * r + c] += k * x[3 * p + c];
       }
     }
+    const ho = this.hOff;
     for (let e = 0; e < this.hw.length; e++) {
       const w = this.hw[e];
-      for (let p = 0; p < 4; p++) {
-        const i = this.hinges[4 * e + p];
+      for (let p = ho[e]; p < ho[e + 1]; p++) {
+        const i = this.hinges[p];
         if (pinned[i]) continue;
-        for (let q = 0; q < 4; q++) {
-          const j = this.hinges[4 * e + q], v = w * this.hK[4 * e + p] * this.hK[4 * e + q];
+        for (let q = ho[e]; q < ho[e + 1]; q++) {
+          const j = this.hinges[q], v = w * this.hK[p] * this.hK[q];
           if (!pinned[j]) put(i, j, v);
           else for (let c = 0; c < 3; c++) this.bPin[3 * iperm[i] + c] -= v * x[3 * j + c];
         }
@@ -347,7 +351,7 @@ export class PDSolver {
  * minimum it finds from pd.x.
  */
 export function newtonStatic(pd, maxIt = 60, tol = 1e-10) {
-  const { nf, perm, iperm, pinned, springs, k, rest, hinges, hw, hK, mass } = pd;
+  const { nf, perm, iperm, pinned, springs, k, rest, hinges, hw, hK, hOff, mass } = pd;
   const x = pd.x, g = pd.params.gravity;
   const energy = (y) => {
     let e = 0;
@@ -358,7 +362,7 @@ export function newtonStatic(pd, maxIt = 60, tol = 1e-10) {
     }
     for (let h = 0; h < hw.length; h++) for (let c = 0; c < 3; c++) {
       let C = 0;
-      for (let p = 0; p < 4; p++) C += hK[4 * h + p] * y[3 * hinges[4 * h + p] + c];
+      for (let p = hOff[h]; p < hOff[h + 1]; p++) C += hK[p] * y[3 * hinges[p] + c];
       e += 0.5 * hw[h] * C * C;
     }
     for (let i = 0; i < pd.n; i++) e -= mass[i] * (g[0] * y[3 * i] + g[1] * y[3 * i + 1] + g[2] * y[3 * i + 2]);
@@ -393,15 +397,15 @@ export function newtonStatic(pd, maxIt = 60, tol = 1e-10) {
     }
     for (let h = 0; h < hw.length; h++) {
       const C = [0, 0, 0];
-      for (let p = 0; p < 4; p++) for (let c = 0; c < 3; c++) C[c] += hK[4 * h + p] * x[3 * hinges[4 * h + p] + c];
-      for (let p = 0; p < 4; p++) {
-        const i = hinges[4 * h + p];
+      for (let p = hOff[h]; p < hOff[h + 1]; p++) for (let c = 0; c < 3; c++) C[c] += hK[p] * x[3 * hinges[p] + c];
+      for (let p = hOff[h]; p < hOff[h + 1]; p++) {
+        const i = hinges[p];
         if (pinned[i]) continue;
-        for (let c = 0; c < 3; c++) grad[3 * iperm[i] + c] += hw[h] * hK[4 * h + p] * C[c];
-        for (let q = 0; q < 4; q++) {
-          const j = hinges[4 * h + q];
+        for (let c = 0; c < 3; c++) grad[3 * iperm[i] + c] += hw[h] * hK[p] * C[c];
+        for (let q = hOff[h]; q < hOff[h + 1]; q++) {
+          const j = hinges[q];
           if (pinned[j] || iperm[j] > iperm[i]) continue;
-          for (let c = 0; c < 3; c++) H.add(3 * iperm[i] + c, 3 * iperm[j] + c, hw[h] * hK[4 * h + p] * hK[4 * h + q]);
+          for (let c = 0; c < 3; c++) H.add(3 * iperm[i] + c, 3 * iperm[j] + c, hw[h] * hK[p] * hK[q]);
         }
       }
     }

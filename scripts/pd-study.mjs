@@ -16,7 +16,8 @@
 // Parts (--part): hanging, cantilever, newton, all (default: those three, ~3 min on a free core; the 128² rows are
 // most of it), jacobi (Chebyshev-accelerated Jacobi on both setups; not in 'all').
 //   npx tsc -p tsconfig.build.json && node scripts/pd-study.mjs [--part hanging] [--faces 16,32,64,128]
-//       [--settings 1x3,1x10] [--fabrics rubber,cotton] [--bending springs|hinges (the hanging sheet's bending model)]
+//       [--settings 1x3,1x10] [--fabrics rubber,cotton] [--bending springs|hinges|laplacian (the hanging sheet's bending model)]
+//       [--stencils hinges|laplacian (the cantilever's bending model in the newton part)]
 import { modelFor, resolveParams, scenePins } from '../dist/core/index.js';
 import { PDSolver, newtonStatic } from './pd-solver.mjs';
 import {
@@ -104,11 +105,11 @@ function cantilever(global) {
  */
 function newtonCantilever() {
   const facesList = arg('faces', '16,32,64').split(',').map(Number);
-  console.log('\nCantilever, converged static equilibrium of the discrete model (Newton, from PD 10 × 10 after 10 s)');
+  console.log(`\nCantilever (${arg('stencils', 'hinges')}), converged static equilibrium of the discrete model (Newton, from PD 10 × 10 after 10 s)`);
   console.log('| faces | chord angle | c / c | Newton iterations | |gradient| [N] | seconds |');
   console.log('|---|---|---|---|---|---|');
   for (const faces of facesList) {
-    const { scene, free, L } = cantileverScene(faces, 1, 1, 'hinges');
+    const { scene, free, L } = cantileverScene(faces, 1, 1, arg('stencils', 'hinges'));
     const pd = solverFor(scene, { substeps: 10, iterations: 10 });
     for (let f = 0; f < 600; f++) pd.frame();
     const t0 = performance.now();

@@ -69,7 +69,7 @@ export const PHASE = {
   globalStretch: 6,
   /** substep: XPBD distance constraints, colour batch by colour batch */
   distance: 7,
-  /** substep: XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch */
+  /** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
   bending: 8,
   /** substep: long-range attachments to the nearest pin */
   tethers: 9,
@@ -94,7 +94,7 @@ export const SCHEDULE = [
   { id: 5, name: 'grab', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'grab', repeat: [], doc: 'the grabbed particle carried part of the way to its target' },
   { id: 6, name: 'globalStretch', scope: 'substep', solvers: ['xpbd'], when: 'global', repeat: ['xpbd'], doc: 'the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system' },
   { id: 7, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'local', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
-  { id: 8, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'hinges', repeat: ['xpbd'], doc: 'XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch' },
+  { id: 8, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'stencils', repeat: ['xpbd'], doc: 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch' },
   { id: 9, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
   { id: 10, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
   { id: 11, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },

@@ -1,5 +1,5 @@
 /** Read-only measurements of a running cloth: energy, strain, penetration, extent. */
-import { BEND, STRUCTURAL, type ClothModel } from './model.js';
+import { BEND, STRUCTURAL, bendingStencils, type ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
 
@@ -10,12 +10,12 @@ export interface Energy {
   gravitational: number;
   /**
    * elastic energy stored in the cloth's shape [J], from the positions for every solver: Σ ½·k·(|d| − L)² over the
-   * springs with the stiffness they act with (params.stiffness) and, with the hinge bending model, Σ ½·|C|²/α over
-   * the hinges (solvers/xpbd.ts solveBending). A constraint the solver leaves unconverged shows as energy: a cloth
+   * springs with the stiffness they act with (params.stiffness) and, with a stencil bending model (hinges,
+   * Laplacian), Σ ½·|C|²/α over its stencils (solvers/xpbd.ts solveBending). A constraint the solver leaves unconverged shows as energy: a cloth
    * stretched beyond what its load explains is visibly overstretched here
    */
   elastic: number;
-  /** the part of `elastic` in bending [J]: the bend springs, or the hinges */
+  /** the part of `elastic` in bending [J]: the bend springs, or the bending stencils */
   bending: number;
 }
 
@@ -39,21 +39,22 @@ export function energy(model: ClothModel, state: ClothState, params: SimParams):
     elastic += e;
     if (kinds[s] === BEND) bending += e;
   }
-  if (params.bending === 'hinges') {
-    const hinges = model.hinges, K = model.hingeWeights, compliance = params.hingeCompliance;
-    let hinged = 0;
+  const stencils = bendingStencils(model, params.bending);
+  if (stencils) {
+    const { offsets, vertices, weights: K } = stencils, compliance = params.stencilCompliance;
+    let bent = 0;
     for (let e = 0; e < compliance.length; e++) {
       if (compliance[e] === Infinity) continue;
       let c2 = 0;
       for (let d = 0; d < 3; d++) {
         let c = 0;
-        for (let q = 0; q < 4; q++) c += K[4 * e + q] * x[3 * hinges[4 * e + q] + d];
+        for (let q = offsets[e]; q < offsets[e + 1]; q++) c += K[q] * x[3 * vertices[q] + d];
         c2 += c * c;
       }
-      hinged += (0.5 * c2) / compliance[e];
+      bent += (0.5 * c2) / compliance[e];
     }
-    bending += hinged;
-    elastic += hinged;
+    bending += bent;
+    elastic += bent;
   }
   return { kinetic, gravitational, elastic, bending };
 }

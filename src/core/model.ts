@@ -38,6 +38,33 @@ export interface GridInfo {
   readonly ny: number;
 }
 
+/** The bending models that are stencils of a ClothModel (solver.bending other than 'springs'). */
+export type StencilModel = 'hinges' | 'laplacian';
+
+/**
+ * Linear bending stencils, each a 3-vector C = Σ_k K_k x_{i_k} over a few particles, with the energy ½·B·|C|²/A
+ * (docs/physics.md, "Bending at the hinges" and "Isotropic bending"): variable-sized, stored CSR (stencil s has
+ * the entries offsets[s] … offsets[s + 1] − 1), sorted by colour. A hinge has 4 entries (shared edge x0–x1, wings
+ * x2, x3), a vertex of the Laplacian 1 + its neighbours (the vertex first).
+ */
+export interface BendingStencils {
+  /** first entry of each stencil, and one past the last stencil's: stencil count + 1 */
+  readonly offsets: Uint32Array;
+  /** the particle of each entry */
+  readonly vertices: Uint32Array;
+  /** the weight K of each entry: C = Σ K x; they sum to zero in each stencil, so a translation leaves C unchanged [-] */
+  readonly weights: Float32Array;
+  /**
+   * the area A of each stencil in its energy ½·B·|C|²/A [m²]: a hinge's two triangles; for a vertex of the Laplacian
+   * A_v²/(A_v + its share of the border's area), A_v its mixed Voronoi area (buildLaplacian)
+   */
+  readonly areas: Float32Array;
+  /** colour batches (in stencils); stencils of a batch share no particle */
+  readonly batches: readonly TriangleBatch[];
+  /** most entries of one stencil (4 for hinges; 1 + the most weighted neighbours of an interior vertex for the Laplacian) */
+  readonly maxSize: number;
+}
+
 export interface ClothModel {
   /** number of particles */
   readonly particleCount: number;
@@ -80,19 +107,11 @@ export interface ClothModel {
    */
   readonly bendingPairs: Uint32Array;
   /**
-   * bending hinges for the isometric bending model (Bergou et al. 2006): the bending pairs as quadruples
-   * (x0, x1, x2, x3), shared edge x0–x1 and wings x2, x3, sorted by colour (hingeBatches)
+   * the bending stencils of the two stencil models of solver.bending (Bergou et al. 2006's hinges, the cotangent
+   * Laplacian at the vertices); the xpbd solver's `bending` phase solves those of the params' model
+   * (`bendingStencils`)
    */
-  readonly hinges: Uint32Array;
-  /**
-   * the hinge's stencil K (4 per hinge, from the rest triangles' angles): C = Σ K_i x_i is a vector of length
-   * |e|·2 sin(θ/2), θ the dihedral angle; zero while the two triangles lie flat, whatever their shapes [-]
-   */
-  readonly hingeWeights: Float32Array;
-  /** rest area of the hinge's two triangles, A_e [m²]; the bending energy is ½·B·|C|²/A_e (docs/physics.md) */
-  readonly hingeAreas: Float32Array;
-  /** colour batches of hinges (in hinges, not indices); hinges of a batch share no particle */
-  readonly hingeBatches: readonly TriangleBatch[];
+  readonly stencils: { readonly hinges: BendingStencils; readonly laplacian: BendingStencils };
   /** connected piece of each particle, 0 … pieceCount − 1 (for per-piece material and pins) */
   readonly pieces: Uint32Array;
   /** number of connected pieces [-] */
@@ -142,7 +161,7 @@ function colourElements(indices: Uint32Array, arity: number, particleCount: numb
 }
 
 /** Start offset of each colour (length count + 1) from element colours: a counting sort's prefix sums. */
-function colourOffsets(colours: Uint8Array, count: number): Uint32Array {
+function colourOffsets(colours: ArrayLike<number>, count: number): Uint32Array {
   const offsets = new Uint32Array(count + 1);
   for (let e = 0; e < colours.length; e++) offsets[colours[e] + 1]++;
   for (let c = 0; c < count; c++) offsets[c + 1] += offsets[c];
@@ -204,6 +223,68 @@ function cotangent(ux: number, uy: number, uz: number, vx: number, vy: number, v
 }
 
 /**
+ * Greedy colouring of variable-sized stencils (CSR: stencil s over vertices[offsets[s]] …): each stencil gets the
+ * lowest colour not yet used at any of its particles, as colourElements, with as many colours as it takes (a
+ * vertex stencil of the Laplacian meets every stencil within two edges of it: 13 colours on the grid, more on an
+ * irregular mesh). For 4-particle hinges it gives colourElements' colours.
+ */
+function colourStencils(offsets: Uint32Array, vertices: Uint32Array, particleCount: number): { colours: Uint16Array; count: number } {
+  const m = offsets.length - 1;
+  for (let words = 1; ; words *= 2) {
+    const used = new Uint32Array(words * particleCount);
+    const taken = new Uint32Array(words);
+    const colours = new Uint16Array(m);
+    let count = 0, overflow = false;
+    for (let e = 0; e < m && !overflow; e++) {
+      taken.fill(0);
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) {
+        const at = words * vertices[k];
+        for (let q = 0; q < words; q++) taken[q] |= used[at + q];
+      }
+      let c = -1;
+      for (let q = 0; q < words && c < 0; q++) {
+        const free = ~taken[q] >>> 0;
+        if (free !== 0) c = 32 * q + 31 - Math.clz32(free & -free);
+      }
+      if (c < 0) { overflow = true; break; }
+      colours[e] = c;
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) used[words * vertices[k] + (c >> 5)] |= 1 << (c & 31);
+      if (c + 1 > count) count = c + 1;
+    }
+    if (!overflow) return { colours, count };
+  }
+}
+
+/**
+ * Stencils (CSR, in any order) sorted by colour into BendingStencils: a stencil keeps its entries' order, and
+ * stencils of one colour keep theirs.
+ */
+function sortStencils(offsets: Uint32Array, vertices: Uint32Array, weights: Float64Array, areas: Float64Array, n: number): BendingStencils {
+  const m = offsets.length - 1;
+  const { colours, count } = colourStencils(offsets, vertices, n);
+  const starts = colourOffsets(colours, count);
+  const batches: TriangleBatch[] = [];
+  for (let c = 0; c < count; c++) batches.push({ start: starts[c], end: starts[c + 1] });
+  const order = new Uint32Array(m), fill = starts.slice(0, count);
+  for (let e = 0; e < m; e++) order[fill[colours[e]]++] = e;
+  const outOffsets = new Uint32Array(m + 1), outVertices = new Uint32Array(vertices.length);
+  const outWeights = new Float32Array(vertices.length), outAreas = new Float32Array(m);
+  let at = 0, maxSize = 0;
+  for (let d = 0; d < m; d++) {
+    const e = order[d];
+    outOffsets[d] = at;
+    outAreas[d] = areas[e];
+    for (let k = offsets[e]; k < offsets[e + 1]; k++, at++) {
+      outVertices[at] = vertices[k];
+      outWeights[at] = weights[k];
+    }
+    maxSize = Math.max(maxSize, offsets[e + 1] - offsets[e]);
+  }
+  outOffsets[m] = at;
+  return { offsets: outOffsets, vertices: outVertices, weights: outWeights, areas: outAreas, batches, maxSize };
+}
+
+/**
  * The hinges of the isometric bending model (Bergou, Wardetzky, Harmon, Zorin & Grinspun 2006, "A Quadratic
  * Bending Model for Inextensible Surfaces"), one per bending pair (x0, x1, x2, x3): with α0, α1 the angles of
  * triangle (x0, x1, x2) at x0 and x1, and β0, β1 those of (x0, x1, x3),
@@ -211,21 +292,15 @@ function cotangent(ux: number, uy: number, uz: number, vx: number, vy: number, v
  * so that C = Σ K_i x_i = −|e|·(û2 + û3), û_k the unit vector in triangle k from the edge to its wing: zero for a
  * flat pair, |e|·2 sin(θ/2) for a dihedral angle θ. The angles are the rest triangles' (intrinsic: the same for a
  * pair that rests folded), so K stays fixed while the cloth bends without stretching. A pair with a degenerate
- * triangle gets K = 0 (no bending). Coloured like springs (no two hinges of a batch share a particle).
+ * triangle gets K = 0 (no bending). Its area is the two triangles'. Coloured so that no two hinges of a batch share
+ * a particle.
  */
-function buildHinges(pairs: Uint32Array, p: Float32Array, n: number): Pick<ClothModel, 'hinges' | 'hingeWeights' | 'hingeAreas' | 'hingeBatches'> {
+function buildHinges(pairs: Uint32Array, p: Float32Array, n: number): BendingStencils {
   const m = pairs.length / 4;
-  const { colours, count } = colourElements(pairs, 4, n);
-  const offsets = colourOffsets(colours, count);
-  const hingeBatches: TriangleBatch[] = [];
-  for (let c = 0; c < count; c++) hingeBatches.push({ start: offsets[c], end: offsets[c + 1] });
-  const hinges = new Uint32Array(4 * m), hingeWeights = new Float32Array(4 * m), hingeAreas = new Float32Array(m);
-  const fill = offsets.slice(0, count);
+  const offsets = new Uint32Array(m + 1), weights = new Float64Array(4 * m), areas = new Float64Array(m);
   for (let h = 0; h < m; h++) {
-    const dst = fill[colours[h]]++;
-    const i0 = pairs[4 * h], i1 = pairs[4 * h + 1], i2 = pairs[4 * h + 2], i3 = pairs[4 * h + 3];
-    hinges.set([i0, i1, i2, i3], 4 * dst);
-    const x0 = 3 * i0, x1 = 3 * i1, x2 = 3 * i2, x3 = 3 * i3;
+    offsets[h + 1] = 4 * (h + 1);
+    const x0 = 3 * pairs[4 * h], x1 = 3 * pairs[4 * h + 1], x2 = 3 * pairs[4 * h + 2], x3 = 3 * pairs[4 * h + 3];
     const ex = p[x1] - p[x0], ey = p[x1 + 1] - p[x0 + 1], ez = p[x1 + 2] - p[x0 + 2];
     const a2x = p[x2] - p[x0], a2y = p[x2 + 1] - p[x0 + 1], a2z = p[x2 + 2] - p[x0 + 2];
     const a3x = p[x3] - p[x0], a3y = p[x3 + 1] - p[x0 + 1], a3z = p[x3 + 2] - p[x0 + 2];
@@ -235,11 +310,122 @@ function buildHinges(pairs: Uint32Array, p: Float32Array, n: number): Pick<Cloth
     const cb0 = cotangent(ex, ey, ez, a3x, a3y, a3z), cb1 = cotangent(-ex, -ey, -ez, b3x, b3y, b3z);
     const area2 = 0.5 * Math.hypot(ey * a2z - ez * a2y, ez * a2x - ex * a2z, ex * a2y - ey * a2x);
     const area3 = 0.5 * Math.hypot(ey * a3z - ez * a3y, ez * a3x - ex * a3z, ex * a3y - ey * a3x);
-    hingeAreas[dst] = area2 + area3;
+    areas[h] = area2 + area3;
     const k = [ca1 + cb1, ca0 + cb0, -ca0 - ca1, -cb0 - cb1];
-    if (k.every(Number.isFinite) && area2 > 0 && area3 > 0) hingeWeights.set(k, 4 * dst);
+    if (k.every(Number.isFinite) && area2 > 0 && area3 > 0) weights.set(k, 4 * h);
   }
-  return { hinges, hingeWeights, hingeAreas, hingeBatches };
+  return sortStencils(offsets, pairs, weights, areas, n);
+}
+
+/** Cotan weights smaller than this share of the largest at their vertex are dropped (the grid's diagonals: 0). */
+const NEGLIGIBLE_WEIGHT = 1e-5;
+
+/**
+ * The vertex stencils of the cotangent Laplacian (Wardetzky, Bergou, Harmon, Zorin & Grinspun 2007, "Discrete
+ * Quadratic Curvature Energies"; Meyer, Desbrun, Schröder & Barr 2003 for the areas), one per interior vertex v:
+ *   C_v = Σ_j w_vj (x_j − x_v),  w_vj = ½(cot α_vj + cot β_vj),
+ * α, β the rest angles opposite the edge v–j, so that C_v ≈ A_v·(κ1 + κ2)·n for a surface with principal curvatures
+ * κ1, κ2 and normal n, A_v the vertex's mixed Voronoi area (Meyer et al.: Voronoi in non-obtuse triangles, half or
+ * a quarter of an obtuse one). The energy ½·B·|C_v|²/A_v sums to the plate's ½·B·(κ1 + κ2)² per unit area,
+ * isotropically on the grid, whose diagonals get weight 0 (right triangles: C_v is the five-point stencil).
+ * Entries: v first (−Σ w), then its neighbours with a weight above NEGLIGIBLE_WEIGHT of the largest.
+ *
+ * Only interior vertices have a stencil: at a border vertex the flat sheet's cotan Laplacian is not zero (it points
+ * out of the sheet's edge), so no linear stencil there rests flat. Their rest area is handed in equal shares to the
+ * interior vertices of their one-ring (none: it is lost), so that a sheet bent uniformly stores ½·B·κ²·A over its
+ * whole area; a vertex's stored area is then A_v²/(A_v + its shares), its C being A_v·κ. A vertex with a degenerate
+ * triangle gets no stencil. Coloured so that no two stencils of a batch share a particle.
+ *
+ * `lumpBorder` false leaves the border's area out (each stencil's area A_v): for tests measuring what the shares do.
+ */
+export function buildLaplacian(triangles: Uint32Array, edges: Uint32Array, p: Float32Array, n: number, lumpBorder = true): BendingStencils {
+  // each vertex's one-ring from the edge list (CSR), with a weight and a triangle count per directed edge
+  const start = new Uint32Array(n + 1);
+  for (let k = 0; k < edges.length; k++) start[edges[k] + 1]++;
+  for (let i = 0; i < n; i++) start[i + 1] += start[i];
+  const ring = new Uint32Array(edges.length), fill = start.slice(0, n);
+  for (let k = 0; k < edges.length; k += 2) {
+    const a = edges[k], b = edges[k + 1];
+    ring[fill[a]++] = b;
+    ring[fill[b]++] = a;
+  }
+  const w = new Float64Array(edges.length), faces = new Uint8Array(edges.length);
+  const slot = (a: number, b: number): number => {
+    for (let k = start[a]; k < start[a + 1]; k++) if (ring[k] === b) return k;
+    throw new Error('model: a triangle edge missing from the edge list');
+  };
+  const addEdge = (a: number, b: number, cot: number): void => {
+    const ab = slot(a, b), ba = slot(b, a);
+    w[ab] += 0.5 * cot; w[ba] += 0.5 * cot;
+    faces[ab]++; faces[ba]++;
+  };
+  const area = new Float64Array(n);
+  const bad = new Uint8Array(n);
+  for (let t = 0; t < triangles.length; t += 3) {
+    const v = [triangles[t], triangles[t + 1], triangles[t + 2]];
+    const cot = [0, 0, 0], len2 = [0, 0, 0];
+    let twice = 0;
+    for (let c = 0; c < 3; c++) {
+      const o = 3 * v[c], a = 3 * v[(c + 1) % 3], b = 3 * v[(c + 2) % 3];
+      const ux = p[a] - p[o], uy = p[a + 1] - p[o + 1], uz = p[a + 2] - p[o + 2];
+      const vx = p[b] - p[o], vy = p[b + 1] - p[o + 1], vz = p[b + 2] - p[o + 2];
+      cot[c] = cotangent(ux, uy, uz, vx, vy, vz);
+      // the squared length of the edge opposite corner c
+      len2[c] = (p[b] - p[a]) ** 2 + (p[b + 1] - p[a + 1]) ** 2 + (p[b + 2] - p[a + 2]) ** 2;
+      if (c === 0) twice = Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+    }
+    for (let c = 0; c < 3; c++) addEdge(v[(c + 1) % 3], v[(c + 2) % 3], cot[c]);
+    if (!(twice > 0) || !cot.every(Number.isFinite)) {
+      for (const i of v) bad[i] = 1;
+      continue;
+    }
+    const obtuse = cot.findIndex((c) => c < 0);
+    for (let c = 0; c < 3; c++) {
+      // mixed Voronoi area (Meyer et al. 2003): the Voronoi part, ⅛·Σ|e|²·cot of the two edges at the corner
+      area[v[c]] += obtuse < 0
+        ? (len2[(c + 1) % 3] * cot[(c + 1) % 3] + len2[(c + 2) % 3] * cot[(c + 2) % 3]) / 8
+        : (obtuse === c ? twice / 4 : twice / 8);
+    }
+  }
+  const border = new Uint8Array(n);
+  for (let i = 0; i < n; i++) for (let k = start[i]; k < start[i + 1]; k++) if (faces[k] < 2) border[i] = 1;
+  const interior = (i: number) => border[i] === 0 && bad[i] === 0 && start[i + 1] > start[i];
+  // the border's area, in equal shares to the interior vertices of each border vertex's one-ring
+  const shares = new Float64Array(n);
+  for (let i = 0; i < n; i++) {
+    if (!border[i]) continue;
+    let inner = 0;
+    for (let k = start[i]; k < start[i + 1]; k++) if (interior(ring[k])) inner++;
+    for (let k = start[i]; k < start[i + 1]; k++) if (interior(ring[k])) shares[ring[k]] += area[i] / inner;
+  }
+  let count = 0, entries = 0;
+  for (let i = 0; i < n; i++) if (interior(i)) { count++; entries += 1 + start[i + 1] - start[i]; }
+  const offsets = new Uint32Array(count + 1), vertices = new Uint32Array(entries), weights = new Float64Array(entries);
+  const areas = new Float64Array(count);
+  let s = 0, at = 0;
+  for (let i = 0; i < n; i++) {
+    if (!interior(i)) continue;
+    let largest = 0;
+    for (let k = start[i]; k < start[i + 1]; k++) largest = Math.max(largest, Math.abs(w[k]));
+    const centre = at++;
+    vertices[centre] = i;
+    let sum = 0;
+    for (let k = start[i]; k < start[i + 1]; k++) {
+      if (Math.abs(w[k]) <= NEGLIGIBLE_WEIGHT * largest) continue;
+      vertices[at] = ring[k];
+      weights[at++] = w[k];
+      sum += w[k];
+    }
+    weights[centre] = -sum;
+    areas[s] = lumpBorder ? (area[i] * area[i]) / (area[i] + shares[i]) : area[i];
+    offsets[++s] = at;
+  }
+  return sortStencils(offsets, vertices.subarray(0, at), weights.subarray(0, at), areas, n);
+}
+
+/** The bending stencils a params' bending model solves (model.stencils), or null for the bend springs. */
+export function bendingStencils(model: ClothModel, bending: 'springs' | StencilModel): BendingStencils | null {
+  return bending === 'springs' ? null : model.stencils[bending];
 }
 
 /**
@@ -379,7 +565,10 @@ export function buildModel(input: ModelInput): ClothModel {
   const size = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-3);
   // the same for the triangles in any order: a caller that derived it already passes it on
   const topology = input.topology ?? meshTopology(triangles, n);
-  const hinges = buildHinges(topology.bendingPairs, restPositions, n);
+  const stencils = {
+    hinges: buildHinges(topology.bendingPairs, restPositions, n),
+    laplacian: buildLaplacian(triangles, topology.edges, restPositions, n),
+  };
 
   return {
     particleCount: n,
@@ -398,7 +587,7 @@ export function buildModel(input: ModelInput): ClothModel {
     maxTriangleValence,
     area,
     ...topology,
-    ...hinges,
+    stencils,
     grid: input.grid,
     size,
   };

@@ -1,7 +1,7 @@
 import type { MeshResolver } from './cloth-shape.js';
 import { createColliders, type PosedCollider } from './colliders/index.js';
 import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
-import { BEND, SHEAR, SPRING_KINDS, STRUCTURAL, type ClothModel } from './model.js';
+import { BEND, SHEAR, SPRING_KINDS, STRUCTURAL, bendingStencils, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
 import { SceneError, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
 
@@ -68,8 +68,11 @@ export interface SimParams {
   stretch: StretchSolve;
   /** bending rigidity B of the sheet [N·m] (material.bendingRigidity) */
   bendingRigidity: number;
-  /** XPBD compliance of each bending hinge, A_e / B [m²/(N·m)]; Infinity where B = 0 or the hinge has no stencil */
-  hingeCompliance: Float32Array;
+  /**
+   * XPBD compliance of each bending stencil of the params' model (model.stencils[bending]: hinges or Laplacian
+   * vertices), A/B [m²/(N·m)]; Infinity where B = 0 or the stencil's weights are all zero; empty for the springs
+   */
+  stencilCompliance: Float32Array;
   /** spring damping on relative velocity [N·s/m] (material.damping; the xpbd solver's β) */
   damping: number;
   /** the mass-spring solver's damping of each spring [N·s/m]: `damping`, lowered where the stability limit needs it */
@@ -214,18 +217,19 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     }
   }
 
-  // the xpbd solver bends with springs or with hinges, not both
+  // the xpbd solver bends with springs or with a stencil model (hinges, Laplacian), not both
   const bending: BendingModel = scene.solver.type === 'xpbd' ? scene.solver.bending : 'springs';
-  if (bending === 'hinges') for (let s = 0; s < springCount; s++) if (model.springKinds[s] === BEND) stiffness[s] = 0;
+  if (bending !== 'springs') for (let s = 0; s < springCount; s++) if (model.springKinds[s] === BEND) stiffness[s] = 0;
   const compliance = new Float32Array(springCount);
   for (let s = 0; s < springCount; s++) compliance[s] = stiffness[s] > 0 ? 1 / stiffness[s] : Infinity;
   const bendingRigidity = m.bendingRigidity;
-  const hingeCount = model.hingeAreas.length;
-  const hingeCompliance = new Float32Array(hingeCount);
-  for (let e = 0; e < hingeCount; e++) {
-    const k = model.hingeWeights;
-    const stencil = k[4 * e] !== 0 || k[4 * e + 1] !== 0 || k[4 * e + 2] !== 0 || k[4 * e + 3] !== 0;
-    hingeCompliance[e] = bendingRigidity > 0 && stencil ? model.hingeAreas[e] / bendingRigidity : Infinity;
+  const stencils = bendingStencils(model, bending);
+  const stencilCompliance = new Float32Array(stencils ? stencils.areas.length : 0);
+  for (let e = 0; e < stencilCompliance.length; e++) {
+    const { offsets, weights, areas } = stencils!;
+    let any = false;
+    for (let k = offsets[e]; k < offsets[e + 1]; k++) if (weights[k] !== 0) any = true;
+    stencilCompliance[e] = bendingRigidity > 0 && any ? areas[e] / bendingRigidity : Infinity;
   }
 
   const d = scene.wind.direction;
@@ -245,7 +249,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     bending,
     stretch: scene.solver.type === 'xpbd' ? scene.solver.stretch : 'gauss-seidel',
     bendingRigidity,
-    hingeCompliance,
+    stencilCompliance,
     damping,
     springDamping,
     stretchFactor: m.stretchFactor,

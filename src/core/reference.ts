@@ -52,7 +52,7 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
   bending(model, state, params, frame) {
     const passes = phasePasses(PHASE.bending, params);
     const accumulate = passes > 1;
-    if (accumulate) state.hingeLambdas.fill(0);
+    if (accumulate) state.bendingLambdas.fill(0);
     for (let it = 0; it < passes; it++) solveBending(model, state, params, frame.h, accumulate);
   },
   tethers: (_model, state, params) => solveTethers(state, params),

@@ -2,6 +2,7 @@ import { Ajv, type ErrorObject } from 'ajv';
 import { eulerXYZ } from './mesh/generators.js';
 import { BEND_SPRING_PER_RIGIDITY, FABRICS, FABRIC_FIELDS, type FabricName, type FabricValues } from './fabrics.js';
 import { PIN_PRESETS, sceneSchema } from './scene-schema.js';
+import type { StencilModel } from './model.js';
 
 export type Vec3 = [number, number, number];
 /** `cloth.shape` (the list: CLOTH_SHAPES in cloth-shape.ts) */
@@ -53,7 +54,7 @@ export type SceneTest =
 
 export type SolverType = 'xpbd' | 'mass-spring';
 /** `solver.bending`: the xpbd solver's bending model */
-export type BendingModel = 'springs' | 'hinges';
+export type BendingModel = 'springs' | StencilModel;
 /** `solver.stretch`: how the xpbd solver solves its springs (one at a time, or together: solvers/global-stretch.ts) */
 export type StretchSolve = 'gauss-seidel' | 'global';
 

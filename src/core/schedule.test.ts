@@ -143,7 +143,7 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     expect(() => assignPhases({ ...remote, phases: all, refusal: () => 'no such shape' }, sim.model, sim.params)).toThrow(/remote: no such shape/);
     expect(() => assignPhases({ ...remote, solvers: ['mass-spring'] }, sim.model, sim.params)).toThrow(/remote: only the mass-spring solver runs remotely \(params.solver is 'xpbd'\)/);
     // not the phases these params never make a frame run: no carried pins, no collider that needs triangle contact,
-    // no hinge bending (solver.bending 'springs'), no global stretch step (solver.stretch 'gauss-seidel')
+    // no stencil bending (solver.bending 'springs'), no global stretch step (solver.stretch 'gauss-seidel')
     expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
         ~(1 << PHASE.bending) & ~(1 << PHASE.globalStretch));
@@ -152,10 +152,12 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     expect(assignPhases({ ...remote, phases: all }, together.model, together.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
         ~(1 << PHASE.bending) & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit));
-    // so a backend without the bending phase takes the springs' bending, and is refused the hinges'
-    const noHinges = { ...remote, phases: all & ~(1 << PHASE.bending) };
-    expect(() => assignPhases(noHinges, sim.model, sim.params)).not.toThrow();
-    const hinged = new Simulation(windyScene('xpbd', (s) => { s.solver.bending = 'hinges'; }), { kernel: 'ts' });
-    expect(() => assignPhases(noHinges, hinged.model, hinged.params)).toThrow(/remote: it does not implement phase 'bending'/);
+    // so a backend without the bending phase takes the springs' bending, and is refused the hinges' and the Laplacian's
+    const noStencils = { ...remote, phases: all & ~(1 << PHASE.bending) };
+    expect(() => assignPhases(noStencils, sim.model, sim.params)).not.toThrow();
+    for (const bending of ['hinges', 'laplacian'] as const) {
+      const bent = new Simulation(windyScene('xpbd', (s) => { s.solver.bending = bending; }), { kernel: 'ts' });
+      expect(() => assignPhases(noStencils, bent.model, bent.params)).toThrow(/remote: it does not implement phase 'bending'/);
+    }
   });
 });

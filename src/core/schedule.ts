@@ -22,11 +22,11 @@ export type PhaseId = (typeof PHASE)[PhaseName];
 export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
 /**
  * What a phase needs to be part of a frame: nothing, the wind blowing, a grabbed particle, pins a collider carries,
- * a collider whose surface can poke between the cloth's vertices (phases.ts needsTriangleContact), or the hinge
- * bending model (solver.bending 'hinges'), the springs solved together (solver.stretch 'global') or one at a time
- * ('gauss-seidel').
+ * a collider whose surface can poke between the cloth's vertices (phases.ts needsTriangleContact), a stencil
+ * bending model (solver.bending 'hinges' or 'laplacian'), the springs solved together (solver.stretch 'global') or
+ * one at a time ('gauss-seidel').
  */
-export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'hinges' | 'global' | 'local';
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'global' | 'local';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -62,7 +62,7 @@ const WIND_PHASES = maskOf((p) => p.when === 'wind');
 const GRAB_PHASES = maskOf((p) => p.when === 'grab');
 const CARRY_PHASES = maskOf((p) => p.when === 'carried');
 const TRIANGLE_PHASES = maskOf((p) => p.when === 'triangles');
-const HINGE_PHASES = maskOf((p) => p.when === 'hinges');
+const STENCIL_PHASES = maskOf((p) => p.when === 'stencils');
 const GLOBAL_PHASES = maskOf((p) => p.when === 'global');
 const LOCAL_PHASES = maskOf((p) => p.when === 'local');
 
@@ -80,7 +80,7 @@ export function solverPhases(solver: SolverType): number {
 
 /**
  * The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab, carried pins,
- * a collider that needs triangle contact on this model, hinge bending, the stretch solve).
+ * a collider that needs triangle contact on this model, a stencil bending model, the stretch solve).
  */
 export function framePhases(model: ClothModel, state: ClothState, params: SimParams): number {
   let mask = solverPhases(params.solver);
@@ -88,7 +88,7 @@ export function framePhases(model: ClothModel, state: ClothState, params: SimPar
   if (state.grabbed < 0) mask &= ~GRAB_PHASES;
   if (params.carried.particles.length === 0) mask &= ~CARRY_PHASES;
   if (!anyTriangleContact(model, params)) mask &= ~TRIANGLE_PHASES;
-  if (params.bending !== 'hinges') mask &= ~HINGE_PHASES;
+  if (params.bending === 'springs') mask &= ~STENCIL_PHASES;
   mask &= ~stretchExcluded(params);
   return mask;
 }
@@ -140,10 +140,10 @@ export function assignPhases(backend: BackendPhases, model: ClothModel, params: 
     throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs ${backend.where} (params.solver is '${params.solver}')`);
   }
   // the phases these params can make a frame run (the wind and a grab come and go; carried pins are the scene's,
-  // triangle contact the scene's and the mesh's, hinge bending the scene's solver.bending, the stretch solve its
+  // triangle contact the scene's and the mesh's, stencil bending the scene's solver.bending, the stretch solve its
   // solver.stretch)
   const wanted = solverPhases(params.solver) & ~(params.carried.particles.length === 0 ? CARRY_PHASES : 0) &
-    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES) & ~(params.bending === 'hinges' ? 0 : HINGE_PHASES) &
+    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES) & ~(params.bending === 'springs' ? STENCIL_PHASES : 0) &
     ~stretchExcluded(params);
   let own = 0;
   for (let id = 0; id < PHASE_COUNT; id++) {

@@ -28,10 +28,11 @@ export interface ClothState {
   /** XPBD Lagrange multipliers (compliant part) of the last substep, one per spring [N·s²]; f = λ/h² */
   readonly lambdas: Float32Array;
   /**
-   * XPBD Lagrange multipliers of the bending hinges (solver.bending 'hinges'), 3 per hinge [N·s²]: where
-   * solver.iterations > 1 they accumulate over a substep's passes
+   * XPBD Lagrange multipliers of the bending stencils (solver.bending 'hinges' or 'laplacian'), 3 per stencil of
+   * the params' model (room for the larger of the two) [N·s²]: where solver.iterations > 1 they accumulate over a
+   * substep's passes
    */
-  readonly hingeLambdas: Float32Array;
+  readonly bendingLambdas: Float32Array;
   /**
    * long-range attachment of each particle: the nearest pinned particle, or -1 (derived from `pinned` by
    * updateTethers when `tethersStale` is set)
@@ -86,7 +87,7 @@ export function createState(model: ClothModel, arrays?: StateArrays): ClothState
   a.tetherAnchors.fill(-1);
   const state: ClothState = {
     ...a,
-    hingeLambdas: new Float32Array(3 * model.hingeAreas.length),
+    bendingLambdas: new Float32Array(3 * Math.max(model.stencils.hinges.areas.length, model.stencils.laplacian.areas.length)),
     pinned: new Uint8Array(n),
     tethersStale: true,
     grabbed: -1,
@@ -106,7 +107,7 @@ export function resetState(model: ClothModel, state: ClothState): void {
   state.previousResiduals.fill(0);
   state.velocities.fill(0);
   state.lambdas.fill(0);
-  state.hingeLambdas.fill(0);
+  state.bendingLambdas.fill(0);
   state.grabbed = -1;
   state.time = 0;
   state.substeps = 0;

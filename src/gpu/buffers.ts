@@ -1,20 +1,21 @@
 /**
  * The cloth's storage buffers on the GPU (layout.ts BUFFERS) and each kernel's bind group over them: made for a
  * model with its static data (springs, triangles, adjacency, the rest pose), then written from the CPU: the
- * params' per-particle, per-spring and per-hinge values, a state's particles, its pins and tethers. The colliders'
- * buffers (their poses, the particles they carry) depend on the params and grow on demand (`reserve`); the bending
- * hinges' are made with their static data on the first params that bend with hinges (`writeParams`).
+ * params' per-particle, per-spring and per-stencil values, a state's particles, its pins and tethers. The
+ * colliders' buffers (their poses, the particles they carry) depend on the params and grow on demand (`reserve`); the
+ * bending stencils' are made with their static data on the first params that bend with a stencil model, and anew
+ * when params switch to the other (`writeParams`).
  */
 import type {} from 'webgpu';
-import type { ClothModel } from '../core/model.js';
+import { bendingStencils, type ClothModel, type StencilModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import type { ClothState } from '../core/state.js';
 import { updateTethers } from '../core/tethers.js';
 import { BUFFERS, KERNELS, VEC4, type BufferName, type KernelName, type KernelSpec } from './layout.js';
 import { triangleAdjacency } from './topology.js';
 
-/** The buffers of the bending hinges: placeholders until params first use the hinge model. */
-const HINGE_BUFFERS = ['hinges', 'hingeWeights', 'hingeCompliance', 'hingeLambdas'] as const;
+/** The buffers of the bending stencils: placeholders until params first use a stencil model. */
+const STENCIL_BUFFERS = ['stencilOffsets', 'stencilVertices', 'stencilWeights', 'stencilCompliance', 'stencilLambdas'] as const;
 
 /** The storage buffers of one cloth and the kernels' bind groups over them. */
 export class ClothBuffers {
@@ -25,8 +26,8 @@ export class ClothBuffers {
   private readonly storageLayouts: Record<KernelName, GPUBindGroupLayout>;
   /** whether any particle has a tether anchor (the tethers kernel has work), as of the last writePins */
   hasTethers = false;
-  /** whether the hinge buffers hold the model's hinges (made by the first writeParams with the hinge model) */
-  private hingesMade = false;
+  /** the stencil model whose stencils the stencil buffers hold (made by writeParams), or null: placeholders */
+  private stencilsMade: StencilModel | null = null;
   private readonly device: GPUDevice;
   private readonly model: ClothModel;
 
@@ -43,8 +44,8 @@ export class ClothBuffers {
     const counts: Record<BufferName, number> = {
       positions: n, previous: n, residuals: n, previousResiduals: n, velocities: n, invMass: n, baseInvMass: n, pinned: n,
       springs: springCount, springData: springCount, lambdas: springCount, tethers: n,
-      // placeholders: a cloth that bends with springs spends nothing on hinges (makeHinges)
-      hinges: 0, hingeWeights: 0, hingeCompliance: 0, hingeLambdas: 0,
+      // placeholders: a cloth that bends with springs spends nothing on stencils (makeStencils)
+      stencilOffsets: 0, stencilVertices: 0, stencilWeights: 0, stencilCompliance: 0, stencilLambdas: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
       normals: n, grabStart: 1, colliders: 1, carried: 1,
     };
@@ -115,28 +116,34 @@ export class ClothBuffers {
   }
 
   /**
-   * The hinge buffers at the model's size, with its hinges and their stencils (model.hinges, model.hingeWeights):
-   * made once, on the first params with the hinge model, so that a cloth bending with springs spends no GPU memory
-   * on them (48 B per hinge, about 3 hinges per particle). Like `reserve`, never during a frame's encoding.
+   * The stencil buffers at the size of the model's stencils of `kind` (model.stencils), with their entries: made on
+   * the first params with a stencil model, and anew when params switch to the other, so that a cloth bending with
+   * springs spends no GPU memory on them (hinges: 56 B each, about 3 per particle; the Laplacian: 20 B per stencil
+   * and 8 B per entry, about 6 entries per particle). Like `reserve`, never during a frame's encoding.
    */
-  private makeHinges(): void {
-    if (this.hingesMade) return;
-    this.hingesMade = true;
-    const model = this.model;
-    const hingeCount = model.hingeAreas.length;
-    if (hingeCount === 0) return;
-    for (const name of HINGE_BUFFERS) {
+  private makeStencils(kind: StencilModel): void {
+    if (this.stencilsMade === kind) return;
+    this.stencilsMade = kind;
+    const stencils = this.model.stencils[kind];
+    const count = stencils.areas.length, entries = stencils.vertices.length;
+    const sizes: Record<(typeof STENCIL_BUFFERS)[number], number> = {
+      stencilOffsets: count + 1, stencilVertices: entries, stencilWeights: entries, stencilCompliance: count, stencilLambdas: 3 * count,
+    };
+    for (const name of STENCIL_BUFFERS) {
       this.buffers[name].destroy();
-      this.buffers[name] = this.createBuffer(name, name === 'hingeLambdas' ? 3 * hingeCount : hingeCount, 0);
+      this.buffers[name] = this.createBuffer(name, sizes[name], 0);
     }
-    this.device.queue.writeBuffer(this.buffers.hinges, 0, bytes(model.hinges));
-    this.device.queue.writeBuffer(this.buffers.hingeWeights, 0, bytes(model.hingeWeights));
-    this.regroup(HINGE_BUFFERS);
+    const q = this.device.queue;
+    q.writeBuffer(this.buffers.stencilOffsets, 0, bytes(stencils.offsets));
+    if (entries) q.writeBuffer(this.buffers.stencilVertices, 0, bytes(stencils.vertices));
+    if (entries) q.writeBuffer(this.buffers.stencilWeights, 0, bytes(stencils.weights));
+    this.regroup(STENCIL_BUFFERS);
   }
 
   /**
-   * The params' per-particle inverse masses, per-spring rest length and compliance, and, with the hinge model,
-   * per-hinge compliance (−1 for both: no constraint); the hinge buffers made first if they are not yet.
+   * The params' per-particle inverse masses, per-spring rest length and compliance, and, with a stencil bending
+   * model, per-stencil compliance (−1 for both: no constraint); the stencil buffers made first if they do not hold
+   * that model's.
    */
   writeParams(params: SimParams): void {
     const model = this.model;
@@ -149,15 +156,15 @@ export class ClothBuffers {
       data[2 * s + 1] = Number.isFinite(c) ? c : -1;
     }
     if (springCount) this.device.queue.writeBuffer(this.buffers.springData, 0, data);
-    const hingeCount = model.hingeAreas.length;
-    if (params.bending !== 'hinges' || hingeCount === 0) return; // the bending phase runs for no other model
-    this.makeHinges();
-    const hinge = new Float32Array(hingeCount);
-    for (let e = 0; e < hingeCount; e++) {
-      const c = params.hingeCompliance[e];
-      hinge[e] = Number.isFinite(c) ? c : -1;
+    const stencils = bendingStencils(model, params.bending);
+    if (params.bending === 'springs' || !stencils || stencils.areas.length === 0) return; // no bending phase runs
+    this.makeStencils(params.bending);
+    const compliance = new Float32Array(stencils.areas.length);
+    for (let e = 0; e < compliance.length; e++) {
+      const c = params.stencilCompliance[e];
+      compliance[e] = Number.isFinite(c) ? c : -1;
     }
-    this.device.queue.writeBuffer(this.buffers.hingeCompliance, 0, hinge);
+    this.device.queue.writeBuffer(this.buffers.stencilCompliance, 0, compliance);
   }
 
   /** A state's positions, previous positions, their residuals and velocities. */

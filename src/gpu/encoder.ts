@@ -53,8 +53,8 @@ export function colliderRefusal(scene: Scene): string | null {
 }
 
 /**
- * The phases of the schedule the GPU implements: every phase of XPBD, hinge bending (solver.bending 'hinges')
- * included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript reference: a frame that
+ * The phases of the schedule the GPU implements: every phase of XPBD, stencil bending (solver.bending 'hinges' or
+ * 'laplacian') included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript reference: a frame that
  * needs one is refused (the mass-spring solver, the global stretch step, a collider shape it does not know).
  */
 export const GPU_PHASES: BackendPhases = {
@@ -146,10 +146,10 @@ export class FrameEncoder implements PhaseBackend {
           break;
         }
         case PHASE.bending: {
-          // batch by batch like the springs; hingeRecords is empty unless params.bending is 'hinges'
+          // batch by batch like the springs; stencilRecords is empty unless params.bending is a stencil model
           const passes = phasePasses(PHASE.bending, params);
           for (let it = 0; it < passes; it++) {
-            for (const r of u.hingeRecords) {
+            for (const r of u.stencilRecords) {
               this.dispatch('bending', r.count, so, (it === 0 ? r.first : r.later) * RECORD_STRIDE);
             }
           }

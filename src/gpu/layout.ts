@@ -29,7 +29,7 @@ export const RECORD_STRIDE = 256;
 
 
 /** Flags of a solve or bending pass record. */
-export const PASS_CAP = 1; // apply the hard stretch cap (structural and shear batches; never set on a hinge batch)
+export const PASS_CAP = 1; // apply the hard stretch cap (structural and shear batches; never set on a bending batch)
 export const PASS_READ_LAMBDA = 2; // start from the accumulated λ (second and later iterations)
 
 /**
@@ -37,7 +37,7 @@ export const PASS_READ_LAMBDA = 2; // start from the accumulated λ (second and 
  * at are both derived from it (`structLayout`, WGSL's layout rules, which for these types are the same in uniform
  * and storage buffers), so they cannot drift apart. Uniforms: `Globals` is written by setParams and (the grab) by
  * every step; `Substep` is one record per substep at RECORD_STRIDE, selected with a dynamic offset; `Pass` likewise,
- * one record per solve batch / hinge batch / collider pass. Storage: `Collider` (the `colliders` buffer) and `Carry`
+ * one record per solve batch / bending batch / collider pass. Storage: `Collider` (the `colliders` buffer) and `Carry`
  * (`carried`).
  */
 type Field = readonly [name: string, type: string, doc: string];
@@ -123,19 +123,22 @@ export const BUFFERS = {
   /** Lagrange multiplier (elastic part) per spring, accumulated over the iterations of a substep */
   lambdas: { type: 'f32', bytes: 4 },
   /**
-   * bending hinges (model.hinges, sorted by colour): shared edge x0–x1, wings x2, x3. This and the next three are
-   * placeholders until params first use the hinge model (buffers.ts makeHinges)
+   * the bending stencils of the params' model (model.stencils.hinges or .laplacian, sorted by colour): the first
+   * entry of each and one past the last's (BendingStencils.offsets). This and the next four are placeholders until
+   * params first use a stencil model, and are made anew when they switch to the other (buffers.ts makeStencils)
    */
-  hinges: { type: 'vec4u', bytes: 16 },
-  /** each hinge's stencil K (model.hingeWeights): C = Σ K_i x_i [-] */
-  hingeWeights: { type: 'vec4f', bytes: 16 },
-  /** per hinge: compliance A_e/B [m/N] or −1 for "no constraint" (params.hingeCompliance Infinity on the CPU) */
-  hingeCompliance: { type: 'f32', bytes: 4 },
+  stencilOffsets: { type: 'u32', bytes: 4 },
+  /** the particle of each stencil entry (BendingStencils.vertices) */
+  stencilVertices: { type: 'u32', bytes: 4 },
+  /** the weight K of each stencil entry (BendingStencils.weights): C = Σ K_k x_k [-] */
+  stencilWeights: { type: 'f32', bytes: 4 },
+  /** per stencil: compliance A/B [m/N] or −1 for "no constraint" (params.stencilCompliance Infinity on the CPU) */
+  stencilCompliance: { type: 'f32', bytes: 4 },
   /**
-   * Lagrange multipliers of the hinges, 3 per hinge (flat: `array<vec3f>` would have stride 16) [N·s²]
-   * (ClothState.hingeLambdas), accumulated over the iterations of a substep
+   * Lagrange multipliers of the stencils, 3 per stencil (flat: `array<vec3f>` would have stride 16) [N·s²]
+   * (ClothState.bendingLambdas), accumulated over the iterations of a substep
    */
-  hingeLambdas: { type: 'f32', bytes: 4 },
+  stencilLambdas: { type: 'f32', bytes: 4 },
   /** per particle: nearest pin (−1: none) and the rest distance to it [m] */
   tethers: { type: 'Tether', bytes: 8 },
   /** triangle vertex indices, 3 per triangle (flat: `array<vec3u>` would have stride 16) */
@@ -201,11 +204,11 @@ export const KERNELS = {
       ['springData', 'read'], ['lambdas', 'read_write'],
     ],
   },
-  /** solveBending (solvers/xpbd.ts) for one colour batch of hinges */
+  /** solveBending (solvers/xpbd.ts) for one colour batch of bending stencils (hinges or Laplacian vertices) */
   bending: {
     bindings: [
-      ['positions', 'read_write'], ['invMass', 'read'], ['hinges', 'read'], ['hingeWeights', 'read'],
-      ['hingeCompliance', 'read'], ['hingeLambdas', 'read_write'],
+      ['positions', 'read_write'], ['invMass', 'read'], ['stencilOffsets', 'read'], ['stencilVertices', 'read'],
+      ['stencilWeights', 'read'], ['stencilCompliance', 'read'], ['stencilLambdas', 'read_write'],
     ],
   },
   /** limitStretch (phases.ts), which XPBD runs after the tethers, for one structural or shear batch */
@@ -278,7 +281,7 @@ const SUBSTEP_FIELDS = [
 ] as const satisfies readonly Field[];
 
 const PASS_FIELDS = [
-  ['start', 'u32', 'first element (spring, hinge, triangle, or collider)'],
+  ['start', 'u32', 'first element (spring, bending stencil, triangle, or collider)'],
   ['end', 'u32', 'one past the last'],
   ['cap', 'f32', 'stretch cap (× rest length)'],
   ['flags', 'u32', 'PASS_* flags, or the collider index of a triangle pass'],

@@ -30,13 +30,13 @@ const carrier: ColliderSpec = {
 
 /** The phases an XPBD frame must run, straight from the table. */
 function expected(
-  substeps: number, wind: boolean, grabbed: boolean, carried = false, triangles = false, hinges = false,
+  substeps: number, wind: boolean, grabbed: boolean, carried = false, triangles = false, stencils = false,
 ): PhaseName[] {
   const runs = (name: PhaseName) => {
     const p = PHASES[PHASE[name]];
     return p.solvers.includes('xpbd') && (p.when === 'always' || (p.when === 'wind' && wind) ||
       (p.when === 'grab' && grabbed) || (p.when === 'carried' && carried) || (p.when === 'triangles' && triangles) ||
-      (p.when === 'hinges' && hinges) || p.when === 'local'); // springs one at a time (solver.stretch 'gauss-seidel')
+      (p.when === 'stencils' && stencils) || p.when === 'local'); // springs one at a time (solver.stretch 'gauss-seidel')
   };
   const of = (scope: string) => PHASES.filter((p) => p.scope === scope && runs(p.name)).map((p) => p.name);
   return [...of('frame-start'), ...Array.from({ length: substeps }, () => of('substep')).flat(), ...of('frame-end')];
@@ -46,17 +46,19 @@ describe('what the GPU implements of the schedule', () => {
   test('every phase of an XPBD frame: none is left to the TypeScript reference', () => {
     const sim = new Simulation(windyScene(), { kernel: 'ts' });
     // but carry, which a frame runs only for pins a collider carries (none here), triangle contact, only for a
-    // collider that needs it at this mesh size (none here), and hinge bending, only for solver.bending 'hinges'
-    // (and the global stretch step, which solver.stretch 'global' asks for and the GPU refuses: below)
+    // collider that needs it at this mesh size (none here), and stencil bending, only for solver.bending 'hinges' or
+    // 'laplacian' (and the global stretch step, which solver.stretch 'global' asks for and the GPU refuses: below)
     const xpbd = solverPhases('xpbd') & ~(1 << PHASE.globalStretch);
     const rare = (1 << PHASE.carry) | (1 << PHASE.contactTriangles) | (1 << PHASE.bending);
     expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(xpbd & ~rare);
     const coarse = new Simulation(windyScene((s) => { s.cloth.resolution = 1; s.colliders = [{ type: 'sphere', center: [0, 0, 0], radius: 0.3 }]; }), { kernel: 'ts' });
     expect(assignPhases(GPU_PHASES, coarse.model, coarse.params)).toBe(xpbd & ~(1 << PHASE.carry) & ~(1 << PHASE.bending));
-    // with the hinge model, bending too
-    const hinged = new Simulation(windyScene((s) => { s.solver.bending = 'hinges'; }), { kernel: 'ts' });
-    expect(assignPhases(GPU_PHASES, hinged.model, hinged.params))
-      .toBe(xpbd & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles));
+    // with a stencil model, bending too
+    for (const bending of ['hinges', 'laplacian'] as const) {
+      const bent = new Simulation(windyScene((s) => { s.solver.bending = bending; }), { kernel: 'ts' });
+      expect(assignPhases(GPU_PHASES, bent.model, bent.params))
+        .toBe(xpbd & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles));
+    }
     // the springs solved together: refused by name (the cloth lives in GPU buffers; the reference cannot step in)
     const global = new Simulation(windyScene((s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
     expect(() => assignPhases(GPU_PHASES, global.model, global.params)).toThrow(/does not implement phase 'globalStretch'/);
@@ -108,8 +110,8 @@ describe.skipIf(!gpu)('the GPU encodes the schedule', () => {
     expect(log.names()).toEqual(expected(3, true, false, true, true));
   });
 
-  test('the hinge bending model: bending, by the GPU, after distance in every substep', async () => {
-    const sim = new Simulation(windyScene((s) => { s.solver.bending = 'hinges'; }), { kernel: 'ts' });
+  test.each(['hinges', 'laplacian'] as const)('the %s bending model: bending, by the GPU, after distance in every substep', async (bending) => {
+    const sim = new Simulation(windyScene((s) => { s.solver.bending = bending; }), { kernel: 'ts' });
     const state = createState(sim.model);
     copyState(sim.state, state);
     const solver = await GpuClothSolver.create(gpu!.device, sim.model);

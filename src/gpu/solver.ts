@@ -81,8 +81,8 @@ export class GpuClothSolver {
 
   /**
    * Takes new parameters (stiffness, damping, mass, gravity, wind, colliders, substeps, iterations, the bending
-   * model...) without rebuilding anything but the uniform tables (and, on the first params with the hinge model, the
-   * hinges' buffers). `step` calls it by itself when handed a different params object; call it after changing a
+   * model...) without rebuilding anything but the uniform tables (and, on the first params with a stencil bending
+   * model or a switch to the other, the stencils' buffers). `step` calls it by itself when handed a different params object; call it after changing a
    * params object in place. Throws for what the GPU does not implement (GPU_PHASES: the mass-spring solver, a
    * collider type its kernels do not know). Colliders may move (keyframes, or a drive the library sets on
    * params.colliders: read every frame) and carry pins.
@@ -149,7 +149,7 @@ export class GpuClothSolver {
   /** Dispatches one frame encodes (for reports). */
   dispatchesPerFrame(params: SimParams): number {
     const u = this.uniforms;
-    return dispatchesPerFrame(params, u.batchRecords, u.hingeRecords, u.collidePasses, this.buffers.hasTethers);
+    return dispatchesPerFrame(params, u.batchRecords, u.stencilRecords, u.collidePasses, this.buffers.hasTethers);
   }
 
   /** Frees every GPU buffer. The solver cannot be used afterwards. */

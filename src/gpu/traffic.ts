@@ -2,10 +2,10 @@
  * What one frame of the GPU solver costs, counted from the model, the params and the pass lists (for the benchmark
  * and reports; docs/gpu.md, "Benchmark"): bytes each kernel moves per substep, and dispatches per frame.
  */
-import type { ClothModel } from '../core/model.js';
+import { bendingStencils, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import { CARRY, COLLIDER } from './layout.js';
-import type { BatchRecords, CollidePass, HingeBatchRecords } from './uniforms.js';
+import type { BatchRecords, CollidePass, StencilBatchRecords } from './uniforms.js';
 
 /** Bytes one substep's kernels read and write, as written (each element access counted once per thread). */
 export interface SubstepTraffic {
@@ -29,10 +29,12 @@ export function substepTraffic(model: ClothModel, params: SimParams, collidePass
   solve *= params.iterations;
   solve += S * 4 * (params.iterations - 1); // λ read after the first pass
   add('solve', solve);
-  if (params.bending === 'hinges') {
-    const H = model.hingeAreas.length;
-    let bending = H * (16 + 16 + 4 + 16 + 64 + 64); // hinge, K, compliance, w×4, x×4 in and out
-    bending += H * 12; // λ written
+  const stencils = bendingStencils(model, params.bending);
+  if (stencils) {
+    const H = stencils.areas.length, E = stencils.vertices.length;
+    // per stencil: its two offsets, compliance, λ written; per entry: particle, K, w, x read to make C, then
+    // particle, K, w, x read and written to move it
+    let bending = H * (8 + 4 + 12) + E * ((4 + 4 + 4 + 16) + (4 + 4 + 4 + 16 + 16));
     bending *= params.iterations;
     bending += H * 12 * (params.iterations - 1); // λ read after the first pass
     add('bending', bending);
@@ -56,15 +58,15 @@ export function substepTraffic(model: ClothModel, params: SimParams, collidePass
 
 /**
  * Dispatches one frame encodes with nothing grabbed (prepare, velocities and normals once; the rest per substep);
- * `hingeRecords` is empty unless params.bending is 'hinges'.
+ * `stencilRecords` is empty unless params.bending is a stencil model.
  */
 export function dispatchesPerFrame(
-  params: SimParams, batchRecords: readonly BatchRecords[], hingeRecords: readonly HingeBatchRecords[],
+  params: SimParams, batchRecords: readonly BatchRecords[], stencilRecords: readonly StencilBatchRecords[],
   collidePasses: readonly CollidePass[], hasTethers: boolean,
 ): number {
   const stretchBatches = batchRecords.filter((r) => r.stretch).length;
   const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) +
-    params.iterations * (batchRecords.length + hingeRecords.length) + stretchBatches + (hasTethers ? 1 : 0) +
+    params.iterations * (batchRecords.length + stencilRecords.length) + stretchBatches + (hasTethers ? 1 : 0) +
     collidePasses.length;
   return 3 + params.substeps * perSubstep;
 }

@@ -1,11 +1,11 @@
 /**
  * The uniform tables every kernel reads (group 0, layout.ts): `Globals` (the params, and the grab of each frame),
  * one `Substep` record per substep (written every frame), and one `Pass` record per constraint batch variant, per
- * hinge batch variant and per contact pass (written with the params), with the lists of those passes the encoder
+ * bending batch variant and per contact pass (written with the params), with the lists of those passes the encoder
  * dispatches.
  */
 import type {} from 'webgpu';
-import { BEND, type ClothModel } from '../core/model.js';
+import { BEND, bendingStencils, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import { needsTriangleContact } from '../core/phases.js';
 import type { ClothState } from '../core/state.js';
@@ -33,13 +33,13 @@ export interface BatchRecords {
   readonly stretch: boolean;
 }
 
-/** Pass-record indices of one colour batch of bending hinges: first pass (λ from 0), later ones (λ accumulated). */
-export interface HingeBatchRecords {
+/** Pass-record indices of one colour batch of bending stencils: first pass (λ from 0), later ones (λ accumulated). */
+export interface StencilBatchRecords {
   /** its Pass record for a substep's first pass (λ from 0) */
   readonly first: number;
   /** its Pass record for the later passes (PASS_READ_LAMBDA) */
   readonly later: number;
-  /** hinges in the batch (threads) */
+  /** stencils in the batch (threads) */
   readonly count: number;
 }
 
@@ -49,8 +49,8 @@ export class UniformTables {
   group: GPUBindGroup;
   /** the constraint batches' records, in model.batches order */
   batchRecords: BatchRecords[] = [];
-  /** the hinge batches' records, in model.hingeBatches order; none unless params.bending is 'hinges' */
-  hingeRecords: HingeBatchRecords[] = [];
+  /** the bending stencils' batch records, in their batches' order; none unless params.bending is a stencil model */
+  stencilRecords: StencilBatchRecords[] = [];
   /** the contact passes of a substep, in order */
   collidePasses: CollidePass[] = [];
   private readonly device: GPUDevice;
@@ -120,8 +120,8 @@ export class UniformTables {
     const triangleShapes = params.colliders.map((shape) => needsTriangleContact(model, shape, params.thickness));
     q.writeBuffer(this.globalsBuffer, 0, this.globals);
 
-    // pass records: constraint batches (two variants each), hinge batches (two each, only for the hinge model:
-    // the bending phase runs for no other), then contact
+    // pass records: constraint batches (two variants each), bending stencil batches (two each, only for a stencil
+    // model: the bending phase runs for no other), then contact
     const records: number[][] = []; // [start, end, cap(float), flags]
     this.batchRecords = model.batches.map((b) => {
       const cap = b.kind === BEND ? 0 : PASS_CAP;
@@ -130,7 +130,7 @@ export class UniformTables {
       records.push([b.start, b.end, params.stretchFactor, cap | PASS_READ_LAMBDA]);
       return { first: at, later: at + 1, count: b.end - b.start, stretch: b.kind !== BEND };
     });
-    this.hingeRecords = params.bending !== 'hinges' ? [] : model.hingeBatches.map((b) => {
+    this.stencilRecords = (bendingStencils(model, params.bending)?.batches ?? []).map((b) => {
       const at = records.length;
       records.push([b.start, b.end, 0, 0]);
       records.push([b.start, b.end, 0, PASS_READ_LAMBDA]);

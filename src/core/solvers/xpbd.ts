@@ -14,7 +14,7 @@
  * an impact only a few springs; these keep a fine cloth from overstretching meanwhile (docs/physics.md).
  * Its own phase is the distance constraints; the schedule (schedule.ts) strings it together with the shared ones.
  */
-import { BEND, type ClothModel } from '../model.js';
+import { BEND, bendingStencils, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
 
@@ -72,40 +72,45 @@ export function solveDistanceConstraints(
 }
 
 /**
- * One Gauss–Seidel pass over the bending hinges (solver.bending 'hinges'), batch by batch: the isometric bending
- * model of Bergou et al. 2006 as an XPBD constraint. Each hinge's C = Σ K_i x_i (model.ts buildHinges) is linear in
- * the positions, a 3-vector with ∇_{x_i} C = K_i·I, and its energy ½·|C|²/α with compliance α = A_e / B
- * (params.hingeCompliance) sums over the hinges to ½·B·κ² per unit area for a sheet bent to curvature κ without
- * stretching (measured in solvers/bending.test.ts). So, with α̃ = α/h² (Macklin et al. 2016, the constraint's
- * three components at once, their system being diagonal):
- *   Δλ = (−C − α̃·λ) / (Σ w_i K_i² + α̃),   Δx_i = w_i·K_i·Δλ.
+ * One Gauss–Seidel pass over the bending stencils of the params' model (solver.bending 'hinges' or 'laplacian';
+ * model.ts BendingStencils), batch by batch. Each stencil's C = Σ K_k x_k is linear in the positions, a 3-vector
+ * with ∇_{x_k} C = K_k·I, and its energy ½·|C|²/α with compliance α = A/B (params.stencilCompliance) sums to the
+ * plate's ½·B·κ² per unit area for a sheet bent to curvature κ without stretching: the isometric bending model of
+ * Bergou et al. 2006 at the hinges (4 particles), the cotangent Laplacian (Wardetzky et al. 2007) at the interior
+ * vertices (the vertex and its neighbours). So, with α̃ = α/h² (Macklin et al. 2016, the constraint's three
+ * components at once, their system being diagonal):
+ *   Δλ = (−C − α̃·λ) / (Σ w_k K_k² + α̃),   Δx_k = w_k·K_k·Δλ.
  * No damping term: bending is undamped (the stretch constraints' damping and the air carry the losses). With
- * `accumulate`, λ is read from state.hingeLambdas (several passes per substep); otherwise it starts from zero.
+ * `accumulate`, λ is read from state.bendingLambdas (several passes per substep); otherwise it starts from zero.
  */
 export function solveBending(model: ClothModel, state: ClothState, params: SimParams, h: number, accumulate: boolean): void {
-  const x = state.positions, w = state.invMass, lambdas = state.hingeLambdas;
-  const hinges = model.hinges, K = model.hingeWeights, compliance = params.hingeCompliance;
+  const stencils = bendingStencils(model, params.bending);
+  if (!stencils) return;
+  const x = state.positions, w = state.invMass, lambdas = state.bendingLambdas;
+  const { offsets, vertices, weights: K } = stencils, compliance = params.stencilCompliance;
   const invH2 = 1 / (h * h);
-  for (const batch of model.hingeBatches) {
+  for (const batch of stencils.batches) {
     for (let e = batch.start; e < batch.end; e++) {
       const alpha = compliance[e];
       if (alpha === Infinity) continue;
-      const i0 = 3 * hinges[4 * e], i1 = 3 * hinges[4 * e + 1], i2 = 3 * hinges[4 * e + 2], i3 = 3 * hinges[4 * e + 3];
-      const k0 = K[4 * e], k1 = K[4 * e + 1], k2 = K[4 * e + 2], k3 = K[4 * e + 3];
-      const w0 = w[i0 / 3], w1 = w[i1 / 3], w2 = w[i2 / 3], w3 = w[i3 / 3];
+      const from = offsets[e], to = offsets[e + 1];
+      let sum = 0, cx = 0, cy = 0, cz = 0;
+      for (let k = from; k < to; k++) {
+        const i = vertices[k], kk = K[k], at = 3 * i;
+        sum += w[i] * kk * kk;
+        cx += kk * x[at]; cy += kk * x[at + 1]; cz += kk * x[at + 2];
+      }
       const alphaT = alpha * invH2;
-      const denom = w0 * k0 * k0 + w1 * k1 * k1 + w2 * k2 * k2 + w3 * k3 * k3 + alphaT;
+      const denom = sum + alphaT;
       if (!(denom > 0)) continue;
       const inv = 1 / denom;
-      for (let c = 0; c < 3; c++) {
-        const C = k0 * x[i0 + c] + k1 * x[i1 + c] + k2 * x[i2 + c] + k3 * x[i3 + c];
-        const lambda = accumulate ? lambdas[3 * e + c] : 0;
-        const dl = (-C - alphaT * lambda) * inv;
-        lambdas[3 * e + c] = lambda + dl;
-        x[i0 + c] += w0 * k0 * dl;
-        x[i1 + c] += w1 * k1 * dl;
-        x[i2 + c] += w2 * k2 * dl;
-        x[i3 + c] += w3 * k3 * dl;
+      const l = 3 * e;
+      const lx = accumulate ? lambdas[l] : 0, ly = accumulate ? lambdas[l + 1] : 0, lz = accumulate ? lambdas[l + 2] : 0;
+      const dx = (-cx - alphaT * lx) * inv, dy = (-cy - alphaT * ly) * inv, dz = (-cz - alphaT * lz) * inv;
+      lambdas[l] = lx + dx; lambdas[l + 1] = ly + dy; lambdas[l + 2] = lz + dz;
+      for (let k = from; k < to; k++) {
+        const i = vertices[k], s = w[i] * K[k], at = 3 * i;
+        x[at] += s * dx; x[at + 1] += s * dy; x[at + 2] += s * dz;
       }
     }
   }

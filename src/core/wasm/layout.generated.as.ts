@@ -68,7 +68,7 @@ export const PHASE_GRAB: i32 = 5;
 export const PHASE_GLOBAL_STRETCH: i32 = 6;
 /** substep: XPBD distance constraints, colour batch by colour batch */
 export const PHASE_DISTANCE: i32 = 7;
-/** substep: XPBD isometric bending at the hinges (Bergou et al. 2006), colour batch by colour batch */
+/** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
 export const PHASE_BENDING: i32 = 8;
 /** substep: long-range attachments to the nearest pin */
 export const PHASE_TETHERS: i32 = 9;
