@@ -146,13 +146,16 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
     } else throw new Error(`${name}: not a fabric test`);
   });
 
-  // The mannequin's scenes, moving colliders and carried pins at once: seen at frame 20 (SwiftShader) 1.9e-5 m and a
-  // centroid 5.6e-7 m off for the cape, 7.7e-7 m and 3.6e-8 m for the skirt → 1e-4 m and 5e-6 m.
+  // The mannequin's scenes, moving colliders and carried pins at once. Seen at frame 20 (SwiftShader, Voronoi masses):
+  // the cape 1.1e-4 m and a centroid 9.9e-7 m off, the skirt 3.9e-6 m and 6.4e-8 m. The cape's shoulders stick and
+  // slip on the turning body, and which particle is furthest off changes every few frames: the CPU's own kernels
+  // differ by 3.1e-5 m there (ts against wasm) and the CPU by 1.1e-5–4.9e-5 m from start positions nudged by 1e-7
+  // (relative, six draws), so rounding grows ~100× in 20 frames → 5e-4 m and 5e-6 m.
   test.each(MANNEQUIN)('%s: the GPU follows the CPU for 20 frames, the carried pins with it', async (name) => {
     const p = await pair(scene(name));
     expect(p.params.carried.particles.length).toBeGreaterThan(0);
     await p.advance(20);
-    expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-4);
+    expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(5e-4);
     expect(centroidDistance(p.gpu, p.cpu)).toBeLessThan(5e-6);
   });
 
