@@ -20,14 +20,14 @@
  * is held without a refactor: with z = A⁻¹·e_g (one solve when the grab starts), the solution u of the unconstrained
  * system becomes x = u + z·(p_g − u_g)/z_g, which is exactly the solve with x_g = p_g.
  *
- * Every spring with stiffness takes part (structural, shear, and the skip-one bend springs unless solver.bending is
- * 'hinges', whose own phase follows). The springs' damping β (material.damping) is a second projective term per
- * spring, weight β/h, whose projection is the relative position x_a − x_b less its motion along the spring since the
- * substep's start: converged, it is ½(β/h)·((Δx_a − Δx_b)·n)², the damping of the stretching rate only (as XPBD's,
- * Macklin et al. 2016 §3.5); bending and swinging are not damped by it. The tethers and the stretch limit do not run with this
- * step: they are there to bound a sweep's overstretch, and projecting after a converged solve fights it (a
- * hammock pinned at four corners kept 10⁴ times the kinetic energy). The result is written back as float32 positions
- * beside their unchanged residuals.
+ * Every spring with stiffness takes part (structural, shear, and the skip-one bend springs unless solver.bending is a
+ * stencil model, 'hinges' or 'laplacian', whose own phase follows). The springs' damping β (material.damping) is a
+ * second projective term per spring, weight β/h, whose projection is the relative position x_a − x_b less its motion
+ * along the spring since the substep's start: converged, it is ½(β/h)·((Δx_a − Δx_b)·n)², the damping of the stretching
+ * rate only (as XPBD's, Macklin et al. 2016 §3.5); bending and swinging are not damped by it. The tethers and the
+ * stretch limit do not run with this step: they are there to bound a sweep's overstretch, and projecting after a
+ * converged solve fights it (a hammock pinned at four corners kept 10⁴ times the kinetic energy). The result is written
+ * back as float32 positions beside their unchanged residuals.
  */
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
