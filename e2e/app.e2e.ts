@@ -110,6 +110,19 @@ describe('WebGPU page', () => {
     expect(await hook(page, 'slots')).toBe(1);
     expect((await hook<string[]>(page, 'labels'))[0]).toContain('1 face');
     expect(await hook(page, 'particleCount')).toBe(4);
+    // the resolution menu shows the resolution on screen, in words that count right
+    const shownResolution = () => byId(page, 'cloth.resolution').locator('select').evaluate((s: HTMLSelectElement) => s.selectedOptions[0]?.textContent ?? '');
+    expect(await shownResolution()).toBe('1 × 1  (1 face)');
+    // the title sits on screen, at the top between the HUD and the panel (a place above the cloth was off-screen)
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    const box = (sel: string) => page.locator(sel).first().evaluate((e) => { const r = e.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; });
+    const [ll, lt, lr, lb] = await box('.drape-label');
+    const [, , hudRight] = await box('.drape-hud');
+    const [panelLeft] = await box('.lil-gui.drape-panel');
+    expect(ll).toBeGreaterThanOrEqual(hudRight);
+    expect(lr).toBeLessThanOrEqual(panelLeft);
+    expect(lt).toBeGreaterThanOrEqual(0);
+    expect(lb).toBeLessThan(120);
     // one face: the seed's version fell through the sphere (contact at particles only); the core's triangle
     // contact holds it on top, flat and undeformable
     await step(page, 180);
@@ -121,6 +134,7 @@ describe('WebGPU page', () => {
     await page.waitForFunction(() => (window as any).drape.particleCount() === 9, null, { timeout: 20_000 });
     expect((await hook<string[]>(page, 'labels'))[0]).toContain('4 faces');
     await pause(page);
+    expect(await shownResolution()).toBe('2 × 2  (4 faces)');
 
     await choose(page, 'sweep', 'side by side');
     expect(await hook(page, 'slots')).toBe(7);
@@ -367,11 +381,21 @@ describe('WebGPU page', () => {
     expect(glb.name).toBe('leather-stiff.glb');
     expect(glb.data.toString('ascii', 0, 4)).toBe('glTF');
 
+    // the view without the panel: the 960 × 600 page less the panel's 300 px, at pixel ratio 1 (?lite)
     const png = await get('screenshot');
     expect(png.name).toBe('drape-leather-stiff.png');
     const img = decodePng(png.data);
-    expect(img.width).toBeGreaterThan(100);
+    const panelWidth = await page.locator('.lil-gui.drape-panel').first().evaluate((e) => e.getBoundingClientRect().width);
+    expect([img.width, img.height]).toEqual([960 - panelWidth, 600]);
     expect(imageStats(img).colours).toBeGreaterThan(20);
+    // at a chosen size
+    await choose(page, 'png.size', '1280 × 720');
+    const hd = decodePng((await get('screenshot')).data);
+    expect([hd.width, hd.height]).toEqual([1280, 720]);
+    expect(imageStats(hd).colours).toBeGreaterThan(20);
+    await choose(page, 'png.size', 'the view, as on screen');
+    // the page's own canvas is back at its size after the export
+    expect(await page.locator('canvas').first().evaluate((c: HTMLCanvasElement) => [c.width, c.height])).toEqual([960, 600]);
   });
 
   it('the URL hash holds the scene: a link reproduces it; a bad link says so and shows the default', async () => {

@@ -49,11 +49,14 @@ export interface Browser {
   close(): Promise<void>;
 }
 
-export async function launch(kind: BrowserKind): Promise<Browser> {
+/** `viewport`: the page's size in CSS px (default 960 × 600); `touch`: a touch screen, as a phone's */
+export async function launch(kind: BrowserKind, options: { viewport?: { width: number; height: number }; touch?: boolean } = {}): Promise<Browser> {
+  const viewport = options.viewport ?? VIEWPORT;
+  const hasTouch = options.touch ?? false;
   const endpoint = (inject('browsers') as Partial<Record<BrowserKind, string>> | undefined)?.[kind];
   if (endpoint) {
     const browser = await chromium.connect(endpoint);
-    const context = await browser.newContext({ viewport: VIEWPORT, acceptDownloads: true });
+    const context = await browser.newContext({ viewport, hasTouch, acceptDownloads: true });
     await context.addInitScript(CSP_REPORTER);
     return {
       context,
@@ -68,7 +71,8 @@ export async function launch(kind: BrowserKind): Promise<Browser> {
     executablePath: chromiumPath(),
     headless: true,
     args: argsFor(kind),
-    viewport: VIEWPORT,
+    viewport,
+    hasTouch,
     acceptDownloads: true,
   });
   // every Content-Security-Policy violation of any page becomes a console error, which collectErrors records

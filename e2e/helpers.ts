@@ -22,10 +22,11 @@ export function withHook(query: string): string {
 /**
  * Opens the built app. `hash` is the URL hash (scene link); `query` defaults to `?lite` (cheaper rendering on
  * SwiftShader: no MSAA, pixel ratio 1; the same code paths otherwise). `?testhook` is added: the built site has
- * no `window.drape` without it. The page is paused from the start (see pause): a running page steps and redraws
+ * no `window.drape` without it. `options.openFolders: false` leaves the panel's folders as the page opened them.
+ * The page is paused from the start (see pause): a running page steps and redraws
  * every frame, which on SwiftShader takes the CPU from everything else a test does; tests step it explicitly.
  */
-export async function openApp(context: BrowserContext, hash = '', query = '?lite'): Promise<Opened> {
+export async function openApp(context: BrowserContext, hash = '', query = '?lite', options: { openFolders?: boolean } = {}): Promise<Opened> {
   const page = await context.newPage();
   const errors = collectErrors(page);
   await page.goto(`${inject('baseURL')}${withHook(query)}${hash}`);
@@ -34,8 +35,10 @@ export async function openApp(context: BrowserContext, hash = '', query = '?lite
   await pause(page);
   await page.waitForFunction(() => (window as any).drape.ready === true, null, { timeout: 30_000, polling: POLL_MS });
   const readyMs = await page.evaluate(() => (window as any).drape.firstFrameMs as number);
-  // open every panel folder so that all controls can be reached
-  await page.evaluate(() => document.querySelectorAll<HTMLElement>('.lil-gui.lil-closed > .lil-title').forEach((t) => t.click()));
+  // open every panel folder so that all controls can be reached (unless the test looks at the page as it opens)
+  if (options.openFolders !== false) {
+    await page.evaluate(() => document.querySelectorAll<HTMLElement>('.lil-gui.lil-closed > .lil-title').forEach((t) => t.click()));
+  }
   return { page, errors, readyMs };
 }
 
@@ -135,7 +138,7 @@ export async function loadScene(page: Page, label: string, resolution?: number):
   // choosing the option already shown fires no change: go through another scene to start afresh
   if (current === label) await choose(page, 'scene', label === 'Cotton Basic' ? 'Silk Drape' : 'Cotton Basic');
   await choose(page, 'scene', label);
-  if (resolution) await choose(page, 'cloth.resolution', `${resolution} × ${resolution}  (${resolution * resolution} faces)`);
+  if (resolution) await choose(page, 'cloth.resolution', `${resolution} × ${resolution}  (${(resolution * resolution).toLocaleString('en')} face${resolution === 1 ? '' : 's'})`);
   await page.waitForFunction(() => (window as any).drape.frame() === 0, null, { polling: POLL_MS });
 }
 

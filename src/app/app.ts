@@ -17,6 +17,7 @@ import { Commands } from './commands.js';
 import { FileExport } from './file-export.js';
 import { FileImport } from './file-import.js';
 import { Interaction } from './interaction.js';
+import { Layout } from './layout.js';
 import { FrameLoop } from './loop.js';
 import { MeshImport } from './mesh-import.js';
 import { MeshStore } from './meshes.js';
@@ -57,6 +58,8 @@ export class App {
   readonly overlay: Overlay;
   readonly hud: Hud;
   readonly panel: Panel;
+  /** the HUD and the panel shown or hidden, compact on a narrow screen */
+  readonly layout: Layout;
   readonly interaction: Interaction;
   readonly fileImport: FileImport;
   readonly meshImport: MeshImport;
@@ -87,10 +90,12 @@ export class App {
     // capture phase: lil-gui stops key events from its controls, and shortcuts should work while one has focus
     window.addEventListener('keydown', shortcutListener(this.commands, this.overlay), { capture: true });
     const fit = () => {
-      this.stage.insetRight = this.panel.gui.domElement.getBoundingClientRect().width;
+      // a collapsed panel is a title bar: the view is centred on the whole width
+      const gui = this.panel.gui;
+      this.stage.insetRight = gui._closed ? 0 : gui.domElement.getBoundingClientRect().width;
       this.stage.resize();
     };
-    fit();
+    this.layout = new Layout(root, this.hud, this.panel.gui, fit);
     window.addEventListener('resize', fit);
     window.addEventListener('hashchange', () => this.link.onHashChange());
     new ResizeObserver(() => this.stage.resize()).observe(stage.container);

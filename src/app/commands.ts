@@ -28,6 +28,13 @@ export class Commands implements PanelHost, InteractionHost {
   get pinTool() { return this.app.pinTool; }
   get sweepLayout() { return this.app.sweep.layout; }
   get backendChoice() { return this.app.backend.choice; }
+
+  /** the resolution of the cloth on screen: the sweep's current one when it runs one after another */
+  get shownResolution(): number {
+    const { sweep, scene } = this.app;
+    const list = sweep.list();
+    return list.length && sweep.layout === 'sequence' ? list[sweep.index % list.length] : scene.cloth.resolution;
+  }
   get sim() { return this.app.sim; }
   get camera() { return this.app.stage.camera; }
 
@@ -178,6 +185,11 @@ export class Commands implements PanelHost, InteractionHost {
     this.app.panel.updatePlay();
   }
 
+  /** Hides or shows the HUD and the panel (H). */
+  toggleLayout(): void {
+    this.app.layout.toggle();
+  }
+
   /** One frame forward, pausing first. */
   stepOnce(): void {
     if (!this.app.sim.paused) this.togglePause();
@@ -300,8 +312,8 @@ export class Commands implements PanelHost, InteractionHost {
   }
 
   /** Downloads a PNG of the view. */
-  screenshot(): void {
-    this.app.fileExport.screenshot();
+  screenshot(size: string): void {
+    this.app.fileExport.screenshot(size);
   }
 
   /** Downloads the cloths as OBJ. */

@@ -8,6 +8,18 @@ import { fabricFor, fabricLook } from '../render/textures.js';
 import type { App } from './app.js';
 import { baseName, sceneMesh } from './meshes.js';
 
+/**
+ * A screenshot's pixel size: 'W×H' (written with an x) as it says, or 'view': the free part of the window, `viewW` ×
+ * `viewH` CSS px, at the screen's pixel `ratio` (the panel's sizes: ui/panel.ts PNG_SIZES); between 16 and 4096 px a side, never NaN.
+ */
+export function pngSize(size: string, viewW: number, viewH: number, ratio: number): [number, number] {
+  const m = /^(\d+)x(\d+)$/.exec(size);
+  const r = Number.isFinite(ratio) && ratio > 0 ? ratio : 1;
+  const [w, h] = m ? [Number(m[1]), Number(m[2])] : [viewW * r, viewH * r];
+  const side = (v: number) => Math.min(4096, Math.max(16, Math.round(Number.isFinite(v) ? v : 16)));
+  return [side(w), side(h)];
+}
+
 /** The page's downloads. */
 export class FileExport {
   constructor(private readonly app: App) {}
@@ -45,14 +57,17 @@ export class FileExport {
     }
   }
 
-  /** Downloads the view as it is drawn now, as PNG. */
-  screenshot(): void {
+  /**
+   * Downloads the view as PNG, without the part the panel covers: `size` 'view' is the free part of the window at
+   * the screen's pixel ratio, or 'WxH' pixels, the subject centred as on screen.
+   */
+  screenshot(size: string = 'view'): void {
     const { stage, overlay } = this.app;
-    stage.render();
-    stage.renderer.domElement.toBlob((blob) => {
+    const [w, h] = pngSize(size, stage.container.clientWidth - stage.viewInset, stage.container.clientHeight, stage.renderer.getPixelRatio());
+    void stage.snapshot(w, h).then((blob) => {
       if (blob) this.download(blob, `drape-${this.fileBase()}.png`);
       else overlay.message('screenshot failed: the canvas could not be read');
-    }, 'image/png');
+    });
   }
 
   /** why the cloths cannot be exported now ('' when they can): never a file with NaN in it */

@@ -3,6 +3,7 @@ import { measureTest, plainText, type TestResult } from '../core/index.js';
 import type { HudInfo } from '../ui/hud.js';
 import { SCENE_LABELS } from '../ui/panel.js';
 import type { App } from './app.js';
+import { slowCause } from './frame-clock.js';
 import { fitSideBySide } from './limits.js';
 import { linkCannotCarry } from './mesh-import.js';
 import { sceneMesh } from './meshes.js';
@@ -37,6 +38,7 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
   }
   // the standard fabric test the scene is, measured on the first cloth as the page has it now
   const first = sim.mirrors[0];
+  const slow = !sim.paused && sim.stats.realTime < 0.9 ? slowCause(sim.stats.realTime, sim.stats.stepMs, fps) : null;
   const measured = scene.test && first && first.unstableAt < 0 ? measureTest(first.sim.model, first.sim.state, scene) : undefined;
   return {
     notes,
@@ -48,7 +50,8 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
       : `CPU (worker${sim.stats.kernel === 'wasm' ? ', WebAssembly SIMD' : sim.stats.kernel === 'ts' ? ', TypeScript' : ''})`,
     backendNote: app.backend.note,
     stepMs: sim.stats.stepMs,
-    realTime: sim.stats.realTime,
+    slow: slow?.text ?? '',
+    slowBy: slow?.by ?? '',
     paused: sim.paused,
     particles, triangles, springs,
     solver: scene.solver.type,

@@ -39,23 +39,34 @@ export class SweepLabels {
     });
   }
 
-  /** Moves each label to its cloth's place on screen (every drawn frame). */
+  /**
+   * Moves the labels (every drawn frame). One cloth (one after another): a title at the top of the view, centred
+   * in the free space between the HUD and the panel, or at the bottom when that space is too narrow (a phone) — a
+   * place in the scene above the cloth can be off-screen. A row: placards on the floor in front of each cloth.
+   */
   place(): void {
     const app = this.app;
     const rect = app.stage.container.getBoundingClientRect();
+    if (app.sweep.layout === 'sequence' && this.labels.length === 1) {
+      const l = this.labels[0];
+      const hud = app.hud.el.hidden ? 0 : app.hud.el.getBoundingClientRect().right;
+      const right = rect.width - app.stage.viewInset;
+      const top = right - hud >= l.offsetWidth + 24;
+      const x = top ? (hud + right) / 2 : rect.width / 2;
+      l.style.display = '';
+      l.style.transform = `translate(-50%, ${top ? '0' : '-100%'}) translate(${x}px, ${top ? 12 : rect.height - 44}px)`;
+      return;
+    }
     const v = new Vector3();
     app.sim.mirrors.forEach((m, k) => {
       const l = this.labels[k];
       if (!l) return;
       const p = m.sim.scene.cloth.position;
-      // one cloth: a title above it; a row: placards on the floor in front of each
-      const row = this.labels.length > 1;
-      if (row) v.set(p[0], 0, p[2] + 0.75);
-      else v.set(p[0], p[1] + 0.3, p[2]);
+      v.set(p[0], 0, p[2] + 0.75);
       v.project(app.stage.camera);
       const visible = v.z < 1;
       l.style.display = visible ? '' : 'none';
-      l.style.transform = `translate(-50%, ${row ? '0' : '-100%'}) translate(${((v.x + 1) / 2) * rect.width}px, ${((1 - v.y) / 2) * rect.height}px)`;
+      l.style.transform = `translate(-50%, 0) translate(${((v.x + 1) / 2) * rect.width}px, ${((1 - v.y) / 2) * rect.height}px)`;
     });
   }
 }

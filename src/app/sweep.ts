@@ -94,6 +94,7 @@ export class Sweep {
       return;
     }
     app.slots.syncViews();
+    app.panel.sync(); // the resolution menu shows the one now on screen
   }
 
   /** The panel's sweep layout: the sweep starts again in it; a layout the simulation refuses leaves things as they were. */

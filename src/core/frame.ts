@@ -6,6 +6,7 @@
  */
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
+import { keepGrabOutside } from './phases.js';
 import { REFERENCE } from './reference.js';
 import { PHASE_COUNT, SCOPE_PHASES, assignPhases, framePhases, type BackendPhases, type PhaseLog } from './schedule.js';
 import type { ClothState } from './state.js';
@@ -53,6 +54,7 @@ export function runFrame(
   f.forced = false;
   const own = backend ? assignPhases(backend.phases, model, params) : 0;
   const phases = framePhases(model, state, params);
+  keepGrabOutside(state, params, state.time, state.time + dt);
   runPhases(phases & SCOPE_PHASES['frame-start'], own, backend, model, state, params, log);
   const g = state.grabbed, x = state.positions, from = f.grabFrom;
   if (g >= 0) { from[0] = x[3 * g]; from[1] = x[3 * g + 1]; from[2] = x[3 * g + 2]; }

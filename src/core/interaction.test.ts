@@ -3,7 +3,7 @@ import { pickParticle } from './pick.js';
 import { presetParticles, resolvePins } from './pins.js';
 import { builtinScene } from './scenes.js';
 import { Simulation } from './simulation.js';
-import { setPinned } from './state.js';
+import { grab, setPinned } from './state.js';
 
 describe('picking, pins and live changes', () => {
   const sim = () => new Simulation(builtinScene('custom')!); // 33×33 horizontal cloth at y = 1.2
@@ -27,6 +27,30 @@ describe('picking, pins and live changes', () => {
     expect(presetParticles(s.model, 'center')).toEqual([16 * 33 + 16]);
     expect(presetParticles(s.model, 'left-edge')).toHaveLength(33);
     expect(resolvePins(s.model, ['top-left', 0, 'top-right'])).toEqual([0, 32]);
+  });
+
+  // a pointer dragged into the sphere: the grabbed particle is kinematic (contact skips it), so the target itself is
+  // kept outside, on every CPU kernel (the GPU solver's own test: gpu.test.ts)
+  it.each(['ts', 'wasm'] as const)('%s: a grab pulled into the sphere holds the particle outside it', (kernel) => {
+    const scene = builtinScene('custom')!;
+    scene.cloth.resolution = 8;
+    const s = new Simulation(scene, { kernel });
+    const sphere = scene.colliders.find((c) => c.type === 'sphere')!;
+    if (sphere.type !== 'sphere') throw new Error('custom has a sphere');
+    const [cx, cy, cz] = sphere.center;
+    const p = 4 * 9 + 4; // the middle particle
+    s.advance(10);
+    grab(s.state, p, [cx + 0.01, cy + 0.05, cz]); // near the centre, deep inside
+    s.advance(5);
+    const x = s.state.positions;
+    const r = Math.hypot(x[3 * p] - cx, x[3 * p + 1] - cy, x[3 * p + 2] - cz);
+    const th = s.params.thickness;
+    expect(r).toBeGreaterThanOrEqual(sphere.radius + th - 1e-6);
+    expect(r).toBeLessThan(sphere.radius + th + 1e-4);
+    // out along the normal through the asked point: above the centre, a little to +x
+    expect(x[3 * p + 1]).toBeGreaterThan(cy + 0.9 * sphere.radius);
+    expect(x[3 * p]).toBeGreaterThan(cx);
+    s.dispose();
   });
 
   it('a particle pinned at run time stops, and moves again when unpinned', () => {

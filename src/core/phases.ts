@@ -164,6 +164,28 @@ export function moveGrabbed(state: ClothState, fx: number, fy: number, fz: numbe
   place(state, 3 * g + 2, fz + (t[2] - fz) * fraction);
 }
 
+/**
+ * Keeps the grab target out of the colliders, once per frame before the substeps (runFrame; the GPU solver's step,
+ * which writes the target into its uniforms): the grabbed particle is kinematic, so contact never moves it, and a
+ * pointer dragged into a collider would pull it inside. A target nearer a collider's surface than the contact
+ * thickness is moved out along the surface normal to that distance, each collider posed where it is at the
+ * frame's end `t1` (from `t0`); two rounds over the colliders settle a target in a corner between two.
+ */
+export function keepGrabOutside(state: ClothState, params: SimParams, t0: number, t1: number): void {
+  if (state.grabbed < 0 || params.colliders.length === 0) return;
+  const t = state.grabTarget, th = params.thickness;
+  for (let round = 0; round < 2; round++) {
+    for (const shape of params.colliders) {
+      shape.moveTo(t0, t1);
+      const d = shape.signedDistance(t[0], t[1], t[2], normal, th);
+      if (!(d < th)) continue;
+      t[0] += (th - d) * normal[0];
+      t[1] += (th - d) * normal[1];
+      t[2] += (th - d) * normal[2];
+    }
+  }
+}
+
 /** Puts coordinate j of a particle at p [m]: float32 position and its residual. */
 function place(state: ClothState, j: number, p: number): void {
   const q = Math.fround(p);

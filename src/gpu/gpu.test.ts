@@ -254,6 +254,24 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
     expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-3);
   });
 
+  test('a grab pulled into the sphere holds the particle outside it, as on the CPU', async () => {
+    const sc = scene('custom');
+    const sphere = sc.colliders.find((c) => c.type === 'sphere')!;
+    if (sphere.type !== 'sphere') throw new Error('custom has a sphere');
+    const [cx, cy, cz] = sphere.center;
+    const p = await pair(sc);
+    const mid = (RES / 2) * (RES + 1) + RES / 2;
+    await p.advance(5);
+    for (const s of [p.cpu, p.gpu]) grab(s, mid, [cx + 0.01, cy + 0.05, cz]);
+    await p.advance(5);
+    for (const s of [p.cpu, p.gpu]) {
+      const x = s.positions;
+      const r = Math.hypot(x[3 * mid] - cx, x[3 * mid + 1] - cy, x[3 * mid + 2] - cz);
+      expect(r).toBeGreaterThanOrEqual(sphere.radius + p.params.thickness - 1e-5);
+    }
+    expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-3);
+  });
+
   test('live parameter change (gravity, wind, stiffness) without a rebuild', async () => {
     const sc = scene('pins');
     const p = await pair(sc);

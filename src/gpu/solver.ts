@@ -10,6 +10,7 @@
 import type {} from 'webgpu'; // WebGPU types (@webgpu/types through the webgpu package); erased at runtime
 import type { ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
+import { keepGrabOutside } from '../core/phases.js';
 import { assignPhases, type PhaseLog } from '../core/schedule.js';
 import type { ClothState } from '../core/state.js';
 import { ClothBuffers } from './buffers.js';
@@ -128,6 +129,8 @@ export class GpuClothSolver {
   step(state: ClothState, params: SimParams, dt: number, timestampWrites?: GPUComputePassTimestampWrites, log?: PhaseLog): void {
     this.checkAlive();
     if (params !== this.params) this.setParams(params);
+    // the grab target out of the colliders, as runFrame does for the CPU backends (the frame writes it to the uniforms)
+    keepGrabOutside(state, params, state.time, state.time + dt);
     this.encoder.frame(state, params, dt, timestampWrites, log);
   }
 

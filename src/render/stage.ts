@@ -208,10 +208,16 @@ export class Stage {
   /** width covered by the control panel on the right [CSS px]: the view is centred in what is left */
   insetRight = 0;
 
+  /** the width on the right the view leaves to the panel [CSS px]: insetRight, unless the window is too narrow for it */
+  get viewInset(): number {
+    const w = Math.max(1, this.container.clientWidth);
+    return this.insetRight > 0 && w > 2.5 * this.insetRight ? this.insetRight : 0;
+  }
+
   resize(): void {
     const w = Math.max(1, this.container.clientWidth), h = Math.max(1, this.container.clientHeight);
     this.renderer?.setSize(w, h, true);
-    const inset = this.insetRight > 0 && w > 2.5 * this.insetRight ? this.insetRight : 0;
+    const inset = this.viewInset;
     // render the right part of a wider virtual image, so the principal point sits in the middle of the free area
     this.camera.aspect = (w + inset) / h;
     if (inset) this.camera.setViewOffset(w + inset, h, inset, 0, w, h);
@@ -333,8 +339,13 @@ export class Stage {
   /** what the 'reset' camera preset goes back to */
   defaultView: Exclude<CameraPreset, 'reset'> | 'reset' = 'reset';
 
+  /**
+   * Puts the camera at a preset around the focus. Its distance frames the region in a landscape view; a portrait
+   * view (a phone) is narrower than high, so the camera backs off by height / width to keep the region's width in it.
+   */
   setCamera(preset: CameraPreset): void {
-    const c = this.focus, d = 1.6 * this.extent + 1.0;
+    const w = Math.max(1, this.container.clientWidth - this.viewInset), h = Math.max(1, this.container.clientHeight);
+    const c = this.focus, d = (1.6 * this.extent + 1.0) * Math.max(1, h / w);
     const p = this.camera.position;
     if (preset === 'reset' && this.defaultView !== 'reset') preset = this.defaultView;
     switch (preset) {
@@ -355,6 +366,28 @@ export class Stage {
   /** Moves the camera by the controls' input and damping; true when it moved. */
   updateControls(): boolean {
     return this.controls.update();
+  }
+
+  /**
+   * The view drawn at `width` × `height` pixels without the panel's part: the camera centred as on screen, without
+   * the view offset, the canvas drawn at that size for the copy and put back at once (the copy is taken when toBlob
+   * is called). Null when the canvas cannot be read or a renderer switch is under way.
+   */
+  snapshot(width: number, height: number): Promise<Blob | null> {
+    if (this.switching) return Promise.resolve(null);
+    const r = this.renderer;
+    const ratio = r.getPixelRatio();
+    r.setPixelRatio(1);
+    r.setSize(width, height, false);
+    this.camera.aspect = width / height;
+    this.camera.clearViewOffset();
+    this.camera.updateProjectionMatrix();
+    r.render(this.scene, this.camera);
+    const blob = new Promise<Blob | null>((resolve) => r.domElement.toBlob(resolve, 'image/png'));
+    r.setPixelRatio(ratio);
+    this.resize();
+    this.render();
+    return blob;
   }
 
   render(): void {

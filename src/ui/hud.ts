@@ -1,7 +1,8 @@
 /**
  * Heads-up display, top left: frame rate, simulation cost, cloth size, solver, what the simulation is doing
- * (running, paused, slow motion, clamps), a legend for the current view, and a live uPlot chart of kinetic,
- * potential and elastic energy.
+ * (running, paused, slow motion and what limits it, clamps), a legend for the current view, and a live uPlot chart
+ * of kinetic, potential and elastic energy. Compact (a narrow screen, class `compact`): the first two lines, the
+ * measured test and the status only.
  */
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
@@ -19,7 +20,10 @@ export interface HudInfo {
   /** why it does not run where it was asked to ('' when it does) */
   backendNote: string;
   stepMs: number;
-  realTime: number;
+  /** why the page runs slower than real time, in words with the fix that fits ('' when it keeps up or is paused) */
+  slow: string;
+  /** what limits it: 'simulation' or 'drawing' ('' when nothing does) */
+  slowBy: string;
   paused: boolean;
   particles: number;
   triangles: number;
@@ -49,6 +53,8 @@ export class Hud {
   private readonly plot: uPlot;
   private readonly data: number[][] = [[], [], [], []];
   private t0 = performance.now();
+  /** a narrow screen's HUD: the first two lines, the measured test and the status; no sizes, legend or plot */
+  compact = false;
 
   constructor(parent: HTMLElement) {
     this.el = document.createElement('div');
@@ -105,28 +111,30 @@ export class Hud {
   }
 
   update(i: HudInfo): void {
-    const slow = !i.paused && i.realTime < 0.9;
+    const slow = !i.paused && i.slow !== '';
     const lines: Child[][] = [
       [h('b', null, 'Drape'), ` · ${i.backend} · sim on `, h('span', { testid: 'hud-sim' }, i.simBackend)],
       [`${i.idle ? 'idle' : `${i.fps.toFixed(0)} fps`} · sim ${finite(i.stepMs, 1)} ms/frame`],
       [`${i.particles.toLocaleString('en')} particles · ${i.triangles.toLocaleString('en')} triangles`],
       [`${i.springs.toLocaleString('en')} springs · ${i.solver}, ${i.substeps} substeps`],
     ];
-    if (i.slots > 1) lines.push([`${i.slots} cloths side by side (totals)`]);
-    if (i.extra) lines.push([i.extra]);
+    if (this.compact) lines.splice(2);
+    else if (i.slots > 1) lines.push([`${i.slots} cloths side by side (totals)`]);
+    if (i.extra && !this.compact) lines.push([i.extra]);
     if (i.test) lines.push([h('span', { testid: 'hud-test' }, i.test)]);
     setLines(this.text, lines);
     const status: Child[][] = [];
     const ok = (t: string) => [h('span', 'ok', t)];
     const warn = (t: string) => [h('span', 'warn', t)];
     if (i.paused) status.push(ok('paused — space to run, “Step” for one frame'));
-    else if (slow) status.push(warn(`slow motion: ${(100 * i.realTime).toFixed(0)}% of real time — the simulation needs ${finite(i.stepMs, 0)} ms per 16.7 ms frame; try a lower resolution or fewer substeps`));
+    else if (slow) status.push(warn(i.slow));
     else status.push(ok('real time (fixed 1/60 s frames)'));
     for (const n of i.notes ?? []) status.push(warn(`⚠ ${n}`));
     if (i.backendNote) status.push(warn(i.backendNote));
     for (const c of i.clamps) status.push(warn(`⚠ ${c}`));
     setLines(this.status, status);
     this.status.dataset.state = i.paused ? 'paused' : slow ? 'slow' : 'realtime';
+    this.status.dataset.slowBy = slow ? i.slowBy : '';
     this.legend.replaceChildren();
     if (i.view === 'springs') {
       ['structural', 'shear', 'bend'].forEach((k, n) => {

@@ -29,6 +29,15 @@ export const SCENE_LABELS: Record<string, string> = {
 };
 
 export type SweepLayout = 'sequence' | 'side-by-side';
+
+/** The screenshot sizes offered: the view as on screen (its free part, at the screen's pixel ratio), or pixels */
+export const PNG_SIZES: Record<string, string> = {
+  'the view, as on screen': 'view',
+  '1280 × 720': '1280x720',
+  '1920 × 1080': '1920x1080',
+  '1080 × 1080 (square)': '1080x1080',
+  '3840 × 2160 (4K)': '3840x2160',
+};
 export const CORNER_PINS: readonly PinPreset[] = ['top-left', 'top-right', 'bottom-left', 'bottom-right', 'center'];
 
 /** What the panel drives. */
@@ -46,6 +55,8 @@ export interface PanelHost {
   readonly mannequin: MannequinOptions | null;
   /** poses or moves the mannequin anew, the cloth going on */
   setMannequin(change: MannequinOptions): void;
+  /** the resolution of the cloth on screen: a sweep's current one (one after another), else the scene's */
+  readonly shownResolution: number;
   /** largest cloth resolution offered (the GPU goes further) */
   readonly maxResolution: number;
   setBackend(choice: 'auto' | 'gpu' | 'cpu'): void;
@@ -66,7 +77,8 @@ export interface PanelHost {
   /** the file picker for a mesh file (OBJ, glTF) that becomes the cloth */
   importMesh(): void;
   copyLink(): void;
-  screenshot(): void;
+  /** downloads the view as PNG without the panel: `size` 'view' (as on screen) or 'WxH' pixels (PNG_SIZES) */
+  screenshot(size: string): void;
   exportObj(): void;
   exportGltf(): void;
   showHelp(): void;
@@ -124,7 +136,7 @@ const SHAPE_LABELS: Record<string, string> = { Rectangle: 'rectangle', Disc: 'di
 function resolutionLabel(r: number, shape: string): string {
   if (shape === 'disc') return `${r} faces across`;
   if (shape === 'tube') return `${r} faces along`;
-  return `${r} × ${r}  (${r * r} faces)`;
+  return `${r} × ${r}  (${(r * r).toLocaleString('en')} face${r === 1 ? '' : 's'})`;
 }
 
 export class Panel {
@@ -153,10 +165,12 @@ export class Panel {
   private resolutionOptions(): Record<string, number> {
     const rs = schemaFor('cloth.resolution');
     const shape = this.host.scene.cloth.shape;
-    this.resolutionFor = `${this.host.maxResolution} ${shape}`;
+    this.resolutionFor = `${this.host.maxResolution} ${shape} ${this.host.shownResolution}`;
     const hi = Math.min(rs.maximum ?? 1024, this.host.maxResolution);
     const out: Record<string, number> = {};
-    for (const r of RESOLUTIONS) if (r >= (rs.minimum ?? 1) && r <= hi) out[resolutionLabel(r, shape)] = r;
+    const shown = this.host.shownResolution;
+    const list = RESOLUTIONS.includes(shown) ? RESOLUTIONS : [...RESOLUTIONS, shown].sort((a, b) => a - b);
+    for (const r of list) if (r >= (rs.minimum ?? 1) && (r <= hi || r === shown)) out[resolutionLabel(r, shape)] = r;
     return out;
   }
 
@@ -211,7 +225,7 @@ export class Panel {
     const rs = schemaFor('cloth.resolution');
     this.resolutionCtl = this.tag(cloth.add(p, 'cloth.resolution', this.resolutionOptions()).name('resolution')
       .onChange((v: number) => host.setPath('cloth.resolution', Number(v))), 'cloth.resolution', rs.description);
-    this.syncers.push(() => { p['cloth.resolution'] = host.scene.cloth.resolution; });
+    this.syncers.push(() => { p['cloth.resolution'] = host.shownResolution; });
     this.addParam(cloth, 'material.fabric', 'fabric');
     this.addParam(cloth, 'material.structuralStiffness', 'structural', undefined, 'N/m');
     this.addParam(cloth, 'material.shearStiffness', 'shear', undefined, 'N/m');
@@ -291,13 +305,18 @@ export class Panel {
       ['importJson', 'import scene JSON…', () => host.importJson()],
       ['importMesh', 'import mesh (OBJ, glTF)…', () => host.importMesh()],
       ['copyLink', 'copy link to this scene', () => host.copyLink()],
-      ['screenshot', 'screenshot PNG', () => host.screenshot()],
+      ['screenshot', 'screenshot PNG', () => host.screenshot(String(p['png.size']))],
       ['exportObj', 'export cloth OBJ', () => host.exportObj()],
       ['exportGltf', 'export cloth glTF', () => host.exportGltf()],
     ];
     for (const [key, label, fn] of actions) {
       p[key] = fn;
       this.tag(file.add(p, key).name(label), key);
+      if (key === 'copyLink') {
+        p['png.size'] = 'view';
+        this.tag(file.add(p, 'png.size', PNG_SIZES).name('PNG size'), 'png.size',
+          'the screenshot\'s size in pixels; it shows the view without the panel, centred as on screen');
+      }
     }
     for (const f of [grav, solver, file]) f.close();
     // a dropdown keeps the focus after a choice, and would eat the shortcut keys: give it back to the page
@@ -368,14 +387,17 @@ export class Panel {
     const shapes: Record<string, string> = { ...SHAPE_LABELS };
     if (cloth.shape === 'mesh') shapes[`Mesh: ${plainText(cloth.mesh ?? '', 60)}`] = 'mesh';
     this.shapeCtl.options(shapes);
-    if (this.resolutionFor !== `${host.maxResolution} ${cloth.shape}`) this.resolutionCtl.options(this.resolutionOptions());
+    // a sweep's resolution that the menu does not list (an imported scene's) is added, so that the menu shows it
+    const shown = host.shownResolution;
+    if (this.resolutionFor !== `${host.maxResolution} ${cloth.shape} ${shown}`) this.resolutionCtl.options(this.resolutionOptions());
     for (const f of this.syncers) f();
     // a sweep is of a rectangle's resolutions (another shape runs as it is); a mesh file has its own resolution
     const sweep = !!host.scene.resolutionSweep?.length && cloth.shape === 'rectangle';
     this.sweepFolder.show(sweep);
     this.mannequinFolder.show(host.mannequin !== null);
     this.resolutionCtl.enable(!sweep && cloth.shape !== 'mesh');
-    this.resolutionCtl.name(cloth.shape === 'mesh' ? 'resolution: the mesh has its own' : 'resolution');
+    this.resolutionCtl.name(cloth.shape === 'mesh' ? 'resolution: the mesh has its own'
+      : !sweep ? 'resolution' : host.sweepLayout === 'sequence' ? 'resolution (the sweep’s, now)' : 'resolution (one per cloth)');
     this.updatePlay();
     for (const c of this.gui.controllersRecursive()) c.updateDisplay();
   }
