@@ -329,6 +329,22 @@ describe('WebGPU page', () => {
     await page.keyboard.press('Escape');
     await expect.poll(() => byId(page, 'help').isVisible()).toBe(false);
 
+    // the scene explained for a class: on by default on a wide screen, E (or the panel, or ×) hides and shows it
+    await expect.poll(() => byId(page, 'caption-text').innerText()).toContain('A cotton sheet falls onto a sphere');
+    expect(await byId(page, 'caption').isVisible()).toBe(true);
+    await page.keyboard.press('e');
+    expect(await byId(page, 'caption').isVisible()).toBe(false);
+    await press(page, 'explain');
+    expect(await byId(page, 'caption').isVisible()).toBe(true);
+    await loadScene(page, 'Cusick Drape (BS 5058)');
+    await expect.poll(() => byId(page, 'caption-text').innerText()).toContain('The Cusick drape test');
+    await byId(page, 'caption').locator('button').click();
+    expect(await byId(page, 'caption').isVisible()).toBe(false);
+    await page.keyboard.press('e');
+    expect(await byId(page, 'caption').isVisible()).toBe(true);
+    await loadScene(page, 'Cotton Basic', 16);
+    await page.keyboard.press('r');
+
     const cams: number[][] = [];
     for (const k of ['1', '2', '3', '4']) {
       await page.keyboard.press(k);

@@ -27,7 +27,7 @@ afterAll(async () => {
 /** The share of the viewport no overlay covers (HUD, panel, buttons, labels, messages), on a 2 px grid. */
 function freeShare(p: Page): Promise<number> {
   return p.evaluate(() => {
-    const sel = '.drape-hud, .lil-gui.drape-panel, .drape-layout-toggle, .drape-label, .drape-message.show';
+    const sel = '.drape-hud, .lil-gui.drape-panel, .drape-layout-toggle, .drape-label, .drape-message.show, .drape-caption';
     const rects = [...document.querySelectorAll<HTMLElement>(sel)]
       .filter((e) => e.offsetParent !== null || getComputedStyle(e).position === 'fixed')
       .filter((e) => getComputedStyle(e).display !== 'none' && !e.hidden)
@@ -58,6 +58,8 @@ describe('phone layout (390 × 844)', () => {
     expect(await page.locator('.lil-gui.drape-panel').first().getAttribute('class')).toContain('lil-closed');
     expect(await byId(page, 'hud').getAttribute('class')).toContain('compact');
     expect(await page.locator('.drape-hud-plot').isVisible()).toBe(false);
+    // the scene's explanation starts off on a phone (E shows it)
+    expect(await byId(page, 'caption').isVisible()).toBe(false);
     const hud = await rectOf(page, '.drape-hud');
     expect(hud.right).toBeLessThanOrEqual(PHONE.width * 0.62);
     await shoot(page, 'phone-start');

@@ -112,7 +112,7 @@ describe('hostile scene names', () => {
     await expect.poll(() => hudText(page), POLL).toContain(`scene: ${IMG}`);
     expect(await pwned(page)).toBeNull();
 
-    const doc = JSON.stringify({ name: SVG, cloth: { resolution: 6 } });
+    const doc = JSON.stringify({ name: SVG, description: `${IMG} explained`, cloth: { resolution: 6 } });
     const fileName = '<img src=x onerror="window.__pwned=3">\u202egnp.json';
     await byId(page, 'import-file').setInputFiles({ name: fileName, mimeType: 'application/json', buffer: Buffer.from(doc) });
     await expect.poll(() => hook(page, 'sceneName'), POLL).toBe(SVG);
@@ -120,6 +120,8 @@ describe('hostile scene names', () => {
     await expect.poll(() => byId(page, 'message').innerText(), POLL).toContain('Imported <img src=x onerror="window.__pwned=3">\ufffdgnp.json');
     expect(await byId(page, 'scene').locator('select').evaluate((s: HTMLSelectElement) => s.selectedOptions[0].textContent)).toBe(`Imported: ${SVG}`);
     await expect.poll(() => hudText(page), POLL).toContain(`scene: ${SVG}`);
+    // an imported scene's description is its explanation, as text
+    await expect.poll(() => byId(page, 'caption-text').innerText(), POLL).toBe(`${IMG} explained`);
     // a refused file names itself as text too
     await byId(page, 'import-file').setInputFiles({ name: '<b>bad</b>.json', mimeType: 'application/json', buffer: Buffer.from('{"cloth": ') });
     await expect.poll(() => byId(page, 'message').innerText(), POLL).toContain('<b>bad</b>.json');

@@ -94,6 +94,8 @@ export class App {
       const gui = this.panel.gui;
       this.stage.insetRight = gui._closed ? 0 : gui.domElement.getBoundingClientRect().width;
       this.stage.resize();
+      // what the panel covers, for the overlays centred on the view (CSSOM: no style attribute for the CSP)
+      root.style.setProperty('--view-inset', `${this.stage.viewInset}px`);
     };
     this.layout = new Layout(root, this.hud, this.panel.gui, fit);
     window.addEventListener('resize', fit);

@@ -190,6 +190,11 @@ export class Commands implements PanelHost, InteractionHost {
     this.app.layout.toggle();
   }
 
+  /** Shows or hides what the scene demonstrates (E, the panel's "explain this scene"). */
+  toggleExplain(): void {
+    this.app.layout.toggleExplain();
+  }
+
   /** One frame forward, pausing first. */
   stepOnce(): void {
     if (!this.app.sim.paused) this.togglePause();

@@ -5,6 +5,7 @@ describe('parseSavedLayout: what a visit remembers of the HUD and panel', () => 
   it('reads the two choices', () => {
     expect(parseSavedLayout('{"hidden":true,"panelOpen":false}')).toEqual({ hidden: true, panelOpen: false });
     expect(parseSavedLayout('{"panelOpen":true}')).toEqual({ panelOpen: true });
+    expect(parseSavedLayout('{"explain":false}')).toEqual({ explain: false });
   });
 
   it('nothing stored, unreadable or of the wrong type counts as not saved (the screen-size defaults apply)', () => {

@@ -4,6 +4,7 @@
  * times a second.
  */
 import { FRAME_DT } from '../core/index.js';
+import { captionFor } from '../ui/captions.js';
 import type { App } from './app.js';
 import { GpuSim } from './gpu-sim.js';
 import { hudInfo } from './hud-feed.js';
@@ -79,6 +80,7 @@ export class FrameLoop {
     if (now - this.hudTime >= 250) {
       this.hudTime = now;
       app.hud.update(hudInfo(app, this.fps, this.idle));
+      app.layout.caption.set(captionFor(app.sceneKey, app.scene.description));
     }
   };
 }

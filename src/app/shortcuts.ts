@@ -28,6 +28,7 @@ export function shortcutListener(commands: Commands, overlay: Overlay): (e: Keyb
     else if (k === 's' || k === 'S') commands.stepOnce();
     else if (k === 'p' || k === 'P') { commands.setPinTool(!commands.pinTool); overlay.toast(commands.pinTool ? 'Pin tool on' : 'Pin tool off'); }
     else if (k === 'h' || k === 'H') commands.toggleLayout();
+    else if (k === 'e' || k === 'E') commands.toggleExplain();
     else if (k === '?' || (k === '/' && e.shiftKey)) overlay.help();
     else if (k === 'Escape') overlay.help(false);
     else handled = false;

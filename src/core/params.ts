@@ -159,6 +159,8 @@ function limitPerSpring(model: ClothModel, invMass: Float32Array, values: Float3
 }
 
 const fmt = (v: number) => (Math.abs(v) >= 100 ? v.toFixed(0) : v.toPrecision(3));
+/** a fraction as a percentage in words: '3.1 %', '0.00016 %' */
+const percent = (f: number) => `${+(100 * f).toPrecision(2)} %`;
 
 /**
  * The axis springs' constant k_s [N/m] of a square grid that also has both diagonals (shear springs, k_d) for which
@@ -198,21 +200,26 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
   if (scene.solver.type === 'mass-spring') {
     const kindNames = SPRING_KINDS;
     const k = limitPerSpring(model, particleInvMass, stiffness, MASS_SPRING_STIFFNESS_MARGIN / (h * h));
+    // said in words a student follows: what was changed, why, and the fix
     if (k.limited > 0) {
       const kinds = k.worstByKind.map((f, kind) => {
         if (f >= 1) return '';
-        return kind === STRUCTURAL ? `structural ×${fmt(f)}: ${fmt(kindK[kind] * f)} of ${fmt(kindK[kind])} N/m` : `${kindNames[kind]} ×${fmt(f)}`;
+        return kind === STRUCTURAL ? `structural ${fmt(kindK[kind] * f)} of ${fmt(kindK[kind])} N/m` : `${kindNames[kind]} ${percent(f)}`;
       }).filter(Boolean);
       clamps.push(
-        `mass-spring: ${k.limited} of ${springCount} springs limited for stability at ${substeps} substeps, ` +
-        `to ×${fmt(k.worst)} at worst (${kinds.join('; ')}); raise solver.substeps or use xpbd for the full value`,
+        `mass-spring at ${substeps} substeps: ${k.limited} of ${springCount} springs are too stiff for so long a ` +
+        `time step and were softened, the most to ${percent(k.worst)} of their stiffness (${kinds.join('; ')}) — ` +
+        'at full stiffness these explicit springs would overshoot and blow up. For the full stiffness: more ' +
+        'substeps (solver.substeps), or the xpbd solver',
       );
     }
     const d = limitPerSpring(model, particleInvMass, springDamping, MASS_SPRING_DAMPING_MARGIN / h);
     if (d.limited > 0) {
       clamps.push(
-        `mass-spring: damping limited on ${d.limited} of ${springCount} springs for stability, ` +
-        `the most to ${fmt(damping * d.worst)} N·s/m (asked ${fmt(damping)})`,
+        `mass-spring at ${substeps} substeps: the damping is too strong for so long a time step on ${d.limited} of ` +
+        `${springCount} springs and was weakened there, the most to ${fmt(damping * d.worst)} N·s/m (asked ` +
+        `${fmt(damping)}) — more would overshoot and blow up. For the full damping: more substeps ` +
+        '(solver.substeps), or the xpbd solver',
       );
     }
   }

@@ -12,6 +12,7 @@ export const SHORTCUTS: [string, string][] = [
   ['R', 'reset / replay the scene'],
   ['P', 'pin tool on / off (click a particle to pin or unpin it)'],
   ['H', 'hide / show the HUD and the panel (remembered; also the button at the bottom left)'],
+  ['E', 'explain: what the scene shows and what to try (remembered)'],
   ['?', 'show / hide this help'],
   ['drag the cloth', 'grab a particle and pull it in the camera plane'],
   ['drag elsewhere', 'orbit · right-drag or two fingers: pan · wheel or pinch: zoom'],

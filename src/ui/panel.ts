@@ -82,6 +82,8 @@ export interface PanelHost {
   exportObj(): void;
   exportGltf(): void;
   showHelp(): void;
+  /** shows or hides what the scene demonstrates */
+  toggleExplain(): void;
 }
 
 interface SchemaNumber { type?: string; minimum?: number; maximum?: number; default?: unknown; description?: string; enum?: readonly string[] }
@@ -298,6 +300,8 @@ export class Panel {
     }
     p.help = () => host.showHelp();
     this.tag(view.add(p, 'help').name('shortcuts   (?)'), 'shortcuts');
+    p.explain = () => host.toggleExplain();
+    this.tag(view.add(p, 'explain').name('explain this scene   (E)'), 'explain');
 
     const file = gui.addFolder('Scene & export');
     const actions: [string, string, () => void][] = [
