@@ -58,12 +58,14 @@ const BUILTIN: Record<string, object | (() => object)> = {
   custom: drop('custom', 'Cotton on the sphere, for tweaking every parameter', { fabric: 'cotton' }),
   wind: {
     name: 'wind',
-    description: 'A flag pinned along one edge, in gusty wind',
+    description: 'A flag pinned along its pole, in gusty wind',
     // a millimetre's bulge: a real flag is never flat; an exactly flat one cannot buckle and droop (docs/physics.md)
     cloth: { orientation: 'hanging', width: 1.5, height: 1, position: [0, 2, 0], imperfection: 0.001 },
     material: { fabric: 'cotton' },
     wind: { enabled: true, strength: 8, direction: [1, 0, 0.2], gusts: { enabled: true, amplitude: 0.5, frequency: 0.4, seed: 7 } },
-    colliders: [{ type: 'floor', height: 0 }],
+    // the pole the flag's left edge is pinned along, 1 cm from it: a 4 cm post from the floor to above the flag,
+    // which the flag meets when it droops or folds back
+    colliders: [{ type: 'cylinder', center: [-0.78, 1.3, 0], axis: [0, 1, 0], radius: 0.02, height: 2.6 }, { type: 'floor', height: 0 }],
     pins: ['left-edge'],
   },
   pins: {

@@ -60,7 +60,8 @@ export class Stage {
     s.background = backdropTexture();
     s.fog = new Fog(new Color('#e3e5e8'), 14, 40);
 
-    const hemi = new HemisphereLight(0xf2f5ff, 0x8a8070, 1.15);
+    // sky above, the light floor's bounce below: a cloth's underside is lit too, not near black
+    const hemi = new HemisphereLight(0xf2f5ff, 0xb3a999, 1.25);
     const key = new DirectionalLight(0xfff3e2, 2.3);
     key.castShadow = true;
     key.shadow.mapSize.setScalar(options.lite ? 1024 : 2048);
@@ -72,7 +73,11 @@ export class Stage {
     fill.position.set(-4, 3, -2);
     const rim = new DirectionalLight(0xffffff, 0.6);
     rim.position.set(0, 4, -6);
-    s.add(hemi, key, key.target, fill, rim);
+    // the floor's bounce, from below and in front (no shadow): what a sagging cloth's underside and the shaded
+    // half of a collider are lit by in a room
+    const bounce = new DirectionalLight(0xf0e4d2, 0.9);
+    bounce.position.set(1.5, -4, 2.5);
+    s.add(hemi, key, key.target, fill, rim, bounce);
 
     const fm = new MeshStandardNodeMaterial({ map: floorTexture(), roughness: 0.95, metalness: 0 });
     this.floor = new Mesh(new PlaneGeometry(40, 40), fm);

@@ -30,15 +30,23 @@ export function fabricFor(sceneName: string): FabricKind {
 }
 
 /** Every procedural canvas with the code that paints it, so all can be repainted (see repaintTextures). */
-const painted: { canvas: HTMLCanvasElement; paint: (g: CanvasRenderingContext2D, size: number) => void; textures: Texture[] }[] = [];
+const painted: { canvas: HTMLCanvasElement; paint: (g: CanvasRenderingContext2D, size: number) => void; size: number; textures: Texture[] }[] = [];
 
-function canvas(size: number, paint: (g: CanvasRenderingContext2D, size: number) => void): HTMLCanvasElement {
+/** the fabrics' textures are painted at this many pixels a side, whatever size their painter draws in: sharp up close */
+const FABRIC_PIXELS = 1024;
+
+/**
+ * A canvas painted by `paint` in a square of `size` units; its pixels are `detail` times as many a side (the
+ * painter draws in its own units, scaled: its lines and edges stay sharp at any detail).
+ */
+function canvas(size: number, paint: (g: CanvasRenderingContext2D, size: number) => void, detail = 1): HTMLCanvasElement {
   const c = document.createElement('canvas');
-  c.width = c.height = size;
+  c.width = c.height = Math.round(size * detail);
   const g = c.getContext('2d', { willReadFrequently: true });
   if (!g) throw new Error('2D canvas unavailable');
+  g.setTransform(detail, 0, 0, detail, 0, 0);
   paint(g, size);
-  const entry = { canvas: c, paint, textures: [] as Texture[] };
+  const entry = { canvas: c, paint, size, textures: [] as Texture[] };
   painted.push(entry);
   // a 2D canvas that lost its backing store (GPU process restart) comes back blank
   c.addEventListener('contextrestored', () => repaint(entry));
@@ -57,7 +65,9 @@ function repaint(p: (typeof painted)[number]): void {
   const g = p.canvas.getContext('2d', { willReadFrequently: true });
   if (!g) return;
   g.reset?.();
-  p.paint(g, p.canvas.width);
+  const detail = p.canvas.width / p.size;
+  g.setTransform(detail, 0, 0, detail, 0, 0);
+  p.paint(g, p.size);
   for (const t of p.textures) t.needsUpdate = true;
 }
 
@@ -111,7 +121,7 @@ function cotton(): FabricLook {
     }
     weave(g, size, 4, 0.05);
     noise(g, size, 0.08, 3, 2);
-  });
+  }, FABRIC_PIXELS / 256);
   return { kind: 'cotton', map: finish(c, 4), roughness: 0.9, sheen: 0.6, sheenColor: '#c9d8f0', clearcoat: 0 };
 }
 
@@ -139,7 +149,7 @@ function silk(): FabricLook {
       }
     }
     noise(g, size, 0.03, 5, 1);
-  });
+  }, FABRIC_PIXELS / 256);
   return { kind: 'silk', map: finish(c, 3), roughness: 0.38, sheen: 1, sheenColor: '#ffb3c4', clearcoat: 0 };
 }
 
@@ -160,8 +170,9 @@ function leather(): FabricLook {
     g.lineWidth = 3;
     g.setLineDash([10, 8]);
     g.strokeRect(18, 18, size - 36, size - 36);
-  });
-  return { kind: 'leather', map: finish(c, 1), roughness: 0.55, sheen: 0.2, sheenColor: '#d8a27a', clearcoat: 0.25 };
+  }, FABRIC_PIXELS / 512);
+  // garment leather is satin, not lacquered: a faint, rough clearcoat (a strong one drew a whitish smear)
+  return { kind: 'leather', map: finish(c, 1), roughness: 0.62, sheen: 0.2, sheenColor: '#d8a27a', clearcoat: 0.06 };
 }
 
 function rubber(): FabricLook {
@@ -178,7 +189,7 @@ function rubber(): FabricLook {
     for (let y = 16; y < size; y += 32) for (let x = (y / 32) % 2 ? 32 : 16; x < size; x += 32) {
       g.beginPath(); g.arc(x, y, 6, 0, Math.PI * 2); g.fill();
     }
-  });
+  }, FABRIC_PIXELS / 256);
   return { kind: 'rubber', map: finish(c, 3), roughness: 0.32, sheen: 0, sheenColor: '#ffffff', clearcoat: 0.6 };
 }
 
@@ -194,7 +205,7 @@ function flag(): FabricLook {
     }
     g.fill();
     weave(g, size, 4, 0.04);
-  });
+  }, FABRIC_PIXELS / 512);
   return { kind: 'flag', map: finish(c, 1), roughness: 0.85, sheen: 0.5, sheenColor: '#ffffff', clearcoat: 0 };
 }
 
@@ -205,7 +216,7 @@ function hammock(): FabricLook {
     cols.forEach((col, k) => { g.fillStyle = col; g.fillRect(k * w, 0, w + 1, size); });
     weave(g, size, 4, 0.07);
     noise(g, size, 0.06, 31, 2);
-  });
+  }, FABRIC_PIXELS / 256);
   return { kind: 'hammock', map: finish(c, 2), roughness: 0.92, sheen: 0.5, sheenColor: '#fff4dd', clearcoat: 0 };
 }
 
@@ -216,7 +227,7 @@ function checker(): FabricLook {
       g.fillRect(x * 32, y * 32, 32, 32);
     }
     weave(g, size, 4, 0.04);
-  });
+  }, FABRIC_PIXELS / 256);
   return { kind: 'checker', map: finish(c, 1), roughness: 0.85, sheen: 0.4, sheenColor: '#ffe2cc', clearcoat: 0 };
 }
 
