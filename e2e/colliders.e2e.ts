@@ -81,4 +81,21 @@ describe('collider shapes in the app', () => {
     expect(errors).toEqual([]);
     await page.close();
   });
+  it('a floor that moves is drawn where it is: the ground rises with its collider, and the cloth on it', async () => {
+    const { page, errors } = await openApp(browser.context, '', '?lite&backend=cpu');
+    const rising = {
+      name: 'rising floor',
+      cloth: { resolution: 8, position: [0, 0.3, 0] },
+      colliders: [{ type: 'floor', height: 0, motion: { keyframes: [{ time: 0 }, { time: 1, translation: [0, 0.2, 0] }] } }],
+    };
+    await hook(page, 'import', JSON.stringify(rising));
+    await expect.poll(() => hook(page, 'sceneName')).toBe('rising floor');
+    expect(await hook<number>(page, 'groundHeight')).toBeCloseTo(0, 6);
+    await step(page, 60); // 1 s: the floor 0.2 m up
+    await expect.poll(() => hook<number>(page, 'groundHeight')).toBeCloseTo(0.2, 3);
+    const ys = (await hook<number[][]>(page, 'positions')).map((p) => p[1]);
+    expect(Math.min(...ys)).toBeGreaterThan(0.2);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
 });

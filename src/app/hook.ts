@@ -52,6 +52,8 @@ export interface DrapeHook {
   colliders(): string[];
   /** where each drawn collider mesh is now: position and quaternion (x, y, z, w), in the order of colliders() */
   colliderPoses(): { position: number[]; quaternion: number[] }[];
+  /** the drawn ground's height at the origin [m]: the first floor's, moved with it */
+  groundHeight(): number;
   /** the scene's mannequin's pose and animation, or null when it has none */
   mannequin(): { pose?: string; animation?: string } | null;
   /** the text of the last message shown in the page, and its kind */
@@ -121,6 +123,7 @@ export function installHook(app: App): DrapeHook {
     camera: () => app.stage.camera.position.toArray(),
     colliders: () => app.stage.colliderNames(),
     colliderPoses: () => app.stage.colliderPoses(),
+    groundHeight: () => app.stage.groundHeight(),
     mannequin: () => (app.mannequin ? { ...app.mannequin.options } : null),
     lastMessage: () => ({ text: app.overlay.lastMessage, kind: app.overlay.lastMessageKind }),
     labels: () => [...app.overlay.labelLayer.querySelectorAll('.drape-label')].map((l) => (l as HTMLElement).innerText.replace(/\s+/g, ' ').trim()),

@@ -241,6 +241,7 @@ export class Stage {
       (c as Mesh).geometry.dispose();
     }
     this.drawn = [];
+    this.floorIndex = -1;
     let floor: number | null = null;
     const up = new Vector3(0, 1, 0);
     colliders.forEach((c, index) => {
@@ -251,7 +252,7 @@ export class Stage {
         m = new Mesh(new SphereGeometry(c.radius, 96, 48), this.sphereMaterial);
         m.position.set(c.center[0], c.center[1], c.center[2]);
       } else if (c.type === 'floor') {
-        if (floor === null) floor = c.height;
+        if (floor === null) { floor = c.height; this.floorIndex = index; }
       } else if (c.type === 'plane') {
         // the half-space's surface as a 20 m square, centred on its point
         m = new Mesh(new PlaneGeometry(20, 20), this.planeMaterial);
@@ -285,7 +286,9 @@ export class Stage {
       }
     });
     // a scene without a floor still gets a visual ground far below, so the studio does not look empty
-    this.floor.position.y = floor ?? -0.001;
+    this.floor.quaternion.setFromAxisAngle(new Vector3(1, 0, 0), -Math.PI / 2);
+    this.floor.position.set(0, floor ?? -0.001, 0);
+    this.floor.updateMatrix();
     this.floor.visible = true;
     this.needsRender = true;
   }
@@ -312,8 +315,29 @@ export class Stage {
       m.updateMatrix();
       if (!m.matrix.equals(this.poseBefore)) moved = true;
     }
+    // the first floor is the stage's own ground: it moves (rises, tilts) with its collider as the others do; its
+    // frame is the half-space y < 0 at (0, height, 0), the ground quad lies in its xy plane
+    const floor = this.floorIndex >= 0 ? colliders[this.floorIndex] : undefined;
+    if (floor) {
+      floor.poseAt(times[this.floorIndex] ?? 0, R, o);
+      M.set(R[0], R[1], R[2], o[0], R[3], R[4], R[5], o[1], R[6], R[7], R[8], o[2], 0, 0, 0, 1).multiply(this.groundFix);
+      const m = this.floor;
+      this.poseBefore.copy(m.matrix);
+      M.decompose(m.position, m.quaternion, m.scale);
+      m.updateMatrix();
+      if (!m.matrix.equals(this.poseBefore)) moved = true;
+    }
     if (moved) this.needsRender = true;
     return moved;
+  }
+
+  /** the scene's first floor, drawn as the stage's ground (−1: none) */
+  private floorIndex = -1;
+  private readonly groundFix = new Matrix4().makeRotationX(-Math.PI / 2);
+
+  /** The ground's height at the origin [m] (the first floor's, where it is now). */
+  groundHeight(): number {
+    return this.floor.position.y;
   }
 
   /** Where a drawn collider mesh is: its position and quaternion (x, y, z, w), in the scene's order of drawn meshes. */
