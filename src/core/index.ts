@@ -28,3 +28,4 @@ export { modelFor, parseMeshFile, meshFormat, CLOTH_SHAPES, MESH_EXTENSIONS, typ
 export { prepareMesh, MAX_MESH_PARTICLES, MAX_VERTEX_EDGES, WELD_TOLERANCE, type TriangleMesh } from './mesh/triangle-mesh.js';
 export { discMesh, tubeMesh, placeMesh, type ShapeSpec, type Placement } from './mesh/generators.js';
 export type { ExternalReader } from './mesh/gltf.js';
+export { countIntersections } from './intersections.js';

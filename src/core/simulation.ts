@@ -3,6 +3,7 @@
  * rebuilds. Geometry (cloth.*, material.scaleWithResolution) rebuilds the model and restarts the cloth; everything
  * else (stiffness, damping, mass, wind, gravity, solver, colliders, pins) applies on the next step.
  */
+import { countIntersections } from './intersections.js';
 import type { ClothModel } from './model.js';
 import { modelFor, type MeshResolver } from './cloth-shape.js';
 import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrain, type Bounds, type Energy } from './metrics.js';
@@ -49,6 +50,8 @@ export interface Report {
   finite: boolean;
   maxStrain: number;
   maxPenetration: number;
+  /** pairs of triangles that share no vertex and cross each other now (intersections.ts): 0 without self-intersection */
+  intersections: number;
   centroid: [number, number, number];
   bounds: Bounds;
   energy: Energy;
@@ -319,6 +322,7 @@ export class Simulation {
       finite: isFinite3(state),
       maxStrain: maxStructuralStrain(model, state),
       maxPenetration: maxPenetration(model, state, params),
+      intersections: countIntersections(model.triangles, state.positions),
       centroid: centroid(state),
       bounds: bounds(state),
       energy: energy(model, state, params),
