@@ -198,6 +198,13 @@ describe('WebGPU page', () => {
     expect(silk.solver.bending).toBe('hinges');
     await step(page, 30);
     expect((await centroid(page)).every(Number.isFinite)).toBe(true);
+    // self-contact is a switch, live, and goes into the link
+    await setChecked(page, 'solver.selfContact', true);
+    expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
+    await step(page, 30);
+    expect((await centroid(page)).every(Number.isFinite)).toBe(true);
+    await expect.poll(() => page.evaluate(() => location.hash)).toContain('selfContact');
+    await setChecked(page, 'solver.selfContact', false);
   });
 
   it('V cycles all five views and names each on screen', async () => {

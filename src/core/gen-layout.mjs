@@ -81,6 +81,7 @@ export const PHASES = [
   ['bending', 'substep', ['xpbd'], 'stencils', ['xpbd'], 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch'],
   ['tethers', 'substep', BOTH, 'local', [], 'long-range attachments to the nearest pin'],
   ['stretchLimit', 'substep', BOTH, 'local', ['mass-spring'], 'stretch limiting of structural and shear springs'],
+  ['selfContact', 'substep', BOTH, 'self', [], 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)'],
   ['contact', 'substep', BOTH, 'always', [], 'particle contact with friction against every collider, in order'],
   ['contactTriangles', 'substep', BOTH, 'triangles', [], 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size'],
   ['velocities', 'frame-end', BOTH, 'always', [], 'v = (x − x_prev)/h of the last substep'],

@@ -75,15 +75,17 @@ export const PHASE = {
   tethers: 9,
   /** substep: stretch limiting of structural and shear springs */
   stretchLimit: 10,
+  /** substep: the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts) */
+  selfContact: 11,
   /** substep: particle contact with friction against every collider, in order */
-  contact: 11,
+  contact: 12,
   /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-  contactTriangles: 12,
+  contactTriangles: 13,
   /** frame-end: v = (x − x_prev)/h of the last substep */
-  velocities: 13,
+  velocities: 14,
 } as const;
 /** Phases in the schedule. */
-export const PHASE_COUNT = 14;
+export const PHASE_COUNT = 15;
 /** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */
 export const SCHEDULE = [
   { id: 0, name: 'begin', scope: 'frame-start', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v' },
@@ -97,9 +99,10 @@ export const SCHEDULE = [
   { id: 8, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'stencils', repeat: ['xpbd'], doc: 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch' },
   { id: 9, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
   { id: 10, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
-  { id: 11, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
-  { id: 12, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
-  { id: 13, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
+  { id: 11, name: 'selfContact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'self', repeat: [], doc: 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)' },
+  { id: 12, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
+  { id: 13, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
+  { id: 14, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
 ] as const;
 /** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */
 export const KERNEL_MAX_ITERATIONS = 255;
@@ -132,7 +135,7 @@ export const CTRL = {
   DESC: 48,
   /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
   TRACE_COUNT: 56,
-  /** i32 × 14: the ids of those phases, in the order thread 0 ran them */
+  /** i32 × 15: the ids of those phases, in the order thread 0 ran them */
   TRACE: 60,
   /** f64: substep length [s] */
   H: 120,

@@ -66,6 +66,8 @@ export interface SimParams {
   bending: BendingModel;
   /** how the xpbd solver solves its springs (solver.stretch; 'gauss-seidel' for the mass-spring solver, unused there) */
   stretch: StretchSolve;
+  /** whether the cloth is kept from passing through itself (solver.selfContact; self-contact.ts) */
+  selfContact: boolean;
   /** bending rigidity B of the sheet [N·m] (material.bendingRigidity) */
   bendingRigidity: number;
   /**
@@ -255,6 +257,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     compliance,
     bending,
     stretch: scene.solver.type === 'xpbd' ? scene.solver.stretch : 'gauss-seidel',
+    selfContact: scene.solver.selfContact,
     bendingRigidity,
     stencilCompliance,
     damping,

@@ -10,6 +10,7 @@ import type { SimParams } from './params.js';
 import { accumulateWind, beginStep, carryPinned, collideParticles, collideTriangles, integrate, limitStretch, moveGrabbed, updateVelocities } from './phases.js';
 import { PHASE, PHASES, phasePasses, type PhaseName } from './schedule.js';
 import { accumulateSpringForces } from './solvers/mass-spring.js';
+import { collideSelf } from './self-contact.js';
 import { solveGlobalStretch } from './solvers/global-stretch.js';
 import { solveBending, solveDistanceConstraints } from './solvers/xpbd.js';
 import type { ClothState } from './state.js';
@@ -60,6 +61,7 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
     const passes = phasePasses(PHASE.stretchLimit, params);
     for (let it = 0; it < passes; it++) limitStretch(model, state, params);
   },
+  selfContact: (model, state, params) => collideSelf(model, state, params),
   contact: (model, state, params, frame) => collideParticles(model, state, params, frame.h),
   contactTriangles: (model, state, params, frame) => collideTriangles(model, state, params, frame.h),
   velocities: (_model, state, _params, frame) => updateVelocities(state, frame.h),

@@ -34,7 +34,7 @@ export interface Scene {
     imperfection: number;
   };
   material: Material;
-  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; depenetrationSpeed: number };
+  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; selfContact: boolean; depenetrationSpeed: number };
   gravity: Vec3;
   wind: Wind;
   colliders: ColliderSpec[];

@@ -145,15 +145,21 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     expect(() => assignPhases({ ...remote, phases: all, refusal: () => 'no such shape' }, sim.model, sim.params)).toThrow(/remote: no such shape/);
     expect(() => assignPhases({ ...remote, solvers: ['mass-spring'] }, sim.model, sim.params)).toThrow(/remote: only the mass-spring solver runs remotely \(params.solver is 'xpbd'\)/);
     // not the phases these params never make a frame run: no carried pins, no collider that needs triangle contact,
-    // no stencil bending (solver.bending 'springs'), no global stretch step (solver.stretch 'gauss-seidel')
+    // no stencil bending (solver.bending 'springs'), no global stretch step (solver.stretch 'gauss-seidel'), no
+    // self-contact (solver.selfContact false)
     expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
-        ~(1 << PHASE.bending) & ~(1 << PHASE.globalStretch));
+        ~(1 << PHASE.bending) & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.selfContact));
     // with the springs solved together, the global step instead of the sweep, the tethers and the stretch limit
     const together = new Simulation(windyScene('xpbd', (s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
     expect(assignPhases({ ...remote, phases: all }, together.model, together.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
-        ~(1 << PHASE.bending) & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit));
+        ~(1 << PHASE.bending) & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit) &
+        ~(1 << PHASE.selfContact));
+    // with self-contact, its phase too: a backend without it that keeps the cloth elsewhere is refused by name
+    const selfy = new Simulation(windyScene('xpbd', (s) => { s.solver.selfContact = true; }), { kernel: 'ts' });
+    expect(() => assignPhases({ ...remote, phases: all & ~(1 << PHASE.selfContact) }, selfy.model, selfy.params))
+      .toThrow(/remote: it does not implement phase 'selfContact'/);
     // so a backend without the bending phase takes the springs' bending, and is refused the hinges' and the Laplacian's
     const noStencils = { ...remote, phases: all & ~(1 << PHASE.bending) };
     expect(() => assignPhases(noStencils, sim.model, sim.params)).not.toThrow();

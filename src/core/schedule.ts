@@ -24,9 +24,9 @@ export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
  * What a phase needs to be part of a frame: nothing, the wind blowing, a grabbed particle, pins a collider carries,
  * a collider whose surface can poke between the cloth's vertices (phases.ts needsTriangleContact), a stencil
  * bending model (solver.bending 'hinges' or 'laplacian'), the springs solved together (solver.stretch 'global') or
- * one at a time ('gauss-seidel').
+ * one at a time ('gauss-seidel'), self-contact (solver.selfContact).
  */
-export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'global' | 'local';
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'global' | 'local' | 'self';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -65,6 +65,7 @@ const TRIANGLE_PHASES = maskOf((p) => p.when === 'triangles');
 const STENCIL_PHASES = maskOf((p) => p.when === 'stencils');
 const GLOBAL_PHASES = maskOf((p) => p.when === 'global');
 const LOCAL_PHASES = maskOf((p) => p.when === 'local');
+const SELF_PHASES = maskOf((p) => p.when === 'self');
 
 /** The phases the params' stretch solve leaves out: the Gauss–Seidel distance pass or the global step. */
 function stretchExcluded(params: SimParams): number {
@@ -90,6 +91,7 @@ export function framePhases(model: ClothModel, state: ClothState, params: SimPar
   if (!anyTriangleContact(model, params)) mask &= ~TRIANGLE_PHASES;
   if (params.bending === 'springs') mask &= ~STENCIL_PHASES;
   mask &= ~stretchExcluded(params);
+  if (!params.selfContact) mask &= ~SELF_PHASES;
   return mask;
 }
 
@@ -141,10 +143,10 @@ export function assignPhases(backend: BackendPhases, model: ClothModel, params: 
   }
   // the phases these params can make a frame run (the wind and a grab come and go; carried pins are the scene's,
   // triangle contact the scene's and the mesh's, stencil bending the scene's solver.bending, the stretch solve its
-  // solver.stretch)
+  // solver.stretch, self-contact its solver.selfContact)
   const wanted = solverPhases(params.solver) & ~(params.carried.particles.length === 0 ? CARRY_PHASES : 0) &
     ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES) & ~(params.bending === 'springs' ? STENCIL_PHASES : 0) &
-    ~stretchExcluded(params);
+    ~stretchExcluded(params) & ~(params.selfContact ? 0 : SELF_PHASES);
   let own = 0;
   for (let id = 0; id < PHASE_COUNT; id++) {
     const bit = 1 << id;

@@ -36,6 +36,7 @@ function contactRefusal(params: SimParams): string | null {
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
   if (scene.solver.stretch === 'global') return 'the global stretch step (solver.stretch \'global\') runs on the CPU only';
+  if (scene.solver.selfContact) return 'self-contact (solver.selfContact) runs on the CPU only';
   return colliderRefusal(scene);
 }
 

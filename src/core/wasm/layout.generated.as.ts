@@ -74,14 +74,16 @@ export const PHASE_BENDING: i32 = 8;
 export const PHASE_TETHERS: i32 = 9;
 /** substep: stretch limiting of structural and shear springs */
 export const PHASE_STRETCH_LIMIT: i32 = 10;
+/** substep: the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts) */
+export const PHASE_SELF_CONTACT: i32 = 11;
 /** substep: particle contact with friction against every collider, in order */
-export const PHASE_CONTACT: i32 = 11;
+export const PHASE_CONTACT: i32 = 12;
 /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-export const PHASE_CONTACT_TRIANGLES: i32 = 12;
+export const PHASE_CONTACT_TRIANGLES: i32 = 13;
 /** frame-end: v = (x − x_prev)/h of the last substep */
-export const PHASE_VELOCITIES: i32 = 13;
+export const PHASE_VELOCITIES: i32 = 14;
 /** Phases in the schedule. */
-export const PHASE_COUNT: i32 = 14;
+export const PHASE_COUNT: i32 = 15;
 
 // The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.
 /** sequence number of the substep's first phase: first bit */
@@ -128,7 +130,7 @@ export const SPIN_LIMIT: usize = 40;
 export const DESC: usize = 48;
 /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
 export const TRACE_COUNT: usize = 56;
-/** i32 × 14: the ids of those phases, in the order thread 0 ran them */
+/** i32 × 15: the ids of those phases, in the order thread 0 ran them */
 export const TRACE: usize = 60;
 /** f64: substep length [s] */
 export const H: usize = 120;
