@@ -104,6 +104,12 @@ describe('phone layout (390 × 844)', () => {
     expect(label.bottom).toBeLessThanOrEqual(PHONE.height);
     const hud = await rectOf(page, '.drape-hud');
     expect(label.top >= hud.bottom || label.left >= hud.right).toBe(true);
+    // with the scene's explanation shown (E), the title sits above it
+    await page.keyboard.press('e');
+    expect(await byId(page, 'caption').isVisible()).toBe(true);
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+    const caption = await rectOf(page, '.drape-caption');
+    expect((await rectOf(page, '.drape-label')).bottom).toBeLessThanOrEqual(caption.top);
     await shoot(page, 'phone-resolution');
     expect(errors).toEqual([]);
   });

@@ -10,7 +10,8 @@ import { baseName, sceneMesh } from './meshes.js';
 
 /**
  * A screenshot's pixel size: 'W×H' (written with an x) as it says, or 'view': the free part of the window, `viewW` ×
- * `viewH` CSS px, at the screen's pixel `ratio` (the panel's sizes: ui/panel.ts PNG_SIZES); between 16 and 4096 px a side, never NaN.
+ * `viewH` CSS px, at the screen's pixel `ratio` (the panel's sizes: ui/panel.ts PNG_SIZES); between 16 and 4096 px a
+ * side, never NaN.
  */
 export function pngSize(size: string, viewW: number, viewH: number, ratio: number): [number, number] {
   const m = /^(\d+)x(\d+)$/.exec(size);

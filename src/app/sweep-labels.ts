@@ -53,8 +53,11 @@ export class SweepLabels {
       const right = rect.width - app.stage.viewInset;
       const top = right - hud >= l.offsetWidth + 24;
       const x = top ? (hud + right) / 2 : rect.width / 2;
+      // at the bottom: above the scene's caption when it shows
+      const caption = app.layout.caption.el;
+      const bottom = caption.offsetHeight > 0 ? caption.getBoundingClientRect().top - rect.top - 8 : rect.height - 44;
       l.style.display = '';
-      l.style.transform = `translate(-50%, ${top ? '0' : '-100%'}) translate(${x}px, ${top ? 12 : rect.height - 44}px)`;
+      l.style.transform = `translate(-50%, ${top ? '0' : '-100%'}) translate(${x}px, ${top ? 12 : bottom}px)`;
       return;
     }
     const v = new Vector3();
