@@ -3,14 +3,16 @@
  * cross each other. Exact in double precision on the float32 positions: two such triangles cross when an edge of
  * one passes through the other (Möller & Trumbore 1997's segment–triangle test on each of the six edges), which is
  * every crossing except two triangles lying in one plane (they overlap without crossing; a simulated cloth meets
- * that with probability zero). Pairs come from a uniform grid over the triangles' bounding boxes (cells of the
- * mean box size), each pair tested once. A report, not a step: it allocates its grid on each call.
+ * that with probability zero). Pairs come from a uniform grid over the triangles' bounding boxes (box-grid.ts, cells
+ * of 1.5 mean box sizes), each pair tested once. A report, not a step.
  */
+import { BoxGrid } from './box-grid.js';
 
-/** One call's grid and marks, reused while the mesh keeps its size. */
+/** One mesh's boxes, grid and marks, reused while the mesh keeps its size. */
 interface Scratch {
   boxes: Float64Array;
   stamp: Int32Array;
+  grid: BoxGrid;
 }
 const scratch = new WeakMap<Uint32Array, Scratch>();
 
@@ -23,13 +25,11 @@ export function countIntersections(triangles: Uint32Array, x: ArrayLike<number>)
   if (n < 2) return 0;
   let s = scratch.get(triangles);
   if (!s || s.stamp.length !== n) {
-    s = { boxes: new Float64Array(6 * n), stamp: new Int32Array(n) };
+    s = { boxes: new Float64Array(6 * n), stamp: new Int32Array(n), grid: new BoxGrid() };
     scratch.set(triangles, s);
   }
-  const { boxes, stamp } = s;
+  const { boxes, stamp, grid } = s;
   stamp.fill(-1);
-  // bounding boxes, and the mean of their largest sides: the grid's cell
-  let mean = 0;
   for (let t = 0; t < n; t++) {
     const b = 6 * t;
     boxes[b] = boxes[b + 1] = boxes[b + 2] = Infinity;
@@ -43,37 +43,18 @@ export function countIntersections(triangles: Uint32Array, x: ArrayLike<number>)
         if (v > boxes[b + 3 + c]) boxes[b + 3 + c] = v;
       }
     }
-    mean += Math.max(boxes[b + 3] - boxes[b], boxes[b + 4] - boxes[b + 1], boxes[b + 5] - boxes[b + 2]);
   }
-  if (!Number.isFinite(mean)) return 0;
-  const cell = Math.max(mean / n, 1e-9) * 1.5;
-  const inv = 1 / cell;
-  // cells each box covers, counted then filled (a hash of the cell's coordinates into a table twice the entries)
-  const range = (t: number, c: number): [number, number] => [Math.floor(boxes[6 * t + c] * inv), Math.floor(boxes[6 * t + 3 + c] * inv)];
-  let entries = 0;
-  for (let t = 0; t < n; t++) {
-    const [x0, x1] = range(t, 0), [y0, y1] = range(t, 1), [z0, z1] = range(t, 2);
-    entries += (x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1);
-  }
-  let size = 1;
-  while (size < 2 * entries) size *= 2;
-  const mask = size - 1;
-  const hash = (i: number, j: number, k: number) => (Math.imul(i, 73856093) ^ Math.imul(j, 19349663) ^ Math.imul(k, 83492791)) & mask;
-  const start = new Int32Array(size + 1);
-  const eachCell = (t: number, visit: (h: number) => void) => {
-    const [x0, x1] = range(t, 0), [y0, y1] = range(t, 1), [z0, z1] = range(t, 2);
-    for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) visit(hash(i, j, k));
-  };
-  for (let t = 0; t < n; t++) eachCell(t, (h) => { start[h + 1]++; });
-  for (let h = 0; h < size; h++) start[h + 1] += start[h];
-  const fill = start.slice(0, size);
-  const items = new Int32Array(entries);
-  for (let t = 0; t < n; t++) eachCell(t, (h) => { items[fill[h]++] = t; });
-
+  // cells of 1.5 mean boxes (an infinite position leaves a box not finite: nothing built, nothing counted)
+  if (!grid.build(boxes, n, 1.5, 1e-9)) return 0;
+  const { start, items, inv } = grid;
   let count = 0;
   for (let a = 0; a < n; a++) {
     const ba = 6 * a;
-    eachCell(a, (h) => {
+    const x0 = Math.floor(boxes[ba] * inv), x1 = Math.floor(boxes[ba + 3] * inv);
+    const y0 = Math.floor(boxes[ba + 1] * inv), y1 = Math.floor(boxes[ba + 4] * inv);
+    const z0 = Math.floor(boxes[ba + 2] * inv), z1 = Math.floor(boxes[ba + 5] * inv);
+    for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) {
+      const h = grid.slot(i, j, k);
       for (let e = start[h]; e < start[h + 1]; e++) {
         const b = items[e];
         if (b <= a || stamp[b] === a) continue;
@@ -84,7 +65,7 @@ export function countIntersections(triangles: Uint32Array, x: ArrayLike<number>)
         if (sharesVertex(triangles, a, b)) continue;
         if (trianglesCross(triangles, x, a, b)) count++;
       }
-    });
+    }
   }
   return count;
 }

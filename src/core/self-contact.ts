@@ -24,6 +24,7 @@
  * not untangle). One Gauss–Seidel pass in particle order; the grid's arrays are allocated when a model is first
  * seen and grow only when a substep needs more cells than ever before.
  */
+import { BoxGrid } from './box-grid.js';
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
@@ -34,10 +35,8 @@ interface SelfScratch {
   minAltitude: number;
   /** triangle boxes over the substep (start ∪ end), widened by h: minx, miny, minz, maxx, maxy, maxz */
   boxes: Float64Array;
-  /** grid: hash table starts (CSR) and the triangles in each */
-  start: Int32Array;
-  fill: Int32Array;
-  items: Int32Array;
+  /** the grid over them (box-grid.ts) */
+  grid: BoxGrid;
   /** the last particle that tested each triangle (one test per pair) */
   stamp: Int32Array;
 }
@@ -59,9 +58,7 @@ function scratch(model: ClothModel): SelfScratch {
   s = {
     minAltitude,
     boxes: new Float64Array(6 * n),
-    start: new Int32Array(1),
-    fill: new Int32Array(0),
-    items: new Int32Array(0),
+    grid: new BoxGrid(),
     stamp: new Int32Array(n),
   };
   scratchOf.set(model, s);
@@ -73,7 +70,6 @@ export function selfContactDistance(model: ClothModel, params: SimParams): numbe
   return Math.min(params.thickness, 0.5 * scratch(model).minAltitude);
 }
 
-const HASH_X = 73856093, HASH_Y = 19349663, HASH_Z = 83492791;
 /** scratch for one pair's correction: barycentric weights of the triangle's point, the direction */
 const bary = new Float64Array(3);
 const dir = new Float64Array(3);
@@ -88,8 +84,7 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
   const boxes = s.boxes;
 
-  // boxes over the substep, widened by h, and the grid's cell: at least 2h, at least the mean box
-  let mean = 0;
+  // boxes over the substep, widened by h; the grid's cell: the mean box, at least 2h
   for (let t = 0; t < nt; t++) {
     const b = 6 * t;
     boxes[b] = boxes[b + 1] = boxes[b + 2] = Infinity;
@@ -103,43 +98,10 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
       }
     }
     for (let c = 0; c < 3; c++) { boxes[b + c] -= h; boxes[b + 3 + c] += h; }
-    mean += Math.max(boxes[b + 3] - boxes[b], boxes[b + 4] - boxes[b + 1], boxes[b + 5] - boxes[b + 2]);
   }
-  if (!Number.isFinite(mean)) return; // an unstable cloth: nothing to keep apart
-  const cell = Math.max(mean / nt, 2 * h);
-  const inv = 1 / cell;
-
-  // the grid (counting sort into a hash table twice the entries)
-  let entries = 0;
-  for (let t = 0; t < nt; t++) {
-    const b = 6 * t;
-    entries += (Math.floor(boxes[b + 3] * inv) - Math.floor(boxes[b] * inv) + 1) *
-      (Math.floor(boxes[b + 4] * inv) - Math.floor(boxes[b + 1] * inv) + 1) *
-      (Math.floor(boxes[b + 5] * inv) - Math.floor(boxes[b + 2] * inv) + 1);
-  }
-  let size = 1;
-  while (size < 2 * entries) size *= 2;
-  if (s.start.length < size + 1) { s.start = new Int32Array(size + 1); s.fill = new Int32Array(size); }
-  if (s.items.length < entries) s.items = new Int32Array(Math.ceil(entries * 1.5));
-  const mask = size - 1, start = s.start, fill = s.fill, items = s.items;
-  start.fill(0, 0, size + 1);
-  for (let pass = 0; pass < 2; pass++) {
-    for (let t = 0; t < nt; t++) {
-      const b = 6 * t;
-      const x0 = Math.floor(boxes[b] * inv), x1 = Math.floor(boxes[b + 3] * inv);
-      const y0 = Math.floor(boxes[b + 1] * inv), y1 = Math.floor(boxes[b + 4] * inv);
-      const z0 = Math.floor(boxes[b + 2] * inv), z1 = Math.floor(boxes[b + 5] * inv);
-      for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) {
-        const cellId = (Math.imul(i, HASH_X) ^ Math.imul(j, HASH_Y) ^ Math.imul(k, HASH_Z)) & mask;
-        if (pass === 0) start[cellId + 1]++;
-        else items[fill[cellId]++] = t;
-      }
-    }
-    if (pass === 0) {
-      for (let c = 0; c < size; c++) start[c + 1] += start[c];
-      for (let c = 0; c < size; c++) fill[c] = start[c];
-    }
-  }
+  const grid = s.grid;
+  if (!grid.build(boxes, nt, 1, 2 * h)) return; // an unstable cloth: nothing to keep apart
+  const { start, items, inv } = grid;
 
   const stamp = s.stamp;
   stamp.fill(-1);
@@ -150,7 +112,7 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
     const y0 = Math.floor(Math.min(x[jp + 1], xp[jp + 1]) * inv), y1 = Math.floor(Math.max(x[jp + 1], xp[jp + 1]) * inv);
     const z0 = Math.floor(Math.min(x[jp + 2], xp[jp + 2]) * inv), z1 = Math.floor(Math.max(x[jp + 2], xp[jp + 2]) * inv);
     for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) {
-      const cellId = (Math.imul(i, HASH_X) ^ Math.imul(j, HASH_Y) ^ Math.imul(k, HASH_Z)) & mask;
+      const cellId = grid.slot(i, j, k);
       for (let e = start[cellId]; e < start[cellId + 1]; e++) {
         const t = items[e];
         if (stamp[t] === p) continue;
