@@ -3,7 +3,7 @@
  * simulation, one view per slot, framing the camera, and putting things back after a refused change.
  */
 import { Box3, Vector3 } from 'three/webgpu';
-import { SceneError, sceneMannequin, type Scene } from '../core/index.js';
+import { SceneError, plainText, sceneMannequin, type Scene } from '../core/index.js';
 import { ClothView } from '../render/cloth-view.js';
 import { fabricFor, fabricLook } from '../render/textures.js';
 import type { App } from './app.js';
@@ -18,6 +18,9 @@ export class Slots {
    * and the page keeps what it had.
    */
   apply(scene: Scene, key: string): void {
+    if (scene.cloths && scene.cloths.length > 1) {
+      throw new SceneError(`scene '${plainText(scene.name, 100)}' has ${scene.cloths.length} cloths (cloths): the app shows one cloth for now; run it with drape run or the library`);
+    }
     const app = this.app;
     app.interaction?.cancel();
     const before = { scene: app.scene as Scene | undefined, sceneKey: app.sceneKey, sweepIndex: app.sweep.index, capNote: app.capNote };

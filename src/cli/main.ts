@@ -7,7 +7,7 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import { parseArgs } from 'node:util';
 import {
-  builtinScene, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneSchema, setScenePath, Simulation,
+  builtinScene, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneDocument, sceneSchema, setScenePath, Simulation,
   type MeshResolver, type Scene, type SimulationOptions,
 } from '../core/index.js';
 import { EXIT, UsageError } from './errors.js';
@@ -136,6 +136,8 @@ interface RunResult {
   energy: { kinetic: number; gravitational: number; elastic: number; bending: number };
   /** the scene's standard fabric test, measured at the last frame (numbers rounded as the rest) */
   test?: Record<string, string | number>;
+  /** each cloth's figures at the last frame, for a scene of several (Report.cloths, rounded) */
+  cloths?: { name: string; first: number; particles: number; triangles: number; centroid: number[]; bounds: { min: number[]; max: number[] } }[];
   clamps: string[];
   sim: Simulation;
 }
@@ -174,6 +176,7 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
     bounds: { min: vec(r.bounds.min), max: vec(r.bounds.max) },
     energy: { kinetic: round(r.energy.kinetic), gravitational: round(r.energy.gravitational), elastic: round(r.energy.elastic), bending: round(r.energy.bending) },
     ...(r.test ? { test: Object.fromEntries(Object.entries(r.test).map(([k, v]) => [k, typeof v === 'number' ? round(v) : v])) } : {}),
+    ...(r.cloths ? { cloths: r.cloths.map((c) => ({ ...c, centroid: vec(c.centroid), bounds: { min: vec(c.bounds.min), max: vec(c.bounds.max) } })) } : {}),
     clamps: sim.params.clamps,
     sim,
   };
@@ -226,8 +229,11 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
 
   const sweepAsked = scene.resolutionSweep && !sets.some((s) => s.startsWith('cloth.resolution=') || s.startsWith('cloth=')) ? scene.resolutionSweep : undefined;
   // a mesh file has its own resolution: the sweep would run the same cloth again and again
-  const sweep = scene.cloth.shape === 'mesh' ? undefined : sweepAsked;
-  if (sweepAsked && !sweep) err(`drape: note: resolutionSweep skipped: the cloth is the mesh file ${plainText(scene.cloth.mesh ?? '', 200)}, which has its own resolution`);
+  const sweep = scene.cloth.shape === 'mesh' || scene.cloths ? undefined : sweepAsked;
+  if (sweepAsked && !sweep) {
+    err(scene.cloths ? 'drape: note: resolutionSweep skipped: the scene has a list of cloths, each with its own resolution'
+      : `drape: note: resolutionSweep skipped: the cloth is the mesh file ${plainText(scene.cloth.mesh ?? '', 200)}, which has its own resolution`);
+  }
   if (backend === 'gpu') {
     const why = await gpuRefusal(scene);
     if (why) throw new UsageError(why);
@@ -258,7 +264,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   let exportError: string | undefined;
   if (values.export) {
     try {
-      io.writeFile(values.export, toOBJ(main.sim.model, main.sim.state, scene.name));
+      io.writeFile(values.export, toOBJ(main.sim.model, main.sim.state, scene.name, main.cloths?.map((c) => c.name)));
     } catch (e) {
       exportError = `could not write ${values.export} (${(e as NodeJS.ErrnoException).code ?? (e as Error).message.split('\n')[0]})`;
     }
@@ -270,7 +276,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
       ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.triangles / 2, ...r })) } : {}),
       ...(values.export && !exportError ? { exported: values.export } : {}),
       ...(exportError ? { exportError } : {}),
-      resolvedScene: scene,
+      resolvedScene: sceneDocument(scene),
     }));
   } else {
     for (const c of clamps) err(`drape: note: ${c}`);
@@ -278,6 +284,9 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     const where = backend === 'gpu' ? 'gpu' : `cpu (${main.kernel === 'wasm' ? `wasm SIMD, ${main.threads} thread${main.threads === 1 ? '' : 's'}` : 'TypeScript'})`;
     out(`scene ${plainText(scene.name, 100)}: ${scene.solver.type} on ${where}, ${scene.solver.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
     out(`  cloth        ${main.particles} particles, ${main.triangles} triangles, ${main.constraints} springs`);
+    for (const c of main.cloths ?? []) {
+      out(`    ${plainText(c.name, 40)}: particles ${c.first}…${c.first + c.particles - 1}, ${c.triangles} triangles, centroid [${c.centroid.map(f).join(', ')}] m`);
+    }
     out(`  speed        ${main.msPerFrame.toFixed(3)} ms per frame`);
     out(`  finite       yes`);
     out(`  max strain   ${(main.maxStrain * 100).toFixed(2)} % (structural)`);

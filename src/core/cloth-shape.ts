@@ -4,12 +4,12 @@
  * host (a path means nothing to the core, which runs in browsers too): the CLI and `drape/node` read them next
  * to the scene file; the app from an imported file.
  */
-import { buildGridModel, buildMeshModel, type ClothModel } from './model.js';
+import { buildGridModel, buildMeshModel, mergeModels, type ClothModel } from './model.js';
 import { discMesh, placeMesh, tubeMesh } from './mesh/generators.js';
 import { parseGltf, type ExternalReader } from './mesh/gltf.js';
 import { parseObj } from './mesh/obj.js';
 import { prepareMesh, type TriangleMesh } from './mesh/triangle-mesh.js';
-import { SceneError, type Scene } from './scene.js';
+import { SceneError, clothEntries, type ClothSpec, type Scene } from './scene.js';
 import { plainText } from './text.js';
 
 /** The cloth shapes a scene can name (`cloth.shape`). */
@@ -40,22 +40,28 @@ export function meshFormat(name: string): (typeof MESH_EXTENSIONS)[number] {
 }
 
 /**
- * The model of a scene's cloth. A 'mesh' needs `meshes` to turn cloth.mesh into a mesh; without it (a link, a
- * scene passed without its files) the error says so.
+ * The model of a scene's cloths: one cloth's, or several merged into one (mergeModels; cloth c's particles from
+ * model.clothStarts[c]). A 'mesh' needs `meshes` to turn cloth.mesh into a mesh; without it (a link, a scene passed
+ * without its files) the error says so.
  */
 export function modelFor(scene: Scene, meshes?: MeshResolver): ClothModel {
-  const c = scene.cloth, swr = scene.material.scaleWithResolution;
+  const entries = clothEntries(scene);
+  return mergeModels(entries.map((e, k) => clothModel(e.cloth, e.material.scaleWithResolution, meshes, scene.cloths ? `cloths[${k}].` : '')));
+}
+
+/** The model of one cloth (`at` prefixes its fields in errors: '' or 'cloths[1].'). */
+function clothModel(c: ClothSpec, swr: boolean, meshes: MeshResolver | undefined, at: string): ClothModel {
   switch (c.shape) {
     case 'rectangle':
       return buildGridModel({ ...c, scaleWithResolution: swr });
     case 'disc':
-      return buildMeshModel(prepareMesh(discMesh(c), 'cloth.shape disc'), swr);
+      return buildMeshModel(prepareMesh(discMesh(c), `${at}cloth.shape disc`), swr);
     case 'tube':
-      return buildMeshModel(prepareMesh(tubeMesh(c), 'cloth.shape tube'), swr);
+      return buildMeshModel(prepareMesh(tubeMesh(c), `${at}cloth.shape tube`), swr);
     case 'mesh': {
       const path = c.mesh!;
       if (!meshes) {
-        throw new SceneError(`cloth.mesh: '${plainText(path, 200)}' is a file, and nothing here reads files; load the scene with its files (drape run, loadSceneFile from drape/node, or the app's mesh import)`);
+        throw new SceneError(`${at}cloth.mesh: '${plainText(path, 200)}' is a file, and nothing here reads files; load the scene with its files (drape run, loadSceneFile from drape/node, or the app's mesh import)`);
       }
       const mesh = prepareMesh(meshes(path), plainText(path, 200));
       const scaled = new Float32Array(mesh.positions.length);
@@ -63,7 +69,7 @@ export function modelFor(scene: Scene, meshes?: MeshResolver): ClothModel {
       const model = buildMeshModel({ ...mesh, positions: placeMesh(scaled, c) }, swr);
       // a cloth smaller than its own contact thickness is a unit mistake, not a garment
       if (model.size < 2 * c.thickness) {
-        throw new SceneError(`cloth.scale: ${plainText(path, 200)} is ${model.size.toPrecision(3)} m across at scale ${c.scale}, less than twice cloth.thickness (${c.thickness} m); cloth.scale is metres per unit of the file (0.01 for centimetres)`);
+        throw new SceneError(`${at}cloth.scale: ${plainText(path, 200)} is ${model.size.toPrecision(3)} m across at scale ${c.scale}, less than twice ${at}cloth.thickness (${c.thickness} m); ${at}cloth.scale is metres per unit of the file (0.01 for centimetres)`);
       }
       return model;
     }

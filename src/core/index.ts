@@ -5,8 +5,8 @@ export * from './params.js';
 export * from './fabrics.js';
 export * from './textile-tests.js';
 export * from './scene.js';
-export { sceneSchema, PIN_PRESETS } from './scene-schema.js';
-export { SCENE_NAMES, builtinScene, isBuiltinScene, builtinMannequin, sceneMannequin, withMannequin, type SceneMannequin } from './scenes.js';
+export { sceneSchema, PIN_PRESETS, MAX_CLOTHS } from './scene-schema.js';
+export { SCENE_NAMES, ONE_CLOTH_SCENE_NAMES, builtinScene, isBuiltinScene, builtinMannequin, sceneMannequin, withMannequin, type SceneMannequin } from './scenes.js';
 export {
   mannequinColliders, mannequinAngles, forwardKinematics, animationPeriod, MANNEQUIN_PARTS, MANNEQUIN_CHEST, MANNEQUIN_PELVIS,
   MANNEQUIN_POSES, MANNEQUIN_ANIMATIONS, type MannequinOptions, type MannequinPose, type MannequinAnimation, type JointAngles,
@@ -21,7 +21,7 @@ export { SOLVERS, step, type StepFn } from './solvers/index.js';
 export { PHASE, PHASES, PhaseLog, type Phase, type PhaseName, type BackendPhases } from './schedule.js';
 export { runFrame, type PhaseBackend, type FrameVars } from './frame.js';
 export * from './colliders/index.js';
-export { Simulation, needsRebuild, AUTO_THREADS_MIN_PARTICLES, type Report, type CpuKernel, type SimulationOptions } from './simulation.js';
+export { Simulation, needsRebuild, AUTO_THREADS_MIN_PARTICLES, type Report, type ClothReport, type CpuKernel, type SimulationOptions } from './simulation.js';
 export { TsBackend, WasmBackend, type Backend, type BackendKind } from './backend.js';
 export { wasmKernelAvailable, XpbdKernel, type HelperSpawner, type KernelHelperInit } from './wasm/xpbd-wasm.js';
 export { modelFor, parseMeshFile, meshFormat, CLOTH_SHAPES, MESH_EXTENSIONS, type ClothShape, type MeshResolver } from './cloth-shape.js';

@@ -21,11 +21,11 @@ export interface Energy {
 
 /** Energy of the cloth (see Energy), from its positions and velocities. */
 export function energy(model: ClothModel, state: ClothState, params: SimParams): Energy {
-  const x = state.positions, v = state.velocities, mw = model.massWeights;
+  const x = state.positions, v = state.velocities;
   const g = params.gravity;
   let kinetic = 0, gravitational = 0, elastic = 0, bending = 0;
   for (let i = 0; i < model.particleCount; i++) {
-    const m = params.mass * mw[i];
+    const m = params.particleMass[i];
     const j = 3 * i;
     if (!state.pinned[i]) kinetic += 0.5 * m * (v[j] * v[j] + v[j + 1] * v[j + 1] + v[j + 2] * v[j + 2]);
     gravitational -= m * (g[0] * x[j] + g[1] * x[j + 1] + g[2] * x[j + 2]);
@@ -103,11 +103,12 @@ export interface Bounds {
   max: [number, number, number];
 }
 
-export function bounds(state: ClothState): Bounds {
+/** The box of particles first … end − 1 (all by default) [m]. */
+export function bounds(state: ClothState, first = 0, end = state.positions.length / 3): Bounds {
   const x = state.positions;
   const min: [number, number, number] = [Infinity, Infinity, Infinity];
   const max: [number, number, number] = [-Infinity, -Infinity, -Infinity];
-  for (let j = 0; j < x.length; j += 3) {
+  for (let j = 3 * first; j < 3 * end; j += 3) {
     for (let k = 0; k < 3; k++) {
       if (x[j + k] < min[k]) min[k] = x[j + k];
       if (x[j + k] > max[k]) max[k] = x[j + k];
@@ -116,11 +117,12 @@ export function bounds(state: ClothState): Bounds {
   return { min, max };
 }
 
-export function centroid(state: ClothState): [number, number, number] {
+/** The mean position of particles first … end − 1 (all by default) [m]. */
+export function centroid(state: ClothState, first = 0, end = state.positions.length / 3): [number, number, number] {
   const x = state.positions;
   let cx = 0, cy = 0, cz = 0;
-  for (let j = 0; j < x.length; j += 3) { cx += x[j]; cy += x[j + 1]; cz += x[j + 2]; }
-  const n = x.length / 3;
+  for (let j = 3 * first; j < 3 * end; j += 3) { cx += x[j]; cy += x[j + 1]; cz += x[j + 2]; }
+  const n = end - first;
   return [cx / n, cy / n, cz / n];
 }
 

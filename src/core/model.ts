@@ -72,7 +72,10 @@ export interface ClothModel {
   readonly restPositions: Float32Array;
   /** texture coordinates, uv interleaved (stride 2), in [0, 1] */
   readonly uvs: Float32Array;
-  /** each particle's share of the cloth's mass (its mixed Voronoi area / total area: lumpedMassWeights); sums to 1 */
+  /**
+   * each particle's share of its cloth's mass (its mixed Voronoi area / its cloth's area: lumpedMassWeights); sums to
+   * 1 over each cloth
+   */
   readonly massWeights: Float32Array;
   /** spring end points, pairs (a, b), sorted by kind then colour */
   readonly springs: Uint32Array;
@@ -118,6 +121,13 @@ export interface ClothModel {
   readonly pieceCount: number;
   /** grid layout when the cloth is a rectangular grid */
   readonly grid?: GridInfo;
+  /**
+   * where each cloth's particles are: cloth c has particles clothStarts[c] … clothStarts[c + 1] − 1 ([0, n] for one
+   * cloth); its springs, triangles and stencils are those whose particles are its own
+   */
+  readonly clothStarts: Uint32Array;
+  /** the model of each cloth by itself, when the model is several (mergeModels): for their pins and materials */
+  readonly clothParts?: readonly ClothModel[];
   /** largest extent of the rest shape [m]; the size used by sanity bounds */
   readonly size: number;
 }
@@ -589,8 +599,51 @@ export function buildModel(input: ModelInput): ClothModel {
     ...topology,
     stencils,
     grid: input.grid,
+    clothStarts: new Uint32Array([0, n]),
     size,
   };
+}
+
+/**
+ * One model of several cloths (a scene's `cloths`): their particles one after another (cloth c's from
+ * clothStarts[c]), their springs, triangles and stencils over those, coloured together (no two cloths share a
+ * particle, so every colour batch still shares none). Each particle keeps its share of its own cloth's mass.
+ */
+export function mergeModels(parts: readonly ClothModel[]): ClothModel {
+  if (parts.length === 1) return parts[0];
+  const starts = new Uint32Array(parts.length + 1);
+  parts.forEach((m, c) => { starts[c + 1] = starts[c] + m.particleCount; });
+  const n = starts[parts.length];
+  const restPositions = new Float32Array(3 * n), uvs = new Float32Array(2 * n), massWeights = new Float32Array(n);
+  const triangles = new Uint32Array(parts.reduce((t, m) => t + m.triangles.length, 0));
+  const counts = [0, 1, 2].map((kind) => parts.reduce((t, m) => t + m.springCounts[kind], 0));
+  const springs = counts.map((k) => new Uint32Array(2 * k)) as [Uint32Array, Uint32Array, Uint32Array];
+  const scales = counts.map((k) => new Float32Array(k)) as [Float32Array, Float32Array, Float32Array];
+  const fill = [0, 0, 0];
+  let t = 0;
+  parts.forEach((m, c) => {
+    const o = starts[c];
+    restPositions.set(m.restPositions, 3 * o);
+    uvs.set(m.uvs, 2 * o);
+    massWeights.set(m.massWeights, o);
+    for (let j = 0; j < m.triangles.length; j++) triangles[t++] = m.triangles[j] + o;
+    for (let s = 0; s < m.restLengths.length; s++) {
+      const kind = m.springKinds[s], at = fill[kind]++;
+      springs[kind][2 * at] = m.springs[2 * s] + o;
+      springs[kind][2 * at + 1] = m.springs[2 * s + 1] + o;
+      scales[kind][at] = m.stiffnessScales[s];
+    }
+  });
+  const merged = buildModel({ restPositions, uvs, triangles, springs, stiffnessScales: scales });
+  return { ...merged, massWeights, clothStarts: starts, clothParts: parts };
+}
+
+/** The cloth particle i belongs to (model.clothStarts). */
+export function clothOf(model: ClothModel, i: number): number {
+  const starts = model.clothStarts;
+  let c = 0;
+  while (i >= starts[c + 1]) c++;
+  return c;
 }
 
 /** How a grid cloth is laid out at the start. */

@@ -3,7 +3,8 @@ import { createColliders, type PosedCollider } from './colliders/index.js';
 import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
 import { BEND, SHEAR, SPRING_KINDS, STRUCTURAL, bendingStencils, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
-import { SceneError, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
+import { PHASE } from './layout.generated.js';
+import { SceneError, clothEntries, differingClothField, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
 
 /** Particles carried by colliders: particle i = particles[k] sits at local[3k..3k+2] in collider[k]'s own frame. */
 export interface Carried {
@@ -39,6 +40,23 @@ function carriedBy(model: ClothModel, scene: Scene, colliders: readonly PosedCol
   return { particles, collider, local };
 }
 
+/**
+ * Why a kernel that reads one value for the whole model (the WebAssembly kernel, the GPU) cannot run phase `id`
+ * with these params, or null: the scene's cloths differ in a value the phase reads (params.perCloth) — contact
+ * reads the thickness and friction, the springs' pass their damping and stretch limit, the tethers and the
+ * stretch limit the stretch limit.
+ */
+export function perClothRefusal(id: number, params: SimParams): string | null {
+  const { thickness, friction, staticFriction, damping, stretchFactor } = params.perCloth;
+  const varies = (v: Float64Array) => v.some((x) => x !== v[0]);
+  const reads = id === PHASE.contact || id === PHASE.contactTriangles ? [['cloth.thickness', thickness], ['material.friction', friction], ['material.staticFriction', staticFriction]] as const
+    : id === PHASE.distance ? [['material.damping', damping], ['material.stretchFactor', stretchFactor]] as const
+    : id === PHASE.tethers || id === PHASE.stretchLimit ? [['material.stretchFactor', stretchFactor]] as const
+    : [];
+  const field = reads.find(([, v]) => varies(v));
+  return field ? `the scene's cloths differ in ${field[0]}` : null;
+}
+
 /** Length of one simulated frame [s]: frames are 1/60 s everywhere (CLI, app, benchmarks). */
 export const FRAME_DT = 1 / 60;
 
@@ -54,8 +72,10 @@ export interface SimParams {
   iterations: number;
   /** gravitational acceleration [m/s²] */
   gravity: Float64Array;
-  /** mass of the whole cloth [kg]: material.mass, or material.arealDensity × the model's rest area */
+  /** mass of the whole cloth [kg] (of all the cloths): material.mass, or material.arealDensity × the rest area, summed */
   mass: number;
+  /** mass of each particle [kg]: its cloth's mass × its share of it (model.massWeights) */
+  particleMass: Float64Array;
   /** inverse mass of each particle when free [1/kg] */
   particleInvMass: Float32Array;
   /** effective Hooke constant of each spring [N/m] (after resolution scaling and any stability clamp) */
@@ -68,7 +88,7 @@ export interface SimParams {
   stretch: StretchSolve;
   /** whether the cloth is kept from passing through itself (solver.selfContact; self-contact.ts) */
   selfContact: boolean;
-  /** bending rigidity B of the sheet [N·m] (material.bendingRigidity) */
+  /** bending rigidity B of the sheet [N·m] (material.bendingRigidity; the first cloth's, each stencil's own is in stencilCompliance) */
   bendingRigidity: number;
   /**
    * XPBD compliance of each bending stencil of the params' model (model.stencils[bending]: hinges or Laplacian
@@ -85,7 +105,7 @@ export interface SimParams {
   friction: number;
   /** static friction coefficient, at least the kinetic one [-] */
   staticFriction: number;
-  /** contact thickness [m] */
+  /** contact thickness [m]; with several cloths the largest of theirs (what bounds contact's reach) */
   thickness: number;
   /** fastest an overlap with a collider that the cloth did not move into is undone [m/s] */
   depenetrationSpeed: number;
@@ -102,6 +122,20 @@ export interface SimParams {
   colliders: PosedCollider[];
   /** particles pinned to a collider and carried with it (the `carry` phase) */
   carried: Carried;
+  /** the cloth of each particle (model.clothStarts): its index into `perCloth` */
+  owner: Uint8Array;
+  /**
+   * each cloth's own contact and spring values, indexed by cloth: contact thickness [m], kinetic and static
+   * friction [-], spring damping [N·s/m], stretch limit [-]. The TypeScript reference reads these (a particle or a
+   * spring by its cloth; between two cloths the mean thickness and the geometric mean of the frictions); the scalars
+   * `thickness` … `stretchFactor` above are the cloths' one value where they agree
+   */
+  perCloth: { thickness: Float64Array; friction: Float64Array; staticFriction: Float64Array; damping: Float64Array; stretchFactor: Float64Array };
+  /**
+   * the first per-cloth value in which the cloths differ ('cloths[1].material.friction'; scene.ts
+   * differingClothField), or null: the kernels that read the scalars refuse such params (encoder.ts, xpbd-wasm.ts)
+   */
+  clothsDiffer: string | null;
   /** one line per value that had to be clamped, for the UI and CLI to show; empty when none */
   clamps: string[];
 }
@@ -179,26 +213,47 @@ export function axisSpringStiffness(k: number, kd: number): number {
 }
 
 export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, meshes?: MeshResolver): SimParams {
+  const entries = clothEntries(scene), parts = model.clothParts ?? [model];
+  if (parts.length !== entries.length) throw new Error(`resolveParams: the model has ${parts.length} cloths, the scene ${entries.length}`);
   const m = scene.material;
   const n = model.particleCount;
   const springCount = model.restLengths.length;
-  // the bend springs' constant at the reference spacing, from B (docs/materials.md, "Bend spring")
-  const axis = m.scaleWithResolution && model.springCounts[SHEAR] > 0 ? axisSpringStiffness(m.structuralStiffness, m.shearStiffness) : m.structuralStiffness;
-  const kindK = [axis, m.shearStiffness, m.bendingRigidity * BEND_SPRING_PER_RIGIDITY];
-  const mass = m.mass ?? (m.arealDensity ?? 0) * model.area;
+  // each cloth's spring constants by kind [N/m] and mass [kg]; the bend springs' constant at the reference spacing
+  // from B (docs/materials.md, "Bend spring")
+  const kindKs = entries.map(({ material: mc }, c) => {
+    const axis = mc.scaleWithResolution && parts[c].springCounts[SHEAR] > 0 ? axisSpringStiffness(mc.structuralStiffness, mc.shearStiffness) : mc.structuralStiffness;
+    return [axis, mc.shearStiffness, mc.bendingRigidity * BEND_SPRING_PER_RIGIDITY];
+  });
+  const kindK = kindKs[0];
+  const clothMass = entries.map(({ material: mc }, c) => mc.mass ?? (mc.arealDensity ?? 0) * parts[c].area);
+  const mass = clothMass.reduce((a, b) => a + b, 0);
   const clamps: string[] = [];
+  // the cloth of each particle
+  const owner = new Uint8Array(n);
+  for (let c = 1; c < parts.length; c++) owner.fill(c, model.clothStarts[c], model.clothStarts[c + 1]);
 
-  const particleInvMass = new Float32Array(n);
-  for (let i = 0; i < n; i++) particleInvMass[i] = 1 / (mass * model.massWeights[i]);
+  const particleMass = new Float64Array(n), particleInvMass = new Float32Array(n);
+  for (let i = 0; i < n; i++) {
+    particleMass[i] = clothMass[owner[i]] * model.massWeights[i];
+    particleInvMass[i] = 1 / particleMass[i];
+  }
 
   const stiffness = new Float32Array(springCount);
-  for (let s = 0; s < springCount; s++) stiffness[s] = kindK[model.springKinds[s]] * model.stiffnessScales[s];
+  for (let s = 0; s < springCount; s++) stiffness[s] = kindKs[owner[model.springs[2 * s]]][model.springKinds[s]] * model.stiffnessScales[s];
 
   const substeps = scene.solver.substeps;
   const h = dt / substeps;
   const damping = m.damping;
 
-  const springDamping = new Float64Array(springCount).fill(damping);
+  const perCloth = {
+    thickness: Float64Array.from(entries, (e) => e.cloth.thickness),
+    friction: Float64Array.from(entries, (e) => e.material.friction),
+    staticFriction: Float64Array.from(entries, (e) => Math.max(e.material.staticFriction, e.material.friction)),
+    damping: Float64Array.from(entries, (e) => e.material.damping),
+    stretchFactor: Float64Array.from(entries, (e) => e.material.stretchFactor),
+  };
+  const springDamping = new Float64Array(springCount);
+  for (let s = 0; s < springCount; s++) springDamping[s] = perCloth.damping[owner[model.springs[2 * s]]];
   if (scene.solver.type === 'mass-spring') {
     const kindNames = SPRING_KINDS;
     const k = limitPerSpring(model, particleInvMass, stiffness, MASS_SPRING_STIFFNESS_MARGIN / (h * h));
@@ -206,7 +261,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     if (k.limited > 0) {
       const kinds = k.worstByKind.map((f, kind) => {
         if (f >= 1) return '';
-        return kind === STRUCTURAL ? `structural ${fmt(kindK[kind] * f)} of ${fmt(kindK[kind])} N/m` : `${kindNames[kind]} ${percent(f)}`;
+        return kind === STRUCTURAL && parts.length === 1 ? `structural ${fmt(kindK[kind] * f)} of ${fmt(kindK[kind])} N/m` : `${kindNames[kind]} ${percent(f)}`;
       }).filter(Boolean);
       clamps.push(
         `mass-spring at ${substeps} substeps: ${k.limited} of ${springCount} springs are too stiff for so long a ` +
@@ -235,10 +290,11 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
   const stencils = bendingStencils(model, bending);
   const stencilCompliance = new Float32Array(stencils ? stencils.areas.length : 0);
   for (let e = 0; e < stencilCompliance.length; e++) {
-    const { offsets, weights, areas } = stencils!;
+    const { offsets, vertices, weights, areas } = stencils!;
     let any = false;
     for (let k = offsets[e]; k < offsets[e + 1]; k++) if (weights[k] !== 0) any = true;
-    stencilCompliance[e] = bendingRigidity > 0 && any ? areas[e] / bendingRigidity : Infinity;
+    const B = entries[owner[vertices[offsets[e]]]].material.bendingRigidity;
+    stencilCompliance[e] = B > 0 && any ? areas[e] / B : Infinity;
   }
 
   const d = scene.wind.direction;
@@ -252,6 +308,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     iterations: scene.solver.iterations,
     gravity: new Float64Array(scene.gravity),
     mass,
+    particleMass,
     particleInvMass,
     stiffness,
     compliance,
@@ -265,7 +322,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     stretchFactor: m.stretchFactor,
     friction: m.friction,
     staticFriction: Math.max(m.staticFriction, m.friction),
-    thickness: scene.cloth.thickness,
+    thickness: Math.max(...perCloth.thickness),
     depenetrationSpeed: scene.solver.depenetrationSpeed,
     wind: {
       enabled: scene.wind.enabled && len > 0 && scene.wind.strength > 0,
@@ -276,6 +333,9 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     },
     colliders,
     carried: carriedBy(model, scene, colliders),
+    owner,
+    perCloth,
+    clothsDiffer: differingClothField(scene),
     clamps,
   };
 }

@@ -173,7 +173,7 @@ export function moveGrabbed(state: ClothState, fx: number, fy: number, fz: numbe
  */
 export function keepGrabOutside(state: ClothState, params: SimParams, t0: number, t1: number): void {
   if (state.grabbed < 0 || params.colliders.length === 0) return;
-  const t = state.grabTarget, th = params.thickness;
+  const t = state.grabTarget, th = params.perCloth.thickness[params.owner[state.grabbed]];
   for (let round = 0; round < 2; round++) {
     for (const shape of params.colliders) {
       shape.moveTo(t0, t1);
@@ -196,12 +196,13 @@ function place(state: ClothState, j: number, p: number): void {
 /**
  * Position-based Coulomb friction (Macklin et al. 2014, "Unified Particle Physics for Real-Time Applications",
  * §6.1): the tangential displacement `d` of a contact over this substep is removed while it is within the static
- * cone (|d| < μs·depth), else reduced by μk·depth. Returns the scale to apply to d (subtract scale·d).
+ * cone (|d| < μs·depth), else reduced by μk·depth (`cloth`'s coefficients: params.perCloth). Returns the scale
+ * to apply to d (subtract scale·d).
  */
-function frictionScale(tangential: number, depth: number, params: SimParams): number {
+function frictionScale(tangential: number, depth: number, params: SimParams, cloth: number): number {
   if (tangential < 1e-12) return 0;
-  if (tangential < params.staticFriction * depth) return 1;
-  return Math.min((params.friction * depth) / tangential, 1);
+  if (tangential < params.perCloth.staticFriction[cloth] * depth) return 1;
+  return Math.min((params.perCloth.friction[cloth] * depth) / tangential, 1);
 }
 
 /**
@@ -235,7 +236,8 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
  */
 export function collideParticles(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
-  const th = params.thickness;
+  // each particle is kept its own cloth's thickness away (params.thickness: the largest, bounds the reach)
+  const owner = params.owner, thickness = params.perCloth.thickness, thMax = params.thickness;
   const recover = params.depenetrationSpeed * h;
   const n = model.particleCount;
   // the cloth's box (pinned particles too: a triangle from a pin to a free particle can touch): every particle and
@@ -251,13 +253,13 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
   for (const shape of params.colliders) {
     shape.moveTo(state.time, state.time + h);
     // a shape whose bounding ball is farther than the thickness from that box touches nothing this substep
-    const o = shape.o, reachBall = shape.boundingRadius + th;
+    const o = shape.o, reachBall = shape.boundingRadius + thMax;
     const gx = Math.max(box[0] - o[0], 0, o[0] - box[3]), gy = Math.max(box[1] - o[1], 0, o[1] - box[4]), gz = Math.max(box[2] - o[2], 0, o[2] - box[5]);
     if (gx * gx + gy * gy + gz * gz > reachBall * reachBall) continue;
     const moving = shape.moving;
     for (let i = 0; i < n; i++) {
       if (w[i] === 0) continue;
-      const j = 3 * i;
+      const j = 3 * i, cloth = owner[i], th = thickness[cloth];
       const d = shape.signedDistance(x[j], x[j + 1], x[j + 2], normal, th);
       if (d >= th) continue;
       // motion over the substep so far relative to the surface, its normal part, and the push-out
@@ -269,7 +271,7 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
       const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
       const depth = Math.min(th - d, Math.max(-mn, 0) + recover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
-      const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params);
+      const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params, cloth);
       x[j] += depth * normal[0] - s * tx;
       x[j + 1] += depth * normal[1] - s * ty;
       x[j + 2] += depth * normal[2] - s * tz;
@@ -293,19 +295,20 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
  */
 export function collideTriangles(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
-  const th = params.thickness;
+  // a triangle is kept its cloth's thickness away (params.thickness: the largest, bounds the reach)
+  const owner = params.owner, thickness = params.perCloth.thickness, thMax = params.thickness;
   // a particle can be the contact point of every triangle around it: they share its recovery
   const triangleRecover = (params.depenetrationSpeed * h) / Math.max(1, model.maxTriangleValence);
   for (const shape of params.colliders) {
     const triangleDeepest = shape.triangleDeepest;
-    if (!triangleDeepest || !needsTriangleContact(model, shape, th)) continue;
+    if (!triangleDeepest || !needsTriangleContact(model, shape, thMax)) continue;
     // idempotent: where collideParticles put it for this substep
     shape.moveTo(state.time, state.time + h);
     const moving = shape.moving;
     const tri = model.triangles;
-    const reach = th + 2 * model.maxTriangleEdge;
+    const reach = thMax + 2 * model.maxTriangleEdge;
     for (let t = 0; t < tri.length; t += 3) {
-      const a = tri[t], b = tri[t + 1], c = tri[t + 2];
+      const a = tri[t], b = tri[t + 1], c = tri[t + 2], cloth = owner[a], th = thickness[cloth];
       // every point of a triangle stretched at most 2× lies within `reach` of vertex a
       if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal, reach) >= reach) continue;
       const d = triangleDeepest.call(shape, x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);
@@ -330,7 +333,7 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
       const depth = Math.min(th - d, Math.max(-mn, 0) + triangleRecover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
-      const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params);
+      const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params, cloth);
       // desired displacement of the contact point, spread so that Σ bary_i·Δx_i equals it; and what of it
       // moves x_prev likewise
       const made = Math.min(mn + depth, depth);
@@ -368,11 +371,11 @@ export function updateVelocities(state: ClothState, h: number): void {
 export function limitStretch(model: ClothModel, state: ClothState, params: SimParams): void {
   const x = state.positions, w = state.invMass;
   const springs = model.springs, rest = model.restLengths;
-  const sf = params.stretchFactor;
+  const owner = params.owner, stretch = params.perCloth.stretchFactor;
   for (const batch of model.batches) {
     if (batch.kind === BEND) continue;
     for (let s = batch.start; s < batch.end; s++) {
-      const pa = springs[2 * s], pb = springs[2 * s + 1];
+      const pa = springs[2 * s], pb = springs[2 * s + 1], sf = stretch[owner[pa]];
       const wa = w[pa], wb = w[pb];
       const wsum = wa + wb;
       if (wsum === 0) continue;

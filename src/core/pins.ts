@@ -1,5 +1,5 @@
 import type { ClothModel } from './model.js';
-import { SceneError, type PinEntry, type PinPreset, type Scene } from './scene.js';
+import { SceneError, clothEntries, type PinEntry, type PinPreset, type Scene } from './scene.js';
 import type { ClothState } from './state.js';
 
 /**
@@ -84,9 +84,17 @@ export function resolvePins(model: ClothModel, pins: readonly PinEntry[], field 
   return [...set].sort((a, b) => a - b);
 }
 
-/** Every pinned particle of a scene: its `pins` and those its colliders carry (`colliders[k].pins`), in order. */
+/**
+ * Every pinned particle of a scene: each cloth's `pins` (on a model of several cloths, resolved on that cloth's own
+ * model and counted from its first particle) and those its colliders carry (`colliders[k].pins`), in order.
+ */
 export function scenePins(model: ClothModel, scene: Scene): number[] {
-  const set = new Set(resolvePins(model, scene.pins));
+  const set = new Set<number>();
+  clothEntries(scene).forEach((e, c) => {
+    const part = model.clothParts?.[c];
+    if (!part) { for (const i of resolvePins(model, e.pins)) set.add(i); return; }
+    for (const i of resolvePins(part, e.pins, `cloths[${c}].pins`)) set.add(i + model.clothStarts[c]);
+  });
   scene.colliders.forEach((c, k) => { for (const i of resolvePins(model, c.pins ?? [], `colliders[${k}].pins`)) set.add(i); });
   return [...set].sort((a, b) => a - b);
 }

@@ -23,6 +23,8 @@ export const PIN_PRESETS = [
 
 /** Most keys of one collider's motion. */
 export const MAX_KEYFRAMES = 10000;
+/** Most cloths one scene may have (`cloths`). */
+export const MAX_CLOTHS = 8;
 
 /** A pin list: presets, particle indices or regions (the scene's `pins`, a collider's `pins`). */
 const pinList = (description: string) => ({
@@ -86,6 +88,50 @@ const colliderCommon = {
   pins: pinList('particles pinned to this collider, carried with it as it moves (presets, indices or regions, as the scene\'s pins)'),
 } as const;
 
+/** `cloth`: the shape, size and start pose of a cloth (one of `cloths` has the same). */
+const clothSchema = {
+  type: 'object',
+  additionalProperties: false,
+  default: {},
+  properties: {
+    shape: { enum: ['rectangle', 'disc', 'tube', 'mesh'], default: 'rectangle', description: "'rectangle': the seed's grid; 'disc': a round sheet of concentric rings; 'tube': an open cylinder (a skirt, a sleeve); 'mesh': the triangle mesh in the file cloth.mesh (set when cloth.mesh is given)" },
+    mesh: { type: 'string', minLength: 1, maxLength: 1000, description: 'OBJ or glTF (.obj, .gltf, .glb) file of the cloth, relative to the scene file; any manifold triangle mesh with boundary, several pieces allowed. The app imports it from a file; a link cannot carry it' },
+    scale: { type: 'number', minimum: 1e-6, maximum: 1e6, default: 1, description: 'metres per unit of the mesh file: 0.01 for centimetres, 0.001 for millimetres, 0.0254 for inches (mesh only) [m]' },
+    resolution: { type: 'integer', minimum: 1, maximum: 1024, default: 32, description: 'density [-]: faces per side of a rectangle (1 is one quad of 4 particles, 64 is 4096 faces: 65² particles); faces across a disc\'s diameter; faces along the longer of a tube\'s circumference and length (a mesh file has its own)' },
+    width: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along x of a rectangle; diameter of a disc or tube [m]' },
+    height: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent of a rectangle along its second axis (z when horizontal, y when hanging); length of a tube [m]' },
+    orientation: { enum: ['horizontal', 'hanging'], default: 'horizontal', description: "start pose of a rectangle, disc or tube: 'horizontal' lies in the xz plane (row 0 at -z; a tube's axis along z); 'hanging' in the xy plane (row 0 at the top; a tube's axis vertical). A mesh keeps the file's pose" },
+    position: vec3('centre of the cloth at the start (of its bounding box, for a mesh) [m]', -1000, 1000, [0, 1.2, 0]),
+    rotation: vec3('extra rotation about the centre, Euler XYZ [degrees]', -360, 360, [0, 0, 0]),
+    thickness: { type: 'number', minimum: 0, maximum: 0.1, default: 0.005, description: 'contact thickness: how far the cloth surface is kept from colliders [m]' },
+    imperfection: { type: 'number', minimum: 0, maximum: 0.1, default: 0, description: "how far a rectangle's start (and rest) shape bulges out of its plane: sin(πu)·sin(πv) across it times this, zero on its edges (not for other shapes). A real cloth is never flat; an exactly flat one in a plane that holds gravity and every other force (a flag on a pole with no wind) can never buckle out of it, and stays up on its in-plane stiffness [m]" },
+  },
+} as const;
+
+/** `material`: a cloth's fabric (one of `cloths` has the same). */
+const materialSchema = {
+  type: 'object',
+  additionalProperties: false,
+  default: {},
+  properties: {
+    fabric: { enum: FABRIC_NAMES, description: 'a named fabric (docs/materials.md): it fills every material field this scene does not set itself (a schema default never counts as set); setting it with --set or in the app puts every field back to that fabric\'s' },
+    arealDensity: { type: 'number', minimum: 0.005, maximum: 10, default: 0.12, description: 'mass per unit area of the fabric; the cloth\'s mass is this × its rest area (not with material.mass) [kg/m²]' },
+    mass: { type: 'number', minimum: 1e-5, maximum: 100, description: 'mass of the whole cloth, instead of arealDensity (the older path; not with material.arealDensity; by default the cloth weighs arealDensity × its area) [kg]' },
+    structuralStiffness: { type: 'number', minimum: 1, maximum: 1e6, default: 8600, description: 'tensile stiffness of the sheet (force per unit width per unit strain) = per-spring Hooke constant of structural springs on square cells [N/m]' },
+    shearStiffness: { type: 'number', minimum: 0, maximum: 1e6, default: 56, description: 'in-plane shear stiffness: per-spring Hooke constant of the diagonal springs [N/m]' },
+    bendingRigidity: { type: 'number', minimum: 0, maximum: 1, default: 7.85e-6, description: 'bending rigidity of the sheet per unit width, B (KES-FB2), which the hinges and the Laplacian bend with and the bend springs are derived from: k_b = 94 372 m⁻² × B at the reference spacing of 1/32 m (not with material.bendStiffness) [N·m]' },
+    bendStiffness: { type: 'number', minimum: 0, maximum: 1e5, description: 'Hooke constant of the skip-one bend springs at the reference spacing of 1/32 m, instead of bendingRigidity (the older path: B = this / 94 372 m⁻²; not with material.bendingRigidity) [N/m]' },
+    damping: { type: 'number', minimum: 0, maximum: 10, default: 0.1, description: 'damping along every spring on the relative velocity of its ends [N·s/m]' },
+    stretchFactor: { type: 'number', minimum: 1, maximum: 2, default: 1.05, description: 'longest a structural or shear spring may get, as a multiple of its rest length (mass-spring stretch limiting) [-]' },
+    friction: { type: 'number', minimum: 0, maximum: 2, default: 0.3, description: 'kinetic Coulomb friction coefficient against colliders [-]' },
+    staticFriction: { type: 'number', minimum: 0, maximum: 2, default: 0.4, description: 'static Coulomb friction coefficient against colliders (at least the kinetic one is used) [-]' },
+    scaleWithResolution: { type: 'boolean', default: true, description: 'true: parameters mean the same fabric at every resolution; false: the seed\'s per-spring constants (finer meshes bend more easily)' },
+  },
+} as const;
+
+/** `pins`: a cloth's pinned particles (one of `cloths` has the same). */
+const clothPins = pinList(`pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding) or regions ({ min, max }: the particles that start in that box)`);
+
 export const sceneSchema = {
   $schema: 'http://json-schema.org/draft-07/schema#',
   $id: 'https://drape.dev/scene.schema.json',
@@ -97,41 +143,22 @@ export const sceneSchema = {
     $schema: { type: 'string', description: 'URL or path of this schema, for editors' },
     name: { type: 'string', maxLength: 100, description: 'Scene name shown in the UI and CLI', default: 'custom' },
     description: { type: 'string', maxLength: 1000, description: 'One line on what the scene shows' },
-    cloth: {
-      type: 'object',
-      additionalProperties: false,
-      default: {},
-      properties: {
-        shape: { enum: ['rectangle', 'disc', 'tube', 'mesh'], default: 'rectangle', description: "'rectangle': the seed's grid; 'disc': a round sheet of concentric rings; 'tube': an open cylinder (a skirt, a sleeve); 'mesh': the triangle mesh in the file cloth.mesh (set when cloth.mesh is given)" },
-        mesh: { type: 'string', minLength: 1, maxLength: 1000, description: 'OBJ or glTF (.obj, .gltf, .glb) file of the cloth, relative to the scene file; any manifold triangle mesh with boundary, several pieces allowed. The app imports it from a file; a link cannot carry it' },
-        scale: { type: 'number', minimum: 1e-6, maximum: 1e6, default: 1, description: 'metres per unit of the mesh file: 0.01 for centimetres, 0.001 for millimetres, 0.0254 for inches (mesh only) [m]' },
-        resolution: { type: 'integer', minimum: 1, maximum: 1024, default: 32, description: 'density [-]: faces per side of a rectangle (1 is one quad of 4 particles, 64 is 4096 faces: 65² particles); faces across a disc\'s diameter; faces along the longer of a tube\'s circumference and length (a mesh file has its own)' },
-        width: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along x of a rectangle; diameter of a disc or tube [m]' },
-        height: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent of a rectangle along its second axis (z when horizontal, y when hanging); length of a tube [m]' },
-        orientation: { enum: ['horizontal', 'hanging'], default: 'horizontal', description: "start pose of a rectangle, disc or tube: 'horizontal' lies in the xz plane (row 0 at -z; a tube's axis along z); 'hanging' in the xy plane (row 0 at the top; a tube's axis vertical). A mesh keeps the file's pose" },
-        position: vec3('centre of the cloth at the start (of its bounding box, for a mesh) [m]', -1000, 1000, [0, 1.2, 0]),
-        rotation: vec3('extra rotation about the centre, Euler XYZ [degrees]', -360, 360, [0, 0, 0]),
-        thickness: { type: 'number', minimum: 0, maximum: 0.1, default: 0.005, description: 'contact thickness: how far the cloth surface is kept from colliders [m]' },
-        imperfection: { type: 'number', minimum: 0, maximum: 0.1, default: 0, description: "how far a rectangle's start (and rest) shape bulges out of its plane: sin(πu)·sin(πv) across it times this, zero on its edges (not for other shapes). A real cloth is never flat; an exactly flat one in a plane that holds gravity and every other force (a flag on a pole with no wind) can never buckle out of it, and stays up on its in-plane stiffness [m]" },
-      },
-    },
-    material: {
-      type: 'object',
-      additionalProperties: false,
-      default: {},
-      properties: {
-        fabric: { enum: FABRIC_NAMES, description: 'a named fabric (docs/materials.md): it fills every material field this scene does not set itself (a schema default never counts as set); setting it with --set or in the app puts every field back to that fabric\'s' },
-        arealDensity: { type: 'number', minimum: 0.005, maximum: 10, default: 0.12, description: 'mass per unit area of the fabric; the cloth\'s mass is this × its rest area (not with material.mass) [kg/m²]' },
-        mass: { type: 'number', minimum: 1e-5, maximum: 100, description: 'mass of the whole cloth, instead of arealDensity (the older path; not with material.arealDensity; by default the cloth weighs arealDensity × its area) [kg]' },
-        structuralStiffness: { type: 'number', minimum: 1, maximum: 1e6, default: 8600, description: 'tensile stiffness of the sheet (force per unit width per unit strain) = per-spring Hooke constant of structural springs on square cells [N/m]' },
-        shearStiffness: { type: 'number', minimum: 0, maximum: 1e6, default: 56, description: 'in-plane shear stiffness: per-spring Hooke constant of the diagonal springs [N/m]' },
-        bendingRigidity: { type: 'number', minimum: 0, maximum: 1, default: 7.85e-6, description: 'bending rigidity of the sheet per unit width, B (KES-FB2), which the hinges and the Laplacian bend with and the bend springs are derived from: k_b = 94 372 m⁻² × B at the reference spacing of 1/32 m (not with material.bendStiffness) [N·m]' },
-        bendStiffness: { type: 'number', minimum: 0, maximum: 1e5, description: 'Hooke constant of the skip-one bend springs at the reference spacing of 1/32 m, instead of bendingRigidity (the older path: B = this / 94 372 m⁻²; not with material.bendingRigidity) [N/m]' },
-        damping: { type: 'number', minimum: 0, maximum: 10, default: 0.1, description: 'damping along every spring on the relative velocity of its ends [N·s/m]' },
-        stretchFactor: { type: 'number', minimum: 1, maximum: 2, default: 1.05, description: 'longest a structural or shear spring may get, as a multiple of its rest length (mass-spring stretch limiting) [-]' },
-        friction: { type: 'number', minimum: 0, maximum: 2, default: 0.3, description: 'kinetic Coulomb friction coefficient against colliders [-]' },
-        staticFriction: { type: 'number', minimum: 0, maximum: 2, default: 0.4, description: 'static Coulomb friction coefficient against colliders (at least the kinetic one is used) [-]' },
-        scaleWithResolution: { type: 'boolean', default: true, description: 'true: parameters mean the same fabric at every resolution; false: the seed\'s per-spring constants (finer meshes bend more easily)' },
+    cloth: clothSchema,
+    material: materialSchema,
+    cloths: {
+      type: 'array',
+      minItems: 1,
+      maxItems: MAX_CLOTHS,
+      description: 'several cloths in one scene, instead of cloth, material and pins (give one or the other): each its own shape, start pose, fabric and pins, colliding with the colliders and, with solver.selfContact, with each other. Particles are numbered through the cloths in order (reports, exports, colliders[k].pins); a cloth\'s own pins count from its first particle. Between two cloths the contact distance is the mean of their thicknesses and friction the geometric mean of their coefficients',
+      items: {
+        type: 'object',
+        additionalProperties: false,
+        properties: {
+          name: { type: 'string', maxLength: 100, description: 'what reports call this cloth (by default its place in the list: cloth 0, cloth 1, …)' },
+          cloth: clothSchema,
+          material: materialSchema,
+          pins: clothPins,
+        },
       },
     },
     solver: {
@@ -309,6 +336,6 @@ export const sceneSchema = {
       items: { type: 'integer', minimum: 1, maximum: 1024 },
       description: 'optional: run the scene once per resolution listed (faces per side), e.g. the seed\'s 1 → 4096 faces demo',
     },
-    pins: pinList(`pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding) or regions ({ min, max }: the particles that start in that box)`),
+    pins: clothPins,
   },
 } as const;

@@ -18,26 +18,20 @@ export interface Scene {
   $schema?: string;
   name: string;
   description?: string;
-  cloth: {
-    shape: ClothShape;
-    /** mesh file path (shape 'mesh' only) */
-    mesh?: string;
-    scale: number;
-    resolution: number;
-    width: number;
-    height: number;
-    orientation: 'horizontal' | 'hanging';
-    position: Vec3;
-    rotation: Vec3;
-    thickness: number;
-    /** a rectangle's out-of-plane bulge at the start, 0 for flat [m] */
-    imperfection: number;
-  };
+  /** the cloth (the first of `cloths` when the scene has several) */
+  cloth: ClothSpec;
+  /** the cloth's material (the first of `cloths`') */
   material: Material;
+  /**
+   * the scene's cloths when it gives them as a list (`cloths` in the file): cloths[0]'s cloth, material and pins
+   * are `cloth`, `material` and `pins` themselves (clothEntries reads the first from those); absent in a one-cloth scene
+   */
+  cloths?: ClothEntry[];
   solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; selfContact: boolean; depenetrationSpeed: number };
   gravity: Vec3;
   wind: Wind;
   colliders: ColliderSpec[];
+  /** the cloth's pins (the first of `cloths`') */
   pins: PinEntry[];
   /** optional list of resolutions (faces per side) to run the scene at, one after another */
   resolutionSweep?: number[];
@@ -45,6 +39,31 @@ export interface Scene {
   duration: number;
   /** the standard fabric test the scene is (textile-tests.ts): what the report's `test` measures */
   test?: SceneTest;
+}
+
+export interface ClothSpec {
+  shape: ClothShape;
+  /** mesh file path (shape 'mesh' only) */
+  mesh?: string;
+  scale: number;
+  resolution: number;
+  width: number;
+  height: number;
+  orientation: 'horizontal' | 'hanging';
+  position: Vec3;
+  rotation: Vec3;
+  thickness: number;
+  /** a rectangle's out-of-plane bulge at the start, 0 for flat [m] */
+  imperfection: number;
+}
+
+/** One cloth of a scene: its shape and start pose, its material and its pins (pin indices count from its first particle). */
+export interface ClothEntry {
+  /** what reports call it (cloth k by default) */
+  name?: string;
+  cloth: ClothSpec;
+  material: Material;
+  pins: PinEntry[];
 }
 
 /** `test`: a cantilever (ASTM D1388) or a Cusick drape (BS 5058) and where its fixture is. */
@@ -174,44 +193,123 @@ function checkDepth(input: object, source: string): void {
 }
 
 /**
- * Validates a scene document and fills in defaults. Returns a new object; the input is not changed.
- * Throws SceneError with one line naming the field.
+ * The fields of a cloth that the WebAssembly kernel's and the GPU's passes read as one value for the whole model
+ * (contact, the springs' damping and stretch limit): where the cloths of a scene differ in one, those passes run
+ * in the TypeScript reference (the kernel) or the scene is refused (the GPU). Path → value.
  */
-export function validateScene(input: unknown, source = 'scene'): Scene {
-  if (input === null || typeof input !== 'object' || Array.isArray(input)) {
-    throw new SceneError(`${source}: must be a JSON object`);
-  }
-  checkDepth(input, source);
-  const doc = structuredClone(input) as Record<string, unknown>;
+export const PER_CLOTH_FIELDS: readonly [string, (e: ClothEntry) => number][] = [
+  ['cloth.thickness', (e) => e.cloth.thickness],
+  ['material.damping', (e) => e.material.damping],
+  ['material.stretchFactor', (e) => e.material.stretchFactor],
+  ['material.friction', (e) => e.material.friction],
+  ['material.staticFriction', (e) => e.material.staticFriction],
+];
+
+/**
+ * The raw parts of one cloth of a document (the top level's cloth and material, or an entry of cloths), before the
+ * schema: a mesh file makes the cloth a 'mesh'; a named fabric fills every material field not set (`at` prefixes
+ * the fields in errors: '' or 'cloths[1].'). Returns whether the material gives the older `mass`.
+ */
+function prepareCloth(cloth: unknown, material: unknown, at: string, source: string): boolean {
+  const c = cloth !== null && typeof cloth === 'object' && !Array.isArray(cloth) ? cloth as Record<string, unknown> : null;
   // a cloth given by a mesh file is a 'mesh' without saying so
-  const cloth = doc.cloth as Record<string, unknown> | undefined;
-  if (cloth && typeof cloth === 'object' && cloth.mesh !== undefined && cloth.shape === undefined) cloth.shape = 'mesh';
+  if (c && c.mesh !== undefined && c.shape === undefined) c.shape = 'mesh';
   // what the scene sets itself, before the schema's defaults fill the rest
-  const raw = doc.material !== null && typeof doc.material === 'object' && !Array.isArray(doc.material) ? doc.material as Record<string, unknown> : null;
+  const raw = material !== null && typeof material === 'object' && !Array.isArray(material) ? material as Record<string, unknown> : null;
   const given = (k: string) => raw !== null && Object.hasOwn(raw, k);
-  for (const [a, b] of ALIASES) {
-    if (given(a) && given(b)) throw new SceneError(`${source}: material.${b}: give either material.${a} or material.${b}, not both (${ALIAS_MEANING[b]})`);
+  for (const [x, y] of ALIASES) {
+    if (given(x) && given(y)) throw new SceneError(`${source}: ${at}material.${y}: give either ${at}material.${x} or ${at}material.${y}, not both (${ALIAS_MEANING[y]})`);
   }
   // a named fabric fills every field the scene leaves out (an unknown name is the schema's to refuse)
   const fabric = raw && typeof raw.fabric === 'string' && Object.hasOwn(FABRICS, raw.fabric) ? FABRICS[raw.fabric as FabricName] : null;
   if (raw && fabric) {
     for (const k of FABRIC_FIELDS) if (!given(k) && !given(ALIAS_OF[k] ?? '')) raw[k] = fabric[k];
   }
+  return given('mass');
+}
+
+/**
+ * One validated cloth's own checks (`at` as in prepareCloth): the older material paths read as theirs (`massGiven`:
+ * the whole cloth's mass stands instead of the areal density the schema's default filled), the shape and the mesh
+ * file together, pin indices a rectangle has.
+ */
+function finishCloth(entry: ClothEntry, massGiven: boolean, at: string, source: string): void {
+  const m = entry.material as Material & { bendStiffness?: number };
+  if (massGiven) delete m.arealDensity;
+  if (m.bendStiffness !== undefined) {
+    m.bendingRigidity = m.bendStiffness / BEND_SPRING_PER_RIGIDITY;
+    delete m.bendStiffness;
+  }
+  const c = entry.cloth;
+  if (c.shape === 'mesh' && c.mesh === undefined) {
+    throw new SceneError(`${source}: ${at}cloth.mesh: required when ${at}cloth.shape is 'mesh' (the OBJ or glTF file of the cloth)`);
+  }
+  if (c.shape !== 'mesh' && c.mesh !== undefined) {
+    throw new SceneError(`${source}: ${at}cloth.mesh: only for ${at}cloth.shape 'mesh', and this cloth is a '${c.shape}'`);
+  }
+  // other shapes check their pins when the model is built (pins.ts resolvePins)
+  if (c.shape === 'rectangle') checkPinIndices(entry.pins, (c.resolution + 1) ** 2, `${at}pins`, source);
+}
+
+/** Refuses a pin index past the particles a cloth has (n), naming the entry. */
+function checkPinIndices(pins: readonly PinEntry[], n: number, field: string, source: string): void {
+  pins.forEach((p, k) => {
+    if (typeof p === 'number' && p >= n) {
+      throw new SceneError(`${source}: ${field}[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
+    }
+  });
+}
+
+/**
+ * Validates a scene document and fills in defaults. Returns a new object; the input is not changed.
+ * Throws SceneError with one line naming the field.
+ *
+ * A document gives its cloth either as `cloth`, `material` and `pins` or as a list `cloths` (never both); the
+ * validated scene has `cloth`, `material` and `pins` in either case (the first cloth's), and `cloths` when the
+ * document had it (sceneDocument writes it back in that form).
+ */
+export function validateScene(input: unknown, source = 'scene'): Scene {
+  if (input === null || typeof input !== 'object' || Array.isArray(input)) {
+    throw new SceneError(`${source}: must be a JSON object`);
+  }
+  checkDepth(input, source);
+  const doc = structuredClone(isValidatedForm(input) ? sceneDocument(input as Scene) : input) as Record<string, unknown>;
+  const list = Object.hasOwn(doc, 'cloths') ? doc.cloths : undefined;
+  // per cloth (the top level's is [0]): whether its material gives the older mass
+  const massGiven: boolean[] = [];
+  if (list !== undefined) {
+    const both = ['cloth', 'material', 'pins'].find((k) => Object.hasOwn(doc, k));
+    if (both) throw new SceneError(`${source}: ${both}: give the cloths either as cloth, material and pins or as a list cloths, not both`);
+    if (Array.isArray(list)) {
+      list.forEach((e, k) => {
+        if (e !== null && typeof e === 'object' && !Array.isArray(e)) {
+          const entry = e as Record<string, unknown>;
+          massGiven[k] = prepareCloth(entry.cloth, entry.material, `cloths[${k}].`, source);
+        }
+      });
+    }
+  } else {
+    massGiven[0] = prepareCloth(doc.cloth, doc.material, '', source);
+  }
   if (!validateFn(doc)) {
     const errors = validateFn.errors ?? [];
-    const pinErr = errors.find((e) => e.instancePath.startsWith('/pins/'));
-    if (pinErr && !errors.some((e) => !e.instancePath.startsWith('/pins/'))) {
+    const isPin = (e: ErrorObject) => /^(\/cloths\/\d+)?\/pins\//.test(e.instancePath);
+    const pinErr = errors.find(isPin);
+    if (pinErr && errors.every(isPin)) {
       throw new SceneError(`${source}: ${fieldName(pinErr.instancePath)}: must be one of ${PIN_PRESETS.join(', ')} or a particle index (integer ≥ 0)`);
     }
     throw new SceneError(`${source}: ${describe(pickError(errors))}`);
   }
   const scene = doc as unknown as Scene;
-  // the older paths: the whole cloth's mass stands instead of the areal density; the bend spring is read as B
-  const m = scene.material as Material & { bendStiffness?: number };
-  if (given('mass')) delete m.arealDensity;
-  if (m.bendStiffness !== undefined) {
-    m.bendingRigidity = m.bendStiffness / BEND_SPRING_PER_RIGIDITY;
-    delete m.bendStiffness;
+  if (scene.cloths) {
+    scene.cloths.forEach((e, k) => finishCloth(e, massGiven[k] ?? false, `cloths[${k}].`, source));
+    const [first] = scene.cloths;
+    // the first cloth is the scene's cloth (the schema's defaults filled the top level: replaced)
+    scene.cloth = first.cloth;
+    scene.material = first.material;
+    scene.pins = first.pins;
+  } else {
+    finishCloth(scene, massGiven[0] ?? false, '', source);
   }
   scene.colliders.forEach((c, k) => {
     // directions must have a length (the schema bounds each component, not the vector)
@@ -235,24 +333,67 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
     if (c.motion?.loop && (keys[0].time !== 0 || !samePose(keys[0], keys[keys.length - 1]))) {
       throw new SceneError(`${source}: colliders[${k}].motion.loop: the keys must start at time 0 and end in the pose they start in (else the collider jumps at each repeat)`);
     }
-  });
-  if (scene.cloth.shape === 'mesh' && scene.cloth.mesh === undefined) {
-    throw new SceneError(`${source}: cloth.mesh: required when cloth.shape is 'mesh' (the OBJ or glTF file of the cloth)`);
-  }
-  if (scene.cloth.shape !== 'mesh' && scene.cloth.mesh !== undefined) {
-    throw new SceneError(`${source}: cloth.mesh: only for cloth.shape 'mesh', and this cloth is a '${scene.cloth.shape}'`);
-  }
-  // other shapes check their pins when the model is built (pins.ts resolvePins)
-  if (scene.cloth.shape !== 'rectangle') return scene;
-  const n = (scene.cloth.resolution + 1) ** 2;
-  const check = (pins: readonly PinEntry[], field: string) => pins.forEach((p, k) => {
-    if (typeof p === 'number' && p >= n) {
-      throw new SceneError(`${source}: ${field}[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
+    const pins = c.pins ?? [];
+    if (scene.cloths) {
+      // the particles of several cloths are numbered through them in order: a preset would not say whose
+      const preset = pins.findIndex((p) => typeof p === 'string');
+      if (preset >= 0) throw new SceneError(`${source}: colliders[${k}].pins[${preset}]: in a scene of several cloths, pin a collider's particles by region or by index (numbered through the cloths in order)`);
+    } else if (scene.cloth.shape === 'rectangle') {
+      checkPinIndices(pins, (scene.cloth.resolution + 1) ** 2, `colliders[${k}].pins`, source);
     }
   });
-  check(scene.pins, 'pins');
-  scene.colliders.forEach((c, k) => check(c.pins ?? [], `colliders[${k}].pins`));
   return scene;
+}
+
+/**
+ * Whether `input` is a validated scene of several cloths (or one made from it by replacing a part): `cloth`,
+ * `material` and `pins` beside `cloths`, one of them the very object of cloths[0]'s. A document read from JSON never
+ * shares objects, so one that gives both forms is refused by validateScene.
+ */
+function isValidatedForm(input: object): boolean {
+  const s = input as Record<string, unknown>;
+  const first = Array.isArray(s.cloths) ? s.cloths[0] as Record<string, unknown> | undefined : undefined;
+  if (first === null || typeof first !== 'object') return false;
+  const same = (k: string) => s[k] !== null && typeof s[k] === 'object' && first[k] === s[k];
+  return same('cloth') || same('material') || same('pins');
+}
+
+/** The cloths of a scene, in order: one for a one-cloth scene; the first is always the scene's cloth, material and pins. */
+export function clothEntries(scene: Scene): ClothEntry[] {
+  const first: ClothEntry = { cloth: scene.cloth, material: scene.material, pins: scene.pins };
+  if (!scene.cloths) return [first];
+  const name = scene.cloths[0].name;
+  return [name === undefined ? first : { name, ...first }, ...scene.cloths.slice(1)];
+}
+
+/**
+ * The first field of PER_CLOTH_FIELDS in which a scene's cloths differ, named with the cloth ('cloths[1].material.friction'),
+ * or null when they agree in all (one cloth always does).
+ */
+export function differingClothField(scene: Scene): string | null {
+  const entries = clothEntries(scene);
+  for (const [path, value] of PER_CLOTH_FIELDS) {
+    const k = entries.findIndex((e) => value(e) !== value(entries[0]));
+    if (k > 0) return `cloths[${k}].${path}`;
+  }
+  return null;
+}
+
+/** What a cloth is called in reports: its name, or 'cloth k'. */
+export function clothName(entry: ClothEntry, k: number): string {
+  return entry.name ?? `cloth ${k}`;
+}
+
+/**
+ * A scene as a document (what files, links and resolvedScene hold, and what validateScene takes back): the scene
+ * itself for one cloth; for a list of cloths, `cloths` (the first from the scene's cloth, material and pins) and no
+ * top-level cloth, material or pins. A plain document without the top-level three passes through as it is.
+ */
+export function sceneDocument(scene: Scene | Record<string, unknown>): Record<string, unknown> {
+  const s = scene as Record<string, unknown>;
+  if (!Array.isArray(s.cloths) || !Object.hasOwn(s, 'cloth')) return { ...s };
+  const { cloth: _c, material: _m, pins: _p, ...rest } = s;
+  return { ...rest, cloths: clothEntries(scene as Scene) };
 }
 
 /** The older material paths and the field each stands for: [old, new]. Only one of a pair may be given. */
@@ -307,7 +448,10 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
   if (keys.length === 0 || keys.some((k) => k === '__proto__' || k === 'constructor' || k === 'prototype')) {
     throw new SceneError(`${source}: not a scene path`);
   }
-  const doc = structuredClone(scene) as Record<string, unknown>;
+  const doc = structuredClone(sceneDocument(scene));
+  if (Array.isArray(doc.cloths) && (keys[0] === 'cloth' || keys[0] === 'material' || keys[0] === 'pins')) {
+    throw new SceneError(`${source}: this scene has a list of cloths; name one: cloths[0].${keys.join('.')}`);
+  }
   let node: Record<string, unknown> | unknown[] = doc;
   for (let i = 0; i < keys.length; i++) {
     const last = i === keys.length - 1;
@@ -330,18 +474,21 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     node = next as Record<string, unknown>;
   }
   (node as Record<string, unknown>)[keys[keys.length - 1]] = value;
-  const material = doc.material as Record<string, unknown> | undefined;
-  if (keys.length === 2 && keys[0] === 'material' && material && typeof material === 'object') {
+  // the cloth the path is in: the top level's ('material.friction') or an entry of cloths ('cloths.1.material.friction')
+  const at = keys[0] === 'cloths' && keys.length >= 3 ? 2 : 0;
+  const owner = at ? (doc.cloths as Record<string, unknown>[])[Number(keys[1])] : doc;
+  const part = keys.length === at + 2 ? owner?.[keys[at]] as Record<string, unknown> | undefined : undefined;
+  const field = keys[at + 1];
+  if (part && typeof part === 'object' && keys[at] === 'material') {
     // one path of a pair replaces the other; a named fabric puts every field it has back to its value
-    const partner = ALIAS_OF[keys[1]];
-    if (partner) delete material[partner];
-    if (keys[1] === 'fabric') for (const k of [...FABRIC_FIELDS, 'mass', 'bendStiffness']) delete material[k];
+    const partner = ALIAS_OF[field];
+    if (partner) delete part[partner];
+    if (field === 'fabric') for (const k of [...FABRIC_FIELDS, 'mass', 'bendStiffness']) delete part[k];
   }
   // the shape and the mesh file go together: a mesh file makes the cloth a 'mesh', another shape drops the file
-  const cloth = doc.cloth as Record<string, unknown> | undefined;
-  if (keys.length === 2 && keys[0] === 'cloth' && cloth && typeof cloth === 'object') {
-    if (keys[1] === 'mesh' && value !== undefined) cloth.shape = 'mesh';
-    if (keys[1] === 'shape' && value !== 'mesh') delete cloth.mesh;
+  if (part && typeof part === 'object' && keys[at] === 'cloth') {
+    if (field === 'mesh' && value !== undefined) part.shape = 'mesh';
+    if (field === 'shape' && value !== 'mesh') delete part.mesh;
   }
   try {
     return validateScene(doc, source);

@@ -129,10 +129,42 @@ const BUILTIN: Record<string, object | (() => object)> = {
     material: { fabric: 'cotton' },
     resolutionSweep: [1, 2, 4, 8, 16, 32, 64],
   },
+  fold: {
+    name: 'fold',
+    description: 'A cotton sheet dropped corner first onto the floor: it lands in layers, which self-contact keeps apart',
+    // hanging and turned 45° about z: a corner points down, 3 cm above the floor
+    cloth: { orientation: 'hanging', resolution: 32, position: [0, 0.737, 0], rotation: [0, 0, 45] },
+    material: { fabric: 'cotton' },
+    solver: { selfContact: true },
+    colliders: [{ type: 'floor', height: 0 }],
+    duration: 3,
+  },
+  layers: {
+    name: 'layers',
+    description: 'Three cloths of different fabrics dropped one after another onto the sphere: leather first, then cotton, then silk on top',
+    solver: { selfContact: true },
+    colliders: [{ type: 'sphere', center: [0, 0, 0], radius: 0.5 }, { type: 'floor', height: -0.5 }],
+    // each a little larger than the one below it and turned against it, so that no edges line up
+    cloths: [
+      { name: 'leather', cloth: { resolution: 20, width: 0.9, height: 0.9, position: [0, 0.7, 0] }, material: { fabric: 'leather' } },
+      { name: 'cotton', cloth: { resolution: 20, width: 1, height: 1, position: [0, 1.0, 0], rotation: [0, 25, 0] }, material: { fabric: 'cotton' } },
+      { name: 'silk', cloth: { resolution: 20, width: 1.1, height: 1.1, position: [0, 1.3, 0], rotation: [0, 50, 0] }, material: { fabric: 'silk' } },
+    ],
+    duration: 4,
+  },
 };
 
 /** Names of the built-in scenes, in menu order. */
 export const SCENE_NAMES = Object.keys(BUILTIN);
+
+/**
+ * The built-in scenes of one cloth: the app's menu (it shows one cloth; a scene's `cloths` run in the CLI and the
+ * library).
+ */
+export const ONE_CLOTH_SCENE_NAMES = SCENE_NAMES.filter((name) => {
+  const doc = BUILTIN[name];
+  return typeof doc === 'function' || !Object.hasOwn(doc, 'cloths');
+});
 
 /** Whether `name` is a built-in scene (own names only: 'constructor' or '__proto__' are not scenes). */
 export function isBuiltinScene(name: string): boolean {

@@ -15,9 +15,11 @@
  * - **Too near**: on its side but nearer t than h (closest point of t, Ericson 2005 §5.1.5): moved apart to h.
  * - **Friction**: the tangential motion of p relative to t's point over the substep is removed while within the
  *   static cone (|d_t| < μ_s·depth), else reduced by μ_k·depth — the cloth's own friction and static friction
- *   (one cloth: its coefficients are the pair's).
+ *   within one cloth; between two cloths (a scene's `cloths`) the geometric mean of theirs, √(μ_p·μ_t), each of
+ *   the two coefficients (the rule of Bullet and Jolt: a slippery cloth slides on any other).
  *
- * h is the contact thickness, but never more than half the smallest altitude of the rest triangles, so a particle
+ * h is the contact thickness (between two cloths the mean of theirs: each keeps half its own thickness), but never
+ * more than half the smallest altitude of the rest triangles, so a particle
  * at rest is never "too near" a triangle of its own neighbourhood (on a fine mesh the layers then keep closer than
  * the thickness). Not handled: two edges crossing while every vertex stays outside the other's triangles (edge–edge
  * contact), and a particle that starts a substep already on the wrong side stays there (side memory keeps, it does
@@ -65,7 +67,10 @@ function scratch(model: ClothModel): SelfScratch {
   return s;
 }
 
-/** The self-contact distance on `model` [m]: the contact thickness, at most half the smallest rest altitude. */
+/**
+ * The self-contact distance on `model` [m]: the contact thickness, at most half the smallest rest altitude (with
+ * several cloths the largest such distance, between the two thickest).
+ */
 export function selfContactDistance(model: ClothModel, params: SimParams): number {
   return Math.min(params.thickness, 0.5 * scratch(model).minAltitude);
 }
@@ -79,8 +84,10 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   const tri = model.triangles, nt = tri.length / 3, np = model.particleCount;
   if (nt < 2) return;
   const s = scratch(model);
-  const h = Math.min(params.thickness, 0.5 * s.minAltitude);
-  if (!(h > 0)) return;
+  // the largest distance of any pair: the boxes and the grid's cells are made for it
+  const hMax = Math.min(params.thickness, 0.5 * s.minAltitude);
+  if (!(hMax > 0)) return;
+  const owner = params.owner, { thickness, friction, staticFriction } = params.perCloth;
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
   const boxes = s.boxes;
 
@@ -97,10 +104,10 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
         if (hi > boxes[b + 3 + c]) boxes[b + 3 + c] = hi;
       }
     }
-    for (let c = 0; c < 3; c++) { boxes[b + c] -= h; boxes[b + 3 + c] += h; }
+    for (let c = 0; c < 3; c++) { boxes[b + c] -= hMax; boxes[b + 3 + c] += hMax; }
   }
   const grid = s.grid;
-  if (!grid.build(boxes, nt, 1, 2 * h)) return; // an unstable cloth: nothing to keep apart
+  if (!grid.build(boxes, nt, 1, 2 * hMax)) return; // an unstable cloth: nothing to keep apart
   const { start, items, inv } = grid;
 
   const stamp = s.stamp;
@@ -125,15 +132,26 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
           const qx = xp[jp], qy = xp[jp + 1], qz = xp[jp + 2];
           if (qx < boxes[bb] || qx > boxes[bb + 3] || qy < boxes[bb + 1] || qy > boxes[bb + 4] || qz < boxes[bb + 2] || qz > boxes[bb + 5]) continue;
         }
-        resolvePair(x, xp, w, params, h, p, a, b, c);
+        // the pair's distance and friction: one cloth's own, or between two cloths the mean thickness and the
+        // geometric mean of the coefficients
+        const cp = owner[p], ct = owner[a];
+        if (cp === ct) {
+          resolvePair(x, xp, w, Math.min(thickness[cp], hMax), friction[cp], staticFriction[cp], p, a, b, c);
+        } else {
+          const h = Math.min(0.5 * (thickness[cp] + thickness[ct]), hMax);
+          resolvePair(x, xp, w, h, Math.sqrt(friction[cp] * friction[ct]), Math.sqrt(staticFriction[cp] * staticFriction[ct]), p, a, b, c);
+        }
       }
     }
   }
 }
 
-/** Particle p against triangle (a, b, c): passed through, or too near (see the file's comment). */
+/**
+ * Particle p against triangle (a, b, c): passed through, or too near (see the file's comment), kept h [m] apart
+ * with kinetic and static friction mu, muS [-].
+ */
 function resolvePair(
-  x: Float32Array, xp: Float32Array, w: Float32Array, params: SimParams, h: number, p: number, a: number, b: number, c: number,
+  x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number, p: number, a: number, b: number, c: number,
 ): void {
   const jp = 3 * p, ja = 3 * a, jb = 3 * b, jc = 3 * c;
   // the side at the substep's start: the triangle's plane then
@@ -186,7 +204,7 @@ function resolvePair(
   const rn = rx * dir[0] + ry * dir[1] + rz * dir[2];
   const tx = rx - rn * dir[0], ty = ry - rn * dir[1], tz = rz - rn * dir[2];
   const tl = Math.sqrt(tx * tx + ty * ty + tz * tz);
-  const f = tl < 1e-12 ? 0 : tl < params.staticFriction * depth ? 1 : Math.min((params.friction * depth) / tl, 1);
+  const f = tl < 1e-12 ? 0 : tl < muS * depth ? 1 : Math.min((mu * depth) / tl, 1);
   // the correction: normal λ·dir, and −f·t shared the same way (p takes its share, the triangle the rest)
   const kx = lambda * dir[0] - (f * tx) / denom, ky = lambda * dir[1] - (f * ty) / denom, kz = lambda * dir[2] - (f * tz) / denom;
   x[jp] += wp * kx; x[jp + 1] += wp * ky; x[jp + 2] += wp * kz;

@@ -9,7 +9,7 @@ import { modelFor, type MeshResolver } from './cloth-shape.js';
 import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrain, type Bounds, type Energy } from './metrics.js';
 import { FRAME_DT, resolveParams, type SimParams } from './params.js';
 import { applyPins, scenePins } from './pins.js';
-import { setScenePath, validateScene, type Scene } from './scene.js';
+import { clothEntries, clothName, setScenePath, validateScene, type Scene } from './scene.js';
 import { plainText } from './text.js';
 import { checkPlacement } from './placement.js';
 import { copyState, resetState, type ClothState } from './state.js';
@@ -57,12 +57,26 @@ export interface Report {
   energy: Energy;
   /** the scene's standard fabric test measured now (textile-tests.ts), when the scene is one */
   test?: TestResult;
+  /** each cloth's own figures, in the scene's order, when the scene has a list of cloths (`cloths`) */
+  cloths?: ClothReport[];
+}
+
+/** One cloth of a scene of several (Report.cloths): its particles are first … first + particles − 1 of the whole. */
+export interface ClothReport {
+  /** cloths[k].name, or 'cloth k' */
+  name: string;
+  /** its first particle in the scene's numbering (reports, exports, colliders[k].pins) */
+  first: number;
+  particles: number;
+  triangles: number;
+  centroid: [number, number, number];
+  bounds: Bounds;
 }
 
 /** Whether going from scene `prev` to `next` needs a new model (and so restarts the cloth): a change of geometry. */
 export function needsRebuild(prev: Scene, next: Scene): boolean {
-  return JSON.stringify(prev.cloth) !== JSON.stringify(next.cloth) ||
-    prev.material.scaleWithResolution !== next.material.scaleWithResolution;
+  const geometry = (s: Scene) => JSON.stringify(clothEntries(s).map((e) => [e.cloth, e.material.scaleWithResolution]));
+  return geometry(prev) !== geometry(next);
 }
 
 /**
@@ -327,6 +341,20 @@ export class Simulation {
       bounds: bounds(state),
       energy: energy(model, state, params),
       ...(this.scene.test ? { test: measureTest(model, state, this.scene) } : {}),
+      ...(this.scene.cloths ? { cloths: this.clothReports() } : {}),
     };
+  }
+
+  /** Report.cloths: each cloth's figures. */
+  private clothReports(): ClothReport[] {
+    const { model, state } = this, starts = model.clothStarts;
+    return clothEntries(this.scene).map((e, c) => ({
+      name: clothName(e, c),
+      first: starts[c],
+      particles: starts[c + 1] - starts[c],
+      triangles: (model.clothParts?.[c] ?? model).triangles.length / 3,
+      centroid: centroid(state, starts[c], starts[c + 1]),
+      bounds: bounds(state, starts[c], starts[c + 1]),
+    }));
   }
 }

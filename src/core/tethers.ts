@@ -94,10 +94,11 @@ export function updateTethers(model: ClothModel, state: ClothState): void {
 /** Pulls every particle that is farther than stretchFactor × its tether length from its anchor back onto it. */
 export function solveTethers(state: ClothState, params: SimParams): void {
   const x = state.positions, w = state.invMass, anchors = state.tetherAnchors, lengths = state.tetherLengths;
-  const sf = params.stretchFactor;
+  const owner = params.owner, stretch = params.perCloth.stretchFactor;
   for (let i = 0; i < anchors.length; i++) {
     const a = anchors[i];
     if (a < 0 || w[i] === 0) continue;
+    const sf = stretch[owner[i]];
     const j = 3 * i, k = 3 * a;
     const dx = x[j] - x[k], dy = x[j + 1] - x[k + 1], dz = x[j + 2] - x[k + 2];
     const d2 = dx * dx + dy * dy + dz * dz;

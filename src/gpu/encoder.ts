@@ -7,8 +7,8 @@ import type {} from 'webgpu';
 import { runFrame, type FrameVars, type PhaseBackend } from '../core/frame.js';
 import { createColliders } from '../core/colliders/index.js';
 import type { ClothModel } from '../core/model.js';
-import type { Scene } from '../core/scene.js';
-import type { SimParams } from '../core/params.js';
+import { differingClothField, type Scene } from '../core/scene.js';
+import { perClothRefusal, type SimParams } from '../core/params.js';
 import { PHASE, PHASE_COUNT, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../core/schedule.js';
 import type { ClothState } from '../core/state.js';
 import type { ClothBuffers } from './buffers.js';
@@ -37,6 +37,8 @@ export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
   if (scene.solver.stretch === 'global') return 'the global stretch step (solver.stretch \'global\') runs on the CPU only';
   if (scene.solver.selfContact) return 'self-contact (solver.selfContact) runs on the CPU only';
+  const differs = differingClothField(scene);
+  if (differs) return `cloths that differ in their contact or spring values run on the CPU only (${differs})`;
   return colliderRefusal(scene);
 }
 
@@ -67,7 +69,7 @@ export const GPU_PHASES: BackendPhases = {
     (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) |
     (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
   refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
-    (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null),
+    (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null) ?? perClothRefusal(id, params),
 };
 
 const CARRY_OR_CONTACT = (1 << PHASE.carry) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles);

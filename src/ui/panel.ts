@@ -7,7 +7,7 @@ import GUI, { type Controller } from 'lil-gui';
 // lil-gui's stylesheet as a file of the build: the panel injects no <style> element (the site's CSP has no inline styles)
 import 'lil-gui/dist/lil-gui.css';
 import {
-  MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, SCENE_NAMES, plainText, sceneSchema, type MannequinOptions, type PinPreset, type Scene,
+  MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, ONE_CLOTH_SCENE_NAMES, plainText, sceneSchema, type MannequinOptions, type PinPreset, type Scene,
 } from '../core/index.js';
 import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import type { CameraPreset } from '../render/stage.js';
@@ -187,7 +187,7 @@ export class Panel {
 
     p.scene = host.sceneKey;
     const options: Record<string, string> = {};
-    for (const name of SCENE_NAMES) options[SCENE_LABELS[name] ?? name] = name;
+    for (const name of ONE_CLOTH_SCENE_NAMES) options[SCENE_LABELS[name] ?? name] = name;
     this.sceneCtl = this.tag(gui.add(p, 'scene', options).name('Scene'), 'scene')
       .onChange((v: string) => { if (v) host.loadBuiltin(v); });
     p.reset = () => host.reset();
@@ -383,7 +383,7 @@ export class Panel {
     const opts: Record<string, string> = {};
     // lil-gui writes option names as text; plainText keeps control and direction-changing characters out
     if (host.sceneKey === '') opts[`Imported: ${plainText(host.scene.name, 60)}`] = '';
-    for (const name of SCENE_NAMES) opts[SCENE_LABELS[name] ?? name] = name;
+    for (const name of ONE_CLOTH_SCENE_NAMES) opts[SCENE_LABELS[name] ?? name] = name;
     this.sceneCtl.options(opts);
     p.sweep = host.sweepLayout;
     p.backend = host.backendChoice;

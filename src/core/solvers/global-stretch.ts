@@ -43,8 +43,8 @@ class GlobalSystem {
   readonly rest: Float64Array;
   /** particle masses [kg] */
   readonly mass: Float64Array;
-  /** the springs' damping β [N·s/m] (params.damping) */
-  readonly damping: number;
+  /** each spring's damping β [N·s/m] (params.springDamping: its cloth's material.damping) */
+  readonly damping: Float64Array;
   /** positions at the start of the substep [m], by particle (for the damping term) */
   readonly previous: Float64Array;
   /** row of each particle in the factored order */
@@ -72,6 +72,7 @@ class GlobalSystem {
     this.springs = new Int32Array(2 * m);
     this.k = new Float64Array(m);
     this.rest = new Float64Array(m);
+    this.damping = new Float64Array(m);
     m = 0;
     for (let s = 0; s < springCount; s++) {
       if (!(params.stiffness[s] > 0)) continue;
@@ -79,12 +80,12 @@ class GlobalSystem {
       this.springs[2 * m + 1] = model.springs[2 * s + 1];
       this.k[m] = params.stiffness[s];
       this.rest[m] = model.restLengths[s];
+      this.damping[m] = params.springDamping[s];
       m++;
     }
-    this.damping = params.damping;
     this.previous = new Float64Array(3 * n);
     this.mass = new Float64Array(n);
-    for (let i = 0; i < n; i++) this.mass[i] = params.mass * model.massWeights[i];
+    this.mass.set(params.particleMass);
     // the graph of the springs, in compressed rows, for the ordering and the envelope
     const degree = new Int32Array(n + 1);
     for (let s = 0; s < m; s++) { degree[this.springs[2 * s]]++; degree[this.springs[2 * s + 1]]++; }
@@ -117,15 +118,15 @@ class GlobalSystem {
 
   /** Assembles and factors A for substep h and the pins of `pinned`. */
   factor(pinned: Uint8Array, h: number): void {
-    const { chol, row, springs, k, mass } = this;
+    const { chol, row, springs, k, mass, damping } = this;
     this.pinned.set(pinned);
     this.h = h;
     this.zFor = -1;
     chol.clear();
-    const inertia = 1 / (h * h), c = this.damping / h;
+    const inertia = 1 / (h * h);
     for (let i = 0; i < mass.length; i++) chol.add(row[i], row[i], pinned[i] ? 1 : mass[i] * inertia);
     for (let s = 0; s < k.length; s++) {
-      const a = springs[2 * s], b = springs[2 * s + 1], w = k[s] + c;
+      const a = springs[2 * s], b = springs[2 * s + 1], w = k[s] + damping[s] / h;
       if (!pinned[a]) chol.add(row[a], row[a], w);
       if (!pinned[b]) chol.add(row[b], row[b], w);
       if (!pinned[a] && !pinned[b]) chol.add(row[a], row[b], -w);
@@ -170,7 +171,7 @@ export function solveGlobalStretch(model: ClothModel, state: ClothState, params:
     cur[j] = y[j] = x[j] + r[j];
     previous[j] = xp[j] + rp[j];
   }
-  const damping = system.damping / h;
+  const damping = system.damping;
   const g = state.grabbed >= 0 && !pinned[state.grabbed] ? state.grabbed : -1;
   if (g >= 0 && system.zFor !== g) {
     z.fill(0);
@@ -195,12 +196,13 @@ export function solveGlobalStretch(model: ClothModel, state: ClothState, params:
       // damping, a second projective term on the same pair: its target is the current relative position less its
       // motion along the spring since the substep's start (u: that motion), so only the stretching rate is damped
       let px = 0, py = 0, pz = 0;
-      if (damping > 0) {
+      const ds = damping[s] / h;
+      if (ds > 0) {
         const ux = dx - (previous[ja] - previous[jc]), uy = dy - (previous[ja + 1] - previous[jc + 1]), uz = dz - (previous[ja + 2] - previous[jc + 2]);
         const along = len > 1e-12 ? (ux * dx + uy * dy + uz * dz) / (len * len) : 0;
-        px = damping * (dx - along * dx); py = damping * (dy - along * dy); pz = damping * (dz - along * dz);
+        px = ds * (dx - along * dx); py = ds * (dy - along * dy); pz = ds * (dz - along * dz);
       }
-      const pa = pinned[a], pc = pinned[c], w = k[s] + damping;
+      const pa = pinned[a], pc = pinned[c], w = k[s] + ds;
       if (!pa) {
         const q = 3 * row[a];
         b[q] += f * dx + px; b[q + 1] += f * dy + py; b[q + 2] += f * dz + pz;

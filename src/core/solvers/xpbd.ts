@@ -30,13 +30,15 @@ export function solveDistanceConstraints(
   const x = state.positions, xp = state.previousPositions, w = state.invMass, lambdas = state.lambdas;
   const springs = model.springs, rest = model.restLengths, compliance = params.compliance;
   const invH2 = 1 / (h * h);
-  const betaOverH = params.damping / h;
+  // each spring's damping and stretch limit are its cloth's (params.perCloth; one value for one cloth)
+  const owner = params.owner, damping = params.springDamping, stretch = params.perCloth.stretchFactor;
   for (const batch of model.batches) {
-    const cap = batch.kind === BEND ? Infinity : params.stretchFactor;
+    const bend = batch.kind === BEND;
     for (let s = batch.start; s < batch.end; s++) {
       const alpha = compliance[s];
       if (alpha === Infinity) continue;
       const pa = springs[2 * s], pb = springs[2 * s + 1];
+      const betaOverH = damping[s] / h, cap = bend ? Infinity : stretch[owner[pa]];
       const wa = w[pa], wb = w[pb];
       const wsum = wa + wb;
       if (wsum === 0) continue;

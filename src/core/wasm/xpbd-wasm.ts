@@ -15,7 +15,7 @@
  */
 import { runFrame, type FrameVars, type PhaseBackend } from '../frame.js';
 import type { ClothModel } from '../model.js';
-import type { SimParams } from '../params.js';
+import { perClothRefusal, type SimParams } from '../params.js';
 import { needsTriangleContact } from '../phases.js';
 import { PHASE, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../schedule.js';
 import { createState, type ClothState } from '../state.js';
@@ -46,7 +46,10 @@ export const KERNEL_PHASES: BackendPhases = {
   solvers: ['xpbd'],
   phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.tethers) |
     (1 << PHASE.stretchLimit) | (1 << PHASE.contact),
-  refusal: (id: PhaseId, _model: ClothModel, params: SimParams) => (id === PHASE.contact ? contactRefusal(params) : null),
+  // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
+  // that read it to the reference
+  refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
+    (id === PHASE.contact ? contactRefusal(params) : null) ?? perClothRefusal(id, params),
 };
 
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
