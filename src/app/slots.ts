@@ -39,6 +39,8 @@ export class Slots {
       this.restore();
       throw e;
     }
+    // a scene loaded: whatever waited for mesh files is not what the page shows any more
+    app.waiting = null;
     this.frameCamera(true);
     app.hud?.clearPlot();
     app.panel?.sync();
