@@ -64,11 +64,14 @@ export class Slots {
   load(): void {
     const app = this.app;
     app.backend.place(false);
-    const scenes = app.sweep.scenes();
-    app.sim.load(scenes);
-    const all = scenes.flatMap((s) => s.colliders);
-    app.stage.setColliders(all);
+    app.sim.load(app.sweep.scenes());
+    this.drawColliders();
     this.rebuildViews();
+  }
+
+  /** The colliders of every cloth on screen, drawn as the simulation built them (the mirrors' params). */
+  drawColliders(): void {
+    this.app.stage.setColliders(this.app.sim.mirrors.flatMap((m) => m.sim.params.colliders));
   }
 
   /** New views (and sweep labels) for the cloths the simulation has now. */
