@@ -7,6 +7,7 @@ import { SceneError, sceneMannequin, type Scene } from '../core/index.js';
 import { ClothView } from '../render/cloth-view.js';
 import { fabricFor, fabricLook } from '../render/textures.js';
 import type { App } from './app.js';
+import { emptyBounds, frameBounds } from './framing.js';
 
 /** The cloths on screen, made from the app's scene. */
 export class Slots {
@@ -104,22 +105,9 @@ export class Slots {
   /** Fits the camera's framing to the cloths and their colliders; `moveCamera`: also go to the default view. */
   frameCamera(moveCamera: boolean): void {
     const app = this.app;
-    const box = new Box3();
-    for (const m of app.sim.mirrors) {
-      const x = m.sim.model.restPositions;
-      for (let i = 0; i < x.length; i += 3) box.expandByPoint(new Vector3(x[i], x[i + 1], x[i + 2]));
-      for (const c of m.sim.scene.colliders) {
-        // each finite shape by a bounding sphere (a plane and the floor are everywhere)
-        const ball = (p: readonly number[], r: number) => {
-          box.expandByPoint(new Vector3(p[0] - r, p[1] - r, p[2] - r));
-          box.expandByPoint(new Vector3(p[0] + r, p[1] + r, p[2] + r));
-        };
-        if (c.type === 'sphere') ball(c.center, c.radius);
-        else if (c.type === 'box') ball(c.center, Math.hypot(...c.halfExtents));
-        else if (c.type === 'capsule') { ball(c.a, c.radius); ball(c.b, c.radius); }
-        else if (c.type === 'cylinder') ball(c.center, Math.hypot(c.radius, c.height / 2));
-      }
-    }
+    const bounds = emptyBounds();
+    for (const m of app.sim.mirrors) frameBounds(m.sim.model.restPositions, m.sim.scene.colliders, m.sim.params.colliders, bounds);
+    const box = new Box3(new Vector3(...bounds.min), new Vector3(...bounds.max));
     const size = box.getSize(new Vector3());
     const center = box.getCenter(new Vector3());
     center.y = Math.max(0.55, center.y - 0.1 * size.y);
