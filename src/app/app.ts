@@ -19,7 +19,7 @@ import { FileImport } from './file-import.js';
 import { Interaction } from './interaction.js';
 import { Layout } from './layout.js';
 import { FrameLoop } from './loop.js';
-import { MeshImport } from './mesh-import.js';
+import { MeshImport, type WaitingScene } from './mesh-import.js';
 import { MeshStore } from './meshes.js';
 import { shortcutListener } from './shortcuts.js';
 import type { SimDriver } from './sim-client.js';
@@ -63,7 +63,9 @@ export class App {
   readonly interaction: Interaction;
   readonly fileImport: FileImport;
   readonly meshImport: MeshImport;
-  /** the mesh files imported into this page, for scenes whose cloth is one (a link cannot carry them) */
+  /** a scene file or link refused for mesh files this page does not have: importing them loads it (mesh-import.ts) */
+  waiting: WaitingScene | null = null;
+  /** the mesh files imported into this page, for the scenes that name them (cloth, mesh colliders; a link cannot carry them) */
   readonly meshes = new MeshStore();
   readonly backend = new Backend(this);
   readonly slots = new Slots(this);

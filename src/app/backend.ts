@@ -132,9 +132,8 @@ export class Backend {
     app.sim = this.makeDriver(kind);
     app.sim.paused = paused;
     if (!keep || !old) return true;
-    let scenes = app.sweep.scenes();
     try {
-      app.sim.load(scenes);
+      app.sim.load(app.sweep.scenes());
     } catch (e) {
       // accepted before, so only a clamp (a smaller cloth under the same colliders) can make it refused here
       app.overlay.message(`${refusal(e)} — showing the default scene instead`);
@@ -142,8 +141,7 @@ export class Backend {
       app.sceneKey = SCENE_NAMES[0];
       app.capNote = '';
       app.sweep.index = 0;
-      scenes = app.sweep.scenes();
-      app.sim.load(scenes);
+      app.sim.load(app.sweep.scenes());
       oldMirrors.length = 0;
       app.slots.frameCamera(true);
       app.link.schedule();
@@ -164,8 +162,7 @@ export class Backend {
         app.sim.upload(k, from.frame);
       }
     });
-    const all = scenes.flatMap((s) => s.colliders);
-    app.stage.setColliders(all);
+    app.slots.drawColliders();
     app.slots.rebuildViews();
     app.hud?.clearPlot();
     app.panel?.sync();

@@ -6,7 +6,7 @@ import { BufferAttribute, BufferGeometry, DoubleSide, Group, Mesh, MeshStandardM
 import { plainText } from '../core/index.js';
 import { fabricFor, fabricLook } from '../render/textures.js';
 import type { App } from './app.js';
-import { baseName, sceneMesh } from './meshes.js';
+import { baseName, meshNames } from './meshes.js';
 
 /**
  * A screenshot's pixel size: 'W×H' (written with an x) as it says, or 'view': the free part of the window, `viewW` ×
@@ -42,19 +42,20 @@ export class FileExport {
   }
 
   /**
-   * Downloads the scene document (what an import or a link reproduces). A mesh cloth's document names its file
-   * (cloth.mesh) and does not hold it: the notice says that the file goes with it.
+   * Downloads the scene document (what an import or a link reproduces). A document naming mesh files (cloth.mesh,
+   * colliders[k].mesh) does not hold them: the notice says that the files go with it.
    */
   exportJson(): void {
     const doc = { $schema: 'https://drape.dev/scene.schema.json', ...this.app.scene };
     const name = `${this.fileBase()}.json`;
     this.download(new Blob([JSON.stringify(doc, null, 2) + '\n'], { type: 'application/json' }), name);
-    const mesh = sceneMesh(this.app.scene);
-    if (mesh !== null) {
-      const file = plainText(mesh, 80);
-      const where = baseName(mesh) === mesh ? 'next to it' : 'at that path, relative to it';
-      this.app.overlay.message(`Exported ${name}: it names the mesh file ${file} and does not hold it — keep the file ${where} ` +
-        '(drape run reads it from there; the app needs it imported too)', 'notice');
+    const meshes = meshNames(this.app.scene);
+    if (meshes.length) {
+      const one = meshes.length === 1;
+      const files = meshes.map((m) => plainText(m, 80)).join(', ');
+      const where = meshes.every((m) => baseName(m) === m) ? 'next to it' : `at ${one ? 'that path' : 'those paths'}, relative to it`;
+      this.app.overlay.message(`Exported ${name}: it names the mesh file${one ? '' : 's'} ${files} and does not hold ${one ? 'it' : 'them'} — ` +
+        `keep the file${one ? '' : 's'} ${where} (drape run reads ${one ? 'it' : 'them'} from there; the app needs ${one ? 'it' : 'them'} imported too)`, 'notice');
     }
   }
 

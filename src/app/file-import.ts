@@ -1,10 +1,14 @@
 /**
  * Importing a scene document: the hidden file input behind the panel's import button, the size check, and loading
- * what it holds (the test hook's `import` takes the same path). A refused file says why and changes nothing.
+ * what it holds (the test hook's `import` takes the same path). A refused file says why and changes nothing; one
+ * refused for mesh files the page does not have (its cloth's, its colliders') waits for them: importing them loads
+ * it (mesh-import.ts).
  */
 import { SCENE_NAMES, parseScene, plainText, type Scene } from '../core/index.js';
 import type { App } from './app.js';
 import { FilePicker } from './file-picker.js';
+import { loadsOnce } from './mesh-import.js';
+import { missingMeshes } from './meshes.js';
 import { refusal } from './refusal.js';
 
 /** The scene-file import: file picker, size check, parse, load. */
@@ -35,10 +39,19 @@ export class FileImport {
       app.overlay.message(`Import refused — ${(e as Error).message}`);
       return false;
     }
+    const key = SCENE_NAMES.includes(scene.name) ? scene.name : '';
     try {
-      app.slots.apply(scene, SCENE_NAMES.includes(scene.name) ? scene.name : '');
+      app.slots.apply(scene, key);
     } catch (e) {
-      app.overlay.message(`Import refused — ${source}: ${refusal(e)}`);
+      const why = refusal(e);
+      // the core names the first file that is missing; the scene waits for all of them
+      const missing = missingMeshes(scene, (p) => app.meshes.has(p));
+      let then = '';
+      if (missing.length) {
+        app.waiting = { scene, key, source };
+        then = `; ${loadsOnce(app.waiting, missing)}`;
+      }
+      app.overlay.message(`Import refused — ${source}: ${why}${then}`);
       return false;
     }
     app.overlay.message(app.capNote ? `Imported ${source} — ${app.capNote}` : `Imported ${source}`, 'notice');

@@ -53,7 +53,7 @@ export class GpuSim implements SimDriver {
   private readGen = 0;
   private disposed = false;
 
-  /** `meshes`: the page's imported mesh files, for scenes whose cloth is one */
+  /** `meshes`: the page's imported mesh files, for the scenes that name them (cloth, mesh colliders) */
   constructor(readonly device: GPUDevice, private readonly meshes: MeshStore) {
     void device.lost.then(() => { this.lost = true; });
   }

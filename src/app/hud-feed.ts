@@ -6,13 +6,13 @@ import type { App } from './app.js';
 import { slowCause } from './frame-clock.js';
 import { fitSideBySide } from './limits.js';
 import { linkCannotCarry } from './mesh-import.js';
-import { sceneMesh } from './meshes.js';
+import { meshNames, sceneMesh } from './meshes.js';
 import { SWEEP_STAGE_FRAMES, sweepIgnored, sweeps } from './sweep.js';
 
 /**
  * The HUD's content now: sizes, backends (and why not the one asked for), solver and view, and the notes (unstable
- * cloths, a clamped resolution, a sweep the cloth's shape does not take, a thinned side-by-side sweep, a mesh cloth
- * that a link cannot carry). `fps` and `idle` come from the frame loop.
+ * cloths, a clamped resolution, a sweep the cloth's shape does not take, a thinned side-by-side sweep, mesh files
+ * (the cloth's, mesh colliders') that a link cannot carry). `fps` and `idle` come from the frame loop.
  */
 export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
   const { sim, scene } = app;
@@ -31,7 +31,8 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
   const ignored = sweepIgnored(scene);
   if (ignored) notes.push(ignored);
   const mesh = sceneMesh(scene);
-  if (mesh !== null) notes.push(linkCannotCarry(mesh));
+  const files = meshNames(scene);
+  if (files.length) notes.push(linkCannotCarry(files));
   if (sweeps(scene) && app.sweep.layout === 'side-by-side') {
     const fit = fitSideBySide(scene.resolutionSweep ?? [], sim.kind);
     if (fit.note) notes.push(fit.note);

@@ -1,10 +1,17 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { SceneError, Simulation, builtinScene, setScenePath } from '../core/index.js';
-import { MeshStore, baseName, missingMesh, readMeshFile, sceneMesh } from './meshes.js';
+import { MeshStore, baseName, meshNames, missingMesh, missingMeshes, namesFile, readColliderFile, readMeshFile, sceneMesh, sceneMeshes } from './meshes.js';
 
 const bytes = (path: string) => new Uint8Array(readFileSync(new URL(`../../${path}`, import.meta.url)));
 const obj = (text: string) => new TextEncoder().encode(text);
+/** a closed box 0.8 × 0.4 × 0.8 m standing on y = 0, as OBJ */
+const BOX_OBJ = 'v -0.4 0 -0.4\nv 0.4 0 -0.4\nv -0.4 0.4 -0.4\nv 0.4 0.4 -0.4\nv -0.4 0 0.4\nv 0.4 0 0.4\nv -0.4 0.4 0.4\nv 0.4 0.4 0.4\n' +
+  'f 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\nf 1 3 4 2\nf 5 6 8 7\n';
+/** the cotton scene with the box as colliders[1] under the cloth, between the sphere and a floor */
+const withBox = (path: string) => setScenePath(builtinScene('cotton-basic'), 'colliders', [
+  { type: 'floor', height: 0 }, { type: 'mesh', mesh: path, position: [0, 0, 0] },
+]);
 
 describe('the page\'s imported meshes', () => {
   it('reads the example T-shirt from OBJ and glTF, counting the particles its cloth has', () => {
@@ -63,5 +70,48 @@ describe('the page\'s imported meshes', () => {
     expect(sim.model.particleCount).toBe(1258);
     expect(() => new Simulation(setScenePath(scene, 'cloth.mesh', 'other.obj'), { kernel: 'ts', meshes: store.resolve }))
       .toThrow('import the mesh file other.obj too');
+  });
+
+  it('lists the mesh files a scene names, the cloth\'s first, and which of them the page lacks', () => {
+    const scene = setScenePath(withBox('props/box.obj'), 'cloth.mesh', 'tshirt.obj');
+    expect(sceneMeshes(scene)).toEqual([
+      { field: 'cloth.mesh', path: 'tshirt.obj' },
+      { field: 'colliders[1].mesh', path: 'props/box.obj', collider: 1 },
+    ]);
+    expect(meshNames(setScenePath(scene, 'colliders', [...scene.colliders, { type: 'mesh', mesh: 'tshirt.obj' }]))).toEqual(['tshirt.obj', 'props/box.obj']);
+    expect(sceneMeshes(builtinScene('cotton-basic'))).toEqual([]);
+    expect(namesFile('props/box.obj', 'box.obj')).toBe(true);
+    expect(namesFile('props/box.obj', 'props')).toBe(false);
+    const store = new MeshStore();
+    store.add(readColliderFile(obj(BOX_OBJ), 'box.obj'));
+    expect(missingMeshes(scene, (p) => store.has(p))).toEqual([{ field: 'cloth.mesh', path: 'tshirt.obj' }]);
+    expect(missingMesh('props/box.obj', 'colliders[1].mesh')).toBe(
+      "colliders[1].mesh: 'props/box.obj' is a mesh file that is not imported in this page: import the mesh file box.obj too (Scene & export → import mesh…)");
+  });
+
+  it('a mesh collider\'s file: read without the cloth\'s checks, found by the Simulation, asked for naming its field', () => {
+    const store = new MeshStore();
+    const scene = withBox('box.obj');
+    // the core names the field, then the file to import (the resolver's words carry no field of their own)
+    expect(() => new Simulation(scene, { kernel: 'ts', meshes: store.resolve }))
+      .toThrow(new SceneError(missingMesh('box.obj', 'colliders[1].mesh')));
+    // three faces on one edge are no cloth (not a manifold) but a collider (an open shell)
+    const fin = obj('v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n');
+    expect(() => readMeshFile(fin, 'fin.obj')).toThrow(/^fin\.obj: /);
+    store.add(readColliderFile(fin, 'fin.obj'));
+    expect(new Simulation(withBox('fin.obj'), { kernel: 'ts', meshes: store.resolve }).params.colliders[1].type).toBe('mesh');
+    const entry = readColliderFile(obj(BOX_OBJ), 'box.obj');
+    expect(entry.particles).toBeUndefined();
+    store.add(entry);
+    const sim = new Simulation(scene, { kernel: 'ts', meshes: store.resolve });
+    expect(sim.params.colliders.map((c) => c.type)).toEqual(['floor', 'mesh']);
+    // made a cloth, it is checked as one then, and refused naming the file
+    expect(() => store.particles('fin.obj')).toThrow(/^fin\.obj: /);
+    expect(() => readColliderFile(obj('v 0 0 0\n'), 'box.txt')).toThrow(/box\.txt: not a mesh file/);
+    // a file imported for a collider that is a cloth too is counted once, when a scene makes it one
+    store.add(readColliderFile(bytes('examples/tshirt.obj'), 'tshirt.obj'));
+    expect(store.find('tshirt.obj')?.particles).toBeUndefined();
+    expect(store.particles('tshirt.obj')).toBe(1258);
+    expect(store.find('tshirt.obj')?.particles).toBe(1258);
   });
 });

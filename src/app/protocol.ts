@@ -10,8 +10,8 @@ import type { MeshEntry } from './meshes.js';
 
 export type ToWorker =
   /**
-   * an imported mesh file, sent before the first scene that names it (a scene's cloth.mesh resolves to it in the
-   * worker as in the page); a later one of the same name replaces it
+   * an imported mesh file, sent before the first scene that names it (a scene's cloth.mesh or colliders[k].mesh
+   * resolves to it in the worker as in the page); a later one of the same name replaces it
    */
   | { type: 'mesh'; entry: MeshEntry }
   /** replace every slot with a fresh Simulation of each scene */

@@ -9,7 +9,7 @@
  */
 import { Simulation, type ClothState, type Energy, type Scene, type TriangleMesh } from '../core/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
-import { sceneMesh, type MeshStore } from './meshes.js';
+import { sceneMeshes, type MeshStore } from './meshes.js';
 import type { FromWorker, ToWorker } from './protocol.js';
 
 
@@ -83,7 +83,7 @@ export class SimClient implements SimDriver {
   /** the mesh files sent to the worker, by name (a newer import of the same name is sent again) */
   private readonly sent = new Map<string, TriangleMesh>();
 
-  /** `meshes`: the page's imported mesh files, for scenes whose cloth is one (sent to the worker as needed) */
+  /** `meshes`: the page's imported mesh files, for scenes that name them (sent to the worker as needed) */
   constructor(private readonly meshes: MeshStore) {
     this.worker = new Worker(new URL('./sim.worker.ts', import.meta.url), { type: 'module', name: 'drape-sim' });
     this.worker.onmessage = (e: MessageEvent<FromWorker>) => this.receive(e.data);
@@ -94,13 +94,17 @@ export class SimClient implements SimDriver {
     this.worker.postMessage(msg);
   }
 
-  /** Sends the worker the mesh file a scene's cloth is made from, before the scene, unless it has it already. */
-  private sendMesh(scene: Scene): void {
-    const path = sceneMesh(scene);
-    const entry = path === null ? undefined : this.meshes.find(path);
-    if (!entry || this.sent.get(entry.name) === entry.mesh) return;
-    this.sent.set(entry.name, entry.mesh);
-    this.post({ type: 'mesh', entry });
+  /**
+   * Sends the worker the mesh files a scene names (its cloth's, its mesh colliders'), before the scene, unless it has
+   * them already.
+   */
+  private sendMeshes(scene: Scene): void {
+    for (const { path } of sceneMeshes(scene)) {
+      const entry = this.meshes.find(path);
+      if (!entry || this.sent.get(entry.name) === entry.mesh) continue;
+      this.sent.set(entry.name, entry.mesh);
+      this.post({ type: 'mesh', entry });
+    }
   }
 
   /**
@@ -113,7 +117,7 @@ export class SimClient implements SimDriver {
     const gen = ++this.gen;
     this.mirrors.length = 0;
     for (const sim of sims) this.mirrors.push({ sim, modelGen: gen, frame: 0, grabbed: -1, unstableAt: -1 });
-    for (const sim of sims) this.sendMesh(sim.scene);
+    for (const sim of sims) this.sendMeshes(sim.scene);
     this.post({ type: 'load', gen, scenes: this.mirrors.map((m) => m.sim.scene) });
     this.clock.clear();
   }
@@ -124,7 +128,7 @@ export class SimClient implements SimDriver {
     const gen = ++this.gen;
     const rebuilt = m.sim.setScene(scene);
     if (rebuilt) { m.modelGen = gen; m.frame = 0; m.grabbed = -1; m.unstableAt = -1; }
-    this.sendMesh(m.sim.scene);
+    this.sendMeshes(m.sim.scene);
     this.post({ type: 'setScene', gen, slot, scene: m.sim.scene });
     return rebuilt;
   }

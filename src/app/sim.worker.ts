@@ -23,7 +23,7 @@ const ctx = self as unknown as {
 };
 
 let slots: Slot[] = [];
-/** the mesh files the page sent (`mesh` messages), for scenes whose cloth is one */
+/** the mesh files the page sent (`mesh` messages), for the scenes that name them (cloth.mesh, colliders[k].mesh) */
 const meshes = new MeshStore();
 
 function send(msg: FromWorker, transfer: Transferable[] = []): void {

@@ -7,6 +7,7 @@ import { SceneError, plainText, sceneMannequin, type Scene } from '../core/index
 import { ClothView } from '../render/cloth-view.js';
 import { fabricFor, fabricLook } from '../render/textures.js';
 import type { App } from './app.js';
+import { emptyBounds, frameBounds } from './framing.js';
 
 /** The cloths on screen, made from the app's scene. */
 export class Slots {
@@ -42,6 +43,8 @@ export class Slots {
       this.restore();
       throw e;
     }
+    // a scene loaded: whatever waited for mesh files is not what the page shows any more
+    app.waiting = null;
     this.frameCamera(true);
     app.hud?.clearPlot();
     app.panel?.sync();
@@ -65,11 +68,14 @@ export class Slots {
   load(): void {
     const app = this.app;
     app.backend.place(false);
-    const scenes = app.sweep.scenes();
-    app.sim.load(scenes);
-    const all = scenes.flatMap((s) => s.colliders);
-    app.stage.setColliders(all);
+    app.sim.load(app.sweep.scenes());
+    this.drawColliders();
     this.rebuildViews();
+  }
+
+  /** The colliders of every cloth on screen, drawn as the simulation built them (the mirrors' params). */
+  drawColliders(): void {
+    this.app.stage.setColliders(this.app.sim.mirrors.flatMap((m) => m.sim.params.colliders));
   }
 
   /** New views (and sweep labels) for the cloths the simulation has now. */
@@ -102,22 +108,9 @@ export class Slots {
   /** Fits the camera's framing to the cloths and their colliders; `moveCamera`: also go to the default view. */
   frameCamera(moveCamera: boolean): void {
     const app = this.app;
-    const box = new Box3();
-    for (const m of app.sim.mirrors) {
-      const x = m.sim.model.restPositions;
-      for (let i = 0; i < x.length; i += 3) box.expandByPoint(new Vector3(x[i], x[i + 1], x[i + 2]));
-      for (const c of m.sim.scene.colliders) {
-        // each finite shape by a bounding sphere (a plane and the floor are everywhere)
-        const ball = (p: readonly number[], r: number) => {
-          box.expandByPoint(new Vector3(p[0] - r, p[1] - r, p[2] - r));
-          box.expandByPoint(new Vector3(p[0] + r, p[1] + r, p[2] + r));
-        };
-        if (c.type === 'sphere') ball(c.center, c.radius);
-        else if (c.type === 'box') ball(c.center, Math.hypot(...c.halfExtents));
-        else if (c.type === 'capsule') { ball(c.a, c.radius); ball(c.b, c.radius); }
-        else if (c.type === 'cylinder') ball(c.center, Math.hypot(c.radius, c.height / 2));
-      }
-    }
+    const bounds = emptyBounds();
+    for (const m of app.sim.mirrors) frameBounds(m.sim.model.restPositions, m.sim.scene.colliders, m.sim.params.colliders, bounds);
+    const box = new Box3(new Vector3(...bounds.min), new Vector3(...bounds.max));
     const size = box.getSize(new Vector3());
     const center = box.getCenter(new Vector3());
     center.y = Math.max(0.55, center.y - 0.1 * size.y);

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { builtinMannequin, builtinScene, setScenePath, withMannequin } from '../core/index.js';
-import { decodeHash, encodeHash } from './url-state.js';
+import { decodeHash, encodeHash, linkScene } from './url-state.js';
 
 describe('URL hash state', () => {
   it('is empty for an unchanged default and names the base scene otherwise', () => {
@@ -45,6 +45,34 @@ describe('URL hash state', () => {
       const disc = setScenePath(builtinScene('cotton-basic')!, 'cloth.shape', 'disc');
       expect(decodeHash(encodeHash({ scene: disc, base, view: {} }))!.scene).toEqual(disc);
     }
+  });
+
+  it('carries the names of mesh colliders\' files; a link\'s scene is shown without the mesh files the page lacks, saying which', () => {
+    const colliders = [{ type: 'floor', height: 0 }, { type: 'mesh', mesh: 'props/chair.obj', scale: 0.01, position: [0, 0, 0.2] }];
+    const scene = setScenePath(builtinScene('cotton-basic'), 'colliders', colliders);
+    const hash = encodeHash({ scene, base: 'cotton-basic', view: {} });
+    expect(decodeURIComponent(hash)).toContain('"mesh":"props/chair.obj"');
+    expect(decodeHash(hash)!.scene).toEqual(scene);
+
+    // every file here: as it is
+    expect(linkScene(scene, () => true)).toEqual({ scene, missing: [], note: '' });
+    // the collider's file missing: the rest of the scene, and the file asked for
+    const without = linkScene(scene, () => false);
+    expect(without.scene.colliders).toEqual([scene.colliders[0]]);
+    expect(without.scene.cloth).toEqual(scene.cloth);
+    expect(without.missing).toEqual([{ field: 'colliders[1].mesh', path: 'props/chair.obj', collider: 1 }]);
+    expect(without.note).toBe('link: colliders[1] is the mesh file chair.obj, which a link cannot carry: import the mesh file chair.obj ' +
+      '(Scene & export → import mesh…) to see it; showing the scene without colliders[1] meanwhile');
+    // and the cloth's too: a rectangle meanwhile, both files asked for; only the cloth's: as before
+    const both = linkScene(setScenePath(scene, 'cloth.mesh', 'tshirt.obj'), (p) => p === 'nothing');
+    expect(both.scene.cloth.shape).toBe('rectangle');
+    expect(both.scene.colliders).toHaveLength(1);
+    expect(both.note).toBe('link: the cloth is the mesh file tshirt.obj and colliders[1] is the mesh file chair.obj, which a link cannot carry: ' +
+      'import the mesh files tshirt.obj, chair.obj (Scene & export → import mesh…) to see them; showing a rectangle cloth and the scene without colliders[1] meanwhile');
+    const cloth = linkScene(setScenePath(scene, 'cloth.mesh', 'tshirt.obj'), (p) => p !== 'tshirt.obj');
+    expect(cloth.scene.colliders).toEqual(scene.colliders);
+    expect(cloth.note).toBe('link: the cloth is the mesh file tshirt.obj, which a link cannot carry: import the mesh file tshirt.obj ' +
+      '(Scene & export → import mesh…) to see it; showing a rectangle cloth meanwhile');
   });
 
   it('names the field of a bad value, and refuses unknown scenes and keys', () => {

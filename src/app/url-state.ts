@@ -12,8 +12,10 @@
  */
 import {
   MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, SCENE_NAMES, SceneError, builtinMannequin, builtinScene, isBuiltinScene, defaultScene,
-  parseSetValue, sceneMannequin, setScenePath, withMannequin, type MannequinAnimation, type MannequinPose, type Scene,
+  parseSetValue, plainText, sceneMannequin, setScenePath, withMannequin, type MannequinAnimation, type MannequinPose, type Scene,
 } from '../core/index.js';
+import { baseName, missingMeshes, type SceneMeshFile } from './meshes.js';
+import { withoutMesh } from './shape-change.js';
 
 /** hash keys that are not scene paths */
 export const VIEW_KEYS = ['view', 'sweep', 'backend'] as const;
@@ -137,4 +139,31 @@ function safeDecode(s: string): string {
   } catch {
     throw new SceneError(`link: '${s}' is not valid URL encoding`);
   }
+}
+
+/**
+ * A link's scene as the page can show it: a link names mesh files but cannot carry them, so a cloth.mesh the page
+ * has not imported becomes the default rectangle, and a mesh collider whose file it has not imported is left out.
+ * `missing`: those files (empty when the scene is shown as it is); `note` says which to import ('' when none).
+ */
+export function linkScene(scene: Scene, has: (path: string) => boolean): { scene: Scene; missing: SceneMeshFile[]; note: string } {
+  const missing = missingMeshes(scene, has);
+  if (!missing.length) return { scene, missing, note: '' };
+  const name = (path: string) => plainText(baseName(path) || path, 80);
+  const cloth = missing.find((f) => f.collider === undefined);
+  const left = missing.flatMap((f) => (f.collider === undefined ? [] : [f.collider]));
+  let shown = cloth ? withoutMesh(scene) : scene;
+  if (left.length) shown = { ...shown, colliders: scene.colliders.filter((_, k) => !left.includes(k)) };
+  const what = missing.map((f) => `${f.collider === undefined ? 'the cloth' : `colliders[${f.collider}]`} is the mesh file ${name(f.path)}`);
+  const files = [...new Set(missing.map((f) => name(f.path)))];
+  const meanwhile = [
+    ...(cloth ? ['a rectangle cloth'] : []),
+    ...(left.length ? [`the scene without ${left.map((k) => `colliders[${k}]`).join(', ')}`] : []),
+  ];
+  return {
+    scene: shown,
+    missing,
+    note: `link: ${what.join(' and ')}, which a link cannot carry: import the mesh file${files.length > 1 ? 's' : ''} ${files.join(', ')} ` +
+      `(Scene & export → import mesh…) to see ${missing.length > 1 ? 'them' : 'it'}; showing ${meanwhile.join(' and ')} meanwhile`,
+  };
 }

@@ -3,31 +3,15 @@
  * from it, rewrites it (a moment after each change) to what is on screen, follows it when it is edited, and copies
  * it to the clipboard.
  */
-import { SCENE_NAMES, SceneError, plainText, type Scene } from '../core/index.js';
+import { SCENE_NAMES, SceneError, type Scene } from '../core/index.js';
 import { VIEWS, type ViewName } from '../render/cloth-view.js';
 import type { App } from './app.js';
 import { BACKEND_CHOICES, type BackendChoice } from './backend.js';
 import { linkCannotCarry } from './mesh-import.js';
-import { baseName, sceneMesh } from './meshes.js';
+import { meshNames } from './meshes.js';
 import { refusal } from './refusal.js';
-import { withoutMesh } from './shape-change.js';
 import { sweeps } from './sweep.js';
-import { decodeHash, encodeHash, type HashState } from './url-state.js';
-
-/**
- * A link's scene as the page can show it: a cloth.mesh the page has not imported (a link names the file but cannot
- * carry it) becomes the default rectangle, and `note` says which file to import.
- */
-function linkScene(scene: Scene, has: (path: string) => boolean): { scene: Scene; note: string } {
-  const path = sceneMesh(scene);
-  if (path === null || has(path)) return { scene, note: '' };
-  const name = plainText(baseName(path) || path, 80);
-  return {
-    scene: withoutMesh(scene),
-    note: `link: the cloth is the mesh file ${name}, which a link cannot carry: import the mesh file ${name} ` +
-      '(Scene & export → import mesh…) to see it; showing a rectangle cloth meanwhile',
-  };
-}
+import { decodeHash, encodeHash, linkScene, type HashState } from './url-state.js';
 
 /** The link in the address bar, kept in step with what is on screen. */
 export class UrlSync {
@@ -55,15 +39,23 @@ export class UrlSync {
     if (start.view.sweep === 'side-by-side' || start.view.sweep === 'sequence') app.sweep.layout = start.view.sweep;
     if (start.view.view && (VIEWS as readonly string[]).includes(start.view.view)) app.view = start.view.view as ViewName;
     const shown = linkScene(start.scene, (p) => app.meshes.has(p));
+    const key = start.base && start.base === start.scene.name ? start.base : SCENE_NAMES.includes(start.base) ? start.base : '';
     try {
-      app.slots.apply(shown.scene, start.base && start.base === start.scene.name ? start.base : SCENE_NAMES.includes(start.base) ? start.base : '');
+      app.slots.apply(shown.scene, key);
     } catch (e) {
       // a scene the simulation refuses (a collider cutting through the cloth, …)
       app.overlay.message(`${shown.note ? `${shown.note}. But ` : ''}link: ${refusal(e)} — showing the default scene instead`, 'error');
       return false;
     }
-    if (shown.note) app.overlay.message(shown.note, 'error');
+    this.waitFor(start.scene, key, shown);
     return true;
+  }
+
+  /** A link's scene shown without the mesh files it names and the page lacks: it waits for them, and says so. */
+  private waitFor(scene: Scene, key: string, shown: ReturnType<typeof linkScene>): void {
+    if (!shown.missing.length) return;
+    this.app.waiting = { scene, key, source: 'the link' };
+    this.app.overlay.message(shown.note, 'error');
   }
 
   /** Writes the link now and copies it to the clipboard (or shows it where the clipboard is out of reach). */
@@ -71,8 +63,8 @@ export class UrlSync {
     this.write();
     const url = location.href;
     // the link names an imported mesh file but cannot carry it: say so rather than pretend it reproduces the scene
-    const mesh = sceneMesh(this.app.scene);
-    const but = mesh === null ? '' : ` — but ${linkCannotCarry(mesh)}`;
+    const meshes = meshNames(this.app.scene);
+    const but = meshes.length ? ` — but ${linkCannotCarry(meshes)}` : '';
     navigator.clipboard?.writeText(url).then(
       () => this.app.overlay.message(`Link copied to the clipboard${but}`, 'notice'),
       () => this.app.overlay.message(`Link: ${url}${but}`, 'notice'),
@@ -126,8 +118,9 @@ export class UrlSync {
         app.backend.inLink = true;
       }
       const shown = linkScene(s.scene, (p) => app.meshes.has(p));
-      app.slots.apply(shown.scene, SCENE_NAMES.includes(s.base) ? s.base : '');
-      if (shown.note) app.overlay.message(shown.note, 'error');
+      const key = SCENE_NAMES.includes(s.base) ? s.base : '';
+      app.slots.apply(shown.scene, key);
+      this.waitFor(s.scene, key, shown);
     } catch (e) {
       const why = e instanceof SceneError && !e.message.startsWith('link: ') ? `link: ${e.message}` : refusal(e);
       // as it was: the view settings too (the address bar is rewritten to what is on screen)

@@ -3,13 +3,12 @@
  * controls, studio lighting with soft shadows, backdrop, floor and the collider shapes of the current scene.
  */
 import {
-  BoxGeometry, CapsuleGeometry, Color, CylinderGeometry, DirectionalLight, DoubleSide, Fog, Group, HemisphereLight,
-  Matrix4, Mesh, MeshStandardNodeMaterial, PCFShadowMap, PerspectiveCamera, PlaneGeometry, ACESFilmicToneMapping,
-  Quaternion, Scene as ThreeScene, SphereGeometry, Vector3, WebGPURenderer,
+  Color, DirectionalLight, DoubleSide, Fog, Group, HemisphereLight, Matrix4, Mesh, MeshStandardNodeMaterial,
+  PCFShadowMap, PerspectiveCamera, PlaneGeometry, ACESFilmicToneMapping, Scene as ThreeScene, Vector3, WebGPURenderer,
 } from 'three/webgpu';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { ColliderSpec, PosedCollider } from '../core/index.js';
-import { eulerXYZ } from '../core/mesh/generators.js';
+import type { PosedCollider } from '../core/index.js';
+import { colliderGeometry } from './collider-geometry.js';
 import { backdropTexture, floorTexture, repaintTextures } from './textures.js';
 
 export type BackendName = 'webgpu' | 'webgl2';
@@ -39,11 +38,11 @@ export class Stage {
   private readonly colliderGroup = new Group();
   private readonly floor: Mesh;
   private readonly key: DirectionalLight;
-  private readonly sphereMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0 });
-  /** a tilted plane is drawn as a large quad, seen from both sides */
-  private readonly planeMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0, side: DoubleSide });
-  /** the scene collider each drawn mesh shows (an index into setColliders' list), and its geometry's turn into the collider's frame */
-  private drawn: { mesh: Mesh; index: number; fix: Matrix4 | null }[] = [];
+  private readonly solidMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0 });
+  /** a tilted plane's large quad and a mesh collider's open shells are seen from both sides */
+  private readonly twoSidedMaterial = new MeshStandardNodeMaterial({ color: 0xcfc8bd, roughness: 0.42, metalness: 0.0, side: DoubleSide });
+  /** the scene collider each drawn mesh shows (an index into setColliders' list) */
+  private drawn: { mesh: Mesh; index: number }[] = [];
   private readonly poseR = new Float64Array(9);
   private readonly poseO = new Float64Array(3);
   private readonly poseM = new Matrix4();
@@ -232,64 +231,38 @@ export class Stage {
   }
 
   /**
-   * Shows a mesh per sphere, plane (a 20 m square), box, capsule and cylinder collider, named by its type, and puts
-   * the floor at the first floor's height.
+   * Shows a mesh per sphere, plane (a 20 m square), box, capsule, cylinder and mesh collider, named by its type, its
+   * geometry in the shape's own frame (collider-geometry.ts), where the collider is at time 0; the first floor is
+   * the stage's ground. `colliders`: the scene's colliders as the simulation built them (its params), in the order
+   * poseColliders is given them.
    */
-  setColliders(colliders: readonly ColliderSpec[]): void {
+  setColliders(colliders: readonly PosedCollider[]): void {
     for (const c of [...this.colliderGroup.children]) {
       this.colliderGroup.remove(c);
       (c as Mesh).geometry.dispose();
     }
     this.drawn = [];
     this.floorIndex = -1;
-    let floor: number | null = null;
-    const up = new Vector3(0, 1, 0);
     colliders.forEach((c, index) => {
-      let m: Mesh | null = null;
-      // a plane's quad lies in its xy plane; the collider's frame has the plane's normal along y
-      let fix: Matrix4 | null = null;
-      if (c.type === 'sphere') {
-        m = new Mesh(new SphereGeometry(c.radius, 96, 48), this.sphereMaterial);
-        m.position.set(c.center[0], c.center[1], c.center[2]);
-      } else if (c.type === 'floor') {
-        if (floor === null) { floor = c.height; this.floorIndex = index; }
-      } else if (c.type === 'plane') {
-        // the half-space's surface as a 20 m square, centred on its point
-        m = new Mesh(new PlaneGeometry(20, 20), this.planeMaterial);
-        const n = new Vector3(c.normal[0], c.normal[1], c.normal[2]).normalize();
-        m.quaternion.setFromUnitVectors(new Vector3(0, 0, 1), n);
-        m.position.set(c.point[0], c.point[1], c.point[2]);
-        fix = new Matrix4().makeRotationX(-Math.PI / 2);
-      } else if (c.type === 'box') {
-        m = new Mesh(new BoxGeometry(2 * c.halfExtents[0], 2 * c.halfExtents[1], 2 * c.halfExtents[2]), this.sphereMaterial);
-        // the core's rotation matrix (eulerXYZ, row-major), as the physics uses it
-        const r = eulerXYZ(c.rotation);
-        m.quaternion.setFromRotationMatrix(new Matrix4().set(r[0], r[1], r[2], 0, r[3], r[4], r[5], 0, r[6], r[7], r[8], 0, 0, 0, 0, 1));
-        m.position.set(c.center[0], c.center[1], c.center[2]);
-      } else if (c.type === 'capsule') {
-        const axis = new Vector3(c.b[0] - c.a[0], c.b[1] - c.a[1], c.b[2] - c.a[2]);
-        const length = axis.length();
-        m = new Mesh(new CapsuleGeometry(c.radius, length, 16, 48), this.sphereMaterial);
-        if (length > 0) m.quaternion.copy(new Quaternion().setFromUnitVectors(up, axis.normalize()));
-        m.position.set((c.a[0] + c.b[0]) / 2, (c.a[1] + c.b[1]) / 2, (c.a[2] + c.b[2]) / 2);
-      } else if (c.type === 'cylinder') {
-        m = new Mesh(new CylinderGeometry(c.radius, c.radius, c.height, 96, 1), this.sphereMaterial);
-        m.quaternion.setFromUnitVectors(up, new Vector3(c.axis[0], c.axis[1], c.axis[2]).normalize());
-        m.position.set(c.center[0], c.center[1], c.center[2]);
+      if (c.type === 'floor') {
+        if (this.floorIndex < 0) this.floorIndex = index;
+        return;
       }
-      if (m) {
-        m.castShadow = true;
-        m.receiveShadow = true;
-        m.name = c.type;
-        this.colliderGroup.add(m);
-        this.drawn.push({ mesh: m, index, fix });
-      }
+      const shape = colliderGeometry(c);
+      if (!shape) return;
+      const m = new Mesh(shape.geometry, shape.twoSided ? this.twoSidedMaterial : this.solidMaterial);
+      m.castShadow = true;
+      m.receiveShadow = true;
+      m.name = c.type;
+      this.colliderGroup.add(m);
+      this.drawn.push({ mesh: m, index });
     });
     // a scene without a floor still gets a visual ground far below, so the studio does not look empty
     this.floor.quaternion.setFromAxisAngle(new Vector3(1, 0, 0), -Math.PI / 2);
-    this.floor.position.set(0, floor ?? -0.001, 0);
+    this.floor.position.set(0, -0.001, 0);
     this.floor.updateMatrix();
     this.floor.visible = true;
+    this.poseColliders(colliders, colliders.map(() => 0));
     this.needsRender = true;
   }
 
@@ -306,9 +279,8 @@ export class Stage {
       const c = colliders[d.index];
       if (!c) continue;
       c.poseAt(times[d.index] ?? 0, R, o);
-      // the shape's own frame (its mesh's geometry is built the same way: centred, axis along y)
+      // the shape's own frame (its mesh's geometry is built in it: centred, axis or normal along y)
       M.set(R[0], R[1], R[2], o[0], R[3], R[4], R[5], o[1], R[6], R[7], R[8], o[2], 0, 0, 0, 1);
-      if (d.fix) M.multiply(d.fix);
       const m = d.mesh;
       this.poseBefore.copy(m.matrix);
       M.decompose(m.position, m.quaternion, m.scale);

@@ -1,0 +1,28 @@
+import { describe, expect, it } from 'vitest';
+import { builtinScene, setScenePath, type ColliderSpec } from '../core/index.js';
+import type { App } from './app.js';
+import { Sweep } from './sweep.js';
+
+describe('the resolution sweep side by side', () => {
+  it('moves every collider with its cloth, a mesh collider by its position; a floor stays', () => {
+    const colliders: ColliderSpec[] = [
+      { type: 'floor', height: 0 },
+      { type: 'mesh', mesh: 'box.obj', scale: 1, position: [0.1, 0, -0.2], rotation: [0, 30, 0] },
+      { type: 'sphere', center: [0, 0.5, 0], radius: 0.3 },
+    ];
+    const scene = setScenePath(setScenePath(builtinScene('resolution'), 'colliders', colliders), 'resolutionSweep', [2, 4, 8]);
+    const sweep = new Sweep({ scene, sim: { kind: 'cpu' } } as unknown as App);
+    sweep.layout = 'side-by-side';
+    const slots = sweep.scenes();
+    expect(slots).toHaveLength(3);
+    for (const s of slots) {
+      const dx = s.cloth.position[0] - scene.cloth.position[0];
+      // (the validated scene's colliders: with their defaults, e.g. no pins)
+      const [floor, mesh, sphere] = s.colliders;
+      expect(floor).toEqual(scene.colliders[0]);
+      expect(mesh).toEqual({ ...scene.colliders[1], position: [0.1 + dx, 0, -0.2] });
+      expect(sphere).toEqual({ ...scene.colliders[2], center: [dx, 0.5, 0] });
+    }
+    expect(slots.map((s) => s.cloth.position[0] - scene.cloth.position[0])).toEqual([-1.6, 0, 1.6]);
+  });
+});
