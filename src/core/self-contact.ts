@@ -21,10 +21,11 @@
  * h is the contact thickness (between two cloths the mean of theirs: each keeps half its own thickness), but never
  * more than half the smallest altitude of the rest triangles, so a particle
  * at rest is never "too near" a triangle of its own neighbourhood (on a fine mesh the layers then keep closer than
- * the thickness). Not handled: two edges crossing while every vertex stays outside the other's triangles (edge–edge
- * contact), and a particle that starts a substep already on the wrong side stays there (side memory keeps, it does
- * not untangle). One Gauss–Seidel pass in particle order; the grid's arrays are allocated when a model is first
- * seen and grow only when a substep needs more cells than ever before.
+ * the thickness). Then edge against edge (collideEdges): two edges crossing while every vertex stays outside the
+ * other's triangles. Not handled: a particle or an edge that starts a substep already on the wrong side stays
+ * there (side memory keeps, it does not untangle). One Gauss–Seidel pass in particle order, then one in edge order;
+ * the grids' arrays are allocated when a model is first seen and grow only when a substep needs more cells than
+ * ever before.
  */
 import { BoxGrid } from './box-grid.js';
 import type { ClothModel } from './model.js';
@@ -41,6 +42,10 @@ interface SelfScratch {
   grid: BoxGrid;
   /** the last particle that tested each triangle (one test per pair) */
   stamp: Int32Array;
+  /** edge boxes over the substep, widened by h/2, as `boxes`; the grid over them; the last edge that tested each */
+  edgeBoxes: Float64Array;
+  edgeGrid: BoxGrid;
+  edgeStamp: Int32Array;
 }
 const scratchOf = new WeakMap<ClothModel, SelfScratch>();
 
@@ -62,6 +67,9 @@ function scratch(model: ClothModel): SelfScratch {
     boxes: new Float64Array(6 * n),
     grid: new BoxGrid(),
     stamp: new Int32Array(n),
+    edgeBoxes: new Float64Array(3 * model.edges.length),
+    edgeGrid: new BoxGrid(),
+    edgeStamp: new Int32Array(model.edges.length / 2),
   };
   scratchOf.set(model, s);
   return s;
@@ -144,6 +152,7 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
       }
     }
   }
+  collideEdges(model, state, params, s, hMax);
 }
 
 /**
@@ -270,4 +279,133 @@ function closestPoint(x: Float32Array, jp: number, ja: number, jb: number, jc: n
   bary[0] = 1 - u - v; bary[1] = u; bary[2] = v;
   const cx = x[ja] + u * abx + v * acx, cy = x[ja + 1] + u * aby + v * acy, cz = x[ja + 2] + u * abz + v * acz;
   return Math.hypot(x[jp] - cx, x[jp + 1] - cy, x[jp + 2] - cz);
+}
+
+/**
+ * Edge against edge, after the particles against the triangles (the crossings those leave: two edges passing
+ * through each other while every vertex stays outside the other's triangles). Each pair of edges sharing no
+ * particle whose boxes over the substep meet: the closest points p (on a–b, at s) and q (on c–d, at t), now and at
+ * the substep's start. **Passed through**: both pairs of closest points inside their edges and the vector q→p now
+ * against its direction then — the edges are moved apart, by inverse mass and the weights (1 − s, s, 1 − t, t),
+ * until p is on its side again at distance h along that direction. **Too near**: apart to h along q→p. Friction as
+ * for the particles (Bridson, Fedkiw & Anderson 2002, §7.2's edge–edge proximity, position-based).
+ */
+function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number): void {
+  const edges = model.edges, ne = edges.length / 2;
+  const x = state.positions, xp = state.previousPositions, w = state.invMass;
+  // each box widened by h/2: two edges nearer than h have boxes that meet
+  const boxes = s.edgeBoxes, r = 0.5 * hMax;
+  for (let e = 0; e < ne; e++) {
+    const b = 6 * e, i = 3 * edges[2 * e], j = 3 * edges[2 * e + 1];
+    for (let c = 0; c < 3; c++) {
+      boxes[b + c] = Math.min(x[i + c], xp[i + c], x[j + c], xp[j + c]) - r;
+      boxes[b + 3 + c] = Math.max(x[i + c], xp[i + c], x[j + c], xp[j + c]) + r;
+    }
+  }
+  const grid = s.edgeGrid;
+  if (!grid.build(boxes, ne, 1, hMax)) return;
+  const { start, items, inv } = grid;
+  const owner = params.owner, { thickness, friction, staticFriction } = params.perCloth;
+  const stamp = s.edgeStamp;
+  stamp.fill(-1);
+  for (let e = 0; e < ne; e++) {
+    const a = edges[2 * e], b = edges[2 * e + 1];
+    const be = 6 * e;
+    const x0 = Math.floor(boxes[be] * inv), x1 = Math.floor(boxes[be + 3] * inv);
+    const y0 = Math.floor(boxes[be + 1] * inv), y1 = Math.floor(boxes[be + 4] * inv);
+    const z0 = Math.floor(boxes[be + 2] * inv), z1 = Math.floor(boxes[be + 5] * inv);
+    for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) {
+      const cellId = grid.slot(i, j, k);
+      for (let q = start[cellId]; q < start[cellId + 1]; q++) {
+        const f = items[q];
+        // each pair once, from its lower edge
+        if (f <= e || stamp[f] === e) continue;
+        stamp[f] = e;
+        const c = edges[2 * f], d = edges[2 * f + 1];
+        if (c === a || c === b || d === a || d === b) continue;
+        const bf = 6 * f;
+        if (boxes[bf] > boxes[be + 3] || boxes[bf + 3] < boxes[be] || boxes[bf + 1] > boxes[be + 4] ||
+            boxes[bf + 4] < boxes[be + 1] || boxes[bf + 2] > boxes[be + 5] || boxes[bf + 5] < boxes[be + 2]) continue;
+        const ca = owner[a], cc = owner[c];
+        if (ca === cc) {
+          resolveEdges(x, xp, w, Math.min(thickness[ca], hMax), friction[ca], staticFriction[ca], a, b, c, d);
+        } else {
+          const h = Math.min(0.5 * (thickness[ca] + thickness[cc]), hMax);
+          resolveEdges(x, xp, w, h, Math.sqrt(friction[ca] * friction[cc]), Math.sqrt(staticFriction[ca] * staticFriction[cc]), a, b, c, d);
+        }
+      }
+    }
+  }
+}
+
+/** closest points of two segments: the parameters on each (segmentClosest) */
+const st = new Float64Array(2);
+/** the vector q→p between them now, and then */
+const gap = new Float64Array(3);
+const gap0 = new Float64Array(3);
+
+/**
+ * Closest points of segments a–b and c–d of array x (Ericson 2005, §5.1.9): their parameters into `st` (p = a +
+ * s(b − a), q = c + t(d − c)), the vector p − q into `out`; returns its length.
+ */
+function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: number, out: Float64Array): number {
+  const ja = 3 * a, jb = 3 * b, jc = 3 * c, jd = 3 * d;
+  const ux = x[jb] - x[ja], uy = x[jb + 1] - x[ja + 1], uz = x[jb + 2] - x[ja + 2];
+  const vx = x[jd] - x[jc], vy = x[jd + 1] - x[jc + 1], vz = x[jd + 2] - x[jc + 2];
+  const rx = x[ja] - x[jc], ry = x[ja + 1] - x[jc + 1], rz = x[ja + 2] - x[jc + 2];
+  const A = ux * ux + uy * uy + uz * uz, E = vx * vx + vy * vy + vz * vz, F = vx * rx + vy * ry + vz * rz;
+  let s = 0, t = 0;
+  if (A <= 1e-24 && E <= 1e-24) { s = 0; t = 0; } else if (A <= 1e-24) { t = Math.min(Math.max(F / E, 0), 1); } else {
+    const C = ux * rx + uy * ry + uz * rz;
+    if (E <= 1e-24) { s = Math.min(Math.max(-C / A, 0), 1); } else {
+      const B = ux * vx + uy * vy + uz * vz, den = A * E - B * B;
+      s = den > 1e-24 ? Math.min(Math.max((B * F - C * E) / den, 0), 1) : 0;
+      t = (B * s + F) / E;
+      if (t < 0) { t = 0; s = Math.min(Math.max(-C / A, 0), 1); } else if (t > 1) { t = 1; s = Math.min(Math.max((B - C) / A, 0), 1); }
+    }
+  }
+  st[0] = s; st[1] = t;
+  out[0] = rx + s * ux - t * vx; out[1] = ry + s * uy - t * vy; out[2] = rz + s * uz - t * vz;
+  return Math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
+}
+
+/** Edges a–b and c–d: passed through, or too near (see collideEdges), kept h [m] apart with friction mu, muS [-]. */
+function resolveEdges(
+  x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number, a: number, b: number, c: number, d: number,
+): void {
+  const inside = (v: number) => v > 1e-6 && v < 1 - 1e-6;
+  const len0 = segmentClosest(xp, a, b, c, d, gap0);
+  const in0 = inside(st[0]) && inside(st[1]);
+  const len = segmentClosest(x, a, b, c, d, gap);
+  if (!Number.isFinite(len) || !Number.isFinite(len0)) return;
+  const s = st[0], t = st[1];
+  let C: number;
+  if (in0 && inside(s) && inside(t) && len0 > 1e-12 && gap[0] * gap0[0] + gap[1] * gap0[1] + gap[2] * gap0[2] < 0) {
+    // passed through: back to the side of then, h along that direction
+    dir[0] = gap0[0] / len0; dir[1] = gap0[1] / len0; dir[2] = gap0[2] / len0;
+    C = gap[0] * dir[0] + gap[1] * dir[1] + gap[2] * dir[2] - h;
+  } else {
+    if (len >= h || len < 1e-12) return;
+    dir[0] = gap[0] / len; dir[1] = gap[1] / len; dir[2] = gap[2] / len;
+    C = len - h;
+  }
+  const ka = 1 - s, kb = s, kc = 1 - t, kd = t;
+  const wa = w[a], wb = w[b], wc = w[c], wd = w[d];
+  const denom = ka * ka * wa + kb * kb * wb + kc * kc * wc + kd * kd * wd;
+  if (!(denom > 0)) return;
+  const lambda = -C / denom, depth = -C;
+  // friction: the relative tangential motion of p against q over the substep
+  const ja = 3 * a, jb = 3 * b, jc = 3 * c, jd = 3 * d;
+  const rx = ka * (x[ja] - xp[ja]) + kb * (x[jb] - xp[jb]) - kc * (x[jc] - xp[jc]) - kd * (x[jd] - xp[jd]);
+  const ry = ka * (x[ja + 1] - xp[ja + 1]) + kb * (x[jb + 1] - xp[jb + 1]) - kc * (x[jc + 1] - xp[jc + 1]) - kd * (x[jd + 1] - xp[jd + 1]);
+  const rz = ka * (x[ja + 2] - xp[ja + 2]) + kb * (x[jb + 2] - xp[jb + 2]) - kc * (x[jc + 2] - xp[jc + 2]) - kd * (x[jd + 2] - xp[jd + 2]);
+  const rn = rx * dir[0] + ry * dir[1] + rz * dir[2];
+  const tx = rx - rn * dir[0], ty = ry - rn * dir[1], tz = rz - rn * dir[2];
+  const tl = Math.sqrt(tx * tx + ty * ty + tz * tz);
+  const f = tl < 1e-12 ? 0 : tl < muS * depth ? 1 : Math.min((mu * depth) / tl, 1);
+  const kx = lambda * dir[0] - (f * tx) / denom, ky = lambda * dir[1] - (f * ty) / denom, kz = lambda * dir[2] - (f * tz) / denom;
+  x[ja] += wa * ka * kx; x[ja + 1] += wa * ka * ky; x[ja + 2] += wa * ka * kz;
+  x[jb] += wb * kb * kx; x[jb + 1] += wb * kb * ky; x[jb + 2] += wb * kb * kz;
+  x[jc] -= wc * kc * kx; x[jc + 1] -= wc * kc * ky; x[jc + 2] -= wc * kc * kz;
+  x[jd] -= wd * kd * kx; x[jd + 1] -= wd * kd * ky; x[jd + 2] -= wd * kd * kz;
 }
