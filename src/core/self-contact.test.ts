@@ -83,4 +83,12 @@ describe('self-contact (solver.selfContact)', () => {
     expect(highest).toBeLessThan(0.33); // below where it started: it fell and stopped on the lower strip
     sim.dispose();
   });
+
+  // the fold scene lands corner first in layers: without edge–edge contact 3–10 pairs crossed from frame 20 on
+  it.each(['ts', 'wasm'] as const)('%s: the fold scene (32², corner first onto the floor) crosses itself at no 10th frame of 2 s', (kernel) => {
+    const sim = new Simulation(builtinScene('fold'), { kernel, threads: 1 });
+    expect(crossings(sim, 120)).toEqual(Array(12).fill(0));
+    expect(sim.report().finite).toBe(true);
+    sim.dispose();
+  });
 });
