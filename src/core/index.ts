@@ -5,6 +5,7 @@ export * from './params.js';
 export * from './fabrics.js';
 export * from './textile-tests.js';
 export * from './scene.js';
+export * from './cloth-paths.js';
 export { sceneSchema, PIN_PRESETS, MAX_CLOTHS } from './scene-schema.js';
 export { SCENE_NAMES, ONE_CLOTH_SCENE_NAMES, builtinScene, isBuiltinScene, builtinMannequin, sceneMannequin, withMannequin, type SceneMannequin } from './scenes.js';
 export {
