@@ -44,6 +44,8 @@ export class App {
   sceneKey = 'cotton-basic';
   /** the scene's mannequin (a built-in scene's, as its colliders pose it now), or null: the panel's Mannequin controls */
   mannequin: SceneMannequin | null = null;
+  /** the cloth the panel's Cloth & material and Pins folders edit, of a scene of several (0 for one cloth) */
+  cloth = 0;
   view: ViewName = 'shaded';
   pinTool = false;
   /** what the backend's size cap changed in the scene ('' when nothing): shown in the HUD until the next scene */

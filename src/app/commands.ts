@@ -4,7 +4,8 @@
  * hands to their jobs. It is the panel's host and the pointer's; it reads the app's state and sends commands.
  */
 import {
-  SceneError, builtinScene, isBuiltinScene, resolvePins, setScenePath, withMannequin, type MannequinOptions, type PinEntry, type PinPreset, type Scene,
+  SceneError, builtinScene, clothCount, clothEntries, clothModelOf, clothName, clothParticle, clothPath, editCloth, isBuiltinScene,
+  pathCloth, plainText, resolvePins, setScenePath, withMannequin, type MannequinOptions, type PinEntry, type PinPreset, type Scene,
 } from '../core/index.js';
 import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import type { CameraPreset } from '../render/stage.js';
@@ -29,11 +30,22 @@ export class Commands implements PanelHost, InteractionHost {
   get sweepLayout() { return this.app.sweep.layout; }
   get backendChoice() { return this.app.backend.choice; }
 
-  /** the resolution of the cloth on screen: the sweep's current one when it runs one after another */
+  /** the cloth the panel's Cloth & material and Pins folders edit (a scene of several cloths; else 0) */
+  get cloth() { return this.app.cloth; }
+
+  /** The panel's cloth control: which cloth of the scene its Cloth & material and Pins folders edit. */
+  selectCloth(k: number): void {
+    const app = this.app;
+    if (!Number.isInteger(k) || k < 0 || k >= clothCount(app.scene)) return;
+    app.cloth = k;
+    app.panel.sync();
+  }
+
+  /** the resolution of the cloth on screen: the sweep's current one when it runs one after another, else the edited cloth's */
   get shownResolution(): number {
     const { sweep, scene } = this.app;
     const list = sweep.list();
-    return list.length && sweep.layout === 'sequence' ? list[sweep.index % list.length] : scene.cloth.resolution;
+    return list.length && sweep.layout === 'sequence' ? list[sweep.index % list.length] : clothEntries(scene)[this.app.cloth].cloth.resolution;
   }
   get sim() { return this.app.sim; }
   get camera() { return this.app.stage.camera; }
@@ -89,19 +101,28 @@ export class Commands implements PanelHost, InteractionHost {
 
   /**
    * A live change of one scene path (a panel control); false, with a message, when refused, and nothing changes.
-   * `cloth.shape` (the Shape control) changes the cloth as shape-change.ts says (pins it cannot take dropped, with
-   * a notice; its lowest point where the old cloth's was).
+   * A cloth's field is its own path in a scene of several (`cloths[1].material.damping`). Its `cloth.shape` (the
+   * Shape control) changes that cloth as shape-change.ts says (pins it cannot take dropped, with a notice; its
+   * lowest point where the old cloth's was).
    */
   setPath(path: string, value: unknown): boolean {
     const app = this.app;
+    const at = pathCloth(path);
     let next: Scene;
     let note = '';
     try {
       let base = app.scene;
       // particle-index pins belong to one resolution: a new resolution keeps only the presets
-      if (path === 'cloth.resolution') base = { ...base, pins: base.pins.filter((p) => typeof p === 'string') };
-      if (path === 'cloth.shape') ({ scene: next, note } = withShape(base, value as PanelShape, app.meshes.resolve));
-      else next = setScenePath(base, path, value);
+      if (at?.field === 'cloth.resolution') base = editCloth(base, at.cloth, (one) => ({ ...one, pins: one.pins.filter((p) => typeof p === 'string') }));
+      if (at?.field === 'cloth.shape') {
+        next = editCloth(base, at.cloth, (one) => {
+          const change = withShape(one, value as PanelShape, app.meshes.resolve);
+          note = change.note;
+          return change.scene;
+        });
+      } else {
+        next = setScenePath(base, path, value);
+      }
     } catch (e) {
       app.overlay.message(e instanceof SceneError ? e.message.replace(/^--set /, '') : String(e));
       app.panel.sync();
@@ -125,7 +146,10 @@ export class Commands implements PanelHost, InteractionHost {
       app.overlay.message(why);
       return false;
     }
-    if (note) app.overlay.message(`${app.scene.cloth.shape}: ${note}`, 'notice');
+    if (note && at) {
+      const e = clothEntries(app.scene)[at.cloth];
+      app.overlay.message(`${clothCount(app.scene) > 1 ? `${plainText(clothName(e, at.cloth), 60)}: ` : ''}${e.cloth.shape}: ${note}`, 'notice');
+    }
     app.dirty = true;
     app.link.schedule();
     return true;
@@ -134,8 +158,10 @@ export class Commands implements PanelHost, InteractionHost {
   /** setPath's change, once the new scene is valid; throws SceneError when the simulation refuses it */
   private applyPath(path: string, next: Scene): void {
     const app = this.app;
+    // the path within its cloth ('cloth.resolution' of cloths[1].cloth.resolution); '' outside the cloths
+    const field = pathCloth(path)?.field ?? '';
     app.scene = next;
-    if (path === 'cloth.resolution' || path === 'cloth.shape' || path === 'resolutionSweep') app.capNote = '';
+    if (field === 'cloth.resolution' || field === 'cloth.shape' || path === 'resolutionSweep') app.capNote = '';
     const capBefore = app.capNote;
     if (app.backend.wanted().kind !== app.sim.kind) {
       app.backend.place(true);
@@ -152,14 +178,14 @@ export class Commands implements PanelHost, InteractionHost {
       scenes.forEach((s, k) => {
         // keep slot-local pins (pin tool on a sweep cloth) when only parameters change
         const keep = sweeps(app.scene) ? { ...s, pins: app.sim.mirrors[k].sim.scene.pins } : s;
-        const derived = path.startsWith('cloth.') || path === 'material.scaleWithResolution' || path === 'pins';
+        const derived = field.startsWith('cloth.') || field === 'material.scaleWithResolution' || field === 'pins';
         const rebuilt = app.sim.setScene(k, derived ? s : keep);
         if (rebuilt) app.interaction.cancel();
       });
       app.slots.syncViews();
-      if (path === 'material.scaleWithResolution') app.labels.make();
+      if (field === 'material.scaleWithResolution') app.labels.make();
     }
-    if (path.startsWith('cloth.')) app.slots.frameCamera(false);
+    if (field.startsWith('cloth.')) app.slots.frameCamera(false);
   }
 
   /** Every cloth back to its start (a sweep sequence back to its first resolution). */
@@ -222,18 +248,19 @@ export class Commands implements PanelHost, InteractionHost {
     this.app.stage.setCamera(preset);
   }
 
-  /** Turns one pin preset on or off. */
+  /** Turns one pin preset of the edited cloth on or off. */
   setPreset(preset: PinPreset, on: boolean): void {
-    const pins = this.app.scene.pins.filter((p) => p !== preset);
+    const { scene, cloth } = this.app;
+    const pins = clothEntries(scene)[cloth].pins.filter((p) => p !== preset);
     if (on) pins.push(preset);
-    this.setPath('pins', pins);
+    this.setPath(clothPath(scene, cloth, 'pins'), pins);
     this.app.panel.sync();
   }
 
-  /** Unpins everything (on every cloth of a sweep too). */
+  /** Unpins the edited cloth (every cloth of a sweep too). */
   clearPins(): void {
     const app = this.app;
-    this.setPath('pins', []);
+    this.setPath(clothPath(app.scene, app.cloth, 'pins'), []);
     if (sweeps(app.scene)) app.sim.mirrors.forEach((m, k) => app.sim.setScene(k, { ...m.sim.scene, pins: [] }));
     app.panel.sync();
   }
@@ -245,23 +272,29 @@ export class Commands implements PanelHost, InteractionHost {
     this.app.panel.sync();
   }
 
-  /** Pin tool: pins or unpins one particle; presets and regions it breaks up become particle lists. */
+  /**
+   * Pin tool: pins or unpins one particle (of the slot's model: in a scene of several cloths, a particle of the
+   * cloth it is in, numbered from that cloth's first, in that cloth's pins); presets and regions it breaks up become
+   * particle lists.
+   */
   togglePin(slot: number, particle: number): void {
     const app = this.app;
     const m = app.sim.mirrors[slot];
     const scene = m.sim.scene;
-    const pinned = new Set(resolvePins(m.sim.model, scene.pins));
-    const on = !pinned.has(particle);
+    const { cloth, index } = clothParticle(m.sim.model, particle);
+    const own = clothModelOf(m.sim.model, cloth), entry = clothEntries(scene)[cloth];
+    const pinned = new Set(resolvePins(own, entry.pins));
+    const on = !pinned.has(index);
     let pins: PinEntry[];
     if (on) {
-      pins = [...scene.pins, particle];
+      pins = [...entry.pins, index];
     } else {
       pins = [];
-      for (const p of scene.pins) {
-        if (p === particle) continue;
+      for (const p of entry.pins) {
+        if (p === index) continue;
         if (typeof p !== 'number') {
-          const members = resolvePins(m.sim.model, [p]);
-          if (members.includes(particle)) { pins.push(...members.filter((i) => i !== particle)); continue; }
+          const members = resolvePins(own, [p]);
+          if (members.includes(index)) { pins.push(...members.filter((i) => i !== index)); continue; }
         }
         pins.push(p);
       }
@@ -274,10 +307,11 @@ export class Commands implements PanelHost, InteractionHost {
         return;
       }
     } else {
-      if (!this.setPath('pins', pins)) return;
+      if (!this.setPath(clothPath(scene, cloth, 'pins'), pins)) return;
       app.panel.sync();
     }
-    app.overlay.toast(`${on ? 'Pinned' : 'Unpinned'} particle ${particle}`);
+    const of = clothCount(scene) > 1 ? ` of ${plainText(clothName(entry, cloth), 60)}` : '';
+    app.overlay.toast(`${on ? 'Pinned' : 'Unpinned'} particle ${index}${of}`);
     app.dirty = true;
   }
 

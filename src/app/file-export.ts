@@ -1,10 +1,12 @@
 /**
  * Downloads: the scene as a JSON document, a PNG screenshot, and the cloths at their current shape as OBJ or
- * binary glTF (never a file with NaN in it). File names come from the scene's name, made safe.
+ * binary glTF (never a file with NaN in it): one object per cloth (a scene of several: each by its name, with its
+ * fabric's look), its vertices in the scene's particle order (an OBJ's numbering is the scene's, as the CLI's
+ * export). File names come from the scene's name, made safe.
  */
 import { BufferAttribute, BufferGeometry, DoubleSide, Group, Mesh, MeshStandardMaterial } from 'three/webgpu';
-import { plainText } from '../core/index.js';
-import { fabricFor, fabricLook } from '../render/textures.js';
+import { clothEntries, clothName, plainText, sceneDocument } from '../core/index.js';
+import { localTriangles, trianglesByCloth } from '../render/cloth-parts.js';
 import type { App } from './app.js';
 import { baseName, meshNames } from './meshes.js';
 
@@ -46,7 +48,8 @@ export class FileExport {
    * colliders[k].mesh) does not hold them: the notice says that the files go with it.
    */
   exportJson(): void {
-    const doc = { $schema: 'https://drape.dev/scene.schema.json', ...this.app.scene };
+    // the document form: a scene of several cloths as its list `cloths` (what an import or drape run takes back)
+    const doc = { $schema: 'https://drape.dev/scene.schema.json', ...sceneDocument(this.app.scene) };
     const name = `${this.fileBase()}.json`;
     this.download(new Blob([JSON.stringify(doc, null, 2) + '\n'], { type: 'application/json' }), name);
     const meshes = meshNames(this.app.scene);
@@ -83,22 +86,37 @@ export class FileExport {
     return '';
   }
 
-  /** The cloths as plain meshes with standard materials, at their current shape, for the exporters. */
+  /**
+   * The cloths as plain meshes with standard materials, at their current shape, for the exporters: one mesh per
+   * cloth (a sweep's row: one per slot; a scene of several: one per cloth of the list, over its own particles, in
+   * order), each with its look's texture.
+   */
   private exportGroup(): Group {
     const app = this.app;
     const group = new Group();
     group.name = plainText(app.scene.name, 100);
-    const look = fabricLook(fabricFor(app.scene.name));
-    const material = new MeshStandardMaterial({ map: look.map, roughness: look.roughness, side: DoubleSide, name: `${look.kind} fabric` });
-    app.sim.mirrors.forEach((m, k) => {
-      const g = new BufferGeometry();
-      g.setAttribute('position', new BufferAttribute(new Float32Array(m.sim.state.positions), 3));
-      g.setAttribute('uv', new BufferAttribute(new Float32Array(m.sim.model.uvs), 2));
-      g.setIndex(new BufferAttribute(new Uint32Array(m.sim.model.triangles), 1));
-      g.computeVertexNormals();
-      const mesh = new Mesh(g, material);
-      mesh.name = app.sim.mirrors.length > 1 ? `cloth-${m.sim.scene.cloth.resolution}` : 'cloth';
-      if (k >= 0) group.add(mesh);
+    const materials = new Map<string, MeshStandardMaterial>();
+    app.sim.mirrors.forEach((m) => {
+      const { model, state, scene } = m.sim;
+      const entries = clothEntries(scene), parts = trianglesByCloth(model), looks = app.slots.looks(scene);
+      entries.forEach((e, c) => {
+        const from = model.clothStarts[c], to = model.clothStarts[c + 1];
+        const g = new BufferGeometry();
+        g.setAttribute('position', new BufferAttribute(state.positions.slice(3 * from, 3 * to), 3));
+        g.setAttribute('uv', new BufferAttribute(model.uvs.slice(2 * from, 2 * to), 2));
+        g.setIndex(new BufferAttribute(localTriangles(model, parts, c), 1));
+        g.computeVertexNormals();
+        const look = looks[c];
+        let material = materials.get(look.kind);
+        if (!material) {
+          material = new MeshStandardMaterial({ map: look.map, roughness: look.roughness, side: DoubleSide, name: `${look.kind} fabric` });
+          materials.set(look.kind, material);
+        }
+        const mesh = new Mesh(g, material);
+        mesh.name = entries.length > 1 ? plainText(clothName(e, c), 60)
+          : app.sim.mirrors.length > 1 ? `cloth-${scene.cloth.resolution}` : 'cloth';
+        group.add(mesh);
+      });
     });
     return group;
   }

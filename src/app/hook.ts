@@ -7,6 +7,7 @@
  * faults, `loseDevice` and `poison`.
  */
 import { Vector3 } from 'three/webgpu';
+import { clothEntries, clothName, sceneDocument } from '../core/index.js';
 import type { App } from './app.js';
 
 export interface DrapeHook {
@@ -26,8 +27,15 @@ export interface DrapeHook {
   /** frame at which a slot's cloth became unstable (non-finite) and was stopped; -1 while it is fine */
   unstableAt(slot?: number): number;
   sceneName(): string;
-  /** the current scene document (a copy) */
+  /** the current scene document (a copy; a scene of several cloths as its list `cloths`, as a file holds it) */
   scene(): unknown;
+  /** which cloth the panel's Cloth & material and Pins folders edit (an index into the scene's cloths) */
+  editedCloth(): number;
+  /**
+   * the cloths of a slot as drawn: each one's name, its first particle (the slot's numbering) and particles, the
+   * look its shaded view draws it with, and the triangles it draws
+   */
+  cloths(slot?: number): { name: string; first: number; particles: number; look: string; triangles: number }[];
   view(): string;
   paused(): boolean;
   pinTool(): boolean;
@@ -89,7 +97,16 @@ export function installHook(app: App): DrapeHook {
     poison: (slot = 0) => { mirror(slot); app.sim.poison(slot); },
     unstableAt: (slot) => mirror(slot).unstableAt,
     sceneName: () => app.scene.name,
-    scene: () => structuredClone(app.scene),
+    scene: () => structuredClone(sceneDocument(app.scene)),
+    editedCloth: () => app.cloth,
+    cloths: (slot = 0) => {
+      const { sim } = mirror(slot), starts = sim.model.clothStarts;
+      const drawn = app.views[slot]?.drawnCloths ?? [];
+      return clothEntries(sim.scene).map((e, c) => ({
+        name: clothName(e, c), first: starts[c], particles: starts[c + 1] - starts[c],
+        look: drawn[c]?.look ?? '', triangles: drawn[c]?.triangles ?? 0,
+      }));
+    },
     view: () => app.view,
     paused: () => app.sim.paused,
     pinTool: () => app.pinTool,

@@ -1,12 +1,12 @@
 /** What the HUD shows: the app's and the simulation's state, gathered into the HUD's fields and notes. */
-import { measureTest, plainText, type TestResult } from '../core/index.js';
-import type { HudInfo } from '../ui/hud.js';
-import { SCENE_LABELS } from '../ui/panel.js';
+import { clothEntries, clothName, measureTest, plainText, type ClothSpec, type TestResult } from '../core/index.js';
+import type { HudCloth, HudInfo } from '../ui/hud.js';
+import { SCENE_LABELS } from '../ui/menu-labels.js';
 import type { App } from './app.js';
 import { slowCause } from './frame-clock.js';
 import { fitSideBySide } from './limits.js';
 import { linkCannotCarry } from './mesh-import.js';
-import { meshNames, sceneMesh } from './meshes.js';
+import { clothMesh, meshNames } from './meshes.js';
 import { SWEEP_STAGE_FRAMES, sweepIgnored, sweeps } from './sweep.js';
 
 /**
@@ -30,7 +30,6 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
   if (app.capNote) notes.push(app.capNote);
   const ignored = sweepIgnored(scene);
   if (ignored) notes.push(ignored);
-  const mesh = sceneMesh(scene);
   const files = meshNames(scene);
   if (files.length) notes.push(linkCannotCarry(files));
   if (sweeps(scene) && app.sweep.layout === 'side-by-side') {
@@ -39,6 +38,12 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
   }
   // the standard fabric test the scene is, measured on the first cloth as the page has it now
   const first = sim.mirrors[0];
+  // a scene of several cloths (one slot: a sweep is of one cloth): each one's particles, by its name
+  const entries = clothEntries(scene);
+  const starts = first?.sim.model.clothStarts;
+  const cloths: HudCloth[] | undefined = entries.length > 1 && starts?.length === entries.length + 1
+    ? entries.map((e, k) => ({ name: plainText(clothName(e, k), 40), shape: shapeWords(e.cloth), particles: starts[k + 1] - starts[k] }))
+    : undefined;
   const slow = !sim.paused && sim.stats.realTime < 0.9 ? slowCause(sim.stats.realTime, sim.stats.stepMs, fps) : null;
   const measured = scene.test && first && first.unstableAt < 0 ? measureTest(first.sim.model, first.sim.state, scene) : undefined;
   return {
@@ -54,7 +59,7 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
     slow: slow?.text ?? '',
     slowBy: slow?.by ?? '',
     paused: sim.paused,
-    particles, triangles, springs,
+    particles, triangles, springs, cloths,
     solver: scene.solver.type,
     substeps: scene.solver.substeps,
     clamps: sim.stats.clamps,
@@ -65,9 +70,15 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
       sweep.length && app.sweep.layout === 'sequence'
         ? `resolution ${app.sweep.index % sweep.length + 1} of ${sweep.length}, ${SWEEP_STAGE_FRAMES / 60} s each`
         : Object.hasOwn(SCENE_LABELS, scene.name) ? '' : `scene: ${plainText(scene.name, 100)}`,
-      mesh !== null ? `cloth: mesh ${plainText(mesh, 80)}` : scene.cloth.shape !== 'rectangle' ? `cloth: ${scene.cloth.shape}` : '',
+      entries.length === 1 && shapeWords(scene.cloth) ? `cloth: ${shapeWords(scene.cloth)}` : '',
     ].filter(Boolean).join(' · ') || undefined,
   };
+}
+
+/** A cloth's shape in the HUD's words, '' for the rectangle: 'disc', 'mesh tshirt.obj' (as text). */
+function shapeWords(cloth: ClothSpec): string {
+  const mesh = clothMesh(cloth);
+  return mesh !== null ? `mesh ${plainText(mesh, 80)}` : cloth.shape === 'rectangle' ? '' : cloth.shape;
 }
 
 /** One line for the HUD: what a fabric test measures now. */

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { SceneError, builtinScene, modelFor, setScenePath } from '../core/index.js';
+import { SceneError, builtinScene, clothEntries, modelFor, setScenePath } from '../core/index.js';
 import {
   MAX_PARTICLES, MAX_RESOLUTION, capCloth, capResolution, fitSideBySide, importSizeProblem, particlesOf, shapeParticles,
 } from './limits.js';
@@ -98,5 +98,36 @@ describe('caps by particles: discs, tubes and mesh files', () => {
     expect(() => capCloth(mesh, 'cpu', count(70_000)))
       .toThrow('big.obj: 70,000 particles, more than the CPU backend takes (66,049); the GPU backend takes 1,050,625');
     expect(capCloth(mesh, 'gpu', count(70_000)).note).toBe('');
+  });
+});
+
+describe('backend size caps, several cloths', () => {
+  const layers = builtinScene('layers');
+  const big = [0, 1, 2].reduce((s, k) => setScenePath(s, `cloths[${k}].cloth.resolution`, 256), layers);
+
+  it('share the cap: each generated cloth over its share lowered, with a note naming them; the GPU keeps them', () => {
+    expect(capCloth(layers, 'cpu', noMesh)).toEqual({ scene: layers, note: '' });
+    const cpu = capCloth(setScenePath(big, 'cloths[0].pins', ['top-left', 7]), 'cpu', noMesh);
+    // 22,016 particles each at most: (147 + 1)² = 21,904
+    expect(clothEntries(cpu.scene).map((e) => e.cloth.resolution)).toEqual([147, 147, 147]);
+    expect(clothEntries(cpu.scene).map((e) => e.name)).toEqual(['leather', 'cotton', 'silk']);
+    // particle numbers belong to the old resolution; presets stay
+    expect(cpu.scene.cloths![0].pins).toEqual(['top-left']);
+    expect(cpu.note).toBe('3 cloths of 198,147 particles together: more than the CPU backend takes (66,049), clamped: ' +
+      'cloths[0] (leather) resolution 256 → 147, cloths[1] (cotton) resolution 256 → 147, cloths[2] (silk) resolution 256 → 147; ' +
+      'the GPU backend takes 1,050,625');
+    expect(capCloth(big, 'gpu', noMesh)).toEqual({ scene: big, note: '' });
+    // a small cloth under its share keeps its resolution
+    const mixed = capCloth(setScenePath(big, 'cloths[1].cloth.resolution', 20), 'cpu', noMesh);
+    expect(clothEntries(mixed.scene).map((e) => e.cloth.resolution)).toEqual([147, 20, 147]);
+  });
+
+  it("a mesh file keeps its particles; mesh files over the cap together are refused", () => {
+    const mesh = setScenePath(big, 'cloths[1].cloth.mesh', 'shirt.obj');
+    const cpu = capCloth(mesh, 'cpu', () => 30_000);
+    // the rest, 36,049, shared by the two rectangles: 18,024 each, (133 + 1)² = 17,956
+    expect(clothEntries(cpu.scene).map((e) => e.cloth.resolution)).toEqual([133, 256, 133]);
+    expect(() => capCloth(mesh, 'cpu', () => 70_000)).toThrow(new SceneError(
+      "the cloths' mesh files: 70,000 particles together, more than the CPU backend takes (66,049); the GPU backend takes 1,050,625"));
   });
 });

@@ -4,10 +4,11 @@
  * backend switch can ask the CPU for a million-particle cloth — which would freeze the tab building it. The app
  * clamps such a scene to the backend's cap and says so. A rectangle is capped by its resolution; a disc or a tube
  * by its particles (the same count as the largest rectangle: 257² on the CPU, 1025² on the GPU), its resolution
- * lowered until it fits; a mesh file has its own particles, so a mesh over the cap is refused, not clamped.
+ * lowered until it fits; a mesh file has its own particles, so a mesh over the cap is refused, not clamped. The
+ * cloths of a scene of several share the cap: when together over it, each generated cloth over its share is lowered.
  * No DOM here: unit-tested in limits.test.ts.
  */
-import { MAX_INPUT_BYTES, SceneError, plainText, type Scene } from '../core/index.js';
+import { MAX_INPUT_BYTES, SceneError, clothEntries, clothName, editCloth, plainText, type ClothSpec, type Scene } from '../core/index.js';
 
 export type BackendKind = 'cpu' | 'gpu';
 
@@ -92,6 +93,7 @@ const count = (n: number): string => n.toLocaleString('en');
  * nothing is over the cap.
  */
 export function capCloth(scene: Scene, kind: BackendKind, meshParticles: (path: string) => number): Capped {
+  if (scene.cloths) return capCloths(scene, kind, meshParticles);
   const c = scene.cloth, max = MAX_PARTICLES[kind];
   const more = kind === 'cpu' ? `; the GPU backend takes ${count(MAX_PARTICLES.gpu)}` : '';
   if (c.shape === 'rectangle') return capResolution(scene, kind);
@@ -102,17 +104,54 @@ export function capCloth(scene: Scene, kind: BackendKind, meshParticles: (path: 
   }
   const n = shapeParticles(c);
   if (n <= max) return { scene, note: '' };
-  // the largest resolution that fits (the counts grow with the resolution)
+  const r = largestFitting(c, max);
+  return {
+    scene: { ...scene, cloth: { ...c, resolution: r } },
+    note: `${c.shape} of resolution ${c.resolution}: ${count(n)} particles, more than the ${NAMES[kind]} backend takes (${count(max)}), ` +
+      `clamped to resolution ${r} (${count(shapeParticles(c, r))} particles)${more}`,
+  };
+}
+
+/** The largest resolution of a generated cloth (at most its own) with at most `max` particles (the counts grow with it). */
+function largestFitting(c: ClothSpec, max: number): number {
   let lo = 1, hi = c.resolution;
   while (lo < hi) {
     const mid = Math.ceil((lo + hi) / 2);
     if (shapeParticles(c, mid) <= max) lo = mid; else hi = mid - 1;
   }
-  const r = lo;
+  return lo;
+}
+
+/**
+ * capCloth for a scene of several cloths (`cloths`): together they take what one cloth may. When over it, the mesh
+ * files keep their particles (a SceneError when they alone are over), and every generated cloth over an equal share
+ * of the rest is lowered to the largest resolution that fits in it, its particle pins dropped (their numbers belong
+ * to the old resolution).
+ */
+function capCloths(scene: Scene, kind: BackendKind, meshParticles: (path: string) => number): Capped {
+  const entries = clothEntries(scene), max = MAX_PARTICLES[kind];
+  const more = kind === 'cpu' ? `; the GPU backend takes ${count(MAX_PARTICLES.gpu)}` : '';
+  const counts = entries.map((e) => (e.cloth.shape === 'mesh' ? meshParticles(e.cloth.mesh ?? '') : shapeParticles(e.cloth)));
+  const total = counts.reduce((a, b) => a + b, 0);
+  if (total <= max) return { scene, note: '' };
+  const meshes = entries.reduce((n, e, k) => n + (e.cloth.shape === 'mesh' ? counts[k] : 0), 0);
+  const generated = entries.filter((e) => e.cloth.shape !== 'mesh').length;
+  if (meshes > max || generated === 0) {
+    throw new SceneError(`the cloths' mesh files: ${count(meshes)} particles together, more than the ${NAMES[kind]} backend takes (${count(max)})${more}`);
+  }
+  const share = Math.floor((max - meshes) / generated);
+  let next = scene;
+  const lowered: string[] = [];
+  entries.forEach((e, k) => {
+    if (e.cloth.shape === 'mesh' || counts[k] <= share) return;
+    const r = largestFitting(e.cloth, share);
+    next = editCloth(next, k, (one) => ({ ...one, cloth: { ...one.cloth, resolution: r }, pins: one.pins.filter((p) => typeof p !== 'number') }));
+    lowered.push(`cloths[${k}] (${plainText(clothName(e, k), 40)}) resolution ${e.cloth.resolution} → ${r}`);
+  });
   return {
-    scene: { ...scene, cloth: { ...c, resolution: r } },
-    note: `${c.shape} of resolution ${c.resolution}: ${count(n)} particles, more than the ${NAMES[kind]} backend takes (${count(max)}), ` +
-      `clamped to resolution ${r} (${count(shapeParticles(c, r))} particles)${more}`,
+    scene: next,
+    note: `${entries.length} cloths of ${count(total)} particles together: more than the ${NAMES[kind]} backend takes (${count(max)}), ` +
+      `clamped: ${lowered.join(', ')}${more}`,
   };
 }
 

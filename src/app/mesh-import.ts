@@ -1,13 +1,13 @@
 /**
  * Importing a mesh file (the panel's "import mesh…"): the hidden file input, the size check, parsing and checking
  * the file in the page, and keeping it in the page's mesh store under the file's name. A file that a waiting scene
- * names — a scene file or a link refused for mesh files this page did not have, as its cloth or a collider — goes
- * to that scene: once it has all its files, it loads. Any other file becomes the scene's cloth (cloth.mesh; the
- * rest of the scene stays). A file that is refused — unreadable, not a manifold mesh (for a cloth), not a collider
+ * names — a scene file or a link refused for mesh files this page did not have, as a cloth or a collider — goes
+ * to that scene: once it has all its files, it loads. Any other file becomes the scene's cloth (cloth.mesh; in a
+ * scene of several, the cloth the panel edits: cloths[k].cloth.mesh; the rest of the scene stays). A file that is refused — unreadable, not a manifold mesh (for a cloth), not a collider
  * the core can build, more particles than the backend takes, a cloth the colliders cut through — says why and
  * changes nothing.
  */
-import { MESH_EXTENSIONS, SceneError, plainText, type Scene } from '../core/index.js';
+import { MESH_EXTENSIONS, SceneError, editCloth, plainText, type Scene } from '../core/index.js';
 import type { App } from './app.js';
 import { FilePicker } from './file-picker.js';
 import {
@@ -64,7 +64,7 @@ export class MeshImport {
   importBytes(bytes: Uint8Array, name: string): boolean {
     const waiting = this.app.waiting;
     const uses = waiting ? sceneMeshes(waiting.scene).filter((f) => namesFile(f.path, name)) : [];
-    if (waiting && uses.length) return this.forWaiting(bytes, name, waiting, uses.some((f) => f.field === 'cloth.mesh'));
+    if (waiting && uses.length) return this.forWaiting(bytes, name, waiting, uses.some((f) => f.cloth !== undefined));
     const entry = this.read(name, () => readMeshFile(bytes, name));
     return entry !== null && this.asCloth(entry);
   }
@@ -81,12 +81,12 @@ export class MeshImport {
     }
   }
 
-  /** The file as the scene's cloth, the rest of the scene kept. */
+  /** The file as the scene's cloth (the one the panel edits), the rest of the scene kept. */
   private asCloth(entry: ClothEntry): boolean {
     const app = this.app, name = entry.name, shown = plainText(name, 80);
     const before = app.meshes.add(entry);
     try {
-      app.slots.apply(withMesh(app.scene, name, app.meshes.resolve), app.sceneKey);
+      app.slots.apply(editCloth(app.scene, app.cloth, (one) => withMesh(one, name, app.meshes.resolve)), app.sceneKey);
     } catch (e) {
       app.meshes.restore(name, before);
       // the caps name the file already ('big.obj: 67,600 particles, more than…')

@@ -1,7 +1,7 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { SceneError, Simulation, builtinScene, setScenePath } from '../core/index.js';
-import { MeshStore, baseName, meshNames, missingMesh, missingMeshes, namesFile, readColliderFile, readMeshFile, sceneMesh, sceneMeshes } from './meshes.js';
+import { MeshStore, baseName, meshNames, missingMesh, missingMeshes, namesFile, readColliderFile, readMeshFile, clothMesh, sceneMeshes } from './meshes.js';
 
 const bytes = (path: string) => new Uint8Array(readFileSync(new URL(`../../${path}`, import.meta.url)));
 const obj = (text: string) => new TextEncoder().encode(text);
@@ -64,8 +64,8 @@ describe('the page\'s imported meshes', () => {
     const store = new MeshStore();
     store.add(readMeshFile(bytes('examples/tshirt.obj'), 'tshirt.obj'));
     const scene = setScenePath(builtinScene('cotton-basic'), 'cloth.mesh', 'tshirt.obj');
-    expect(sceneMesh(scene)).toBe('tshirt.obj');
-    expect(sceneMesh(builtinScene('cotton-basic'))).toBeNull();
+    expect(clothMesh(scene.cloth)).toBe('tshirt.obj');
+    expect(clothMesh(builtinScene('cotton-basic').cloth)).toBeNull();
     const sim = new Simulation(scene, { kernel: 'ts', meshes: store.resolve });
     expect(sim.model.particleCount).toBe(1258);
     expect(() => new Simulation(setScenePath(scene, 'cloth.mesh', 'other.obj'), { kernel: 'ts', meshes: store.resolve }))
@@ -75,16 +75,19 @@ describe('the page\'s imported meshes', () => {
   it('lists the mesh files a scene names, the cloth\'s first, and which of them the page lacks', () => {
     const scene = setScenePath(withBox('props/box.obj'), 'cloth.mesh', 'tshirt.obj');
     expect(sceneMeshes(scene)).toEqual([
-      { field: 'cloth.mesh', path: 'tshirt.obj' },
+      { field: 'cloth.mesh', path: 'tshirt.obj', cloth: 0 },
       { field: 'colliders[1].mesh', path: 'props/box.obj', collider: 1 },
     ]);
+    // each cloth of a list by its own field
+    const layers = setScenePath(builtinScene('layers'), 'cloths[2].cloth.mesh', 'garments/tshirt.obj');
+    expect(sceneMeshes(layers)).toEqual([{ field: 'cloths[2].cloth.mesh', path: 'garments/tshirt.obj', cloth: 2 }]);
     expect(meshNames(setScenePath(scene, 'colliders', [...scene.colliders, { type: 'mesh', mesh: 'tshirt.obj' }]))).toEqual(['tshirt.obj', 'props/box.obj']);
     expect(sceneMeshes(builtinScene('cotton-basic'))).toEqual([]);
     expect(namesFile('props/box.obj', 'box.obj')).toBe(true);
     expect(namesFile('props/box.obj', 'props')).toBe(false);
     const store = new MeshStore();
     store.add(readColliderFile(obj(BOX_OBJ), 'box.obj'));
-    expect(missingMeshes(scene, (p) => store.has(p))).toEqual([{ field: 'cloth.mesh', path: 'tshirt.obj' }]);
+    expect(missingMeshes(scene, (p) => store.has(p))).toEqual([{ field: 'cloth.mesh', path: 'tshirt.obj', cloth: 0 }]);
     expect(missingMesh('props/box.obj', 'colliders[1].mesh')).toBe(
       "colliders[1].mesh: 'props/box.obj' is a mesh file that is not imported in this page: import the mesh file box.obj too (Scene & export → import mesh…)");
   });

@@ -1,12 +1,14 @@
 /**
  * The meshes imported into the page: each file's parsed triangle mesh, keyed by the file's name, and the resolver
- * the core's Simulation takes for a scene that names mesh files — its cloth (`cloth.mesh`) and its mesh colliders
- * (`colliders[k].mesh`). The page keeps one store (filled by the mesh import); the worker keeps its own, filled by
+ * the core's Simulation takes for a scene that names mesh files — its cloths (`cloth.mesh`, `cloths[k].cloth.mesh`)
+ * and its mesh colliders (`colliders[k].mesh`). The page keeps one store (filled by the mesh import); the worker keeps its own, filled by
  * the page's `mesh` messages before a scene that names one. A link cannot carry a mesh: a scene naming one that is
  * not here is refused with a message naming the field and saying which file to import. No DOM here: unit-tested in
  * meshes.test.ts, and loaded by the worker too.
  */
-import { SceneError, parseMeshFile, plainText, prepareMesh, type MeshResolver, type Scene, type TriangleMesh } from '../core/index.js';
+import {
+  SceneError, clothEntries, clothPath, parseMeshFile, plainText, prepareMesh, type ClothSpec, type MeshResolver, type Scene, type TriangleMesh,
+} from '../core/index.js';
 
 /** One imported mesh file. */
 export interface MeshEntry {
@@ -26,11 +28,13 @@ export type ClothEntry = MeshEntry & { readonly particles: number };
 
 /** One mesh file a scene names: the field that names it and the path it gives. */
 export interface SceneMeshFile {
-  /** 'cloth.mesh' or 'colliders[k].mesh' */
+  /** 'cloth.mesh', 'cloths[k].cloth.mesh' or 'colliders[k].mesh' */
   readonly field: string;
   readonly path: string;
-  /** k of a mesh collider's file (absent for the cloth's) */
+  /** k of a mesh collider's file (absent for a cloth's) */
   readonly collider?: number;
+  /** k of a cloth's file (of clothEntries; absent for a collider's) */
+  readonly cloth?: number;
 }
 
 /** the last part of a path: 'garments/tshirt.obj' and 'C:\\x\\tshirt.obj' both name 'tshirt.obj' */
@@ -43,15 +47,18 @@ export function namesFile(path: string, name: string): boolean {
   return path === name || baseName(path) === name;
 }
 
-/** The mesh file name a scene's cloth is made from, or null when its cloth is a generated shape. */
-export function sceneMesh(scene: Scene): string | null {
-  return scene.cloth.shape === 'mesh' && scene.cloth.mesh !== undefined ? scene.cloth.mesh : null;
+/** The mesh file name a cloth is made from, or null when it is a generated shape. */
+export function clothMesh(cloth: ClothSpec): string | null {
+  return cloth.shape === 'mesh' && cloth.mesh !== undefined ? cloth.mesh : null;
 }
 
-/** Every mesh file a scene names: its cloth's, then its mesh colliders' in their order. */
+/** Every mesh file a scene names: its cloths', in their order, then its mesh colliders'. */
 export function sceneMeshes(scene: Scene): SceneMeshFile[] {
-  const cloth = sceneMesh(scene);
-  const files: SceneMeshFile[] = cloth === null ? [] : [{ field: 'cloth.mesh', path: cloth }];
+  const files: SceneMeshFile[] = [];
+  clothEntries(scene).forEach((e, k) => {
+    const path = clothMesh(e.cloth);
+    if (path !== null) files.push({ field: clothPath(scene, k, 'cloth.mesh'), path, cloth: k });
+  });
   scene.colliders.forEach((c, k) => { if (c.type === 'mesh') files.push({ field: `colliders[${k}].mesh`, path: c.mesh, collider: k }); });
   return files;
 }

@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { Simulation, builtinScene, modelFor, setScenePath, type Scene } from '../core/index.js';
+import { Simulation, builtinScene, clothEntries, clothScene, editCloth, modelFor, setScenePath, type Scene } from '../core/index.js';
 import { MeshStore, readMeshFile } from './meshes.js';
 import { restBottom, withMesh, withShape, withoutMesh } from './shape-change.js';
 
@@ -85,5 +85,24 @@ describe('changing the cloth\'s shape', () => {
     expect(r.pins).toEqual(['center']);
     expect(r.material).toEqual(s.material);
     expect(built(r).n).toBe(33 * 33);
+  });
+
+  it('one cloth of a scene of several, as that cloth alone: the others stay, and the scene still starts', () => {
+    const layers = setScenePath(builtinScene('layers'), 'cloths[1].pins', ['top-left', 'center']);
+    const before = restBottom(clothScene(layers, 1), meshes);
+    let note = '';
+    const disc = editCloth(layers, 1, (one) => { const r = withShape(one, 'disc', meshes); note = r.note; return r.scene; });
+    const entries = clothEntries(disc);
+    expect(entries.map((e) => e.cloth.shape)).toEqual(['rectangle', 'disc', 'rectangle']);
+    expect(entries[1].pins).toEqual(['center']);
+    expect(note).toBe('dropped pin preset top-left (a disc has no corners or edges)');
+    expect(restBottom(clothScene(disc, 1), meshes)).toBeCloseTo(before, 4);
+    expect(entries[0]).toEqual(clothEntries(layers)[0]);
+    expect(entries[2]).toEqual(clothEntries(layers)[2]);
+    new Simulation(disc, { kernel: 'ts' });
+    // a mesh file as that cloth
+    const shirt = editCloth(layers, 2, (one) => withMesh(one, 'tshirt.obj', meshes));
+    expect(clothEntries(shirt).map((e) => e.cloth.mesh)).toEqual([undefined, undefined, 'tshirt.obj']);
+    expect(new Simulation(shirt, { kernel: 'ts', meshes }).model.clothStarts[3] - 2 * 441).toBe(1258);
   });
 });

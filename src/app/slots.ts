@@ -3,14 +3,17 @@
  * simulation, one view per slot, framing the camera, and putting things back after a refused change.
  */
 import { Box3, Vector3 } from 'three/webgpu';
-import { SceneError, plainText, sceneMannequin, type Scene } from '../core/index.js';
+import { SceneError, clothCount, clothEntries, sceneMannequin, type Scene } from '../core/index.js';
 import { ClothView } from '../render/cloth-view.js';
-import { fabricFor, fabricLook } from '../render/textures.js';
+import { fabricFor, fabricLook, type FabricLook } from '../render/textures.js';
 import type { App } from './app.js';
 import { emptyBounds, frameBounds } from './framing.js';
 
 /** The cloths on screen, made from the app's scene. */
 export class Slots {
+  /** the slot scene each view last took its cloths' looks from (syncViews runs every frame) */
+  private lookedAt: Scene[] = [];
+
   constructor(private readonly app: App) {}
 
   /**
@@ -19,13 +22,12 @@ export class Slots {
    * and the page keeps what it had.
    */
   apply(scene: Scene, key: string): void {
-    if (scene.cloths && scene.cloths.length > 1) {
-      throw new SceneError(`scene '${plainText(scene.name, 100)}' has ${scene.cloths.length} cloths (cloths): the app shows one cloth for now; run it with drape run or the library`);
-    }
     const app = this.app;
     app.interaction?.cancel();
-    const before = { scene: app.scene as Scene | undefined, sceneKey: app.sceneKey, sweepIndex: app.sweep.index, capNote: app.capNote };
+    const before = { scene: app.scene as Scene | undefined, sceneKey: app.sceneKey, sweepIndex: app.sweep.index, capNote: app.capNote, cloth: app.cloth };
     app.scene = scene;
+    // the panel goes on editing the same cloth where the new scene has it (a link or file of the same scene)
+    if (app.cloth >= clothCount(scene)) app.cloth = 0;
     app.sceneKey = key;
     app.mannequin = sceneMannequin(scene, key) ?? null;
     app.sweep.index = 0;
@@ -40,6 +42,7 @@ export class Slots {
       app.mannequin = sceneMannequin(before.scene, before.sceneKey) ?? null;
       app.sweep.index = before.sweepIndex;
       app.capNote = before.capNote;
+      app.cloth = before.cloth;
       this.restore();
       throw e;
     }
@@ -82,10 +85,10 @@ export class Slots {
   rebuildViews(): void {
     const app = this.app;
     for (const v of app.views) { app.stage.content.remove(v.group); v.dispose(); }
-    const look = fabricLook(fabricFor(app.scene.name));
     const gpu = app.sim.kind === 'gpu';
+    this.lookedAt = app.sim.mirrors.map((m) => m.sim.scene);
     app.views = app.sim.mirrors.map((m) => {
-      const v = new ClothView(m.sim.model, look, gpu);
+      const v = new ClothView(m.sim.model, this.looks(m.sim.scene), gpu);
       v.setView(app.view);
       app.stage.content.add(v.group);
       return v;
@@ -94,13 +97,21 @@ export class Slots {
     app.dirty = true;
   }
 
-  /** Rebuilds the views of slots whose cloth was rebuilt. */
+  /** Each cloth's look in a slot's scene: its fabric's (or the built-in scene's own: the flag, the hammock). */
+  looks(scene: Scene): FabricLook[] {
+    return clothEntries(scene).map((e) => fabricLook(fabricFor(this.app.scene.name, e.material.fabric)));
+  }
+
+  /** Rebuilds the views of slots whose cloth was rebuilt; the others take their cloths' looks (a fabric changed). */
   syncViews(): void {
     const app = this.app;
     let changed = false;
     app.sim.mirrors.forEach((m, k) => {
-      if (app.views[k]?.model === m.sim.model) return;
-      changed = true;
+      if (app.views[k]?.model !== m.sim.model) { changed = true; return; }
+      if (this.lookedAt[k] !== m.sim.scene) {
+        app.views[k].setLooks(this.looks(m.sim.scene));
+        this.lookedAt[k] = m.sim.scene;
+      }
     });
     if (changed) this.rebuildViews();
   }
@@ -121,10 +132,11 @@ export class Slots {
     if (moveCamera) app.stage.setCamera(app.stage.defaultView);
   }
 
-  /** which cloth, in words: 'the cloth', or 'cloth 3 (16 × 16)' when there are several */
+  /** which cloth, in words: 'the cloth', 'the cloths' (a scene of several), or 'cloth 3 (16 × 16)' of a sweep's row */
   clothName(slot: number): string {
     const { sim } = this.app;
-    const r = sim.mirrors[slot]?.sim.scene.cloth.resolution;
-    return sim.mirrors.length > 1 ? `cloth ${slot + 1} (${r} × ${r})` : 'the cloth';
+    const scene = sim.mirrors[slot]?.sim.scene;
+    if (sim.mirrors.length > 1) return `cloth ${slot + 1} (${scene?.cloth.resolution} × ${scene?.cloth.resolution})`;
+    return scene && clothCount(scene) > 1 ? 'the cloths' : 'the cloth';
   }
 }

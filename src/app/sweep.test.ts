@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { builtinScene, setScenePath, type ColliderSpec } from '../core/index.js';
 import type { App } from './app.js';
-import { Sweep } from './sweep.js';
+import { Sweep, sweepIgnored, sweeps } from './sweep.js';
 
 describe('the resolution sweep side by side', () => {
   it('moves every collider with its cloth, a mesh collider by its position; a floor stays', () => {
@@ -24,5 +24,14 @@ describe('the resolution sweep side by side', () => {
       expect(sphere).toEqual({ ...scene.colliders[2], center: [dx, 0.5, 0] });
     }
     expect(slots.map((s) => s.cloth.position[0] - scene.cloth.position[0])).toEqual([-1.6, 0, 1.6]);
+  });
+
+  it('a scene of several cloths with a sweep runs as it is, one slot, saying so', () => {
+    const scene = setScenePath(builtinScene('layers'), 'resolutionSweep', [2, 4]);
+    expect(sweeps(scene)).toBe(false);
+    expect(sweepIgnored(scene)).toBe("the resolution sweep is of one rectangle's resolutions: this scene's 3 cloths run as they are");
+    const sweep = new Sweep({ scene, sim: { kind: 'cpu' } } as unknown as App);
+    sweep.layout = 'side-by-side';
+    expect(sweep.scenes()).toEqual([scene]);
   });
 });

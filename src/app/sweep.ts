@@ -17,16 +17,17 @@ const SIDE_BY_SIDE_SPACING = 1.6;
 export const GPU_SWEEP_EXTRA = [128, 256, 512, 1024];
 
 /**
- * Whether a scene's cloths come from its resolution sweep: the sweep is of a rectangle's resolutions, so a disc,
- * a tube or a mesh with one runs as it is (one cloth; sweepIgnored says so).
+ * Whether a scene's cloths come from its resolution sweep: the sweep is of one rectangle's resolutions, so a disc,
+ * a tube or a mesh with one runs as it is (one cloth; sweepIgnored says so), and so does a scene of several cloths.
  */
 export function sweeps(scene: Scene): boolean {
-  return !!scene.resolutionSweep?.length && scene.cloth.shape === 'rectangle';
+  return !!scene.resolutionSweep?.length && !scene.cloths && scene.cloth.shape === 'rectangle';
 }
 
 /** The note for a scene with a sweep that its cloth does not take ('' when none). */
 export function sweepIgnored(scene: Scene): string {
   if (!scene.resolutionSweep?.length || sweeps(scene)) return '';
+  if (scene.cloths) return `the resolution sweep is of one rectangle's resolutions: this scene's ${scene.cloths.length} cloths run as they are`;
   const c = scene.cloth;
   return `the resolution sweep is of a rectangle's resolutions: this ${c.shape} runs as it is` +
     (c.shape === 'mesh' ? '' : ` (resolution ${c.resolution})`);

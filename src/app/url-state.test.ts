@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { builtinMannequin, builtinScene, setScenePath, withMannequin } from '../core/index.js';
+import { builtinMannequin, builtinScene, clothEntries, sceneDocument, setScenePath, validateScene, withMannequin } from '../core/index.js';
 import { decodeHash, encodeHash, linkScene } from './url-state.js';
 
 describe('URL hash state', () => {
@@ -22,6 +22,19 @@ describe('URL hash state', () => {
     expect(back.scene).toEqual(scene);
     expect(back.base).toBe('cotton-basic');
     expect(back.view).toEqual({ view: 'strain', sweep: 'side-by-side' });
+  });
+
+  it('another named fabric is one key, and the fields changed after it', () => {
+    const silk = setScenePath(builtinScene('cotton-basic'), 'material.fabric', 'silk');
+    expect(encodeHash({ scene: silk, base: 'cotton-basic', view: {} })).toBe('#scene=cotton-basic&material.fabric=silk');
+    const softer = setScenePath(silk, 'material.damping', 0.3);
+    const hash = encodeHash({ scene: softer, base: 'cotton-basic', view: {} });
+    expect(hash).toBe('#scene=cotton-basic&material.fabric=silk&material.damping=0.3');
+    expect(decodeHash(hash)!.scene).toEqual(softer);
+    // a base that gives the older mass path: the fabric drops it, so the link need not
+    const mass = setScenePath(builtinScene('cotton-basic'), 'material.mass', 0.2);
+    const leather = setScenePath(mass, 'material.fabric', 'leather');
+    expect(decodeHash(encodeHash({ scene: leather, base: '', view: {} }))!.scene).toEqual(leather);
   });
 
   it('a mannequin posed anew is one key, not its colliders\' keys, and reads back as the same scene', () => {
@@ -73,6 +86,57 @@ describe('URL hash state', () => {
     expect(cloth.scene.colliders).toEqual(scene.colliders);
     expect(cloth.note).toBe('link: the cloth is the mesh file tshirt.obj, which a link cannot carry: import the mesh file tshirt.obj ' +
       '(Scene & export → import mesh…) to see it; showing a rectangle cloth meanwhile');
+  });
+
+  it('a scene of several cloths: cloth by cloth against its built-in, and back (its document: no top-level cloth)', () => {
+    const layers = builtinScene('layers');
+    expect(encodeHash({ scene: layers, base: 'layers', view: {} })).toBe('#scene=layers');
+    let scene = setScenePath(layers, 'cloths[1].material.fabric', 'silk');
+    scene = setScenePath(scene, 'cloths[2].cloth.resolution', 8);
+    scene = setScenePath(scene, 'cloths[0].pins', ['top-left', 3]);
+    const hash = encodeHash({ scene, base: 'layers', view: {} });
+    // the fabric's own fields follow the fabric: one key
+    expect(hash).toBe('#scene=layers&cloths[0].pins=["top-left",3]&cloths[1].material.fabric=silk&cloths[2].cloth.resolution=8');
+    const back = decodeHash(hash)!.scene;
+    expect(sceneDocument(back)).toEqual(sceneDocument(scene));
+    expect(clothEntries(back).map((e) => e.material.fabric)).toEqual(['leather', 'silk', 'silk']);
+    expect(back.cloths![1].material).toEqual(scene.cloths![1].material);
+    // a mesh file for one of them: its shape goes with it
+    const mesh = setScenePath(layers, 'cloths[1].cloth.mesh', 'tshirt.obj');
+    const meshHash = encodeHash({ scene: mesh, base: 'layers', view: {} });
+    expect(meshHash).not.toContain('cloth.shape');
+    expect(sceneDocument(decodeHash(meshHash)!.scene)).toEqual(sceneDocument(mesh));
+  });
+
+  it('a list of cloths against a base of another number of cloths: the whole list, first', () => {
+    const doc = { name: 'two', description: 'two cloths', solver: { substeps: 12 }, cloths: [
+      { name: 'a', cloth: { resolution: 4, position: [0, 1, 0] }, material: { fabric: 'denim' } },
+      { name: 'b', cloth: { resolution: 6, position: [0, 1.4, 0] }, pins: ['top-left'] },
+    ] };
+    const scene = validateScene(doc);
+    for (const base of ['', 'cotton-basic', 'layers']) {
+      const hash = encodeHash({ scene, base, view: {} });
+      expect(decodeURIComponent(hash), base).toMatch(base ? new RegExp(`^#scene=${base}&cloths=\\[`) : /^#cloths=\[/);
+      expect(sceneDocument(decodeHash(hash)!.scene), base).toEqual(sceneDocument(scene));
+    }
+    // a one-cloth scene against a base of several: a list of one, the same cloth
+    const one = setScenePath(builtinScene('cotton-basic'), 'name', 'layers');
+    const back = decodeHash(encodeHash({ scene: one, base: 'layers', view: {} }))!.scene;
+    expect(clothEntries(back)).toHaveLength(1);
+    expect(back.cloth).toEqual(one.cloth);
+    expect(back.material).toEqual(one.material);
+    // a bad list says so in one line
+    expect(() => decodeHash('#cloths=[{"cloth":{"resolution":0}}]')).toThrow(/^link: cloths\[0\]\.cloth\.resolution: must be >= 1/);
+  });
+
+  it("a link's scene of several cloths without a cloth's mesh file: a rectangle in its place, saying which", () => {
+    const scene = setScenePath(builtinScene('layers'), 'cloths[1].cloth.mesh', 'tshirt.obj');
+    const shown = linkScene(scene, () => false);
+    expect(clothEntries(shown.scene).map((e) => e.cloth.shape)).toEqual(['rectangle', 'rectangle', 'rectangle']);
+    expect(clothEntries(shown.scene).map((e) => e.name)).toEqual(['leather', 'cotton', 'silk']);
+    expect(shown.missing).toEqual([{ field: 'cloths[1].cloth.mesh', path: 'tshirt.obj', cloth: 1 }]);
+    expect(shown.note).toBe('link: cloths[1] is the mesh file tshirt.obj, which a link cannot carry: import the mesh file tshirt.obj ' +
+      '(Scene & export → import mesh…) to see it; showing a rectangle as cloths[1] meanwhile');
   });
 
   it('names the field of a bad value, and refuses unknown scenes and keys', () => {

@@ -6,13 +6,18 @@
  *
  * Values are JSON when they parse (numbers, booleans, arrays), otherwise strings. No DOM here: unit-tested.
  *
+ * A scene of several cloths is diffed as its document (core sceneDocument: the list `cloths`, no top-level cloth),
+ * cloth by cloth against a base of as many (`#scene=layers&cloths[1].material.fabric=silk`); against a base of
+ * another number of cloths, its whole list is one key, `cloths=[…]`, read first.
+ *
  * A scene whose mannequin (cape, skirt) was posed anew says so in one key, `mannequin=t-pose,walk` (pose,
  * animation), instead of its colliders' keys: the diff is then taken against the built-in scene with its mannequin
  * so posed (core withMannequin), and reading the link poses it so before any other key.
  */
 import {
-  MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, SCENE_NAMES, SceneError, builtinMannequin, builtinScene, isBuiltinScene, defaultScene,
-  parseSetValue, plainText, sceneMannequin, setScenePath, withMannequin, type MannequinAnimation, type MannequinPose, type Scene,
+  FABRICS, MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, SCENE_NAMES, SceneError, builtinMannequin, builtinScene, clothEntries, editCloth, isBuiltinScene,
+  defaultScene, parseSetValue, pathCloth, plainText, sceneDocument, sceneMannequin, setScenePath, validateScene, withMannequin,
+  type FabricName, type MannequinAnimation, type MannequinPose, type Scene,
 } from '../core/index.js';
 import { baseName, missingMeshes, type SceneMeshFile } from './meshes.js';
 import { withoutMesh } from './shape-change.js';
@@ -41,10 +46,24 @@ function isPlainObject(v: unknown): v is Record<string, Json> {
   return v !== null && typeof v === 'object' && !Array.isArray(v);
 }
 
-/** Leaf paths where `scene` differs from `base` (arrays are leaves), in a stable order. */
+/**
+ * Leaf paths where `scene` differs from `base` (arrays are leaves), in a stable order, on their documents: a list of
+ * cloths item by item (`cloths[1].material.fabric`) when the base has as many, else the whole list first (`cloths`;
+ * a one-cloth scene against a base of several is a list of one, the same cloth). A material of another named fabric
+ * is its fabric, then only the fields that differ from that fabric's.
+ */
 export function sceneDiff(scene: Scene, base: Scene): [string, Json][] {
   const out: [string, Json][] = [];
   const walk = (a: unknown, b: unknown, path: string) => {
+    if (isPlainObject(a) && isPlainObject(b) && /^(cloths\[\d+\]\.)?material$/.test(path) && a.fabric !== b.fabric && isFabric(a.fabric)) {
+      // another named fabric: it first, then the other fields against what it gives them (naming a fabric puts
+      // every field it has to its value, and drops the older paths: core setScenePath)
+      const { mass: _m, bendStiffness: _b, ...kept } = b;
+      const given: Record<string, Json> = { ...kept, ...FABRICS[a.fabric] };
+      walk(a.fabric, b.fabric, `${path}.fabric`);
+      for (const k of Object.keys(a)) if (k !== 'fabric') walk(a[k], given[k], `${path}.${k}`);
+      return;
+    }
     if (isPlainObject(a)) {
       for (const k of Object.keys(a)) {
         if (k === '$schema') continue;
@@ -54,8 +73,32 @@ export function sceneDiff(scene: Scene, base: Scene): [string, Json][] {
     }
     if (JSON.stringify(a) !== JSON.stringify(b)) out.push([path, a as Json]);
   };
-  walk(scene, base, '');
+  const doc = sceneDocument(base.cloths && !scene.cloths ? asList(scene) : scene) as Record<string, Json>;
+  const was = sceneDocument(base) as Record<string, Json>;
+  const { cloths, ...rest } = doc;
+  if (Array.isArray(cloths)) {
+    const before = Array.isArray(was.cloths) && was.cloths.length === cloths.length ? was.cloths : null;
+    if (before) cloths.forEach((c, k) => walk(c, before[k], `cloths[${k}]`));
+    else out.push(['cloths', cloths]);
+  }
+  walk(rest, was, '');
   return out;
+}
+
+function isFabric(name: unknown): name is FabricName {
+  return typeof name === 'string' && Object.hasOwn(FABRICS, name);
+}
+
+/** A one-cloth scene as a list of that one cloth (the same cloth: core/cloths.test.ts). */
+function asList(scene: Scene): Scene {
+  const { cloth, material, pins, ...rest } = scene;
+  return validateScene({ ...rest, cloths: [{ cloth, material, pins }] });
+}
+
+/** The scene with its cloths replaced by a link's whole list (`cloths=[…]`), whatever form it had. */
+function withClothList(scene: Scene, list: unknown): Scene {
+  const { cloth: _c, material: _m, pins: _p, cloths: _l, ...rest } = sceneDocument(scene);
+  return validateScene({ ...rest, cloths: list }, 'link');
 }
 
 function encodeValue(v: Json): string {
@@ -77,7 +120,8 @@ export function encodeHash(state: HashState): string {
   const diff = sceneDiff(state.scene, base);
   for (const [path, value] of diff) {
     // cloth.mesh makes the cloth a 'mesh' by itself (and 'cloth.shape=mesh' alone, read first, would be refused)
-    if (path === 'cloth.shape' && value === 'mesh' && diff.some(([p]) => p === 'cloth.mesh')) continue;
+    const mesh = pathCloth(path)?.field === 'cloth.shape' ? path.replace(/shape$/, 'mesh') : null;
+    if (mesh && value === 'mesh' && diff.some(([p]) => p === mesh)) continue;
     parts.push(`${path}=${encodeValue(value)}`);
   }
   for (const k of VIEW_KEYS) {
@@ -110,6 +154,7 @@ export function decodeHash(hash: string): HashState | null {
   for (const [key, raw] of pairs) {
     if (key === 'scene' || key === 'mannequin') continue;
     if ((VIEW_KEYS as readonly string[]).includes(key)) { view[key as ViewKey] = raw; continue; }
+    if (key === 'cloths') { scene = withClothList(scene, parseSetValue(raw)); continue; }
     try {
       scene = setScenePath(scene, key, parseSetValue(raw));
     } catch (e) {
@@ -142,22 +187,25 @@ function safeDecode(s: string): string {
 }
 
 /**
- * A link's scene as the page can show it: a link names mesh files but cannot carry them, so a cloth.mesh the page
- * has not imported becomes the default rectangle, and a mesh collider whose file it has not imported is left out.
- * `missing`: those files (empty when the scene is shown as it is); `note` says which to import ('' when none).
+ * A link's scene as the page can show it: a link names mesh files but cannot carry them, so a cloth's mesh file the
+ * page has not imported becomes the default rectangle, and a mesh collider whose file it has not imported is left
+ * out. `missing`: those files (empty when the scene is shown as it is); `note` says which to import ('' when none).
  */
 export function linkScene(scene: Scene, has: (path: string) => boolean): { scene: Scene; missing: SceneMeshFile[]; note: string } {
   const missing = missingMeshes(scene, has);
   if (!missing.length) return { scene, missing, note: '' };
   const name = (path: string) => plainText(baseName(path) || path, 80);
-  const cloth = missing.find((f) => f.collider === undefined);
+  const cloths = missing.flatMap((f) => (f.cloth === undefined ? [] : [f.cloth]));
   const left = missing.flatMap((f) => (f.collider === undefined ? [] : [f.collider]));
-  let shown = cloth ? withoutMesh(scene) : scene;
-  if (left.length) shown = { ...shown, colliders: scene.colliders.filter((_, k) => !left.includes(k)) };
-  const what = missing.map((f) => `${f.collider === undefined ? 'the cloth' : `colliders[${f.collider}]`} is the mesh file ${name(f.path)}`);
+  let shown = scene;
+  for (const k of cloths) shown = editCloth(shown, k, withoutMesh);
+  if (left.length) shown = { ...shown, colliders: shown.colliders.filter((_, k) => !left.includes(k)) };
+  const several = clothEntries(scene).length > 1;
+  const whose = (f: SceneMeshFile) => (f.collider !== undefined ? `colliders[${f.collider}]` : several ? `cloths[${f.cloth}]` : 'the cloth');
+  const what = missing.map((f) => `${whose(f)} is the mesh file ${name(f.path)}`);
   const files = [...new Set(missing.map((f) => name(f.path)))];
   const meanwhile = [
-    ...(cloth ? ['a rectangle cloth'] : []),
+    ...(cloths.length ? [several ? `${cloths.length > 1 ? 'rectangles' : 'a rectangle'} as ${cloths.map((k) => `cloths[${k}]`).join(', ')}` : 'a rectangle cloth'] : []),
     ...(left.length ? [`the scene without ${left.map((k) => `colliders[${k}]`).join(', ')}`] : []),
   ];
   return {

@@ -4,7 +4,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import {
-  FABRICS, ONE_CLOTH_SCENE_NAMES, PHASE, SCENE_NAMES, PhaseLog, SceneError, Simulation, builtinScene, clothEntries, countIntersections, perClothRefusal,
+  FABRICS, PHASE, PhaseLog, SceneError, Simulation, builtinScene, clothEntries, countIntersections, perClothRefusal,
   sceneDocument, setScenePath, validateScene, type Scene, type WasmBackend,
 } from './index.js';
 
@@ -196,11 +196,6 @@ describe('the built-in scenes of several cloths', () => {
     const a = new Simulation(one, { kernel: 'ts' }), b = new Simulation(listed, { kernel: 'ts' });
     a.advance(30); b.advance(30);
     expect(Array.from(b.state.positions)).toEqual(Array.from(a.state.positions));
-  });
-
-  it("the app's menu (one cloth) leaves out exactly the scenes of several", () => {
-    expect(SCENE_NAMES.filter((n) => !ONE_CLOTH_SCENE_NAMES.includes(n))).toEqual(['layers']);
-    for (const n of ONE_CLOTH_SCENE_NAMES) expect(builtinScene(n).cloths, n).toBeUndefined();
   });
 
   it('a scene error inside a cloth of the list is a SceneError', () => {

@@ -5,8 +5,9 @@ export * from './params.js';
 export * from './fabrics.js';
 export * from './textile-tests.js';
 export * from './scene.js';
+export * from './cloth-paths.js';
 export { sceneSchema, PIN_PRESETS, MAX_CLOTHS } from './scene-schema.js';
-export { SCENE_NAMES, ONE_CLOTH_SCENE_NAMES, builtinScene, isBuiltinScene, builtinMannequin, sceneMannequin, withMannequin, type SceneMannequin } from './scenes.js';
+export { SCENE_NAMES, builtinScene, isBuiltinScene, builtinMannequin, sceneMannequin, withMannequin, type SceneMannequin } from './scenes.js';
 export {
   mannequinColliders, mannequinAngles, forwardKinematics, animationPeriod, MANNEQUIN_PARTS, MANNEQUIN_CHEST, MANNEQUIN_PELVIS,
   MANNEQUIN_POSES, MANNEQUIN_ANIMATIONS, type MannequinOptions, type MannequinPose, type MannequinAnimation, type JointAngles,

@@ -157,15 +157,6 @@ const BUILTIN: Record<string, object | (() => object)> = {
 /** Names of the built-in scenes, in menu order. */
 export const SCENE_NAMES = Object.keys(BUILTIN);
 
-/**
- * The built-in scenes of one cloth: the app's menu (it shows one cloth; a scene's `cloths` run in the CLI and the
- * library).
- */
-export const ONE_CLOTH_SCENE_NAMES = SCENE_NAMES.filter((name) => {
-  const doc = BUILTIN[name];
-  return typeof doc === 'function' || !Object.hasOwn(doc, 'cloths');
-});
-
 /** Whether `name` is a built-in scene (own names only: 'constructor' or '__proto__' are not scenes). */
 export function isBuiltinScene(name: string): boolean {
   return typeof name === 'string' && Object.hasOwn(BUILTIN, name);

@@ -1,7 +1,8 @@
 /**
- * Draws one cloth in the five views of the seed ('V' cycles them): shaded, wireframe, particles, springs coloured
- * by kind, and a strain heat map; plus markers for pinned particles and the grabbed one. Reads a model and a
- * state; never changes them.
+ * Draws one model in the five views of the seed ('V' cycles them): shaded, wireframe, particles, springs coloured
+ * by kind, and a strain heat map; plus markers for pinned particles and the grabbed one. A model of several cloths
+ * (a scene's `cloths`) is one geometry with a group per cloth, each shaded with its own fabric's look. Reads a model
+ * and a state; never changes them.
  */
 import {
   BufferAttribute, BufferGeometry, Color, DoubleSide, DynamicDrawUsage, Group, IcosahedronGeometry, InstancedMesh,
@@ -9,7 +10,8 @@ import {
   SphereGeometry,
 } from 'three/webgpu';
 import { BEND, STRUCTURAL, type ClothModel, type ClothState } from '../core/index.js';
-import type { FabricLook } from './textures.js';
+import { trianglesByCloth } from './cloth-parts.js';
+import type { FabricKind, FabricLook } from './textures.js';
 
 export const VIEWS = ['shaded', 'wireframe', 'particles', 'springs', 'strain'] as const;
 export type ViewName = (typeof VIEWS)[number];
@@ -43,7 +45,8 @@ export class ClothView {
   private readonly geometry: BufferGeometry;
   private readonly position: BufferAttribute;
   private readonly color: BufferAttribute;
-  private readonly shadedMaterial: MeshPhysicalNodeMaterial;
+  /** one per cloth of the model, in its order (the geometry's groups) */
+  private readonly shadedMaterials: MeshPhysicalNodeMaterial[];
   private readonly strainMaterial: MeshStandardNodeMaterial;
   private readonly wire: LineSegments;
   private readonly springs: LineSegments;
@@ -61,10 +64,11 @@ export class ClothView {
   /**
    * `gpu`: the cloth will be drawn from a GpuClothSolver's buffers: position and normal attributes are vec4
    * (the solver's layout) and static, so three.js never uploads them once attachGpu has put the solver's buffers
-   * in their place.
+   * in their place. `looks`: one per cloth of the model (model.clothStarts), in its order.
    */
-  constructor(readonly model: ClothModel, look: FabricLook, readonly gpu = false) {
-    const n = model.particleCount;
+  constructor(readonly model: ClothModel, looks: readonly FabricLook[], readonly gpu = false) {
+    const n = model.particleCount, cloths = model.clothStarts.length - 1;
+    if (looks.length !== cloths) throw new RangeError(`${looks.length} looks for a model of ${cloths} cloths`);
     const g = new BufferGeometry();
     const stride = gpu ? 4 : 3;
     this.position = new BufferAttribute(gpu ? vec4(model.restPositions) : new Float32Array(model.restPositions), stride);
@@ -73,19 +77,23 @@ export class ClothView {
     g.setAttribute('position', this.position);
     g.setAttribute('uv', new BufferAttribute(new Float32Array(model.uvs), 2));
     g.setAttribute('color', this.color);
-    g.setIndex(new BufferAttribute(new Uint32Array(model.triangles), 1));
+    // the triangles in a run per cloth, each run a group drawn with its cloth's material
+    const parts = trianglesByCloth(model);
+    g.setIndex(new BufferAttribute(parts.indices, 1));
+    for (let c = 0; c < cloths; c++) g.addGroup(3 * parts.first[c], 3 * (parts.first[c + 1] - parts.first[c]), c);
     if (gpu) g.setAttribute('normal', new BufferAttribute(new Float32Array(4 * n), 4));
     g.computeVertexNormals();
     if (!gpu) (g.getAttribute('normal') as BufferAttribute).setUsage(DynamicDrawUsage);
     this.geometry = g;
 
-    this.shadedMaterial = new MeshPhysicalNodeMaterial({
+    this.shadedMaterials = looks.map((look) => new MeshPhysicalNodeMaterial({
       map: look.map, roughness: look.roughness, metalness: 0, side: DoubleSide,
       sheen: look.sheen, sheenRoughness: 0.6, sheenColor: new Color(look.sheenColor), clearcoat: look.clearcoat,
-      clearcoatRoughness: 0.4,
-    });
+      clearcoatRoughness: 0.4, userData: { look: look.kind },
+    }));
+    // (one material for the whole model: three.js draws every group with it)
     this.strainMaterial = new MeshStandardNodeMaterial({ vertexColors: true, roughness: 0.8, side: DoubleSide });
-    this.mesh = new Mesh(g, this.shadedMaterial);
+    this.mesh = new Mesh(g, this.shadedMaterials);
     this.mesh.castShadow = true;
     this.mesh.receiveShadow = true;
     this.mesh.frustumCulled = false;
@@ -176,20 +184,30 @@ export class ClothView {
   setView(view: ViewName): void {
     this.view = view;
     this.mesh.visible = view === 'shaded' || view === 'strain';
-    this.mesh.material = view === 'strain' ? this.strainMaterial : this.shadedMaterial;
+    this.mesh.material = view === 'strain' ? this.strainMaterial : this.shadedMaterials;
     this.wire.visible = view === 'wireframe';
     this.springs.visible = view === 'springs';
     this.points.visible = view === 'particles';
   }
 
-  setLook(look: FabricLook): void {
-    const m = this.shadedMaterial;
-    m.map = look.map;
-    m.roughness = look.roughness;
-    m.sheen = look.sheen;
-    m.sheenColor.set(look.sheenColor);
-    m.clearcoat = look.clearcoat;
-    m.needsUpdate = true;
+  /** Each cloth's look (one per cloth, as the constructor's): a cloth whose fabric changed is shaded anew. */
+  setLooks(looks: readonly FabricLook[]): void {
+    looks.forEach((look, c) => {
+      const m = this.shadedMaterials[c];
+      if (!m || m.userData.look === look.kind) return;
+      m.userData.look = look.kind;
+      m.map = look.map;
+      m.roughness = look.roughness;
+      m.sheen = look.sheen;
+      m.sheenColor.set(look.sheenColor);
+      m.clearcoat = look.clearcoat;
+      m.needsUpdate = true;
+    });
+  }
+
+  /** What the shaded view draws for each cloth: its look and its triangles (a geometry group each). */
+  get drawnCloths(): { look: FabricKind; triangles: number }[] {
+    return this.geometry.groups.map((g) => ({ look: this.shadedMaterials[g.materialIndex ?? 0].userData.look as FabricKind, triangles: g.count / 3 }));
   }
 
   /**
@@ -317,7 +335,7 @@ export class ClothView {
     this.pins.geometry.dispose();
     this.pins.dispose();
     this.grabMarker.geometry.dispose();
-    this.shadedMaterial.dispose();
+    for (const m of this.shadedMaterials) m.dispose();
     this.strainMaterial.dispose();
     (this.wire.material as LineBasicNodeMaterial).dispose();
     (this.springs.material as LineBasicNodeMaterial).dispose();

@@ -18,14 +18,23 @@ export interface FabricLook {
   clearcoat: number;
 }
 
-/** Which look a scene gets, from its name; imported scenes get cotton. */
-export function fabricFor(sceneName: string): FabricKind {
-  if (sceneName.startsWith('silk')) return 'silk';
-  if (sceneName.startsWith('leather')) return 'leather';
-  if (sceneName.startsWith('rubber')) return 'rubber';
+/** the fabrics (core/fabrics.ts) that have a look of their own; the others (denim) look like cotton */
+const FABRIC_LOOKS: Partial<Record<string, FabricKind>> = { cotton: 'cotton', silk: 'silk', leather: 'leather', rubber: 'rubber' };
+
+/**
+ * Which look a cloth gets: the built-in scenes that are about one thing have theirs (the Wind scene's flag, the Pins
+ * hammock, the Mesh Resolution checker); any other cloth its fabric's (`material.fabric`), or, without a named
+ * fabric, the one its scene's name starts with ('silk…'); cotton when neither says.
+ */
+export function fabricFor(sceneName: string, fabric?: string): FabricKind {
   if (sceneName === 'wind') return 'flag';
   if (sceneName === 'pins') return 'hammock';
   if (sceneName === 'resolution') return 'checker';
+  const own = fabric === undefined ? undefined : FABRIC_LOOKS[fabric];
+  if (own) return own;
+  if (fabric === undefined) {
+    for (const kind of ['silk', 'leather', 'rubber'] as const) if (sceneName.startsWith(kind)) return kind;
+  }
   return 'cotton';
 }
 

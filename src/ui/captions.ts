@@ -33,6 +33,11 @@ export const SCENE_CAPTIONS: Record<string, string> = {
     'hangs down) and the folds are in the HUD: silk drapes most, leather least.',
   resolution: 'The same cloth with 1 to 4096 faces, one after another (or side by side): the finer the mesh, the ' +
     'finer the folds it can make. Untick “scale with resolution” to see the seed’s raw spring constants.',
+  fold: 'A cotton sheet dropped corner first onto the floor lands on itself in layers; self-contact keeps them ' +
+    'apart. Untick “self-contact” in the Solver folder and drop it again (R): the layers pass through each other.',
+  layers: 'Three cloths dropped one after another onto the sphere: stiff leather below, cotton, then light silk on ' +
+    'top, each draped on the one below. Pick a cloth in Cloth & material to change its fabric; untick ' +
+    '“self-contact” and they fall through each other.',
 };
 
 /**

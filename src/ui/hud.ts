@@ -10,6 +10,14 @@ import type { Energy } from '../core/index.js';
 import { SPRING_COLORS, STRAIN_RANGE, type ViewName } from '../render/cloth-view.js';
 import { append, h, setLines, type Child } from './dom.js';
 
+/** One cloth of a scene of several, in the HUD (its name and shape as text). */
+export interface HudCloth {
+  name: string;
+  /** '' for a rectangle, else 'disc', 'tube', 'mesh tshirt.obj' */
+  shape: string;
+  particles: number;
+}
+
 export interface HudInfo {
   fps: number;
   /** nothing needed drawing lately */
@@ -28,6 +36,8 @@ export interface HudInfo {
   particles: number;
   triangles: number;
   springs: number;
+  /** each cloth's particles, in a scene of several cloths */
+  cloths?: HudCloth[];
   solver: string;
   substeps: number;
   clamps: string[];
@@ -118,6 +128,10 @@ export class Hud {
       [`${i.particles.toLocaleString('en')} particles · ${i.triangles.toLocaleString('en')} triangles`],
       [`${i.springs.toLocaleString('en')} springs · ${i.solver}, ${i.substeps} substeps`],
     ];
+    if (i.cloths) {
+      const each = i.cloths.map((c) => `${c.name}${c.shape ? ` (${c.shape})` : ''} ${c.particles.toLocaleString('en')}`);
+      lines.splice(3, 0, [h('span', { testid: 'hud-cloths' }, `${i.cloths.length} cloths: ${each.join(' · ')} particles`)]);
+    }
     if (this.compact) lines.splice(2);
     else if (i.slots > 1) lines.push([`${i.slots} cloths side by side (totals)`]);
     if (i.extra && !this.compact) lines.push([i.extra]);

@@ -1,32 +1,20 @@
 /**
  * The control panel on the right (lil-gui), as in the seed: the scene dropdown and Reset/Replay at the top, then
  * simulation, material, solver, wind, gravity, pins, view and file controls. Slider ranges, defaults and tooltips
- * come from the scene schema (core's sceneSchema); the panel only sends changes to its host.
+ * come from the scene schema (core's sceneSchema); the panel only sends changes to its host. In a scene of several
+ * cloths, a cloth control at the top of Cloth & material chooses the cloth that folder and Pins edit: their
+ * controls read that cloth's fields and write its paths (`cloths[k].material.damping`).
  */
 import GUI, { type Controller } from 'lil-gui';
 // lil-gui's stylesheet as a file of the build: the panel injects no <style> element (the site's CSP has no inline styles)
 import 'lil-gui/dist/lil-gui.css';
 import {
-  MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, ONE_CLOTH_SCENE_NAMES, plainText, sceneSchema, type MannequinOptions, type PinPreset, type Scene,
+  MANNEQUIN_ANIMATIONS, MANNEQUIN_POSES, SCENE_NAMES, clothCount, clothEntries, clothName, clothPath, plainText, sceneSchema,
+  type ClothEntry, type MannequinOptions, type PinPreset, type Scene,
 } from '../core/index.js';
 import { VIEWS, VIEW_LABELS, type ViewName } from '../render/cloth-view.js';
 import type { CameraPreset } from '../render/stage.js';
-
-export const SCENE_LABELS: Record<string, string> = {
-  'cotton-basic': 'Cotton Basic',
-  'silk-drape': 'Silk Drape',
-  'leather-stiff': 'Leather Stiff',
-  'rubber-stretch': 'Rubber Stretch',
-  custom: 'Custom Parameters',
-  wind: 'Wind',
-  pins: 'Pins',
-  tablecloth: 'Tablecloth',
-  cape: 'Cape',
-  skirt: 'Skirt',
-  cantilever: 'Cantilever (ASTM D1388)',
-  cusick: 'Cusick Drape (BS 5058)',
-  resolution: 'Mesh Resolution',
-};
+import { SCENE_LABELS, clothOptions } from './menu-labels.js';
 
 export type SweepLayout = 'sequence' | 'side-by-side';
 
@@ -45,6 +33,10 @@ export interface PanelHost {
   readonly scene: Scene;
   /** dropdown value: a built-in name, or '' for an imported scene */
   readonly sceneKey: string;
+  /** the cloth the Cloth & material and Pins folders edit: an index into clothEntries(scene) */
+  readonly cloth: number;
+  /** chooses that cloth (a scene of several) */
+  selectCloth(k: number): void;
   readonly paused: boolean;
   readonly view: ViewName;
   readonly pinTool: boolean;
@@ -61,7 +53,7 @@ export interface PanelHost {
   readonly maxResolution: number;
   setBackend(choice: 'auto' | 'gpu' | 'cpu'): void;
   loadBuiltin(name: string): void;
-  /** live change of one scene path; returns false (and shows why) when refused */
+  /** live change of one scene path (a cloth's own in a scene of several: `cloths[k].…`); returns false (and shows why) when refused */
   setPath(path: string, value: unknown): boolean;
   reset(): void;
   togglePause(): void;
@@ -100,8 +92,9 @@ export function schemaFor(path: string): SchemaNumber {
   return node as SchemaNumber;
 }
 
-function get(scene: Scene, path: string): unknown {
-  let v: unknown = scene;
+/** The value at a dotted path of a scene, or of one cloth's entry ('material.damping'). */
+function get(from: Scene | ClothEntry, path: string): unknown {
+  let v: unknown = from;
   for (const k of path.split('.')) v = (v as Record<string, unknown>)[k];
   return v;
 }
@@ -151,6 +144,8 @@ export class Panel {
   private sweepFolder!: GUI;
   private resolutionCtl!: Controller;
   private shapeCtl!: Controller;
+  private clothCtl!: Controller;
+  private pinsFolder!: GUI;
   private mannequinFolder!: GUI;
 
   constructor(private readonly host: PanelHost) {
@@ -163,10 +158,25 @@ export class Panel {
   /** the backend maximum and shape the resolution menu was made for */
   private resolutionFor = '';
 
+  /** which cloth the Cloth & material and Pins folders edit (the host's, within the scene's) */
+  private clothIndex(): number {
+    return Math.min(this.host.cloth, clothCount(this.host.scene) - 1);
+  }
+
+  /** that cloth */
+  private entry(): ClothEntry {
+    return clothEntries(this.host.scene)[this.clothIndex()];
+  }
+
+  /** the scene path of one of that cloth's fields */
+  private clothPath(field: string): string {
+    return clothPath(this.host.scene, this.clothIndex(), field);
+  }
+
   /** cloth resolutions up to the backend's maximum (1024 faces per side on the GPU), worded for the shape */
   private resolutionOptions(): Record<string, number> {
     const rs = schemaFor('cloth.resolution');
-    const shape = this.host.scene.cloth.shape;
+    const shape = this.entry().cloth.shape;
     this.resolutionFor = `${this.host.maxResolution} ${shape} ${this.host.shownResolution}`;
     const hi = Math.min(rs.maximum ?? 1024, this.host.maxResolution);
     const out: Record<string, number> = {};
@@ -187,7 +197,7 @@ export class Panel {
 
     p.scene = host.sceneKey;
     const options: Record<string, string> = {};
-    for (const name of ONE_CLOTH_SCENE_NAMES) options[SCENE_LABELS[name] ?? name] = name;
+    for (const name of SCENE_NAMES) options[SCENE_LABELS[name] ?? name] = name;
     this.sceneCtl = this.tag(gui.add(p, 'scene', options).name('Scene'), 'scene')
       .onChange((v: string) => { if (v) host.loadBuiltin(v); });
     p.reset = () => host.reset();
@@ -201,7 +211,7 @@ export class Panel {
     p.sweep = host.sweepLayout;
     this.tag(this.sweepFolder.add(p, 'sweep', { 'one after another': 'sequence', 'side by side': 'side-by-side' })
       .name('layout').onChange((v: SweepLayout) => host.setSweepLayout(v)), 'sweep');
-    this.addParam(this.sweepFolder, 'material.scaleWithResolution', 'scale with resolution', 'sweep.scaleWithResolution');
+    this.addParam(this.sweepFolder, 'material.scaleWithResolution', 'scale with resolution', { id: 'sweep.scaleWithResolution', cloth: true });
 
     this.mannequinFolder = gui.addFolder('Mannequin');
     p['mannequin.pose'] = 'stand';
@@ -218,26 +228,31 @@ export class Panel {
     });
 
     const cloth = gui.addFolder('Cloth & material');
+    p['cloth.which'] = 0;
+    this.clothCtl = this.tag(cloth.add(p, 'cloth.which', { 'cloth 0': 0 }).name('cloth')
+      .onChange((k: number) => host.selectCloth(Number(k))), 'cloth.which',
+    'which of the scene\'s cloths this folder and Pins edit (the pin tool pins whichever cloth it clicks)');
+    this.syncers.push(() => { p['cloth.which'] = host.cloth; });
     p['cloth.shape'] = 'rectangle';
     this.shapeCtl = this.tag(cloth.add(p, 'cloth.shape', SHAPE_LABELS).name('shape')
-      .onChange((v: string) => { if (v !== 'mesh') host.setPath('cloth.shape', v); }), 'cloth.shape',
+      .onChange((v: string) => { if (v !== 'mesh') host.setPath(this.clothPath('cloth.shape'), v); }), 'cloth.shape',
     'rectangle (the grid; the pin presets need it), disc (diameter: width) or tube (diameter: width, length: height); rebuilds the cloth. A mesh file comes from "import mesh…"');
-    this.syncers.push(() => { p['cloth.shape'] = host.scene.cloth.shape; });
+    this.syncers.push(() => { p['cloth.shape'] = this.entry().cloth.shape; });
     p['cloth.resolution'] = 32;
     const rs = schemaFor('cloth.resolution');
     this.resolutionCtl = this.tag(cloth.add(p, 'cloth.resolution', this.resolutionOptions()).name('resolution')
-      .onChange((v: number) => host.setPath('cloth.resolution', Number(v))), 'cloth.resolution', rs.description);
+      .onChange((v: number) => host.setPath(this.clothPath('cloth.resolution'), Number(v))), 'cloth.resolution', rs.description);
     this.syncers.push(() => { p['cloth.resolution'] = host.shownResolution; });
-    this.addParam(cloth, 'material.fabric', 'fabric');
-    this.addParam(cloth, 'material.structuralStiffness', 'structural', undefined, 'N/m');
-    this.addParam(cloth, 'material.shearStiffness', 'shear', undefined, 'N/m');
-    this.addParam(cloth, 'material.bendingRigidity', 'bend', undefined, 'N·m');
-    this.addParam(cloth, 'material.damping', 'damping', undefined, 'N·s/m');
-    this.addParam(cloth, 'material.arealDensity', 'density', undefined, 'kg/m²');
-    this.addParam(cloth, 'material.stretchFactor', 'stretch factor');
-    this.addParam(cloth, 'material.friction', 'friction');
-    this.addParam(cloth, 'material.staticFriction', 'static friction');
-    this.addParam(cloth, 'material.scaleWithResolution', 'scale with resolution');
+    this.addParam(cloth, 'material.fabric', 'fabric', { cloth: true });
+    this.addParam(cloth, 'material.structuralStiffness', 'structural', { cloth: true, unit: 'N/m' });
+    this.addParam(cloth, 'material.shearStiffness', 'shear', { cloth: true, unit: 'N/m' });
+    this.addParam(cloth, 'material.bendingRigidity', 'bend', { cloth: true, unit: 'N·m' });
+    this.addParam(cloth, 'material.damping', 'damping', { cloth: true, unit: 'N·s/m' });
+    this.addParam(cloth, 'material.arealDensity', 'density', { cloth: true, unit: 'kg/m²' });
+    this.addParam(cloth, 'material.stretchFactor', 'stretch factor', { cloth: true });
+    this.addParam(cloth, 'material.friction', 'friction', { cloth: true });
+    this.addParam(cloth, 'material.staticFriction', 'static friction', { cloth: true });
+    this.addParam(cloth, 'material.scaleWithResolution', 'scale with resolution', { cloth: true });
 
     const solver = gui.addFolder('Solver');
     this.addParam(solver, 'solver.type', 'solver');
@@ -253,7 +268,7 @@ export class Panel {
 
     const wind = gui.addFolder('Wind');
     this.addParam(wind, 'wind.enabled', 'wind on');
-    this.addParam(wind, 'wind.strength', 'strength', undefined, 'm/s');
+    this.addParam(wind, 'wind.strength', 'strength', { unit: 'm/s' });
     // direction as a compass heading in the ground plane (keeps the vertical component)
     p.heading = 0;
     this.tag(wind.add(p, 'heading', 0, 360, 1).name('direction (°)').onChange((deg: number) => {
@@ -268,18 +283,19 @@ export class Panel {
     });
     this.addParam(wind, 'wind.gusts.enabled', 'gusts');
     this.addParam(wind, 'wind.gusts.amplitude', 'gust amplitude');
-    this.addParam(wind, 'wind.gusts.frequency', 'gust frequency', undefined, 'Hz');
+    this.addParam(wind, 'wind.gusts.frequency', 'gust frequency', { unit: 'Hz' });
 
     const grav = gui.addFolder('Gravity');
-    this.addParam(grav, 'gravity.1', 'gravity y', undefined, 'm/s²');
+    this.addParam(grav, 'gravity.1', 'gravity y', { unit: 'm/s²' });
 
     const pins = gui.addFolder('Pins');
+    this.pinsFolder = pins;
     for (const preset of CORNER_PINS) {
       const key = `pin.${preset}`;
       p[key] = false;
       this.tag(pins.add(p, key).name(preset === 'center' ? 'centre' : preset)
         .onChange((on: boolean) => host.setPreset(preset, on)), key);
-      this.syncers.push(() => { p[key] = host.scene.pins.includes(preset); });
+      this.syncers.push(() => { p[key] = this.entry().pins.includes(preset); });
     }
     p.pinTool = false;
     this.tag(pins.add(p, 'pinTool').name('pin tool (click cloth)   P').onChange((on: boolean) => host.setPinTool(on)),
@@ -330,20 +346,28 @@ export class Panel {
     });
   }
 
-  /** A control for one scene path, shaped by its schema: checkbox, dropdown, linear or logarithmic slider. */
-  private addParam(folder: GUI, path: string, label: string, id = path, unit = ''): void {
+  /**
+   * A control for one scene path, shaped by its schema: checkbox, dropdown, linear or logarithmic slider. `cloth`:
+   * the path is a cloth's field ('material.damping'), read from and written to the edited cloth's; `id`: the
+   * control's key (the path when not given); `unit`: shown in its label.
+   */
+  private addParam(folder: GUI, path: string, label: string, opts: { id?: string; unit?: string; cloth?: boolean } = {}): void {
     const { host, p } = this;
+    const { id = path, unit = '' } = opts;
     const s = schemaFor(path);
     const suffix = unit ? ` (${unit})` : '';
+    const read = () => get(opts.cloth ? this.entry() : host.scene, path);
+    const write = (v: unknown) => host.setPath(opts.cloth ? this.clothPath(path) : path, v);
     let ctl: Controller;
     if (s.type === 'boolean') {
       p[id] = false;
-      ctl = folder.add(p, id).name(label).onChange((v: boolean) => host.setPath(path, v));
-      this.syncers.push(() => { p[id] = get(host.scene, path); });
+      ctl = folder.add(p, id).name(label).onChange((v: boolean) => write(v));
+      this.syncers.push(() => { p[id] = read(); });
     } else if (s.enum) {
       p[id] = s.default;
-      ctl = folder.add(p, id, [...s.enum]).name(label).onChange((v: string) => host.setPath(path, v));
-      this.syncers.push(() => { p[id] = get(host.scene, path); });
+      // a named fabric puts every material field to its value: the other controls show them at once
+      ctl = folder.add(p, id, [...s.enum]).name(label).onChange((v: string) => { write(v); this.sync(); });
+      this.syncers.push(() => { p[id] = read(); });
     } else {
       const log = logSliderFor(s);
       const min = s.minimum ?? 0, max = s.maximum ?? 1;
@@ -354,11 +378,11 @@ export class Panel {
         ctl = folder.add(p, id, log.lo, log.hi, 0.01).onChange((x: number) => {
           const v = toValue(x);
           ctl.name(`${label} ${fmt(v)}${unit ? ' ' + unit : ''}`);
-          host.setPath(path, v);
+          write(v);
         });
         ctl.domElement.classList.add('drape-log');
         this.syncers.push(() => {
-          const v = get(host.scene, path) as number | undefined;
+          const v = read() as number | undefined;
           // a field the scene leaves to its older path (material.mass for the density) has no value to show
           p[id] = typeof v === 'number' ? toSlider(v) : log.lo;
           ctl.name(typeof v === 'number' ? `${label} ${fmt(v)}${unit ? ' ' + unit : ''}` : `${label}: ${NOT_SET[path] ?? 'not set'}`);
@@ -367,8 +391,8 @@ export class Panel {
         p[id] = 0;
         const step = s.type === 'integer' ? 1 : niceStep((max - min) / 500);
         ctl = folder.add(p, id, min, max, step).name(label + suffix)
-          .onChange((v: number) => host.setPath(path, s.type === 'integer' ? Math.round(v) : v));
-        this.syncers.push(() => { p[id] = get(host.scene, path); });
+          .onChange((v: number) => write(s.type === 'integer' ? Math.round(v) : v));
+        this.syncers.push(() => { p[id] = read(); });
       }
       // substeps 1…200 and similar: fine as linear sliders
     }
@@ -383,11 +407,16 @@ export class Panel {
     const opts: Record<string, string> = {};
     // lil-gui writes option names as text; plainText keeps control and direction-changing characters out
     if (host.sceneKey === '') opts[`Imported: ${plainText(host.scene.name, 60)}`] = '';
-    for (const name of ONE_CLOTH_SCENE_NAMES) opts[SCENE_LABELS[name] ?? name] = name;
+    for (const name of SCENE_NAMES) opts[SCENE_LABELS[name] ?? name] = name;
     this.sceneCtl.options(opts);
     p.sweep = host.sweepLayout;
     p.backend = host.backendChoice;
-    const cloth = host.scene.cloth;
+    // several cloths: the cloth control shows, and Pins says whose pins it shows
+    const several = clothCount(host.scene) > 1;
+    this.clothCtl.options(clothOptions(host.scene));
+    this.clothCtl.show(several);
+    this.pinsFolder.title(several ? `Pins: ${plainText(clothName(this.entry(), this.clothIndex()), 40)}` : 'Pins');
+    const cloth = this.entry().cloth;
     // an imported mesh shows in the Shape control by its file's name (as text)
     const shapes: Record<string, string> = { ...SHAPE_LABELS };
     if (cloth.shape === 'mesh') shapes[`Mesh: ${plainText(cloth.mesh ?? '', 60)}`] = 'mesh';
