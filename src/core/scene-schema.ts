@@ -288,7 +288,7 @@ export const sceneSchema = {
             type: 'object',
             additionalProperties: false,
             required: ['type', 'mesh'],
-            description: 'a triangle mesh from a file (a figure, a chair, a bowl, a terrain), kept in the file\'s own coordinates (a figure standing on y = 0 stays there): closed pieces are solids, open ones two-sided shells the cloth stays off on either side. Runs on the CPU only',
+            description: 'a triangle mesh from a file (a figure, a chair, a bowl, a terrain), kept in the file\'s own coordinates (a figure standing on y = 0 stays there): closed pieces are solids, open ones two-sided shells the cloth stays off on either side. Runs on the CPU and on the GPU',
             properties: {
               type: { const: 'mesh' },
               ...colliderCommon,

@@ -2,9 +2,9 @@
  * The cloth's storage buffers on the GPU (layout.ts BUFFERS) and each kernel's bind group over them: made for a
  * model with its static data (springs, triangles, adjacency, the rest pose), then written from the CPU: the
  * params' per-particle, per-spring and per-stencil values, a state's particles, its pins and tethers. The
- * colliders' buffers (their poses, the particles they carry) depend on the params and grow on demand (`reserve`); the
- * bending stencils' are made with their static data on the first params that bend with a stencil model, and anew
- * when params switch to the other (`writeParams`).
+ * colliders' buffers (their poses, the particles they carry, the mesh colliders' tables) depend on the params and
+ * grow on demand (`reserve`); the bending stencils' are made with their static data on the first params that bend
+ * with a stencil model, and anew when params switch to the other (`writeParams`).
  */
 import type {} from 'webgpu';
 import { bendingStencils, type ClothModel, type StencilModel } from '../core/model.js';
@@ -47,7 +47,7 @@ export class ClothBuffers {
       // placeholders: a cloth that bends with springs spends nothing on stencils (makeStencils)
       stencilOffsets: 0, stencilVertices: 0, stencilWeights: 0, stencilCompliance: 0, stencilLambdas: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
-      normals: n, grabStart: 1, colliders: 1, carried: 1,
+      normals: n, grabStart: 1, colliders: 1, carried: 1, meshNodes: 1, meshTriangles: 1,
     };
     const extraUsage: Partial<Record<BufferName, number>> = {
       positions: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC,
@@ -100,7 +100,7 @@ export class ClothBuffers {
    * Room for `count` elements in buffer `name` (its contents are lost when it grows, and the bind groups of the
    * kernels that read it are made anew). Call it before encoding a frame that uses it, never during.
    */
-  reserve(name: 'colliders' | 'carried', count: number): void {
+  reserve(name: 'colliders' | 'carried' | 'meshNodes' | 'meshTriangles', count: number): void {
     if (count * BUFFERS[name].bytes <= this.buffers[name].size) return;
     this.buffers[name].destroy();
     this.buffers[name] = this.createBuffer(name, count, 0);

@@ -10,17 +10,25 @@
  * one record per collider per substep, and the frame's records are written before its command buffer is submitted
  * (Substep.colliderBase = substep × colliders). So the GPU's colliders are exactly the CPU's PosedColliders, pose
  * by pose, and the CPU's colliders stand where the frame left them (what views and reports read).
+ *
+ * A mesh collider's hierarchy and triangles, in its own frame, are the `meshNodes` and `meshTriangles` buffers
+ * (meshes.ts), written with the params when their meshes change; its records say where its root is. So a mesh moves
+ * by its pose records alone, as every collider does.
  */
 import type {} from 'webgpu';
-import type { PosedCollider } from '../core/colliders/index.js';
+import type { MeshCollider, PosedCollider } from '../core/colliders/index.js';
 import type { SimParams } from '../core/params.js';
 import type { ClothBuffers } from './buffers.js';
 import {
-  CARRY, COLLIDER, COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
+  CARRY, COLLIDER, COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_MESH, COLLIDER_PLANE,
+  COLLIDER_SPHERE, MESH_NODE, MESH_TRIANGLE,
 } from './layout.js';
+import { meshLayout, packMeshes, type MeshLayout } from './meshes.js';
 
-/** The collider types the GPU's kernels know (colliders.wgsl, triangleContact.wgsl). */
-const GPU_TYPES: readonly number[] = [COLLIDER_SPHERE, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER];
+/** The collider types the GPU's kernels know (colliders.wgsl, meshCollider.wgsl, triangleContact.wgsl). */
+const GPU_TYPES: readonly number[] = [
+  COLLIDER_SPHERE, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_MESH,
+];
 
 /** Byte offsets of the rows of R (with o) and of M (with m) in a record. */
 const POSE_ROWS = [COLLIDER.pose0, COLLIDER.pose1, COLLIDER.pose2];
@@ -49,14 +57,23 @@ export class ColliderTables {
   private posed = -1;
   /** whether the buffer holds the static records of the current params */
   private staticCurrent = false;
+  /** where the params' meshes are in the meshNodes and meshTriangles buffers (each collider's root) */
+  private meshes: MeshLayout = meshLayout([]);
+  /** the meshes those buffers hold (meshes that come back after params without them are not written again) */
+  private held: readonly MeshCollider[] = [];
 
   constructor(device: GPUDevice, buffers: ClothBuffers) {
     this.device = device;
     this.buffers = buffers;
   }
 
-  /** The carried particles of `params`; the collider records are written by the next frame. */
+  /**
+   * The carried particles of `params`, and its mesh colliders' tables when its meshes are not those the buffers
+   * hold (a GPU solver error where they need more than the device binds); the collider records are written by the
+   * next frame.
+   */
   setParams(params: SimParams): void {
+    this.setMeshes(params);
     this.count = params.colliders.length;
     this.staticCurrent = false;
     const { particles, collider, local } = params.carried;
@@ -89,7 +106,7 @@ export class ColliderTables {
       if (!this.staticCurrent && n > 0) {
         this.buffers.reserve('colliders', n);
         this.ensureData(n);
-        for (let k = 0; k < n; k++) this.encode(colliders[k], k, false);
+        for (let k = 0; k < n; k++) this.encode(colliders[k], k, k, false);
         this.device.queue.writeBuffer(this.buffers.buffers.colliders, 0, this.data, 0, n * COLLIDER.size);
       }
       this.staticCurrent = true;
@@ -113,7 +130,7 @@ export class ColliderTables {
     for (let k = 0; k < this.count; k++) {
       const c = colliders[k];
       c.moveTo(t0, t0 + h);
-      this.encode(c, base + k, c.moving);
+      this.encode(c, k, base + k, c.moving);
     }
   }
 
@@ -123,14 +140,43 @@ export class ColliderTables {
     this.device.queue.writeBuffer(this.buffers.buffers.colliders, 0, this.data, 0, this.count * params.substeps * COLLIDER.size);
   }
 
+  /**
+   * The params' mesh tables to the GPU, unless the buffers hold these very meshes already (a GPU solver error,
+   * before anything changes, where they need more than the device binds).
+   */
+  private setMeshes(params: SimParams): void {
+    const layout = meshLayout(params.colliders);
+    const held = this.held;
+    if (layout.meshes.length === 0 || (layout.meshes.length === held.length && layout.meshes.every((m, k) => m === held[k]))) {
+      this.meshes = layout;
+      return;
+    }
+    const limit = this.device.limits.maxStorageBufferBindingSize;
+    for (const [what, bytes] of [['BVH', layout.nodeCount * MESH_NODE.size], ['triangles', layout.triangleCount * MESH_TRIANGLE.size]] as const) {
+      if (bytes > limit) {
+        throw new Error(`GPU solver: the mesh colliders' ${what} take ${(bytes / 2 ** 20).toFixed(0)} MiB, more than this device binds (${(limit / 2 ** 20).toFixed(0)} MiB)`);
+      }
+    }
+    const tables = packMeshes(layout);
+    this.buffers.reserve('meshNodes', layout.nodeCount);
+    this.buffers.reserve('meshTriangles', layout.triangleCount);
+    this.device.queue.writeBuffer(this.buffers.buffers.meshNodes, 0, tables.nodes);
+    this.device.queue.writeBuffer(this.buffers.buffers.meshTriangles, 0, tables.triangles);
+    this.meshes = layout;
+    this.held = layout.meshes;
+  }
+
   private ensureData(records: number): void {
     if (this.data.byteLength >= records * COLLIDER.size) return;
     this.data = new ArrayBuffer(records * COLLIDER.size);
     this.view = new DataView(this.data);
   }
 
-  /** Record `r`: the collider's pose and shape as it is now, and its surface motion if `moving` (else zero). */
-  private encode(c: PosedCollider, r: number, moving: boolean): void {
+  /**
+   * Record `r`: collider k's pose and shape as it is now (a mesh: where its tables are), and its surface motion if
+   * `moving` (else zero).
+   */
+  private encode(c: PosedCollider, k: number, r: number, moving: boolean): void {
     const v = this.view, at = r * COLLIDER.size, R = c.R, o = c.o, D = c.RD, oD = c.oD;
     const rows = POSE_ROWS, motion = MOTION_ROWS;
     for (let i = 0; i < 3; i++) {
@@ -146,5 +192,7 @@ export class ColliderTables {
     v.setFloat32(at + COLLIDER.shape + 12, 0, true);
     v.setUint32(at + COLLIDER.kind, c.typeId, true);
     v.setUint32(at + COLLIDER.moving, moving ? 1 : 0, true);
+    v.setUint32(at + COLLIDER.meshRoot, this.meshes.roots[k], true);
+    v.setUint32(at + COLLIDER.meshClosed, this.meshes.closed[k], true);
   }
 }

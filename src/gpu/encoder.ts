@@ -13,17 +13,23 @@ import { PHASE, PHASE_COUNT, phasePasses, type BackendPhases, type PhaseId, type
 import type { ClothState } from '../core/state.js';
 import type { ClothBuffers } from './buffers.js';
 import { gpuCollider, type ColliderTables } from './colliders.js';
+import { meshRefusal } from './meshes.js';
 import { MAX_WORKGROUPS_X, RECORD_STRIDE, WORKGROUP_SIZE, type KernelName } from './layout.js';
 import type { UniformTables } from './uniforms.js';
 
 /** The shapes the GPU has, for its refusals. */
-const GPU_SHAPES = 'sphere, floor, plane, box, capsule and cylinder';
+const GPU_SHAPES = 'sphere, floor, plane, box, capsule, cylinder and mesh';
 
-/** Why the GPU cannot do contact against these colliders (a shape its kernels do not know), or null. */
+/**
+ * Why the GPU cannot do contact against these colliders (a shape its kernels do not know, a mesh whose hierarchy
+ * is deeper than their walks go), or null.
+ */
 function contactRefusal(params: SimParams): string | null {
   const colliders = params.colliders;
   for (let k = 0; k < colliders.length; k++) {
     if (gpuCollider(colliders[k]) === null) return `collider type '${colliders[k].type}' is not supported on the GPU (it has ${GPU_SHAPES})`;
+    const mesh = meshRefusal(colliders[k]);
+    if (mesh !== null) return `the mesh of colliders[${k}] does not fit the GPU's walk: ${mesh}`;
   }
   return null;
 }
@@ -44,21 +50,20 @@ export function sceneRefusal(scene: Scene): string | null {
 
 /**
  * The colliders' part of sceneRefusal: a shape the GPU's kernels do not know, named with its place in the list.
- * Every collider the GPU knows may move and carry pins.
+ * Every collider the GPU knows may move and carry pins. A mesh collider is taken by its type, without reading its
+ * file: a mesh whose hierarchy is deeper than the GPU's walks go (layout.ts MESH_STACK, far deeper than binned SAH
+ * makes of a million triangles) is refused with its params (contactRefusal).
  */
 export function colliderRefusal(scene: Scene): string | null {
-  // a mesh collider is refused by its type, before its file is read
-  const mesh = scene.colliders.findIndex((c) => c.type === 'mesh');
-  if (mesh >= 0) return `mesh colliders run on the CPU only (colliders[${mesh}]; the GPU has ${GPU_SHAPES})`;
-  const shapes = createColliders(scene.colliders);
-  const k = shapes.findIndex((shape) => gpuCollider(shape) === null);
-  return k >= 0 ? `${shapes[k].type} colliders run on the CPU only (colliders[${k}]; the GPU has ${GPU_SHAPES})` : null;
+  const specs = scene.colliders;
+  const k = specs.findIndex((spec) => spec.type !== 'mesh' && gpuCollider(createColliders([spec])[0]) === null);
+  return k >= 0 ? `${specs[k].type} colliders run on the CPU only (colliders[${k}]; the GPU has ${GPU_SHAPES})` : null;
 }
 
 /**
  * The phases of the schedule the GPU implements: every phase of XPBD, stencil bending (solver.bending 'hinges' or
  * 'laplacian') included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript reference: a frame that
- * needs one is refused (the mass-spring solver, the global stretch step, a collider shape it does not know).
+ * needs one is refused (the mass-spring solver, the global stretch step, self-contact, a collider shape it does not know).
  */
 export const GPU_PHASES: BackendPhases = {
   name: 'GPU solver',
@@ -169,8 +174,8 @@ export class FrameEncoder implements PhaseBackend {
         case PHASE.contact:
         case PHASE.contactTriangles: {
           // the particle passes (every collider, in order), then in the next phase the triangle passes
-          const kernel = id === PHASE.contact ? 'collideParticles' : 'collideTriangles';
-          for (const c of u.collidePasses) if (c.kernel === kernel) this.dispatch(c.kernel, c.count, so, c.record * RECORD_STRIDE);
+          const triangles = id === PHASE.contactTriangles;
+          for (const c of u.collidePasses) if (c.triangles === triangles) this.dispatch(c.kernel, c.count, so, c.record * RECORD_STRIDE);
           break;
         }
         case PHASE.velocities: this.dispatch('velocities', particles, so, 0); break;

@@ -9,14 +9,18 @@
  */
 
 import {
-  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE, GOLDEN_ITERATIONS,
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_MESH, COLLIDER_PLANE, COLLIDER_SPHERE,
+  GOLDEN_ITERATIONS, MESH_SHARP_EDGE, MESH_SIGNED,
 } from '../core/layout.generated.js';
 
 /**
- * Shared with the CPU through the one table (core/gen-layout.mjs): the collider type ids the GPU knows, and the
- * golden-section iterations of triangle contact.
+ * Shared with the CPU through the one table (core/gen-layout.mjs): the collider type ids the GPU knows, the
+ * golden-section iterations of triangle contact, and a mesh collider's triangle flags (colliders/mesh.ts).
  */
-export { COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE, GOLDEN_ITERATIONS };
+export {
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_MESH, COLLIDER_PLANE, COLLIDER_SPHERE,
+  GOLDEN_ITERATIONS, MESH_SHARP_EDGE, MESH_SIGNED,
+};
 
 /** Threads per workgroup of every kernel (1-D). */
 export const WORKGROUP_SIZE = 64;
@@ -26,6 +30,13 @@ export const MAX_WORKGROUPS_X = 65535;
 export const VEC4 = 4;
 /** Byte stride of the dynamic-offset uniform records (minUniformBufferOffsetAlignment is at most 256). */
 export const RECORD_STRIDE = 256;
+/**
+ * Entries of the fixed stack of a mesh collider's BVH walks (meshCollider.wgsl, triangleContact.wgsl): a walk keeps
+ * at most one node per level below the root, so a hierarchy at most this deep (TriangleBvh.depth) fits; a deeper
+ * one is refused (meshes.ts meshRefusal). Binned SAH makes 24 levels of a UV sphere of 998 000 triangles, 22 of a
+ * terrain of 980 000, 16 of an icosphere of 20 480.
+ */
+export const MESH_STACK = 64;
 
 
 /** Flags of a solve or bending pass record. */
@@ -37,8 +48,8 @@ export const PASS_READ_LAMBDA = 2; // start from the accumulated λ (second and 
  * at are both derived from it (`structLayout`, WGSL's layout rules, which for these types are the same in uniform
  * and storage buffers), so they cannot drift apart. Uniforms: `Globals` is written by setParams and (the grab) by
  * every step; `Substep` is one record per substep at RECORD_STRIDE, selected with a dynamic offset; `Pass` likewise,
- * one record per solve batch / bending batch / collider pass. Storage: `Collider` (the `colliders` buffer) and `Carry`
- * (`carried`).
+ * one record per solve batch / bending batch / collider pass. Storage: `Collider` (the `colliders` buffer), `Carry`
+ * (`carried`), `MeshNode` (`meshNodes`) and `MeshTriangle` (`meshTriangles`).
  */
 type Field = readonly [name: string, type: string, doc: string];
 
@@ -85,7 +96,8 @@ const COLLIDER_FIELDS = [
   ['shape', 'vec4f', 'PosedCollider.shapeParams in xyz [m]: sphere radius; box half extents; capsule half length, radius; cylinder radius, half height'],
   ['kind', 'u32', 'COLLIDER_* type id'],
   ['moving', 'u32', '1 when its surface moved over the substep (PosedCollider.moving)'],
-  ['_p0', 'u32', 'padding'], ['_p1', 'u32', 'padding'],
+  ['meshRoot', 'u32', 'a mesh collider\'s root node in meshNodes (its hierarchy, in its own frame); 0 for other shapes'],
+  ['meshClosed', 'u32', '1 when a mesh collider has a closed piece (a point with no triangle within reach may be inside it), else 0'],
 ] as const satisfies readonly Field[];
 
 /** A particle a collider carries (params.carried): the carry kernel puts it at R·local + o of its collider. */
@@ -95,8 +107,43 @@ const CARRY_FIELDS = [
   ['collider', 'u32', 'the collider, an index into params.colliders'],
 ] as const satisfies readonly Field[];
 
+/**
+ * A node of a mesh collider's BVH (colliders/bvh.ts TriangleBvh: its `bounds` and `nodes`), every mesh collider of
+ * the params in one array (gpu/meshes.ts), indices made absolute: an inner node's children are `first` and
+ * `first` + 1 of this array, a leaf's triangles `first` … `first` + count − 1 of meshTriangles.
+ */
+const MESH_NODE_FIELDS = [
+  ['lo', 'vec3f', 'the box of the node\'s triangles, lowest corner, in the mesh\'s own frame [m]'],
+  ['first', 'u32', 'inner node (count 0): its first child in meshNodes; leaf: its first triangle in meshTriangles'],
+  ['hi', 'vec3f', 'the box\'s highest corner [m]'],
+  ['count', 'u32', 'triangles of a leaf; 0 for an inner node'],
+] as const satisfies readonly Field[];
+
+/**
+ * A triangle of a mesh collider (colliders/mesh.ts MeshCollider, leaf order), its own frame: corners, unit normal,
+ * the triangles across its edges (for the edge pseudo-normal) and the angle-weighted pseudo-normals of its corners.
+ */
+const MESH_TRIANGLE_FIELDS = [
+  ['a', 'vec3f', 'corner 0 [m]'],
+  ['flags', 'u32', 'MESH_SIGNED (in a closed piece), MESH_SHARP_EDGE << e (owns its sharp edge e, corner e to e + 1)'],
+  ['b', 'vec3f', 'corner 1 [m]'],
+  ['across0', 'i32', 'the triangle across edge 0 (a to b) in meshTriangles, −1 none (a rim, or an edge of three or more)'],
+  ['c', 'vec3f', 'corner 2 [m]'],
+  ['across1', 'i32', 'the triangle across edge 1 (b to c), −1 none'],
+  ['normal', 'vec3f', 'unit face normal (outward in a closed piece)'],
+  ['across2', 'i32', 'the triangle across edge 2 (c to a), −1 none'],
+  ['normalA', 'vec3f', 'angle-weighted pseudo-normal of corner a (MeshCollider.vertexNormals: not unit; zero in an open piece) [rad]'],
+  ['_p0', 'u32', 'padding'],
+  ['normalB', 'vec3f', 'the same of corner b [rad]'],
+  ['_p1', 'u32', 'padding'],
+  ['normalC', 'vec3f', 'the same of corner c [rad]'],
+  ['_p2', 'u32', 'padding'],
+] as const satisfies readonly Field[];
+
 export const COLLIDER = structLayout(COLLIDER_FIELDS);
 export const CARRY = structLayout(CARRY_FIELDS);
+export const MESH_NODE = structLayout(MESH_NODE_FIELDS);
+export const MESH_TRIANGLE = structLayout(MESH_TRIANGLE_FIELDS);
 
 /** Storage buffers: WGSL element type and bytes per element. */
 export const BUFFERS = {
@@ -158,16 +205,26 @@ export const BUFFERS = {
   colliders: { type: 'Collider', bytes: COLLIDER.size },
   /** the particles colliders carry (params.carried), Globals.carriedCount of them */
   carried: { type: 'Carry', bytes: CARRY.size },
+  /** the BVH nodes of every mesh collider of the params (Collider.meshRoot: where each one's root is) */
+  meshNodes: { type: 'MeshNode', bytes: MESH_NODE.size },
+  /** the triangles of every mesh collider of the params, each one's in its BVH's leaf order */
+  meshTriangles: { type: 'MeshTriangle', bytes: MESH_TRIANGLE.size },
 } as const;
 export type BufferName = keyof typeof BUFFERS;
 
 type Access = 'read' | 'read_write';
-/** A kernel: its WGSL file (src/gpu/shaders/<name>.wgsl), the libraries it includes, its storage bindings. */
+/**
+ * A kernel: its WGSL file (src/gpu/shaders/<name>.wgsl, or `file`), the libraries it includes, its storage bindings.
+ * One file with other libraries is another kernel (the contact kernels of analytic colliders and of mesh colliders:
+ * the same loop over another `localDistance` and `triangleDeepest`).
+ */
 export interface KernelSpec {
   /** group(1) bindings in binding order */
   readonly bindings: readonly (readonly [BufferName, Access])[];
   /** other .wgsl files (function libraries) placed before the kernel */
   readonly libs?: readonly string[];
+  /** the .wgsl file of its entry point, where that is not the kernel's name */
+  readonly file?: string;
 }
 
 /** Every kernel. At most 8 storage buffers each (the default maxStorageBuffersPerShaderStage). */
@@ -220,20 +277,41 @@ export const KERNELS = {
   /** carryPinned: each carried particle to where its collider puts it at the substep's end */
   carry: {
     bindings: [['positions', 'read_write'], ['carried', 'read'], ['colliders', 'read'], ['residuals', 'read_write']],
-    libs: ['colliders'],
+    libs: ['pose'],
   },
-  /** collide, particle part, for a run of colliders */
+  /** collide, particle part, for a run of analytic colliders */
   collideParticles: {
     bindings: [['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['colliders', 'read']],
-    libs: ['colliders'],
+    libs: ['pose', 'colliders', 'shapes'],
   },
-  /** collide, triangle part, for one collider and one triangle colour */
+  /** collide, triangle part, for one analytic collider and one triangle colour */
   collideTriangles: {
     bindings: [
       ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['triangles', 'read'],
       ['colliders', 'read'],
     ],
-    libs: ['colliders', 'triangleContact'],
+    libs: ['pose', 'colliders', 'shapes', 'triangleContact', 'shapeTriangles'],
+  },
+  /**
+   * collide, particle part, for a run of mesh colliders: collideParticles over the mesh's distance (a kernel of its
+   * own, so that the analytic shapes' kernels carry none of the mesh's walks)
+   */
+  collideMeshParticles: {
+    file: 'collideParticles',
+    bindings: [
+      ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['colliders', 'read'],
+      ['meshNodes', 'read'], ['meshTriangles', 'read'],
+    ],
+    libs: ['pose', 'colliders', 'meshCollider'],
+  },
+  /** collide, triangle part, for one mesh collider and one triangle colour: collideTriangles over the mesh's */
+  collideMeshTriangles: {
+    file: 'collideTriangles',
+    bindings: [
+      ['positions', 'read_write'], ['previous', 'read_write'], ['invMass', 'read'], ['triangles', 'read'],
+      ['colliders', 'read'], ['meshNodes', 'read'], ['meshTriangles', 'read'],
+    ],
+    libs: ['pose', 'colliders', 'meshCollider', 'triangleContact', 'meshTriangles'],
   },
   /** updateVelocities, once per frame */
   velocities: {
@@ -301,6 +379,10 @@ const COLLIDER_PLANE: u32 = ${COLLIDER_PLANE}u;
 const COLLIDER_BOX: u32 = ${COLLIDER_BOX}u;
 const COLLIDER_CAPSULE: u32 = ${COLLIDER_CAPSULE}u;
 const COLLIDER_CYLINDER: u32 = ${COLLIDER_CYLINDER}u;
+const COLLIDER_MESH: u32 = ${COLLIDER_MESH}u;
+const MESH_SIGNED: u32 = ${MESH_SIGNED}u;
+const MESH_SHARP_EDGE: u32 = ${MESH_SHARP_EDGE}u;
+const MESH_STACK: u32 = ${MESH_STACK}u;
 const GOLDEN_ITERATIONS: u32 = ${GOLDEN_ITERATIONS}u;
 const PASS_CAP: u32 = ${PASS_CAP}u;
 const PASS_READ_LAMBDA: u32 = ${PASS_READ_LAMBDA}u;
@@ -308,6 +390,10 @@ const PASS_READ_LAMBDA: u32 = ${PASS_READ_LAMBDA}u;
 ${wgslStruct('Collider', COLLIDER_FIELDS)}
 
 ${wgslStruct('Carry', CARRY_FIELDS)}
+
+${wgslStruct('MeshNode', MESH_NODE_FIELDS)}
+
+${wgslStruct('MeshTriangle', MESH_TRIANGLE_FIELDS)}
 
 ${wgslStruct('Globals', GLOBALS_FIELDS)}
 

@@ -8,6 +8,7 @@ import type {} from 'webgpu';
 import { FRAME_DT, Simulation, builtinScene, copyState, createState, grab, type ColliderSpec, type Scene } from '../core/index.js';
 import { PHASE, PHASES, PhaseLog, assignPhases, solverPhases, type PhaseName } from '../core/schedule.js';
 import { GPU_PHASES } from './encoder.js';
+import { cubeMesh } from '../core/colliders/mesh-shapes.js';
 import { testDevice } from './test-device.js';
 import { GpuClothSolver } from './solver.js';
 
@@ -28,6 +29,11 @@ function windyScene(edit: (s: Scene) => void = () => {}): Scene {
 const carrier: ColliderSpec = {
   type: 'box', center: [0.85, 2.5, 0], halfExtents: [0.05, 0.05, 0.05], rotation: [0, 0, 0], pins: ['top-right'],
   motion: { keyframes: [{ time: 0, translation: [0, 0, 0], rotation: [0, 0, 0] }, { time: 1, translation: [0, 0.2, 0], rotation: [0, 90, 0] }], loop: false },
+};
+
+/** A cube mesh where the box carrier is, turning and rising the same way, carrying the same corner. */
+const meshCarrier: ColliderSpec = {
+  type: 'mesh', mesh: 'cube.obj', scale: 0.1, position: [0.85, 2.5, 0], rotation: [0, 0, 0], pins: ['top-right'], motion: carrier.motion,
 };
 
 /** The phases an XPBD frame must run, straight from the table. */
@@ -70,6 +76,9 @@ describe('what the GPU implements of the schedule', () => {
     // with carried pins, carry too, whatever the collider and its motion
     const carried = new Simulation(windyScene((s) => { s.colliders = [carrier]; }), { kernel: 'ts' });
     expect(assignPhases(GPU_PHASES, carried.model, carried.params) & (1 << PHASE.carry)).toBe(1 << PHASE.carry);
+    // a mesh collider (a cube mesh: sharp edges), moving: contact and triangle contact, by the GPU
+    const mesh = new Simulation(windyScene((s) => { s.colliders = [meshCarrier]; }), { kernel: 'ts', meshes: () => cubeMesh() });
+    expect(assignPhases(GPU_PHASES, mesh.model, mesh.params)).toBe(xpbd & ~(1 << PHASE.bending));
   });
 
   test('what it lacks it cannot leave to the reference (its cloth is in GPU memory): refused, saying why', () => {
@@ -113,6 +122,20 @@ describe.skipIf(!gpu)('the GPU encodes the schedule', () => {
     solver.step(state, sim.params, FRAME_DT, undefined, log);
     // the small box has sharp edges: triangle contact too
     expect(log.names()).toEqual(expected(3, true, false, true, true));
+  });
+
+  test('a moving mesh collider that carries pins: carry, contact and triangle contact, by the GPU, in every substep', async () => {
+    const sim = new Simulation(windyScene((s) => { s.colliders = [meshCarrier]; }), { kernel: 'ts', meshes: () => cubeMesh() });
+    const state = createState(sim.model);
+    copyState(sim.state, state);
+    const solver = await GpuClothSolver.create(gpu!.device, sim.model);
+    solvers.push(solver);
+    solver.upload(state);
+    const log = new PhaseLog();
+    solver.step(state, sim.params, FRAME_DT, undefined, log);
+    expect(log.names()).toEqual(expected(3, true, false, true, true));
+    await solver.read(state);
+    expect(state.positions.every(Number.isFinite)).toBe(true);
   });
 
   test.each(['hinges', 'laplacian'] as const)('the %s bending model: bending, by the GPU, after distance in every substep', async (bending) => {

@@ -18,6 +18,7 @@ export function kernelSource(kernel: KernelName): string {
   const spec: KernelSpec = KERNELS[kernel];
   const parts = [wgslPreamble(), `// ---- bindings of ${kernel} ----`, wgslBindings(kernel), ''];
   for (const lib of spec.libs ?? []) parts.push(`// ---- ${lib}.wgsl ----`, source(lib));
-  parts.push(`// ---- ${kernel}.wgsl ----`, source(kernel));
+  const file = spec.file ?? kernel;
+  parts.push(`// ---- ${file}.wgsl ----`, source(file));
   return parts.join('\n');
 }

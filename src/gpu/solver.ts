@@ -91,10 +91,11 @@ export class GpuClothSolver {
   setParams(params: SimParams): void {
     this.checkAlive();
     assignPhases(GPU_PHASES, this.model, params);
+    // first: it may refuse mesh colliders too big for this device
+    this.colliders.setParams(params);
     this.params = params;
     this.buffers.writeParams(params);
     this.uniforms.setParams(params);
-    this.colliders.setParams(params);
   }
 
   /**

@@ -45,10 +45,11 @@ export function substepTraffic(model: ClothModel, params: SimParams, collidePass
   const carried = params.carried.particles.length;
   if (carried > 0) add('carry', carried * (CARRY.size + COLLIDER.size + 16)); // its record, its collider's, the position written
   for (const c of collidePasses) {
-    // w, x and x_prev in, x out, and each collider's record
-    if (c.kernel === 'collideParticles') add('collideParticles', n * (4 + 16 + 16 + 16 + c.colliders * COLLIDER.size));
+    // w, x and x_prev in, x out, and each collider's record (a mesh collider's walk of its tables is not counted:
+    // how much of them a particle or triangle reads depends on where it is)
+    if (!c.triangles) add(c.kernel, n * (4 + 16 + 16 + 16 + c.colliders * COLLIDER.size));
     // indices, positions and previous positions of 3 particles, the collider's record
-    else add('collideTriangles', c.count * (12 + 48 + 48 + COLLIDER.size));
+    else add(c.kernel, c.count * (12 + 48 + 48 + COLLIDER.size));
   }
   add('perFrame', (n * (4 + 4 + 4 + 16 + 16 + 16) + n * 48) / params.substeps); // prepare + velocities, per substep
   let total = 0;

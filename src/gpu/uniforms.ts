@@ -10,11 +10,16 @@ import type { SimParams } from '../core/params.js';
 import { needsTriangleContact } from '../core/phases.js';
 import type { ClothState } from '../core/state.js';
 import { windVelocity } from '../core/wind.js';
-import { GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SUBSTEP } from './layout.js';
+import { COLLIDER_MESH, GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SUBSTEP } from './layout.js';
 
-/** A run of contact work in one substep: particles against colliders [first, last), or one triangle colour. */
+/**
+ * A run of contact work in one substep: particles against colliders [first, last) of one family (analytic or
+ * mesh: each has its kernels), or one triangle colour against one collider.
+ */
 export interface CollidePass {
-  readonly kernel: 'collideParticles' | 'collideTriangles';
+  readonly kernel: 'collideParticles' | 'collideTriangles' | 'collideMeshParticles' | 'collideMeshTriangles';
+  /** a triangle pass (the contactTriangles phase), else a particle pass (contact) */
+  readonly triangles: boolean;
   /** its Pass record */
   readonly record: number;
   /** threads: particles or triangles */
@@ -139,14 +144,19 @@ export class UniformTables {
     this.collidePasses = [];
     let first = 0;
     const shapes = params.colliders.length;
+    const mesh = params.colliders.map((shape) => shape.typeId === COLLIDER_MESH);
     for (let k = 0; k < shapes; k++) {
-      if (!triangleShapes[k] && k + 1 < shapes) continue;
-      this.collidePasses.push({ kernel: 'collideParticles', record: records.length, count: model.particleCount, colliders: k + 1 - first });
+      // a run of particle contact ends where triangle contact follows, at the last collider, and before a collider
+      // of the other family (particle contact touches only its own particle: runs in order are the CPU's order)
+      if (!triangleShapes[k] && k + 1 < shapes && mesh[k + 1] === mesh[k]) continue;
+      const particles = mesh[k] ? 'collideMeshParticles' : 'collideParticles';
+      this.collidePasses.push({ kernel: particles, triangles: false, record: records.length, count: model.particleCount, colliders: k + 1 - first });
       records.push([first, k + 1, 0, 0]);
       first = k + 1;
       if (!triangleShapes[k]) continue;
       for (const b of model.triangleBatches) {
-        this.collidePasses.push({ kernel: 'collideTriangles', record: records.length, count: b.end - b.start, colliders: 1 });
+        const kernel = mesh[k] ? 'collideMeshTriangles' : 'collideTriangles';
+        this.collidePasses.push({ kernel, triangles: true, record: records.length, count: b.end - b.start, colliders: 1 });
         records.push([b.start, b.end, 0, k]);
       }
     }

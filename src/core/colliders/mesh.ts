@@ -35,6 +35,9 @@
  * otherwise 0, and triangle contact runs for every cloth.
  */
 import type { MeshResolver } from '../cloth-shape.js';
+// per-triangle flags (the one table: the GPU reads them too): SIGNED, the triangle belongs to a closed piece (signed
+// distance); SHARP_EDGE << e, the triangle owns edge e (corner e → e + 1) and it is sharp
+import { MESH_SHARP_EDGE as SHARP_EDGE, MESH_SIGNED as SIGNED } from '../layout.generated.js';
 import { edgeTable } from '../mesh/edges.js';
 import { weldMap, weldTolerance, type TriangleMesh } from '../mesh/triangle-mesh.js';
 import { SceneError } from '../scene.js';
@@ -51,10 +54,6 @@ export const SHARP_EDGE_DEGREES = 1;
 /** Cells of the coarse distance grid along the longest side of the mesh's box. */
 export const GRID_CELLS = 32;
 
-/** per-triangle flag: the triangle belongs to a closed piece (signed distance) */
-const SIGNED = 1;
-/** per-triangle flag: the triangle owns edge e (corner e → e + 1) and it is sharp: SHARP_EDGE << e */
-const SHARP_EDGE = 2;
 
 const bary = new Float64Array(3);
 const vn = new Float64Array(3);

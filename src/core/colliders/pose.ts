@@ -17,12 +17,13 @@
  * cloth carries it along (phases.ts collideParticles()).
  */
 import {
-  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_RECORD_EXACT, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O,
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_MESH, COLLIDER_PLANE, COLLIDER_RECORD_EXACT, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O,
   COLLIDER_RECORD_OD, COLLIDER_RECORD_R, COLLIDER_RECORD_RD, COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_SPHERE,
 } from '../layout.generated.js';
 import { BoxCollider } from './box.js';
 import { CapsuleCollider } from './capsule.js';
 import { CylinderCollider } from './cylinder.js';
+import { MeshCollider } from './mesh.js';
 import { PlaneCollider } from './plane.js';
 import { eulerXYZInto } from '../mesh/generators.js';
 import type { ColliderShape } from './shape.js';
@@ -114,6 +115,8 @@ function kernelShape(l: ColliderShape): [number, [number, number, number]] {
   if (l instanceof BoxCollider) return [COLLIDER_BOX, [l.halfExtents[0], l.halfExtents[1], l.halfExtents[2]]];
   if (l instanceof CapsuleCollider) return [COLLIDER_CAPSULE, [l.b[1], l.radius, 0]];
   if (l instanceof CylinderCollider) return [COLLIDER_CYLINDER, [l.radius, l.halfHeight, 0]];
+  // its hierarchy, triangles and pseudo-normals are tables of their own (the GPU's meshNodes and meshTriangles)
+  if (l instanceof MeshCollider) return [COLLIDER_MESH, [0, 0, 0]];
   return [0, [0, 0, 0]];
 }
 
@@ -126,10 +129,10 @@ export class PosedCollider implements ColliderShape {
   /**
    * the shape's numbers in its own frame, as kernels read them: a sphere's radius; a box's half extents; a capsule's
    * half length (its axis runs along y from −that to +that) and radius; a cylinder's radius and half height; none
-   * for a floor or a plane (the half-space y < 0)
+   * for a floor or a plane (the half-space y < 0), nor for a mesh (its tables are its own)
    */
   readonly shapeParams: readonly [number, number, number];
-  /** radius of a ball about `o` that holds the whole shape [m] (Infinity for a floor or a plane) */
+  /** radius of a ball about `o` that holds the whole shape [m] (Infinity for a floor, a plane or a mesh: none is kept) */
   readonly boundingRadius: number;
   /** world = R·local + o at the end of the current substep; R row-major */
   readonly R = new Float64Array(9);

@@ -18,6 +18,12 @@ export const COLLIDER_BOX: i32 = 4;
 export const COLLIDER_CAPSULE: i32 = 5;
 /** collider type id of a closed cylinder: radius and half height, its axis along its own y */
 export const COLLIDER_CYLINDER: i32 = 6;
+/** collider type id of a triangle mesh (colliders/mesh.ts) in its own frame: its BVH, triangles and pseudo-normals are tables of their own (the GPU's meshNodes, meshTriangles), not shape numbers */
+export const COLLIDER_MESH: i32 = 7;
+/** mesh collider triangle flag: the triangle belongs to a closed piece (signed distance by pseudo-normals; else a two-sided open shell) */
+export const MESH_SIGNED: i32 = 1;
+/** mesh collider triangle flag: MESH_SHARP_EDGE << e where the triangle owns its edge e (corner e to e + 1) and that edge is sharp (triangle contact) */
+export const MESH_SHARP_EDGE: i32 = 2;
 /** most colliders in a scene (schema) and in the kernel's control block */
 export const MAX_COLLIDERS: i32 = 64;
 /** golden-section iterations of each of the two nested searches of triangle contact (colliders/convex.ts goldenDeepest, the GPU's triangleContact.wgsl) */

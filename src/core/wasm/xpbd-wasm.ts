@@ -21,20 +21,27 @@ import { PHASE, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } f
 import { createState, type ClothState } from '../state.js';
 import {
   CTRL, CTRL_BYTES, KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE,
-  KERNEL_MAX_ITERATIONS, KERNEL_MAX_THREADS, MAX_COLLIDERS, COLLIDER_RECORD_FLOATS,
+  KERNEL_MAX_ITERATIONS, KERNEL_MAX_THREADS, MAX_COLLIDERS, COLLIDER_RECORD_FLOATS, COLLIDER_BOX, COLLIDER_CAPSULE,
+  COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
 } from '../layout.generated.js';
 import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
+/** The collider types the kernel's localDistance knows (contact.as.ts): every analytic shape, not a mesh. */
+const KERNEL_TYPES: readonly number[] = [COLLIDER_SPHERE, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER];
+
 /**
  * Why the kernel cannot do particle contact against these colliders, or null: it knows every analytic shape
- * (PosedCollider.typeId, the COLLIDER_* ids), moving or not, up to MAX_COLLIDERS of them. (Triangle contact is
- * the next phase, contactTriangles, which the kernel does not implement: it runs in TypeScript.)
+ * (PosedCollider.typeId, the COLLIDER_* ids), moving or not, up to MAX_COLLIDERS of them; a mesh's contact runs in
+ * TypeScript. (Triangle contact is the next phase, contactTriangles, which the kernel does not implement: it runs in
+ * TypeScript.)
  */
 function contactRefusal(params: SimParams): string | null {
   const shapes = params.colliders;
   if (shapes.length > MAX_COLLIDERS) return 'more colliders than the control block holds';
-  for (let k = 0; k < shapes.length; k++) if (shapes[k].typeId === 0) return 'a collider shape without a kernel type id';
+  for (let k = 0; k < shapes.length; k++) {
+    if (!KERNEL_TYPES.includes(shapes[k].typeId)) return `collider type '${shapes[k].type}' has no kernel code`;
+  }
   return null;
 }
 

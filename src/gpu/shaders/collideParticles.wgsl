@@ -4,7 +4,8 @@
 // overlap it did not move into), position-based friction removes (part of) its tangential motion over the substep,
 // and the outward motion the push-out made moves x_prev too (not velocity). Every motion is taken relative to the
 // collider's surface (its own motion over the substep subtracted), so a moving collider pushes and drags the cloth.
-// One thread per particle.
+// One thread per particle. Two kernels: collideParticles over the analytic shapes (shapes.wgsl), collideMeshParticles
+// over mesh colliders (meshCollider.wgsl: `localDistance` bounded by the thickness, as the reference asks).
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
@@ -19,7 +20,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   for (var k = batch.start; k < batch.end; k++) {
     let c = colliders[sub.colliderBase + k];
     var n: vec3f;
-    let d = colliderDistance(c, x, &n);
+    let d = colliderDistance(c, x, th, &n);
     if (d >= th) { continue; }
     // motion over the substep so far relative to the surface, its normal part, and the push-out
     var m = x - xp;

@@ -1,10 +1,11 @@
 // collide (phases.ts), triangle part, for collider batch.flags (its record at sub.colliderBase: where it is at the
 // end of this substep) and the triangles of one colour, [batch.start, batch.end) (core sorts triangles by colour):
 // they share no vertex, so each thread owns its three particles for the dispatch (Gauss–Seidel over colours, as the
-// constraint solve; no float atomics). The deepest point of the triangle (triangleContact.wgsl, in the collider's
-// own frame) is pushed out to the contact thickness as a particle is (collideParticles), with friction on its motion
+// constraint solve; no float atomics). The deepest point of the triangle (`triangleDeepest`, in the collider's own
+// frame) is pushed out to the contact thickness as a particle is (collideParticles), with friction on its motion
 // relative to the surface; the correction is shared by barycentric weight and inverse mass so that Σ bary_i·Δx_i is
-// the wanted displacement.
+// the wanted displacement. Two kernels: collideTriangles for an analytic shape (shapes.wgsl, shapeTriangles.wgsl),
+// collideMeshTriangles for a mesh collider (meshCollider.wgsl, meshTriangles.wgsl).
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
@@ -19,7 +20,7 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   let xc = positions[c].xyz;
   var n: vec3f;
   // every point of a triangle stretched at most 2× lies within `reach` of vertex a
-  if (colliderDistance(shape, xa, &n) > globals.reach) { return; }
+  if (colliderDistance(shape, xa, globals.reach, &n) >= globals.reach) { return; }
   let th = globals.thickness;
   let deep = triangleDeepest(shape, toLocal(shape, xa), toLocal(shape, xb), toLocal(shape, xc), th);
   if (deep.d >= th) { return; }

@@ -1,95 +1,65 @@
-// Collider shapes (core/colliders/*.ts) in their own frames, placed and moved by their pose (colliders/pose.ts
-// PosedCollider, one `Collider` record per collider and substep), and the friction rule shared by the contact
-// kernels. Shapes in their own frame: a sphere at the origin; a floor or plane the half-space y < 0; a box
-// axis-aligned at the origin; a capsule's axis from y = −half length to +half length; a cylinder's axis along y.
+// What every contact kernel shares, whatever its shapes: a collider's signed distance in the world (through its pose,
+// pose.wgsl, and `localDistance` in its own frame: the analytic shapes' in shapes.wgsl, a mesh's in meshCollider.wgsl;
+// a kernel includes one of the two), the closest point of a triangle, and the friction rule.
 
-/** World point p in the collider's own frame: Rᵀ·(p − o). */
-fn toLocal(c: Collider, p: vec3f) -> vec3f {
-  let d = p - vec3f(c.pose0.w, c.pose1.w, c.pose2.w);
-  return d.x * c.pose0.xyz + d.y * c.pose1.xyz + d.z * c.pose2.xyz;
-}
+/** A very large distance [m]: as `within`, no bound asked for. */
+const FAR: f32 = 1e30;
 
-/** A direction of the collider's own frame in the world: R·v. */
-fn toWorldDirection(c: Collider, v: vec3f) -> vec3f {
-  return vec3f(dot(c.pose0.xyz, v), dot(c.pose1.xyz, v), dot(c.pose2.xyz, v));
-}
-
-/** A point of the collider's own frame in the world: R·l + o. */
-fn toWorld(c: Collider, l: vec3f) -> vec3f {
-  return toWorldDirection(c, l) + vec3f(c.pose0.w, c.pose1.w, c.pose2.w);
-}
-
-/** How far the surface point now at world p moved over the substep [m] (PosedCollider.surfaceMotion). */
-fn surfaceMotion(c: Collider, p: vec3f) -> vec3f {
-  return vec3f(dot(c.motion0.xyz, p) + c.motion0.w, dot(c.motion1.xyz, p) + c.motion1.w, dot(c.motion2.xyz, p) + c.motion2.w);
-}
-
-/** Box of half extents h (box.ts signedDistance): outside, the distance to its nearest point; inside, the nearest face. */
-fn boxDistance(h: vec3f, q: vec3f, n: ptr<function, vec3f>) -> f32 {
-  let e = abs(q) - h;
-  if (e.x > 0.0 || e.y > 0.0 || e.z > 0.0) {
-    let o = max(e, vec3f(0.0));
-    let d = length(o);
-    *n = sign(q) * o / d;
-    return d;
+/** Barycentric weights of the point of triangle (a, b, c) closest to p (Ericson 2005, §5.1.5; sphere.ts). */
+fn closestPointOnTriangle(p: vec3f, a: vec3f, b: vec3f, c: vec3f) -> vec3f {
+  let ab = b - a;
+  let ac = c - a;
+  let ap = p - a;
+  let d1 = dot(ab, ap);
+  let d2 = dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) { return vec3f(1.0, 0.0, 0.0); }
+  let bp = p - b;
+  let d3 = dot(ab, bp);
+  let d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) { return vec3f(0.0, 1.0, 0.0); }
+  let vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    // (a zero-length edge gives 0/0: its end a, as sphere.ts)
+    let v = select(0.0, d1 / (d1 - d3), d1 - d3 > 0.0);
+    return vec3f(1.0 - v, v, 0.0);
   }
-  if (e.x >= e.y && e.x >= e.z) { *n = vec3f(select(1.0, -1.0, q.x < 0.0), 0.0, 0.0); return e.x; }
-  if (e.y >= e.z) { *n = vec3f(0.0, select(1.0, -1.0, q.y < 0.0), 0.0); return e.y; }
-  *n = vec3f(0.0, 0.0, select(1.0, -1.0, q.z < 0.0));
-  return e.z;
+  let cp = p - c;
+  let d5 = dot(ab, cp);
+  let d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) { return vec3f(0.0, 0.0, 1.0); }
+  let vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    let w = select(0.0, d2 / (d2 - d6), d2 - d6 > 0.0);
+    return vec3f(1.0 - w, 0.0, w);
+  }
+  let va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+    let e = d4 - d3 + (d5 - d6);
+    let w = select(0.0, (d4 - d3) / e, e > 0.0);
+    return vec3f(0.0, 1.0 - w, w);
+  }
+  let sum = va + vb + vc;
+  if (!(sum > 0.0)) {
+    // a degenerate triangle that rounding brought here: its nearest vertex (sphere.ts)
+    let da = dot(ap, ap);
+    let db = dot(bp, bp);
+    let dc = dot(cp, cp);
+    if (da <= db && da <= dc) { return vec3f(1.0, 0.0, 0.0); }
+    if (db <= dc) { return vec3f(0.0, 1.0, 0.0); }
+    return vec3f(0.0, 0.0, 1.0);
+  }
+  let v = vb / sum;
+  let w = vc / sum;
+  return vec3f(1.0 - v - w, v, w);
 }
 
 /**
- * Signed distance [m] of point q (the collider's own frame) from a shape of type `kind` with numbers `s`
- * (PosedCollider.shapeParams), negative inside; its outward normal (own frame) goes to *n.
+ * Signed distance [m] of world point p from the collider's surface (negative inside); the world normal goes to *n.
+ * A mesh may answer `within` for a point with nothing that near (and then leaves *n alone).
  */
-fn localDistance(kind: u32, s: vec4f, q: vec3f, n: ptr<function, vec3f>) -> f32 {
-  switch kind {
-    case COLLIDER_SPHERE: {
-      let l = length(q);
-      if (l > 1e-12) { *n = q / l; } else { *n = vec3f(0.0, 1.0, 0.0); }
-      return l - s.x;
-    }
-    case COLLIDER_BOX: {
-      return boxDistance(s.xyz, q, n);
-    }
-    case COLLIDER_CAPSULE: {
-      // from the axis' nearest point; on the axis, sideways (capsule.ts: the axis × the world axis least aligned)
-      let d = vec3f(q.x, q.y - clamp(q.y, -s.x, s.x), q.z);
-      let l = length(d);
-      if (l > 1e-12) { *n = d / l; } else if (s.x > 0.0) { *n = vec3f(0.0, 0.0, -1.0); } else { *n = vec3f(0.0, 1.0, 0.0); }
-      return l - s.y;
-    }
-    case COLLIDER_CYLINDER: {
-      // cylinder.ts signedDistance with its axis along y
-      let rho = length(q.xz);
-      var h = vec3f(0.0, 0.0, -1.0);
-      if (rho > 1e-12) { h = vec3f(q.x / rho, 0.0, q.z / rho); }
-      let sy = select(1.0, -1.0, q.y < 0.0);
-      let er = rho - s.x;
-      let ey = abs(q.y) - s.y;
-      if (er > 0.0 || ey > 0.0) {
-        let o = max(vec2f(er, ey), vec2f(0.0));
-        let d = length(o);
-        *n = (o.x * h + vec3f(0.0, o.y * sy, 0.0)) / d;
-        return d;
-      }
-      if (er >= ey) { *n = h; return er; }
-      *n = vec3f(0.0, sy, 0.0);
-      return ey;
-    }
-    default: {
-      // COLLIDER_FLOOR, COLLIDER_PLANE: the half-space y < 0
-      *n = vec3f(0.0, 1.0, 0.0);
-      return q.y;
-    }
-  }
-}
-
-/** Signed distance [m] of world point p from the collider's surface (negative inside); the world normal goes to *n. */
-fn colliderDistance(c: Collider, p: vec3f, n: ptr<function, vec3f>) -> f32 {
+fn colliderDistance(c: Collider, p: vec3f, within: f32, n: ptr<function, vec3f>) -> f32 {
   var nl: vec3f;
-  let d = localDistance(c.kind, c.shape, toLocal(c, p), &nl);
+  let d = localDistance(c, toLocal(c, p), within, &nl);
   *n = toWorldDirection(c, nl);
   return d;
 }
