@@ -17,16 +17,21 @@ afterAll(() => {
   if (!record) return;
   const scenes: Record<string, Entry> = {};
   for (const name of Object.keys(fixture.scenes)) scenes[name] = recorded[name] ?? fixture.scenes[name];
-  for (const name of SCENE_NAMES) if (recorded[name]) scenes[name] = recorded[name];
+  for (const name of PARITY_SCENES) if (recorded[name]) scenes[name] = recorded[name];
   writeFileSync(FIXTURE, JSON.stringify({ $comment: fixture.$comment, scenes }, null, 1) + '\n');
 });
 const digits = (v: readonly number[]) => v.map((x) => Number(x.toPrecision(9)));
+/**
+ * The scenes held to the fixture: every built-in but those with self-contact (fold, layers), which are held to
+ * their crossings instead (self-contact.test.ts, cloths.test.ts) and cost the most to step in TypeScript.
+ */
+const PARITY_SCENES = SCENE_NAMES.filter((name) => !builtinScene(name).solver.selfContact);
 
 describe('built-in scenes give the result recorded in the fixture (first recorded before cloths became triangle meshes)', () => {
-  it('the fixture covers every built-in scene', () => {
-    expect(Object.keys(fixture.scenes).sort()).toEqual([...SCENE_NAMES].sort());
+  it('the fixture covers every built-in scene without self-contact', () => {
+    expect(Object.keys(fixture.scenes).sort()).toEqual([...PARITY_SCENES].sort());
   });
-  it.each([...SCENE_NAMES])('%s', (name) => {
+  it.each([...PARITY_SCENES])('%s', (name) => {
     const scene = builtinScene(name);
     delete scene.resolutionSweep;
     const sim = new Simulation(scene, { kernel: 'ts' });
