@@ -1,4 +1,3 @@
-import { availableParallelism } from 'node:os';
 import { defineConfig } from 'vitest/config';
 
 // Unit and physics tests, beside the code. Browser tests live in e2e/ with their own config.
@@ -9,8 +8,5 @@ export default defineConfig({
     // takes 2 s on an idle machine here and can take many times that on a loaded one)
     testTimeout: 600_000,
     hookTimeout: 600_000,
-    // at least two files at a time: vitest's default (cores − 1) is one on a 2-core machine, which leaves a core idle
-    // while a file waits on SwiftShader or imports (the suite then takes its CPU time, not half of it)
-    maxWorkers: Math.max(2, availableParallelism() - 1),
   },
 });
