@@ -61,7 +61,7 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
     const passes = phasePasses(PHASE.stretchLimit, params);
     for (let it = 0; it < passes; it++) limitStretch(model, state, params);
   },
-  selfContact: (model, state, params) => collideSelf(model, state, params),
+  selfContact: (model, state, params, frame) => collideSelf(model, state, params, frame.h, frame.substeps - frame.sub),
   contact: (model, state, params, frame) => collideParticles(model, state, params, frame.h),
   contactTriangles: (model, state, params, frame) => collideTriangles(model, state, params, frame.h),
   velocities: (_model, state, _params, frame) => updateVelocities(state, frame.h),

@@ -6,9 +6,12 @@
  * 2007; Macklin et al. 2014 for the friction):
  *
  * - Each free particle p is tested against every triangle t not having it as a corner whose box — over the
- *   substep's start and end positions, widened by the self-contact distance h — meets p's own (a uniform grid of
- *   cells ≥ 2h over the boxes, built each substep). (Leaving out its whole neighbourhood, the triangles touching
- *   its one-ring, saved a tenth of the time and let 8× as many tight folds through at 64²: not done.)
+ *   substep's start and end positions, widened by the self-contact distance h — meets p's own. The candidates are
+ *   found ahead (findCandidates: a uniform grid over boxes of where each particle can be until the frame's end),
+ *   and found again only when some particle leaves its box: every pair whose boxes meet in a substep is among
+ *   them, so this changes no result's pairs, only how often they are searched for. (Leaving out its whole
+ *   neighbourhood, the triangles touching its one-ring, saved a tenth of the time and let 8× as many tight folds
+ *   through at 64²: not done.)
  * - **Passed through** (side memory): p was on one side of t's plane at the substep's start and is on the other
  *   now, and its projection onto the plane falls inside t (now or then): p and t's corners are moved, by inverse
  *   mass and barycentric weight, until p is back on its side at distance h.
@@ -46,6 +49,24 @@ interface SelfScratch {
   edgeBoxes: Float64Array;
   edgeGrid: BoxGrid;
   edgeStamp: Int32Array;
+  /**
+   * where each particle can be until the candidates are found again: its box over the substeps left in the frame
+   * (its motion so far carried on, and gravity), with a margin; the candidates hold while every particle's box over
+   * a substep stays inside its own
+   */
+  reach: Float64Array;
+  /** the triangles' and edges' reach boxes (their corners' reach boxes, widened by h and h/2) */
+  triangleReach: Float64Array;
+  edgeReach: Float64Array;
+  /** candidate pairs (particle, triangle) and (edge, edge) whose reach boxes meet, in the order they are resolved */
+  pairs: Int32Array;
+  pairCount: number;
+  edgePairs: Int32Array;
+  edgePairCount: number;
+  /** the distance h the reach boxes were widened by (NaN: none found yet) */
+  builtFor: number;
+  /** how many times the candidates were found (for the tests: about once a frame on a falling cloth) */
+  builds: number;
 }
 const scratchOf = new WeakMap<ClothModel, SelfScratch>();
 
@@ -70,6 +91,15 @@ function scratch(model: ClothModel): SelfScratch {
     edgeBoxes: new Float64Array(3 * model.edges.length),
     edgeGrid: new BoxGrid(),
     edgeStamp: new Int32Array(model.edges.length / 2),
+    reach: new Float64Array(6 * model.particleCount),
+    triangleReach: new Float64Array(6 * n),
+    edgeReach: new Float64Array(3 * model.edges.length),
+    pairs: new Int32Array(0),
+    pairCount: 0,
+    edgePairs: new Int32Array(0),
+    edgePairCount: 0,
+    builtFor: NaN,
+    builds: 0,
   };
   scratchOf.set(model, s);
   return s;
@@ -87,19 +117,38 @@ export function selfContactDistance(model: ClothModel, params: SimParams): numbe
 const bary = new Float64Array(3);
 const dir = new Float64Array(3);
 
-/** One substep of self-contact (see the file's comment). */
-export function collideSelf(model: ClothModel, state: ClothState, params: SimParams): void {
+/** How many times `model`'s self-contact candidates have been found (the tests check it is not every substep). */
+export function selfContactBuilds(model: ClothModel): number {
+  return scratch(model).builds;
+}
+
+/**
+ * One substep of self-contact (see the file's comment): substep length h [s], `left` substeps of the frame left
+ * (this one included), for how far ahead the candidates are found.
+ */
+export function collideSelf(model: ClothModel, state: ClothState, params: SimParams, h: number, left: number): void {
   const tri = model.triangles, nt = tri.length / 3, np = model.particleCount;
   if (nt < 2) return;
   const s = scratch(model);
-  // the largest distance of any pair: the boxes and the grid's cells are made for it
+  // the largest distance of any pair: the boxes are made for it
   const hMax = Math.min(params.thickness, 0.5 * s.minAltitude);
   if (!(hMax > 0)) return;
   const owner = params.owner, { thickness, friction, staticFriction } = params.perCloth;
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
-  const boxes = s.boxes;
 
-  // boxes over the substep, widened by h; the grid's cell: the mean box, at least 2h
+  // the candidates hold while every particle's box over this substep is inside its reach box
+  let inside = s.builtFor === hMax;
+  const reach = s.reach;
+  for (let p = 0; p < np && inside; p++) {
+    const jp = 3 * p, r = 6 * p;
+    for (let c = 0; c < 3; c++) {
+      if (!(Math.min(x[jp + c], xp[jp + c]) >= reach[r + c] && Math.max(x[jp + c], xp[jp + c]) <= reach[r + 3 + c])) { inside = false; break; }
+    }
+  }
+  if (!inside && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
+
+  // triangle boxes over the substep, widened by h
+  const boxes = s.boxes;
   for (let t = 0; t < nt; t++) {
     const b = 6 * t;
     boxes[b] = boxes[b + 1] = boxes[b + 2] = Infinity;
@@ -114,45 +163,139 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
     }
     for (let c = 0; c < 3; c++) { boxes[b + c] -= hMax; boxes[b + 3 + c] += hMax; }
   }
-  const grid = s.grid;
-  if (!grid.build(boxes, nt, 1, 2 * hMax)) return; // an unstable cloth: nothing to keep apart
-  const { start, items, inv } = grid;
-
-  const stamp = s.stamp;
-  stamp.fill(-1);
-  for (let p = 0; p < np; p++) {
+  const pairs = s.pairs;
+  for (let q = 0; q < s.pairCount; q++) {
+    const p = pairs[2 * q], t = pairs[2 * q + 1];
     if (w[p] === 0) continue;
-    const jp = 3 * p;
-    const x0 = Math.floor(Math.min(x[jp], xp[jp]) * inv), x1 = Math.floor(Math.max(x[jp], xp[jp]) * inv);
-    const y0 = Math.floor(Math.min(x[jp + 1], xp[jp + 1]) * inv), y1 = Math.floor(Math.max(x[jp + 1], xp[jp + 1]) * inv);
-    const z0 = Math.floor(Math.min(x[jp + 2], xp[jp + 2]) * inv), z1 = Math.floor(Math.max(x[jp + 2], xp[jp + 2]) * inv);
-    for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) {
-      const cellId = grid.slot(i, j, k);
-      for (let e = start[cellId]; e < start[cellId + 1]; e++) {
-        const t = items[e];
-        if (stamp[t] === p) continue;
-        stamp[t] = p;
-        const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
-        if (a === p || b === p || c === p) continue;
-        const bb = 6 * t;
-        const px = x[jp], py = x[jp + 1], pz = x[jp + 2];
-        if (px < boxes[bb] || px > boxes[bb + 3] || py < boxes[bb + 1] || py > boxes[bb + 4] || pz < boxes[bb + 2] || pz > boxes[bb + 5]) {
-          const qx = xp[jp], qy = xp[jp + 1], qz = xp[jp + 2];
-          if (qx < boxes[bb] || qx > boxes[bb + 3] || qy < boxes[bb + 1] || qy > boxes[bb + 4] || qz < boxes[bb + 2] || qz > boxes[bb + 5]) continue;
-        }
-        // the pair's distance and friction: one cloth's own, or between two cloths the mean thickness and the
-        // geometric mean of the coefficients
-        const cp = owner[p], ct = owner[a];
-        if (cp === ct) {
-          resolvePair(x, xp, w, Math.min(thickness[cp], hMax), friction[cp], staticFriction[cp], p, a, b, c);
-        } else {
-          const h = Math.min(0.5 * (thickness[cp] + thickness[ct]), hMax);
-          resolvePair(x, xp, w, h, Math.sqrt(friction[cp] * friction[ct]), Math.sqrt(staticFriction[cp] * staticFriction[ct]), p, a, b, c);
+    const jp = 3 * p, bb = 6 * t;
+    const px = x[jp], py = x[jp + 1], pz = x[jp + 2];
+    if (px < boxes[bb] || px > boxes[bb + 3] || py < boxes[bb + 1] || py > boxes[bb + 4] || pz < boxes[bb + 2] || pz > boxes[bb + 5]) {
+      const qx = xp[jp], qy = xp[jp + 1], qz = xp[jp + 2];
+      if (qx < boxes[bb] || qx > boxes[bb + 3] || qy < boxes[bb + 1] || qy > boxes[bb + 4] || qz < boxes[bb + 2] || qz > boxes[bb + 5]) continue;
+    }
+    const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
+    // the pair's distance and friction: one cloth's own, or between two cloths the mean thickness and the
+    // geometric mean of the coefficients
+    const cp = owner[p], ct = owner[a];
+    if (cp === ct) {
+      resolvePair(x, xp, w, Math.min(thickness[cp], hMax), friction[cp], staticFriction[cp], p, a, b, c);
+    } else {
+      const hp = Math.min(0.5 * (thickness[cp] + thickness[ct]), hMax);
+      resolvePair(x, xp, w, hp, Math.sqrt(friction[cp] * friction[ct]), Math.sqrt(staticFriction[cp] * staticFriction[ct]), p, a, b, c);
+    }
+  }
+  collideEdges(model, state, params, s, hMax);
+}
+
+/**
+ * Finds the candidate pairs for the substeps left in the frame: each particle's reach box (its box over this
+ * substep, carried on over the `left` substeps of length h at its motion so far and gravity, with a margin of half
+ * that motion and at least h/4), the triangles' and edges' from their corners', and the pairs whose boxes meet
+ * (uniform grids over the triangles' and the edges' boxes). False when a box is not finite.
+ */
+function findCandidates(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number, h: number, left: number): boolean {
+  const tri = model.triangles, nt = tri.length / 3, np = model.particleCount, edges = model.edges, ne = edges.length / 2;
+  const x = state.positions, xp = state.previousPositions, g = params.gravity;
+  const reach = s.reach, T = left * h;
+  for (let p = 0; p < np; p++) {
+    const jp = 3 * p, r = 6 * p;
+    let m2 = 0;
+    for (let c = 0; c < 3; c++) {
+      const d = (x[jp + c] - xp[jp + c]) * left + 0.5 * g[c] * T * T;
+      m2 += d * d;
+      reach[r + c] = Math.min(xp[jp + c], x[jp + c], x[jp + c] + d);
+      reach[r + 3 + c] = Math.max(xp[jp + c], x[jp + c], x[jp + c] + d);
+    }
+    const margin = Math.max(0.5 * Math.sqrt(m2), 0.25 * hMax);
+    for (let c = 0; c < 3; c++) { reach[r + c] -= margin; reach[r + 3 + c] += margin; }
+  }
+  const tr = s.triangleReach;
+  for (let t = 0; t < nt; t++) unionOf(reach, tri, 3 * t, 3, tr, 6 * t, hMax);
+  const er = s.edgeReach;
+  for (let e = 0; e < ne; e++) unionOf(reach, edges, 2 * e, 2, er, 6 * e, 0.5 * hMax);
+  const grid = s.grid, edgeGrid = s.edgeGrid;
+  if (!grid.build(tr, nt, 1, 2 * hMax) || !edgeGrid.build(er, ne, 1, hMax)) { s.builtFor = NaN; return false; }
+  s.builds++;
+  s.builtFor = hMax;
+
+  // particle against triangle: the pairs whose reach boxes meet, particle by particle
+  let count = 0;
+  {
+    const { start, items, inv } = grid, stamp = s.stamp;
+    stamp.fill(-1);
+    for (let p = 0; p < np; p++) {
+      const r = 6 * p;
+      const x0 = Math.floor(reach[r] * inv), x1 = Math.floor(reach[r + 3] * inv);
+      const y0 = Math.floor(reach[r + 1] * inv), y1 = Math.floor(reach[r + 4] * inv);
+      const z0 = Math.floor(reach[r + 2] * inv), z1 = Math.floor(reach[r + 5] * inv);
+      for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) {
+        const cellId = grid.slot(i, j, k);
+        for (let e = start[cellId]; e < start[cellId + 1]; e++) {
+          const t = items[e];
+          if (stamp[t] === p) continue;
+          stamp[t] = p;
+          if (tri[3 * t] === p || tri[3 * t + 1] === p || tri[3 * t + 2] === p || !overlap(reach, r, tr, 6 * t)) continue;
+          if (2 * count + 2 > s.pairs.length) s.pairs = grown(s.pairs, 2 * count + 2);
+          s.pairs[2 * count] = p; s.pairs[2 * count + 1] = t;
+          count++;
         }
       }
     }
   }
-  collideEdges(model, state, params, s, hMax);
+  s.pairCount = count;
+
+  // edge against edge: each pair once, from its lower edge
+  count = 0;
+  {
+    const { start, items, inv } = edgeGrid, stamp = s.edgeStamp;
+    stamp.fill(-1);
+    for (let e = 0; e < ne; e++) {
+      const a = edges[2 * e], b = edges[2 * e + 1], be = 6 * e;
+      const x0 = Math.floor(er[be] * inv), x1 = Math.floor(er[be + 3] * inv);
+      const y0 = Math.floor(er[be + 1] * inv), y1 = Math.floor(er[be + 4] * inv);
+      const z0 = Math.floor(er[be + 2] * inv), z1 = Math.floor(er[be + 5] * inv);
+      for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) {
+        const cellId = edgeGrid.slot(i, j, k);
+        for (let q = start[cellId]; q < start[cellId + 1]; q++) {
+          const f = items[q];
+          if (f <= e || stamp[f] === e) continue;
+          stamp[f] = e;
+          const c = edges[2 * f], d = edges[2 * f + 1];
+          if (c === a || c === b || d === a || d === b || !overlap(er, be, er, 6 * f)) continue;
+          if (2 * count + 2 > s.edgePairs.length) s.edgePairs = grown(s.edgePairs, 2 * count + 2);
+          s.edgePairs[2 * count] = e; s.edgePairs[2 * count + 1] = f;
+          count++;
+        }
+      }
+    }
+  }
+  s.edgePairCount = count;
+  return true;
+}
+
+/** Box `out[o…o+5]` = the union of the reach boxes of the `k` particles ids[i…i+k−1], widened by `pad`. */
+function unionOf(reach: Float64Array, ids: Uint32Array, i: number, k: number, out: Float64Array, o: number, pad: number): void {
+  for (let c = 0; c < 3; c++) { out[o + c] = Infinity; out[o + 3 + c] = -Infinity; }
+  for (let n = 0; n < k; n++) {
+    const r = 6 * ids[i + n];
+    for (let c = 0; c < 3; c++) {
+      if (reach[r + c] < out[o + c]) out[o + c] = reach[r + c];
+      if (reach[r + 3 + c] > out[o + 3 + c]) out[o + 3 + c] = reach[r + 3 + c];
+    }
+  }
+  for (let c = 0; c < 3; c++) { out[o + c] -= pad; out[o + 3 + c] += pad; }
+}
+
+/** Whether box a[i…] meets box b[j…]. */
+function overlap(a: Float64Array, i: number, b: Float64Array, j: number): boolean {
+  return !(a[i] > b[j + 3] || a[i + 3] < b[j] || a[i + 1] > b[j + 4] || a[i + 4] < b[j + 1] || a[i + 2] > b[j + 5] || a[i + 5] < b[j + 2]);
+}
+
+/** A larger copy of a pair list (half again what is needed: it grows rarely, and only while candidates are found). */
+function grown(list: Int32Array, need: number): Int32Array {
+  const out = new Int32Array(Math.ceil(need * 1.5) + 64);
+  out.set(list);
+  return out;
 }
 
 /**
@@ -283,12 +426,13 @@ function closestPoint(x: Float32Array, jp: number, ja: number, jb: number, jc: n
 
 /**
  * Edge against edge, after the particles against the triangles (the crossings those leave: two edges passing
- * through each other while every vertex stays outside the other's triangles). Each pair of edges sharing no
- * particle whose boxes over the substep meet: the closest points p (on a–b, at s) and q (on c–d, at t), now and at
- * the substep's start. **Passed through**: both pairs of closest points inside their edges and the vector q→p now
- * against its direction then — the edges are moved apart, by inverse mass and the weights (1 − s, s, 1 − t, t),
- * until p is on its side again at distance h along that direction. **Too near**: apart to h along q→p. Friction as
- * for the particles (Bridson, Fedkiw & Anderson 2002, §7.2's edge–edge proximity, position-based).
+ * through each other while every vertex stays outside the other's triangles). Each candidate pair of edges sharing
+ * no particle whose boxes over the substep (each widened by h/2) meet: the closest points p (on a–b, at s) and q (on
+ * c–d, at t), now and at the substep's start. **Passed through**: both pairs of closest points inside their edges
+ * and the vector q→p now against its direction then — the edges are moved apart, by inverse mass and the weights
+ * (1 − s, s, 1 − t, t), until p is on its side again at distance h along that direction. **Too near**: apart to h
+ * along q→p. Friction as for the particles (Bridson, Fedkiw & Anderson 2002, §7.2's edge–edge proximity,
+ * position-based).
  */
 function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number): void {
   const edges = model.edges, ne = edges.length / 2;
@@ -302,38 +446,18 @@ function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s
       boxes[b + 3 + c] = Math.max(x[i + c], xp[i + c], x[j + c], xp[j + c]) + r;
     }
   }
-  const grid = s.edgeGrid;
-  if (!grid.build(boxes, ne, 1, hMax)) return;
-  const { start, items, inv } = grid;
   const owner = params.owner, { thickness, friction, staticFriction } = params.perCloth;
-  const stamp = s.edgeStamp;
-  stamp.fill(-1);
-  for (let e = 0; e < ne; e++) {
-    const a = edges[2 * e], b = edges[2 * e + 1];
-    const be = 6 * e;
-    const x0 = Math.floor(boxes[be] * inv), x1 = Math.floor(boxes[be + 3] * inv);
-    const y0 = Math.floor(boxes[be + 1] * inv), y1 = Math.floor(boxes[be + 4] * inv);
-    const z0 = Math.floor(boxes[be + 2] * inv), z1 = Math.floor(boxes[be + 5] * inv);
-    for (let i = x0; i <= x1; i++) for (let j = y0; j <= y1; j++) for (let k = z0; k <= z1; k++) {
-      const cellId = grid.slot(i, j, k);
-      for (let q = start[cellId]; q < start[cellId + 1]; q++) {
-        const f = items[q];
-        // each pair once, from its lower edge
-        if (f <= e || stamp[f] === e) continue;
-        stamp[f] = e;
-        const c = edges[2 * f], d = edges[2 * f + 1];
-        if (c === a || c === b || d === a || d === b) continue;
-        const bf = 6 * f;
-        if (boxes[bf] > boxes[be + 3] || boxes[bf + 3] < boxes[be] || boxes[bf + 1] > boxes[be + 4] ||
-            boxes[bf + 4] < boxes[be + 1] || boxes[bf + 2] > boxes[be + 5] || boxes[bf + 5] < boxes[be + 2]) continue;
-        const ca = owner[a], cc = owner[c];
-        if (ca === cc) {
-          resolveEdges(x, xp, w, Math.min(thickness[ca], hMax), friction[ca], staticFriction[ca], a, b, c, d);
-        } else {
-          const h = Math.min(0.5 * (thickness[ca] + thickness[cc]), hMax);
-          resolveEdges(x, xp, w, h, Math.sqrt(friction[ca] * friction[cc]), Math.sqrt(staticFriction[ca] * staticFriction[cc]), a, b, c, d);
-        }
-      }
+  const pairs = s.edgePairs;
+  for (let q = 0; q < s.edgePairCount; q++) {
+    const e = pairs[2 * q], f = pairs[2 * q + 1];
+    if (!overlap(boxes, 6 * e, boxes, 6 * f)) continue;
+    const a = edges[2 * e], b = edges[2 * e + 1], c = edges[2 * f], d = edges[2 * f + 1];
+    const ca = owner[a], cc = owner[c];
+    if (ca === cc) {
+      resolveEdges(x, xp, w, Math.min(thickness[ca], hMax), friction[ca], staticFriction[ca], a, b, c, d);
+    } else {
+      const h = Math.min(0.5 * (thickness[ca] + thickness[cc]), hMax);
+      resolveEdges(x, xp, w, h, Math.sqrt(friction[ca] * friction[cc]), Math.sqrt(staticFriction[ca] * staticFriction[cc]), a, b, c, d);
     }
   }
 }
