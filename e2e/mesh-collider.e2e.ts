@@ -100,7 +100,7 @@ describe('a mesh collider in the app', () => {
     const why = sceneRefusal(validateScene(SCENE)) ?? 'software fallback';
     expect(await hook(page, 'simBackend')).toBe('cpu');
     await expect.poll(() => byId(page, 'hud').innerText()).toContain(why);
-    expect(await byId(page, 'hud').innerText()).toContain('a link cannot carry an imported mesh (pedestal.obj)');
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('a link cannot carry an imported mesh (pedestal.obj)');
 
     await pause(page);
     await toRest(page);
