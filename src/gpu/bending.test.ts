@@ -9,7 +9,7 @@ import {
   BEND_SPRING_PER_RIGIDITY, FRAME_DT, applyPins, builtinScene, centroid, copyState, createState, modelFor, resolveParams, scenePins, step,
   validateScene, type ClothModel, type Scene, type StencilModel,
 } from '../core/index.js';
-import { testDevice } from './test-device.js';
+import { maxDistance, testDevice } from './test-device.js';
 import { GpuClothSolver } from './solver.js';
 
 const gpu = await testDevice('src/gpu/bending.test.ts');
@@ -20,12 +20,6 @@ afterAll(() => {
 });
 
 /** Largest distance between corresponding particles [m]. */
-function maxDistance(a: Float32Array, b: Float32Array): number {
-  let worst = 0;
-  for (let i = 0; i < a.length; i += 3) worst = Math.max(worst, Math.hypot(a[i] - b[i], a[i + 1] - b[i + 1], a[i + 2] - b[i + 2]));
-  return worst;
-}
-
 /**
  * How bent the cloth is: Σ ½·|C|²/A over the stencils of `kind`, C = Σ K_k x_k (model.ts BendingStencils), i.e. the
  * model's bending energy per unit rigidity B, ≈ ½∫κ² dA for a sheet bent without stretching [-].

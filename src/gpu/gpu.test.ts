@@ -12,7 +12,7 @@ import {
   maxPenetration, measureTest, modelFor, release, resolveParams, scenePins, step, validateScene,
   type ClothModel, type ClothState, type Scene, type SimParams,
 } from '../core/index.js';
-import { testDevice } from './test-device.js';
+import { centroidDistance, maxDistance, testDevice } from './test-device.js';
 import { benchGpu } from './bench.js';
 import { GpuClothSolver } from './solver.js';
 import { sceneRefusal } from './encoder.js';
@@ -24,17 +24,6 @@ if (gpu) console.log(`GPU tests on: ${gpu.adapter}`);
 const RES = 12;
 
 /** Largest distance between corresponding particles [m]. */
-function maxDistance(a: Float32Array, b: Float32Array): number {
-  let worst = 0;
-  for (let i = 0; i < a.length; i += 3) worst = Math.max(worst, Math.hypot(a[i] - b[i], a[i + 1] - b[i + 1], a[i + 2] - b[i + 2]));
-  return worst;
-}
-
-function centroidDistance(a: ClothState, b: ClothState): number {
-  const p = centroid(a), q = centroid(b);
-  return Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
-}
-
 function scene(name: string, change?: (s: Scene) => void): Scene {
   const s = builtinScene(name)!;
   s.cloth.resolution = RES;

@@ -4,6 +4,8 @@
  * are skipped with the reason printed. A GPU test never passes without running.
  */
 import type {} from 'webgpu';
+import { centroid } from '../core/metrics.js';
+import type { ClothState } from '../core/state.js';
 import { createNodeDevice } from './node.js';
 
 /** The device and adapter for `file`'s tests, or undefined (with a warning) where none is found outside CI. */
@@ -16,4 +18,17 @@ export async function testDevice(file: string): Promise<{ device: GPUDevice; ada
     console.warn(`${file}: GPU tests skipped: ${reason}`);
     return undefined;
   }
+}
+
+/** Largest distance between corresponding particles of two position arrays (stride 3) [m]. */
+export function maxDistance(a: Float32Array, b: Float32Array): number {
+  let worst = 0;
+  for (let i = 0; i < a.length; i += 3) worst = Math.max(worst, Math.hypot(a[i] - b[i], a[i + 1] - b[i + 1], a[i + 2] - b[i + 2]));
+  return worst;
+}
+
+/** Distance between the centroids of two cloth states [m]. */
+export function centroidDistance(a: ClothState, b: ClothState): number {
+  const p = centroid(a), q = centroid(b);
+  return Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
 }
