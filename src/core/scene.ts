@@ -24,7 +24,10 @@ export interface Scene {
   material: Material;
   /**
    * the scene's cloths when it gives them as a list (`cloths` in the file): cloths[0]'s cloth, material and pins
-   * are `cloth`, `material` and `pins` themselves (clothEntries reads the first from those); absent in a one-cloth scene
+   * are `cloth`, `material` and `pins` themselves (clothEntries reads the first from those); absent in a one-cloth
+   * scene. The first cloth is edited through `cloth`, `material` and `pins` (a copy of the scene with a new `cloth`
+   * keeps the list), or on the document (sceneDocument, setScenePath, editCloth): a new cloths[0] beside the old
+   * top-level parts is not read
    */
   cloths?: ClothEntry[];
   solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; selfContact: boolean; depenetrationSpeed: number };

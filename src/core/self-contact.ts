@@ -107,7 +107,8 @@ function scratch(model: ClothModel): SelfScratch {
 
 /**
  * The self-contact distance on `model` [m]: the contact thickness, at most half the smallest rest altitude (with
- * several cloths the largest such distance, between the two thickest).
+ * several cloths the largest such distance: the thickest cloth's thickness, at most half the smallest rest altitude
+ * of any cloth).
  */
 export function selfContactDistance(model: ClothModel, params: SimParams): number {
   return Math.min(params.thickness, 0.5 * scratch(model).minAltitude);
@@ -137,15 +138,7 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
 
   // the candidates hold while every particle's box over this substep is inside its reach box
-  let inside = s.builtFor === hMax;
-  const reach = s.reach;
-  for (let p = 0; p < np && inside; p++) {
-    const jp = 3 * p, r = 6 * p;
-    for (let c = 0; c < 3; c++) {
-      if (!(Math.min(x[jp + c], xp[jp + c]) >= reach[r + c] && Math.max(x[jp + c], xp[jp + c]) <= reach[r + 3 + c])) { inside = false; break; }
-    }
-  }
-  if (!inside && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
+  if (!(s.builtFor === hMax && withinReach(s, x, xp, np)) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
 
   // triangle boxes over the substep, widened by h
   const boxes = s.boxes;
@@ -184,7 +177,22 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
       resolvePair(x, xp, w, hp, Math.sqrt(friction[cp] * friction[ct]), Math.sqrt(staticFriction[cp] * staticFriction[ct]), p, a, b, c);
     }
   }
+  // the particle pass may have pushed a particle out of its reach box: the edges' candidates must hold for where
+  // the particles are now
+  if (!withinReach(s, x, xp, np) && !findCandidates(model, state, params, s, hMax, h, left)) return;
   collideEdges(model, state, params, s, hMax);
+}
+
+/** Whether every particle's box over the substep (x_prev to x) lies inside its reach box. */
+function withinReach(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number): boolean {
+  const reach = s.reach;
+  for (let p = 0; p < np; p++) {
+    const jp = 3 * p, r = 6 * p;
+    for (let c = 0; c < 3; c++) {
+      if (!(Math.min(x[jp + c], xp[jp + c]) >= reach[r + c] && Math.max(x[jp + c], xp[jp + c]) <= reach[r + 3 + c])) return false;
+    }
+  }
+  return true;
 }
 
 /**
@@ -493,11 +501,13 @@ function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: num
   return Math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
 }
 
+/** Whether a closest point's parameter lies inside its edge (not at an end). */
+const inside = (v: number) => v > 1e-6 && v < 1 - 1e-6;
+
 /** Edges a–b and c–d: passed through, or too near (see collideEdges), kept h [m] apart with friction mu, muS [-]. */
 function resolveEdges(
   x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number, a: number, b: number, c: number, d: number,
 ): void {
-  const inside = (v: number) => v > 1e-6 && v < 1 - 1e-6;
   const len0 = segmentClosest(xp, a, b, c, d, gap0);
   const in0 = inside(st[0]) && inside(st[1]);
   const len = segmentClosest(x, a, b, c, d, gap);
