@@ -4,7 +4,7 @@ import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
 import { BEND, SHEAR, SPRING_KINDS, STRUCTURAL, bendingStencils, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
 import { PHASE } from './layout.generated.js';
-import { SceneError, clothEntries, differingClothField, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
+import { SceneError, clothEntries, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
 
 /** Particles carried by colliders: particle i = particles[k] sits at local[3k..3k+2] in collider[k]'s own frame. */
 export interface Carried {
@@ -128,14 +128,11 @@ export interface SimParams {
    * each cloth's own contact and spring values, indexed by cloth: contact thickness [m], kinetic and static
    * friction [-], spring damping [N·s/m], stretch limit [-]. The TypeScript reference reads these (a particle or a
    * spring by its cloth; between two cloths the mean thickness and the geometric mean of the frictions); the scalars
-   * `thickness` … `stretchFactor` above are the cloths' one value where they agree
+   * `thickness` … `stretchFactor` above are the cloths' one value where they agree (else the kernels that read
+   * them refuse the phases: perClothRefusal)
    */
   perCloth: { thickness: Float64Array; friction: Float64Array; staticFriction: Float64Array; damping: Float64Array; stretchFactor: Float64Array };
-  /**
-   * the first per-cloth value in which the cloths differ ('cloths[1].material.friction'; scene.ts
-   * differingClothField), or null: the kernels that read the scalars refuse such params (encoder.ts, xpbd-wasm.ts)
-   */
-  clothsDiffer: string | null;
+
   /** one line per value that had to be clamped, for the UI and CLI to show; empty when none */
   clamps: string[];
 }
@@ -335,7 +332,6 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     carried: carriedBy(model, scene, colliders),
     owner,
     perCloth,
-    clothsDiffer: differingClothField(scene),
     clamps,
   };
 }
