@@ -30,10 +30,27 @@ export async function gpuRefusal(scene: Scene): Promise<string | null> {
   return why && `--backend gpu: ${why}: use --backend cpu`;
 }
 
+/** the process's GPU, once opened (see openGpu) */
+let opened: Promise<Gpu & { lost: boolean }> | undefined;
+
+/**
+ * The process's GPU: opened on first use and kept for the next run in the same process (Dawn compiles each pipeline
+ * once per device: 2.4 s of the first run of a small cloth under SwiftShader, nothing after), opened again when its
+ * device was lost. It is never destroyed: the process exits with it open.
+ */
 export async function openGpu(): Promise<Gpu> {
-  let node: typeof import('../gpu/node.js'), gpu: typeof import('../gpu/index.js');
+  const kept = opened && (await opened.catch(() => undefined));
+  if (kept && !kept.lost) return kept;
+  opened = openDevice();
+  // a failure is not kept: the next call tries again
+  opened.catch(() => { opened = undefined; });
+  return opened;
+}
+
+async function openDevice(): Promise<Gpu & { lost: boolean }> {
+  let node: typeof import('../gpu/node.js'), gpuModule: typeof import('../gpu/index.js');
   try {
-    [node, gpu] = await Promise.all([import('../gpu/node.js'), import('../gpu/index.js')]);
+    [node, gpuModule] = await Promise.all([import('../gpu/node.js'), import('../gpu/index.js')]);
   } catch (e) {
     throw new UsageError(`--backend gpu: the WebGPU backend does not load (${(e as Error).message.split('\n')[0]})`);
   }
@@ -43,13 +60,14 @@ export async function openGpu(): Promise<Gpu> {
   } catch (e) {
     throw new UsageError(`--backend gpu: ${(e as Error).message.split('\n')[0]}`);
   }
-  return {
+  const gpu: Gpu & { lost: boolean } = {
+    lost: false,
     device,
     adapter,
     async simulate(scene, frames, meshes) {
       const sim = new Simulation(scene, { kernel: 'ts', meshes });
       try {
-        sim.useBackend(await gpu.GpuBackend.create(device, sim.model));
+        sim.useBackend(await gpuModule.GpuBackend.create(device, sim.model));
         const t0 = performance.now();
         sim.advance(frames);
         await device.queue.onSubmittedWorkDone();
@@ -65,6 +83,8 @@ export async function openGpu(): Promise<Gpu> {
         sim.dispose();
       }
     },
-    bench: (sizes, substeps, frames) => gpu.benchGpu(device, sizes, substeps, frames),
+    bench: (sizes, substeps, frames) => gpuModule.benchGpu(device, sizes, substeps, frames),
   };
+  device.lost.then(() => { gpu.lost = true; }, () => undefined);
+  return gpu;
 }

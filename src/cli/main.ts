@@ -239,14 +239,9 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     if (why) throw new UsageError(why);
   }
   const gpu = backend === 'gpu' ? await openGpu() : undefined;
-  let main: RunResult;
+  const main = await simulate(scene, frames, gpu, options);
   const sweepRuns: RunResult[] = [];
-  try {
-    main = await simulate(scene, frames, gpu, options);
-    for (const resolution of sweep ?? []) sweepRuns.push(await simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames, gpu, options));
-  } finally {
-    gpu?.device.destroy();
-  }
+  for (const resolution of sweep ?? []) sweepRuns.push(await simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames, gpu, options));
   const unstable = [main, ...sweepRuns].find((r) => !r.finite);
   if (unstable) {
     const line = unstableLine(scene, unstable, frames, !!gpu);
@@ -346,18 +341,13 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
     return 0;
   }
   if (backend === 'gpu') {
-    const gpu = await openGpu();
-    try {
-      await runGpuBench(gpu, {
-        sizes,
-        substeps: intArg('substeps', values.substeps, 10, 1, 200),
-        frames: intArg('frames', values.frames, 60, 1, 100_000),
-        threads,
-        json: values.json ?? false,
-      }, out);
-    } finally {
-      gpu.device.destroy();
-    }
+    await runGpuBench(await openGpu(), {
+      sizes,
+      substeps: intArg('substeps', values.substeps, 10, 1, 200),
+      frames: intArg('frames', values.frames, 60, 1, 100_000),
+      threads,
+      json: values.json ?? false,
+    }, out);
     return 0;
   }
   await runBench({
