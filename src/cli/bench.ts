@@ -3,7 +3,7 @@
  * JoltPhysics.js on the very same cloth (same particles, masses, constraints and compliances) in the same run.
  */
 import { availableParallelism, cpus } from 'node:os';
-import { builtinScene, centroid, FRAME_DT, isFinite3, Simulation, WasmBackend, type Scene, type SimulationOptions } from '../core/index.js';
+import { builtinScene, centroid, countIntersections, FRAME_DT, isFinite3, sceneDocument, Simulation, validateScene, WasmBackend, type Scene, type SimulationOptions } from '../core/index.js';
 import type { Gpu } from './gpu.js';
 import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
 import { whileBusy } from './busy.js';
@@ -375,4 +375,105 @@ export async function runGpuBench(gpu: Gpu, opts: GpuBenchOptions, out: (s: stri
       `${sci(r.particleSubstepsPerSecond)} | ${fmt(r.bytesPerSubstep / 1e6, 1)} | ${fmt(r.copyBandwidthGBs, 0)} | ${fmt(r.bandwidthFloorMs, 3)} | ` +
       `${fmt(100 * r.fractionOfBandwidthFloor, 1)} % | ${c === undefined ? 'n/a' : fmt(c)} | ${c === undefined ? 'n/a' : `${fmt(c / r.msPerFrame, 1)}×`} |`);
   });
+}
+
+export interface SelfContactBenchOptions {
+  /** built-in scene names, each timed with solver.selfContact off and on */
+  scenes: string[];
+  /** faces per side of every cloth of the scene */
+  sizes: number[];
+  /** frames run from the scene's start (no warm-up: the landing, where the contacts are made, is what costs) */
+  frames: number;
+  /** threads of the WebAssembly XPBD kernel */
+  threads: number | 'auto';
+  json: boolean;
+}
+
+/** One scene at one resolution, with self-contact and without. */
+interface SelfContactRow {
+  scene: string;
+  /** faces per side of each cloth */
+  resolution: number;
+  particles: number;
+  kernel: string;
+  threads: number;
+  /** ms per frame without self-contact, and with it, timed in alternating blocks of 10 frames */
+  offMsPerFrame: number;
+  onMsPerFrame: number;
+  /** on / off */
+  ratio: number;
+  /** crossing triangle pairs (countIntersections) at the last frame without self-contact */
+  offIntersections: number;
+  /** with self-contact: the most at any 10th frame, and at the last */
+  onMaxIntersections: number;
+  onIntersections: number;
+  finite: boolean;
+}
+
+/** `scene` (a built-in's validated copy) with every cloth at `resolution` faces per side and self-contact `on`. */
+function selfContactScene(name: string, resolution: number, on: boolean): Scene {
+  const doc = sceneDocument(builtinScene(name)) as Record<string, unknown> & { cloth?: Record<string, unknown>; cloths?: { cloth?: Record<string, unknown> }[] };
+  for (const entry of doc.cloths ?? [doc]) entry.cloth = { ...entry.cloth, resolution };
+  doc.solver = { ...(doc.solver as object), selfContact: on };
+  return validateScene(doc, `scene '${name}'`);
+}
+
+/**
+ * `drape bench --self-contact`: each scene at each resolution run from its start with self-contact off and on, the
+ * two in alternating blocks of 10 frames (so both meet the same machine), the crossing triangle pairs counted
+ * between blocks (outside the timing): the cost of self-contact and what it saves.
+ */
+export async function runSelfContactBench(opts: SelfContactBenchOptions, out: (s: string) => void): Promise<SelfContactRow[]> {
+  const rows: SelfContactRow[] = [];
+  for (const name of opts.scenes) {
+    for (const resolution of opts.sizes) {
+      const sims = [false, true].map((on) => new Simulation(selfContactScene(name, resolution, on), cpuOptions(opts.threads)));
+      try {
+        await Promise.all(sims.map((s) => s.whenReady()));
+        const ms = [0, 0];
+        let onMax = 0;
+        for (let done = 0, k = 0; done < opts.frames; done += 10, k++) {
+          const n = Math.min(10, opts.frames - done);
+          for (const i of k % 2 ? [1, 0] : [0, 1]) {
+            const t0 = performance.now();
+            sims[i].advance(n);
+            ms[i] += performance.now() - t0;
+          }
+          onMax = Math.max(onMax, countIntersections(sims[1].model.triangles, sims[1].state.positions));
+        }
+        const [off, on] = sims, frames = Math.max(1, opts.frames);
+        rows.push({
+          scene: name,
+          resolution,
+          particles: on.model.particleCount,
+          kernel: on.kernel,
+          threads: on.threads,
+          offMsPerFrame: ms[0] / frames,
+          onMsPerFrame: ms[1] / frames,
+          ratio: ms[1] / ms[0],
+          offIntersections: countIntersections(off.model.triangles, off.state.positions),
+          onMaxIntersections: onMax,
+          onIntersections: countIntersections(on.model.triangles, on.state.positions),
+          finite: isFinite3(off.state) && isFinite3(on.state),
+        });
+      } finally {
+        for (const s of sims) s.dispose();
+      }
+    }
+  }
+  const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  if (opts.json) {
+    out(JSON.stringify({ machine, frames: opts.frames, threads: opts.threads, rows }));
+    return rows;
+  }
+  out(`drape bench --self-contact — each scene from its start for ${opts.frames} frames, self-contact off and on in alternating blocks of 10 frames; ${machine}`);
+  out('crossing pairs: triangles sharing no vertex that cross (countIntersections), with self-contact the most at any 10th frame');
+  out('');
+  out('| scene | faces per side | particles | XPBD kernel | off ms/frame | on ms/frame | on / off | crossing pairs off (last frame) | on (most at a 10th frame) | on (last frame) | finite |');
+  out('|---|---|---|---|---|---|---|---|---|---|---|');
+  for (const r of rows) {
+    out(`| ${r.scene} | ${r.resolution} | ${r.particles} | ${r.kernel}, ${r.threads} thread${r.threads === 1 ? '' : 's'} | ${fmt(r.offMsPerFrame)} | ${fmt(r.onMsPerFrame)} | ` +
+      `${fmt(r.ratio, 1)}× | ${r.offIntersections} | ${r.onMaxIntersections} | ${r.onIntersections} | ${r.finite ? 'yes' : 'NO'} |`);
+  }
+  return rows;
 }

@@ -89,6 +89,19 @@ describe('drape CLI', () => {
     expect(table.out).toMatch(/^\| pins \| 1089 \| 1 \| 20 \| [\d.]+ \(wasm, 1 thread\) \| [\d.]+ \| [\d.]+ \| yes \/ yes \/ yes \| takes it/m);
   });
 
+  it('bench --self-contact times a scene with self-contact off and on, and counts what crosses in each', async () => {
+    const r = await run('bench', '--self-contact', '--scenes', 'layers', '--sizes', '8', '--frames', '40', '--json');
+    expect(r.code, r.err).toBe(0);
+    const [row] = JSON.parse(r.out).rows;
+    expect(row).toMatchObject({ scene: 'layers', resolution: 8, particles: 3 * 81, kernel: 'wasm', finite: true, onMaxIntersections: 0, onIntersections: 0 });
+    // the three cloths have landed on each other: without self-contact they cross
+    expect(row.offIntersections).toBeGreaterThan(100);
+    expect(row.ratio).toBeCloseTo(row.onMsPerFrame / row.offMsPerFrame, 6);
+    const table = await run('bench', '--self-contact', '--sizes', '4', '--frames', '10');
+    expect(table.out).toMatch(/^\| fold \| 4 \| 25 \| wasm, 1 thread \| [\d.]+ \| [\d.]+ \| [\d.]+× \| \d+ \| 0 \| 0 \| yes \|$/m);
+    expect((await run('bench', '--self-contact', '--backend', 'gpu')).err).toMatch(/^drape: --self-contact: times the CPU/);
+  });
+
   it('bench times the default threads against one thread on a machine it keeps busy', async () => {
     const r = await run('bench', '--sizes', '51', '--frames', '3', '--warmup', '1', '--no-peer');
     expect(r.code).toBe(0);

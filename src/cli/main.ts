@@ -15,7 +15,7 @@ import { checkOutputPath } from './files.js';
 import { loadSceneFile, meshReader } from './node.js';
 import { gpuRefusal, openGpu, type Gpu } from './gpu.js';
 import { toOBJ } from './obj.js';
-import { cpuOptions, runBench, runGpuBench, runSceneBench } from './bench.js';
+import { cpuOptions, runBench, runGpuBench, runSceneBench, runSelfContactBench } from './bench.js';
 import { maxThreads } from './threads.js';
 
 const HELP: Record<string, string> = {
@@ -56,6 +56,9 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
                         for a small cloth); a 1-thread and a TypeScript column are printed too
   --scenes A,B,…        time these built-in scenes as they are instead (e.g. cape,skirt: the mannequin): XPBD in
                         the wasm kernel and in TypeScript, mass-spring, and whether the GPU takes the scene
+  --self-contact        time self-contact instead: each of --scenes (default fold) with every cloth at --sizes
+                        faces per side (default 64), run from its start for --frames (default 180) with
+                        solver.selfContact off and on, and the crossing triangle pairs of each
   --no-peer             skip JoltPhysics.js
   --no-contention       skip the busy-machine table (the default threads against one thread while other
                         processes, started and stopped by the bench, keep every core busy)
@@ -318,7 +321,7 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
     options: {
       sizes: { type: 'string' }, substeps: { type: 'string' }, frames: { type: 'string' }, warmup: { type: 'string' },
       backend: { type: 'string' }, threads: { type: 'string' }, 'no-peer': { type: 'boolean' }, 'no-contention': { type: 'boolean' },
-      scenes: { type: 'string' },
+      scenes: { type: 'string' }, 'self-contact': { type: 'boolean' },
       json: { type: 'boolean' },
       help: { type: 'boolean', short: 'h' },
     },
@@ -326,13 +329,29 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
   if (values.help) { out(HELP.bench); return 0; }
   const backend = checkBackend(values.backend);
   const threads = threadsArg(values.threads, err);
-  const sizes = (values.sizes ?? (backend === 'gpu' ? '64,128,256,512,1024' : '64,128')).split(',').map((s) => intArg('sizes', s.trim(), 0, 2, 1025));
+  const selfContact = values['self-contact'] ?? false;
+  const sizes = (values.sizes ?? (selfContact ? '64' : backend === 'gpu' ? '64,128,256,512,1024' : '64,128')).split(',')
+    .map((s) => intArg('sizes', s.trim(), 0, selfContact ? 1 : 2, selfContact ? 256 : 1025));
+  const sceneList = (raw: string) => {
+    const scenes = raw.split(',').map((s) => s.trim());
+    for (const s of scenes) if (!isBuiltinScene(s)) throw new UsageError(`--scenes: unknown scene '${plainText(s, 100)}' (built-in scenes: ${SCENE_NAMES.join(', ')})`);
+    return scenes;
+  };
+  if (selfContact) {
+    if (backend === 'gpu') throw new UsageError('--self-contact: times the CPU (the GPU solver has no self-contact yet); leave out --backend gpu');
+    await runSelfContactBench({
+      scenes: sceneList(values.scenes ?? 'fold'),
+      sizes,
+      frames: intArg('frames', values.frames, 180, 1, 100_000),
+      threads,
+      json: values.json ?? false,
+    }, out);
+    return 0;
+  }
   if (values.scenes !== undefined) {
     if (backend === 'gpu') throw new UsageError('--scenes: times the CPU solvers; the GPU column says whether the GPU takes each scene (leave out --backend gpu)');
-    const scenes = values.scenes.split(',').map((s) => s.trim());
-    for (const s of scenes) if (!isBuiltinScene(s)) throw new UsageError(`--scenes: unknown scene '${plainText(s, 100)}' (built-in scenes: ${SCENE_NAMES.join(', ')})`);
     await runSceneBench({
-      scenes,
+      scenes: sceneList(values.scenes),
       frames: intArg('frames', values.frames, 120, 1, 100_000),
       warmup: intArg('warmup', values.warmup, 30, 0, 100_000),
       threads,
