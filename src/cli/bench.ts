@@ -8,6 +8,7 @@ import type { Gpu } from './gpu.js';
 import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
 import { whileBusy } from './busy.js';
 import { spawnNodeHelper } from './threads.js';
+import { hangingStrip, ParticleHashCloth } from './peers/particle-hash.js';
 
 export interface BenchOptions {
   /** particles per side */
@@ -386,7 +387,76 @@ export interface SelfContactBenchOptions {
   frames: number;
   /** threads of the WebAssembly XPBD kernel */
   threads: number | 'auto';
+  /** also run the Ten Minute Physics demo's strip with its method and with Drape's (peers/particle-hash.ts) */
+  peer: boolean;
   json: boolean;
+}
+
+/** One method on the Ten Minute Physics demo's strip: ms per frame and what crosses. */
+interface StripRow {
+  method: string;
+  particles: number;
+  msPerFrame: number;
+  /** crossing triangle pairs: the most at any 10th frame, and at the last */
+  maxIntersections: number;
+  intersections: number;
+  /** the highest particle at the last frame [m] (the pile's height) */
+  top: number;
+  finite: boolean;
+}
+
+/** The demo's strip: 30 × 200 particles 1 cm apart, hanging with its lowest row 1 cm above the floor, rows waving ±4 mm. */
+const STRIP = () => hangingStrip(30, 200, 0.01, 0.01, 0.004);
+
+/**
+ * The Ten Minute Physics 15 demo's strip falling into a pile, run for `frames` frames by its own method (a particle
+ * hash, in TypeScript) and by Drape (XPBD, cotton, the strip as a mesh cloth) with self-contact on and off. Each run
+ * is timed alone, its crossing pairs counted every 10th frame outside the timing.
+ */
+async function stripComparison(frames: number, threads: number | 'auto'): Promise<StripRow[]> {
+  const rows: StripRow[] = [];
+  const grid = STRIP();
+  const count = (x: Float32Array) => countIntersections(grid.triangles, x);
+  const top = (x: Float32Array) => { let m = -Infinity; for (let i = 1; i < x.length; i += 3) m = Math.max(m, x[i]); return m; };
+  {
+    const cloth = new ParticleHashCloth(grid);
+    let ms = 0, most = 0;
+    for (let f = 0; f < frames; f++) {
+      const t0 = performance.now();
+      cloth.step(FRAME_DT);
+      ms += performance.now() - t0;
+      if (f % 10 === 9) most = Math.max(most, count(cloth.positions));
+    }
+    rows.push({
+      method: 'Ten Minute Physics 15: particle hash, 1 cm particles, speed cap (TypeScript)', particles: cloth.n, msPerFrame: ms / frames,
+      maxIntersections: most, intersections: count(cloth.positions), top: top(cloth.positions), finite: cloth.positions.every(Number.isFinite),
+    });
+  }
+  for (const on of [true, false]) {
+    const scene = validateScene({
+      name: 'strip', cloth: { shape: 'mesh', mesh: 'strip.obj', position: [0, 1.005, 0] }, material: { fabric: 'cotton' },
+      solver: { selfContact: on }, colliders: [{ type: 'floor', height: 0 }],
+    });
+    const sim = new Simulation(scene, { ...cpuOptions(threads), meshes: () => ({ positions: grid.positions, triangles: grid.triangles }) });
+    try {
+      await sim.whenReady();
+      let ms = 0, most = 0;
+      for (let f = 0; f < frames; f++) {
+        const t0 = performance.now();
+        sim.advance(1);
+        ms += performance.now() - t0;
+        if (f % 10 === 9) most = Math.max(most, countIntersections(sim.model.triangles, sim.state.positions));
+      }
+      rows.push({
+        method: `Drape XPBD, cotton, self-contact ${on ? 'on' : 'off'} (${sim.kernel}, ${sim.threads} thread${sim.threads === 1 ? '' : 's'})`,
+        particles: sim.model.particleCount, msPerFrame: ms / frames, maxIntersections: most,
+        intersections: countIntersections(sim.model.triangles, sim.state.positions), top: top(sim.state.positions), finite: isFinite3(sim.state),
+      });
+    } finally {
+      sim.dispose();
+    }
+  }
+  return rows;
 }
 
 /** One scene at one resolution, with self-contact and without. */
@@ -461,9 +531,10 @@ export async function runSelfContactBench(opts: SelfContactBenchOptions, out: (s
       }
     }
   }
+  const strip = opts.peer ? await stripComparison(opts.frames, opts.threads) : undefined;
   const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
   if (opts.json) {
-    out(JSON.stringify({ machine, frames: opts.frames, threads: opts.threads, rows }));
+    out(JSON.stringify({ machine, frames: opts.frames, threads: opts.threads, rows, ...(strip ? { strip } : {}) }));
     return rows;
   }
   out(`drape bench --self-contact — each scene from its start for ${opts.frames} frames, self-contact off and on in alternating blocks of 10 frames; ${machine}`);
@@ -474,6 +545,14 @@ export async function runSelfContactBench(opts: SelfContactBenchOptions, out: (s
   for (const r of rows) {
     out(`| ${r.scene} | ${r.resolution} | ${r.particles} | ${r.kernel}, ${r.threads} thread${r.threads === 1 ? '' : 's'} | ${fmt(r.offMsPerFrame)} | ${fmt(r.onMsPerFrame)} | ` +
       `${fmt(r.ratio, 1)}× | ${r.offIntersections} | ${r.onMaxIntersections} | ${r.onIntersections} | ${r.finite ? 'yes' : 'NO'} |`);
+  }
+  if (strip) {
+    out('');
+    out(`The Ten Minute Physics 15 demo's strip (30 × 200 particles 1 cm apart) falling into a pile, ${opts.frames} frames, each method alone:`);
+    out('');
+    out('| method | particles | ms/frame | crossing pairs (most at a 10th frame) | (last frame) | pile height m | finite |');
+    out('|---|---|---|---|---|---|---|');
+    for (const r of strip) out(`| ${r.method} | ${r.particles} | ${fmt(r.msPerFrame)} | ${r.maxIntersections} | ${r.intersections} | ${fmt(r.top, 3)} | ${r.finite ? 'yes' : 'NO'} |`);
   }
   return rows;
 }

@@ -90,15 +90,20 @@ describe('drape CLI', () => {
   });
 
   it('bench --self-contact times a scene with self-contact off and on, and counts what crosses in each', async () => {
-    const r = await run('bench', '--self-contact', '--scenes', 'layers', '--sizes', '8', '--frames', '40', '--json');
+    const r = await run('bench', '--self-contact', '--scenes', 'layers', '--sizes', '8', '--frames', '40', '--no-peer', '--json');
     expect(r.code, r.err).toBe(0);
     const [row] = JSON.parse(r.out).rows;
     expect(row).toMatchObject({ scene: 'layers', resolution: 8, particles: 3 * 81, kernel: 'wasm', finite: true, onMaxIntersections: 0, onIntersections: 0 });
     // the three cloths have landed on each other: without self-contact they cross
     expect(row.offIntersections).toBeGreaterThan(100);
     expect(row.ratio).toBeCloseTo(row.onMsPerFrame / row.offMsPerFrame, 6);
-    const table = await run('bench', '--self-contact', '--sizes', '4', '--frames', '10');
+    expect(JSON.parse(r.out).strip).toBeUndefined();
+    // the table, and the Ten Minute Physics demo's strip by its method and by Drape's (peers/particle-hash.ts)
+    const table = await run('bench', '--self-contact', '--sizes', '4', '--frames', '1');
     expect(table.out).toMatch(/^\| fold \| 4 \| 25 \| wasm, 1 thread \| [\d.]+ \| [\d.]+ \| [\d.]+× \| \d+ \| 0 \| 0 \| yes \|$/m);
+    expect(table.out).toMatch(/^\| Ten Minute Physics 15: particle hash.* \| 6000 \| [\d.]+ \| \d+ \| \d+ \| [\d.]+ \| yes \|$/m);
+    expect(table.out).toMatch(/^\| Drape XPBD, cotton, self-contact on \(wasm, \d threads?\) \| 6000 \| [\d.]+ \| 0 \| 0 \| [\d.]+ \| yes \|$/m);
+    expect(table.out).toMatch(/^\| Drape XPBD, cotton, self-contact off .* \| 6000 \|/m);
     expect((await run('bench', '--self-contact', '--backend', 'gpu')).err).toMatch(/^drape: --self-contact: times the CPU/);
   });
 

@@ -58,7 +58,9 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
                         the wasm kernel and in TypeScript, mass-spring, and whether the GPU takes the scene
   --self-contact        time self-contact instead: each of --scenes (default fold) with every cloth at --sizes
                         faces per side (default 64), run from its start for --frames (default 180) with
-                        solver.selfContact off and on, and the crossing triangle pairs of each
+                        solver.selfContact off and on, and the crossing triangle pairs of each; then the
+                        Ten Minute Physics 15 demo's strip (30 × 200 particles) by its particle-hash method
+                        and by Drape (--no-peer skips it)
   --no-peer             skip JoltPhysics.js
   --no-contention       skip the busy-machine table (the default threads against one thread while other
                         processes, started and stopped by the bench, keep every core busy)
@@ -344,6 +346,7 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
       sizes,
       frames: intArg('frames', values.frames, 180, 1, 100_000),
       threads,
+      peer: !values['no-peer'],
       json: values.json ?? false,
     }, out);
     return 0;
