@@ -59,6 +59,8 @@ interface SelfScratch {
    * a substep stays inside its own
    */
   reach: Float64Array;
+  /** each particle's box over the substep (x_prev to x, as of the last substepBoxes), as `boxes` */
+  particleBoxes: Float64Array;
   /** the triangles' and edges' reach boxes (their corners' reach boxes, widened by h and h/2) */
   triangleReach: Float64Array;
   edgeReach: Float64Array;
@@ -115,6 +117,7 @@ function scratch(model: ClothModel): SelfScratch {
     edgeGrid: new BoxGrid(),
     edgeStamp: new Int32Array(model.edges.length / 2),
     reach: new Float64Array(6 * model.particleCount),
+    particleBoxes: new Float64Array(6 * model.particleCount),
     triangleReach: new Float64Array(6 * n),
     edgeReach: new Float64Array(3 * model.edges.length),
     pairs: new Int32Array(0),
@@ -168,23 +171,19 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
 
   // the candidates hold while every particle's box over this substep is inside its reach box
-  if (!(s.builtFor === hMax && withinReach(s, x, xp, np)) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
+  const within = substepBoxes(s, x, xp, np);
+  if (!(s.builtFor === hMax && within) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
 
-  // triangle boxes over the substep, widened by h
-  const boxes = s.boxes;
+  // triangle boxes over the substep (their corners'), widened by h
+  const boxes = s.boxes, pb = s.particleBoxes;
   for (let t = 0; t < nt; t++) {
-    const b = 6 * t;
-    boxes[b] = boxes[b + 1] = boxes[b + 2] = Infinity;
-    boxes[b + 3] = boxes[b + 4] = boxes[b + 5] = -Infinity;
-    for (let k = 0; k < 3; k++) {
-      const j = 3 * tri[3 * t + k];
-      for (let c = 0; c < 3; c++) {
-        const lo = Math.min(x[j + c], xp[j + c]), hi = Math.max(x[j + c], xp[j + c]);
-        if (lo < boxes[b + c]) boxes[b + c] = lo;
-        if (hi > boxes[b + 3 + c]) boxes[b + 3 + c] = hi;
-      }
-    }
-    for (let c = 0; c < 3; c++) { boxes[b + c] -= hMax; boxes[b + 3 + c] += hMax; }
+    const b = 6 * t, i = 6 * tri[3 * t], j = 6 * tri[3 * t + 1], k = 6 * tri[3 * t + 2];
+    boxes[b] = Math.min(pb[i], pb[j], pb[k]) - hMax;
+    boxes[b + 1] = Math.min(pb[i + 1], pb[j + 1], pb[k + 1]) - hMax;
+    boxes[b + 2] = Math.min(pb[i + 2], pb[j + 2], pb[k + 2]) - hMax;
+    boxes[b + 3] = Math.max(pb[i + 3], pb[j + 3], pb[k + 3]) + hMax;
+    boxes[b + 4] = Math.max(pb[i + 4], pb[j + 4], pb[k + 4]) + hMax;
+    boxes[b + 5] = Math.max(pb[i + 5], pb[j + 5], pb[k + 5]) + hMax;
   }
   // a new substep: every triangle's and edge's frame is to be computed again
   s.substepAt = ++s.clock;
@@ -211,20 +210,26 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   }
   // the particle pass may have pushed a particle out of its reach box: the edges' candidates must hold for where
   // the particles are now
-  if (!withinReach(s, x, xp, np) && !findCandidates(model, state, params, s, hMax, h, left)) return;
+  if (!substepBoxes(s, x, xp, np) && !findCandidates(model, state, params, s, hMax, h, left)) return;
   collideEdges(model, state, params, s, hMax);
 }
 
-/** Whether every particle's box over the substep (x_prev to x) lies inside its reach box. */
-function withinReach(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number): boolean {
-  const reach = s.reach;
+/**
+ * Each particle's box over the substep (x_prev to x) into particleBoxes; whether every one lies inside its reach
+ * box (false for a non-finite position).
+ */
+function substepBoxes(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number): boolean {
+  const reach = s.reach, pb = s.particleBoxes;
+  let inside = true;
   for (let p = 0; p < np; p++) {
     const jp = 3 * p, r = 6 * p;
     for (let c = 0; c < 3; c++) {
-      if (!(Math.min(x[jp + c], xp[jp + c]) >= reach[r + c] && Math.max(x[jp + c], xp[jp + c]) <= reach[r + 3 + c])) return false;
+      const lo = Math.min(x[jp + c], xp[jp + c]), hi = Math.max(x[jp + c], xp[jp + c]);
+      pb[r + c] = lo; pb[r + 3 + c] = hi;
+      if (!(lo >= reach[r + c] && hi <= reach[r + 3 + c])) inside = false;
     }
   }
-  return true;
+  return inside;
 }
 
 /**
@@ -520,13 +525,15 @@ function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s
   const edges = model.edges, ne = edges.length / 2;
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
   // each box widened by h/2: two edges nearer than h have boxes that meet
-  const boxes = s.edgeBoxes, r = 0.5 * hMax;
+  const boxes = s.edgeBoxes, pb = s.particleBoxes, r = 0.5 * hMax;
   for (let e = 0; e < ne; e++) {
-    const b = 6 * e, i = 3 * edges[2 * e], j = 3 * edges[2 * e + 1];
-    for (let c = 0; c < 3; c++) {
-      boxes[b + c] = Math.min(x[i + c], xp[i + c], x[j + c], xp[j + c]) - r;
-      boxes[b + 3 + c] = Math.max(x[i + c], xp[i + c], x[j + c], xp[j + c]) + r;
-    }
+    const b = 6 * e, i = 6 * edges[2 * e], j = 6 * edges[2 * e + 1];
+    boxes[b] = Math.min(pb[i], pb[j]) - r;
+    boxes[b + 1] = Math.min(pb[i + 1], pb[j + 1]) - r;
+    boxes[b + 2] = Math.min(pb[i + 2], pb[j + 2]) - r;
+    boxes[b + 3] = Math.max(pb[i + 3], pb[j + 3]) + r;
+    boxes[b + 4] = Math.max(pb[i + 4], pb[j + 4]) + r;
+    boxes[b + 5] = Math.max(pb[i + 5], pb[j + 5]) + r;
   }
   const owner = params.owner, { thickness, friction, staticFriction } = params.perCloth;
   const pairs = s.edgePairs;
