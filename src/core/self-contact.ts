@@ -508,7 +508,8 @@ function closestPoint(x: Float32Array, jp: number, ja: number, jb: number, jc: n
   }
   bary[0] = 1 - u - v; bary[1] = u; bary[2] = v;
   const cx = x[ja] + u * abx + v * acx, cy = x[ja + 1] + u * aby + v * acy, cz = x[ja + 2] + u * abz + v * acz;
-  return Math.hypot(x[jp] - cx, x[jp + 1] - cy, x[jp + 2] - cz);
+  const ex = x[jp] - cx, ey = x[jp + 1] - cy, ez = x[jp + 2] - cz;
+  return Math.sqrt(ex * ex + ey * ey + ez * ez);
 }
 
 /**
