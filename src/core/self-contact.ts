@@ -156,6 +156,28 @@ export function selfContactBuilds(model: ClothModel): number {
   return scratch(model).builds;
 }
 
+/** Candidate pairs found ahead, as the WebAssembly kernel's self-contact reads them (self-contact-wasm.ts). */
+export interface SelfCandidates {
+  /** each particle's reach box: min x, y, z, max x, y, z [m] */
+  readonly reach: Float64Array;
+  /** (particle, triangle) pairs, the first pairCount, in the order they are resolved */
+  readonly pairs: Int32Array;
+  readonly pairCount: number;
+  /** (edge, edge) pairs, the first edgePairCount */
+  readonly edgePairs: Int32Array;
+  readonly edgePairCount: number;
+}
+
+/**
+ * Finds `model`'s candidate pairs for the substeps left in the frame, as collideSelf does (substep length h [s],
+ * `left` substeps left, this one included), for a backend that runs the narrow phase itself; null when a box is
+ * not finite (an unstable cloth: nothing to keep apart).
+ */
+export function findSelfCandidates(model: ClothModel, state: ClothState, params: SimParams, h: number, left: number): SelfCandidates | null {
+  const s = scratch(model);
+  return findCandidates(model, state, params, s, selfContactDistance(model, params), h, left) ? s : null;
+}
+
 /**
  * One substep of self-contact (see the file's comment): substep length h [s], `left` substeps of the frame left
  * (this one included), for how far ahead the candidates are found.
