@@ -75,7 +75,7 @@ interface SelfScratch {
    * distance of a corner from it [m]: nx, ny, nz, n0x, n0y, n0z, cx, cy, cz, r
    */
   triFrame: Float64Array;
-  /** per edge (edgeFrame): its midpoint now [m], half its length [m], the farther of its ends' moves over the substep [m] */
+  /** per edge (edgeFrame): its midpoint now [m], half its vector b − a now [m], the farther of its ends' moves over the substep [m] */
   edgeFrame: Float64Array;
   /** the clock (below) when each triangle's and each edge's frame was computed */
   triFrameAt: Float64Array;
@@ -125,7 +125,7 @@ function scratch(model: ClothModel): SelfScratch {
     edgePairs: new Int32Array(0),
     edgePairCount: 0,
     triFrame: new Float64Array(10 * n),
-    edgeFrame: new Float64Array(5 * (model.edges.length / 2)),
+    edgeFrame: new Float64Array(7 * (model.edges.length / 2)),
     triFrameAt: new Float64Array(n).fill(-1),
     edgeFrameAt: new Float64Array(model.edges.length / 2).fill(-1),
     movedAt: new Float64Array(model.particleCount),
@@ -609,27 +609,27 @@ function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: num
 const inside = (v: number) => v > 1e-6 && v < 1 - 1e-6;
 
 /**
- * Edge e = (a, b)'s frame (SelfScratch.edgeFrame: its midpoint now, half its length, the farther of its ends' moves
+ * Edge e = (a, b)'s frame (SelfScratch.edgeFrame: its midpoint now, half its vector, the farther of its ends' moves
  * over the substep), computed unless it is current; returns its offset in edgeFrame.
  */
 function edgeFrame(s: SelfScratch, x: Float32Array, xp: Float32Array, e: number, a: number, b: number): number {
-  const o = 5 * e, at = s.edgeFrameAt[e];
+  const o = 7 * e, at = s.edgeFrameAt[e];
   if (at >= s.substepAt && s.movedAt[a] <= at && s.movedAt[b] <= at) return o;
   const f = s.edgeFrame, ja = 3 * a, jb = 3 * b;
-  const ux = x[jb] - x[ja], uy = x[jb + 1] - x[ja + 1], uz = x[jb + 2] - x[ja + 2];
   const ax = x[ja] - xp[ja], ay = x[ja + 1] - xp[ja + 1], az = x[ja + 2] - xp[ja + 2];
   const bx = x[jb] - xp[jb], by = x[jb + 1] - xp[jb + 1], bz = x[jb + 2] - xp[jb + 2];
   f[o] = 0.5 * (x[ja] + x[jb]); f[o + 1] = 0.5 * (x[ja + 1] + x[jb + 1]); f[o + 2] = 0.5 * (x[ja + 2] + x[jb + 2]);
-  f[o + 3] = 0.5 * Math.sqrt(ux * ux + uy * uy + uz * uz);
-  f[o + 4] = Math.sqrt(Math.max(ax * ax + ay * ay + az * az, bx * bx + by * by + bz * bz));
+  f[o + 3] = 0.5 * (x[jb] - x[ja]); f[o + 4] = 0.5 * (x[jb + 1] - x[ja + 1]); f[o + 5] = 0.5 * (x[jb + 2] - x[ja + 2]);
+  f[o + 6] = Math.sqrt(Math.max(ax * ax + ay * ay + az * az, bx * bx + by * by + bz * bz));
   s.edgeFrameAt[e] = s.clock;
   return o;
 }
 
 /**
  * Edges e = a–b and f = c–d: passed through, or too near (see collideEdges), kept h [m] apart with friction mu,
- * muS [-]. Two bounds skip the closest points: the segments lie within half their lengths of their midpoints, so
- * the midpoints' distance less the half lengths is at most the distance now; and passing through needs the
+ * muS [-]. Two bounds skip the closest points: along the line through the midpoints each segment spans half its
+ * extent along that line either side of its midpoint, so the midpoints' distance less those half extents is at most
+ * the distance now (the separation of the two projections); and passing through needs the
  * distance now to be at most δ, the sum of the edges' largest end moves over the substep (q→p then differs by at
  * most δ from the vector between the points of the same parameters now, whose dot product with q→p now is at least
  * |q→p now|², the closest point of a convex set). A pair at least h and δ apart now is neither too near nor passed
@@ -640,9 +640,12 @@ function resolveEdges(
   e: number, f: number, a: number, b: number, c: number, d: number,
 ): void {
   const oe = edgeFrame(sc, x, xp, e, a, b), of = edgeFrame(sc, x, xp, f, c, d), fr = sc.edgeFrame;
-  const apart = Math.max(h, fr[oe + 4] + fr[of + 4]) + SKIP_MARGIN;
+  const apart = Math.max(h, fr[oe + 6] + fr[of + 6]) + SKIP_MARGIN;
   const mx = fr[oe] - fr[of], my = fr[oe + 1] - fr[of + 1], mz = fr[oe + 2] - fr[of + 2];
-  if (Math.sqrt(mx * mx + my * my + mz * mz) - fr[oe + 3] - fr[of + 3] >= apart) return;
+  // |m|·(|m| − the half extents along m̂) ≥ apart·|m|
+  const m2 = mx * mx + my * my + mz * mz;
+  const extent = Math.abs(mx * fr[oe + 3] + my * fr[oe + 4] + mz * fr[oe + 5]) + Math.abs(mx * fr[of + 3] + my * fr[of + 4] + mz * fr[of + 5]);
+  if (m2 - extent >= apart * Math.sqrt(m2)) return;
   const len = segmentClosest(x, a, b, c, d, gap);
   if (len >= apart) return;
   const s = st[0], t = st[1];

@@ -47,7 +47,7 @@ export function layoutSelfContact(model: ClothModel, take: (bytes: number) => nu
   return {
     tris: take(12 * nt), edges: take(8 * ne), owner: take(n), cloth: take(24 * (model.clothStarts.length - 1)),
     reach: take(48 * n), pbox: take(48 * n), tbox: take(48 * nt), ebox: take(48 * ne),
-    tframe: take(80 * nt), eframe: take(40 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
+    tframe: take(80 * nt), eframe: take(56 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
     pairs: take(8 * w), edgePairs: take(8 * we), window: w, edgeWindow: we,
   };
 }

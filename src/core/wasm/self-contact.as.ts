@@ -24,8 +24,8 @@ let TBOX: usize = 0;
 let EBOX: usize = 0;
 /**
  * each triangle's frame, f64 × 10: the unit normal now and at the substep's start, the centroid now [m], the
- * largest distance of a corner from it [m]; each edge's, f64 × 5: its midpoint now [m], half its length [m], the
- * farther of its ends' moves over the substep [m]
+ * largest distance of a corner from it [m]; each edge's, f64 × 7: its midpoint now [m], half its vector b − a now [m],
+ * the farther of its ends' moves over the substep [m]
  */
 let TFRAME: usize = 0;
 let EFRAME: usize = 0;
@@ -357,15 +357,14 @@ export function selfEdges(count: i32, hMax: f64): void {
 
 /** Edge e = (a, b)'s frame (EFRAME), computed unless it is current; returns its byte offset. */
 function edgeFrame(e: i32, a: u32, b: u32): usize {
-  const o = EFRAME + <usize>e * 40, atP = EFRAME_AT + (<usize>e << 2), at = load<i32>(atP);
+  const o = EFRAME + <usize>e * 56, atP = EFRAME_AT + (<usize>e << 2), at = load<i32>(atP);
   if (at >= substepAt && stillSince(a, at) && stillSince(b, at)) return o;
   const ja = <usize>a * 12, jb = <usize>b * 12;
-  const ux = xn(jb, 0) - xn(ja, 0), uy = xn(jb, 1) - xn(ja, 1), uz = xn(jb, 2) - xn(ja, 2);
   const ax = xn(ja, 0) - xs(ja, 0), ay = xn(ja, 1) - xs(ja, 1), az = xn(ja, 2) - xs(ja, 2);
   const bx = xn(jb, 0) - xs(jb, 0), by = xn(jb, 1) - xs(jb, 1), bz = xn(jb, 2) - xs(jb, 2);
   store<f64>(o, 0.5 * (xn(ja, 0) + xn(jb, 0))); store<f64>(o, 0.5 * (xn(ja, 1) + xn(jb, 1)), 8); store<f64>(o, 0.5 * (xn(ja, 2) + xn(jb, 2)), 16);
-  store<f64>(o, 0.5 * Math.sqrt(ux * ux + uy * uy + uz * uz), 24);
-  store<f64>(o, Math.sqrt(max(ax * ax + ay * ay + az * az, bx * bx + by * by + bz * bz)), 32);
+  store<f64>(o, 0.5 * (xn(jb, 0) - xn(ja, 0)), 24); store<f64>(o, 0.5 * (xn(jb, 1) - xn(ja, 1)), 32); store<f64>(o, 0.5 * (xn(jb, 2) - xn(ja, 2)), 40);
+  store<f64>(o, Math.sqrt(max(ax * ax + ay * ay + az * az, bx * bx + by * by + bz * bz)), 48);
   store<i32>(atP, clock);
   return o;
 }
@@ -409,9 +408,11 @@ function segmentClosest(base: usize, ja: usize, jb: usize, jc: usize, jd: usize)
  */
 function resolveEdges(h: f64, mu: f64, muS: f64, e: i32, f: i32, a: u32, b: u32, c: u32, d: u32): void {
   const fe = edgeFrame(e, a, b), ff = edgeFrame(f, c, d);
-  const apart = max(h, f64At(fe, 4) + f64At(ff, 4)) + SKIP_MARGIN;
+  const apart = max(h, f64At(fe, 6) + f64At(ff, 6)) + SKIP_MARGIN;
   const mx = f64At(fe, 0) - f64At(ff, 0), my = f64At(fe, 1) - f64At(ff, 1), mz = f64At(fe, 2) - f64At(ff, 2);
-  if (Math.sqrt(mx * mx + my * my + mz * mz) - f64At(fe, 3) - f64At(ff, 3) >= apart) return;
+  const m2 = mx * mx + my * my + mz * mz;
+  const extent = Math.abs(mx * f64At(fe, 3) + my * f64At(fe, 4) + mz * f64At(fe, 5)) + Math.abs(mx * f64At(ff, 3) + my * f64At(ff, 4) + mz * f64At(ff, 5));
+  if (m2 - extent >= apart * Math.sqrt(m2)) return;
   const ja = <usize>a * 12, jb = <usize>b * 12, jc = <usize>c * 12, jd = <usize>d * 12;
   const len = segmentClosest(X, ja, jb, jc, jd);
   if (len >= apart) return;
