@@ -27,9 +27,11 @@
  * the thickness). Then edge against edge (collideEdges): two edges crossing while every vertex stays outside the
  * other's triangles. Not handled: a particle or an edge that starts a substep already on the wrong side stays
  * there (side memory keeps, it does not untangle). Most listed pairs are neighbours that are not near: each
- * triangle's normals (now and at the substep's start), centroid and radius, and each edge's midpoint, half length and
- * largest end move, are computed once per substep (again only after a correction moved a corner), and the pairs
- * they prove apart cost a few products each — exact skips: what they skip would have changed nothing.
+ * triangle's normals (now and at the substep's start), centroid and radius, and each edge's midpoint and half
+ * vector, are computed once per substep (again only after a correction moved a corner), and the pairs they prove
+ * apart cost a few products each; an edge pair keeps its last measured distance, which bounds it until its particles
+ * have travelled that far (their path lengths since the candidates were found) — exact skips: what they skip would
+ * have changed nothing.
  * One Gauss–Seidel pass in particle order, then one in edge order;
  * the grids' arrays are allocated when a model is first seen and grow only when a substep needs more cells than
  * ever before.
@@ -75,13 +77,27 @@ interface SelfScratch {
    * distance of a corner from it [m]: nx, ny, nz, n0x, n0y, n0z, cx, cy, cz, r
    */
   triFrame: Float64Array;
-  /** per edge (edgeFrame): its midpoint now [m], half its vector b − a now [m], the farther of its ends' moves over the substep [m] */
+  /** per edge (edgeFrame): its midpoint now [m], half its vector b − a now [m] */
   edgeFrame: Float64Array;
   /** the clock (below) when each triangle's and each edge's frame was computed */
   triFrameAt: Float64Array;
   edgeFrameAt: Float64Array;
   /** the clock when each particle was last moved by a correction */
   movedAt: Float64Array;
+  /**
+   * how far each particle can have moved since the candidates were found [m]: the sum of its moves between the
+   * times self-contact looked at it (the start of each substep's phase, and each correction that moved it), and
+   * where it was the last time (`seen`)
+   */
+  travel: Float64Array;
+  seen: Float32Array;
+  /** each particle's move over the substep so far, |x − x_prev| [m] */
+  move: Float64Array;
+  /**
+   * per edge pair of `edgePairs`: a lower bound on its distance [m] once measured (−∞ before), and the sum of its
+   * four particles' travel then [m]: it is now at least the bound less what they travelled since
+   */
+  edgeMemo: Float64Array;
   /**
    * counts corrections and substeps [-]: a frame is current while it was computed in this substep (at or after
    * `substepAt`) and none of its particles moved after it
@@ -125,10 +141,14 @@ function scratch(model: ClothModel): SelfScratch {
     edgePairs: new Int32Array(0),
     edgePairCount: 0,
     triFrame: new Float64Array(10 * n),
-    edgeFrame: new Float64Array(7 * (model.edges.length / 2)),
+    edgeFrame: new Float64Array(6 * (model.edges.length / 2)),
     triFrameAt: new Float64Array(n).fill(-1),
     edgeFrameAt: new Float64Array(model.edges.length / 2).fill(-1),
     movedAt: new Float64Array(model.particleCount),
+    travel: new Float64Array(model.particleCount),
+    seen: new Float32Array(3 * model.particleCount),
+    move: new Float64Array(model.particleCount),
+    edgeMemo: new Float64Array(0),
     clock: 0,
     substepAt: 0,
     builtFor: NaN,
@@ -193,7 +213,7 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
 
   // the candidates hold while every particle's box over this substep is inside its reach box
-  const within = substepBoxes(s, x, xp, np);
+  const within = substepBoxes(s, x, xp, np, true);
   if (!(s.builtFor === hMax && within) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
 
   // triangle boxes over the substep (their corners'), widened by h
@@ -232,15 +252,15 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   }
   // the particle pass may have pushed a particle out of its reach box: the edges' candidates must hold for where
   // the particles are now
-  if (!substepBoxes(s, x, xp, np) && !findCandidates(model, state, params, s, hMax, h, left)) return;
+  if (!substepBoxes(s, x, xp, np, false) && !findCandidates(model, state, params, s, hMax, h, left)) return;
   collideEdges(model, state, params, s, hMax);
 }
 
 /**
- * Each particle's box over the substep (x_prev to x) into particleBoxes; whether every one lies inside its reach
- * box (false for a non-finite position).
+ * Each particle's box over the substep (x_prev to x) into particleBoxes, and (`start`: the phase's start) its
+ * travel and move (track); whether every box lies inside its reach box (false for a non-finite position).
  */
-function substepBoxes(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number): boolean {
+function substepBoxes(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number, start: boolean): boolean {
   const reach = s.reach, pb = s.particleBoxes;
   let inside = true;
   for (let p = 0; p < np; p++) {
@@ -250,8 +270,19 @@ function substepBoxes(s: SelfScratch, x: Float32Array, xp: Float32Array, np: num
       pb[r + c] = lo; pb[r + 3 + c] = hi;
       if (!(lo >= reach[r + c] && hi <= reach[r + 3 + c])) inside = false;
     }
+    if (start) track(s, x, xp, p);
   }
   return inside;
+}
+
+/** Particle p's travel up to where it is now (SelfScratch.travel, seen) and its move over the substep so far. */
+function track(s: SelfScratch, x: Float32Array, xp: Float32Array, p: number): void {
+  const j = 3 * p, seen = s.seen;
+  const dx = x[j] - seen[j], dy = x[j + 1] - seen[j + 1], dz = x[j + 2] - seen[j + 2];
+  s.travel[p] += Math.sqrt(dx * dx + dy * dy + dz * dz);
+  seen[j] = x[j]; seen[j + 1] = x[j + 1]; seen[j + 2] = x[j + 2];
+  const mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
+  s.move[p] = Math.sqrt(mx * mx + my * my + mz * mz);
 }
 
 /**
@@ -337,6 +368,11 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
     }
   }
   s.edgePairCount = count;
+  // distances are measured again from here
+  s.travel.fill(0);
+  s.seen.set(x);
+  if (s.edgeMemo.length < 2 * count) s.edgeMemo = new Float64Array(s.edgePairs.length);
+  s.edgeMemo.fill(-Infinity, 0, 2 * count);
   return true;
 }
 
@@ -475,6 +511,7 @@ function resolvePair(
     const q = 3 * (k === 0 ? a : k === 1 ? b : c), m = (k === 0 ? wa : k === 1 ? wb : wc) * bary[k];
     x[q] -= m * kx; x[q + 1] -= m * ky; x[q + 2] -= m * kz;
   }
+  track(sc, x, xp, p); track(sc, x, xp, a); track(sc, x, xp, b); track(sc, x, xp, c);
 }
 
 /**
@@ -566,10 +603,10 @@ function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s
     const a = edges[2 * e], b = edges[2 * e + 1], c = edges[2 * f], d = edges[2 * f + 1];
     const ca = owner[a], cc = owner[c];
     if (ca === cc) {
-      resolveEdges(s, x, xp, w, Math.min(thickness[ca], hMax), friction[ca], staticFriction[ca], e, f, a, b, c, d);
+      resolveEdges(s, x, xp, w, Math.min(thickness[ca], hMax), friction[ca], staticFriction[ca], q, e, f, a, b, c, d);
     } else {
       const h = Math.min(0.5 * (thickness[ca] + thickness[cc]), hMax);
-      resolveEdges(s, x, xp, w, h, Math.sqrt(friction[ca] * friction[cc]), Math.sqrt(staticFriction[ca] * staticFriction[cc]), e, f, a, b, c, d);
+      resolveEdges(s, x, xp, w, h, Math.sqrt(friction[ca] * friction[cc]), Math.sqrt(staticFriction[ca] * staticFriction[cc]), q, e, f, a, b, c, d);
     }
   }
 }
@@ -609,44 +646,49 @@ function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: num
 const inside = (v: number) => v > 1e-6 && v < 1 - 1e-6;
 
 /**
- * Edge e = (a, b)'s frame (SelfScratch.edgeFrame: its midpoint now, half its vector, the farther of its ends' moves
- * over the substep), computed unless it is current; returns its offset in edgeFrame.
+ * Edge e = (a, b)'s frame (SelfScratch.edgeFrame: its midpoint now and half its vector), computed unless it is
+ * current; returns its offset in edgeFrame.
  */
-function edgeFrame(s: SelfScratch, x: Float32Array, xp: Float32Array, e: number, a: number, b: number): number {
-  const o = 7 * e, at = s.edgeFrameAt[e];
+function edgeFrame(s: SelfScratch, x: Float32Array, e: number, a: number, b: number): number {
+  const o = 6 * e, at = s.edgeFrameAt[e];
   if (at >= s.substepAt && s.movedAt[a] <= at && s.movedAt[b] <= at) return o;
   const f = s.edgeFrame, ja = 3 * a, jb = 3 * b;
-  const ax = x[ja] - xp[ja], ay = x[ja + 1] - xp[ja + 1], az = x[ja + 2] - xp[ja + 2];
-  const bx = x[jb] - xp[jb], by = x[jb + 1] - xp[jb + 1], bz = x[jb + 2] - xp[jb + 2];
   f[o] = 0.5 * (x[ja] + x[jb]); f[o + 1] = 0.5 * (x[ja + 1] + x[jb + 1]); f[o + 2] = 0.5 * (x[ja + 2] + x[jb + 2]);
   f[o + 3] = 0.5 * (x[jb] - x[ja]); f[o + 4] = 0.5 * (x[jb + 1] - x[ja + 1]); f[o + 5] = 0.5 * (x[jb + 2] - x[ja + 2]);
-  f[o + 6] = Math.sqrt(Math.max(ax * ax + ay * ay + az * az, bx * bx + by * by + bz * bz));
   s.edgeFrameAt[e] = s.clock;
   return o;
 }
 
 /**
- * Edges e = a–b and f = c–d: passed through, or too near (see collideEdges), kept h [m] apart with friction mu,
- * muS [-]. Two bounds skip the closest points: along the line through the midpoints each segment spans half its
- * extent along that line either side of its midpoint, so the midpoints' distance less those half extents is at most
- * the distance now (the separation of the two projections); and passing through needs the
- * distance now to be at most δ, the sum of the edges' largest end moves over the substep (q→p then differs by at
- * most δ from the vector between the points of the same parameters now, whose dot product with q→p now is at least
- * |q→p now|², the closest point of a convex set). A pair at least h and δ apart now is neither too near nor passed
- * through.
+ * Edges e = a–b and f = c–d, pair q of the list: passed through, or too near (see collideEdges), kept h [m] apart
+ * with friction mu, muS [-]. A pair at least h and δ apart now, δ the sum of the edges' largest end moves over the
+ * substep, is neither too near nor passed through (passing through needs the distance now to be at most δ: q→p
+ * then differs by at most δ from the vector between the points of the same parameters now, whose dot product with
+ * q→p now is at least |q→p now|², the closest point of a convex set). Three lower bounds on the distance now say
+ * so before the closest points: the pair's last measured distance less what its particles travelled since (a
+ * segment moves no farther than its ends); along the line through the midpoints each segment spans its extent
+ * along that line (the separation of the two projections); and the closest points now, measured.
  */
 function resolveEdges(
   sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number,
-  e: number, f: number, a: number, b: number, c: number, d: number,
+  q: number, e: number, f: number, a: number, b: number, c: number, d: number,
 ): void {
-  const oe = edgeFrame(sc, x, xp, e, a, b), of = edgeFrame(sc, x, xp, f, c, d), fr = sc.edgeFrame;
-  const apart = Math.max(h, fr[oe + 6] + fr[of + 6]) + SKIP_MARGIN;
+  const move = sc.move, travel = sc.travel, memo = sc.edgeMemo;
+  const apart = Math.max(h, Math.max(move[a], move[b]) + Math.max(move[c], move[d])) + SKIP_MARGIN;
+  const travelled = travel[a] + travel[b] + travel[c] + travel[d];
+  if (memo[2 * q] - (travelled - memo[2 * q + 1]) >= apart) return;
+  memo[2 * q + 1] = travelled;
+  const oe = edgeFrame(sc, x, e, a, b), of = edgeFrame(sc, x, f, c, d), fr = sc.edgeFrame;
   const mx = fr[oe] - fr[of], my = fr[oe + 1] - fr[of + 1], mz = fr[oe + 2] - fr[of + 2];
-  // |m|·(|m| − the half extents along m̂) ≥ apart·|m|
-  const m2 = mx * mx + my * my + mz * mz;
+  const m2 = mx * mx + my * my + mz * mz, ml = Math.sqrt(m2);
   const extent = Math.abs(mx * fr[oe + 3] + my * fr[oe + 4] + mz * fr[oe + 5]) + Math.abs(mx * fr[of + 3] + my * fr[of + 4] + mz * fr[of + 5]);
-  if (m2 - extent >= apart * Math.sqrt(m2)) return;
+  // |m| − the half extents along m̂, times |m| (strictly: coinciding midpoints prove nothing)
+  if (m2 - extent > apart * ml) {
+    memo[2 * q] = (m2 - extent) / ml;
+    return;
+  }
   const len = segmentClosest(x, a, b, c, d, gap);
+  memo[2 * q] = len;
   if (len >= apart) return;
   const s = st[0], t = st[1];
   const len0 = segmentClosest(xp, a, b, c, d, gap0);
@@ -682,4 +724,5 @@ function resolveEdges(
   x[jb] += wb * kb * kx; x[jb + 1] += wb * kb * ky; x[jb + 2] += wb * kb * kz;
   x[jc] -= wc * kc * kx; x[jc + 1] -= wc * kc * ky; x[jc + 2] -= wc * kc * kz;
   x[jd] -= wd * kd * kx; x[jd + 1] -= wd * kd * ky; x[jd + 2] -= wd * kd * kz;
+  track(sc, x, xp, a); track(sc, x, xp, b); track(sc, x, xp, c); track(sc, x, xp, d);
 }

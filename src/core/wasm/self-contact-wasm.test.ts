@@ -90,6 +90,16 @@ describe('self-contact in the WebAssembly kernel', () => {
     expect(runs.every((r) => r.moved > 0)).toBe(true);
   });
 
+  it('layers, 60 frames: the TypeScript kernel\'s cloth bit for bit (the kernel\'s other phases there are the reference\'s: the cloths differ in damping, friction and stretch limit)', () => {
+    // substep after substep: the frames, the clock and the edge pairs' measured distances carried across substeps
+    const ts = new Simulation(builtinScene('layers'), { kernel: 'ts' }), wasm = new Simulation(builtinScene('layers'), { kernel: 'wasm', threads: 1 });
+    ts.advance(60); wasm.advance(60);
+    expect([...wasm.state.positions]).toEqual([...ts.state.positions]);
+    expect(countIntersections(wasm.model.triangles, wasm.state.positions)).toBe(0);
+    ts.dispose();
+    wasm.dispose();
+  });
+
   it('fold (32²) on the kernel crosses itself nowhere at frame 300', () => {
     const sim = new Simulation(builtinScene('fold'), { kernel: 'wasm', threads: 1 });
     sim.advance(300);

@@ -18,11 +18,12 @@ import type { ClothState } from '../state.js';
 /** What the kernel exports for self-contact (self-contact.as.ts). */
 export interface SelfContactExports {
   configureSelf(...layout: number[]): void;
-  selfBoxes(): number;
+  selfBoxes(start: boolean): number;
+  selfFound(edgePairs: number): void;
   selfTriangleBoxes(hMax: number): void;
   selfParticles(count: number, hMax: number): void;
   selfEdgeBoxes(hMax: number): void;
-  selfEdges(count: number, hMax: number): void;
+  selfEdges(count: number, hMax: number, memo: boolean): void;
 }
 
 /** Pairs a window holds by default [pairs]: per particle, particle–triangle and edge–edge, and at least. */
@@ -34,7 +35,7 @@ const WINDOW_MIN = 1 << 14;
 export interface SelfContactLayout {
   tris: number; edges: number; owner: number; cloth: number; reach: number; pbox: number; tbox: number; ebox: number;
   tframe: number; eframe: number; tframeAt: number; eframeAt: number; movedAt: number; pairs: number; edgePairs: number;
-  window: number; edgeWindow: number;
+  travel: number; seen: number; move: number; edgeMemo: number; window: number; edgeWindow: number;
 }
 
 /**
@@ -47,8 +48,9 @@ export function layoutSelfContact(model: ClothModel, take: (bytes: number) => nu
   return {
     tris: take(12 * nt), edges: take(8 * ne), owner: take(n), cloth: take(24 * (model.clothStarts.length - 1)),
     reach: take(48 * n), pbox: take(48 * n), tbox: take(48 * nt), ebox: take(48 * ne),
-    tframe: take(80 * nt), eframe: take(56 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
-    pairs: take(8 * w), edgePairs: take(8 * we), window: w, edgeWindow: we,
+    tframe: take(80 * nt), eframe: take(48 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
+    pairs: take(8 * w), edgePairs: take(8 * we), travel: take(8 * n), seen: take(12 * n), move: take(8 * n), edgeMemo: take(16 * we),
+    window: w, edgeWindow: we,
   };
 }
 
@@ -60,7 +62,7 @@ class PairList {
   private overflow = new Int32Array(0);
   /** pairs in the list; whether they are all in the window */
   count = 0;
-  private resident = true;
+  resident = true;
 
   constructor(memory: ArrayBufferLike, at: number, pairs: number) {
     this.window = new Int32Array(memory, at, 2 * pairs);
@@ -78,17 +80,20 @@ class PairList {
     this.overflow.set(list.subarray(0, 2 * count));
   }
 
-  /** Runs `pass(count, hMax)` over every pair in order: the window at once, or window by window. */
-  run(pass: (count: number, hMax: number) => void, hMax: number): void {
+  /**
+   * Runs `pass(count, hMax, resident)` over every pair in order: the window at once (resident: the window keeps its
+   * pairs from substep to substep), or window by window.
+   */
+  run(pass: (count: number, hMax: number, resident: boolean) => void, hMax: number): void {
     if (this.resident) {
-      pass(this.count, hMax);
+      pass(this.count, hMax, true);
       return;
     }
     const cap = this.window.length / 2;
     for (let q = 0; q < this.count; q += cap) {
       const k = Math.min(cap, this.count - q);
       this.window.set(this.overflow.subarray(2 * q, 2 * (q + k)));
-      pass(k, hMax);
+      pass(k, hMax, false);
     }
   }
 }
@@ -105,7 +110,7 @@ export class KernelSelfContact {
   private builtFor = NaN;
   private paramsSeen: SimParams | undefined;
   private readonly particles: (count: number, hMax: number) => void;
-  private readonly edges: (count: number, hMax: number) => void;
+  private readonly edges: (count: number, hMax: number, resident: boolean) => void;
 
   /** Self-contact for `model` in the kernel whose memory is `memory`, laid out by layoutSelfContact. */
   constructor(model: ClothModel, memory: ArrayBufferLike, layout: SelfContactLayout, exports: SelfContactExports) {
@@ -120,9 +125,10 @@ export class KernelSelfContact {
     this.exports = exports;
     const l = layout;
     exports.configureSelf(l.tris, l.edges, l.owner, l.cloth, l.reach, l.pbox, l.tbox, l.ebox, l.tframe, l.eframe,
-      l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, nt, ne);
+      l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, nt, ne);
     this.particles = (count, hMax) => exports.selfParticles(count, hMax);
-    this.edges = (count, hMax) => exports.selfEdges(count, hMax);
+    // the edge pairs' measured distances hold while the window keeps its pairs
+    this.edges = (count, hMax, resident) => exports.selfEdges(count, hMax, resident);
   }
 
   /**
@@ -144,12 +150,12 @@ export class KernelSelfContact {
     }
     const ex = this.exports;
     // the candidates hold while every particle's box over this substep is inside its reach box
-    const within = ex.selfBoxes() === 1;
+    const within = ex.selfBoxes(true) === 1;
     if (!(this.builtFor === hMax && within) && !this.find(model, state, params, hMax, h, left)) return;
     ex.selfTriangleBoxes(hMax);
     this.pairs.run(this.particles, hMax);
     // the particle pass may have pushed a particle out of its reach box
-    if (ex.selfBoxes() !== 1 && !this.find(model, state, params, hMax, h, left)) return;
+    if (ex.selfBoxes(false) !== 1 && !this.find(model, state, params, hMax, h, left)) return;
     ex.selfEdgeBoxes(hMax);
     this.edgePairs.run(this.edges, hMax);
   }
@@ -164,6 +170,7 @@ export class KernelSelfContact {
     this.reach.set(c.reach);
     this.pairs.take(c.pairs, c.pairCount);
     this.edgePairs.take(c.edgePairs, c.edgePairCount);
+    this.exports.selfFound(this.edgePairs.resident ? c.edgePairCount : 0);
     this.builtFor = hMax;
     return true;
   }

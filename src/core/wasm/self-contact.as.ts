@@ -24,8 +24,7 @@ let TBOX: usize = 0;
 let EBOX: usize = 0;
 /**
  * each triangle's frame, f64 × 10: the unit normal now and at the substep's start, the centroid now [m], the
- * largest distance of a corner from it [m]; each edge's, f64 × 7: its midpoint now [m], half its vector b − a now [m],
- * the farther of its ends' moves over the substep [m]
+ * largest distance of a corner from it [m]; each edge's, f64 × 6: its midpoint now [m], half its vector b − a now [m]
  */
 let TFRAME: usize = 0;
 let EFRAME: usize = 0;
@@ -36,6 +35,19 @@ let MOVED_AT: usize = 0;
 /** the candidate pairs: (particle, triangle) and (edge, edge), i32 × 2 each */
 let PAIRS: usize = 0;
 let EDGE_PAIRS: usize = 0;
+/**
+ * how far each particle can have moved since the candidates were found [m], f64 (the sum of its moves between the
+ * times self-contact looked at it: each phase's start, each correction), and where it was the last time, f32 × 3
+ */
+let TRAVEL: usize = 0;
+let SEEN: usize = 0;
+/** each particle's move over the substep so far, |x − x_prev| [m], f64 */
+let MOVE: usize = 0;
+/**
+ * per edge pair of EDGE_PAIRS: a lower bound on its distance [m] once measured (−∞ before) and its four particles'
+ * travel then [m], f64 × 2
+ */
+let EDGE_MEMO: usize = 0;
 /** triangles and edges */
 let NT: i32 = 0;
 let NE: i32 = 0;
@@ -54,11 +66,12 @@ const SKIP_MARGIN: f64 = 1e-7;
 export function configureSelf(
   tris: usize, edges: usize, owner: usize, cloth: usize, reach: usize, pbox: usize, tbox: usize, ebox: usize,
   tframe: usize, eframe: usize, tframeAt: usize, eframeAt: usize, movedAt: usize, pairs: usize, edgePairs: usize,
-  triangles: i32, edgeCount: i32,
+  travel: usize, seen: usize, move: usize, edgeMemo: usize, triangles: i32, edgeCount: i32,
 ): void {
   TRIS = tris; EDGES = edges; OWNER = owner; CLOTH = cloth; REACH = reach; PBOX = pbox; TBOX = tbox; EBOX = ebox;
   TFRAME = tframe; EFRAME = eframe; TFRAME_AT = tframeAt; EFRAME_AT = eframeAt; MOVED_AT = movedAt;
-  PAIRS = pairs; EDGE_PAIRS = edgePairs; NT = triangles; NE = edgeCount;
+  PAIRS = pairs; EDGE_PAIRS = edgePairs; TRAVEL = travel; SEEN = seen; MOVE = move; EDGE_MEMO = edgeMemo;
+  NT = triangles; NE = edgeCount;
   resetClock();
 }
 
@@ -84,10 +97,11 @@ function resetClock(): void {
 @inline function f64At(base: usize, k: usize): f64 { return load<f64>(base + (k << 3)); }
 
 /**
- * Each particle's box over the substep (x_prev to x) into PBOX; 1 when every one lies inside its reach box, else 0
- * (also for a non-finite position): self-contact.ts substepBoxes().
+ * Each particle's box over the substep (x_prev to x) into PBOX, and (`start`: the phase's start) its travel and move
+ * (track); 1 when every box lies inside its reach box, else 0 (also for a non-finite position): self-contact.ts
+ * substepBoxes().
  */
-export function selfBoxes(): i32 {
+export function selfBoxes(start: bool): i32 {
   let inside = 1;
   for (let p = 0; p < N; p++) {
     const j = <usize>p * 12, r = <usize>p * 48;
@@ -98,8 +112,36 @@ export function selfBoxes(): i32 {
       store<f64>(PBOX + r + 24 + (k << 3), hi);
       if (!(lo >= f64At(REACH + r, k) && hi <= f64At(REACH + r, k + 3))) inside = 0;
     }
+    if (start) track(p);
   }
   return inside;
+}
+
+/** Particle p's travel up to where it is now (TRAVEL, SEEN) and its move over the substep so far (MOVE). */
+function track(p: u32): void {
+  const j = <usize>p * 12, seen = SEEN + j;
+  const dx = xn(j, 0) - <f64>load<f32>(seen), dy = xn(j, 1) - <f64>load<f32>(seen, 4), dz = xn(j, 2) - <f64>load<f32>(seen, 8);
+  const t = TRAVEL + (<usize>p << 3);
+  store<f64>(t, load<f64>(t) + Math.sqrt(dx * dx + dy * dy + dz * dz));
+  store<f32>(seen, load<f32>(X + j)); store<f32>(seen, load<f32>(X + j, 4), 4); store<f32>(seen, load<f32>(X + j, 8), 8);
+  const mx = xn(j, 0) - xs(j, 0), my = xn(j, 1) - xs(j, 1), mz = xn(j, 2) - xs(j, 2);
+  store<f64>(MOVE + (<usize>p << 3), Math.sqrt(mx * mx + my * my + mz * mz));
+}
+
+/**
+ * After a search: distances are measured again from here (every particle's travel 0 from where it is, the first
+ * `edgePairs` pairs' memo unknown).
+ */
+export function selfFound(edgePairs: i32): void {
+  for (let p = 0; p < N; p++) {
+    const j = <usize>p * 12;
+    store<f64>(TRAVEL + (<usize>p << 3), 0);
+    store<f32>(SEEN + j, load<f32>(X + j)); store<f32>(SEEN + j, load<f32>(X + j, 4), 4); store<f32>(SEEN + j, load<f32>(X + j, 8), 8);
+  }
+  for (let q = 0; q < edgePairs; q++) {
+    store<f64>(EDGE_MEMO + (<usize>q << 4), -Infinity);
+    store<f64>(EDGE_MEMO + (<usize>q << 4), -Infinity, 8);
+  }
 }
 
 /**
@@ -332,13 +374,15 @@ function resolvePair(h: f64, mu: f64, muS: f64, p: i32, t: i32, a: u32, b: u32, 
   addX(ja, 0, -(ma * kx)); addX(ja, 1, -(ma * ky)); addX(ja, 2, -(ma * kz));
   addX(jb, 0, -(mb * kx)); addX(jb, 1, -(mb * ky)); addX(jb, 2, -(mb * kz));
   addX(jc, 0, -(mc * kx)); addX(jc, 1, -(mc * ky)); addX(jc, 2, -(mc * kz));
+  track(<u32>p); track(a); track(b); track(c);
 }
 
 /**
  * Edge–edge pairs [0, count) of EDGE_PAIRS, in order, as collideEdges: a pair whose edges' boxes meet, with its
- * pair's distance (at most hMax [m]) and friction.
+ * pair's distance (at most hMax [m]) and friction; `memo`: the pairs' EDGE_MEMO holds for them (not when the host
+ * copies the list in window by window).
  */
-export function selfEdges(count: i32, hMax: f64): void {
+export function selfEdges(count: i32, hMax: f64, memo: bool): void {
   for (let q = 0; q < count; q++) {
     const pr = EDGE_PAIRS + (<usize>q << 3);
     const e = load<i32>(pr), f = load<i32>(pr, 4);
@@ -346,25 +390,23 @@ export function selfEdges(count: i32, hMax: f64): void {
     const ea = EDGES + <usize>e * 8, fa = EDGES + <usize>f * 8;
     const a = load<u32>(ea), b = load<u32>(ea, 4), c = load<u32>(fa), d = load<u32>(fa, 4);
     const ca = <i32>load<u8>(OWNER + <usize>a), cc = <i32>load<u8>(OWNER + <usize>c);
+    const m = memo ? EDGE_MEMO + (<usize>q << 4) : 0;
     if (ca == cc) {
-      resolveEdges(min(clothValue(ca, 0), hMax), clothValue(ca, 1), clothValue(ca, 2), e, f, a, b, c, d);
+      resolveEdges(min(clothValue(ca, 0), hMax), clothValue(ca, 1), clothValue(ca, 2), m, e, f, a, b, c, d);
     } else {
       const h = min(0.5 * (clothValue(ca, 0) + clothValue(cc, 0)), hMax);
-      resolveEdges(h, Math.sqrt(clothValue(ca, 1) * clothValue(cc, 1)), Math.sqrt(clothValue(ca, 2) * clothValue(cc, 2)), e, f, a, b, c, d);
+      resolveEdges(h, Math.sqrt(clothValue(ca, 1) * clothValue(cc, 1)), Math.sqrt(clothValue(ca, 2) * clothValue(cc, 2)), m, e, f, a, b, c, d);
     }
   }
 }
 
 /** Edge e = (a, b)'s frame (EFRAME), computed unless it is current; returns its byte offset. */
 function edgeFrame(e: i32, a: u32, b: u32): usize {
-  const o = EFRAME + <usize>e * 56, atP = EFRAME_AT + (<usize>e << 2), at = load<i32>(atP);
+  const o = EFRAME + <usize>e * 48, atP = EFRAME_AT + (<usize>e << 2), at = load<i32>(atP);
   if (at >= substepAt && stillSince(a, at) && stillSince(b, at)) return o;
   const ja = <usize>a * 12, jb = <usize>b * 12;
-  const ax = xn(ja, 0) - xs(ja, 0), ay = xn(ja, 1) - xs(ja, 1), az = xn(ja, 2) - xs(ja, 2);
-  const bx = xn(jb, 0) - xs(jb, 0), by = xn(jb, 1) - xs(jb, 1), bz = xn(jb, 2) - xs(jb, 2);
   store<f64>(o, 0.5 * (xn(ja, 0) + xn(jb, 0))); store<f64>(o, 0.5 * (xn(ja, 1) + xn(jb, 1)), 8); store<f64>(o, 0.5 * (xn(ja, 2) + xn(jb, 2)), 16);
   store<f64>(o, 0.5 * (xn(jb, 0) - xn(ja, 0)), 24); store<f64>(o, 0.5 * (xn(jb, 1) - xn(ja, 1)), 32); store<f64>(o, 0.5 * (xn(jb, 2) - xn(ja, 2)), 40);
-  store<f64>(o, Math.sqrt(max(ax * ax + ay * ay + az * az, bx * bx + by * by + bz * bz)), 48);
   store<i32>(atP, clock);
   return o;
 }
@@ -402,19 +444,32 @@ function segmentClosest(base: usize, ja: usize, jb: usize, jc: usize, jd: usize)
 /** Whether a closest point's parameter lies inside its edge (not at an end). */
 @inline function inside(v: f64): bool { return v > 1e-6 && v < 1 - 1e-6; }
 
+/** Particle p's value in an f64 array at byte offset `base`. */
+@inline function perParticle(base: usize, p: u32): f64 { return load<f64>(base + (<usize>p << 3)); }
+
 /**
  * Edges e = a–b and f = c–d: passed through, or too near, kept h [m] apart with friction mu, muS [-]
- * (self-contact.ts resolveEdges, operation for operation, with its two skips).
+ * (self-contact.ts resolveEdges, operation for operation, with its three skips); `memo`: the byte offset of the
+ * pair's EDGE_MEMO entry, or 0 for none.
  */
-function resolveEdges(h: f64, mu: f64, muS: f64, e: i32, f: i32, a: u32, b: u32, c: u32, d: u32): void {
+function resolveEdges(h: f64, mu: f64, muS: f64, memo: usize, e: i32, f: i32, a: u32, b: u32, c: u32, d: u32): void {
+  const apart = max(h, max(perParticle(MOVE, a), perParticle(MOVE, b)) + max(perParticle(MOVE, c), perParticle(MOVE, d))) + SKIP_MARGIN;
+  const travelled = perParticle(TRAVEL, a) + perParticle(TRAVEL, b) + perParticle(TRAVEL, c) + perParticle(TRAVEL, d);
+  if (memo != 0) {
+    if (load<f64>(memo) - (travelled - load<f64>(memo, 8)) >= apart) return;
+    store<f64>(memo, travelled, 8);
+  }
   const fe = edgeFrame(e, a, b), ff = edgeFrame(f, c, d);
-  const apart = max(h, f64At(fe, 6) + f64At(ff, 6)) + SKIP_MARGIN;
   const mx = f64At(fe, 0) - f64At(ff, 0), my = f64At(fe, 1) - f64At(ff, 1), mz = f64At(fe, 2) - f64At(ff, 2);
-  const m2 = mx * mx + my * my + mz * mz;
+  const m2 = mx * mx + my * my + mz * mz, ml = Math.sqrt(m2);
   const extent = Math.abs(mx * f64At(fe, 3) + my * f64At(fe, 4) + mz * f64At(fe, 5)) + Math.abs(mx * f64At(ff, 3) + my * f64At(ff, 4) + mz * f64At(ff, 5));
-  if (m2 - extent >= apart * Math.sqrt(m2)) return;
+  if (m2 - extent > apart * ml) {
+    if (memo != 0) store<f64>(memo, (m2 - extent) / ml);
+    return;
+  }
   const ja = <usize>a * 12, jb = <usize>b * 12, jc = <usize>c * 12, jd = <usize>d * 12;
   const len = segmentClosest(X, ja, jb, jc, jd);
+  if (memo != 0) store<f64>(memo, len);
   if (len >= apart) return;
   const s = S, t = T, gx = GX, gy = GY, gz = GZ;
   const len0 = segmentClosest(XP, ja, jb, jc, jd);
@@ -449,4 +504,5 @@ function resolveEdges(h: f64, mu: f64, muS: f64, e: i32, f: i32, a: u32, b: u32,
   addX(jb, 0, wb * kb * kx); addX(jb, 1, wb * kb * ky); addX(jb, 2, wb * kb * kz);
   addX(jc, 0, -(wc * kc * kx)); addX(jc, 1, -(wc * kc * ky)); addX(jc, 2, -(wc * kc * kz));
   addX(jd, 0, -(wd * kd * kx)); addX(jd, 1, -(wd * kd * ky)); addX(jd, 2, -(wd * kd * kz));
+  track(a); track(b); track(c); track(d);
 }

@@ -36,7 +36,7 @@ import {
 } from './threads.as';
 
 export { configure } from './arrays.as';
-export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfParticles, selfTriangleBoxes } from './self-contact.as';
+export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfParticles, selfTriangleBoxes } from './self-contact.as';
 
 /**
  * Helper thread t's loop: wait for a dispatch, take part in that substep, repeat until told to exit. It reads the
