@@ -30,7 +30,8 @@ describe('self-contact (solver.selfContact)', () => {
     sim.dispose();
   });
 
-  // every CPU kernel that claims it: the WebAssembly kernel runs the phase in the TypeScript reference, on its memory
+  // every CPU kernel: the WebAssembly kernel runs the phase itself (its passes in the kernel, the candidate search in
+  // TypeScript: wasm/self-contact-wasm.test.ts holds it to the reference bit for bit)
   it.each(['ts', 'wasm'] as const)('%s: with it, no two triangles cross at any 10th frame of 1.5 s, and the cloth stays on the sphere', (kernel) => {
     const sim = rubber(true, kernel);
     expect(crossings(sim, 90)).toEqual(Array(9).fill(0));

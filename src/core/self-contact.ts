@@ -26,7 +26,13 @@
  * at rest is never "too near" a triangle of its own neighbourhood (on a fine mesh the layers then keep closer than
  * the thickness). Then edge against edge (collideEdges): two edges crossing while every vertex stays outside the
  * other's triangles. Not handled: a particle or an edge that starts a substep already on the wrong side stays
- * there (side memory keeps, it does not untangle). One Gauss–Seidel pass in particle order, then one in edge order;
+ * there (side memory keeps, it does not untangle). Most listed pairs are neighbours that are not near: each
+ * triangle's normals (now and at the substep's start), centroid and radius, and each edge's midpoint and half
+ * vector, are computed once per substep (again only after a correction moved a corner), and the pairs they prove
+ * apart cost a few products each; an edge pair keeps its last measured distance, which bounds it until its particles
+ * have travelled that far (their path lengths since the candidates were found) — exact skips: what they skip would
+ * have changed nothing.
+ * One Gauss–Seidel pass in particle order, then one in edge order;
  * the grids' arrays are allocated when a model is first seen and grow only when a substep needs more cells than
  * ever before.
  */
@@ -55,6 +61,8 @@ interface SelfScratch {
    * a substep stays inside its own
    */
   reach: Float64Array;
+  /** each particle's box over the substep (x_prev to x, as of the last substepBoxes), as `boxes` */
+  particleBoxes: Float64Array;
   /** the triangles' and edges' reach boxes (their corners' reach boxes, widened by h and h/2) */
   triangleReach: Float64Array;
   edgeReach: Float64Array;
@@ -63,6 +71,39 @@ interface SelfScratch {
   pairCount: number;
   edgePairs: Int32Array;
   edgePairCount: number;
+  /**
+   * per triangle, what its pairs' tests share within a substep (triangleFrame): the unit normal now and at the
+   * substep's start (unitNormal; NaN for a degenerate triangle), the centroid now [m] and the largest
+   * distance of a corner from it [m]: nx, ny, nz, n0x, n0y, n0z, cx, cy, cz, r
+   */
+  triFrame: Float64Array;
+  /** per edge (edgeFrame): its midpoint now [m], half its vector b − a now [m] */
+  edgeFrame: Float64Array;
+  /** the clock (below) when each triangle's and each edge's frame was computed */
+  triFrameAt: Float64Array;
+  edgeFrameAt: Float64Array;
+  /** the clock when each particle was last moved by a correction */
+  movedAt: Float64Array;
+  /**
+   * how far each particle can have moved since the candidates were found [m]: the sum of its moves between the
+   * times self-contact looked at it (the start of each substep's phase, and each correction that moved it), and
+   * where it was the last time (`seen`)
+   */
+  travel: Float64Array;
+  seen: Float32Array;
+  /** each particle's move over the substep so far, |x − x_prev| [m] */
+  move: Float64Array;
+  /**
+   * per edge pair of `edgePairs`: a lower bound on its distance [m] once measured (−∞ before), and the sum of its
+   * four particles' travel then [m]: it is now at least the bound less what they travelled since
+   */
+  edgeMemo: Float64Array;
+  /**
+   * counts corrections and substeps [-]: a frame is current while it was computed in this substep (at or after
+   * `substepAt`) and none of its particles moved after it
+   */
+  clock: number;
+  substepAt: number;
   /** the distance h the reach boxes were widened by (NaN: none found yet) */
   builtFor: number;
   /** how many times the candidates were found (for the tests: about once a frame on a falling cloth) */
@@ -92,12 +133,24 @@ function scratch(model: ClothModel): SelfScratch {
     edgeGrid: new BoxGrid(),
     edgeStamp: new Int32Array(model.edges.length / 2),
     reach: new Float64Array(6 * model.particleCount),
+    particleBoxes: new Float64Array(6 * model.particleCount),
     triangleReach: new Float64Array(6 * n),
     edgeReach: new Float64Array(3 * model.edges.length),
     pairs: new Int32Array(0),
     pairCount: 0,
     edgePairs: new Int32Array(0),
     edgePairCount: 0,
+    triFrame: new Float64Array(10 * n),
+    edgeFrame: new Float64Array(6 * (model.edges.length / 2)),
+    triFrameAt: new Float64Array(n).fill(-1),
+    edgeFrameAt: new Float64Array(model.edges.length / 2).fill(-1),
+    movedAt: new Float64Array(model.particleCount),
+    travel: new Float64Array(model.particleCount),
+    seen: new Float32Array(3 * model.particleCount),
+    move: new Float64Array(model.particleCount),
+    edgeMemo: new Float64Array(0),
+    clock: 0,
+    substepAt: 0,
     builtFor: NaN,
     builds: 0,
   };
@@ -123,6 +176,28 @@ export function selfContactBuilds(model: ClothModel): number {
   return scratch(model).builds;
 }
 
+/** Candidate pairs found ahead, as the WebAssembly kernel's self-contact reads them (self-contact-wasm.ts). */
+export interface SelfCandidates {
+  /** each particle's reach box: min x, y, z, max x, y, z [m] */
+  readonly reach: Float64Array;
+  /** (particle, triangle) pairs, the first pairCount, in the order they are resolved */
+  readonly pairs: Int32Array;
+  readonly pairCount: number;
+  /** (edge, edge) pairs, the first edgePairCount */
+  readonly edgePairs: Int32Array;
+  readonly edgePairCount: number;
+}
+
+/**
+ * Finds `model`'s candidate pairs for the substeps left in the frame, as collideSelf does (substep length h [s],
+ * `left` substeps left, this one included), for a backend that runs the narrow phase itself; null when a box is
+ * not finite (an unstable cloth: nothing to keep apart).
+ */
+export function findSelfCandidates(model: ClothModel, state: ClothState, params: SimParams, h: number, left: number): SelfCandidates | null {
+  const s = scratch(model);
+  return findCandidates(model, state, params, s, selfContactDistance(model, params), h, left) ? s : null;
+}
+
 /**
  * One substep of self-contact (see the file's comment): substep length h [s], `left` substeps of the frame left
  * (this one included), for how far ahead the candidates are found.
@@ -138,24 +213,22 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
 
   // the candidates hold while every particle's box over this substep is inside its reach box
-  if (!(s.builtFor === hMax && withinReach(s, x, xp, np)) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
+  const within = substepBoxes(s, x, xp, np, true);
+  if (!(s.builtFor === hMax && within) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
 
-  // triangle boxes over the substep, widened by h
-  const boxes = s.boxes;
+  // triangle boxes over the substep (their corners'), widened by h
+  const boxes = s.boxes, pb = s.particleBoxes;
   for (let t = 0; t < nt; t++) {
-    const b = 6 * t;
-    boxes[b] = boxes[b + 1] = boxes[b + 2] = Infinity;
-    boxes[b + 3] = boxes[b + 4] = boxes[b + 5] = -Infinity;
-    for (let k = 0; k < 3; k++) {
-      const j = 3 * tri[3 * t + k];
-      for (let c = 0; c < 3; c++) {
-        const lo = Math.min(x[j + c], xp[j + c]), hi = Math.max(x[j + c], xp[j + c]);
-        if (lo < boxes[b + c]) boxes[b + c] = lo;
-        if (hi > boxes[b + 3 + c]) boxes[b + 3 + c] = hi;
-      }
-    }
-    for (let c = 0; c < 3; c++) { boxes[b + c] -= hMax; boxes[b + 3 + c] += hMax; }
+    const b = 6 * t, i = 6 * tri[3 * t], j = 6 * tri[3 * t + 1], k = 6 * tri[3 * t + 2];
+    boxes[b] = Math.min(pb[i], pb[j], pb[k]) - hMax;
+    boxes[b + 1] = Math.min(pb[i + 1], pb[j + 1], pb[k + 1]) - hMax;
+    boxes[b + 2] = Math.min(pb[i + 2], pb[j + 2], pb[k + 2]) - hMax;
+    boxes[b + 3] = Math.max(pb[i + 3], pb[j + 3], pb[k + 3]) + hMax;
+    boxes[b + 4] = Math.max(pb[i + 4], pb[j + 4], pb[k + 4]) + hMax;
+    boxes[b + 5] = Math.max(pb[i + 5], pb[j + 5], pb[k + 5]) + hMax;
   }
+  // a new substep: every triangle's and edge's frame is to be computed again
+  s.substepAt = ++s.clock;
   const pairs = s.pairs;
   for (let q = 0; q < s.pairCount; q++) {
     const p = pairs[2 * q], t = pairs[2 * q + 1];
@@ -171,28 +244,45 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
     // geometric mean of the coefficients
     const cp = owner[p], ct = owner[a];
     if (cp === ct) {
-      resolvePair(x, xp, w, Math.min(thickness[cp], hMax), friction[cp], staticFriction[cp], p, a, b, c);
+      resolvePair(s, x, xp, w, Math.min(thickness[cp], hMax), friction[cp], staticFriction[cp], p, t, a, b, c);
     } else {
       const hp = Math.min(0.5 * (thickness[cp] + thickness[ct]), hMax);
-      resolvePair(x, xp, w, hp, Math.sqrt(friction[cp] * friction[ct]), Math.sqrt(staticFriction[cp] * staticFriction[ct]), p, a, b, c);
+      resolvePair(s, x, xp, w, hp, Math.sqrt(friction[cp] * friction[ct]), Math.sqrt(staticFriction[cp] * staticFriction[ct]), p, t, a, b, c);
     }
   }
   // the particle pass may have pushed a particle out of its reach box: the edges' candidates must hold for where
   // the particles are now
-  if (!withinReach(s, x, xp, np) && !findCandidates(model, state, params, s, hMax, h, left)) return;
+  if (!substepBoxes(s, x, xp, np, false) && !findCandidates(model, state, params, s, hMax, h, left)) return;
   collideEdges(model, state, params, s, hMax);
 }
 
-/** Whether every particle's box over the substep (x_prev to x) lies inside its reach box. */
-function withinReach(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number): boolean {
-  const reach = s.reach;
+/**
+ * Each particle's box over the substep (x_prev to x) into particleBoxes, and (`start`: the phase's start) its
+ * travel and move (track); whether every box lies inside its reach box (false for a non-finite position).
+ */
+function substepBoxes(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number, start: boolean): boolean {
+  const reach = s.reach, pb = s.particleBoxes;
+  let inside = true;
   for (let p = 0; p < np; p++) {
     const jp = 3 * p, r = 6 * p;
     for (let c = 0; c < 3; c++) {
-      if (!(Math.min(x[jp + c], xp[jp + c]) >= reach[r + c] && Math.max(x[jp + c], xp[jp + c]) <= reach[r + 3 + c])) return false;
+      const lo = Math.min(x[jp + c], xp[jp + c]), hi = Math.max(x[jp + c], xp[jp + c]);
+      pb[r + c] = lo; pb[r + 3 + c] = hi;
+      if (!(lo >= reach[r + c] && hi <= reach[r + 3 + c])) inside = false;
     }
+    if (start) track(s, x, xp, p);
   }
-  return true;
+  return inside;
+}
+
+/** Particle p's travel up to where it is now (SelfScratch.travel, seen) and its move over the substep so far. */
+function track(s: SelfScratch, x: Float32Array, xp: Float32Array, p: number): void {
+  const j = 3 * p, seen = s.seen;
+  const dx = x[j] - seen[j], dy = x[j + 1] - seen[j + 1], dz = x[j + 2] - seen[j + 2];
+  s.travel[p] += Math.sqrt(dx * dx + dy * dy + dz * dz);
+  seen[j] = x[j]; seen[j + 1] = x[j + 1]; seen[j + 2] = x[j + 2];
+  const mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
+  s.move[p] = Math.sqrt(mx * mx + my * my + mz * mz);
 }
 
 /**
@@ -278,6 +368,11 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
     }
   }
   s.edgePairCount = count;
+  // distances are measured again from here
+  s.travel.fill(0);
+  s.seen.set(x);
+  if (s.edgeMemo.length < 2 * count) s.edgeMemo = new Float64Array(s.edgePairs.length);
+  s.edgeMemo.fill(-Infinity, 0, 2 * count);
   return true;
 }
 
@@ -307,23 +402,66 @@ function grown(list: Int32Array, need: number): Int32Array {
 }
 
 /**
- * Particle p against triangle (a, b, c): passed through, or too near (see the file's comment), kept h [m] apart
- * with kinetic and static friction mu, muS [-].
+ * How far beyond h [m] a bound must say a pair is before it is skipped: the bounds are exact, the tests they stand
+ * for are rounded (by far less).
+ */
+const SKIP_MARGIN = 1e-7;
+
+/**
+ * Triangle t's frame (SelfScratch.triFrame: the unit normals now and at the substep's start, the centroid now and
+ * the radius about it), computed unless it is current; returns its offset in triFrame.
+ */
+function triangleFrame(s: SelfScratch, x: Float32Array, xp: Float32Array, t: number, ja: number, jb: number, jc: number): number {
+  const o = 10 * t, at = s.triFrameAt[t], moved = s.movedAt;
+  if (at >= s.substepAt && moved[ja / 3] <= at && moved[jb / 3] <= at && moved[jc / 3] <= at) return o;
+  const f = s.triFrame;
+  unitNormal(x, ja, jb, jc, f, o);
+  unitNormal(xp, ja, jb, jc, f, o + 3);
+  const cx = (x[ja] + x[jb] + x[jc]) / 3, cy = (x[ja + 1] + x[jb + 1] + x[jc + 1]) / 3, cz = (x[ja + 2] + x[jb + 2] + x[jc + 2]) / 3;
+  f[o + 6] = cx; f[o + 7] = cy; f[o + 8] = cz;
+  const ax = x[ja] - cx, ay = x[ja + 1] - cy, az = x[ja + 2] - cz;
+  const bx = x[jb] - cx, by = x[jb + 1] - cy, bz = x[jb + 2] - cz;
+  const qx = x[jc] - cx, qy = x[jc + 1] - cy, qz = x[jc + 2] - cz;
+  f[o + 9] = Math.sqrt(Math.max(ax * ax + ay * ay + az * az, bx * bx + by * by + bz * bz, qx * qx + qy * qy + qz * qz));
+  s.triFrameAt[t] = s.clock;
+  return o;
+}
+
+/** Marks particles as moved by a correction (their triangles' and edges' frames are computed again). */
+function moved(s: SelfScratch, a: number, b: number, c: number, d: number): void {
+  const m = s.movedAt, now = ++s.clock;
+  m[a] = now; m[b] = now; m[c] = now; m[d] = now;
+}
+
+/**
+ * Particle p against triangle t = (a, b, c): passed through, or too near (see the file's comment), kept h [m]
+ * apart with kinetic and static friction mu, muS [-]. The plane sides come from the triangle's frame (the same
+ * numbers planes computed pair by pair give); a particle that did not cross the plane and whose distance from the
+ * centroid exceeds the triangle's radius by h is not near it, and costs nothing more.
  */
 function resolvePair(
-  x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number, p: number, a: number, b: number, c: number,
+  sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number,
+  p: number, t: number, a: number, b: number, c: number,
 ): void {
   const jp = 3 * p, ja = 3 * a, jb = 3 * b, jc = 3 * c;
+  const o = triangleFrame(sc, x, xp, t, ja, jb, jc), fr = sc.triFrame;
   // the side at the substep's start: the triangle's plane then
-  const sPrev = planeSide(xp, jp, ja, jb, jc, null);
-  // now: the plane and the distance along its normal
-  const s = planeSide(x, jp, ja, jb, jc, dir);
+  const sPrev = fr[o + 3] * (xp[jp] - xp[ja]) + fr[o + 4] * (xp[jp + 1] - xp[ja + 1]) + fr[o + 5] * (xp[jp + 2] - xp[ja + 2]);
+  // now: the distance along the plane's normal
+  const s = fr[o] * (x[jp] - x[ja]) + fr[o + 1] * (x[jp + 1] - x[ja + 1]) + fr[o + 2] * (x[jp + 2] - x[ja + 2]);
   if (!Number.isFinite(s) || !Number.isFinite(sPrev)) return;
   // on its side and farther than h from the plane: farther from the triangle too
   if (Math.abs(s) >= h && Math.sign(s) === Math.sign(sPrev)) return;
+  const crossed = sPrev !== 0 && Math.sign(s) !== Math.sign(sPrev);
+  if (!crossed) {
+    // on its side: the triangle lies within its radius of the centroid, so farther than radius + h is not near
+    const ex = x[jp] - fr[o + 6], ey = x[jp + 1] - fr[o + 7], ez = x[jp + 2] - fr[o + 8], far = fr[o + 9] + h + SKIP_MARGIN;
+    if (ex * ex + ey * ey + ez * ez >= far * far) return;
+  }
+  dir[0] = fr[o]; dir[1] = fr[o + 1]; dir[2] = fr[o + 2];
   let C: number; // constraint value along dir: negative when violated
-  const inside = projectionInside(x, jp, ja, jb, jc);
-  if (sPrev !== 0 && Math.sign(s) !== Math.sign(sPrev) && (inside || projectionInside(xp, jp, ja, jb, jc))) {
+  const inside = crossed && projectionInside(x, jp, ja, jb, jc);
+  if (crossed && (inside || projectionInside(xp, jp, ja, jb, jc))) {
     // passed through: back to its side, h from the plane (dir is the plane's normal, sign as then)
     const side = Math.sign(sPrev);
     if (!inside) {
@@ -367,26 +505,26 @@ function resolvePair(
   const f = tl < 1e-12 ? 0 : tl < muS * depth ? 1 : Math.min((mu * depth) / tl, 1);
   // the correction: normal λ·dir, and −f·t shared the same way (p takes its share, the triangle the rest)
   const kx = lambda * dir[0] - (f * tx) / denom, ky = lambda * dir[1] - (f * ty) / denom, kz = lambda * dir[2] - (f * tz) / denom;
+  moved(sc, p, a, b, c);
   x[jp] += wp * kx; x[jp + 1] += wp * ky; x[jp + 2] += wp * kz;
   for (let k = 0; k < 3; k++) {
     const q = 3 * (k === 0 ? a : k === 1 ? b : c), m = (k === 0 ? wa : k === 1 ? wb : wc) * bary[k];
     x[q] -= m * kx; x[q + 1] -= m * ky; x[q + 2] -= m * kz;
   }
+  track(sc, x, xp, p); track(sc, x, xp, a); track(sc, x, xp, b); track(sc, x, xp, c);
 }
 
 /**
- * Signed distance of particle jp from the plane of the triangle (ja, jb, jc) of array x (its unit normal into
- * `normal` when given); NaN for a degenerate triangle.
+ * The unit normal (b − a) × (c − a) of the triangle (ja, jb, jc) of array x into out[o…o+2]; NaN for a degenerate
+ * triangle (then every plane distance from it is NaN).
  */
-function planeSide(x: Float32Array, jp: number, ja: number, jb: number, jc: number, normal: Float64Array | null): number {
+function unitNormal(x: Float32Array, ja: number, jb: number, jc: number, out: Float64Array, o: number): void {
   const ux = x[jb] - x[ja], uy = x[jb + 1] - x[ja + 1], uz = x[jb + 2] - x[ja + 2];
   const vx = x[jc] - x[ja], vy = x[jc + 1] - x[ja + 1], vz = x[jc + 2] - x[ja + 2];
-  let nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
   const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
-  if (!(l > 1e-20)) return NaN;
-  nx /= l; ny /= l; nz /= l;
-  if (normal) { normal[0] = nx; normal[1] = ny; normal[2] = nz; }
-  return nx * (x[jp] - x[ja]) + ny * (x[jp + 1] - x[ja + 1]) + nz * (x[jp + 2] - x[ja + 2]);
+  if (!(l > 1e-20)) { out[o] = out[o + 1] = out[o + 2] = NaN; return; }
+  out[o] = nx / l; out[o + 1] = ny / l; out[o + 2] = nz / l;
 }
 
 /** The barycentric weights (into `bary`) of the projection of jp onto the triangle's plane, unclamped. */
@@ -429,7 +567,8 @@ function closestPoint(x: Float32Array, jp: number, ja: number, jb: number, jc: n
   }
   bary[0] = 1 - u - v; bary[1] = u; bary[2] = v;
   const cx = x[ja] + u * abx + v * acx, cy = x[ja + 1] + u * aby + v * acy, cz = x[ja + 2] + u * abz + v * acz;
-  return Math.hypot(x[jp] - cx, x[jp + 1] - cy, x[jp + 2] - cz);
+  const ex = x[jp] - cx, ey = x[jp + 1] - cy, ez = x[jp + 2] - cz;
+  return Math.sqrt(ex * ex + ey * ey + ez * ez);
 }
 
 /**
@@ -446,13 +585,15 @@ function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s
   const edges = model.edges, ne = edges.length / 2;
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
   // each box widened by h/2: two edges nearer than h have boxes that meet
-  const boxes = s.edgeBoxes, r = 0.5 * hMax;
+  const boxes = s.edgeBoxes, pb = s.particleBoxes, r = 0.5 * hMax;
   for (let e = 0; e < ne; e++) {
-    const b = 6 * e, i = 3 * edges[2 * e], j = 3 * edges[2 * e + 1];
-    for (let c = 0; c < 3; c++) {
-      boxes[b + c] = Math.min(x[i + c], xp[i + c], x[j + c], xp[j + c]) - r;
-      boxes[b + 3 + c] = Math.max(x[i + c], xp[i + c], x[j + c], xp[j + c]) + r;
-    }
+    const b = 6 * e, i = 6 * edges[2 * e], j = 6 * edges[2 * e + 1];
+    boxes[b] = Math.min(pb[i], pb[j]) - r;
+    boxes[b + 1] = Math.min(pb[i + 1], pb[j + 1]) - r;
+    boxes[b + 2] = Math.min(pb[i + 2], pb[j + 2]) - r;
+    boxes[b + 3] = Math.max(pb[i + 3], pb[j + 3]) + r;
+    boxes[b + 4] = Math.max(pb[i + 4], pb[j + 4]) + r;
+    boxes[b + 5] = Math.max(pb[i + 5], pb[j + 5]) + r;
   }
   const owner = params.owner, { thickness, friction, staticFriction } = params.perCloth;
   const pairs = s.edgePairs;
@@ -462,10 +603,10 @@ function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s
     const a = edges[2 * e], b = edges[2 * e + 1], c = edges[2 * f], d = edges[2 * f + 1];
     const ca = owner[a], cc = owner[c];
     if (ca === cc) {
-      resolveEdges(x, xp, w, Math.min(thickness[ca], hMax), friction[ca], staticFriction[ca], a, b, c, d);
+      resolveEdges(s, x, xp, w, Math.min(thickness[ca], hMax), friction[ca], staticFriction[ca], q, e, f, a, b, c, d);
     } else {
       const h = Math.min(0.5 * (thickness[ca] + thickness[cc]), hMax);
-      resolveEdges(x, xp, w, h, Math.sqrt(friction[ca] * friction[cc]), Math.sqrt(staticFriction[ca] * staticFriction[cc]), a, b, c, d);
+      resolveEdges(s, x, xp, w, h, Math.sqrt(friction[ca] * friction[cc]), Math.sqrt(staticFriction[ca] * staticFriction[cc]), q, e, f, a, b, c, d);
     }
   }
 }
@@ -504,15 +645,55 @@ function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: num
 /** Whether a closest point's parameter lies inside its edge (not at an end). */
 const inside = (v: number) => v > 1e-6 && v < 1 - 1e-6;
 
-/** Edges a–b and c–d: passed through, or too near (see collideEdges), kept h [m] apart with friction mu, muS [-]. */
+/**
+ * Edge e = (a, b)'s frame (SelfScratch.edgeFrame: its midpoint now and half its vector), computed unless it is
+ * current; returns its offset in edgeFrame.
+ */
+function edgeFrame(s: SelfScratch, x: Float32Array, e: number, a: number, b: number): number {
+  const o = 6 * e, at = s.edgeFrameAt[e];
+  if (at >= s.substepAt && s.movedAt[a] <= at && s.movedAt[b] <= at) return o;
+  const f = s.edgeFrame, ja = 3 * a, jb = 3 * b;
+  f[o] = 0.5 * (x[ja] + x[jb]); f[o + 1] = 0.5 * (x[ja + 1] + x[jb + 1]); f[o + 2] = 0.5 * (x[ja + 2] + x[jb + 2]);
+  f[o + 3] = 0.5 * (x[jb] - x[ja]); f[o + 4] = 0.5 * (x[jb + 1] - x[ja + 1]); f[o + 5] = 0.5 * (x[jb + 2] - x[ja + 2]);
+  s.edgeFrameAt[e] = s.clock;
+  return o;
+}
+
+/**
+ * Edges e = a–b and f = c–d, pair q of the list: passed through, or too near (see collideEdges), kept h [m] apart
+ * with friction mu, muS [-]. A pair at least h and δ apart now, δ the sum of the edges' largest end moves over the
+ * substep, is neither too near nor passed through (passing through needs the distance now to be at most δ: q→p
+ * then differs by at most δ from the vector between the points of the same parameters now, whose dot product with
+ * q→p now is at least |q→p now|², the closest point of a convex set). Three lower bounds on the distance now say
+ * so before the closest points: the pair's last measured distance less what its particles travelled since (a
+ * segment moves no farther than its ends); along the line through the midpoints each segment spans its extent
+ * along that line (the separation of the two projections); and the closest points now, measured.
+ */
 function resolveEdges(
-  x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number, a: number, b: number, c: number, d: number,
+  sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number,
+  q: number, e: number, f: number, a: number, b: number, c: number, d: number,
 ): void {
+  const move = sc.move, travel = sc.travel, memo = sc.edgeMemo;
+  const apart = Math.max(h, Math.max(move[a], move[b]) + Math.max(move[c], move[d])) + SKIP_MARGIN;
+  const travelled = travel[a] + travel[b] + travel[c] + travel[d];
+  if (memo[2 * q] - (travelled - memo[2 * q + 1]) >= apart) return;
+  memo[2 * q + 1] = travelled;
+  const oe = edgeFrame(sc, x, e, a, b), of = edgeFrame(sc, x, f, c, d), fr = sc.edgeFrame;
+  const mx = fr[oe] - fr[of], my = fr[oe + 1] - fr[of + 1], mz = fr[oe + 2] - fr[of + 2];
+  const m2 = mx * mx + my * my + mz * mz, ml = Math.sqrt(m2);
+  const extent = Math.abs(mx * fr[oe + 3] + my * fr[oe + 4] + mz * fr[oe + 5]) + Math.abs(mx * fr[of + 3] + my * fr[of + 4] + mz * fr[of + 5]);
+  // |m| − the half extents along m̂, times |m| (strictly: coinciding midpoints prove nothing)
+  if (m2 - extent > apart * ml) {
+    memo[2 * q] = (m2 - extent) / ml;
+    return;
+  }
+  const len = segmentClosest(x, a, b, c, d, gap);
+  memo[2 * q] = len;
+  if (len >= apart) return;
+  const s = st[0], t = st[1];
   const len0 = segmentClosest(xp, a, b, c, d, gap0);
   const in0 = inside(st[0]) && inside(st[1]);
-  const len = segmentClosest(x, a, b, c, d, gap);
   if (!Number.isFinite(len) || !Number.isFinite(len0)) return;
-  const s = st[0], t = st[1];
   let C: number;
   if (in0 && inside(s) && inside(t) && len0 > 1e-12 && gap[0] * gap0[0] + gap[1] * gap0[1] + gap[2] * gap0[2] < 0) {
     // passed through: back to the side of then, h along that direction
@@ -536,10 +717,12 @@ function resolveEdges(
   const rn = rx * dir[0] + ry * dir[1] + rz * dir[2];
   const tx = rx - rn * dir[0], ty = ry - rn * dir[1], tz = rz - rn * dir[2];
   const tl = Math.sqrt(tx * tx + ty * ty + tz * tz);
-  const f = tl < 1e-12 ? 0 : tl < muS * depth ? 1 : Math.min((mu * depth) / tl, 1);
-  const kx = lambda * dir[0] - (f * tx) / denom, ky = lambda * dir[1] - (f * ty) / denom, kz = lambda * dir[2] - (f * tz) / denom;
+  const fs = tl < 1e-12 ? 0 : tl < muS * depth ? 1 : Math.min((mu * depth) / tl, 1);
+  const kx = lambda * dir[0] - (fs * tx) / denom, ky = lambda * dir[1] - (fs * ty) / denom, kz = lambda * dir[2] - (fs * tz) / denom;
+  moved(sc, a, b, c, d);
   x[ja] += wa * ka * kx; x[ja + 1] += wa * ka * ky; x[ja + 2] += wa * ka * kz;
   x[jb] += wb * kb * kx; x[jb + 1] += wb * kb * ky; x[jb + 2] += wb * kb * kz;
   x[jc] -= wc * kc * kx; x[jc + 1] -= wc * kc * ky; x[jc + 2] -= wc * kc * kz;
   x[jd] -= wd * kd * kx; x[jd + 1] -= wd * kd * ky; x[jd + 2] -= wd * kd * kz;
+  track(sc, x, xp, a); track(sc, x, xp, b); track(sc, x, xp, c); track(sc, x, xp, d);
 }

@@ -2,8 +2,9 @@
  * The XPBD solver's substep in WebAssembly (SIMD, optionally threads): a ClothState whose arrays live in the
  * kernel's memory, so the TypeScript reference (reference.ts) and the kernel work on the same arrays with no copy.
  * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
- * (KERNEL_PHASES: integration, the grab, the distance constraints, tethers, stretch limiting, and particle contact
- * against every analytic collider, moving or not) and runs each substep's run of them in one call; the phases it
+ * (KERNEL_PHASES: integration, the grab, the distance constraints, tethers, stretch limiting, self-contact — its
+ * passes; the candidates are found in TypeScript, self-contact-wasm.ts — and particle contact against every analytic
+ * collider, moving or not) and runs each substep's run of them in one call (two, around self-contact); the phases it
  * lacks (the start and end of a frame, wind, carried pins, triangle contact) run in TypeScript in their place in the
  * schedule.
  *
@@ -24,6 +25,7 @@ import {
   KERNEL_MAX_ITERATIONS, KERNEL_MAX_THREADS, MAX_COLLIDERS, COLLIDER_RECORD_FLOATS, COLLIDER_BOX, COLLIDER_CAPSULE,
   COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
 } from '../layout.generated.js';
+import { KernelSelfContact, layoutSelfContact, type SelfContactExports } from './self-contact-wasm.js';
 import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
@@ -45,16 +47,19 @@ function contactRefusal(params: SimParams): string | null {
   return null;
 }
 
-/** The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter). */
+/**
+ * The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter, and
+ * stencil bending; self-contact's narrow phase in the kernel, its candidate search in TypeScript: self-contact-wasm.ts).
+ */
 export const KERNEL_PHASES: BackendPhases = {
   name: 'WebAssembly kernel',
   where: 'in the WebAssembly kernel',
   sharesMemory: true,
   solvers: ['xpbd'],
   phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.tethers) |
-    (1 << PHASE.stretchLimit) | (1 << PHASE.contact),
+    (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact),
   // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
-  // that read it to the reference
+  // that read it to the reference (self-contact reads each particle's cloth: it takes any)
   refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
     (id === PHASE.contact ? contactRefusal(params) : null) ?? perClothRefusal(id, params),
 };
@@ -62,7 +67,7 @@ export const KERNEL_PHASES: BackendPhases = {
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
 const SPIN_LIMIT = 1 << 15;
 
-interface KernelExports {
+interface KernelExports extends SelfContactExports {
   configure(...layout: number[]): void;
   substep(): void;
   helperLoop(thread: number): void;
@@ -158,6 +163,7 @@ export class XpbdKernel implements PhaseBackend {
   private readonly ctrlI32: Int32Array;
   private readonly ctrlF64: Float64Array;
   private readonly alpha: Float32Array;
+  private readonly selfContact: KernelSelfContact;
   private readonly helpers: { terminate(): void }[] = [];
   private paramsSeen: SimParams | undefined;
   /** with helpers: whether a frame runs with them (thread-mode.ts) */
@@ -166,7 +172,7 @@ export class XpbdKernel implements PhaseBackend {
   private helperError: Error | undefined;
   private disposed = false;
 
-  private constructor(model: ClothModel, threads: number, module: WebAssembly.Module) {
+  private constructor(model: ClothModel, threads: number, module: WebAssembly.Module, selfWindow?: number) {
     this.threads = threads;
     this.module = module;
     const n = model.particleCount, m = model.restLengths.length, nb = model.batches.length;
@@ -175,6 +181,7 @@ export class XpbdKernel implements PhaseBackend {
     const X = take(12 * n), XP = take(12 * n), XR = take(12 * n), XPR = take(12 * n), V = take(12 * n), W = take(4 * n), F = take(12 * n);
     const LAMBDA = take(4 * m), ANCHOR = take(4 * n), TLEN = take(4 * n);
     const SPRINGS = take(8 * m), REST = take(4 * m), ALPHA = take(4 * m), BATCHES = take(12 * nb);
+    const self = layoutSelfContact(model, take, selfWindow);
     const pages = Math.ceil(at / 65536);
     this.memory = threads > 1
       ? new WebAssembly.Memory({ initial: pages, maximum: pages, shared: true })
@@ -189,6 +196,7 @@ export class XpbdKernel implements PhaseBackend {
     const batches = new Int32Array(buf, BATCHES, 3 * nb);
     model.batches.forEach((b, k) => { batches[3 * k] = b.start; batches[3 * k + 1] = b.end; batches[3 * k + 2] = b.kind; });
     this.alpha = new Float32Array(buf, ALPHA, m);
+    this.selfContact = new KernelSelfContact(model, buf, self, this.exports);
     this.ctrlI32[CTRL.THREADS / 4] = 1;
     this.ctrlI32[CTRL.SPIN_LIMIT / 4] = SPIN_LIMIT;
     this.state = createState(model, {
@@ -210,12 +218,13 @@ export class XpbdKernel implements PhaseBackend {
 
   /**
    * A kernel and its state for `model`, or null where the runtime has no WebAssembly SIMD (or, with threads > 1,
-   * no shared memory: then the caller may ask again with 1 thread).
+   * no shared memory: then the caller may ask again with 1 thread). `selfWindow` [pairs]: the size of
+   * self-contact's pair windows (tests: a small one; by default they grow with the cloth, self-contact-wasm.ts).
    */
-  static create(model: ClothModel, threads = 1): XpbdKernel | null {
+  static create(model: ClothModel, threads = 1, selfWindow?: number): XpbdKernel | null {
     const t = Math.min(KERNEL_MAX_THREADS, Math.max(1, Math.floor(threads)));
     const module = kernelModule(t > 1);
-    return module ? new XpbdKernel(model, t, module) : null;
+    return module ? new XpbdKernel(model, t, module, selfWindow) : null;
   }
 
   /** Starts the helper threads with `spawn` (threads − 1 of them); substeps use them once all have checked in. */
@@ -311,10 +320,27 @@ export class XpbdKernel implements PhaseBackend {
   }
 
   /**
-   * The kernel's phases of `mask` (of one substep: frame.sub, starting at state.time) in one substep() call, with
-   * the colliders' records of this substep when it has contact; it lists what it ran for `log`.
+   * The kernel's phases of `mask` (of one substep: frame.sub, starting at state.time): those before self-contact in
+   * one substep() call, self-contact on this thread (self-contact-wasm.ts: the candidate search here, the passes in
+   * the kernel), those after it in another substep() call; it lists what it ran for `log`.
    */
   run(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
+    const self = 1 << PHASE.selfContact;
+    if ((mask & self) === 0) {
+      this.substep(mask, model, state, params, frame, log);
+      return;
+    }
+    if ((mask & (self - 1)) !== 0) this.substep(mask & (self - 1), model, state, params, frame, log);
+    this.selfContact.run(model, state, params, frame.h, frame.substeps - frame.sub);
+    log?.push(PHASE.selfContact, false);
+    if ((mask & ~(2 * self - 1)) !== 0) this.substep(mask & ~(2 * self - 1), model, state, params, frame, log);
+  }
+
+  /**
+   * The kernel's phases of `mask` (self-contact's aside) in one substep() call, with the colliders' records of this
+   * substep when it has contact; it lists what it ran for `log`.
+   */
+  private substep(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
     const f = this.ctrlF64, i = this.ctrlI32;
     const accumulate = phasePasses(PHASE.distance, params) > 1;
     // λ starts from zero in every substep where it accumulates across passes

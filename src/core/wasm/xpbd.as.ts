@@ -7,6 +7,8 @@
 //   integrate.as.ts    integration and the grab
 //   constraints.as.ts  distance constraints, tethers, stretch limiting
 //   contact.as.ts      particle contact against the collider records
+//   self-contact.as.ts self-contact's passes over the candidate pairs (the host calls them between two substep()
+//                      calls, on thread 0: the selfContact phase is never part of a substep() here)
 //   simd.as.ts         the f32x4 lane helpers they share
 //   arrays.as.ts       the arrays' byte offsets (configure())
 //   threads.as.ts      the protocol under which threads share a substep
@@ -34,6 +36,7 @@ import {
 } from './threads.as';
 
 export { configure } from './arrays.as';
+export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfParticles, selfTriangleBoxes } from './self-contact.as';
 
 /**
  * Helper thread t's loop: wait for a dispatch, take part in that substep, repeat until told to exit. It reads the

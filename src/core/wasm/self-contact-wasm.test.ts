@@ -1,0 +1,124 @@
+/**
+ * Self-contact in the WebAssembly kernel (self-contact.as.ts, its host self-contact-wasm.ts) against the TypeScript
+ * reference it ports (self-contact.ts): the same operations in the same order, so the same cloth bit for bit.
+ */
+import { describe, expect, it } from 'vitest';
+import { countIntersections } from '../intersections.js';
+import { FRAME_DT } from '../params.js';
+import { REFERENCE } from '../reference.js';
+import { builtinScene } from '../scenes.js';
+import { PHASE, PhaseLog, framePhases } from '../schedule.js';
+import { collideSelf } from '../self-contact.js';
+import { Simulation } from '../simulation.js';
+import { copyState, createState } from '../state.js';
+import type { Scene } from '../scene.js';
+import { XpbdKernel } from './xpbd-wasm.js';
+import { WasmBackend } from '../backend.js';
+
+/** layers (three cloths of different friction) with the middle cloth thicker: the pairs' distances differ too */
+function thickLayers(): Scene {
+  const s = builtinScene('layers');
+  s.cloths![1].cloth.thickness = 0.008;
+  return s;
+}
+
+/**
+ * Runs `sim` (TypeScript) to each of `frames`, then the next substep's phases before self-contact on a copy of its
+ * state, and self-contact on that copy twice: the reference's collideSelf, and the kernel's (window: its pair
+ * windows' size). Returns, per frame, whether the two gave the same positions bit for bit and how many coordinates
+ * self-contact moved.
+ */
+function phaseParity(scene: Scene, frames: number[], window?: number): { same: boolean; moved: number }[] {
+  const sim = new Simulation(scene, { kernel: 'ts' });
+  const { model, params } = sim;
+  const kernel = XpbdKernel.create(model, 1, window)!;
+  const ts = createState(model);
+  const out: { same: boolean; moved: number }[] = [];
+  let at = 0;
+  for (const f of frames) {
+    sim.advance(f - at);
+    at = f;
+    copyState(sim.state, ts);
+    const frame = { h: FRAME_DT / params.substeps, substeps: params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3) };
+    const phases = framePhases(model, ts, params);
+    for (let id = 0; id < PHASE.selfContact; id++) if ((phases & (1 << id)) !== 0) REFERENCE[id](model, ts, params, frame);
+    copyState(ts, kernel.state);
+    kernel.state.invMass.set(ts.invMass);
+    const before = ts.positions.slice();
+    collideSelf(model, ts, params, frame.h, frame.substeps);
+    kernel.run(1 << PHASE.selfContact, model, kernel.state, params, frame, undefined);
+    let same = true, moved = 0;
+    for (let i = 0; i < before.length; i++) {
+      if (ts.positions[i] !== kernel.state.positions[i]) same = false;
+      if (ts.positions[i] !== before[i]) moved++;
+    }
+    out.push({ same, moved });
+  }
+  kernel.dispose();
+  sim.dispose();
+  return out;
+}
+
+describe('self-contact in the WebAssembly kernel', () => {
+  it('is the kernel\'s own phase, also for cloths that differ in thickness and friction', () => {
+    for (const scene of [builtinScene('fold'), thickLayers()]) {
+      const sim = new Simulation(scene, { kernel: 'wasm', threads: 1 });
+      const log = new PhaseLog();
+      (sim.backend as WasmBackend).kernel.frame(sim.model, sim.state, sim.params, FRAME_DT, log);
+      const names = log.names();
+      expect(names.filter((n) => n === 'selfContact')).toHaveLength(sim.params.substeps);
+      expect(names).not.toContain('selfContact (reference)');
+      sim.dispose();
+    }
+  });
+
+  // landing: the substeps where the passes move the most (fold lands corner first from frame ~10, layers' cloths
+  // reach the sphere and each other from frame ~20)
+  it.each([
+    ['fold', () => builtinScene('fold'), [15, 30, 45]],
+    ['layers, the middle cloth thicker', thickLayers, [30, 45, 60]],
+  ] as const)('%s: one substep gives the reference\'s positions bit for bit', (_name, scene, frames) => {
+    const runs = phaseParity(scene(), [...frames]);
+    expect(runs.map((r) => r.same)).toEqual(frames.map(() => true));
+    expect(runs.every((r) => r.moved > 0)).toBe(true); // self-contact did move the cloth in each
+  });
+
+  it('pairs beyond the windows in the kernel memory go through window by window, in order: the same positions', () => {
+    // 64-pair windows: fold at 32² lists thousands of pairs
+    const runs = phaseParity(builtinScene('fold'), [15, 30], 64);
+    expect(runs.map((r) => r.same)).toEqual([true, true]);
+    expect(runs.every((r) => r.moved > 0)).toBe(true);
+  });
+
+  it('layers, 60 frames: the TypeScript kernel\'s cloth bit for bit (the kernel\'s other phases there are the reference\'s: the cloths differ in damping, friction and stretch limit)', () => {
+    // substep after substep: the frames, the clock and the edge pairs' measured distances carried across substeps
+    const ts = new Simulation(builtinScene('layers'), { kernel: 'ts' }), wasm = new Simulation(builtinScene('layers'), { kernel: 'wasm', threads: 1 });
+    ts.advance(60); wasm.advance(60);
+    expect([...wasm.state.positions]).toEqual([...ts.state.positions]);
+    expect(countIntersections(wasm.model.triangles, wasm.state.positions)).toBe(0);
+    ts.dispose();
+    wasm.dispose();
+  });
+
+  it('fold (32²) on the kernel crosses itself nowhere at frame 300', () => {
+    const sim = new Simulation(builtinScene('fold'), { kernel: 'wasm', threads: 1 });
+    sim.advance(300);
+    expect(countIntersections(sim.model.triangles, sim.state.positions)).toBe(0);
+    expect(sim.report().finite).toBe(true);
+    sim.dispose();
+  });
+
+  it('fold against the TypeScript kernel: 1 frame within f32 rounding, 30 frames the same cloth as a whole', () => {
+    const ts = new Simulation(builtinScene('fold'), { kernel: 'ts' }), wasm = new Simulation(builtinScene('fold'), { kernel: 'wasm', threads: 1 });
+    ts.advance(1); wasm.advance(1);
+    let d = 0;
+    for (let i = 0; i < ts.state.positions.length; i++) d = Math.max(d, Math.abs(ts.state.positions[i] - wasm.state.positions[i]));
+    expect(d).toBeLessThan(1e-6);
+    // the landing parts the runs at contact decisions (the constraint passes in f32 lanes there, f64 here)
+    ts.advance(29); wasm.advance(29);
+    const a = ts.report(), b = wasm.report();
+    for (let k = 0; k < 3; k++) expect(Math.abs(a.centroid[k] - b.centroid[k])).toBeLessThan(2e-3);
+    ts.dispose();
+    wasm.dispose();
+  });
+});

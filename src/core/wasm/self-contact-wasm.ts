@@ -1,0 +1,177 @@
+/**
+ * The WebAssembly kernel's self-contact (the `selfContact` phase; self-contact.ts is the reference): the host's
+ * part. The candidate pairs are found ahead in TypeScript (findSelfCandidates, the reference's own search) and
+ * copied into the kernel's memory after each search; every substep the kernel (self-contact.as.ts) computes the
+ * particles' boxes over the substep and checks them against the reach boxes, and runs the particle–triangle and
+ * edge–edge passes over the pairs, with the reference's operations in its order: the same cloth bit for bit. The
+ * passes run on the calling thread (Gauss–Seidel, in the pairs' order) between two substep() calls of the other
+ * phases. The pairs live in two windows of fixed size in the kernel's memory (its size is fixed when the kernel is
+ * made); a search that finds more pairs than a window holds keeps them here and copies them in window by window
+ * every substep, in order, which only costs the copies. Several cloths: each particle's cloth and each cloth's
+ * thickness and friction are in the kernel's memory, so cloths that differ in them run here too.
+ */
+import type { ClothModel } from '../model.js';
+import type { SimParams } from '../params.js';
+import { findSelfCandidates, selfContactDistance, type SelfCandidates } from '../self-contact.js';
+import type { ClothState } from '../state.js';
+
+/** What the kernel exports for self-contact (self-contact.as.ts). */
+export interface SelfContactExports {
+  configureSelf(...layout: number[]): void;
+  selfBoxes(start: boolean): number;
+  selfFound(edgePairs: number): void;
+  selfTriangleBoxes(hMax: number): void;
+  selfParticles(count: number, hMax: number): void;
+  selfEdgeBoxes(hMax: number): void;
+  selfEdges(count: number, hMax: number, memo: boolean): void;
+}
+
+/** Pairs a window holds by default [pairs]: per particle, particle–triangle and edge–edge, and at least. */
+const WINDOW_PER_PARTICLE = 16;
+const EDGE_WINDOW_PER_PARTICLE = 48;
+const WINDOW_MIN = 1 << 14;
+
+/** Where self-contact's arrays lie in the kernel's memory (byte offsets) and how many pairs each window holds. */
+export interface SelfContactLayout {
+  tris: number; edges: number; owner: number; cloth: number; reach: number; pbox: number; tbox: number; ebox: number;
+  tframe: number; eframe: number; tframeAt: number; eframeAt: number; movedAt: number; pairs: number; edgePairs: number;
+  travel: number; seen: number; move: number; edgeMemo: number; window: number; edgeWindow: number;
+}
+
+/**
+ * Lays self-contact's arrays out for `model` with `take(bytes)` (the kernel's allocator: returns the byte offset);
+ * `window` [pairs] sets both windows' size (tests: a small one, to run the window-by-window path).
+ */
+export function layoutSelfContact(model: ClothModel, take: (bytes: number) => number, window?: number): SelfContactLayout {
+  const n = model.particleCount, nt = model.triangles.length / 3, ne = model.edges.length / 2;
+  const w = window ?? Math.max(WINDOW_MIN, WINDOW_PER_PARTICLE * n), we = window ?? Math.max(WINDOW_MIN, EDGE_WINDOW_PER_PARTICLE * n);
+  return {
+    tris: take(12 * nt), edges: take(8 * ne), owner: take(n), cloth: take(24 * (model.clothStarts.length - 1)),
+    reach: take(48 * n), pbox: take(48 * n), tbox: take(48 * nt), ebox: take(48 * ne),
+    tframe: take(80 * nt), eframe: take(48 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
+    pairs: take(8 * w), edgePairs: take(8 * we), travel: take(8 * n), seen: take(12 * n), move: take(8 * n), edgeMemo: take(16 * we),
+    window: w, edgeWindow: we,
+  };
+}
+
+/** A pair list kept on the host while it is larger than its window, and the window it is copied into. */
+class PairList {
+  /** the window in the kernel's memory: pairs of i32 */
+  readonly window: Int32Array;
+  /** the list when it is larger than the window, else unused (grows rarely) */
+  private overflow = new Int32Array(0);
+  /** pairs in the list; whether they are all in the window */
+  count = 0;
+  resident = true;
+
+  constructor(memory: ArrayBufferLike, at: number, pairs: number) {
+    this.window = new Int32Array(memory, at, 2 * pairs);
+  }
+
+  /** Takes the first `count` pairs of `list` (after a search): into the window when they fit, else kept here. */
+  take(list: Int32Array, count: number): void {
+    this.count = count;
+    this.resident = 2 * count <= this.window.length;
+    if (this.resident) {
+      this.window.set(list.subarray(0, 2 * count));
+      return;
+    }
+    if (this.overflow.length < 2 * count) this.overflow = new Int32Array(Math.ceil(3 * count));
+    this.overflow.set(list.subarray(0, 2 * count));
+  }
+
+  /**
+   * Runs `pass(count, hMax, resident)` over every pair in order: the window at once (resident: the window keeps its
+   * pairs from substep to substep), or window by window.
+   */
+  run(pass: (count: number, hMax: number, resident: boolean) => void, hMax: number): void {
+    if (this.resident) {
+      pass(this.count, hMax, true);
+      return;
+    }
+    const cap = this.window.length / 2;
+    for (let q = 0; q < this.count; q += cap) {
+      const k = Math.min(cap, this.count - q);
+      this.window.set(this.overflow.subarray(2 * q, 2 * (q + k)));
+      pass(k, hMax, false);
+    }
+  }
+}
+
+/** One kernel's self-contact: its arrays in the kernel's memory and the candidates it holds. */
+export class KernelSelfContact {
+  private readonly exports: SelfContactExports;
+  private readonly reach: Float64Array;
+  private readonly owner: Uint8Array;
+  private readonly cloth: Float64Array;
+  private readonly pairs: PairList;
+  private readonly edgePairs: PairList;
+  /** the distance h [m] the candidates in the kernel were found for (NaN: none) */
+  private builtFor = NaN;
+  private paramsSeen: SimParams | undefined;
+  private readonly particles: (count: number, hMax: number) => void;
+  private readonly edges: (count: number, hMax: number, resident: boolean) => void;
+
+  /** Self-contact for `model` in the kernel whose memory is `memory`, laid out by layoutSelfContact. */
+  constructor(model: ClothModel, memory: ArrayBufferLike, layout: SelfContactLayout, exports: SelfContactExports) {
+    const n = model.particleCount, nt = model.triangles.length / 3, ne = model.edges.length / 2;
+    new Uint32Array(memory, layout.tris, 3 * nt).set(model.triangles);
+    new Uint32Array(memory, layout.edges, 2 * ne).set(model.edges);
+    this.reach = new Float64Array(memory, layout.reach, 6 * n);
+    this.owner = new Uint8Array(memory, layout.owner, n);
+    this.cloth = new Float64Array(memory, layout.cloth, 3 * (model.clothStarts.length - 1));
+    this.pairs = new PairList(memory, layout.pairs, layout.window);
+    this.edgePairs = new PairList(memory, layout.edgePairs, layout.edgeWindow);
+    this.exports = exports;
+    const l = layout;
+    exports.configureSelf(l.tris, l.edges, l.owner, l.cloth, l.reach, l.pbox, l.tbox, l.ebox, l.tframe, l.eframe,
+      l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, nt, ne);
+    this.particles = (count, hMax) => exports.selfParticles(count, hMax);
+    // the edge pairs' measured distances hold while the window keeps its pairs
+    this.edges = (count, hMax, resident) => exports.selfEdges(count, hMax, resident);
+  }
+
+  /**
+   * One substep of self-contact on the kernel's state, as collideSelf: substep length h [s], `left` substeps of the
+   * frame left (this one included).
+   */
+  run(model: ClothModel, state: ClothState, params: SimParams, h: number, left: number): void {
+    if (model.triangles.length / 3 < 2) return;
+    const hMax = selfContactDistance(model, params);
+    if (!(hMax > 0)) return;
+    if (params !== this.paramsSeen) {
+      // each particle's cloth, each cloth's thickness and friction
+      this.owner.set(params.owner);
+      const { thickness, friction, staticFriction } = params.perCloth;
+      for (let c = 0; c < thickness.length; c++) {
+        this.cloth[3 * c] = thickness[c]; this.cloth[3 * c + 1] = friction[c]; this.cloth[3 * c + 2] = staticFriction[c];
+      }
+      this.paramsSeen = params;
+    }
+    const ex = this.exports;
+    // the candidates hold while every particle's box over this substep is inside its reach box
+    const within = ex.selfBoxes(true) === 1;
+    if (!(this.builtFor === hMax && within) && !this.find(model, state, params, hMax, h, left)) return;
+    ex.selfTriangleBoxes(hMax);
+    this.pairs.run(this.particles, hMax);
+    // the particle pass may have pushed a particle out of its reach box
+    if (ex.selfBoxes(false) !== 1 && !this.find(model, state, params, hMax, h, left)) return;
+    ex.selfEdgeBoxes(hMax);
+    this.edgePairs.run(this.edges, hMax);
+  }
+
+  /** Finds the candidates (findSelfCandidates) and copies them into the kernel; false for an unstable cloth. */
+  private find(model: ClothModel, state: ClothState, params: SimParams, hMax: number, h: number, left: number): boolean {
+    const c: SelfCandidates | null = findSelfCandidates(model, state, params, h, left);
+    if (!c) {
+      this.builtFor = NaN;
+      return false;
+    }
+    this.reach.set(c.reach);
+    this.pairs.take(c.pairs, c.pairCount);
+    this.edgePairs.take(c.edgePairs, c.edgePairCount);
+    this.exports.selfFound(this.edgePairs.resident ? c.edgePairCount : 0);
+    this.builtFor = hMax;
+    return true;
+  }
+}

@@ -1,0 +1,508 @@
+// Self-contact's narrow phase (the selfContact phase; self-contact.ts is the reference and says what it does): each
+// substep, every particle's box over the substep and the check that it is still inside its reach box, then the
+// particle–triangle pass and the edge–edge pass over the candidate pairs the host found ahead (findCandidates, in
+// TypeScript) and wrote here. The same operations in the same order as the reference, f64 on the f32 positions, so
+// the same cloth bit for bit. One thread, a Gauss–Seidel pass in the pairs' order: the host calls these on thread 0
+// between two substep() calls (the helpers wait for the next dispatch).
+import { N, W, X, XP } from './arrays.as';
+
+// The arrays (byte offsets, laid out by the host: self-contact-wasm.ts) and counts, set by configureSelf().
+/** the triangles' particles, u32 × 3 per triangle */
+let TRIS: usize = 0;
+/** the edges' particles, u32 × 2 per edge */
+let EDGES: usize = 0;
+/** the cloth of each particle, u8 */
+let OWNER: usize = 0;
+/** per cloth: thickness [m], kinetic and static friction [-], f64 × 3 */
+let CLOTH: usize = 0;
+/** each particle's reach box (the host's, copied after each search), f64 × 6: min x, y, z, max x, y, z [m] */
+let REACH: usize = 0;
+/** each particle's box over the substep, f64 × 6 [m] */
+let PBOX: usize = 0;
+/** each triangle's box over the substep widened by h, and each edge's widened by h/2, f64 × 6 [m] */
+let TBOX: usize = 0;
+let EBOX: usize = 0;
+/**
+ * each triangle's frame, f64 × 10: the unit normal now and at the substep's start, the centroid now [m], the
+ * largest distance of a corner from it [m]; each edge's, f64 × 6: its midpoint now [m], half its vector b − a now [m]
+ */
+let TFRAME: usize = 0;
+let EFRAME: usize = 0;
+/** the clock when each triangle's and each edge's frame was computed, and when each particle last moved, i32 */
+let TFRAME_AT: usize = 0;
+let EFRAME_AT: usize = 0;
+let MOVED_AT: usize = 0;
+/** the candidate pairs: (particle, triangle) and (edge, edge), i32 × 2 each */
+let PAIRS: usize = 0;
+let EDGE_PAIRS: usize = 0;
+/**
+ * how far each particle can have moved since the candidates were found [m], f64 (the sum of its moves between the
+ * times self-contact looked at it: each phase's start, each correction), and where it was the last time, f32 × 3
+ */
+let TRAVEL: usize = 0;
+let SEEN: usize = 0;
+/** each particle's move over the substep so far, |x − x_prev| [m], f64 */
+let MOVE: usize = 0;
+/**
+ * per edge pair of EDGE_PAIRS: a lower bound on its distance [m] once measured (−∞ before) and its four particles'
+ * travel then [m], f64 × 2
+ */
+let EDGE_MEMO: usize = 0;
+/** triangles and edges */
+let NT: i32 = 0;
+let NE: i32 = 0;
+
+/**
+ * counts substeps and corrections: a frame is current while it was computed in this substep (at or after
+ * substepAt) and none of its particles moved after it. Reset (every frame made stale) before it could overflow.
+ */
+let clock: i32 = 0;
+let substepAt: i32 = 0;
+
+/** How far beyond h [m] a bound must say a pair is before it is skipped (self-contact.ts SKIP_MARGIN). */
+const SKIP_MARGIN: f64 = 1e-7;
+
+/** Sets the arrays' byte offsets and the counts (the host's layout). */
+export function configureSelf(
+  tris: usize, edges: usize, owner: usize, cloth: usize, reach: usize, pbox: usize, tbox: usize, ebox: usize,
+  tframe: usize, eframe: usize, tframeAt: usize, eframeAt: usize, movedAt: usize, pairs: usize, edgePairs: usize,
+  travel: usize, seen: usize, move: usize, edgeMemo: usize, triangles: i32, edgeCount: i32,
+): void {
+  TRIS = tris; EDGES = edges; OWNER = owner; CLOTH = cloth; REACH = reach; PBOX = pbox; TBOX = tbox; EBOX = ebox;
+  TFRAME = tframe; EFRAME = eframe; TFRAME_AT = tframeAt; EFRAME_AT = eframeAt; MOVED_AT = movedAt;
+  PAIRS = pairs; EDGE_PAIRS = edgePairs; TRAVEL = travel; SEEN = seen; MOVE = move; EDGE_MEMO = edgeMemo;
+  NT = triangles; NE = edgeCount;
+  resetClock();
+}
+
+/** Every frame stale, the clock back at 0. */
+function resetClock(): void {
+  for (let t = 0; t < NT; t++) store<i32>(TFRAME_AT + (<usize>t << 2), -1);
+  for (let e = 0; e < NE; e++) store<i32>(EFRAME_AT + (<usize>e << 2), -1);
+  for (let p = 0; p < N; p++) store<i32>(MOVED_AT + (<usize>p << 2), 0);
+  clock = 0;
+}
+
+/** Coordinate k (0, 1, 2) of particle byte offset j of the positions now / at the substep's start [m]. */
+@inline function xn(j: usize, k: usize): f64 { return <f64>load<f32>(X + j + (k << 2)); }
+@inline function xs(j: usize, k: usize): f64 { return <f64>load<f32>(XP + j + (k << 2)); }
+/** Adds d [m] to coordinate k of particle byte offset j now (rounded to f32, as the reference's `x[j] += d`). */
+@inline function addX(j: usize, k: usize, d: f64): void {
+  const at = X + j + (k << 2);
+  store<f32>(at, <f32>(<f64>load<f32>(at) + d));
+}
+/** Math.sign as the reference reads it (its sign of ±0 is 0 for these comparisons). */
+@inline function sign(v: f64): f64 { return v > 0 ? 1 : v < 0 ? -1 : 0; }
+/** Field k of an f64 array at byte offset `base`. */
+@inline function f64At(base: usize, k: usize): f64 { return load<f64>(base + (k << 3)); }
+
+/**
+ * Each particle's box over the substep (x_prev to x) into PBOX, and (`start`: the phase's start) its travel and move
+ * (track); 1 when every box lies inside its reach box, else 0 (also for a non-finite position): self-contact.ts
+ * substepBoxes().
+ */
+export function selfBoxes(start: bool): i32 {
+  let inside = 1;
+  for (let p = 0; p < N; p++) {
+    const j = <usize>p * 12, r = <usize>p * 48;
+    for (let k: usize = 0; k < 3; k++) {
+      const a = xn(j, k), b = xs(j, k);
+      const lo = min(a, b), hi = max(a, b);
+      store<f64>(PBOX + r + (k << 3), lo);
+      store<f64>(PBOX + r + 24 + (k << 3), hi);
+      if (!(lo >= f64At(REACH + r, k) && hi <= f64At(REACH + r, k + 3))) inside = 0;
+    }
+    if (start) track(p);
+  }
+  return inside;
+}
+
+/** Particle p's travel up to where it is now (TRAVEL, SEEN) and its move over the substep so far (MOVE). */
+function track(p: u32): void {
+  const j = <usize>p * 12, seen = SEEN + j;
+  const dx = xn(j, 0) - <f64>load<f32>(seen), dy = xn(j, 1) - <f64>load<f32>(seen, 4), dz = xn(j, 2) - <f64>load<f32>(seen, 8);
+  const t = TRAVEL + (<usize>p << 3);
+  store<f64>(t, load<f64>(t) + Math.sqrt(dx * dx + dy * dy + dz * dz));
+  store<f32>(seen, load<f32>(X + j)); store<f32>(seen, load<f32>(X + j, 4), 4); store<f32>(seen, load<f32>(X + j, 8), 8);
+  const mx = xn(j, 0) - xs(j, 0), my = xn(j, 1) - xs(j, 1), mz = xn(j, 2) - xs(j, 2);
+  store<f64>(MOVE + (<usize>p << 3), Math.sqrt(mx * mx + my * my + mz * mz));
+}
+
+/**
+ * After a search: distances are measured again from here (every particle's travel 0 from where it is, the first
+ * `edgePairs` pairs' memo unknown).
+ */
+export function selfFound(edgePairs: i32): void {
+  for (let p = 0; p < N; p++) {
+    const j = <usize>p * 12;
+    store<f64>(TRAVEL + (<usize>p << 3), 0);
+    store<f32>(SEEN + j, load<f32>(X + j)); store<f32>(SEEN + j, load<f32>(X + j, 4), 4); store<f32>(SEEN + j, load<f32>(X + j, 8), 8);
+  }
+  for (let q = 0; q < edgePairs; q++) {
+    store<f64>(EDGE_MEMO + (<usize>q << 4), -Infinity);
+    store<f64>(EDGE_MEMO + (<usize>q << 4), -Infinity, 8);
+  }
+}
+
+/**
+ * The triangles' boxes over the substep (their corners' PBOX), widened by hMax [m], and a new substep for the
+ * frames: the start of collideSelf's particle pass.
+ */
+export function selfTriangleBoxes(hMax: f64): void {
+  for (let t = 0; t < NT; t++) {
+    const b = TBOX + <usize>t * 48, tr = TRIS + <usize>t * 12;
+    const i = PBOX + <usize>load<u32>(tr) * 48, j = PBOX + <usize>load<u32>(tr, 4) * 48, k = PBOX + <usize>load<u32>(tr, 8) * 48;
+    for (let c: usize = 0; c < 3; c++) {
+      store<f64>(b + (c << 3), min(min(f64At(i, c), f64At(j, c)), f64At(k, c)) - hMax);
+      store<f64>(b + 24 + (c << 3), max(max(f64At(i, c + 3), f64At(j, c + 3)), f64At(k, c + 3)) + hMax);
+    }
+  }
+  if (clock > 1 << 30) resetClock();
+  substepAt = ++clock;
+}
+
+/** The edges' boxes over the substep (their ends' PBOX), widened by hMax/2 [m]: the start of collideEdges. */
+export function selfEdgeBoxes(hMax: f64): void {
+  const r = 0.5 * hMax;
+  for (let e = 0; e < NE; e++) {
+    const b = EBOX + <usize>e * 48, ed = EDGES + <usize>e * 8;
+    const i = PBOX + <usize>load<u32>(ed) * 48, j = PBOX + <usize>load<u32>(ed, 4) * 48;
+    for (let c: usize = 0; c < 3; c++) {
+      store<f64>(b + (c << 3), min(f64At(i, c), f64At(j, c)) - r);
+      store<f64>(b + 24 + (c << 3), max(f64At(i, c + 3), f64At(j, c + 3)) + r);
+    }
+  }
+}
+
+/** Whether point (x, y, z) [m] lies in the box at byte offset b. */
+@inline function inBox(b: usize, x: f64, y: f64, z: f64): bool {
+  return !(x < f64At(b, 0) || x > f64At(b, 3) || y < f64At(b, 1) || y > f64At(b, 4) || z < f64At(b, 2) || z > f64At(b, 5));
+}
+
+/** Whether the boxes at byte offsets a and b meet. */
+@inline function overlap(a: usize, b: usize): bool {
+  return !(f64At(a, 0) > f64At(b, 3) || f64At(a, 3) < f64At(b, 0) || f64At(a, 1) > f64At(b, 4) ||
+    f64At(a, 4) < f64At(b, 1) || f64At(a, 2) > f64At(b, 5) || f64At(a, 5) < f64At(b, 2));
+}
+
+/** Cloth c's thickness [m], kinetic and static friction [-]. */
+@inline function clothValue(c: i32, k: usize): f64 { return f64At(CLOTH + <usize>c * 24, k); }
+
+/**
+ * Particle–triangle pairs [0, count) of PAIRS, in order, as collideSelf's particle pass: a free particle whose
+ * position now or then lies in the triangle's box, with its pair's distance (at most hMax [m]) and friction.
+ */
+export function selfParticles(count: i32, hMax: f64): void {
+  for (let q = 0; q < count; q++) {
+    const pr = PAIRS + (<usize>q << 3);
+    const p = load<i32>(pr), t = load<i32>(pr, 4);
+    if (load<f32>(W + (<usize>p << 2)) == 0) continue;
+    const jp = <usize>p * 12, bb = TBOX + <usize>t * 48;
+    if (!inBox(bb, xn(jp, 0), xn(jp, 1), xn(jp, 2)) && !inBox(bb, xs(jp, 0), xs(jp, 1), xs(jp, 2))) continue;
+    const tr = TRIS + <usize>t * 12;
+    const a = load<u32>(tr), b = load<u32>(tr, 4), c = load<u32>(tr, 8);
+    const cp = <i32>load<u8>(OWNER + <usize>p), ct = <i32>load<u8>(OWNER + <usize>a);
+    if (cp == ct) {
+      resolvePair(min(clothValue(cp, 0), hMax), clothValue(cp, 1), clothValue(cp, 2), p, t, a, b, c);
+    } else {
+      const hp = min(0.5 * (clothValue(cp, 0) + clothValue(ct, 0)), hMax);
+      resolvePair(hp, Math.sqrt(clothValue(cp, 1) * clothValue(ct, 1)), Math.sqrt(clothValue(cp, 2) * clothValue(ct, 2)), p, t, a, b, c);
+    }
+  }
+}
+
+/** Marks particles as moved by a correction (their triangles' and edges' frames are computed again). */
+function moved(a: u32, b: u32, c: u32, d: u32): void {
+  const now = ++clock;
+  store<i32>(MOVED_AT + (<usize>a << 2), now);
+  store<i32>(MOVED_AT + (<usize>b << 2), now);
+  store<i32>(MOVED_AT + (<usize>c << 2), now);
+  store<i32>(MOVED_AT + (<usize>d << 2), now);
+}
+
+/** Whether particle p has not moved since clock value `at`. */
+@inline function stillSince(p: u32, at: i32): bool { return load<i32>(MOVED_AT + (<usize>p << 2)) <= at; }
+
+/** The unit normal of triangle (ja, jb, jc) (byte offsets) of positions `base` into the f64s at `out`; NaN if degenerate. */
+function unitNormal(base: usize, ja: usize, jb: usize, jc: usize, out: usize): void {
+  const ax = <f64>load<f32>(base + ja), ay = <f64>load<f32>(base + ja, 4), az = <f64>load<f32>(base + ja, 8);
+  const ux = <f64>load<f32>(base + jb) - ax, uy = <f64>load<f32>(base + jb, 4) - ay, uz = <f64>load<f32>(base + jb, 8) - az;
+  const vx = <f64>load<f32>(base + jc) - ax, vy = <f64>load<f32>(base + jc, 4) - ay, vz = <f64>load<f32>(base + jc, 8) - az;
+  const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
+  if (!(l > 1e-20)) {
+    store<f64>(out, NaN); store<f64>(out, NaN, 8); store<f64>(out, NaN, 16);
+    return;
+  }
+  store<f64>(out, nx / l); store<f64>(out, ny / l, 8); store<f64>(out, nz / l, 16);
+}
+
+/** Triangle t's frame (TFRAME), computed unless it is current; returns its byte offset. */
+function triangleFrame(t: i32, a: u32, b: u32, c: u32): usize {
+  const o = TFRAME + <usize>t * 80, atP = TFRAME_AT + (<usize>t << 2), at = load<i32>(atP);
+  if (at >= substepAt && stillSince(a, at) && stillSince(b, at) && stillSince(c, at)) return o;
+  const ja = <usize>a * 12, jb = <usize>b * 12, jc = <usize>c * 12;
+  unitNormal(X, ja, jb, jc, o);
+  unitNormal(XP, ja, jb, jc, o + 24);
+  const cx = (xn(ja, 0) + xn(jb, 0) + xn(jc, 0)) / 3, cy = (xn(ja, 1) + xn(jb, 1) + xn(jc, 1)) / 3, cz = (xn(ja, 2) + xn(jb, 2) + xn(jc, 2)) / 3;
+  store<f64>(o, cx, 48); store<f64>(o, cy, 56); store<f64>(o, cz, 64);
+  const ax = xn(ja, 0) - cx, ay = xn(ja, 1) - cy, az = xn(ja, 2) - cz;
+  const bx = xn(jb, 0) - cx, by = xn(jb, 1) - cy, bz = xn(jb, 2) - cz;
+  const qx = xn(jc, 0) - cx, qy = xn(jc, 1) - cy, qz = xn(jc, 2) - cz;
+  store<f64>(o, Math.sqrt(max(max(ax * ax + ay * ay + az * az, bx * bx + by * by + bz * bz), qx * qx + qy * qy + qz * qz)), 72);
+  store<i32>(atP, clock);
+  return o;
+}
+
+// barycentric weights of the last projection or closest point, and the correction's direction
+let B0: f64 = 0, B1: f64 = 0, B2: f64 = 0;
+let DX: f64 = 0, DY: f64 = 0, DZ: f64 = 0;
+
+/** The weights (B0, B1, B2) of the projection of jp onto the plane of (ja, jb, jc) of positions `base`, unclamped. */
+function barycentric(base: usize, jp: usize, ja: usize, jb: usize, jc: usize): void {
+  const ax = <f64>load<f32>(base + ja), ay = <f64>load<f32>(base + ja, 4), az = <f64>load<f32>(base + ja, 8);
+  const ux = <f64>load<f32>(base + jb) - ax, uy = <f64>load<f32>(base + jb, 4) - ay, uz = <f64>load<f32>(base + jb, 8) - az;
+  const vx = <f64>load<f32>(base + jc) - ax, vy = <f64>load<f32>(base + jc, 4) - ay, vz = <f64>load<f32>(base + jc, 8) - az;
+  const qx = <f64>load<f32>(base + jp) - ax, qy = <f64>load<f32>(base + jp, 4) - ay, qz = <f64>load<f32>(base + jp, 8) - az;
+  const uu = ux * ux + uy * uy + uz * uz, uv = ux * vx + uy * vy + uz * vz, vv = vx * vx + vy * vy + vz * vz;
+  const qu = qx * ux + qy * uy + qz * uz, qv = qx * vx + qy * vy + qz * vz;
+  const det = uu * vv - uv * uv;
+  const b1 = det > 0 ? (vv * qu - uv * qv) / det : 0, b2 = det > 0 ? (uu * qv - uv * qu) / det : 0;
+  B0 = 1 - b1 - b2; B1 = b1; B2 = b2;
+}
+
+/** Whether the projection of jp onto the triangle's plane lies inside it (weights left in B0…B2). */
+function projectionInside(base: usize, jp: usize, ja: usize, jb: usize, jc: usize): bool {
+  barycentric(base, jp, ja, jb, jc);
+  return B0 >= 0 && B1 >= 0 && B2 >= 0;
+}
+
+/** Distance [m] from jp to the closest point of triangle (ja, jb, jc) now, its weights into B0…B2 (Ericson 2005, §5.1.5). */
+function closestPoint(jp: usize, ja: usize, jb: usize, jc: usize): f64 {
+  const abx = xn(jb, 0) - xn(ja, 0), aby = xn(jb, 1) - xn(ja, 1), abz = xn(jb, 2) - xn(ja, 2);
+  const acx = xn(jc, 0) - xn(ja, 0), acy = xn(jc, 1) - xn(ja, 1), acz = xn(jc, 2) - xn(ja, 2);
+  const apx = xn(jp, 0) - xn(ja, 0), apy = xn(jp, 1) - xn(ja, 1), apz = xn(jp, 2) - xn(ja, 2);
+  const d1 = abx * apx + aby * apy + abz * apz, d2 = acx * apx + acy * apy + acz * apz;
+  let u: f64, v: f64; // weights of b and c
+  if (d1 <= 0 && d2 <= 0) { u = 0; v = 0; } else {
+    const bpx = xn(jp, 0) - xn(jb, 0), bpy = xn(jp, 1) - xn(jb, 1), bpz = xn(jp, 2) - xn(jb, 2);
+    const d3 = abx * bpx + aby * bpy + abz * bpz, d4 = acx * bpx + acy * bpy + acz * bpz;
+    const cpx = xn(jp, 0) - xn(jc, 0), cpy = xn(jp, 1) - xn(jc, 1), cpz = xn(jp, 2) - xn(jc, 2);
+    const d5 = abx * cpx + aby * cpy + abz * cpz, d6 = acx * cpx + acy * cpy + acz * cpz;
+    const vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    if (d3 >= 0 && d4 <= d3) { u = 1; v = 0; }
+    else if (d6 >= 0 && d5 <= d6) { u = 0; v = 1; }
+    else if (vc <= 0 && d1 >= 0 && d3 <= 0) { u = d1 / (d1 - d3); v = 0; }
+    else if (vb <= 0 && d2 >= 0 && d6 <= 0) { u = 0; v = d2 / (d2 - d6); }
+    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) { v = (d4 - d3) / ((d4 - d3) + (d5 - d6)); u = 1 - v; }
+    else { const den = 1 / (va + vb + vc); u = vb * den; v = vc * den; }
+  }
+  B0 = 1 - u - v; B1 = u; B2 = v;
+  const cx = xn(ja, 0) + u * abx + v * acx, cy = xn(ja, 1) + u * aby + v * acy, cz = xn(ja, 2) + u * abz + v * acz;
+  const ex = xn(jp, 0) - cx, ey = xn(jp, 1) - cy, ez = xn(jp, 2) - cz;
+  return Math.sqrt(ex * ex + ey * ey + ez * ez);
+}
+
+/** Position-based Coulomb friction scale for tangential motion tl [m] against a push depth [m], as the reference's. */
+@inline function frictionScale(tl: f64, depth: f64, mu: f64, muS: f64): f64 {
+  return tl < 1e-12 ? 0 : tl < muS * depth ? 1 : min((mu * depth) / tl, 1);
+}
+
+/**
+ * Particle p against triangle t = (a, b, c): passed through, or too near, kept h [m] apart with kinetic and static
+ * friction mu, muS [-] (self-contact.ts resolvePair, operation for operation).
+ */
+function resolvePair(h: f64, mu: f64, muS: f64, p: i32, t: i32, a: u32, b: u32, c: u32): void {
+  const jp = <usize>p * 12, ja = <usize>a * 12, jb = <usize>b * 12, jc = <usize>c * 12;
+  const o = triangleFrame(t, a, b, c);
+  // the side at the substep's start, and now
+  const sPrev = f64At(o, 3) * (xs(jp, 0) - xs(ja, 0)) + f64At(o, 4) * (xs(jp, 1) - xs(ja, 1)) + f64At(o, 5) * (xs(jp, 2) - xs(ja, 2));
+  const s = f64At(o, 0) * (xn(jp, 0) - xn(ja, 0)) + f64At(o, 1) * (xn(jp, 1) - xn(ja, 1)) + f64At(o, 2) * (xn(jp, 2) - xn(ja, 2));
+  if (!isFinite<f64>(s) || !isFinite<f64>(sPrev)) return;
+  if (Math.abs(s) >= h && sign(s) == sign(sPrev)) return;
+  const crossed = sPrev != 0 && sign(s) != sign(sPrev);
+  if (!crossed) {
+    const ex = xn(jp, 0) - f64At(o, 6), ey = xn(jp, 1) - f64At(o, 7), ez = xn(jp, 2) - f64At(o, 8), far = f64At(o, 9) + h + SKIP_MARGIN;
+    if (ex * ex + ey * ey + ez * ez >= far * far) return;
+  }
+  DX = f64At(o, 0); DY = f64At(o, 1); DZ = f64At(o, 2);
+  let C: f64; // constraint value along the direction: negative when violated
+  const inside = crossed && projectionInside(X, jp, ja, jb, jc);
+  if (crossed && (inside || projectionInside(XP, jp, ja, jb, jc))) {
+    // passed through: back to its side, h from the plane
+    const side = sign(sPrev);
+    if (!inside) {
+      barycentric(X, jp, ja, jb, jc);
+      const b0 = max(B0, 0), b1 = max(B1, 0), b2 = max(B2, 0), sum = b0 + b1 + b2;
+      B0 = b0 / sum; B1 = b1 / sum; B2 = b2 / sum;
+    }
+    DX *= side; DY *= side; DZ *= side;
+    C = side * s - h;
+  } else {
+    // on its side: nearer than h to the triangle's closest point?
+    const d = closestPoint(jp, ja, jb, jc);
+    if (d >= h) return;
+    if (d > 1e-12) {
+      const cx = B0 * xn(ja, 0) + B1 * xn(jb, 0) + B2 * xn(jc, 0);
+      const cy = B0 * xn(ja, 1) + B1 * xn(jb, 1) + B2 * xn(jc, 1);
+      const cz = B0 * xn(ja, 2) + B1 * xn(jb, 2) + B2 * xn(jc, 2);
+      DX = (xn(jp, 0) - cx) / d; DY = (xn(jp, 1) - cy) / d; DZ = (xn(jp, 2) - cz) / d;
+    } else {
+      const side: f64 = sPrev != 0 ? sign(sPrev) : 1;
+      DX *= side; DY *= side; DZ *= side;
+    }
+    C = d - h;
+  }
+  const wp = <f64>load<f32>(W + (<usize>p << 2)), wa = <f64>load<f32>(W + (<usize>a << 2));
+  const wb = <f64>load<f32>(W + (<usize>b << 2)), wc = <f64>load<f32>(W + (<usize>c << 2));
+  const denom = wp + B0 * B0 * wa + B1 * B1 * wb + B2 * B2 * wc;
+  if (denom <= 0) return;
+  const lambda = -C / denom;
+  const depth = lambda * denom;
+  // friction: the relative tangential motion over the substep
+  let rx = xn(jp, 0) - xs(jp, 0), ry = xn(jp, 1) - xs(jp, 1), rz = xn(jp, 2) - xs(jp, 2);
+  rx -= B0 * (xn(ja, 0) - xs(ja, 0)); ry -= B0 * (xn(ja, 1) - xs(ja, 1)); rz -= B0 * (xn(ja, 2) - xs(ja, 2));
+  rx -= B1 * (xn(jb, 0) - xs(jb, 0)); ry -= B1 * (xn(jb, 1) - xs(jb, 1)); rz -= B1 * (xn(jb, 2) - xs(jb, 2));
+  rx -= B2 * (xn(jc, 0) - xs(jc, 0)); ry -= B2 * (xn(jc, 1) - xs(jc, 1)); rz -= B2 * (xn(jc, 2) - xs(jc, 2));
+  const rn = rx * DX + ry * DY + rz * DZ;
+  const tx = rx - rn * DX, ty = ry - rn * DY, tz = rz - rn * DZ;
+  const f = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, mu, muS);
+  const kx = lambda * DX - (f * tx) / denom, ky = lambda * DY - (f * ty) / denom, kz = lambda * DZ - (f * tz) / denom;
+  moved(<u32>p, a, b, c);
+  addX(jp, 0, wp * kx); addX(jp, 1, wp * ky); addX(jp, 2, wp * kz);
+  const ma = wa * B0, mb = wb * B1, mc = wc * B2;
+  addX(ja, 0, -(ma * kx)); addX(ja, 1, -(ma * ky)); addX(ja, 2, -(ma * kz));
+  addX(jb, 0, -(mb * kx)); addX(jb, 1, -(mb * ky)); addX(jb, 2, -(mb * kz));
+  addX(jc, 0, -(mc * kx)); addX(jc, 1, -(mc * ky)); addX(jc, 2, -(mc * kz));
+  track(<u32>p); track(a); track(b); track(c);
+}
+
+/**
+ * Edge–edge pairs [0, count) of EDGE_PAIRS, in order, as collideEdges: a pair whose edges' boxes meet, with its
+ * pair's distance (at most hMax [m]) and friction; `memo`: the pairs' EDGE_MEMO holds for them (not when the host
+ * copies the list in window by window).
+ */
+export function selfEdges(count: i32, hMax: f64, memo: bool): void {
+  for (let q = 0; q < count; q++) {
+    const pr = EDGE_PAIRS + (<usize>q << 3);
+    const e = load<i32>(pr), f = load<i32>(pr, 4);
+    if (!overlap(EBOX + <usize>e * 48, EBOX + <usize>f * 48)) continue;
+    const ea = EDGES + <usize>e * 8, fa = EDGES + <usize>f * 8;
+    const a = load<u32>(ea), b = load<u32>(ea, 4), c = load<u32>(fa), d = load<u32>(fa, 4);
+    const ca = <i32>load<u8>(OWNER + <usize>a), cc = <i32>load<u8>(OWNER + <usize>c);
+    const m = memo ? EDGE_MEMO + (<usize>q << 4) : 0;
+    if (ca == cc) {
+      resolveEdges(min(clothValue(ca, 0), hMax), clothValue(ca, 1), clothValue(ca, 2), m, e, f, a, b, c, d);
+    } else {
+      const h = min(0.5 * (clothValue(ca, 0) + clothValue(cc, 0)), hMax);
+      resolveEdges(h, Math.sqrt(clothValue(ca, 1) * clothValue(cc, 1)), Math.sqrt(clothValue(ca, 2) * clothValue(cc, 2)), m, e, f, a, b, c, d);
+    }
+  }
+}
+
+/** Edge e = (a, b)'s frame (EFRAME), computed unless it is current; returns its byte offset. */
+function edgeFrame(e: i32, a: u32, b: u32): usize {
+  const o = EFRAME + <usize>e * 48, atP = EFRAME_AT + (<usize>e << 2), at = load<i32>(atP);
+  if (at >= substepAt && stillSince(a, at) && stillSince(b, at)) return o;
+  const ja = <usize>a * 12, jb = <usize>b * 12;
+  store<f64>(o, 0.5 * (xn(ja, 0) + xn(jb, 0))); store<f64>(o, 0.5 * (xn(ja, 1) + xn(jb, 1)), 8); store<f64>(o, 0.5 * (xn(ja, 2) + xn(jb, 2)), 16);
+  store<f64>(o, 0.5 * (xn(jb, 0) - xn(ja, 0)), 24); store<f64>(o, 0.5 * (xn(jb, 1) - xn(ja, 1)), 32); store<f64>(o, 0.5 * (xn(jb, 2) - xn(ja, 2)), 40);
+  store<i32>(atP, clock);
+  return o;
+}
+
+// the closest points' parameters (segmentClosest) and the vector q→p between them, now and then
+let S: f64 = 0, T: f64 = 0;
+let GX: f64 = 0, GY: f64 = 0, GZ: f64 = 0;
+
+/**
+ * Closest points of segments a–b and c–d (byte offsets) of positions `base` (Ericson 2005, §5.1.9): their
+ * parameters into S, T, the vector p − q into GX, GY, GZ; returns its length [m].
+ */
+function segmentClosest(base: usize, ja: usize, jb: usize, jc: usize, jd: usize): f64 {
+  const ax = <f64>load<f32>(base + ja), ay = <f64>load<f32>(base + ja, 4), az = <f64>load<f32>(base + ja, 8);
+  const cx = <f64>load<f32>(base + jc), cy = <f64>load<f32>(base + jc, 4), cz = <f64>load<f32>(base + jc, 8);
+  const ux = <f64>load<f32>(base + jb) - ax, uy = <f64>load<f32>(base + jb, 4) - ay, uz = <f64>load<f32>(base + jb, 8) - az;
+  const vx = <f64>load<f32>(base + jd) - cx, vy = <f64>load<f32>(base + jd, 4) - cy, vz = <f64>load<f32>(base + jd, 8) - cz;
+  const rx = ax - cx, ry = ay - cy, rz = az - cz;
+  const A = ux * ux + uy * uy + uz * uz, E = vx * vx + vy * vy + vz * vz, F = vx * rx + vy * ry + vz * rz;
+  let s: f64 = 0, t: f64 = 0;
+  if (A <= 1e-24 && E <= 1e-24) { s = 0; t = 0; } else if (A <= 1e-24) { t = min(max(F / E, 0), 1); } else {
+    const C = ux * rx + uy * ry + uz * rz;
+    if (E <= 1e-24) { s = min(max(-C / A, 0), 1); } else {
+      const B = ux * vx + uy * vy + uz * vz, den = A * E - B * B;
+      s = den > 1e-24 ? min(max((B * F - C * E) / den, 0), 1) : 0;
+      t = (B * s + F) / E;
+      if (t < 0) { t = 0; s = min(max(-C / A, 0), 1); } else if (t > 1) { t = 1; s = min(max((B - C) / A, 0), 1); }
+    }
+  }
+  S = s; T = t;
+  GX = rx + s * ux - t * vx; GY = ry + s * uy - t * vy; GZ = rz + s * uz - t * vz;
+  return Math.sqrt(GX * GX + GY * GY + GZ * GZ);
+}
+
+/** Whether a closest point's parameter lies inside its edge (not at an end). */
+@inline function inside(v: f64): bool { return v > 1e-6 && v < 1 - 1e-6; }
+
+/** Particle p's value in an f64 array at byte offset `base`. */
+@inline function perParticle(base: usize, p: u32): f64 { return load<f64>(base + (<usize>p << 3)); }
+
+/**
+ * Edges e = a–b and f = c–d: passed through, or too near, kept h [m] apart with friction mu, muS [-]
+ * (self-contact.ts resolveEdges, operation for operation, with its three skips); `memo`: the byte offset of the
+ * pair's EDGE_MEMO entry, or 0 for none.
+ */
+function resolveEdges(h: f64, mu: f64, muS: f64, memo: usize, e: i32, f: i32, a: u32, b: u32, c: u32, d: u32): void {
+  const apart = max(h, max(perParticle(MOVE, a), perParticle(MOVE, b)) + max(perParticle(MOVE, c), perParticle(MOVE, d))) + SKIP_MARGIN;
+  const travelled = perParticle(TRAVEL, a) + perParticle(TRAVEL, b) + perParticle(TRAVEL, c) + perParticle(TRAVEL, d);
+  if (memo != 0) {
+    if (load<f64>(memo) - (travelled - load<f64>(memo, 8)) >= apart) return;
+    store<f64>(memo, travelled, 8);
+  }
+  const fe = edgeFrame(e, a, b), ff = edgeFrame(f, c, d);
+  const mx = f64At(fe, 0) - f64At(ff, 0), my = f64At(fe, 1) - f64At(ff, 1), mz = f64At(fe, 2) - f64At(ff, 2);
+  const m2 = mx * mx + my * my + mz * mz, ml = Math.sqrt(m2);
+  const extent = Math.abs(mx * f64At(fe, 3) + my * f64At(fe, 4) + mz * f64At(fe, 5)) + Math.abs(mx * f64At(ff, 3) + my * f64At(ff, 4) + mz * f64At(ff, 5));
+  if (m2 - extent > apart * ml) {
+    if (memo != 0) store<f64>(memo, (m2 - extent) / ml);
+    return;
+  }
+  const ja = <usize>a * 12, jb = <usize>b * 12, jc = <usize>c * 12, jd = <usize>d * 12;
+  const len = segmentClosest(X, ja, jb, jc, jd);
+  if (memo != 0) store<f64>(memo, len);
+  if (len >= apart) return;
+  const s = S, t = T, gx = GX, gy = GY, gz = GZ;
+  const len0 = segmentClosest(XP, ja, jb, jc, jd);
+  const in0 = inside(S) && inside(T);
+  if (!isFinite<f64>(len) || !isFinite<f64>(len0)) return;
+  let C: f64, dx: f64, dy: f64, dz: f64;
+  if (in0 && inside(s) && inside(t) && len0 > 1e-12 && gx * GX + gy * GY + gz * GZ < 0) {
+    // passed through: back to the side of then, h along that direction
+    dx = GX / len0; dy = GY / len0; dz = GZ / len0;
+    C = gx * dx + gy * dy + gz * dz - h;
+  } else {
+    if (len >= h || len < 1e-12) return;
+    dx = gx / len; dy = gy / len; dz = gz / len;
+    C = len - h;
+  }
+  const ka = 1 - s, kb = s, kc = 1 - t, kd = t;
+  const wa = <f64>load<f32>(W + (<usize>a << 2)), wb = <f64>load<f32>(W + (<usize>b << 2));
+  const wc = <f64>load<f32>(W + (<usize>c << 2)), wd = <f64>load<f32>(W + (<usize>d << 2));
+  const denom = ka * ka * wa + kb * kb * wb + kc * kc * wc + kd * kd * wd;
+  if (!(denom > 0)) return;
+  const lambda = -C / denom, depth = -C;
+  // friction: the relative tangential motion of p against q over the substep
+  const rx = ka * (xn(ja, 0) - xs(ja, 0)) + kb * (xn(jb, 0) - xs(jb, 0)) - kc * (xn(jc, 0) - xs(jc, 0)) - kd * (xn(jd, 0) - xs(jd, 0));
+  const ry = ka * (xn(ja, 1) - xs(ja, 1)) + kb * (xn(jb, 1) - xs(jb, 1)) - kc * (xn(jc, 1) - xs(jc, 1)) - kd * (xn(jd, 1) - xs(jd, 1));
+  const rz = ka * (xn(ja, 2) - xs(ja, 2)) + kb * (xn(jb, 2) - xs(jb, 2)) - kc * (xn(jc, 2) - xs(jc, 2)) - kd * (xn(jd, 2) - xs(jd, 2));
+  const rn = rx * dx + ry * dy + rz * dz;
+  const tx = rx - rn * dx, ty = ry - rn * dy, tz = rz - rn * dz;
+  const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, mu, muS);
+  const kx = lambda * dx - (fs * tx) / denom, ky = lambda * dy - (fs * ty) / denom, kz = lambda * dz - (fs * tz) / denom;
+  moved(a, b, c, d);
+  addX(ja, 0, wa * ka * kx); addX(ja, 1, wa * ka * ky); addX(ja, 2, wa * ka * kz);
+  addX(jb, 0, wb * kb * kx); addX(jb, 1, wb * kb * ky); addX(jb, 2, wb * kb * kz);
+  addX(jc, 0, -(wc * kc * kx)); addX(jc, 1, -(wc * kc * ky)); addX(jc, 2, -(wc * kc * kz));
+  addX(jd, 0, -(wd * kd * kx)); addX(jd, 1, -(wd * kd * ky)); addX(jd, 2, -(wd * kd * kz));
+  track(a); track(b); track(c); track(d);
+}
