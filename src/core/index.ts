@@ -30,3 +30,5 @@ export { prepareMesh, MAX_MESH_PARTICLES, MAX_VERTEX_EDGES, WELD_TOLERANCE, type
 export { discMesh, tubeMesh, placeMesh, type ShapeSpec, type Placement } from './mesh/generators.js';
 export type { ExternalReader } from './mesh/gltf.js';
 export { countIntersections } from './intersections.js';
+export { selfContacts } from './contacts.js';
+export { selfContactDistance } from './self-contact.js';
