@@ -207,11 +207,11 @@ describe('WebGPU page', () => {
     await setChecked(page, 'solver.selfContact', false);
   });
 
-  it('V cycles all five views and names each on screen', async () => {
+  it('V cycles all six views and names each on screen', async () => {
     await loadScene(page, 'Cotton Basic', 16);
     await step(page, 120);
-    const names = ['wireframe', 'particles', 'springs', 'strain', 'shaded'];
-    const labels = ['Wireframe mesh', 'Particles', 'Springs by kind', 'Strain heat map', 'Shaded'];
+    const names = ['wireframe', 'particles', 'springs', 'strain', 'contacts', 'shaded'];
+    const labels = ['Wireframe mesh', 'Particles', 'Springs by kind', 'Strain heat map', 'Self-contacts', 'Shaded'];
     for (let k = 0; k < names.length; k++) {
       await page.keyboard.press('v');
       expect(await hook(page, 'view')).toBe(names[k]);

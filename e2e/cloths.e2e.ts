@@ -9,6 +9,7 @@ import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
 import { POLL_MS, byId, choose, download, gpuReady, hook, openApp, setChecked, shoot, step } from './helpers.js';
+import { decodePng } from './png.js';
 
 let browser: Browser;
 
@@ -88,6 +89,24 @@ describe('several cloths in the app', () => {
     await step(page, 20);
     await everyView(page, 'layers');
     expect((await hook<number[][]>(page, 'positions', [0]))[0][1]).toBeLessThan(0.69);
+
+    // landed on each other: the contact view marks the particles lying on another cloth in red, and the HUD counts
+    // them (on the same positions while paused: the same number)
+    await step(page, 100);
+    await choose(page, 'view', 'Self-contacts');
+    await step(page, 1);
+    // (drawn at the next display frame)
+    await expect.poll(() => hook<number>(page, 'contacts')).toBeGreaterThan(10);
+    const marked = await hook<number>(page, 'contacts');
+    expect(marked).toBeLessThan(162);
+    await expect.poll(() => byId(page, 'hud-contacts').innerText()).toBe(`self-contact on · ${marked} particles in contact`);
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('within 7.5 mm of another part of the cloth');
+    await shoot(page, 'layers-contacts');
+    const shot = decodePng(await page.screenshot());
+    let red = 0;
+    for (let i = 0; i < shot.rgba.length; i += 4) if (shot.rgba[i] > 180 && shot.rgba[i + 1] < 110 && shot.rgba[i + 2] < 100) red++;
+    expect(red).toBeGreaterThan(50);
+    await choose(page, 'view', 'Shaded');
 
     // the link: the document form, cloth by cloth; a fresh page from it shows the same scene
     await page.waitForFunction(() => location.hash.includes('cloths[1].material.fabric=silk'), null, { polling: POLL_MS });

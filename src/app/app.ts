@@ -14,6 +14,7 @@ import { Overlay } from '../ui/overlay.js';
 import { Panel } from '../ui/panel.js';
 import { Backend } from './backend.js';
 import { Commands } from './commands.js';
+import { ContactMeter } from './contact-meter.js';
 import { FileExport } from './file-export.js';
 import { FileImport } from './file-import.js';
 import { Interaction } from './interaction.js';
@@ -69,6 +70,8 @@ export class App {
   waiting: WaitingScene | null = null;
   /** the mesh files imported into this page, for the scenes that name them (cloth, mesh colliders; a link cannot carry them) */
   readonly meshes = new MeshStore();
+  /** the HUD's count of particles lying on another part of their cloth */
+  readonly contactMeter = new ContactMeter();
   readonly backend = new Backend(this);
   readonly slots = new Slots(this);
   readonly sweep = new Sweep(this);

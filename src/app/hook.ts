@@ -69,6 +69,8 @@ export interface DrapeHook {
   /** text of the floating labels (Mesh Resolution scene) */
   labels(): string[];
   stats(): { fps: number; stepMs: number; realTime: number; framesDone: number; clamps: string[] };
+  /** the particles the contact view marked at its last frame, over all slots (0 in the other views) */
+  contacts(): number;
   /** steps n frames now (whether paused or not) and resolves when they are drawn into the mirrors */
   step(frames?: number): Promise<void>;
   /** imports a scene document as the panel does; false (and a message) when refused */
@@ -108,6 +110,7 @@ export function installHook(app: App): DrapeHook {
       }));
     },
     view: () => app.view,
+    contacts: () => app.views.reduce((n, v) => n + v.contacts, 0),
     paused: () => app.sim.paused,
     pinTool: () => app.pinTool,
     slots: () => app.sim.mirrors.length,

@@ -3,6 +3,7 @@ import { clothEntries, clothName, measureTest, plainText, type ClothSpec, type T
 import type { HudCloth, HudInfo } from '../ui/hud.js';
 import { SCENE_LABELS } from '../ui/menu-labels.js';
 import type { App } from './app.js';
+import { contactDistance } from './contact-meter.js';
 import { slowCause } from './frame-clock.js';
 import { fitSideBySide } from './limits.js';
 import { linkCannotCarry } from './mesh-import.js';
@@ -65,6 +66,9 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
     clamps: sim.stats.clamps,
     view: app.view,
     maxStrain: sim.stats.maxStrain,
+    selfContact: scene.solver.selfContact,
+    contacts: app.contactMeter.count(sim.mirrors.filter((m) => m.unstableAt < 0).map((m) => m.sim), performance.now()),
+    contactDistance: first ? contactDistance(first.sim) : 0,
     slots: sim.mirrors.length,
     extra: [
       sweep.length && app.sweep.layout === 'sequence'

@@ -7,6 +7,7 @@ import { SceneError, clothCount, clothEntries, sceneMannequin, type Scene } from
 import { ClothView } from '../render/cloth-view.js';
 import { fabricFor, fabricLook, type FabricLook } from '../render/textures.js';
 import type { App } from './app.js';
+import { contactDistance } from './contact-meter.js';
 import { emptyBounds, frameBounds } from './framing.js';
 
 /** The cloths on screen, made from the app's scene. */
@@ -90,6 +91,7 @@ export class Slots {
     app.views = app.sim.mirrors.map((m) => {
       const v = new ClothView(m.sim.model, this.looks(m.sim.scene), gpu);
       v.setView(app.view);
+      v.setContactDistance(contactDistance(m.sim));
       app.stage.content.add(v.group);
       return v;
     });
@@ -110,6 +112,7 @@ export class Slots {
       if (app.views[k]?.model !== m.sim.model) { changed = true; return; }
       if (this.lookedAt[k] !== m.sim.scene) {
         app.views[k].setLooks(this.looks(m.sim.scene));
+        app.views[k].setContactDistance(contactDistance(m.sim));
         this.lookedAt[k] = m.sim.scene;
       }
     });

@@ -9,11 +9,11 @@ import {
   LineBasicNodeMaterial, LineSegments, Mesh, MeshPhysicalNodeMaterial, MeshStandardNodeMaterial, Object3D,
   SphereGeometry,
 } from 'three/webgpu';
-import { BEND, STRUCTURAL, type ClothModel, type ClothState } from '../core/index.js';
+import { BEND, selfContacts, STRUCTURAL, type ClothModel, type ClothState } from '../core/index.js';
 import { trianglesByCloth } from './cloth-parts.js';
 import type { FabricKind, FabricLook } from './textures.js';
 
-export const VIEWS = ['shaded', 'wireframe', 'particles', 'springs', 'strain'] as const;
+export const VIEWS = ['shaded', 'wireframe', 'particles', 'springs', 'strain', 'contacts'] as const;
 export type ViewName = (typeof VIEWS)[number];
 export const VIEW_LABELS: Record<ViewName, string> = {
   shaded: 'Shaded',
@@ -21,7 +21,13 @@ export const VIEW_LABELS: Record<ViewName, string> = {
   particles: 'Particles',
   springs: 'Springs by kind',
   strain: 'Strain heat map',
+  contacts: 'Self-contacts',
 };
+
+/** the contact view's colours: a particle lying on another part of the cloth, and one that is not */
+export const CONTACT_COLOR = '#e0432d';
+const FREE_COLOR = new Color('#d9dde3');
+const IN_CONTACT = new Color(CONTACT_COLOR);
 
 /** spring colours by kind: structural, shear, bend */
 export const SPRING_COLORS = ['#2f6fd6', '#2ea043', '#e0832d'] as const;
@@ -57,6 +63,11 @@ export class ClothView {
   private view: ViewName = 'shaded';
   private readonly strainSum: Float32Array;
   private readonly strainCount: Uint16Array;
+  /** the contact view: how near another part of the cloth a particle must be to be marked [m], and the marks */
+  private contactDistance = 0;
+  private readonly contactFlags: Uint8Array;
+  /** the particles the contact view marked at its last update */
+  contacts = 0;
 
   /** drawn from a GPU solver's buffers (see attachGpu) */
   private gpuAttached = false;
@@ -148,6 +159,7 @@ export class ClothView {
     );
     this.grabMarker.visible = false;
 
+    this.contactFlags = new Uint8Array(n);
     this.strainSum = new Float32Array(n);
     this.strainCount = new Uint16Array(n);
     for (let s = 0; s < sCount; s++) {
@@ -183,8 +195,8 @@ export class ClothView {
 
   setView(view: ViewName): void {
     this.view = view;
-    this.mesh.visible = view === 'shaded' || view === 'strain';
-    this.mesh.material = view === 'strain' ? this.strainMaterial : this.shadedMaterials;
+    this.mesh.visible = view === 'shaded' || view === 'strain' || view === 'contacts';
+    this.mesh.material = view === 'strain' || view === 'contacts' ? this.strainMaterial : this.shadedMaterials;
     this.wire.visible = view === 'wireframe';
     this.springs.visible = view === 'springs';
     this.points.visible = view === 'particles';
@@ -232,9 +244,17 @@ export class ClothView {
     return this.gpuAttached;
   }
 
-  /** whether the current view draws from CPU positions (springs, particles, strain colours) */
+  /** whether the current view draws from CPU positions (springs, particles, strain and contact colours) */
   get needsCpuPositions(): boolean {
-    return this.view === 'springs' || this.view === 'particles' || this.view === 'strain';
+    return this.view === 'springs' || this.view === 'particles' || this.view === 'strain' || this.view === 'contacts';
+  }
+
+  /**
+   * The contact view marks the particles within `distance` [m] of a triangle not their own (core selfContacts: the
+   * app gives 1.5 × the self-contact distance, where a particle resting on another layer sits).
+   */
+  setContactDistance(distance: number): void {
+    this.contactDistance = distance;
   }
 
   /** Copies the state into the GPU buffers of the current view. */
@@ -253,12 +273,13 @@ export class ClothView {
     } else {
       this.position.array.set(x);
       this.position.needsUpdate = true;
-      if (this.view === 'shaded' || this.view === 'strain') {
+      if (this.view === 'shaded' || this.view === 'strain' || this.view === 'contacts') {
         this.geometry.computeVertexNormals();
         this.geometry.getAttribute('normal').needsUpdate = true;
       }
     }
     if (this.view === 'strain') this.updateStrain(x);
+    if (this.view === 'contacts') this.updateContacts(x);
     if (this.view === 'springs') {
       const sp = model.springs, out = this.springPos.array as Float32Array;
       for (let s = 0; s < model.restLengths.length; s++) {
@@ -304,6 +325,17 @@ export class ClothView {
     }
     this.pins.count = count;
     this.pins.instanceMatrix.needsUpdate = true;
+  }
+
+  private updateContacts(x: Float32Array): void {
+    const model = this.model, flags = this.contactFlags;
+    this.contacts = selfContacts(model.triangles, x, model.particleCount, this.contactDistance, flags);
+    const col = this.color.array as Float32Array;
+    for (let i = 0; i < model.particleCount; i++) {
+      const c = flags[i] ? IN_CONTACT : FREE_COLOR;
+      col[3 * i] = c.r; col[3 * i + 1] = c.g; col[3 * i + 2] = c.b;
+    }
+    this.color.needsUpdate = true;
   }
 
   private updateStrain(x: Float32Array): void {

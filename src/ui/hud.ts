@@ -7,7 +7,7 @@
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import type { Energy } from '../core/index.js';
-import { SPRING_COLORS, STRAIN_RANGE, type ViewName } from '../render/cloth-view.js';
+import { CONTACT_COLOR, SPRING_COLORS, STRAIN_RANGE, type ViewName } from '../render/cloth-view.js';
 import { append, h, setLines, type Child } from './dom.js';
 
 /** One cloth of a scene of several, in the HUD (its name and shape as text). */
@@ -43,6 +43,11 @@ export interface HudInfo {
   clamps: string[];
   view: ViewName;
   maxStrain: number;
+  /** solver.selfContact, and the particles lying on another part of their cloth (app/contact-meter.ts) */
+  selfContact: boolean;
+  contacts: number;
+  /** the distance that counts as lying on [m] */
+  contactDistance: number;
   slots: number;
   /** another line of the text block (a scene's name: shown as text, never as markup) */
   extra?: string;
@@ -127,6 +132,9 @@ export class Hud {
       [`${i.idle ? 'idle' : `${i.fps.toFixed(0)} fps`} · sim ${finite(i.stepMs, 1)} ms/frame`],
       [`${i.particles.toLocaleString('en')} particles · ${i.triangles.toLocaleString('en')} triangles`],
       [`${i.springs.toLocaleString('en')} springs · ${i.solver}, ${i.substeps} substeps`],
+      [h('span', { testid: 'hud-contacts' }, i.selfContact
+        ? `self-contact on · ${i.contacts.toLocaleString('en')} particle${i.contacts === 1 ? '' : 's'} in contact`
+        : `self-contact off (${i.contacts.toLocaleString('en')} particle${i.contacts === 1 ? '' : 's'} lying on the cloth)`)],
     ];
     if (i.cloths) {
       const each = i.cloths.map((c) => `${c.name}${c.shape ? ` (${c.shape})` : ''} ${c.particles.toLocaleString('en')}`);
@@ -156,6 +164,10 @@ export class Hud {
         swatch.style.background = SPRING_COLORS[n]; // through CSSOM: no style attribute for the CSP to refuse
         append(this.legend, [n > 0 && ' ', h('span', null, swatch, k)]);
       });
+    } else if (i.view === 'contacts') {
+      const swatch = h('i', null);
+      swatch.style.background = CONTACT_COLOR;
+      append(this.legend, [h('span', null, swatch, `within ${finite(1000 * i.contactDistance, 1)} mm of another part of the cloth`)]);
     } else if (i.view === 'strain') {
       append(this.legend, [h('span', 'strain-bar'), ` −${STRAIN_RANGE * 100}% … 0 … +${STRAIN_RANGE * 100}% · max ${finite(100 * i.maxStrain, 1)}%`]);
     }
