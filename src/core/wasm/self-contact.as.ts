@@ -149,13 +149,16 @@ export function selfFound(edgePairs: i32): void {
  * frames: the start of collideSelf's particle pass.
  */
 export function selfTriangleBoxes(hMax: f64): void {
+  const lo = f64x2.splat(-hMax), hi = f64x2.splat(hMax), mixed = f64x2.replace_lane(hi, 0, -hMax), low = i64x2(-1, 0);
   for (let t = 0; t < NT; t++) {
     const b = TBOX + <usize>t * 48, tr = TRIS + <usize>t * 12;
     const i = PBOX + <usize>load<u32>(tr) * 48, j = PBOX + <usize>load<u32>(tr, 4) * 48, k = PBOX + <usize>load<u32>(tr, 8) * 48;
-    for (let c: usize = 0; c < 3; c++) {
-      store<f64>(b + (c << 3), min(min(f64At(i, c), f64At(j, c)), f64At(k, c)) - hMax);
-      store<f64>(b + 24 + (c << 3), max(max(f64At(i, c + 3), f64At(j, c + 3)), f64At(k, c + 3)) + hMax);
-    }
+    // lanes (min x, min y), (min z, max x), (max y, max z): pmin/pmax, one instruction each (no NaN reaches here:
+    // a non-finite position fails the reach check first; ±0 give the same box once widened)
+    const i1 = v128.load(i, 16), j1 = v128.load(j, 16), k1 = v128.load(k, 16);
+    v128.store(b, f64x2.add(f64x2.pmin(f64x2.pmin(v128.load(i), v128.load(j)), v128.load(k)), lo));
+    v128.store(b, f64x2.add(v128.bitselect(f64x2.pmin(f64x2.pmin(i1, j1), k1), f64x2.pmax(f64x2.pmax(i1, j1), k1), low), mixed), 16);
+    v128.store(b, f64x2.add(f64x2.pmax(f64x2.pmax(v128.load(i, 32), v128.load(j, 32)), v128.load(k, 32)), hi), 32);
   }
   if (clock > 1 << 30) resetClock();
   substepAt = ++clock;
@@ -164,13 +167,15 @@ export function selfTriangleBoxes(hMax: f64): void {
 /** The edges' boxes over the substep (their ends' PBOX), widened by hMax/2 [m]: the start of collideEdges. */
 export function selfEdgeBoxes(hMax: f64): void {
   const r = 0.5 * hMax;
+  const lo = f64x2.splat(-r), hi = f64x2.splat(r), mixed = f64x2.replace_lane(hi, 0, -r), low = i64x2(-1, 0);
   for (let e = 0; e < NE; e++) {
     const b = EBOX + <usize>e * 48, ed = EDGES + <usize>e * 8;
     const i = PBOX + <usize>load<u32>(ed) * 48, j = PBOX + <usize>load<u32>(ed, 4) * 48;
-    for (let c: usize = 0; c < 3; c++) {
-      store<f64>(b + (c << 3), min(f64At(i, c), f64At(j, c)) - r);
-      store<f64>(b + 24 + (c << 3), max(f64At(i, c + 3), f64At(j, c + 3)) + r);
-    }
+    // as selfTriangleBoxes
+    const i1 = v128.load(i, 16), j1 = v128.load(j, 16);
+    v128.store(b, f64x2.add(f64x2.pmin(v128.load(i), v128.load(j)), lo));
+    v128.store(b, f64x2.add(v128.bitselect(f64x2.pmin(i1, j1), f64x2.pmax(i1, j1), low), mixed), 16);
+    v128.store(b, f64x2.add(f64x2.pmax(v128.load(i, 32), v128.load(j, 32)), hi), 32);
   }
 }
 
