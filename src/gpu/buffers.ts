@@ -4,18 +4,23 @@
  * params' per-particle, per-spring and per-stencil values, a state's particles, its pins and tethers. The
  * colliders' buffers (their poses, the particles they carry, the mesh colliders' tables) depend on the params and
  * grow on demand (`reserve`); the bending stencils' are made with their static data on the first params that bend
- * with a stencil model, and anew when params switch to the other (`writeParams`).
+ * with a stencil model, and anew when params switch to the other, and the self-contact grid's (with the edges) on the
+ * first params with self-contact (`writeParams`).
  */
 import type {} from 'webgpu';
 import { bendingStencils, type ClothModel, type StencilModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import type { ClothState } from '../core/state.js';
 import { updateTethers } from '../core/tethers.js';
-import { BUFFERS, KERNELS, VEC4, type BufferName, type KernelName, type KernelSpec } from './layout.js';
+import { BUFFERS, KERNELS, VEC4, selfGridSize, type BufferName, type KernelName, type KernelSpec } from './layout.js';
 import { triangleAdjacency } from './topology.js';
 
 /** The buffers of the bending stencils: placeholders until params first use a stencil model. */
 const STENCIL_BUFFERS = ['stencilOffsets', 'stencilVertices', 'stencilWeights', 'stencilCompliance', 'stencilLambdas'] as const;
+/** The buffers of self-contact: placeholders until params first turn it on. */
+const SELF_BUFFERS = [
+  'edges', 'selfBoxes', 'selfRanks', 'selfCounts', 'selfStarts', 'selfBlocks', 'selfEntries', 'selfPairs', 'selfArgs', 'selfDelta',
+] as const;
 
 /** The storage buffers of one cloth and the kernels' bind groups over them. */
 export class ClothBuffers {
@@ -28,6 +33,8 @@ export class ClothBuffers {
   hasTethers = false;
   /** the stencil model whose stencils the stencil buffers hold (made by writeParams), or null: placeholders */
   private stencilsMade: StencilModel | null = null;
+  /** whether the self-contact buffers are made (makeSelfContact), else placeholders */
+  private selfMade = false;
   private readonly device: GPUDevice;
   private readonly model: ClothModel;
 
@@ -48,6 +55,9 @@ export class ClothBuffers {
       stencilOffsets: 0, stencilVertices: 0, stencilWeights: 0, stencilCompliance: 0, stencilLambdas: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
       normals: n, grabStart: 1, colliders: 1, carried: 1, meshNodes: 1, meshTriangles: 1,
+      // placeholders: a cloth without self-contact spends nothing on its grid (makeSelfContact)
+      edges: 0, selfBoxes: 0, selfRanks: 0, selfCounts: 0, selfStarts: 0, selfBlocks: 0, selfEntries: 0, selfPairs: 0, selfArgs: 0,
+      selfDelta: 0,
     };
     const extraUsage: Partial<Record<BufferName, number>> = {
       positions: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC,
@@ -141,12 +151,43 @@ export class ClothBuffers {
   }
 
   /**
+   * The self-contact buffers at their sizes for the model (layout.ts selfGridSize: P primitives, B buckets), with
+   * the edges: made on the first params with self-contact, kept after (they depend on the model alone). 8 B per edge;
+   * per primitive its box (32 B), ranks (32 B), entries (32 B) and candidate pairs (64 B); 8 B per bucket; 16 B per
+   * particle: about 580 B per particle on a grid (P = the edges, about 3 per particle; B ≈ 2P to 4P), 610 MB at
+   * 1025². Refused, before anything changes, where one of them is larger than the device binds. Like `reserve`,
+   * never during a frame's encoding.
+   */
+  private makeSelfContact(): void {
+    if (this.selfMade) return;
+    const { primitives, buckets, blocks, entries, pairs } = selfGridSize(this.model);
+    const sizes: Record<(typeof SELF_BUFFERS)[number], number> = {
+      edges: this.model.edges.length / 2, selfBoxes: 2 * primitives, selfRanks: 8 * primitives, selfCounts: 1 + buckets,
+      selfStarts: 2 + buckets, selfBlocks: blocks, selfEntries: entries, selfPairs: 1 + 2 * pairs, selfArgs: 4,
+      selfDelta: 4 * this.model.particleCount,
+    };
+    const limit = this.device.limits.maxStorageBufferBindingSize;
+    const over = SELF_BUFFERS.find((name) => sizes[name] * BUFFERS[name].bytes > limit);
+    if (over) {
+      throw new Error(`GPU solver: self-contact needs ${Math.ceil((sizes[over] * BUFFERS[over].bytes) / 2 ** 20)} MiB in one buffer (${over}) for ${this.model.particleCount} particles; this device binds at most ${Math.floor(limit / 2 ** 20)} MiB`);
+    }
+    this.selfMade = true;
+    for (const name of SELF_BUFFERS) {
+      this.buffers[name].destroy();
+      this.buffers[name] = this.createBuffer(name, sizes[name], name === 'selfArgs' ? GPUBufferUsage.INDIRECT : 0);
+    }
+    if (this.model.edges.length) this.device.queue.writeBuffer(this.buffers.edges, 0, bytes(this.model.edges));
+    this.regroup(SELF_BUFFERS);
+  }
+
+  /**
    * The params' per-particle inverse masses, per-spring rest length and compliance, and, with a stencil bending
    * model, per-stencil compliance (−1 for both: no constraint); the stencil buffers made first if they do not hold
-   * that model's.
+   * that model's, and the self-contact buffers on the first params with self-contact.
    */
   writeParams(params: SimParams): void {
     const model = this.model;
+    if (params.selfContact) this.makeSelfContact();
     this.device.queue.writeBuffer(this.buffers.baseInvMass, 0, bytes(params.particleInvMass));
     const springCount = model.restLengths.length;
     const data = new Float32Array(2 * springCount);

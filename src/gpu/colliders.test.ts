@@ -27,7 +27,8 @@ describe('sceneRefusal', () => {
     }
     expect(sceneRefusal(validateScene({ solver: { type: 'mass-spring' } }))).toBe('the mass-spring solver runs on the CPU only');
     expect(sceneRefusal(validateScene({ solver: { stretch: 'global' } }))).toBe("the global stretch step (solver.stretch 'global') runs on the CPU only");
-    expect(sceneRefusal(validateScene({ solver: { selfContact: true } }))).toBe('self-contact (solver.selfContact) runs on the CPU only');
+    // self-contact runs on the GPU too
+    expect(sceneRefusal(validateScene({ solver: { selfContact: true } }))).toBeNull();
   });
 
   it('follows gpuCollider: a type is refused exactly when the GPU has no encoding for it', () => {

@@ -14,8 +14,8 @@ import type { ClothState } from '../core/state.js';
 import type { ClothBuffers } from './buffers.js';
 import { gpuCollider, type ColliderTables } from './colliders.js';
 import { meshRefusal } from './meshes.js';
-import { MAX_WORKGROUPS_X, RECORD_STRIDE, WORKGROUP_SIZE, type KernelName } from './layout.js';
-import type { UniformTables } from './uniforms.js';
+import { MAX_WORKGROUPS_X, RECORD_STRIDE, SCAN_BLOCK, WORKGROUP_SIZE, type KernelName } from './layout.js';
+import type { SelfRecords, UniformTables } from './uniforms.js';
 
 /** The shapes the GPU has, for its refusals. */
 const GPU_SHAPES = 'sphere, floor, plane, box, capsule, cylinder and mesh';
@@ -42,7 +42,6 @@ function contactRefusal(params: SimParams): string | null {
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
   if (scene.solver.stretch === 'global') return 'the global stretch step (solver.stretch \'global\') runs on the CPU only';
-  if (scene.solver.selfContact) return 'self-contact (solver.selfContact) runs on the CPU only';
   const differs = differingClothField(scene);
   if (differs) return `cloths that differ in their contact or spring values run on the CPU only (${differs})`;
   return colliderRefusal(scene);
@@ -62,8 +61,10 @@ export function colliderRefusal(scene: Scene): string | null {
 
 /**
  * The phases of the schedule the GPU implements: every phase of XPBD, stencil bending (solver.bending 'hinges' or
- * 'laplacian') included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript reference: a frame that
- * needs one is refused (the mass-spring solver, the global stretch step, self-contact, a collider shape it does not know).
+ * 'laplacian') and self-contact included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript
+ * reference: a frame that needs one is refused (the mass-spring solver, the global stretch step, a collider shape it
+ * does not know). Self-contact reads one thickness and friction for the whole model, as contact does: cloths that
+ * differ in them are refused by the contact phase already.
  */
 export const GPU_PHASES: BackendPhases = {
   name: 'GPU solver',
@@ -72,7 +73,7 @@ export const GPU_PHASES: BackendPhases = {
   solvers: ['xpbd'],
   phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.carry) | (1 << PHASE.grab) |
     (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) |
-    (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
+    (1 << PHASE.selfContact) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
   refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
     (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null) ?? perClothRefusal(id, params),
 };
@@ -171,6 +172,19 @@ export class FrameEncoder implements PhaseBackend {
           }
           break;
         }
+        case PHASE.selfContact: {
+          // the triangles' grid, the particles against it; then the edges' grid (from the positions the particle
+          // pass left, as the CPU's edge boxes are), the edges against it (no records: a distance of 0, nothing to do)
+          const r = u.selfRecords;
+          if (!r) break;
+          this.buildSelfGrid(r, r.triangles, r.triangleCount, so);
+          this.dispatch('selfFindPoints', particles, so, 0);
+          this.resolveSelfPairs('selfPoints', so);
+          this.buildSelfGrid(r, r.edges, r.edgeCount, so);
+          this.dispatch('selfFindEdges', r.edgeCount, so, 0);
+          this.resolveSelfPairs('selfEdges', so);
+          break;
+        }
         case PHASE.contact:
         case PHASE.contactTriangles: {
           // the particle passes (every collider, in order), then in the next phase the triangle passes
@@ -183,6 +197,36 @@ export class FrameEncoder implements PhaseBackend {
       }
       log?.push(id, false);
     }
+  }
+
+  /**
+   * Dispatches one build of the self-contact grid (selfGrid.wgsl) over `count` primitives, those of Pass record
+   * `record` (the triangles or the edges), in substep record `so`: boxes and cell size, counts, the prefix sum of
+   * the buckets (blocks, their totals, the sum made global), the scatter.
+   */
+  private buildSelfGrid(r: SelfRecords, record: number, count: number, so: number): void {
+    const po = record * RECORD_STRIDE;
+    this.dispatch('selfBoxes', count, so, po);
+    this.dispatch('selfCount', count, so, po);
+    this.dispatch('selfScan', (r.buckets / SCAN_BLOCK) * WORKGROUP_SIZE, so, po);
+    this.dispatch('selfScanTotals', WORKGROUP_SIZE, so, po);
+    this.dispatch('selfScanAdd', r.buckets, so, po);
+    this.dispatch('selfScatter', count, so, po);
+  }
+
+  /**
+   * Dispatches a self-contact pair pass over the candidates just listed: its indirect arguments from their count
+   * (selfPairArgs), `kernel` over them (one pair per thread), then every particle moved by the mean of its
+   * corrections (selfApply).
+   */
+  private resolveSelfPairs(kernel: 'selfPoints' | 'selfEdges', so: number): void {
+    this.dispatch('selfPairArgs', 1, so, 0);
+    const pass = this.pass!;
+    pass.setPipeline(this.pipelines[kernel]);
+    pass.setBindGroup(0, this.uniforms.group, [so, 0]);
+    pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
+    pass.dispatchWorkgroupsIndirect(this.buffers.buffers.selfArgs, 0);
+    this.dispatch('selfApply', this.model.particleCount, so, 0);
   }
 
   /** Recomputes the vertex normals from the current positions, in a submit of its own. */

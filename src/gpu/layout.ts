@@ -8,6 +8,7 @@
  * w = 0. The CPU keeps stride 3; upload/read convert.
  */
 
+import type { ClothModel } from '../core/model.js';
 import {
   COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_MESH, COLLIDER_PLANE, COLLIDER_SPHERE,
   GOLDEN_ITERATIONS, MESH_SHARP_EDGE, MESH_SIGNED,
@@ -38,6 +39,39 @@ export const RECORD_STRIDE = 256;
  */
 export const MESH_STACK = 64;
 
+
+/**
+ * Self-contact (the selfContact phase; docs/gpu.md, "Self-contact"). Corrections are summed per particle with integer
+ * atomics in fixed point: SELF_FIXED units per metre (2^26: 1.5e-8 m resolution, ±32 m per particle and pass), each
+ * pair's share clamped to ±SELF_CLAMP m first so that no sum can wrap. Integer sums do not depend on the order the
+ * threads add in, so a pass gives the same result every run.
+ */
+export const SELF_FIXED = 2 ** 26;
+export const SELF_CLAMP = 0.25;
+/** Buckets each workgroup of the self-contact grid's prefix sum scans (4 per thread). */
+export const SCAN_BLOCK = 4 * 64;
+/** Primitives (triangles, edges) of a self-contact grid build; the build's Pass record says which (`flags`). */
+export const SELF_TRIANGLES = 0;
+export const SELF_EDGES = 1;
+
+/**
+ * Candidate pairs the self-contact list holds per primitive of the larger grid (selfGridSize `pairs`): 4× the most
+ * measured (fold at 32², corner first onto the floor in layers: 2.0 edge pairs and 1.9 particle pairs per edge).
+ * Pairs past it are counted, not kept: those contacts are not resolved that substep.
+ */
+export const SELF_PAIRS_PER_PRIMITIVE = 8;
+
+/**
+ * The sizes of a model's self-contact grid: `primitives` = the larger of its triangle and edge counts (one grid at a
+ * time holds either), `buckets` of the spatial hash (a power of two, at least twice the primitives and SCAN_BLOCK),
+ * `blocks` = buckets / SCAN_BLOCK, `entries` = 8 per primitive (a box spans at most 2 cells per axis: the cell is
+ * the largest box), `pairs` the candidates' list holds (SELF_PAIRS_PER_PRIMITIVE per primitive).
+ */
+export function selfGridSize(model: ClothModel): { primitives: number; buckets: number; blocks: number; entries: number; pairs: number } {
+  const primitives = Math.max(model.triangles.length / 3, model.edges.length / 2);
+  const buckets = Math.max(SCAN_BLOCK, 2 ** Math.ceil(Math.log2(Math.max(1, 2 * primitives))));
+  return { primitives, buckets, blocks: buckets / SCAN_BLOCK, entries: 8 * primitives, pairs: SELF_PAIRS_PER_PRIMITIVE * primitives };
+}
 
 /** Flags of a solve or bending pass record. */
 export const PASS_CAP = 1; // apply the hard stretch cap (structural and shear batches; never set on a bending batch)
@@ -209,6 +243,41 @@ export const BUFFERS = {
   meshNodes: { type: 'MeshNode', bytes: MESH_NODE.size },
   /** the triangles of every mesh collider of the params, each one's in its BVH's leaf order */
   meshTriangles: { type: 'MeshTriangle', bytes: MESH_TRIANGLE.size },
+  /**
+   * the mesh's edges (model.edges: a < b). This and the self-contact buffers below are 16-byte placeholders until
+   * params first turn self-contact on (buffers.ts makeSelfContact), then sized by selfGridSize
+   */
+  edges: { type: 'vec2u', bytes: 8 },
+  /**
+   * each primitive of the grid being built (triangles or edges): its box over the substep (start ∪ end positions),
+   * widened by the self-contact distance h (an edge's by h/2), two rows: lowest corner, highest corner [m]
+   */
+  selfBoxes: { type: 'vec4f', bytes: 16 },
+  /** 8 per primitive: its place in each of its cells' buckets (selfCount), for selfScatter */
+  selfRanks: { type: 'u32', bytes: 4 },
+  /**
+   * the grid being built: [0] the largest box extent (f32 bits: positive floats order as their bits) [m], then the
+   * primitives in each bucket; zeroed again by selfScanAdd once the starts are made
+   */
+  selfCounts: { type: 'atomic<u32>', bytes: 4 },
+  /** [0] the grid's largest box extent (f32 bits) [m], then each bucket's first entry in selfEntries, and the total */
+  selfStarts: { type: 'u32', bytes: 4 },
+  /** each SCAN_BLOCK buckets' count, then its exclusive prefix (selfScan, selfScanTotals) */
+  selfBlocks: { type: 'u32', bytes: 4 },
+  /** the primitives of each bucket, bucket after bucket (counting sort) */
+  selfEntries: { type: 'u32', bytes: 4 },
+  /**
+   * the candidate pairs of the pass being made (particle, triangle) or (edge, later edge): [0] how many were found
+   * (atomic; selfPairArgs zeroes it), then the pairs, at most globals.selfPairCapacity of them
+   */
+  selfPairs: { type: 'atomic<u32>', bytes: 4 },
+  /** the indirect dispatch of the pair pass (workgroups x, y, z) and the pairs it resolves; INDIRECT usage */
+  selfArgs: { type: 'u32', bytes: 4 },
+  /**
+   * per particle: the sum of its corrections of one pass in fixed point (xyz, SELF_FIXED per metre) and how many
+   * pairs moved it (w); zeroed by selfApply
+   */
+  selfDelta: { type: 'atomic<i32>', bytes: 4 },
 } as const;
 export type BufferName = keyof typeof BUFFERS;
 
@@ -313,6 +382,63 @@ export const KERNELS = {
     ],
     libs: ['pose', 'colliders', 'meshCollider', 'triangleContact', 'meshTriangles'],
   },
+  /** self-contact grid, 1: each primitive's box over the substep, and the largest extent (the cell size) */
+  selfBoxes: {
+    bindings: [['positions', 'read'], ['previous', 'read'], ['triangles', 'read'], ['edges', 'read'], ['selfBoxes', 'read_write'], ['selfCounts', 'read_write']],
+    libs: ['selfGrid'],
+  },
+  /** self-contact grid, 2: each primitive counted into the buckets of its cells, its rank in each kept */
+  selfCount: {
+    bindings: [['selfBoxes', 'read'], ['selfCounts', 'read_write'], ['selfRanks', 'read_write']],
+    libs: ['selfGrid'],
+  },
+  /** self-contact grid, 3: exclusive prefix sums of the counts within each block of SCAN_BLOCK buckets */
+  selfScan: { bindings: [['selfCounts', 'read'], ['selfStarts', 'read_write'], ['selfBlocks', 'read_write']] },
+  /** self-contact grid, 4: exclusive prefix sum of the blocks' totals (one workgroup) */
+  selfScanTotals: { bindings: [['selfBlocks', 'read_write']] },
+  /** self-contact grid, 5: each bucket's start made global, the total and the cell size written, the counts zeroed */
+  selfScanAdd: { bindings: [['selfCounts', 'read_write'], ['selfStarts', 'read_write'], ['selfBlocks', 'read']] },
+  /** self-contact grid, 6: each primitive written into its cells' buckets (counting sort) */
+  selfScatter: {
+    bindings: [['selfBoxes', 'read'], ['selfStarts', 'read'], ['selfRanks', 'read'], ['selfEntries', 'read_write']],
+    libs: ['selfGrid'],
+  },
+  /** collideSelf's candidates, particle part: each free particle against the triangles of its cells, pairs listed */
+  selfFindPoints: {
+    bindings: [
+      ['positions', 'read'], ['previous', 'read'], ['invMass', 'read'], ['triangles', 'read'], ['selfBoxes', 'read'],
+      ['selfStarts', 'read'], ['selfEntries', 'read'], ['selfPairs', 'read_write'],
+    ],
+    libs: ['selfGrid', 'selfList'],
+  },
+  /** collideSelf's candidates, edge part (collideEdges): each edge against the later edges of its cells, pairs listed */
+  selfFindEdges: {
+    bindings: [
+      ['positions', 'read'], ['previous', 'read'], ['edges', 'read'], ['selfBoxes', 'read'], ['selfStarts', 'read'],
+      ['selfEntries', 'read'], ['selfPairs', 'read_write'],
+    ],
+    libs: ['selfGrid', 'selfList'],
+  },
+  /** the indirect dispatch of the pair pass from the candidates listed, the list's count zeroed */
+  selfPairArgs: { bindings: [['selfPairs', 'read_write'], ['selfArgs', 'read_write']] },
+  /** collideSelf, particle part (resolvePair): one particle–triangle pair per thread, corrections summed (Jacobi) */
+  selfPoints: {
+    bindings: [
+      ['positions', 'read'], ['previous', 'read'], ['invMass', 'read'], ['triangles', 'read'], ['selfPairs', 'read'],
+      ['selfArgs', 'read'], ['selfDelta', 'read_write'],
+    ],
+    libs: ['selfCorrect'],
+  },
+  /** collideSelf, edge part (resolveEdges): one edge pair per thread, corrections summed (Jacobi) */
+  selfEdges: {
+    bindings: [
+      ['positions', 'read'], ['previous', 'read'], ['invMass', 'read'], ['edges', 'read'], ['selfPairs', 'read'],
+      ['selfArgs', 'read'], ['selfDelta', 'read_write'],
+    ],
+    libs: ['selfCorrect'],
+  },
+  /** the summed corrections of a self-contact pass applied, each particle by their mean, and zeroed */
+  selfApply: { bindings: [['positions', 'read_write'], ['selfDelta', 'read_write']] },
   /** updateVelocities, once per frame */
   velocities: {
     bindings: [
@@ -342,6 +468,11 @@ const GLOBALS_FIELDS = [
   ['triangleCount', 'u32', 'triangles of the model'],
   ['colliderCount', 'u32', 'colliders in use (params.colliders)'],
   ['carriedCount', 'u32', 'particles the colliders carry (params.carried)'],
+  ['edgeCount', 'u32', 'edges of the model (model.edges)'],
+  ['selfDistance', 'f32', 'the self-contact distance h (core selfContactDistance) [m]'],
+  ['selfBuckets', 'u32', 'buckets of the self-contact grid (selfGridSize of the model)'],
+  ['selfBlockCount', 'u32', 'its blocks of SCAN_BLOCK buckets'],
+  ['selfPairCapacity', 'u32', 'the candidate pairs selfPairs holds (selfGridSize)'],
 ] as const satisfies readonly Field[];
 
 const SUBSTEP_FIELDS = [
@@ -373,6 +504,7 @@ export const PASS = structLayout(PASS_FIELDS);
 export function wgslPreamble(): string {
   return `// ---- generated from src/gpu/layout.ts ----
 const WG: u32 = ${WORKGROUP_SIZE}u;
+const MAX_WORKGROUPS_X: u32 = ${MAX_WORKGROUPS_X}u;
 const COLLIDER_SPHERE: u32 = ${COLLIDER_SPHERE}u;
 const COLLIDER_FLOOR: u32 = ${COLLIDER_FLOOR}u;
 const COLLIDER_PLANE: u32 = ${COLLIDER_PLANE}u;
@@ -386,6 +518,11 @@ const MESH_STACK: u32 = ${MESH_STACK}u;
 const GOLDEN_ITERATIONS: u32 = ${GOLDEN_ITERATIONS}u;
 const PASS_CAP: u32 = ${PASS_CAP}u;
 const PASS_READ_LAMBDA: u32 = ${PASS_READ_LAMBDA}u;
+const SELF_FIXED: f32 = ${SELF_FIXED}.0;
+const SELF_CLAMP: f32 = ${SELF_CLAMP};
+const SCAN_BLOCK: u32 = ${SCAN_BLOCK}u;
+const SELF_TRIANGLES: u32 = ${SELF_TRIANGLES}u;
+const SELF_EDGES: u32 = ${SELF_EDGES}u;
 
 ${wgslStruct('Collider', COLLIDER_FIELDS)}
 
@@ -417,10 +554,17 @@ fn flatIndex(gid: vec3u, nwg: vec3u) -> u32 {
 `;
 }
 
-/** WGSL `var` declarations of a kernel's storage bindings (group 1). */
+/**
+ * WGSL `var` declarations of a kernel's storage bindings (group 1). A buffer of atomics bound read-only is read as
+ * its plain type (WGSL allows atomics only in read_write storage).
+ */
 export function wgslBindings(kernel: KernelName): string {
   const spec: KernelSpec = KERNELS[kernel];
   return spec.bindings
-    .map(([name, access], i) => `@group(1) @binding(${i}) var<storage, ${access}> ${name}: array<${BUFFERS[name].type}>;`)
+    .map(([name, access], i) => {
+      const type: string = BUFFERS[name].type;
+      const element = access === 'read' ? type.replace(/^atomic<(.*)>$/, '$1') : type;
+      return `@group(1) @binding(${i}) var<storage, ${access}> ${name}: array<${element}>;`;
+    })
     .join('\n');
 }

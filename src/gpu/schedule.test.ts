@@ -38,13 +38,14 @@ const meshCarrier: ColliderSpec = {
 
 /** The phases an XPBD frame must run, straight from the table. */
 function expected(
-  substeps: number, wind: boolean, grabbed: boolean, carried = false, triangles = false, stencils = false,
+  substeps: number, wind: boolean, grabbed: boolean, carried = false, triangles = false, stencils = false, self = false,
 ): PhaseName[] {
   const runs = (name: PhaseName) => {
     const p = PHASES[PHASE[name]];
     return p.solvers.includes('xpbd') && (p.when === 'always' || (p.when === 'wind' && wind) ||
       (p.when === 'grab' && grabbed) || (p.when === 'carried' && carried) || (p.when === 'triangles' && triangles) ||
-      (p.when === 'stencils' && stencils) || p.when === 'local'); // springs one at a time (solver.stretch 'gauss-seidel')
+      (p.when === 'stencils' && stencils) || (p.when === 'self' && self) ||
+      p.when === 'local'); // springs one at a time (solver.stretch 'gauss-seidel')
   };
   const of = (scope: string) => PHASES.filter((p) => p.scope === scope && runs(p.name)).map((p) => p.name);
   return [...of('frame-start'), ...Array.from({ length: substeps }, () => of('substep')).flat(), ...of('frame-end')];
@@ -55,8 +56,8 @@ describe('what the GPU implements of the schedule', () => {
     const sim = new Simulation(windyScene(), { kernel: 'ts' });
     // but carry, which a frame runs only for pins a collider carries (none here), triangle contact, only for a
     // collider that needs it at this mesh size (none here), and stencil bending, only for solver.bending 'hinges' or
-    // 'laplacian' (and the global stretch step and self-contact, which solver.stretch 'global' and solver.selfContact
-    // ask for and the GPU refuses: below)
+    // 'laplacian', self-contact, only for solver.selfContact (below), and the global stretch step, which solver.stretch
+    // 'global' asks for and the GPU refuses: below)
     const xpbd = solverPhases('xpbd') & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.selfContact);
     const rare = (1 << PHASE.carry) | (1 << PHASE.contactTriangles) | (1 << PHASE.bending);
     expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(xpbd & ~rare);
@@ -71,8 +72,9 @@ describe('what the GPU implements of the schedule', () => {
     // the springs solved together: refused by name (the cloth lives in GPU buffers; the reference cannot step in)
     const global = new Simulation(windyScene((s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
     expect(() => assignPhases(GPU_PHASES, global.model, global.params)).toThrow(/does not implement phase 'globalStretch'/);
+    // self-contact: by the GPU too
     const selfy = new Simulation(windyScene((s) => { s.solver.selfContact = true; }), { kernel: 'ts' });
-    expect(() => assignPhases(GPU_PHASES, selfy.model, selfy.params)).toThrow(/does not implement phase 'selfContact'/);
+    expect(assignPhases(GPU_PHASES, selfy.model, selfy.params)).toBe((xpbd | (1 << PHASE.selfContact)) & ~rare);
     // with carried pins, carry too, whatever the collider and its motion
     const carried = new Simulation(windyScene((s) => { s.colliders = [carrier]; }), { kernel: 'ts' });
     expect(assignPhases(GPU_PHASES, carried.model, carried.params) & (1 << PHASE.carry)).toBe(1 << PHASE.carry);
@@ -134,6 +136,21 @@ describe.skipIf(!gpu)('the GPU encodes the schedule', () => {
     const log = new PhaseLog();
     solver.step(state, sim.params, FRAME_DT, undefined, log);
     expect(log.names()).toEqual(expected(3, true, false, true, true));
+    await solver.read(state);
+    expect(state.positions.every(Number.isFinite)).toBe(true);
+  });
+
+  test('self-contact: selfContact, by the GPU, after the stretch limit and before contact in every substep', async () => {
+    const sim = new Simulation(windyScene((s) => { s.solver.selfContact = true; }), { kernel: 'ts' });
+    const state = createState(sim.model);
+    copyState(sim.state, state);
+    const solver = await GpuClothSolver.create(gpu!.device, sim.model);
+    solvers.push(solver);
+    solver.upload(state);
+    const log = new PhaseLog();
+    solver.step(state, sim.params, FRAME_DT, undefined, log);
+    expect(log.names()).toEqual(expected(3, true, false, false, false, false, true));
+    expect(Array.from(log.byReference.subarray(0, log.length)).every((r) => !r)).toBe(true);
     await solver.read(state);
     expect(state.positions.every(Number.isFinite)).toBe(true);
   });

@@ -85,7 +85,7 @@ export class GpuClothSolver {
    * model...) without rebuilding anything but the uniform tables (and, on the first params with a stencil bending
    * model or a switch to the other, the stencils' buffers). `step` calls it by itself when handed a different params object; call it after changing a
    * params object in place. Throws for what the GPU does not implement (GPU_PHASES: the mass-spring solver, a
-   * collider type its kernels do not know). Colliders may move (keyframes, or a drive the library sets on
+   * collider type its kernels do not know) or cannot hold (self-contact's buffers past what the device binds). Colliders may move (keyframes, or a drive the library sets on
    * params.colliders: read every frame) and carry pins.
    */
   setParams(params: SimParams): void {
@@ -93,9 +93,10 @@ export class GpuClothSolver {
     assignPhases(GPU_PHASES, this.model, params);
     // first: it may refuse mesh colliders too big for this device
     this.colliders.setParams(params);
-    this.params = params;
+    // it may refuse self-contact too big for this device, before writing anything
     this.buffers.writeParams(params);
     this.uniforms.setParams(params);
+    this.params = params;
   }
 
   /**
@@ -147,13 +148,13 @@ export class GpuClothSolver {
   /** Bytes one substep's kernels move with the current params (see docs/gpu.md, "Benchmark"). */
   substepTraffic(): SubstepTraffic {
     if (!this.params) throw new Error('GPU solver: setParams first');
-    return substepTraffic(this.model, this.params, this.uniforms.collidePasses, this.buffers.hasTethers);
+    return substepTraffic(this.model, this.params, this.uniforms.collidePasses, this.uniforms.selfRecords, this.buffers.hasTethers);
   }
 
   /** Dispatches one frame encodes (for reports). */
   dispatchesPerFrame(params: SimParams): number {
     const u = this.uniforms;
-    return dispatchesPerFrame(params, u.batchRecords, u.stencilRecords, u.collidePasses, this.buffers.hasTethers);
+    return dispatchesPerFrame(params, u.batchRecords, u.stencilRecords, u.collidePasses, u.selfRecords, this.buffers.hasTethers);
   }
 
   /** Frees every GPU buffer. The solver cannot be used afterwards. */

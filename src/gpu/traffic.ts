@@ -4,8 +4,8 @@
  */
 import { bendingStencils, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
-import { CARRY, COLLIDER } from './layout.js';
-import type { BatchRecords, CollidePass, StencilBatchRecords } from './uniforms.js';
+import { CARRY, COLLIDER, SCAN_BLOCK } from './layout.js';
+import type { BatchRecords, CollidePass, SelfRecords, StencilBatchRecords } from './uniforms.js';
 
 /** Bytes one substep's kernels read and write, as written (each element access counted once per thread). */
 export interface SubstepTraffic {
@@ -13,8 +13,13 @@ export interface SubstepTraffic {
   byKernel: Record<string, number>;
 }
 
-/** Bytes one substep moves, by kernel; `hasTethers`: whether the tethers kernel has work. */
-export function substepTraffic(model: ClothModel, params: SimParams, collidePasses: readonly CollidePass[], hasTethers: boolean): SubstepTraffic {
+/**
+ * Bytes one substep moves, by kernel; `self`: the self-contact grid's records (null: none), `hasTethers`: whether the
+ * tethers kernel has work.
+ */
+export function substepTraffic(
+  model: ClothModel, params: SimParams, collidePasses: readonly CollidePass[], self: SelfRecords | null, hasTethers: boolean,
+): SubstepTraffic {
   const n = model.particleCount, T = model.triangles.length / 3, S = model.restLengths.length;
   const by: Record<string, number> = {};
   const add = (k: string, bytes: number) => { by[k] = (by[k] ?? 0) + bytes; };
@@ -42,6 +47,19 @@ export function substepTraffic(model: ClothModel, params: SimParams, collidePass
   if (hasTethers) add('tethers', n * (8 + 4 + 16 + 16 + 16));
   const stretchSprings = model.springCounts[0] + model.springCounts[1];
   add('limitStretch', stretchSprings * (8 + 8 + 8 + 32)); // springs, rest, w×2, x×2 in (written only when over)
+  if (self) {
+    // per build of P primitives of k corners: boxes (corners now and then in, box out, the extent's atomic), counts
+    // (box in, its cells' counts and ranks: 8 at most, counted as 2), the prefix sum over the B buckets (count in,
+    // start out, twice, and the zeroing) and the scatter (box, starts, ranks in, entries out, 2 cells); then the
+    // candidates' fixed part (a particle or edge in, its own cells' starts) and the corrections applied (n sums in,
+    // positions in and out). What the candidates read of their cells' entries and the pairs they resolve depend on
+    // where the cloth is, and are not counted.
+    const n = model.particleCount, B = self.buckets;
+    const build = (P: number, k: number) =>
+      P * (k * 32 + 32 + 4) + P * (32 + 2 * 8) + B * (4 + 4 + 4 + 4 + 4 + 4) + (B / SCAN_BLOCK) * 12 + P * (32 + 4 + 2 * (4 + 4 + 4));
+    add('selfContact', build(self.triangleCount, 3) + n * (16 + 16 + 4 + 8) + n * (16 + 32));
+    add('selfContact', build(self.edgeCount, 2) + self.edgeCount * (32 + 8 + 64 + 8) + n * (16 + 32));
+  }
   const carried = params.carried.particles.length;
   if (carried > 0) add('carry', carried * (CARRY.size + COLLIDER.size + 16)); // its record, its collider's, the position written
   for (const c of collidePasses) {
@@ -59,15 +77,17 @@ export function substepTraffic(model: ClothModel, params: SimParams, collidePass
 
 /**
  * Dispatches one frame encodes with nothing grabbed (prepare, velocities and normals once; the rest per substep);
- * `stencilRecords` is empty unless params.bending is a stencil model.
+ * `stencilRecords` is empty unless params.bending is a stencil model, `self` null unless it has self-contact (then
+ * per substep two grid builds of 6 dispatches, each followed by its candidates, their indirect arguments, the pairs
+ * and the corrections applied: 20).
  */
 export function dispatchesPerFrame(
   params: SimParams, batchRecords: readonly BatchRecords[], stencilRecords: readonly StencilBatchRecords[],
-  collidePasses: readonly CollidePass[], hasTethers: boolean,
+  collidePasses: readonly CollidePass[], self: SelfRecords | null, hasTethers: boolean,
 ): number {
   const stretchBatches = batchRecords.filter((r) => r.stretch).length;
   const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) +
     params.iterations * (batchRecords.length + stencilRecords.length) + stretchBatches + (hasTethers ? 1 : 0) +
-    collidePasses.length;
+    collidePasses.length + (self ? 20 : 0);
   return 3 + params.substeps * perSubstep;
 }

@@ -8,9 +8,12 @@ import type {} from 'webgpu';
 import { BEND, bendingStencils, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import { needsTriangleContact } from '../core/phases.js';
+import { selfContactDistance } from '../core/self-contact.js';
 import type { ClothState } from '../core/state.js';
 import { windVelocity } from '../core/wind.js';
-import { COLLIDER_MESH, GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SUBSTEP } from './layout.js';
+import {
+  COLLIDER_MESH, GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SELF_EDGES, SELF_TRIANGLES, SUBSTEP, selfGridSize,
+} from './layout.js';
 
 /**
  * A run of contact work in one substep: particles against colliders [first, last) of one family (analytic or
@@ -48,6 +51,16 @@ export interface StencilBatchRecords {
   readonly count: number;
 }
 
+/** Pass-record indices of the self-contact grid's two builds (triangles, edges), and how many of each. */
+export interface SelfRecords {
+  readonly triangles: number;
+  readonly edges: number;
+  readonly triangleCount: number;
+  readonly edgeCount: number;
+  /** the grid's buckets (selfGridSize) */
+  readonly buckets: number;
+}
+
 /** The uniform buffers of one cloth, their bind group, and the pass lists of the current params. */
 export class UniformTables {
   /** group 0 over the three tables (replaced when a table grows) */
@@ -58,6 +71,11 @@ export class UniformTables {
   stencilRecords: StencilBatchRecords[] = [];
   /** the contact passes of a substep, in order */
   collidePasses: CollidePass[] = [];
+  /**
+   * the self-contact grid's build records, or null when the params have no self-contact or its distance is 0 (a
+   * thickness of 0: nothing to keep apart, as on the CPU)
+   */
+  selfRecords: SelfRecords | null = null;
   private readonly device: GPUDevice;
   private readonly model: ClothModel;
   private readonly layout: GPUBindGroupLayout;
@@ -83,6 +101,11 @@ export class UniformTables {
     const g = new DataView(this.globals);
     g.setUint32(GLOBALS.particleCount, model.particleCount, true);
     g.setUint32(GLOBALS.triangleCount, model.triangles.length / 3, true);
+    g.setUint32(GLOBALS.edgeCount, model.edges.length / 2, true);
+    const grid = selfGridSize(model);
+    g.setUint32(GLOBALS.selfBuckets, grid.buckets, true);
+    g.setUint32(GLOBALS.selfBlockCount, grid.blocks, true);
+    g.setUint32(GLOBALS.selfPairCapacity, grid.pairs, true);
     g.setInt32(GLOBALS.grabbed, -1, true);
   }
 
@@ -121,6 +144,8 @@ export class UniformTables {
     g.setFloat32(GLOBALS.windK, (0.25 * params.wind.airDensity) / 3, true);
     g.setUint32(GLOBALS.colliderCount, params.colliders.length, true);
     g.setUint32(GLOBALS.carriedCount, params.carried.particles.length, true);
+    const selfDistance = params.selfContact ? selfContactDistance(model, params) : 0;
+    g.setFloat32(GLOBALS.selfDistance, selfDistance, true);
     // shapes whose surface can poke between a triangle's vertices (not a half-space), as the CPU decides
     const triangleShapes = params.colliders.map((shape) => needsTriangleContact(model, shape, params.thickness));
     q.writeBuffer(this.globalsBuffer, 0, this.globals);
@@ -159,6 +184,15 @@ export class UniformTables {
         this.collidePasses.push({ kernel, triangles: true, record: records.length, count: b.end - b.start, colliders: 1 });
         records.push([b.start, b.end, 0, k]);
       }
+    }
+    // self-contact: the grid's two builds, each record naming its primitives and how many
+    this.selfRecords = null;
+    if (selfDistance > 0) {
+      const triangleCount = model.triangles.length / 3, edgeCount = model.edges.length / 2;
+      const at = records.length;
+      records.push([0, triangleCount, 0, SELF_TRIANGLES]);
+      records.push([0, edgeCount, 0, SELF_EDGES]);
+      this.selfRecords = { triangles: at, edges: at + 1, triangleCount, edgeCount, buckets: selfGridSize(model).buckets };
     }
     if (records.length * RECORD_STRIDE > this.passBuffer.size) {
       this.passBuffer.destroy();

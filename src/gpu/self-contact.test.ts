@@ -1,0 +1,145 @@
+/**
+ * Self-contact on the GPU (solver.selfContact, the selfContact phase: docs/gpu.md, "Self-contact"), on whatever
+ * adapter `createNodeDevice` finds: SwiftShader on the build machines, so small cloths and few frames. Each scene is
+ * run with self-contact and without it, so that every test shows what the phase changes. No adapter: as in
+ * gpu.test.ts, the tests fail in CI and are skipped (saying why) elsewhere.
+ */
+import { afterAll, describe, expect, test } from 'vitest';
+import type {} from 'webgpu';
+import { Simulation, builtinScene, countIntersections, validateScene, type Scene } from '../core/index.js';
+import { selfContactDistance } from '../core/self-contact.js';
+import { GpuBackend } from './backend.js';
+import { sceneRefusal } from './encoder.js';
+import { testDevice } from './test-device.js';
+
+const gpu = await testDevice('src/gpu/self-contact.test.ts');
+
+const sims: Simulation[] = [];
+afterAll(() => {
+  for (const s of sims) s.dispose();
+});
+
+/** A Simulation of `scene` on the GPU (its state read back by `sync`). */
+async function onGpu(scene: Scene): Promise<Simulation> {
+  expect(sceneRefusal(scene)).toBeNull();
+  const sim = new Simulation(scene, { kernel: 'ts' });
+  sim.useBackend(await GpuBackend.create(gpu!.device, sim.model));
+  sims.push(sim);
+  return sim;
+}
+
+/** The crossing pairs of `sim` at every 10th of the next `frames` frames (read back each time); `at20` gets frame 20's positions. */
+async function crossings(sim: Simulation, frames: number, at20?: Float32Array): Promise<number[]> {
+  const out: number[] = [];
+  for (let f = 10; f <= frames; f += 10) {
+    sim.advance(10);
+    await sim.sync();
+    expect(sim.state.positions.every(Number.isFinite), `finite at frame ${f}`).toBe(true);
+    out.push(countIntersections(sim.model.triangles, sim.state.positions));
+    if (f === 20) at20?.set(sim.state.positions);
+  }
+  return out;
+}
+
+/**
+ * The built-in fold at 16² (corner first onto the floor, landing in layers), its sheet bulged 1 cm out of its plane
+ * (cloth.imperfection): exactly flat, the sheet without self-contact lands on its corner and stays standing on it (it
+ * has nothing to buckle it out of its plane), crossing nothing, so the comparison needs the bulge. Measured on
+ * SwiftShader: without self-contact 72–101 crossing pairs from frame 30 to 60 and 29 at frame 90 (at 32²: 1228 at
+ * frame 300), with it 0 at every 10th frame up to 90.
+ */
+function fold(selfContact: boolean): Scene {
+  const s = builtinScene('fold');
+  s.cloth.resolution = 16;
+  s.cloth.imperfection = 0.01;
+  s.solver.selfContact = selfContact;
+  return validateScene(s);
+}
+
+/** Two cotton sheets stacked over a sphere of radius 0.5 (cloths.test.ts's, in one fabric, which the GPU takes). */
+function stacked(selfContact: boolean): Scene {
+  return validateScene({
+    name: 'stacked',
+    solver: { selfContact },
+    colliders: [{ type: 'sphere', center: [0, 0, 0], radius: 0.5 }],
+    cloths: [
+      { name: 'under', cloth: { resolution: 10, position: [0, 0.6, 0] }, material: { fabric: 'cotton' } },
+      { name: 'over', cloth: { resolution: 10, width: 0.6, height: 0.6, position: [0, 0.75, 0], rotation: [0, 30, 0] }, material: { fabric: 'cotton' } },
+    ],
+  });
+}
+
+/** The highest point of cloth c of `sim` now [m]. */
+function top(sim: Simulation, c: number): number {
+  const x = sim.state.positions, s = sim.model.clothStarts;
+  let y = -Infinity;
+  for (let i = s[c]; i < s[c + 1]; i++) y = Math.max(y, x[3 * i + 1]);
+  return y;
+}
+
+describe.skipIf(!gpu)('self-contact on the GPU', () => {
+  test('the fold at 16²: with it no two triangles cross at any 10th frame of 1 s, without it they do; a run repeats to the bit', async () => {
+    const without = await onGpu(fold(false));
+    const free = await crossings(without, 60);
+    expect(free[free.length - 1]).toBeGreaterThan(20);
+    const sim = await onGpu(fold(true));
+    const at20 = new Float32Array(3 * sim.model.particleCount);
+    expect(await crossings(sim, 60, at20)).toEqual(Array(6).fill(0));
+    // the corrections are summed in integers (fixed point), which no thread order changes: a second run is the same
+    const again = await onGpu(fold(true));
+    again.advance(20);
+    await again.sync();
+    expect(again.state.positions).toEqual(at20);
+  });
+
+  test('two sheets dropped on a sphere stay layered, the upper one a contact distance above the lower; without it they pass through', async () => {
+    const sim = await onGpu(stacked(true));
+    expect(await crossings(sim, 60)).toEqual(Array(6).fill(0));
+    const h = selfContactDistance(sim.model, sim.params);
+    expect(h).toBe(0.005);
+    // the lower sheet on the sphere's top (within three thicknesses: a coarse sheet tents, 0.509 m without the upper
+    // one), the upper one on it: measured 0.510 and 5.0 mm above (the CPU: 0.508 and 5.1 mm at frame 90, at 12²)
+    const under = top(sim, 0), over = top(sim, 1);
+    expect(under).toBeGreaterThan(0.5);
+    expect(under).toBeLessThan(0.5 + 3 * 0.005);
+    expect(over - under).toBeGreaterThan(0.8 * h);
+    expect(over - under).toBeLessThan(2 * h);
+    // without: the upper sheet falls through (measured 223 crossing pairs at frame 60, its top 2.5 mm under the other's)
+    const without = await onGpu(stacked(false));
+    const free = await crossings(without, 60);
+    expect(free[free.length - 1]).toBeGreaterThan(50);
+    expect(top(without, 1) - top(without, 0)).toBeLessThan(0.002);
+  });
+
+  // two thin strips crossing like an X, the upper one falling on the pinned lower one (self-contact.test.ts in core):
+  // every vertex stays far outside the other strip's triangles, so only the edge pass can hold it
+  test('edges that cross with no vertex near the other strip are kept apart (edge–edge contact)', async () => {
+    const scene = (selfContact: boolean) => validateScene({
+      name: 'crossed strips',
+      solver: { selfContact },
+      colliders: [{ type: 'floor', height: 0 }],
+      cloths: [
+        { cloth: { resolution: 1, width: 1, height: 0.02, position: [0, 0.3, 0] }, material: { fabric: 'cotton' }, pins: ['top-left', 'top-right', 'bottom-left', 'bottom-right'] },
+        { cloth: { resolution: 1, width: 1, height: 0.02, position: [0, 0.33, 0], rotation: [0, 90, 0] }, material: { fabric: 'cotton' } },
+      ],
+    });
+    const heights = async (sim: Simulation) => {
+      for (let f = 1; f <= 60; f++) {
+        sim.advance(1);
+        await sim.sync();
+        if (sim.params.selfContact) expect(countIntersections(sim.model.triangles, sim.state.positions), `frame ${f}`).toBe(0);
+      }
+      const x = sim.state.positions;
+      let lowest = Infinity, highest = -Infinity;
+      for (let i = 4; i < 8; i++) { lowest = Math.min(lowest, x[3 * i + 1]); highest = Math.max(highest, x[3 * i + 1]); }
+      return { lowest, highest };
+    };
+    // the upper strip lies across the lower one, below where it started
+    const held = await heights(await onGpu(scene(true)));
+    expect(held.lowest).toBeGreaterThan(0.25);
+    expect(held.highest).toBeLessThan(0.33);
+    // without, it falls through to the floor
+    const fell = await heights(await onGpu(scene(false)));
+    expect(fell.highest).toBeLessThan(0.05);
+  });
+});
