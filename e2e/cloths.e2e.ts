@@ -51,7 +51,7 @@ describe('several cloths in the app', () => {
     ]);
     // on the CPU worker, and the HUD says why not the GPU (the scene, before the software adapter), and each cloth
     expect(await hook(page, 'simBackend')).toBe('cpu');
-    await expect.poll(() => byId(page, 'hud').innerText()).toContain('self-contact (solver.selfContact) runs on the CPU only');
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('cloths that differ in their contact or spring values run on the CPU only (cloths[1].material.damping)');
     expect(await byId(page, 'hud-cloths').innerText()).toBe('3 cloths: leather 81 · cotton 81 · silk 81 particles');
 
     // the panel's cloth control: cloth 1 (cotton), its fabric made silk; the others keep theirs
@@ -129,7 +129,8 @@ describe('several cloths in the app', () => {
   });
 
   it('the same three cloths on the GPU backend, drawn from its buffers in their looks, in every view', async () => {
-    // the GPU takes cloths that agree in their contact and spring values, without self-contact
+    // the GPU takes cloths that agree in their contact and spring values (here without self-contact, which it runs
+    // too, to keep the page quick on a software adapter)
     const same = [0, 2].flatMap((k) => [['damping', 0.1], ['stretchFactor', 1.05], ['friction', 0.3], ['staticFriction', 0.4]]
       .map(([f, v]) => `cloths[${k}].material.${f}=${v}`)).join('&');
     const { page, errors } = await openApp(browser.context, `#scene=layers&${SMALL}&solver.selfContact=false&${same}`, '?lite&backend=gpu');
