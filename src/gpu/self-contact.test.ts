@@ -28,15 +28,15 @@ async function onGpu(scene: Scene): Promise<Simulation> {
   return sim;
 }
 
-/** The crossing pairs of `sim` at every 10th of the next `frames` frames (read back each time); `at20` gets frame 20's positions. */
-async function crossings(sim: Simulation, frames: number, at20?: Float32Array): Promise<number[]> {
+/** The crossing pairs of `sim` at every 10th of the next `frames` frames (read back each time); `at10` gets frame 10's positions. */
+async function crossings(sim: Simulation, frames: number, at10?: Float32Array): Promise<number[]> {
   const out: number[] = [];
   for (let f = 10; f <= frames; f += 10) {
     sim.advance(10);
     await sim.sync();
     expect(sim.state.positions.every(Number.isFinite), `finite at frame ${f}`).toBe(true);
     out.push(countIntersections(sim.model.triangles, sim.state.positions));
-    if (f === 20) at20?.set(sim.state.positions);
+    if (f === 10) at10?.set(sim.state.positions);
   }
   return out;
 }
@@ -53,6 +53,8 @@ function fold(selfContact: boolean): Scene {
   s.cloth.resolution = 16;
   s.cloth.imperfection = 0.01;
   s.solver.selfContact = selfContact;
+  // 10 substeps: a GPU frame on SwiftShader costs its dispatches, twice as many at the scene's 20
+  s.solver.substeps = 10;
   return validateScene(s);
 }
 
@@ -60,6 +62,7 @@ function fold(selfContact: boolean): Scene {
 function stacked(selfContact: boolean): Scene {
   return validateScene({
     name: 'stacked',
+    // (the default 20 substeps: at 10 the upper sheet crosses the lower at 4–8 pairs from frame 20)
     solver: { selfContact },
     colliders: [{ type: 'sphere', center: [0, 0, 0], radius: 0.5 }],
     cloths: [
@@ -78,23 +81,23 @@ function top(sim: Simulation, c: number): number {
 }
 
 describe.skipIf(!gpu)('self-contact on the GPU', () => {
-  test('the fold at 16²: with it no two triangles cross at any 10th frame of 1 s, without it they do; a run repeats to the bit', async () => {
+  test('the fold at 16²: with it no two triangles cross at any 10th frame of 2/3 s, without it they do; a run repeats to the bit', async () => {
     const without = await onGpu(fold(false));
-    const free = await crossings(without, 60);
+    const free = await crossings(without, 40);
     expect(free[free.length - 1]).toBeGreaterThan(20);
     const sim = await onGpu(fold(true));
-    const at20 = new Float32Array(3 * sim.model.particleCount);
-    expect(await crossings(sim, 60, at20)).toEqual(Array(6).fill(0));
+    const at10 = new Float32Array(3 * sim.model.particleCount);
+    expect(await crossings(sim, 40, at10)).toEqual(Array(4).fill(0));
     // the corrections are summed in integers (fixed point), which no thread order changes: a second run is the same
     const again = await onGpu(fold(true));
-    again.advance(20);
+    again.advance(10);
     await again.sync();
-    expect(again.state.positions).toEqual(at20);
+    expect(again.state.positions).toEqual(at10);
   });
 
-  test('two sheets dropped on a sphere stay layered, the upper one a contact distance above the lower; without it they pass through', async () => {
+  test('two sheets dropped on a sphere stay layered, the upper one a contact distance above the lower', async () => {
     const sim = await onGpu(stacked(true));
-    expect(await crossings(sim, 60)).toEqual(Array(6).fill(0));
+    expect(await crossings(sim, 40)).toEqual(Array(4).fill(0));
     const h = selfContactDistance(sim.model, sim.params);
     expect(h).toBe(0.005);
     // the lower sheet on the sphere's top (within three thicknesses: a coarse sheet tents, 0.509 m without the upper
@@ -104,11 +107,8 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
     expect(under).toBeLessThan(0.5 + 3 * 0.005);
     expect(over - under).toBeGreaterThan(0.8 * h);
     expect(over - under).toBeLessThan(2 * h);
-    // without: the upper sheet falls through (measured 223 crossing pairs at frame 60, its top 2.5 mm under the other's)
-    const without = await onGpu(stacked(false));
-    const free = await crossings(without, 60);
-    expect(free[free.length - 1]).toBeGreaterThan(50);
-    expect(top(without, 1) - top(without, 0)).toBeLessThan(0.002);
+    // (without it the upper sheet falls through: measured 223 crossing pairs at frame 60, its top 2.5 mm under the
+    // other's; the fold above and cloths.test.ts on the CPU show what is lost without it)
   });
 
   // two thin strips crossing like an X, the upper one falling on the pinned lower one (self-contact.test.ts in core):
@@ -116,7 +116,7 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
   test('edges that cross with no vertex near the other strip are kept apart (edge–edge contact)', async () => {
     const scene = (selfContact: boolean) => validateScene({
       name: 'crossed strips',
-      solver: { selfContact },
+      solver: { selfContact, substeps: 10 },
       colliders: [{ type: 'floor', height: 0 }],
       cloths: [
         { cloth: { resolution: 1, width: 1, height: 0.02, position: [0, 0.3, 0] }, material: { fabric: 'cotton' }, pins: ['top-left', 'top-right', 'bottom-left', 'bottom-right'] },
@@ -124,8 +124,9 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
       ],
     });
     const heights = async (sim: Simulation) => {
-      for (let f = 1; f <= 60; f++) {
-        sim.advance(1);
+      // read back every 4th frame (each readback waits for the GPU)
+      for (let f = 4; f <= 40; f += 4) {
+        sim.advance(4);
         await sim.sync();
         if (sim.params.selfContact) expect(countIntersections(sim.model.triangles, sim.state.positions), `frame ${f}`).toBe(0);
       }
