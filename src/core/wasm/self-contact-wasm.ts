@@ -57,7 +57,7 @@ export function layoutSelfContact(model: ClothModel, take: (bytes: number) => nu
 /** A pair list kept on the host while it is larger than its window, and the window it is copied into. */
 class PairList {
   /** the window in the kernel's memory: pairs of i32 */
-  readonly window: Int32Array;
+  readonly pairWindow: Int32Array;
   /** the list when it is larger than the window, else unused (grows rarely) */
   private overflow = new Int32Array(0);
   /** pairs in the list; whether they are all in the window */
@@ -65,15 +65,15 @@ class PairList {
   resident = true;
 
   constructor(memory: ArrayBufferLike, at: number, pairs: number) {
-    this.window = new Int32Array(memory, at, 2 * pairs);
+    this.pairWindow = new Int32Array(memory, at, 2 * pairs);
   }
 
   /** Takes the first `count` pairs of `list` (after a search): into the window when they fit, else kept here. */
   take(list: Int32Array, count: number): void {
     this.count = count;
-    this.resident = 2 * count <= this.window.length;
+    this.resident = 2 * count <= this.pairWindow.length;
     if (this.resident) {
-      this.window.set(list.subarray(0, 2 * count));
+      this.pairWindow.set(list.subarray(0, 2 * count));
       return;
     }
     if (this.overflow.length < 2 * count) this.overflow = new Int32Array(Math.ceil(3 * count));
@@ -82,17 +82,17 @@ class PairList {
 
   /**
    * Runs `pass(count, hMax, resident)` over every pair in order: the window at once (resident: the window keeps its
-   * pairs from substep to substep), or window by window.
+   * pairs from substep to substep), or one window after another.
    */
   run(pass: (count: number, hMax: number, resident: boolean) => void, hMax: number): void {
     if (this.resident) {
       pass(this.count, hMax, true);
       return;
     }
-    const cap = this.window.length / 2;
+    const cap = this.pairWindow.length / 2;
     for (let q = 0; q < this.count; q += cap) {
       const k = Math.min(cap, this.count - q);
-      this.window.set(this.overflow.subarray(2 * q, 2 * (q + k)));
+      this.pairWindow.set(this.overflow.subarray(2 * q, 2 * (q + k)));
       pass(k, hMax, false);
     }
   }
