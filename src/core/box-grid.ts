@@ -69,3 +69,27 @@ export class BoxGrid {
     return (Math.imul(i, HASH_X) ^ Math.imul(j, HASH_Y) ^ Math.imul(k, HASH_Z)) & this.mask;
   }
 }
+
+/**
+ * Each triangle's box (of `triangles`, vertex indices three per triangle, at positions `x`) into `boxes`, six numbers
+ * each, widened by `pad` [m]; false when a position is NaN (the boxes are then partly written).
+ */
+export function triangleBoxes(triangles: Uint32Array, x: ArrayLike<number>, boxes: Float64Array, pad: number): boolean {
+  const n = triangles.length / 3;
+  for (let t = 0; t < n; t++) {
+    const b = 6 * t;
+    boxes[b] = boxes[b + 1] = boxes[b + 2] = Infinity;
+    boxes[b + 3] = boxes[b + 4] = boxes[b + 5] = -Infinity;
+    for (let k = 0; k < 3; k++) {
+      const j = 3 * triangles[3 * t + k];
+      for (let c = 0; c < 3; c++) {
+        const v = x[j + c];
+        if (!(v >= -Infinity)) return false;
+        if (v < boxes[b + c]) boxes[b + c] = v;
+        if (v > boxes[b + 3 + c]) boxes[b + 3 + c] = v;
+      }
+    }
+    for (let c = 0; c < 3; c++) { boxes[b + c] -= pad; boxes[b + 3 + c] += pad; }
+  }
+  return true;
+}

@@ -7,7 +7,7 @@
  * at rest no particle is nearer than 2 h to a triangle not its own). Triangles from a uniform grid over their boxes
  * widened by `distance` (box-grid.ts). A report, not a step.
  */
-import { BoxGrid } from './box-grid.js';
+import { BoxGrid, triangleBoxes } from './box-grid.js';
 import { closestPointOnTriangle } from './colliders/sphere.js';
 
 /** One mesh's triangle boxes and grid, reused while it keeps its size. */
@@ -33,21 +33,7 @@ export function selfContacts(triangles: Uint32Array, x: ArrayLike<number>, parti
     scratch.set(triangles, s);
   }
   const { boxes, grid } = s;
-  for (let t = 0; t < n; t++) {
-    const b = 6 * t;
-    boxes[b] = boxes[b + 1] = boxes[b + 2] = Infinity;
-    boxes[b + 3] = boxes[b + 4] = boxes[b + 5] = -Infinity;
-    for (let k = 0; k < 3; k++) {
-      const j = 3 * triangles[3 * t + k];
-      for (let c = 0; c < 3; c++) {
-        const v = x[j + c];
-        if (!(v >= -Infinity)) return 0; // NaN
-        if (v < boxes[b + c]) boxes[b + c] = v;
-        if (v > boxes[b + 3 + c]) boxes[b + 3 + c] = v;
-      }
-    }
-    for (let c = 0; c < 3; c++) { boxes[b + c] -= distance; boxes[b + 3 + c] += distance; }
-  }
+  if (!triangleBoxes(triangles, x, boxes, distance)) return 0; // NaN
   // each box is listed in every cell it covers: a particle inside a widened box finds it in its own cell
   if (!grid.build(boxes, n, 1, distance)) return 0;
   const { start, items, inv } = grid, d2 = distance * distance;

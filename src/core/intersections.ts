@@ -6,7 +6,7 @@
  * that with probability zero). Pairs come from a uniform grid over the triangles' bounding boxes (box-grid.ts, cells
  * of 1.5 mean box sizes), each pair tested once. A report, not a step.
  */
-import { BoxGrid } from './box-grid.js';
+import { BoxGrid, triangleBoxes } from './box-grid.js';
 
 /** One mesh's boxes, grid and marks, reused while the mesh keeps its size. */
 interface Scratch {
@@ -30,20 +30,7 @@ export function countIntersections(triangles: Uint32Array, x: ArrayLike<number>)
   }
   const { boxes, stamp, grid } = s;
   stamp.fill(-1);
-  for (let t = 0; t < n; t++) {
-    const b = 6 * t;
-    boxes[b] = boxes[b + 1] = boxes[b + 2] = Infinity;
-    boxes[b + 3] = boxes[b + 4] = boxes[b + 5] = -Infinity;
-    for (let k = 0; k < 3; k++) {
-      const j = 3 * triangles[3 * t + k];
-      for (let c = 0; c < 3; c++) {
-        const v = x[j + c];
-        if (!(v >= -Infinity)) return 0; // NaN
-        if (v < boxes[b + c]) boxes[b + c] = v;
-        if (v > boxes[b + 3 + c]) boxes[b + 3 + c] = v;
-      }
-    }
-  }
+  if (!triangleBoxes(triangles, x, boxes, 0)) return 0; // NaN
   // cells of 1.5 mean boxes (an infinite position leaves a box not finite: nothing built, nothing counted)
   if (!grid.build(boxes, n, 1.5, 1e-9)) return 0;
   const { start, items, inv } = grid;
