@@ -21,9 +21,9 @@ import { Interaction } from './interaction.js';
 import { Layout } from './layout.js';
 import { FrameLoop } from './loop.js';
 import { MeshImport, type WaitingScene } from './mesh-import.js';
-import { MeshStore } from './meshes.js';
+import { PageMeshStore } from './meshes.js';
 import { shortcutListener } from './shortcuts.js';
-import type { SimDriver } from './sim-client.js';
+import type { SimDriver } from '../three/sim/sim-client.js';
 import { Slots } from './slots.js';
 import { Sweep } from './sweep.js';
 import { SweepLabels } from './sweep-labels.js';
@@ -69,7 +69,7 @@ export class App {
   /** a scene file or link refused for mesh files this page does not have: importing them loads it (mesh-import.ts) */
   waiting: WaitingScene | null = null;
   /** the mesh files imported into this page, for the scenes that name them (cloth, mesh colliders; a link cannot carry them) */
-  readonly meshes = new MeshStore();
+  readonly meshes = new PageMeshStore();
   /** the HUD's count of particles lying on another part of their cloth */
   readonly contactMeter = new ContactMeter();
   readonly backend = new Backend(this);

@@ -5,10 +5,10 @@
  */
 import { SCENE_NAMES, SceneError, builtinScene } from '../core/index.js';
 import type { App } from './app.js';
-import { GpuSim } from './gpu-sim.js';
+import { GpuSim } from '../three/sim/gpu-sim.js';
 import { capCloth } from './limits.js';
 import { refusal } from './refusal.js';
-import { SimClient, type SimDriver } from './sim-client.js';
+import { SimClient, type SimDriver } from '../three/sim/sim-client.js';
 
 /** the panel's and the link's backend choice; auto = the GPU when there is a hardware WebGPU device and the scene allows */
 export type BackendChoice = 'auto' | 'gpu' | 'cpu';

@@ -4,7 +4,7 @@ import type { HudCloth, HudInfo } from '../ui/hud.js';
 import { SCENE_LABELS } from '../ui/menu-labels.js';
 import type { App } from './app.js';
 import { contactDistance } from './contact-meter.js';
-import { slowCause } from './frame-clock.js';
+import { slowCause } from './slow-cause.js';
 import { fitSideBySide } from './limits.js';
 import { linkCannotCarry } from './mesh-import.js';
 import { clothMesh, meshNames } from './meshes.js';

@@ -9,7 +9,7 @@
  */
 import { Plane, Raycaster, Vector2, Vector3, type PerspectiveCamera } from 'three/webgpu';
 import { pickParticle, type PickHit } from '../core/index.js';
-import type { Mirror, SimDriver } from './sim-client.js';
+import type { Mirror, SimDriver } from '../three/sim/sim-client.js';
 
 /** how close to a pin marker a pin-tool click must be to unpin it [CSS px] */
 const PIN_MARKER_PX = 10;

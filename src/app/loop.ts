@@ -6,7 +6,7 @@
 import { FRAME_DT } from '../core/index.js';
 import { captionFor } from '../ui/captions.js';
 import type { App } from './app.js';
-import { GpuSim } from './gpu-sim.js';
+import { GpuSim } from '../three/sim/gpu-sim.js';
 import { hudInfo } from './hud-feed.js';
 
 /** The requestAnimationFrame loop, and what it measures (fps, first frame). */

@@ -1,7 +1,7 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { SceneError, Simulation, builtinScene, setScenePath } from '../core/index.js';
-import { MeshStore, baseName, meshNames, missingMesh, missingMeshes, namesFile, readColliderFile, readMeshFile, clothMesh, sceneMeshes } from './meshes.js';
+import { PageMeshStore, baseName, meshNames, missingMesh, missingMeshes, namesFile, readColliderFile, readMeshFile, clothMesh, sceneMeshes } from './meshes.js';
 
 const bytes = (path: string) => new Uint8Array(readFileSync(new URL(`../../${path}`, import.meta.url)));
 const obj = (text: string) => new TextEncoder().encode(text);
@@ -33,7 +33,7 @@ describe('the page\'s imported meshes', () => {
   });
 
   it('resolves a scene\'s cloth.mesh by the file\'s name, or by the last part of its path', () => {
-    const store = new MeshStore();
+    const store = new PageMeshStore();
     const e = readMeshFile(bytes('examples/tshirt.obj'), 'tshirt.obj');
     expect(store.add(e)).toBeUndefined();
     expect(store.resolve('tshirt.obj')).toBe(e.mesh);
@@ -44,7 +44,7 @@ describe('the page\'s imported meshes', () => {
   });
 
   it('asks for a file that is not imported, and puts back what a refused import replaced', () => {
-    const store = new MeshStore();
+    const store = new PageMeshStore();
     expect(() => store.resolve('dress.glb')).toThrow(SceneError);
     expect(() => store.resolve('dress.glb')).toThrow('import the mesh file dress.glb too');
     expect(() => store.particles('garments/dress.glb')).toThrow(missingMesh('garments/dress.glb'));
@@ -61,7 +61,7 @@ describe('the page\'s imported meshes', () => {
   });
 
   it('is the resolver a Simulation of a mesh scene takes', () => {
-    const store = new MeshStore();
+    const store = new PageMeshStore();
     store.add(readMeshFile(bytes('examples/tshirt.obj'), 'tshirt.obj'));
     const scene = setScenePath(builtinScene('cotton-basic'), 'cloth.mesh', 'tshirt.obj');
     expect(clothMesh(scene.cloth)).toBe('tshirt.obj');
@@ -85,7 +85,7 @@ describe('the page\'s imported meshes', () => {
     expect(sceneMeshes(builtinScene('cotton-basic'))).toEqual([]);
     expect(namesFile('props/box.obj', 'box.obj')).toBe(true);
     expect(namesFile('props/box.obj', 'props')).toBe(false);
-    const store = new MeshStore();
+    const store = new PageMeshStore();
     store.add(readColliderFile(obj(BOX_OBJ), 'box.obj'));
     expect(missingMeshes(scene, (p) => store.has(p))).toEqual([{ field: 'cloth.mesh', path: 'tshirt.obj', cloth: 0 }]);
     expect(missingMesh('props/box.obj', 'colliders[1].mesh')).toBe(
@@ -93,7 +93,7 @@ describe('the page\'s imported meshes', () => {
   });
 
   it('a mesh collider\'s file: read without the cloth\'s checks, found by the Simulation, asked for naming its field', () => {
-    const store = new MeshStore();
+    const store = new PageMeshStore();
     const scene = withBox('box.obj');
     // the core names the field, then the file to import (the resolver's words carry no field of their own)
     expect(() => new Simulation(scene, { kernel: 'ts', meshes: store.resolve }))

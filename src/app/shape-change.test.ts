@@ -1,10 +1,10 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { Simulation, builtinScene, clothEntries, clothScene, editCloth, modelFor, setScenePath, type Scene } from '../core/index.js';
-import { MeshStore, readMeshFile } from './meshes.js';
+import { PageMeshStore, readMeshFile } from './meshes.js';
 import { restBottom, withMesh, withShape, withoutMesh } from './shape-change.js';
 
-const store = new MeshStore();
+const store = new PageMeshStore();
 store.add(readMeshFile(new Uint8Array(readFileSync(new URL('../../examples/tshirt.obj', import.meta.url))), 'tshirt.obj'));
 const meshes = store.resolve;
 /** the lowest point of a scene's cloth as the model is built */

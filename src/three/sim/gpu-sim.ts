@@ -11,8 +11,8 @@
  */
 import {
   Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type Scene,
-} from '../core/index.js';
-import { GpuBackend, sceneRefusal, type GpuClothSolver } from '../gpu/index.js';
+} from '../../core/index.js';
+import { GpuBackend, sceneRefusal, type GpuClothSolver } from '../../gpu/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
 import type { MeshStore } from './meshes.js';
 import type { Mirror, SimDriver, SimStats } from './sim-client.js';

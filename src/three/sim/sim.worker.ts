@@ -2,7 +2,7 @@
  * The simulation worker: owns the Simulation objects (one per slot) so that stepping never blocks input or
  * drawing. Dumb on purpose: it applies commands in order and steps when asked (the page owns the clock).
  */
-import { Simulation, energy, grab, maxStructuralStrain, release, type Energy } from '../core/index.js';
+import { Simulation, energy, grab, maxStructuralStrain, release, type Energy } from '../../core/index.js';
 import { MeshStore } from './meshes.js';
 import type { FromWorker, SlotFrame, ToWorker } from './protocol.js';
 

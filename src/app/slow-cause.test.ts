@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { FRAME_MS, FrameClock, newStats, slowCause } from './frame-clock.js';
+import { FRAME_MS, FrameClock, newStats } from '../three/sim/frame-clock.js';
+import { slowCause } from './slow-cause.js';
 
 describe('slowCause: the HUD blames what limits the page', () => {
   it('a simulation that keeps up while drawing runs at 1 fps: drawing is to blame, not the simulation', () => {

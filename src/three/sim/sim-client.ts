@@ -7,7 +7,7 @@
  * are overwritten by each frame from the worker. Changing its scene with `setScene` tells us, by the core's own
  * rule, whether the worker is rebuilding the cloth; frames of an older cloth are then dropped.
  */
-import { Simulation, type ClothState, type Energy, type Scene, type TriangleMesh } from '../core/index.js';
+import { Simulation, type ClothState, type Energy, type Scene, type TriangleMesh } from '../../core/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
 import { sceneMeshes, type MeshStore } from './meshes.js';
 import type { FromWorker, ToWorker } from './protocol.js';
@@ -85,7 +85,7 @@ export class SimClient implements SimDriver {
 
   /** `meshes`: the page's imported mesh files, for scenes that name them (sent to the worker as needed) */
   constructor(private readonly meshes: MeshStore) {
-    this.worker = new Worker(new URL('./sim.worker.ts', import.meta.url), { type: 'module', name: 'drape-sim' });
+    this.worker = new Worker(new URL('./sim.worker.js', import.meta.url), { type: 'module', name: 'drape-sim' });
     this.worker.onmessage = (e: MessageEvent<FromWorker>) => this.receive(e.data);
     this.worker.onerror = (e) => this.onError?.(`simulation worker: ${e.message || 'failed to start'}`);
   }

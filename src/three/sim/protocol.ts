@@ -5,7 +5,7 @@
  * page never steps physics: it sends commands and renders the positions the worker sends back. Messages are
  * handled in order, so a command sent before an `advance` applies before those frames are stepped.
  */
-import type { Energy, Scene } from '../core/index.js';
+import type { Energy, Scene } from '../../core/index.js';
 import type { MeshEntry } from './meshes.js';
 
 export type ToWorker =
