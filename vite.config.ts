@@ -1,8 +1,9 @@
 import { createRequire } from 'node:module';
 import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { defineConfig, type Plugin } from 'vite';
 import { precompiledAjvModule } from './src/app/precompiled-ajv.js';
-import { cspMetaTag } from './src/app/security.js';
+import { EXAMPLE_CONTENT_SECURITY_POLICY, cspMetaTag } from './src/app/security.js';
 import { sceneSchema } from './src/core/scene-schema.js';
 
 const PRECOMPILED_AJV = '\0drape:precompiled-ajv';
@@ -26,17 +27,21 @@ function precompiledAjv(): Plugin {
   };
 }
 
-/** The Content-Security-Policy of src/app/security.ts as a meta tag, first in the built index.html's <head>. */
+/**
+ * The Content-Security-Policy of src/app/security.ts as a meta tag, first in each built page's <head>: the app's,
+ * and the three.js example's own (the same without Trusted Types, as a user's page would have it).
+ */
 function contentSecurityPolicy(): Plugin {
   return {
     name: 'drape:csp',
     apply: 'build',
     transformIndexHtml: {
       order: 'post',
-      handler(html) {
-        if (!/<head>/.test(html)) throw new Error('index.html: no <head> for the Content-Security-Policy');
+      handler(html, ctx) {
+        if (!/<head>/.test(html)) throw new Error(`${ctx.path}: no <head> for the Content-Security-Policy`);
+        const tag = ctx.path.startsWith('/examples/') ? cspMetaTag(EXAMPLE_CONTENT_SECURITY_POLICY) : cspMetaTag();
         // right after <meta charset>, before anything that loads
-        return html.replace(/(<head>\s*<meta charset="utf-8" \/>|<head>)/, (m) => `${m}\n    ${cspMetaTag()}`);
+        return html.replace(/(<head>\s*<meta charset="utf-8" \/>|<head>)/, (m) => `${m}\n    ${tag}`);
       },
     },
   };
@@ -45,15 +50,23 @@ function contentSecurityPolicy(): Plugin {
 /** lil-gui's stylesheet file (its package exports only the script); the panel imports it instead of injecting it */
 const LIL_GUI_CSS = join(dirname(createRequire(import.meta.url).resolve('lil-gui')), 'lil-gui.css');
 
-// The browser app: index.html at the repository root, static build in dist/web (tsc writes dist/core, dist/cli).
+// The browser app: index.html at the repository root, and the three.js addon's example page
+// (examples/three/index.html, importing `drape/three` from the source); static build in dist/web (tsc writes
+// dist/core, dist/cli, dist/gpu, dist/three).
 export default defineConfig({
   root: '.',
   base: './',
   publicDir: 'public',
   plugins: [precompiledAjv(), contentSecurityPolicy()],
-  resolve: { alias: [{ find: /^lil-gui\/dist\/lil-gui\.css$/, replacement: LIL_GUI_CSS }] },
+  resolve: {
+    alias: [
+      { find: /^lil-gui\/dist\/lil-gui\.css$/, replacement: LIL_GUI_CSS },
+      { find: /^drape\/three$/, replacement: fileURLToPath(new URL('./src/three/index.ts', import.meta.url)) },
+    ],
+  },
   build: {
     outDir: 'dist/web',
+    rolldownOptions: { input: { main: 'index.html', three: 'examples/three/index.html' } },
     emptyOutDir: true,
     target: 'es2022',
     chunkSizeWarningLimit: 1500,

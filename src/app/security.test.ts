@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync, statSync } from 'node:fs';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { CONTENT_SECURITY_POLICY, CSP_DIRECTIVES, cspMetaTag, wantsTestHook } from './security.js';
+import { CONTENT_SECURITY_POLICY, CSP_DIRECTIVES, EXAMPLE_CONTENT_SECURITY_POLICY, cspMetaTag, wantsTestHook } from './security.js';
 
 function files(dir: string): string[] {
   return readdirSync(dir).flatMap((f) => {
@@ -21,6 +21,8 @@ describe('the site\'s Content-Security-Policy', () => {
     expect(CONTENT_SECURITY_POLICY).toContain("form-action 'none'");
     // Trusted Types: no string ever reaches an HTML or script sink; one policy, for the site's own script URLs
     expect(CONTENT_SECURITY_POLICY).toContain("require-trusted-types-for 'script'; trusted-types default");
+    // the three.js example's own: the same without Trusted Types, as a user's page would have it
+    expect(EXAMPLE_CONTENT_SECURITY_POLICY).toBe(CONTENT_SECURITY_POLICY.replace("; require-trusted-types-for 'script'; trusted-types default", ''));
     expect(cspMetaTag()).toMatch(/^<meta http-equiv="Content-Security-Policy" content="default-src 'none'; [^"]+" \/>$/);
   });
 
@@ -37,7 +39,7 @@ describe('data never becomes markup', () => {
   it('no source of the app parses HTML from strings', () => {
     // spelled in parts, so that this test is not itself a hit for the repository's grep
     const sinks = new RegExp(['\\.(inner|outer)' + 'HTML\\b', 'insertAdjacent' + 'HTML', 'document\\.write', 'createContextual' + 'Fragment', 'DOM' + 'Parser', 'setHTML' + 'Unsafe'].join('|'));
-    const offenders = ['src/app', 'src/ui', 'src/render']
+    const offenders = ['src/app', 'src/ui', 'src/render', 'src/three', 'examples/three']
       .flatMap(files)
       .filter((f) => /\.ts$/.test(f) && !f.endsWith('.test.ts'))
       .filter((f) => sinks.test(readFileSync(f, 'utf8')));

@@ -57,6 +57,15 @@ export function installTrustedTypesPolicy(): void {
 
 export const CONTENT_SECURITY_POLICY = Object.entries(CSP_DIRECTIVES).map(([k, v]) => `${k} ${v.join(' ')}`).join('; ');
 
+/**
+ * The three.js addon's example page's policy (examples/three): the site's without Trusted Types, as a user's page
+ * that loads `drape/three` would have it (with Trusted Types, a page lets the worker's script URL through with a
+ * default policy, as installTrustedTypesPolicy does: docs/three.md).
+ */
+export const EXAMPLE_CONTENT_SECURITY_POLICY = Object.entries(CSP_DIRECTIVES)
+  .filter(([k]) => k !== 'require-trusted-types-for' && k !== 'trusted-types')
+  .map(([k, v]) => `${k} ${v.join(' ')}`).join('; ');
+
 /** The meta element for the built index.html (goes first in <head>, before any script or stylesheet). */
 export function cspMetaTag(policy = CONTENT_SECURITY_POLICY): string {
   return `<meta http-equiv="Content-Security-Policy" content="${policy.replace(/"/g, '&quot;')}" />`;

@@ -10,7 +10,7 @@
  * on the GPU queue, time it cannot keep up with dropped.
  */
 import {
-  Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type Scene,
+  Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type ColliderPose, type Scene,
 } from '../../core/index.js';
 import { GpuBackend, sceneRefusal, type GpuClothSolver } from '../../gpu/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
@@ -175,6 +175,11 @@ export class GpuSim implements SimDriver {
     const m = this.mirrors[slot];
     m.grabbed = -1;
     release(m.sim.state);
+  }
+
+  /** (the GPU backend reads the drive from the Simulation's params each frame) */
+  setColliderPose(slot: number, index: number, pose: ColliderPose | null): void {
+    this.mirrors[slot].sim.setColliderPose(index, pose);
   }
 
   /** Steps `frames` frames now (paused or not); resolves once they are done and read back into the mirrors. */

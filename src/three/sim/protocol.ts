@@ -5,7 +5,7 @@
  * page never steps physics: it sends commands and renders the positions the worker sends back. Messages are
  * handled in order, so a command sent before an `advance` applies before those frames are stepped.
  */
-import type { Energy, Scene } from '../../core/index.js';
+import type { ColliderPose, Energy, Scene } from '../../core/index.js';
 import type { MeshEntry } from './meshes.js';
 
 export type ToWorker =
@@ -25,6 +25,8 @@ export type ToWorker =
   /** grab (or move the grab of) a particle toward target */
   | { type: 'grab'; slot: number; particle: number; target: [number, number, number] }
   | { type: 'release'; slot: number }
+  /** drive collider `index` of a slot from now on (Simulation.setColliderPose; null: back to its scene motion) */
+  | { type: 'colliderPose'; slot: number; index: number; pose: ColliderPose | null }
   /** test hook only: makes a particle's position NaN, as a blown-up solver would (see `unstableAt`) */
   | { type: 'poison'; slot: number }
   /** continue a slot from another backend's state (GPU → CPU after a device loss or a backend switch) */

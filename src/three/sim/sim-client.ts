@@ -7,7 +7,7 @@
  * are overwritten by each frame from the worker. Changing its scene with `setScene` tells us, by the core's own
  * rule, whether the worker is rebuilding the cloth; frames of an older cloth are then dropped.
  */
-import { Simulation, type ClothState, type Energy, type Scene, type TriangleMesh } from '../../core/index.js';
+import { Simulation, type ClothState, type ColliderPose, type Energy, type Scene, type TriangleMesh } from '../../core/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
 import { sceneMeshes, type MeshStore } from './meshes.js';
 import type { FromWorker, ToWorker } from './protocol.js';
@@ -56,6 +56,11 @@ export interface SimDriver {
   resetSlot(slot: number): void;
   grab(slot: number, particle: number, target: [number, number, number]): void;
   release(slot: number): void;
+  /**
+   * Drives collider `index` of a slot from now on: its pose and velocity (Simulation.setColliderPose; null gives it
+   * back to its scene motion). The mirror's collider moves with it, for drawing.
+   */
+  setColliderPose(slot: number, index: number, pose: ColliderPose | null): void;
   step(frames?: number): Promise<void>;
   tick(dtMs: number, now: number): void;
   /** test hook only: makes one particle's position NaN, as a blown-up solver would */
@@ -85,6 +90,8 @@ export class SimClient implements SimDriver {
 
   /** `meshes`: the page's imported mesh files, for scenes that name them (sent to the worker as needed) */
   constructor(private readonly meshes: MeshStore) {
+    // the one form bundlers (Vite, webpack, Parcel) find a worker by: keep the URL inside `new Worker(…)`. A page
+    // that enforces Trusted Types lets it through with a default policy (app/security.ts; docs/three.md)
     this.worker = new Worker(new URL('./sim.worker.js', import.meta.url), { type: 'module', name: 'drape-sim' });
     this.worker.onmessage = (e: MessageEvent<FromWorker>) => this.receive(e.data);
     this.worker.onerror = (e) => this.onError?.(`simulation worker: ${e.message || 'failed to start'}`);
@@ -160,6 +167,11 @@ export class SimClient implements SimDriver {
   release(slot: number): void {
     this.mirrors[slot].grabbed = -1;
     this.post({ type: 'release', slot });
+  }
+
+  setColliderPose(slot: number, index: number, pose: ColliderPose | null): void {
+    this.mirrors[slot].sim.setColliderPose(index, pose);
+    this.post({ type: 'colliderPose', slot, index, pose });
   }
 
   /**

@@ -1,8 +1,10 @@
 /**
  * The simulation worker: owns the Simulation objects (one per slot) so that stepping never blocks input or
- * drawing. Dumb on purpose: it applies commands in order and steps when asked (the page owns the clock).
+ * drawing. Dumb on purpose: it applies commands in order and steps when asked (the page owns the clock). Where
+ * the page is cross-origin isolated, the WebAssembly kernel shares large cloths' substeps with helper threads.
  */
 import { Simulation, energy, grab, maxStructuralStrain, release, type Energy } from '../../core/index.js';
+import { browserHelpers } from './helpers.js';
 import { MeshStore } from './meshes.js';
 import type { FromWorker, SlotFrame, ToWorker } from './protocol.js';
 
@@ -23,6 +25,8 @@ const ctx = self as unknown as {
 };
 
 let slots: Slot[] = [];
+/** the kernel's helper threads where the page is cross-origin isolated (else none: one thread) */
+const spawnHelper = browserHelpers();
 /** the mesh files the page sent (`mesh` messages), for the scenes that name them (cloth.mesh, colliders[k].mesh) */
 const meshes = new MeshStore();
 
@@ -62,7 +66,7 @@ function handle(msg: ToWorker): void {
       meshes.add(msg.entry);
       return;
     case 'load':
-      slots = msg.scenes.map((scene) => ({ sim: new Simulation(scene, { meshes: meshes.resolve }), gen: msg.gen }));
+      slots = msg.scenes.map((scene) => ({ sim: new Simulation(scene, { meshes: meshes.resolve, spawnHelper }), gen: msg.gen }));
       return;
     case 'setScene': {
       const slot = slots[msg.slot];
@@ -86,6 +90,11 @@ function handle(msg: ToWorker): void {
     case 'release': {
       const slot = slots[msg.slot];
       if (slot) release(slot.sim.state);
+      return;
+    }
+    case 'colliderPose': {
+      const slot = slots[msg.slot];
+      if (slot && msg.index < slot.sim.params.colliders.length) slot.sim.setColliderPose(msg.index, msg.pose);
       return;
     }
     case 'setState': {

@@ -1,0 +1,112 @@
+/**
+ * The three.js addon's example page (examples/three, built into dist/web/examples/three): a cloth of `drape/three`
+ * on the page's own ball and table, its own camera and renderer. Under the WebGL2 launch the world simulates in
+ * the CPU worker; under the WebGPU launch (SwiftShader) on the renderer's device, drawn from the solver's buffers.
+ * Either way the cloth falls onto the ball and drapes over it, and the page logs no error (CSP violations included).
+ */
+import type { Page } from 'playwright-core';
+import { afterAll, describe, expect, inject, it } from 'vitest';
+import { collectErrors, launch, type Browser } from './browser.js';
+import { POLL_MS, RESULTS, writeJson } from './helpers.js';
+
+/** the example's ball: centre and radius [m] (examples/three/main.ts) */
+const BALL = { center: [0, 0.5, 0], radius: 0.3 };
+/** frames the test steps: dropped 0.25 m onto the ball, the cloth lies on it and hangs around it well before */
+const FRAMES = 90;
+/** a small page: SwiftShader draws each frame on the CPU the simulation needs too */
+const VIEWPORT = { width: 480, height: 300 };
+
+interface Drop {
+  backend: string | null;
+  gpuDrawing: boolean;
+  frame: number;
+  particles: number;
+  /** the lowest and highest particle [m] */
+  minY: number;
+  maxY: number;
+  /** the particle over the ball's top: how far it lies from the ball's surface [m] */
+  topGap: number;
+  /** the deepest any particle is inside the ball [m] (0: none) */
+  inside: number;
+  backendNote: string;
+  error: string;
+}
+
+/** Opens the example with its test hook, steps it FRAMES frames and measures where the cloth is. */
+async function drop(page: Page): Promise<Drop> {
+  await page.goto(`${inject('baseURL')}examples/three/?testhook`);
+  await page.waitForFunction(() => (window as any).drapeExample !== undefined, null, { timeout: 60_000, polling: POLL_MS });
+  return page.evaluate(async ({ frames, ball }) => {
+    const { world, cloth } = (window as any).drapeExample;
+    // the page's own loop would step it too, in real time (slowly here): only these frames, at once
+    world.paused = true;
+    await world.step(frames);
+    const x: Float32Array = cloth.positions;
+    let minY = Infinity, maxY = -Infinity, top = -1, topD = Infinity, inside = 0;
+    for (let i = 0; i < x.length; i += 3) {
+      minY = Math.min(minY, x[i + 1]);
+      maxY = Math.max(maxY, x[i + 1]);
+      const d = Math.hypot(x[i] - ball.center[0], x[i + 1] - ball.center[1], x[i + 2] - ball.center[2]) - ball.radius;
+      inside = Math.max(inside, -d);
+      const r = Math.hypot(x[i] - ball.center[0], x[i + 2] - ball.center[2]);
+      if (r < topD) { topD = r; top = i; }
+    }
+    const topGap = Math.hypot(x[top] - ball.center[0], x[top + 1] - ball.center[1], x[top + 2] - ball.center[2]) - ball.radius;
+    return {
+      backend: world.backend, gpuDrawing: world.gpuDrawing, frame: world.frame, particles: x.length / 3,
+      minY, maxY, topGap, inside, backendNote: world.backendNote, error: world.error,
+    };
+  }, { frames: FRAMES, ball: BALL });
+}
+
+/** The cloth lies on the ball (its middle on the top, none of it inside) and hangs down around it. */
+function expectDraped(d: Drop): void {
+  expect(d.error).toBe('');
+  expect(d.frame).toBeGreaterThanOrEqual(FRAMES);
+  expect(d.particles).toBe(25 * 25);
+  // resting on the ball's top, the silk's thickness (5 mm) away, not sunk in
+  expect(d.topGap).toBeGreaterThan(0);
+  expect(d.topGap).toBeLessThan(0.03);
+  expect(d.inside).toBeLessThan(0.01);
+  // no part of it left up where it started (1.05 m); its edges hang below the ball's top (0.8 m)
+  expect(d.maxY).toBeLessThan(BALL.center[1] + BALL.radius + 0.05);
+  expect(d.minY).toBeLessThan(BALL.center[1] + BALL.radius - 0.15);
+}
+
+describe('drape/three example page', () => {
+  let browser: Browser | undefined;
+
+  afterAll(async () => {
+    await browser?.close();
+  });
+
+  it('WebGL2 launch: the world simulates in the worker and the cloth drapes the page\'s own ball', async () => {
+    browser = await launch('webgl', { viewport: VIEWPORT });
+    const page = await browser.context.newPage();
+    const errors = collectErrors(page);
+    const t0 = Date.now();
+    const d = await drop(page);
+    writeJson('three-webgl', { ...d, wallMs: Date.now() - t0 });
+    await page.screenshot({ path: `${RESULTS}/three-webgl.png` });
+    expect(d.backend).toBe('cpu');
+    expect(d.backendNote).toContain('no WebGPU device');
+    expectDraped(d);
+    expect(errors).toEqual([]);
+    await browser.close();
+    browser = undefined;
+  });
+
+  it('WebGPU launch: the world simulates on the renderer\'s device, drawn from the solver\'s buffers', async () => {
+    browser = await launch('webgpu', { viewport: VIEWPORT });
+    const page = await browser.context.newPage();
+    const errors = collectErrors(page);
+    const t0 = Date.now();
+    const d = await drop(page);
+    writeJson('three-webgpu', { ...d, wallMs: Date.now() - t0 });
+    await page.screenshot({ path: `${RESULTS}/three-webgpu.png` });
+    expect(d.backend).toBe('gpu');
+    expect(d.backendNote).toBe('');
+    expectDraped(d);
+    expect(errors).toEqual([]);
+  });
+});

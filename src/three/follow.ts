@@ -1,0 +1,66 @@
+/**
+ * A collider following a three.js object: the pose the core's `Simulation.setColliderPose` takes — the rigid motion
+ * that takes the object from where it stood when the collider was made to where it stands now (translation of the
+ * collider's pivot, rotation about it, Euler degrees as the core's) — and the velocity and angular velocity of that
+ * motion since the last look, so the substeps move the collider on between two display frames and friction drags
+ * the cloth with it. The object's scale is not followed (a collider keeps the size it was made with). Pure.
+ */
+import { Matrix4, Quaternion, Vector3, type Object3D } from 'three';
+import type { ColliderPose, Vec3 } from '../core/index.js';
+import { coreEuler } from './rotation.js';
+
+const ot = new Vector3(), qt = new Quaternion(), st = new Vector3(), dq = new Quaternion(), arm = new Vector3(), m = new Matrix4();
+
+export class Follower {
+  /** the object's world rotation and position when the collider was made */
+  private readonly q0Inverse = new Quaternion();
+  private readonly o0 = new Vector3();
+  private readonly pivot: Vector3;
+  /** the motion at the last look: translation, rotation */
+  private readonly t = new Vector3();
+  private readonly q = new Quaternion();
+  private moving = false;
+
+  /** `pivot`: the point [m] the collider's scene entry turns about (its centre, a mesh's origin) */
+  constructor(readonly object: Object3D, pivot: Vec3) {
+    object.updateWorldMatrix(true, false);
+    object.matrixWorld.decompose(this.o0, this.q0Inverse, st);
+    this.q0Inverse.invert();
+    this.pivot = new Vector3(...pivot);
+  }
+
+  /** The next `look` tells the simulation the pose even if the object has not moved (a new simulation, a reset). */
+  resend(): void {
+    this.moving = true;
+  }
+
+  /**
+   * The object's motion now, `dt` seconds [s] after the last look (0 or less: no velocity), or null when it has
+   * not moved since and was at rest then (nothing to tell the simulation). Reads `object.matrixWorld`: bring it
+   * up to date first (the renderer does each frame; `updateWorldMatrix` otherwise).
+   */
+  look(dt: number): ColliderPose | null {
+    this.object.matrixWorld.decompose(ot, qt, st);
+    // rotation of the motion: R = Rt·R0ᵀ; translation of the pivot c: T = ot − c + R·(c − o0)
+    qt.multiply(this.q0Inverse);
+    arm.copy(this.pivot).sub(this.o0).applyQuaternion(qt).add(ot).sub(this.pivot);
+    const moved = arm.distanceToSquared(this.t) > 1e-18 || Math.abs(Math.abs(qt.dot(this.q)) - 1) > 1e-12;
+    if (!moved && !this.moving) return null;
+    const velocity: Vec3 = [0, 0, 0], angularVelocity: Vec3 = [0, 0, 0];
+    if (dt > 0 && moved) {
+      velocity[0] = (arm.x - this.t.x) / dt; velocity[1] = (arm.y - this.t.y) / dt; velocity[2] = (arm.z - this.t.z) / dt;
+      // the turn since the last look, the short way round, as an axis × angle
+      dq.copy(qt).multiply(this.q.invert());
+      if (dq.w < 0) dq.set(-dq.x, -dq.y, -dq.z, -dq.w);
+      const s = Math.hypot(dq.x, dq.y, dq.z);
+      if (s > 1e-12) {
+        const w = (2 * Math.atan2(s, dq.w)) / (s * dt);
+        angularVelocity[0] = dq.x * w; angularVelocity[1] = dq.y * w; angularVelocity[2] = dq.z * w;
+      }
+    }
+    this.t.copy(arm);
+    this.q.copy(qt);
+    this.moving = moved;
+    return { translation: [arm.x, arm.y, arm.z], rotation: coreEuler(m.makeRotationFromQuaternion(qt)), velocity, angularVelocity };
+  }
+}

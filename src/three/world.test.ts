@@ -1,0 +1,62 @@
+import { BoxGeometry, Mesh, Object3D, PlaneGeometry, SphereGeometry } from 'three';
+import { describe, expect, it } from 'vitest';
+import { SceneError } from '../core/index.js';
+import { DrapeWorld } from './world.js';
+
+// (what Node can check: the options, the cloths and colliders a world is made of; it simulates in a browser: e2e/three.e2e.ts)
+describe('DrapeWorld: options and what it is made of', () => {
+  it('refuses a bad option with one line naming it', () => {
+    expect(() => new DrapeWorld({ backend: 'fast' as never })).toThrow("DrapeWorld: options.backend must be 'auto', 'gpu', 'cpu', got \"fast\"");
+    expect(() => new DrapeWorld({ gravity: [0, -9.81] as never })).toThrow(/^DrapeWorld: gravity: /);
+    expect(() => new DrapeWorld({ solver: { substeps: 0 } })).toThrow(/^DrapeWorld: solver\.substeps: must be >= 1/);
+    expect(() => new DrapeWorld({ floor: NaN })).toThrow(/options\.floor/);
+    const world = new DrapeWorld();
+    expect(() => world.addCloth({ resolution: 2.5 })).toThrow(SceneError);
+    expect(() => world.addCloth({ resolution: 2.5 })).toThrow(/^DrapeWorld\.addCloth\('cloth 0'\): resolution: must be integer/);
+    expect(() => world.addCloth({ fabricValues: { damping: -1 } })).toThrow(/: fabricValues\.damping: must be >= 0/);
+    expect(() => world.addCloth({ fabric: 'tweed' as never })).toThrow(/: fabric: /);
+    expect(() => world.addCloth({ pins: [99999] })).toThrow(/pins\[0\]/);
+    expect(() => world.addCloth({ shape: 'disc', geometry: new PlaneGeometry() })).toThrow(/geometry or shape, not both/);
+    expect(() => world.addCollider({} as Mesh)).toThrow(/must be a THREE\.Mesh/);
+    expect(() => world.addCollider(new Mesh(new BoxGeometry()), { shape: 'cone' as never })).toThrow(/options\.shape must be 'auto', 'sphere'/);
+    expect(() => world.update(-1)).toThrow(/dt must be a finite number of seconds/);
+    // nothing refused was kept
+    expect(world.cloths).toEqual([]);
+  });
+
+  it('a cloth from a generator or a geometry is a mesh of its particles, drawn from its own attributes on the CPU path', () => {
+    const world = new DrapeWorld();
+    const a = world.addCloth({ resolution: 8, position: [0, 1.5, 0], fabric: 'silk' });
+    expect(a.particleCount).toBe(81);
+    expect(a.isMesh).toBe(true);
+    expect(a.geometry.getIndex()!.count).toBe(8 * 8 * 6);
+    // a three.js plane turned flat: its 5 × 5 vertices are the particles, centred at `position`
+    const b = world.addCloth({ geometry: new PlaneGeometry(1, 1, 4, 4), rotation: [-90, 0, 0], position: [0, 2, 0], name: 'sheet' });
+    expect(b.particleCount).toBe(25);
+    expect(b.name).toBe('sheet');
+    const y = b.positions.filter((_, k) => k % 3 === 1);
+    expect(Math.min(...y)).toBeCloseTo(2, 5);
+    expect(Math.max(...y)).toBeCloseTo(2, 5);
+    // a non-indexed sphere's seams and duplicate corners are welded into one closed cloth
+    const c = world.addCloth({ geometry: new SphereGeometry(0.2, 8, 6).toNonIndexed(), position: [0, 3, 0] });
+    expect(c.particleCount).toBe(8 * 5 + 2);
+    expect(world.cloths).toEqual([a, b, c]);
+    world.dispose();
+    expect(() => world.addCloth()).toThrow(/disposed/);
+  });
+
+  it('colliders from meshes and pins on objects: a refused one changes nothing', () => {
+    const world = new DrapeWorld({ floor: 0 });
+    const ball = new Mesh(new SphereGeometry(0.3));
+    ball.position.set(0, 0.5, 0);
+    world.addCollider(ball);
+    expect(() => world.addCollider(ball)).toThrow(/a collider already/);
+    const hook = new Object3D();
+    hook.position.set(0.5, 1.5, 0.5);
+    const cloth = world.addCloth({ resolution: 4, position: [0, 1.5, 0], pins: [{ at: 'top-left', to: hook }, { at: 'top-right', to: hook }, 0] });
+    expect(cloth.particleCount).toBe(25);
+    expect(() => world.addCloth({ pins: [{ at: 0, to: {} as Object3D }] })).toThrow(/pins\[0\]\.to must be a THREE\.Object3D/);
+    expect(() => world.addCloth({ pins: [0, { at: 'middle' as never, to: hook }] })).toThrow(/^DrapeWorld\.addCloth\('cloth 1'\): pins\[1\]: /);
+    expect(world.cloths.length).toBe(1);
+  });
+});

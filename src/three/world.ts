@@ -1,0 +1,572 @@
+/**
+ * DrapeWorld: one simulation — its cloths, the colliders made from the user's meshes, gravity, wind and the solver —
+ * on the renderer's own WebGPU device (GpuSim: drawn straight from the solver's buffers) or in a Web Worker on the
+ * CPU (SimClient: the WebAssembly kernel, helper threads where the page is cross-origin isolated), whichever the
+ * renderer and the scene allow, falling back to the CPU by itself (docs/three.md, "Fallback"). Both drivers are the
+ * app's own (src/three/sim). The world steps whole 1/60 s frames from the time `update(dt)` is given (the drivers'
+ * FrameClock), moves each collider to where its mesh is, and refreshes the cloths' geometries.
+ */
+import { BufferAttribute, Raycaster, Vector3, type Mesh, type Object3D } from 'three';
+import {
+  modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type ColliderSpec,
+  type PinEntry, type Scene, type Vec3,
+} from '../core/index.js';
+import { DrapeCloth } from './cloth.js';
+import { COLLIDER_SHAPE_OPTIONS, colliderOfMesh } from './colliders.js';
+import { Follower } from './follow.js';
+import { meshOfGeometry } from './geometry.js';
+import {
+  DRAPE_BACKENDS, checkObject, checkOneOf, optionError, type DrapeClothOptions, type DrapeColliderOptions, type DrapeWorldOptions,
+  type WebGpuBackendLike,
+} from './options.js';
+import { GpuSim } from './sim/gpu-sim.js';
+import { MeshStore } from './sim/meshes.js';
+import { SimClient, type SimDriver } from './sim/sim-client.js';
+
+/**
+ * How far below the object it follows an anchor's plane lies [m]: an anchor carries the pins of an object that is
+ * not a collider, and the cloth never comes near it (the plane keeps its distance from the object as it moves).
+ */
+const ANCHOR_DEPTH = 200;
+
+/** A collider of the world: what moves it, its scene entry as it was made, and the pins it carries. */
+interface WorldCollider {
+  readonly object: Object3D;
+  readonly spec: ColliderSpec;
+  /** null: it stays where it was made */
+  readonly follower: Follower | null;
+  /** an anchor of pins (a plane far below the object), not a collider the user added */
+  readonly anchor: boolean;
+}
+
+/** A pin attached to an object, of one cloth. */
+interface AttachedPin {
+  readonly cloth: DrapeCloth;
+  /** the cloth's own particles it pins */
+  readonly particles: number[];
+  readonly to: Object3D;
+}
+
+/** Where a picking ray met a cloth. */
+export interface DrapeHit {
+  readonly cloth: DrapeCloth;
+  /** the particle of the cloth (counted from its first) nearest the hit point */
+  readonly particle: number;
+  /** the hit point [m] */
+  readonly point: Vector3;
+  /** from the ray's origin to the hit [m, for a unit direction] */
+  readonly distance: number;
+}
+
+const WHERE = 'DrapeWorld';
+/** the cloth a world without cloths is checked with (never simulated) */
+const STAND_IN = { cloth: {}, material: {}, pins: [] } as unknown as ClothEntry;
+const vec3 = (v: Vector3): Vec3 => [v.x, v.y, v.z];
+
+export class DrapeWorld {
+  /** the cloths, in the order they were added */
+  readonly cloths: DrapeCloth[] = [];
+  /** why the world does not simulate on the GPU ('' when it does, or was asked for the CPU) */
+  backendNote = '';
+  /** the last error the simulation reported ('' for none) */
+  error = '';
+  private readonly options: DrapeWorldOptions;
+  private readonly colliders: WorldCollider[] = [];
+  private readonly anchors = new Map<Object3D, WorldCollider>();
+  private readonly attached: AttachedPin[] = [];
+  /** the colliders of the scene, by index (null: the floor) */
+  private sceneColliders: (WorldCollider | null)[] = [];
+  private readonly meshes = new MeshStore();
+  private driver: SimDriver | null = null;
+  private starting: Promise<void> | null = null;
+  /** the world's model the cloths' geometries were made for */
+  private model: ClothModel | null = null;
+  /** the GPU path's shared vec4 attributes (every cloth's geometry indexes them), and whether the solver's buffers are in them */
+  private gpuPosition: BufferAttribute | null = null;
+  private gpuNormal: BufferAttribute | null = null;
+  private gpuAttached = false;
+  /** new positions arrived since the cloths were last refreshed */
+  private fresh = false;
+  private lastNow = 0;
+  private raf = 0;
+  private grabbed: { cloth: DrapeCloth; particle: number } | null = null;
+  private readonly ray = new Raycaster();
+  private disposed = false;
+  private names = 0;
+
+  constructor(options: DrapeWorldOptions = {}) {
+    checkObject(WHERE, 'options', options);
+    checkOneOf(WHERE, 'options.backend', options.backend, DRAPE_BACKENDS);
+    checkObject(WHERE, 'options.wind', options.wind);
+    checkObject(WHERE, 'options.solver', options.solver);
+    if (options.floor !== undefined && options.floor !== null && !Number.isFinite(options.floor)) {
+      throw new TypeError(`${WHERE}: options.floor must be a height in metres or null, got ${String(options.floor)}`);
+    }
+    if (options.onError !== undefined && typeof options.onError !== 'function') throw new TypeError(`${WHERE}: options.onError must be a function`);
+    this.options = options;
+    // the world's own values are checked now, by the scene schema
+    this.scene();
+    if (options.autoUpdate) {
+      const loop = () => {
+        if (this.disposed) return;
+        this.update();
+        this.raf = requestAnimationFrame(loop);
+      };
+      this.raf = requestAnimationFrame(loop);
+    }
+  }
+
+  /** where the world simulates now: 'gpu', 'cpu', or null before it has started (the first update) */
+  get backend(): 'gpu' | 'cpu' | null {
+    return this.driver?.kind ?? null;
+  }
+
+  /** whether the cloths are drawn straight from the GPU solver's buffers */
+  get gpuDrawing(): boolean {
+    return this.gpuAttached;
+  }
+
+  /** frames of 1/60 s simulated since the cloths (re)started */
+  get frame(): number {
+    return this.driver?.mirrors[0]?.frame ?? 0;
+  }
+
+  /** simulation time per 1/60 s frame, smoothed [ms]; and the simulated time over wall time (1: real time) */
+  get stats(): { stepMs: number; realTime: number } {
+    const s = this.driver?.stats;
+    return { stepMs: s?.stepMs ?? 0, realTime: s?.realTime ?? 1 };
+  }
+
+  /** pauses (true) or resumes stepping in `update`; `step` still steps */
+  get paused(): boolean {
+    return this.driver?.paused ?? this.pausedBeforeStart;
+  }
+
+  set paused(p: boolean) {
+    this.pausedBeforeStart = p;
+    if (this.driver) this.driver.paused = p;
+  }
+
+  private pausedBeforeStart = false;
+
+  /**
+   * Adds a cloth and returns it: a `THREE.Mesh` to add to your scene (its vertices are world coordinates). Made
+   * from a `geometry` or a generated `shape`, of a `fabric`. Added while the world runs, it rebuilds the simulation:
+   * every cloth starts again from its start pose. Throws an error naming the option that is wrong.
+   */
+  addCloth(options: DrapeClothOptions = {}): DrapeCloth {
+    this.alive();
+    checkObject(`${WHERE}.addCloth`, 'options', options);
+    checkObject(`${WHERE}.addCloth`, 'fabricValues', options.fabricValues);
+    checkOneOf(`${WHERE}.addCloth`, 'shape', options.shape, ['rectangle', 'disc', 'tube']);
+    if (options.geometry !== undefined && options.shape !== undefined) throw new TypeError(`${WHERE}.addCloth: give geometry or shape, not both`);
+    if (options.pins !== undefined && !Array.isArray(options.pins)) throw new TypeError(`${WHERE}.addCloth: pins must be an array`);
+    const k = this.cloths.length;
+    const name = options.name ?? `cloth ${k}`;
+    const where = `${WHERE}.addCloth('${name.slice(0, 60)}')`;
+    const meshName = options.geometry ? `drape-three:cloth-${this.names++}` : undefined;
+    if (options.geometry && meshName) this.meshes.add({ name: meshName, mesh: meshOfGeometry(options.geometry, where) });
+    const fixed: PinEntry[] = [], toObjects: { at: PinEntry; to: Object3D }[] = [];
+    for (const p of options.pins ?? []) {
+      if (p !== null && typeof p === 'object' && 'to' in p) toObjects.push(p);
+      else fixed.push(p as PinEntry);
+    }
+    const entry = {
+      name,
+      cloth: {
+        shape: meshName ? 'mesh' : options.shape ?? 'rectangle',
+        ...(meshName ? { mesh: meshName } : {}),
+        ...pick(options, ['width', 'height', 'resolution', 'orientation', 'rotation', 'scale', 'thickness']),
+        position: options.position ?? [0, 1, 0],
+      },
+      material: { ...(options.fabric ? { fabric: options.fabric } : {}), ...options.fabricValues },
+      pins: fixed,
+    } as unknown as ClothEntry;
+    let model: ClothModel, attachedPins: AttachedPin[];
+    try {
+      // the cloth alone, as the core builds it: its particles and triangles, and its pins' particles
+      // every pin checked in the order given (pins[k] names the user's k), the attached ones by their `at`
+      const all = (options.pins ?? []).map((p) => (p !== null && typeof p === 'object' && 'to' in p ? p.at : p));
+      const one = validateScene({ cloth: entry.cloth, material: entry.material, pins: all, colliders: [] }, where);
+      resolvePins(modelFor(one, this.meshes.resolve), one.pins);
+      const own = modelFor({ ...one, pins: [] }, this.meshes.resolve);
+      model = own;
+      attachedPins = toObjects.map((p, j) => {
+        if (!p.to || typeof (p.to as Object3D).updateWorldMatrix !== 'function') throw new TypeError(`${where}: pins[${j}].to must be a THREE.Object3D`);
+        return { cloth: null as unknown as DrapeCloth, particles: resolvePins(own, [p.at], `pins[${j}].at`), to: p.to };
+      });
+    } catch (e) {
+      if (meshName) this.meshes.delete(meshName);
+      throw optionError(e);
+    }
+    const cloth = new DrapeCloth({ entry: { ...entry, cloth: { ...entry.cloth } }, model }, options.material, name);
+    for (const p of attachedPins) {
+      this.attached.push({ ...p, cloth });
+      if (!this.anchors.has(p.to) && !this.colliders.some((c) => c.object === p.to)) this.anchors.set(p.to, this.anchorOf(p.to));
+    }
+    this.cloths.push(cloth);
+    try {
+      this.structureChanged();
+    } catch (e) {
+      this.cloths.pop();
+      this.attached.splice(this.attached.length - attachedPins.length);
+      if (meshName) this.meshes.delete(meshName);
+      throw e;
+    }
+    return cloth;
+  }
+
+  /**
+   * Makes a collider of one of your meshes: a sphere, box, capsule, cylinder or its triangles (`shape`, inferred by
+   * default), where the mesh is now and following its world transform each update (unless `follow: false`).
+   * Throws an error naming the option that is wrong; added while the world runs, it takes effect at once (a
+   * collider cutting through a cloth is refused).
+   */
+  addCollider(mesh: Mesh, options: DrapeColliderOptions = {}): void {
+    this.alive();
+    if (!mesh || !(mesh as Mesh).isMesh) throw new TypeError(`${WHERE}.addCollider: the first argument must be a THREE.Mesh`);
+    checkObject(`${WHERE}.addCollider`, 'options', options);
+    checkOneOf(`${WHERE}.addCollider`, 'options.shape', options.shape, COLLIDER_SHAPE_OPTIONS);
+    if (this.colliders.some((c) => c.object === mesh)) throw new Error(`${WHERE}.addCollider: this mesh is a collider already`);
+    mesh.updateWorldMatrix(true, false);
+    const meshName = `drape-three:collider-${this.names++}`;
+    const made = colliderOfMesh(mesh, options.shape ?? 'auto', meshName);
+    if (made.triangles) this.meshes.add({ name: meshName, mesh: made.triangles });
+    const follower = options.follow === false ? null : new Follower(mesh, made.pivot);
+    this.colliders.push({ object: mesh, spec: made.spec, follower, anchor: false });
+    try {
+      this.structureChanged();
+    } catch (e) {
+      this.colliders.pop();
+      this.meshes.delete(meshName);
+      throw e;
+    }
+  }
+
+  /**
+   * Steps the world by `dt` seconds of wall time (default: the time since the last call), in whole 1/60 s frames
+   * (what is left over waits for the next call; time the simulation cannot keep up with is dropped, never queued),
+   * moves the colliders to where their meshes are, and refreshes the cloths. Call it once per displayed frame, before
+   * rendering. The first call starts the simulation (asynchronously: the cloths keep their start pose meanwhile).
+   */
+  update(dt?: number): void {
+    if (this.disposed) return;
+    if (dt !== undefined && !(Number.isFinite(dt) && dt >= 0)) throw new RangeError(`${WHERE}.update: dt must be a finite number of seconds ≥ 0, got ${String(dt)}`);
+    const now = performance.now();
+    const dtMs = dt !== undefined ? 1000 * dt : this.lastNow ? now - this.lastNow : 0;
+    this.lastNow = now;
+    const d = this.driver;
+    if (!d) { void this.start(); return; }
+    if (d instanceof GpuSim && d.lost) { this.fallBack('the WebGPU device was lost'); return; }
+    this.follow(dtMs / 1000);
+    d.tick(dtMs, now);
+    this.draw();
+  }
+
+  /**
+   * Steps `frames` frames of 1/60 s now, paused or not (starting the world first if need be); resolves once they
+   * are done and the cloths' `positions` hold them (read back from the GPU there).
+   */
+  async step(frames = 1): Promise<void> {
+    if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`${WHERE}.step: frames must be an integer ≥ 0, got ${String(frames)}`);
+    await this.start();
+    const d = this.driver;
+    if (!d) return;
+    this.follow(0);
+    await d.step(frames);
+    this.fresh = true;
+    this.draw();
+  }
+
+  /** Starts the simulation (the first `update` or `step` does): resolves once the backend is chosen and the cloths loaded. */
+  start(): Promise<void> {
+    this.starting ??= this.begin();
+    return this.starting;
+  }
+
+  /**
+   * The cloth a ray meets first: a `THREE.Raycaster` (set from the camera and a pointer: `setFromCamera`) or an
+   * origin and a direction [m]. Null when it meets none, or before the world has started.
+   */
+  pick(ray: Raycaster | { origin: Vector3; direction: Vector3 }): DrapeHit | null {
+    const m = this.driver?.mirrors[0];
+    if (!m || !this.model) return null;
+    const r = ray instanceof Raycaster ? ray.ray : ray;
+    const dir = r.direction.clone().normalize();
+    const hit = pickParticle(m.sim.model, m.sim.state, vec3(r.origin), vec3(dir));
+    if (!hit) return null;
+    const cloth = this.clothOf(hit.particle);
+    if (!cloth) return null;
+    return { cloth, particle: hit.particle - cloth.start, point: new Vector3(...hit.point), distance: hit.t };
+  }
+
+  /** Grabs a particle (a `pick` hit's), pulling it towards `target` [m] (default: the hit point) until `release`. */
+  grab(hit: Pick<DrapeHit, 'cloth' | 'particle'> & { point?: Vector3 }, target?: Vector3): void {
+    const d = this.driver;
+    if (!d || !this.cloths.includes(hit.cloth)) return;
+    if (!(Number.isInteger(hit.particle) && hit.particle >= 0 && hit.particle < hit.cloth.particleCount)) {
+      throw new RangeError(`${WHERE}.grab: particle must be an integer 0…${hit.cloth.particleCount - 1}, got ${String(hit.particle)}`);
+    }
+    this.grabbed = { cloth: hit.cloth, particle: hit.particle };
+    const to = target ?? hit.point ?? new Vector3().fromArray(hit.cloth.positions, 3 * hit.particle);
+    d.grab(0, hit.cloth.start + hit.particle, vec3(to));
+  }
+
+  /** Moves the grabbed particle's target [m]; nothing when none is grabbed. */
+  drag(target: Vector3): void {
+    if (this.grabbed && this.driver) this.driver.grab(0, this.grabbed.cloth.start + this.grabbed.particle, vec3(target));
+  }
+
+  /** Lets the grabbed particle go (it keeps its velocity). */
+  release(): void {
+    if (this.grabbed && this.driver) this.driver.release(0);
+    this.grabbed = null;
+  }
+
+  /** whether a particle is grabbed */
+  get grabbing(): boolean {
+    return this.grabbed !== null;
+  }
+
+  /** Puts every cloth back at its start pose, with its pins; colliders follow their meshes from where they are. */
+  reset(): void {
+    this.release();
+    this.driver?.reset();
+    for (const c of this.sceneColliders) c?.follower?.resend();
+    this.fresh = true;
+  }
+
+  /**
+   * Frees everything the world made: the worker (and its helper threads) or the GPU solvers and their buffers, the
+   * cloths' geometries and the materials it made for them, its animation loop. Your meshes, materials and renderer
+   * stay yours. The cloths stay in your scene until you remove them; the world is unusable after.
+   */
+  dispose(): void {
+    if (this.disposed) return;
+    this.disposed = true;
+    if (this.raf) cancelAnimationFrame(this.raf);
+    this.driver?.dispose();
+    this.driver = null;
+    for (const c of this.cloths) c.disposeCloth();
+    this.gpuPosition = this.gpuNormal = null;
+  }
+
+  private alive(): void {
+    if (this.disposed) throw new Error(`${WHERE}: the world was disposed`);
+  }
+
+  /** The scene of the world's cloths and colliders (validated: a SceneError names what is wrong). */
+  private sceneOf(cloths: ClothEntry[]): Scene {
+    const o = this.options;
+    const colliders: ColliderSpec[] = [];
+    const order: (WorldCollider | null)[] = [];
+    if (o.floor !== undefined && o.floor !== null) { colliders.push({ type: 'floor', height: o.floor }); order.push(null); }
+    // the cloths' first particles in the world's model, for the pins colliders carry
+    const starts: number[] = [];
+    let n = 0;
+    for (const c of this.cloths) { starts.push(n); n += c.particleCount; }
+    const carried = (object: Object3D) => this.attached.filter((p) => p.to === object)
+      .flatMap((p) => p.particles.map((i) => i + starts[this.cloths.indexOf(p.cloth)]));
+    for (const c of this.colliders) { colliders.push({ ...c.spec, pins: carried(c.object) }); order.push(c); }
+    for (const [object, a] of this.anchors) {
+      const pins = carried(object);
+      if (!pins.length || this.colliders.some((c) => c.object === object)) continue;
+      colliders.push({ ...a.spec, pins });
+      order.push(a);
+    }
+    const w = o.wind ?? {};
+    const scene = validateScene({
+      name: 'drape-three',
+      cloths,
+      gravity: o.gravity ?? [0, -9.81, 0],
+      wind: {
+        enabled: (w.strength ?? 0) > 0, strength: w.strength ?? 0, direction: w.direction ?? [1, 0, 0],
+        gusts: { enabled: w.gusts ?? false, seed: w.seed ?? 1 },
+      },
+      // cloths of one world keep out of each other by default; one cloth alone passes through itself unless asked
+      solver: { selfContact: cloths.length > 1, ...o.solver },
+      colliders,
+    }, WHERE);
+    this.sceneColliders = order;
+    return scene;
+  }
+
+  /** An anchor for pins on an object that is no collider: a plane far below it, moving with it. */
+  private anchorOf(object: Object3D): WorldCollider {
+    object.updateWorldMatrix(true, false);
+    const o = new Vector3().setFromMatrixPosition(object.matrixWorld);
+    const point: Vec3 = [o.x, o.y - ANCHOR_DEPTH, o.z];
+    return { object, spec: { type: 'plane', point, normal: [0, 1, 0] }, follower: new Follower(object, point), anchor: true };
+  }
+
+  /** A cloth or collider was added: a running world takes the new scene at once (a refusal throws, and nothing changes). */
+  private structureChanged(): void {
+    const scene = this.scene();
+    const d = this.driver;
+    if (!d) return;
+    try {
+      d.setScene(0, scene);
+    } catch (e) {
+      throw optionError(e);
+    }
+    for (const c of this.sceneColliders) c?.follower?.resend();
+    this.draw();
+  }
+
+  /** The world's scene (a world without cloths yet: with a stand-in one, to check the rest). */
+  private scene(): Scene {
+    try {
+      return this.sceneOf(this.cloths.length ? this.cloths.map((c) => c.part.entry) : [STAND_IN]);
+    } catch (e) {
+      throw optionError(e);
+    }
+  }
+
+  private async begin(): Promise<void> {
+    const r = this.options.renderer;
+    try {
+      if (r?.isWebGPURenderer && typeof r.init === 'function') await r.init();
+    } catch {
+      // a renderer that cannot start draws nothing; the simulation still runs on the CPU
+    }
+    if (this.disposed || !this.cloths.length) { this.starting = null; return; }
+    let scene: Scene;
+    try {
+      scene = this.scene();
+    } catch (e) {
+      this.report((e as Error).message);
+      return;
+    }
+    const { kind, note } = this.choose(scene);
+    this.backendNote = note;
+    this.load(kind, scene);
+  }
+
+  /** The backend the choice, the renderer and the scene allow, and why it is not the GPU. */
+  private choose(scene: Scene): { kind: 'gpu' | 'cpu'; note: string } {
+    const choice = this.options.backend ?? 'auto';
+    if (choice === 'cpu') return { kind: 'cpu', note: '' };
+    const why = this.device() ? GpuSim.supports(scene) : 'no WebGPU device: the renderer is not a WebGPURenderer on WebGPU';
+    return why ? { kind: 'cpu', note: `GPU unavailable: ${why}` } : { kind: 'gpu', note: '' };
+  }
+
+  /** the renderer's WebGPU backend, when it is a WebGPURenderer on WebGPU */
+  private webGpu(): WebGpuBackendLike | null {
+    const r = this.options.renderer, b = r?.backend as WebGpuBackendLike | undefined;
+    return r?.isWebGPURenderer && b?.isWebGPUBackend && b.device && typeof b.get === 'function' ? b : null;
+  }
+
+  private device(): GPUDevice | null {
+    const b = this.webGpu();
+    return b?.device ?? null;
+  }
+
+  /** Makes the driver of `kind` and loads the scene into it; a scene the core refuses is reported. */
+  private load(kind: 'gpu' | 'cpu', scene: Scene): SimDriver | null {
+    const device = this.device();
+    const d: SimDriver = kind === 'gpu' && device ? new GpuSim(device, this.meshes) : new SimClient(this.meshes);
+    d.paused = this.pausedBeforeStart;
+    d.onFrame = () => { this.fresh = true; };
+    d.onError = (message) => {
+      if (d.kind === 'gpu' && this.driver === d) this.fallBack(message);
+      else this.report(message);
+    };
+    d.onUnstable = (_slot, frame) => this.report(`the simulation became unstable at frame ${frame} (positions no longer finite) and stopped at its last finite shape; reset() starts it again, more substeps or a softer fabric may help`);
+    try {
+      d.load([scene]);
+    } catch (e) {
+      d.dispose();
+      this.report((optionError(e) as Error).message);
+      return null;
+    }
+    this.driver = d;
+    for (const c of this.sceneColliders) c?.follower?.resend();
+    this.adopt(d.mirrors[0].sim.model);
+    return d;
+  }
+
+  /** The GPU cannot go on (an error, a lost device): the cloths go on on the CPU from the last positions read back. */
+  private fallBack(reason: string): void {
+    const old = this.driver;
+    if (!old || old.kind !== 'gpu') return;
+    const m = old.mirrors[0];
+    old.dispose();
+    this.driver = null;
+    this.backendNote = `GPU unavailable: ${reason}`;
+    const d = this.load('cpu', m.sim.scene);
+    if (d instanceof SimClient && m && m.unstableAt < 0) d.setState(0, m.sim.state, m.frame);
+    this.grabbed = null;
+  }
+
+  /** The cloths' geometries for the world's model (a new model: every cloth restarts). */
+  private adopt(model: ClothModel): void {
+    this.model = model;
+    const gpu = this.driver instanceof GpuSim;
+    this.gpuAttached = false;
+    this.cloths.forEach((c, k) => { c.start = model.clothStarts[k]; });
+    if (gpu) {
+      const n = model.particleCount, x = model.restPositions;
+      const p = new Float32Array(4 * n);
+      for (let i = 0; i < n; i++) { p[4 * i] = x[3 * i]; p[4 * i + 1] = x[3 * i + 1]; p[4 * i + 2] = x[3 * i + 2]; }
+      this.gpuPosition = new BufferAttribute(p, 4);
+      this.gpuNormal = new BufferAttribute(new Float32Array(4 * n), 4);
+      for (const c of this.cloths) { c.setPositions(this.driver!.mirrors[0].sim.state.positions, false); c.useGpuGeometry(this.gpuPosition, this.gpuNormal); }
+    } else {
+      this.gpuPosition = this.gpuNormal = null;
+      for (const c of this.cloths) { c.setPositions(this.driver!.mirrors[0].sim.state.positions, false); c.useCpuGeometry(); }
+    }
+    this.fresh = true;
+  }
+
+  /** Tells the simulation where each following collider's mesh is now. */
+  private follow(dt: number): void {
+    const d = this.driver;
+    if (!d) return;
+    this.sceneColliders.forEach((c, k) => {
+      if (!c?.follower) return;
+      c.object.updateWorldMatrix(true, false);
+      const pose = c.follower.look(dt);
+      if (pose) d.setColliderPose(0, k, pose);
+    });
+  }
+
+  /** Brings the cloths' geometries up to date with the driver (a rebuilt model, new positions, the GPU's buffers). */
+  private draw(): void {
+    const d = this.driver, m = d?.mirrors[0];
+    if (!d || !m) return;
+    if (m.sim.model !== this.model) this.adopt(m.sim.model);
+    if (d instanceof GpuSim) {
+      const solver = d.solverOf(0);
+      const backend = this.webGpu();
+      if (!this.gpuAttached && solver && backend && this.gpuPosition && this.gpuNormal) {
+        for (const [attr, buffer] of [[this.gpuPosition, solver.positionBuffer], [this.gpuNormal, solver.normalBuffer]] as const) {
+          const data = backend.get(attr);
+          if (data.buffer && data.buffer !== buffer) data.buffer.destroy();
+          data.buffer = buffer;
+        }
+        this.gpuAttached = true;
+      }
+    }
+    if (!this.fresh) return;
+    this.fresh = false;
+    const cpu = !(d instanceof GpuSim);
+    for (const c of this.cloths) c.setPositions(m.sim.state.positions, cpu);
+  }
+
+  private clothOf(particle: number): DrapeCloth | null {
+    for (const c of this.cloths) if (particle >= c.start && particle < c.start + c.particleCount) return c;
+    return null;
+  }
+
+  private report(message: string): void {
+    this.error = message;
+    (this.options.onError ?? ((m: string) => console.error(`Drape: ${m}`)))(message);
+  }
+}
+
+/** The fields of `o` named in `keys` that are given. */
+function pick<T extends object, K extends keyof T>(o: T, keys: readonly K[]): Partial<Pick<T, K>> {
+  const out: Partial<Pick<T, K>> = {};
+  for (const k of keys) if (o[k] !== undefined) out[k] = o[k];
+  return out;
+}
