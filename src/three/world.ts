@@ -131,10 +131,14 @@ export class DrapeWorld {
     return this.driver?.mirrors[0]?.frame ?? 0;
   }
 
-  /** simulation time per 1/60 s frame, smoothed [ms]; and the simulated time over wall time (1: real time) */
-  get stats(): { stepMs: number; realTime: number } {
+  /**
+   * `stepMs`: simulation time per 1/60 s frame, smoothed [ms]; `realTime`: simulated time over wall time (1: real
+   * time); `threads`: CPU threads sharing each substep (0 on the GPU; more than 1 only for cloths of 2500 particles
+   * or more on a cross-origin isolated page)
+   */
+  get stats(): { stepMs: number; realTime: number; threads: number } {
     const s = this.driver?.stats;
-    return { stepMs: s?.stepMs ?? 0, realTime: s?.realTime ?? 1 };
+    return { stepMs: s?.stepMs ?? 0, realTime: s?.realTime ?? 1, threads: s?.threads ?? 0 };
   }
 
   /** pauses (true) or resumes stepping in `update`; `step` still steps */

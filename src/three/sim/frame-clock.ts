@@ -18,7 +18,7 @@ const FRAME_BUDGET_MS = 14;
 
 /** Statistics of a driver before it has stepped anything. */
 export function newStats(): SimStats {
-  return { stepMs: 0, realTime: 1, energy: { kinetic: 0, gravitational: 0, elastic: 0, bending: 0 }, maxStrain: 0, clamps: [], framesDone: 0, kernel: '' };
+  return { stepMs: 0, realTime: 1, energy: { kinetic: 0, gravitational: 0, elastic: 0, bending: 0 }, maxStrain: 0, clamps: [], framesDone: 0, kernel: '', threads: 0 };
 }
 
 export class FrameClock {

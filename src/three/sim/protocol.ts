@@ -66,5 +66,7 @@ export type FromWorker =
     clamps: string[];
     /** CPU kernel of slot 0: 'wasm' (WebAssembly SIMD) or 'ts' */
     kernel: string;
+    /** threads sharing slot 0's substeps now (1 until helper threads have started) */
+    threads: number;
   }
   | { type: 'error'; message: string };

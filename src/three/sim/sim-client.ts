@@ -38,6 +38,8 @@ export interface SimStats {
   framesDone: number;
   /** where the CPU worker runs the XPBD substeps ('wasm': WebAssembly SIMD; 'ts': TypeScript); '' on the GPU */
   kernel: string;
+  /** threads sharing each of the CPU worker's substeps (more than 1 only where the page is cross-origin isolated); 0 on the GPU */
+  threads: number;
 }
 
 /** What the app drives: the CPU backend (SimClient, a worker) or the GPU backend (GpuSim, on the page's device). */
@@ -247,6 +249,7 @@ export class SimClient implements SimDriver {
     s.maxStrain = msg.maxStrain;
     s.clamps = msg.clamps;
     s.kernel = msg.kernel;
+    s.threads = msg.threads;
     const done = this.pending.get(msg.id);
     this.pending.delete(msg.id);
     done?.();

@@ -57,7 +57,8 @@ function frameMessage(id: number, frames: number, stepMs: number): void {
     for (const c of sim.params.clamps) clamps.add(c);
   }
   const kernel = slots[0]?.sim.kernel ?? '';
-  send({ type: 'frame', id, frames, slots: out, stepMs, energy: total, maxStrain, clamps: [...clamps], kernel }, transfer);
+  const threads = slots[0]?.sim.threads ?? 1;
+  send({ type: 'frame', id, frames, slots: out, stepMs, energy: total, maxStrain, clamps: [...clamps], kernel, threads }, transfer);
 }
 
 function handle(msg: ToWorker): void {
