@@ -2,7 +2,8 @@
  * The three.js addon's example page (examples/three, built into dist/web/examples/three): a cloth of `drape/three`
  * on the page's own ball and table, its own camera and renderer. Under the WebGL2 launch the world simulates in
  * the CPU worker; under the WebGPU launch (SwiftShader) on the renderer's device, drawn from the solver's buffers.
- * Either way the cloth falls onto the ball and drapes over it, and the page logs no error (CSP violations included).
+ * Either way the cloth falls onto the ball and drapes over it, rises with it when the page moves the ball (its
+ * collider follows the mesh), and the page logs no error (CSP violations included).
  */
 import type { Page } from 'playwright-core';
 import { afterAll, describe, expect, inject, it } from 'vitest';
@@ -13,6 +14,9 @@ import { POLL_MS, RESULTS, writeJson } from './helpers.js';
 const BALL = { center: [0, 0.5, 0], radius: 0.3 };
 /** frames the test steps: dropped 0.25 m onto the ball, the cloth lies on it and hangs around it well before */
 const FRAMES = 90;
+/** then the page's ball rises this much [m], a step each frame over this many frames, carrying the cloth up */
+const LIFT = 0.15;
+const LIFT_FRAMES = 15;
 /** a small page: SwiftShader draws each frame on the CPU the simulation needs too */
 const VIEWPORT = { width: 480, height: 300 };
 
@@ -28,6 +32,9 @@ interface Drop {
   topGap: number;
   /** the deepest any particle is inside the ball [m] (0: none) */
   inside: number;
+  /** after the ball rose LIFT over LIFT_FRAMES frames: its top's gap to the cloth above it, and the cloth's highest particle [m] */
+  liftedGap: number;
+  liftedMaxY: number;
   backendNote: string;
   error: string;
 }
@@ -36,33 +43,44 @@ interface Drop {
 async function drop(page: Page): Promise<Drop> {
   await page.goto(`${inject('baseURL')}examples/three/?testhook`);
   await page.waitForFunction(() => (window as any).drapeExample !== undefined, null, { timeout: 60_000, polling: POLL_MS });
-  return page.evaluate(async ({ frames, ball }) => {
-    const { world, cloth } = (window as any).drapeExample;
+  return page.evaluate(async ({ frames, ball, lift, liftFrames }) => {
+    const { world, cloth, ball: mesh } = (window as any).drapeExample;
     // the page's own loop would step it too, in real time (slowly here): only these frames, at once
     world.paused = true;
     await world.step(frames);
-    const x: Float32Array = cloth.positions;
-    let minY = Infinity, maxY = -Infinity, top = -1, topD = Infinity, inside = 0;
-    for (let i = 0; i < x.length; i += 3) {
-      minY = Math.min(minY, x[i + 1]);
-      maxY = Math.max(maxY, x[i + 1]);
-      const d = Math.hypot(x[i] - ball.center[0], x[i + 1] - ball.center[1], x[i + 2] - ball.center[2]) - ball.radius;
-      inside = Math.max(inside, -d);
-      const r = Math.hypot(x[i] - ball.center[0], x[i + 2] - ball.center[2]);
-      if (r < topD) { topD = r; top = i; }
-    }
-    const topGap = Math.hypot(x[top] - ball.center[0], x[top + 1] - ball.center[1], x[top + 2] - ball.center[2]) - ball.radius;
-    return {
-      backend: world.backend, gpuDrawing: world.gpuDrawing, frame: world.frame, particles: x.length / 3,
-      minY, maxY, topGap, inside, backendNote: world.backendNote, error: world.error,
+    const measure = (cy: number) => {
+      const x: Float32Array = cloth.positions;
+      let minY = Infinity, maxY = -Infinity, top = -1, topD = Infinity, inside = 0;
+      for (let i = 0; i < x.length; i += 3) {
+        minY = Math.min(minY, x[i + 1]);
+        maxY = Math.max(maxY, x[i + 1]);
+        const d = Math.hypot(x[i] - ball.center[0], x[i + 1] - cy, x[i + 2] - ball.center[2]) - ball.radius;
+        inside = Math.max(inside, -d);
+        const r = Math.hypot(x[i] - ball.center[0], x[i + 2] - ball.center[2]);
+        if (r < topD) { topD = r; top = i; }
+      }
+      const topGap = Math.hypot(x[top] - ball.center[0], x[top + 1] - cy, x[top + 2] - ball.center[2]) - ball.radius;
+      return { minY, maxY, topGap, inside, particles: x.length / 3 };
     };
-  }, { frames: FRAMES, ball: BALL });
+    const draped = measure(ball.center[1]);
+    // the page moves its own mesh: the collider follows it and lifts the cloth
+    for (let f = 0; f < liftFrames; f++) {
+      mesh.position.y += lift / liftFrames;
+      await world.step(1);
+    }
+    await world.step(10);
+    const lifted = measure(ball.center[1] + lift);
+    return {
+      backend: world.backend, gpuDrawing: world.gpuDrawing, frame: world.frame, ...draped,
+      liftedGap: lifted.topGap, liftedMaxY: lifted.maxY, backendNote: world.backendNote, error: world.error,
+    };
+  }, { frames: FRAMES, ball: BALL, lift: LIFT, liftFrames: LIFT_FRAMES });
 }
 
 /** The cloth lies on the ball (its middle on the top, none of it inside) and hangs down around it. */
 function expectDraped(d: Drop): void {
   expect(d.error).toBe('');
-  expect(d.frame).toBeGreaterThanOrEqual(FRAMES);
+  expect(d.frame).toBeGreaterThanOrEqual(FRAMES + LIFT_FRAMES + 10);
   expect(d.particles).toBe(25 * 25);
   // resting on the ball's top, the silk's thickness (5 mm) away, not sunk in
   expect(d.topGap).toBeGreaterThan(0);
@@ -71,6 +89,10 @@ function expectDraped(d: Drop): void {
   // no part of it left up where it started (1.05 m); its edges hang below the ball's top (0.8 m)
   expect(d.maxY).toBeLessThan(BALL.center[1] + BALL.radius + 0.05);
   expect(d.minY).toBeLessThan(BALL.center[1] + BALL.radius - 0.15);
+  // the ball rose under it: the cloth rose with it, still lying on its top
+  expect(d.liftedGap).toBeGreaterThan(0);
+  expect(d.liftedGap).toBeLessThan(0.03);
+  expect(d.liftedMaxY).toBeGreaterThan(d.maxY + LIFT - 0.03);
 }
 
 describe('drape/three example page', () => {

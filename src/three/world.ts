@@ -8,7 +8,7 @@
  */
 import { BufferAttribute, Raycaster, Vector3, type Mesh, type Object3D } from 'three';
 import {
-  modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type ColliderSpec,
+  FRAME_DT, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type ColliderSpec,
   type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { DrapeCloth } from './cloth.js';
@@ -269,14 +269,16 @@ export class DrapeWorld {
 
   /**
    * Steps `frames` frames of 1/60 s now, paused or not (starting the world first if need be); resolves once they
-   * are done and the cloths' `positions` hold them (read back from the GPU there).
+   * are done and the cloths' `positions` hold them (read back from the GPU there). Colliders move to where their
+   * meshes are now, as having moved there over those frames.
    */
   async step(frames = 1): Promise<void> {
     if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`${WHERE}.step: frames must be an integer ≥ 0, got ${String(frames)}`);
     await this.start();
     const d = this.driver;
     if (!d) return;
-    this.follow(0);
+    // the colliders' meshes moved over the time these frames simulate
+    this.follow(frames * FRAME_DT);
     await d.step(frames);
     this.fresh = true;
     this.draw();
