@@ -1,9 +1,10 @@
 /**
- * A collider following a three.js object: the pose the core's `Simulation.setColliderPose` takes — the rigid motion
- * that takes the object from where it stood when the collider was made to where it stands now (translation of the
- * collider's pivot, rotation about it, Euler degrees as the core's) — and the velocity and angular velocity of that
- * motion since the last look, so the substeps move the collider on between two display frames and friction drags
- * the cloth with it. The object's scale is not followed (a collider keeps the size it was made with). Pure.
+ * A collider following a three.js object: the drive the core's `Simulation.setColliderPose` takes — the rigid
+ * motion that takes the object from where it stood when the collider was made to where it stands (translation of
+ * the collider's pivot, rotation about it, Euler degrees as the core's), and the velocity and angular velocity of
+ * that motion since the last look — so that over the frames stepped for the time since, the collider glides from
+ * the object's last pose to its pose now, and friction drags the cloth with it. The object's scale is not followed
+ * (a collider keeps the size it was made with). Pure.
  */
 import { Matrix4, Quaternion, Vector3, type Object3D } from 'three';
 import type { ColliderPose, Vec3 } from '../core/index.js';
@@ -35,22 +36,26 @@ export class Follower {
   }
 
   /**
-   * The object's motion now, `dt` seconds [s] after the last look (0 or less: no velocity), or null when it has
-   * not moved since and was at rest then (nothing to tell the simulation). Reads `object.matrixWorld`: bring it
+   * The drive over the next `dt` seconds [s] of simulation, which stand for the `dt` of wall time since the last
+   * look: the pose the object had at the last look, and the velocity and angular velocity that bring the collider
+   * to where the object is now by their end. So the collider ends each stepped interval where its object is, and
+   * moves smoothly across it. `dt` 0 or less: the pose now, at rest (a jump). Null when the object has not moved
+   * since the last look and was at rest then (nothing to tell the simulation). Reads `object.matrixWorld`: bring it
    * up to date first (the renderer does each frame; `updateWorldMatrix` otherwise).
    */
   look(dt: number): ColliderPose | null {
     this.object.matrixWorld.decompose(ot, qt, st);
-    // rotation of the motion: R = Rt·R0ᵀ; translation of the pivot c: T = ot − c + R·(c − o0)
+    // rotation of the motion now: R = Rt·R0ᵀ; translation of the pivot c: T = ot − c + R·(c − o0)
     qt.multiply(this.q0Inverse);
     arm.copy(this.pivot).sub(this.o0).applyQuaternion(qt).add(ot).sub(this.pivot);
     const moved = arm.distanceToSquared(this.t) > 1e-18 || Math.abs(Math.abs(qt.dot(this.q)) - 1) > 1e-12;
     if (!moved && !this.moving) return null;
     const velocity: Vec3 = [0, 0, 0], angularVelocity: Vec3 = [0, 0, 0];
-    if (dt > 0 && moved) {
+    const glide = dt > 0 && moved;
+    if (glide) {
       velocity[0] = (arm.x - this.t.x) / dt; velocity[1] = (arm.y - this.t.y) / dt; velocity[2] = (arm.z - this.t.z) / dt;
       // the turn since the last look, the short way round, as an axis × angle
-      dq.copy(qt).multiply(this.q.invert());
+      dq.copy(this.q).invert().premultiply(qt);
       if (dq.w < 0) dq.set(-dq.x, -dq.y, -dq.z, -dq.w);
       const s = Math.hypot(dq.x, dq.y, dq.z);
       if (s > 1e-12) {
@@ -58,9 +63,12 @@ export class Follower {
         angularVelocity[0] = dq.x * w; angularVelocity[1] = dq.y * w; angularVelocity[2] = dq.z * w;
       }
     }
+    // from where it was (gliding) or where it is (a jump, or at rest)
+    const from = glide ? this.t : arm, turn = glide ? this.q : qt;
+    const pose: ColliderPose = { translation: [from.x, from.y, from.z], rotation: coreEuler(m.makeRotationFromQuaternion(turn)), velocity, angularVelocity };
     this.t.copy(arm);
     this.q.copy(qt);
     this.moving = moved;
-    return { translation: [arm.x, arm.y, arm.z], rotation: coreEuler(m.makeRotationFromQuaternion(qt)), velocity, angularVelocity };
+    return pose;
   }
 }

@@ -8,7 +8,7 @@
  */
 import { BufferAttribute, Raycaster, Vector3, type Mesh, type Object3D } from 'three';
 import {
-  FRAME_DT, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type ColliderSpec,
+  FRAME_DT, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel,
   type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { DrapeCloth } from './cloth.js';
@@ -16,36 +16,13 @@ import { COLLIDER_SHAPE_OPTIONS, colliderOfMesh } from './colliders.js';
 import { Follower } from './follow.js';
 import { meshOfGeometry } from './geometry.js';
 import {
-  DRAPE_BACKENDS, checkObject, checkOneOf, optionError, type DrapeClothOptions, type DrapeColliderOptions, type DrapeWorldOptions,
+  DRAPE_BACKENDS, checkObject, checkOneOf, optionError, type DrapeClothOptions, type DrapeColliderOptions, type DrapePin, type DrapeWorldOptions,
   type WebGpuBackendLike,
 } from './options.js';
+import { anchorOf, worldScene, type AttachedPin, type WorldCollider } from './scene.js';
 import { GpuSim } from './sim/gpu-sim.js';
 import { MeshStore } from './sim/meshes.js';
 import { SimClient, type SimDriver } from './sim/sim-client.js';
-
-/**
- * How far below the object it follows an anchor's plane lies [m]: an anchor carries the pins of an object that is
- * not a collider, and the cloth never comes near it (the plane keeps its distance from the object as it moves).
- */
-const ANCHOR_DEPTH = 200;
-
-/** A collider of the world: what moves it, its scene entry as it was made, and the pins it carries. */
-interface WorldCollider {
-  readonly object: Object3D;
-  readonly spec: ColliderSpec;
-  /** null: it stays where it was made */
-  readonly follower: Follower | null;
-  /** an anchor of pins (a plane far below the object), not a collider the user added */
-  readonly anchor: boolean;
-}
-
-/** A pin attached to an object, of one cloth. */
-interface AttachedPin {
-  readonly cloth: DrapeCloth;
-  /** the cloth's own particles it pins */
-  readonly particles: number[];
-  readonly to: Object3D;
-}
 
 /** Where a picking ray met a cloth. */
 export interface DrapeHit {
@@ -59,8 +36,6 @@ export interface DrapeHit {
 }
 
 const WHERE = 'DrapeWorld';
-/** the cloth a world without cloths is checked with (never simulated) */
-const STAND_IN = { cloth: {}, material: {}, pins: [] } as unknown as ClothEntry;
 const vec3 = (v: Vector3): Vec3 => [v.x, v.y, v.z];
 
 export class DrapeWorld {
@@ -90,7 +65,6 @@ export class DrapeWorld {
   private lastNow = 0;
   private raf = 0;
   private grabbed: { cloth: DrapeCloth; particle: number } | null = null;
-  private readonly ray = new Raycaster();
   private disposed = false;
   private names = 0;
 
@@ -170,11 +144,8 @@ export class DrapeWorld {
     const where = `${WHERE}.addCloth('${name.slice(0, 60)}')`;
     const meshName = options.geometry ? `drape-three:cloth-${this.names++}` : undefined;
     if (options.geometry && meshName) this.meshes.add({ name: meshName, mesh: meshOfGeometry(options.geometry, where) });
-    const fixed: PinEntry[] = [], toObjects: { at: PinEntry; to: Object3D }[] = [];
-    for (const p of options.pins ?? []) {
-      if (p !== null && typeof p === 'object' && 'to' in p) toObjects.push(p);
-      else fixed.push(p as PinEntry);
-    }
+    const pins = options.pins ?? [];
+    const attachedAt = (p: DrapePin): p is { at: PinEntry; to: Object3D } => p !== null && typeof p === 'object' && 'to' in p;
     const entry = {
       name,
       cloth: {
@@ -184,29 +155,29 @@ export class DrapeWorld {
         position: options.position ?? [0, 1, 0],
       },
       material: { ...(options.fabric ? { fabric: options.fabric } : {}), ...options.fabricValues },
-      pins: fixed,
+      // the pins fixed in the world; those attached to objects are carried by colliders (sceneOf)
+      pins: pins.filter((p) => !attachedAt(p)),
     } as unknown as ClothEntry;
-    let model: ClothModel, attachedPins: AttachedPin[];
+    let model: ClothModel;
+    const attachedPins: Omit<AttachedPin, 'cloth'>[] = [];
     try {
-      // the cloth alone, as the core builds it: its particles and triangles, and its pins' particles
-      // every pin checked in the order given (pins[k] names the user's k), the attached ones by their `at`
-      const all = (options.pins ?? []).map((p) => (p !== null && typeof p === 'object' && 'to' in p ? p.at : p));
-      const one = validateScene({ cloth: entry.cloth, material: entry.material, pins: all, colliders: [] }, where);
-      resolvePins(modelFor(one, this.meshes.resolve), one.pins);
-      const own = modelFor({ ...one, pins: [] }, this.meshes.resolve);
-      model = own;
-      attachedPins = toObjects.map((p, j) => {
+      // the cloth alone, as the core builds it, and every pin checked in the order given (pins[k] is the user's k)
+      const one = validateScene({ cloth: entry.cloth, material: entry.material, pins: pins.map((p) => (attachedAt(p) ? p.at : p)), colliders: [] }, where);
+      model = modelFor(one, this.meshes.resolve);
+      resolvePins(model, one.pins);
+      pins.forEach((p, j) => {
+        if (!attachedAt(p)) return;
         if (!p.to || typeof (p.to as Object3D).updateWorldMatrix !== 'function') throw new TypeError(`${where}: pins[${j}].to must be a THREE.Object3D`);
-        return { cloth: null as unknown as DrapeCloth, particles: resolvePins(own, [p.at], `pins[${j}].at`), to: p.to };
+        attachedPins.push({ particles: resolvePins(model, [p.at], `pins[${j}].at`), to: p.to });
       });
     } catch (e) {
       if (meshName) this.meshes.delete(meshName);
       throw optionError(e);
     }
-    const cloth = new DrapeCloth({ entry: { ...entry, cloth: { ...entry.cloth } }, model }, options.material, name);
+    const cloth = new DrapeCloth({ entry, model }, options.material, name);
     for (const p of attachedPins) {
       this.attached.push({ ...p, cloth });
-      if (!this.anchors.has(p.to) && !this.colliders.some((c) => c.object === p.to)) this.anchors.set(p.to, this.anchorOf(p.to));
+      if (!this.anchors.has(p.to) && !this.colliders.some((c) => c.object === p.to)) this.anchors.set(p.to, anchorOf(p.to));
     }
     this.cloths.push(cloth);
     try {
@@ -237,7 +208,7 @@ export class DrapeWorld {
     const made = colliderOfMesh(mesh, options.shape ?? 'auto', meshName);
     if (made.triangles) this.meshes.add({ name: meshName, mesh: made.triangles });
     const follower = options.follow === false ? null : new Follower(mesh, made.pivot);
-    this.colliders.push({ object: mesh, spec: made.spec, follower, anchor: false });
+    this.colliders.push({ object: mesh, spec: made.spec, follower });
     try {
       this.structureChanged();
     } catch (e) {
@@ -361,50 +332,6 @@ export class DrapeWorld {
     if (this.disposed) throw new Error(`${WHERE}: the world was disposed`);
   }
 
-  /** The scene of the world's cloths and colliders (validated: a SceneError names what is wrong). */
-  private sceneOf(cloths: ClothEntry[]): Scene {
-    const o = this.options;
-    const colliders: ColliderSpec[] = [];
-    const order: (WorldCollider | null)[] = [];
-    if (o.floor !== undefined && o.floor !== null) { colliders.push({ type: 'floor', height: o.floor }); order.push(null); }
-    // the cloths' first particles in the world's model, for the pins colliders carry
-    const starts: number[] = [];
-    let n = 0;
-    for (const c of this.cloths) { starts.push(n); n += c.particleCount; }
-    const carried = (object: Object3D) => this.attached.filter((p) => p.to === object)
-      .flatMap((p) => p.particles.map((i) => i + starts[this.cloths.indexOf(p.cloth)]));
-    for (const c of this.colliders) { colliders.push({ ...c.spec, pins: carried(c.object) }); order.push(c); }
-    for (const [object, a] of this.anchors) {
-      const pins = carried(object);
-      if (!pins.length || this.colliders.some((c) => c.object === object)) continue;
-      colliders.push({ ...a.spec, pins });
-      order.push(a);
-    }
-    const w = o.wind ?? {};
-    const scene = validateScene({
-      name: 'drape-three',
-      cloths,
-      gravity: o.gravity ?? [0, -9.81, 0],
-      wind: {
-        enabled: (w.strength ?? 0) > 0, strength: w.strength ?? 0, direction: w.direction ?? [1, 0, 0],
-        gusts: { enabled: w.gusts ?? false, seed: w.seed ?? 1 },
-      },
-      // cloths of one world keep out of each other by default; one cloth alone passes through itself unless asked
-      solver: { selfContact: cloths.length > 1, ...o.solver },
-      colliders,
-    }, WHERE);
-    this.sceneColliders = order;
-    return scene;
-  }
-
-  /** An anchor for pins on an object that is no collider: a plane far below it, moving with it. */
-  private anchorOf(object: Object3D): WorldCollider {
-    object.updateWorldMatrix(true, false);
-    const o = new Vector3().setFromMatrixPosition(object.matrixWorld);
-    const point: Vec3 = [o.x, o.y - ANCHOR_DEPTH, o.z];
-    return { object, spec: { type: 'plane', point, normal: [0, 1, 0] }, follower: new Follower(object, point), anchor: true };
-  }
-
   /** A cloth or collider was added: a running world takes the new scene at once (a refusal throws, and nothing changes). */
   private structureChanged(): void {
     const scene = this.scene();
@@ -422,7 +349,9 @@ export class DrapeWorld {
   /** The world's scene (a world without cloths yet: with a stand-in one, to check the rest). */
   private scene(): Scene {
     try {
-      return this.sceneOf(this.cloths.length ? this.cloths.map((c) => c.part.entry) : [STAND_IN]);
+      const { scene, colliders } = worldScene(this.options, this.cloths, this.colliders, this.anchors, this.attached);
+      this.sceneColliders = colliders;
+      return scene;
     } catch (e) {
       throw optionError(e);
     }
