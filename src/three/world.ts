@@ -8,7 +8,7 @@
  */
 import { BufferAttribute, Raycaster, Vector3, type Mesh, type Object3D } from 'three';
 import {
-  FRAME_DT, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel,
+  FRAME_DT, Simulation, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel,
   type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { DrapeCloth } from './cloth.js';
@@ -251,6 +251,8 @@ export class DrapeWorld {
     // the colliders' meshes moved over the time these frames simulate
     this.follow(frames * FRAME_DT);
     await d.step(frames);
+    // the GPU fell back while these frames were on their way: the CPU steps them
+    if (this.driver && this.driver !== d) await this.driver.step(frames);
     this.fresh = true;
     this.draw();
   }
@@ -337,6 +339,13 @@ export class DrapeWorld {
     const scene = this.scene();
     const d = this.driver;
     if (!d) return;
+    // a scene the GPU does not take (cloths of different fabrics) goes on on the CPU: checked before the driver sees it
+    const refusal = d.kind === 'gpu' ? GpuSim.supports(scene) : null;
+    if (refusal) {
+      // (the CPU driver checks the placement as it loads: a refusal there throws and changes nothing)
+      this.fallBack(refusal, scene);
+      return;
+    }
     try {
       d.setScene(0, scene);
     } catch (e) {
@@ -420,16 +429,25 @@ export class DrapeWorld {
     return d;
   }
 
-  /** The GPU cannot go on (an error, a lost device): the cloths go on on the CPU from the last positions read back. */
-  private fallBack(reason: string): void {
+  /**
+   * The GPU cannot go on (an error, a lost device, a scene it does not take): the cloths go on on the CPU from the
+   * last positions read back (or start again, for a new model: `scene`, a structure change the GPU refuses).
+   */
+  private fallBack(reason: string, scene?: Scene): void {
     const old = this.driver;
     if (!old || old.kind !== 'gpu') return;
     const m = old.mirrors[0];
+    const next = scene ?? m.sim.scene;
+    if (scene) {
+      // refused here, nothing changes: the GPU goes on with the scene it has
+      try { new Simulation(next, { kernel: 'ts', meshes: this.meshes.resolve }).dispose(); } catch (e) { throw optionError(e); }
+    }
     old.dispose();
     this.driver = null;
     this.backendNote = `GPU unavailable: ${reason}`;
-    const d = this.load('cpu', m.sim.scene);
-    if (d instanceof SimClient && m && m.unstableAt < 0) d.setState(0, m.sim.state, m.frame);
+    const d = this.load('cpu', next);
+    const same = d?.mirrors[0]?.sim.model.particleCount === m?.sim.model.particleCount;
+    if (d instanceof SimClient && m && m.unstableAt < 0 && same) d.setState(0, m.sim.state, m.frame);
     this.grabbed = null;
   }
 

@@ -185,7 +185,7 @@ export class GpuSim implements SimDriver {
   /** Steps `frames` frames now (paused or not); resolves once they are done and read back into the mirrors. */
   async step(frames = 1): Promise<void> {
     await this.whenReady();
-    if (this.lost) return;
+    if (this.lost || this.disposed) return;
     const t0 = performance.now();
     this.encode(frames);
     await this.device.queue.onSubmittedWorkDone();
@@ -194,7 +194,7 @@ export class GpuSim implements SimDriver {
   }
 
   private async whenReady(): Promise<void> {
-    for (let k = 0; !this.ready && !this.lost && k < 600; k++) await new Promise((r) => setTimeout(r, 50));
+    for (let k = 0; !this.ready && !this.lost && !this.disposed && k < 600; k++) await new Promise((r) => setTimeout(r, 50));
   }
 
   private encode(frames: number): void {
