@@ -3,7 +3,7 @@
  * NaN cloth, a hang, or "Cannot read properties of undefined").
  */
 import { describe, expect, it } from 'vitest';
-import { SceneError } from './scene.js';
+import { SceneError, type SceneInput } from './scene.js';
 import { builtinScene } from './scenes.js';
 import { Simulation, type SimulationOptions } from './simulation.js';
 import { WasmBackend } from './backend.js';
@@ -93,5 +93,18 @@ describe('library arguments', () => {
     sim.reset();
     expect(sim.unstableFrame).toBeNull();
     expect(sim.advance(3)).toBe(true);
+  });
+});
+
+describe('scene input', () => {
+  it('takes a partial scene, typed as one: what is missing takes its default', () => {
+    // these lines are also a type test: npm run typecheck fails if SceneInput stops being deep-partial
+    const input: SceneInput = { cloth: { resolution: 6 }, material: { fabric: 'silk' }, colliders: [{ type: 'floor' }] };
+    const sim = new Simulation(input, { kernel: 'ts' });
+    expect(sim.state.positions.length).toBe(7 * 7 * 3);
+    expect(sim.scene.cloth.width).toBe(1);
+    expect(sim.scene.colliders).toEqual([{ type: 'floor', height: 0, pins: [] }]);
+    expect(sim.setScene({ cloth: { resolution: 4 } })).toBe(true);
+    expect(sim.state.positions.length).toBe(5 * 5 * 3);
   });
 });

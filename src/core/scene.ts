@@ -117,6 +117,29 @@ export type ColliderSpec = ColliderCommon & (
   | { type: 'cylinder'; center: Vec3; axis: Vec3; radius: number; height: number }
   | { type: 'mesh'; mesh: string; scale: number; position: Vec3; rotation: Vec3 });
 
+/**
+ * Every field optional, all the way down, but a three-vector stays a whole three-vector and a collider keeps its
+ * `type` (what says which fields it has).
+ */
+export type DeepPartial<T> = T extends Vec3 ? T
+  : T extends readonly (infer U)[] ? DeepPartial<U>[]
+  : T extends object ? { [K in keyof T]?: DeepPartial<T[K]> }
+  : T;
+
+/** One collider as a scene gives it: its `type`, the rest optional (scene-schema.ts has each field's default). */
+export type ColliderInput = ColliderSpec extends infer C ? C extends { type: infer K }
+  ? { type: K } & DeepPartial<Omit<C, 'type'>> : never : never;
+
+/**
+ * A scene as a program or a file gives it, what `new Simulation(...)`, `setScene` and `validateScene` take: every
+ * field optional (validateScene fills each missing one with its default, scene-schema.ts, and checks the rest), e.g.
+ * `new Simulation({ cloth: { resolution: 20 } })`. A validated `Scene` is one too.
+ */
+export type SceneInput = DeepPartial<Omit<Scene, 'colliders' | 'cloths'>> & {
+  colliders?: ColliderInput[];
+  cloths?: DeepPartial<ClothEntry>[];
+};
+
 /** The collider `type`s a scene may name, in the schema's order. */
 export const COLLIDER_TYPES = ['sphere', 'floor', 'plane', 'box', 'capsule', 'cylinder', 'mesh'] as const;
 

@@ -9,7 +9,7 @@ import { modelFor, type MeshResolver } from './cloth-shape.js';
 import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrain, type Bounds, type Energy } from './metrics.js';
 import { FRAME_DT, resolveParams, type SimParams } from './params.js';
 import { applyPins, scenePins } from './pins.js';
-import { clothEntries, clothName, setScenePath, validateScene, type Scene } from './scene.js';
+import { clothEntries, clothName, setScenePath, validateScene, type Scene, type SceneInput } from './scene.js';
 import { plainText } from './text.js';
 import { checkPlacement } from './placement.js';
 import { copyState, resetState, type ClothState } from './state.js';
@@ -154,7 +154,7 @@ export class Simulation {
   private readonly options: SimulationOptions;
   private disposed = false;
 
-  constructor(scene: Scene, options: SimulationOptions = {}) {
+  constructor(scene: SceneInput, options: SimulationOptions = {}) {
     this.options = checkOptions(options);
     this.scene = validateScene(scene);
     this.model = modelFor(this.scene, this.options.meshes);
@@ -170,7 +170,11 @@ export class Simulation {
     return this.backendNow;
   }
 
-  /** the cloth's state (on the GPU: as of the last sync()) */
+  /**
+   * the cloth's state (on the GPU: as of the last sync()). Its arrays belong to the cloth of now: a rebuild (`set` or
+   * `setScene` returning true) or `useBackend` gives a new state with new arrays, so read `sim.state.positions`
+   * afresh after one (or each frame) rather than keeping the array
+   */
   get state(): ClothState {
     return this.backendNow.state;
   }
@@ -268,8 +272,8 @@ export class Simulation {
   }
 
   /** Replaces the whole scene, rebuilding only what the change needs. Returns true when the cloth restarted. */
-  setScene(next: Scene): boolean {
-    next = validateScene(next);
+  setScene(input: SceneInput): boolean {
+    const next = validateScene(input);
     const prev = this.scene;
     const rebuild = needsRebuild(prev, next);
     const model = rebuild ? modelFor(next, this.options.meshes) : this.model;

@@ -50,7 +50,12 @@ async function loadWebGpu(): Promise<WebGpuModule> {
   try {
     return (await import('webgpu')) as WebGpuModule;
   } catch (e) {
-    throw new Error(`no WebGPU in Node: the 'webgpu' package does not load (${(e as Error).message.split('\n')[0]})`);
+    const err = e as NodeJS.ErrnoException;
+    if (err.code === 'ERR_MODULE_NOT_FOUND' && /'webgpu'/.test(err.message)) {
+      // an optional peer dependency: `npm install drape` leaves it out (Dawn is ~130 MB)
+      throw new Error("no WebGPU in Node: the GPU backend needs the 'webgpu' package (Dawn); install it beside drape: npm install webgpu");
+    }
+    throw new Error(`no WebGPU in Node: the 'webgpu' package does not load (${err.message.split('\n')[0]})`);
   }
 }
 

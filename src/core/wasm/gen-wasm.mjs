@@ -50,9 +50,9 @@ export async function generateKernelModule(source = readFileSync(KERNEL_SOURCE, 
     '/* eslint-disable */',
     '',
     '/** The XPBD kernel built for one thread (SIMD), base64. */',
-    `export const XPBD_WASM_SINGLE = ${JSON.stringify(single)};`,
+    `export const XPBD_WASM_SINGLE: string = ${JSON.stringify(single)};`,
     '/** The XPBD kernel built for threads over a shared memory (SIMD + atomics), base64. */',
-    `export const XPBD_WASM_THREADS = ${JSON.stringify(threads)};`,
+    `export const XPBD_WASM_THREADS: string = ${JSON.stringify(threads)};`,
     '',
   ].join('\n');
 }

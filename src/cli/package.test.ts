@@ -1,0 +1,73 @@
+/**
+ * The npm package as a consumer gets it: built as `npm pack` builds it (scripts/build-lib.mjs) into a scratch copy of
+ * the package's files, then listed and sized by npm itself. What it must hold and weigh is issue 13's: the library,
+ * the CLI, types, the schema, README and LICENSE; no web app build, no source maps; at most 300 kB packed; only ajv
+ * installed with it (three and webgpu optional peers).
+ */
+import { execFileSync } from 'node:child_process';
+import { cpSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { buildLib } from '../../scripts/build-lib.mjs';
+
+const root = join(import.meta.dirname, '..', '..');
+const pkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')) as {
+  files: string[]; bin: Record<string, string>; exports: Record<string, unknown>;
+  dependencies: Record<string, string>; peerDependencies: Record<string, string>;
+  peerDependenciesMeta: Record<string, { optional?: boolean }>;
+};
+
+interface Packed { size: number; files: { path: string; size: number }[] }
+
+describe('the npm package', () => {
+  let dir = '';
+  let packed: Packed;
+  beforeAll(() => {
+    dir = mkdtempSync(join(tmpdir(), 'drape-pack-'));
+    for (const f of ['package.json', 'README.md', 'LICENSE', 'scene.schema.json', 'bin']) {
+      cpSync(join(root, f), join(dir, f), { recursive: true });
+    }
+    // what a developer's checkout may also have in dist/: the web app build and source maps, which must stay out
+    cpSync(join(root, 'index.html'), join(dir, 'dist', 'web', 'index.html'));
+    buildLib(join(dir, 'dist'));
+    cpSync(join(dir, 'dist', 'core', 'index.js'), join(dir, 'dist', 'core', 'index.js.map'));
+    const out = execFileSync('npm', ['pack', '--dry-run', '--json', '--ignore-scripts'], { cwd: dir, encoding: 'utf8' });
+    packed = (JSON.parse(out) as Packed[])[0];
+  });
+  afterAll(() => { if (dir) rmSync(dir, { recursive: true, force: true }); });
+
+  it('holds the library, the CLI, their types, the schema, README and LICENSE, and nothing of the web app or source maps', () => {
+    const paths = new Set(packed.files.map((f) => f.path));
+    for (const p of ['LICENSE', 'README.md', 'package.json', 'scene.schema.json', 'bin/drape.js', 'dist/core/index.js',
+      'dist/core/index.d.ts', 'dist/cli/main.js', 'dist/gpu/index.d.ts']) expect(paths, p).toContain(p);
+    for (const p of paths) {
+      expect(p, 'the web app build').not.toMatch(/^dist\/web\//);
+      expect(p, 'a source map').not.toMatch(/\.map$/);
+      expect(p, 'a test').not.toMatch(/\.test\./);
+    }
+    // every path the package's exports and bin name is in it
+    const targets = [...Object.values(pkg.bin), ...Object.values(pkg.exports).flatMap((e) =>
+      typeof e === 'string' ? [e] : Object.values(e as Record<string, string>))];
+    for (const t of targets) expect(paths, t).toContain(t.replace(/^\.\//, ''));
+  });
+
+  it('packs into at most 300 kB', () => {
+    expect(packed.size).toBeLessThanOrEqual(300_000);
+  });
+
+  it('declares its doc comments in the types and ships the code without them', () => {
+    const dts = readFileSync(join(dir, 'dist', 'core', 'simulation.d.ts'), 'utf8');
+    const js = readFileSync(join(dir, 'dist', 'core', 'simulation.js'), 'utf8');
+    expect(dts).toMatch(/\/\*\*/);
+    expect(js).not.toMatch(/\/\*\*/);
+  });
+
+  it('installs only ajv with it: three (the addon) and webgpu (the headless GPU backend) are optional peers', () => {
+    expect(Object.keys(pkg.dependencies)).toEqual(['ajv']);
+    for (const peer of ['three', 'webgpu']) {
+      expect(pkg.peerDependencies[peer], peer).toBeDefined();
+      expect(pkg.peerDependenciesMeta[peer]?.optional, peer).toBe(true);
+    }
+  });
+});
