@@ -6,12 +6,12 @@
  * (attributes every cloth of the world shares, vec4, indexed from the cloth's first particle).
  */
 import { BufferAttribute, BufferGeometry, DoubleSide, DynamicDrawUsage, Mesh, MeshStandardMaterial, type Material } from 'three';
-import type { ClothEntry, ClothModel } from '../core/index.js';
+import type { ClothEntry, ClothModel, DeepPartial } from '../core/index.js';
 
 /** The world's side of a cloth: what it was made from, and where its particles are in the world's model. */
 export interface ClothPart {
-  /** the cloth's scene entry (shape, start pose, material, fixed pins) */
-  readonly entry: ClothEntry;
+  /** the cloth's scene entry as given (shape, start pose, material, fixed pins; the schema fills the rest) */
+  readonly entry: DeepPartial<ClothEntry>;
   /** the cloth alone, as the core builds it (its particles, triangles, uvs) */
   readonly model: ClothModel;
 }

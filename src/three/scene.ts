@@ -4,7 +4,7 @@
  * them in). Pure: unit-tested in scene.test.ts with the core's Simulation.
  */
 import { Vector3, type Object3D } from 'three';
-import { validateScene, type ClothEntry, type ColliderSpec, type Scene, type Vec3 } from '../core/index.js';
+import { validateScene, type ClothEntry, type ColliderSpec, type DeepPartial, type Scene, type SceneInput, type Vec3 } from '../core/index.js';
 import { Follower } from './follow.js';
 import type { DrapeWorldOptions } from './options.js';
 
@@ -24,7 +24,7 @@ export interface WorldCollider {
 
 /** What the scene needs of a cloth: its entry and its particles. */
 export interface SceneCloth {
-  readonly part: { readonly entry: ClothEntry };
+  readonly part: { readonly entry: DeepPartial<ClothEntry> };
   readonly particleCount: number;
 }
 
@@ -37,7 +37,7 @@ export interface AttachedPin {
 }
 
 /** the cloth a world without cloths is checked with (never simulated) */
-const STAND_IN = { cloth: {}, material: {}, pins: [] } as unknown as ClothEntry;
+const STAND_IN: DeepPartial<ClothEntry> = {};
 
 /** An anchor for pins on an object that is no collider: a plane ANCHOR_DEPTH below it, facing it, moving with it. */
 export function anchorOf(object: Object3D): WorldCollider {
@@ -73,7 +73,7 @@ export function worldScene(
   }
   const w = o.wind ?? {};
   const entries = cloths.length ? cloths.map((c) => c.part.entry) : [STAND_IN];
-  const scene = validateScene({
+  const input: SceneInput = {
     name: 'drape-three',
     cloths: entries,
     gravity: o.gravity ?? [0, -9.81, 0],
@@ -84,6 +84,6 @@ export function worldScene(
     // cloths of one world keep out of each other by default; one cloth alone passes through itself unless asked
     solver: { selfContact: entries.length > 1, ...o.solver },
     colliders,
-  }, 'DrapeWorld');
-  return { scene, colliders: order };
+  };
+  return { scene: validateScene(input, 'DrapeWorld'), colliders: order };
 }

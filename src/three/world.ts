@@ -8,7 +8,7 @@
  */
 import { BufferAttribute, Raycaster, Vector3, type Mesh, type Object3D } from 'three';
 import {
-  FRAME_DT, Simulation, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel,
+  FRAME_DT, Simulation, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
   type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { DrapeCloth } from './cloth.js';
@@ -146,7 +146,7 @@ export class DrapeWorld {
     if (options.geometry && meshName) this.meshes.add({ name: meshName, mesh: meshOfGeometry(options.geometry, where) });
     const pins = options.pins ?? [];
     const attachedAt = (p: DrapePin): p is { at: PinEntry; to: Object3D } => p !== null && typeof p === 'object' && 'to' in p;
-    const entry = {
+    const entry: DeepPartial<ClothEntry> = {
       name,
       cloth: {
         shape: meshName ? 'mesh' : options.shape ?? 'rectangle',
@@ -155,9 +155,9 @@ export class DrapeWorld {
         position: options.position ?? [0, 1, 0],
       },
       material: { ...(options.fabric ? { fabric: options.fabric } : {}), ...options.fabricValues },
-      // the pins fixed in the world; those attached to objects are carried by colliders (sceneOf)
-      pins: pins.filter((p) => !attachedAt(p)),
-    } as unknown as ClothEntry;
+      // the pins fixed in the world; those attached to objects are carried by colliders (scene.ts)
+      pins: pins.filter((p): p is PinEntry => !attachedAt(p)),
+    };
     let model: ClothModel;
     const attachedPins: Omit<AttachedPin, 'cloth'>[] = [];
     try {
