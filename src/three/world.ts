@@ -6,7 +6,7 @@
  * app's own (src/three/sim). The world steps whole 1/60 s frames from the time `update(dt)` is given (the drivers'
  * FrameClock), moves each collider to where its mesh is, and refreshes the cloths' geometries.
  */
-import { BufferAttribute, Raycaster, Vector3, type Mesh, type Object3D } from 'three';
+import { BufferAttribute, Vector3, type Mesh, type Object3D, type Raycaster } from 'three';
 import {
   FRAME_DT, Simulation, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
   type PinEntry, type Scene, type Vec3,
@@ -270,7 +270,8 @@ export class DrapeWorld {
   pick(ray: Raycaster | { origin: Vector3; direction: Vector3 }): DrapeHit | null {
     const m = this.driver?.mirrors[0];
     if (!m || !this.model) return null;
-    const r = ray instanceof Raycaster ? ray.ray : ray;
+    // (a Raycaster by its shape: a page may hold another copy of three.js)
+    const r = 'ray' in ray ? ray.ray : ray;
     const dir = r.direction.clone().normalize();
     const hit = pickParticle(m.sim.model, m.sim.state, vec3(r.origin), vec3(dir));
     if (!hit) return null;
