@@ -77,6 +77,31 @@ async function drop(page: Page): Promise<Drop> {
   }, { frames: FRAMES, ball: BALL, lift: LIFT, liftFrames: LIFT_FRAMES });
 }
 
+/**
+ * The pointer grabs the cloth (PointerGrab): a press on the particle over the ball's top grabs it, dragging up
+ * pulls it up, letting go releases it. Returns the grabbed particle's height before and after, and the grab states.
+ */
+async function pull(page: Page): Promise<{ grabbedOnPress: boolean; releasedOnUp: boolean; before: number; after: number }> {
+  // where the particle over the ball's top is on the screen
+  const at = await page.evaluate(() => {
+    const { cloth, camera } = (window as any).drapeExample;
+    const x: Float32Array = cloth.positions;
+    let top = 0;
+    for (let i = 0; i < x.length; i += 3) if (x[i + 1] > x[top + 1]) top = i;
+    const p = camera.position.clone().set(x[top], x[top + 1], x[top + 2]).project(camera);
+    return { x: ((p.x + 1) / 2) * innerWidth, y: ((1 - p.y) / 2) * innerHeight, particle: top / 3, y0: x[top + 1] };
+  });
+  await page.mouse.move(at.x, at.y);
+  await page.mouse.down();
+  const grabbedOnPress = await page.evaluate(() => (window as any).drapeExample.world.grabbing as boolean);
+  await page.mouse.move(at.x, at.y - 60, { steps: 4 });
+  await page.evaluate(() => (window as any).drapeExample.world.step(20));
+  const after = await page.evaluate((i) => (window as any).drapeExample.cloth.positions[3 * i + 1] as number, at.particle);
+  await page.mouse.up();
+  const releasedOnUp = await page.evaluate(() => !(window as any).drapeExample.world.grabbing);
+  return { grabbedOnPress, releasedOnUp, before: at.y0, after };
+}
+
 /** The cloth lies on the ball (its middle on the top, none of it inside) and hangs down around it. */
 function expectDraped(d: Drop): void {
   expect(d.error).toBe('');
@@ -102,7 +127,7 @@ describe('drape/three example page', () => {
     await browser?.close();
   });
 
-  it('WebGL2 launch: the world simulates in the worker and the cloth drapes the page\'s own ball', async () => {
+  it('WebGL2 launch: the world simulates in the worker, the cloth drapes the page\'s own ball, the pointer pulls it', async () => {
     browser = await launch('webgl', { viewport: VIEWPORT });
     const page = await browser.context.newPage();
     const errors = collectErrors(page);
@@ -113,6 +138,11 @@ describe('drape/three example page', () => {
     expect(d.backend).toBe('cpu');
     expect(d.backendNote).toContain('no WebGPU device');
     expectDraped(d);
+    const g = await pull(page);
+    writeJson('three-webgl-pull', g);
+    expect(g.grabbedOnPress).toBe(true);
+    expect(g.after).toBeGreaterThan(g.before + 0.05);
+    expect(g.releasedOnUp).toBe(true);
     expect(errors).toEqual([]);
     await browser.close();
     browser = undefined;

@@ -48,4 +48,4 @@ renderer.setAnimationLoop(() => {
 });
 
 // for the browser tests (e2e/three.e2e.ts): ?testhook puts the world on the window
-if (new URLSearchParams(location.search).has('testhook')) Object.assign(window, { drapeExample: { world, cloth, ball } });
+if (new URLSearchParams(location.search).has('testhook')) Object.assign(window, { drapeExample: { world, cloth, ball, camera } });
