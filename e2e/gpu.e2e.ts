@@ -57,7 +57,10 @@ describe('GPU simulation backend', () => {
   });
 
   it('a GPU that cannot keep up with self-contact (SwiftShader) has it switched off while running, with a notice', async () => {
-    // the page opened on the default scene (self-contact on, as every built-in drape), running
+    // the page opened on the default scene (self-contact on, as every built-in drape); let it run
+    expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
+    await press(page, 'play');
+    expect(await hook(page, 'paused')).toBe(false);
     await expect.poll(() => hook<any>(page, 'scene').then((s) => s.solver.selfContact), { timeout: 120_000 }).toBe(false);
     const said = await hook<{ text: string; kind: string }>(page, 'lastMessage');
     expect(said.text).toMatch(/^Self-contact switched off: with it the simulation needs \d+ ms per 16\.7 ms frame here/);
