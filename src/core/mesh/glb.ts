@@ -49,7 +49,7 @@ export const BAKE_BYTES_PER_VERTEX = 24;
 
 /**
  * The bytes a bake adds to the file for `vertices` vertices and `frames` baked frames (after the first): the morph
- * targets, the weights (one per target per key) and the keys' times; the JSON adds about 0.3 kB per frame and cloth.
+ * targets, the weights (one per target per key) and the keys' times; the JSON adds about 0.5 kB per frame and cloth.
  */
 export function bakeBytes(vertices: number, frames: number): number {
   return frames * vertices * BAKE_BYTES_PER_VERTEX + 4 * (frames + 1) * frames + 4 * (frames + 1);
