@@ -10,7 +10,7 @@ import { basename } from 'node:path';
 import { parseArgs } from 'node:util';
 import {
   bakeBytes, builtinScene, exportCloths, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneDocument, sceneSchema,
-  setScenePath, Simulation, toGLB, toMTL, toOBJ, type GlbBake, type MeshResolver, type Scene, type SimulationOptions,
+  modelCloths, setScenePath, Simulation, toGLB, toMTL, toOBJ, type GlbBake, type MeshResolver, type Scene, type SimulationOptions,
 } from '../core/index.js';
 import { EXIT, UsageError } from './errors.js';
 import { checkOutputPath } from './files.js';
@@ -152,7 +152,7 @@ interface RunResult {
   clamps: string[];
   sim: Simulation;
   /** the run's frames for --bake: its start and every stride-th frame after it (the last always) */
-  bake?: GlbBake & { first: Float32Array };
+  bake?: GlbBake & { first: Float32Array; frames: Float32Array[] };
 }
 
 /** The .mtl file an OBJ export writes beside it. */
@@ -321,14 +321,15 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
       return false;
     }
   };
-  const { model, state } = main.sim, cloths = exportCloths(scene);
+  const { model, state } = main.sim, dress = exportCloths(scene), name = scene.name;
+  const cloths = modelCloths(model, state.positions, dress);
   const exported = values.export !== undefined && (/\.glb$/i.test(values.export)
-    ? write('--export', values.export, () => toGLB({ model, positions: state.positions, name: scene.name, cloths }))
-    : write('--export', values.export, () => toOBJ({ model, positions: state.positions, name: scene.name, cloths, mtllib: basename(mtlPath(values.export!)) }))
-      && write('--export', mtlPath(values.export), () => toMTL({ model, positions: state.positions, name: scene.name, cloths })));
+    ? write('--export', values.export, () => toGLB({ name, cloths }))
+    : write('--export', values.export, () => toOBJ({ name, cloths, mtllib: basename(mtlPath(values.export!)) }))
+      && write('--export', mtlPath(values.export), () => toMTL({ name, cloths })));
   const bake = main.bake;
   const baked = values.bake !== undefined && bake !== undefined
-    && write('--bake', values.bake, () => toGLB({ model, positions: bake.first, name: scene.name, cloths, bake }));
+    && write('--bake', values.bake, () => toGLB({ name, cloths: modelCloths(model, bake.first, dress, bake.frames), bake }));
   const bakeSummary = bake && `frame 0 and ${bake.frames.length} more (stride ${bakeStride}), ${(bakeBytes(model.particleCount, bake.frames.length) / 1e6).toFixed(1)} MB of morph targets`;
   const exportError = errors.length ? errors.join('; ') : undefined;
   const { sim: _sim, resolution: _r, bake: _b, clamps, ...fields } = main;

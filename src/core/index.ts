@@ -30,7 +30,7 @@ export { modelFor, parseMeshFile, meshFormat, CLOTH_SHAPES, MESH_EXTENSIONS, typ
 export { prepareMesh, MAX_MESH_PARTICLES, MAX_VERTEX_EDGES, WELD_TOLERANCE, type TriangleMesh } from './mesh/triangle-mesh.js';
 export { discMesh, tubeMesh, placeMesh, type ShapeSpec, type Placement } from './mesh/generators.js';
 export type { ExternalReader } from './mesh/gltf.js';
-export { toGLB, bakeBytes, BAKE_BYTES_PER_VERTEX, type GlbInput, type GlbMaterial, type GlbTexture, type GlbBake } from './mesh/glb.js';
+export { toGLB, modelCloths, bakeBytes, BAKE_BYTES_PER_VERTEX, type GlbInput, type ExportCloth, type GlbMaterial, type GlbTexture, type GlbBake } from './mesh/glb.js';
 export { toOBJ, toMTL, type ObjInput } from './mesh/obj-export.js';
 export { vertexNormals } from './mesh/normals.js';
 export { countIntersections } from './intersections.js';

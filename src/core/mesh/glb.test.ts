@@ -3,7 +3,7 @@ import type { BufferGeometry, Mesh, MeshStandardMaterial, Object3D } from 'three
 import { GLTFLoader, type GLTF } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { describe, expect, it } from 'vitest';
 import { exportCloths, LOOKS, Simulation, validateScene, type Scene } from '../index.js';
-import { bakeBytes, toGLB, type GlbBake } from './glb.js';
+import { bakeBytes, modelCloths, toGLB, type GlbBake } from './glb.js';
 
 /** The Khronos validator's report on a .glb: every issue but the infos (an unused TEXCOORD_0 without a texture). */
 async function validate(glb: Uint8Array) {
@@ -27,7 +27,7 @@ const meshes = (root: Object3D) => {
 };
 
 /** a scene run for `frames` frames, with the shapes of the frames a bake keeps (every frame after the first) */
-function run(scene: Scene, frames: number): { sim: Simulation; first: Float32Array; bake: GlbBake } {
+function run(scene: Scene, frames: number): { sim: Simulation; first: Float32Array; shapes: Float32Array[]; bake: GlbBake } {
   const sim = new Simulation(scene, { kernel: 'ts' });
   const first = sim.state.positions.slice(), shapes: Float32Array[] = [], numbers: number[] = [];
   for (let f = 1; f <= frames; f++) {
@@ -35,7 +35,7 @@ function run(scene: Scene, frames: number): { sim: Simulation; first: Float32Arr
     shapes.push(sim.state.positions.slice());
     numbers.push(f);
   }
-  return { sim, first, bake: { frames: shapes, times: numbers.map((f) => f / 60), frameNumbers: numbers } };
+  return { sim, first, shapes, bake: { times: numbers.map((f) => f / 60), frameNumbers: numbers } };
 }
 
 /** the largest difference between two position arrays, relative to the larger coordinate (at least 1 m) */
@@ -58,7 +58,7 @@ describe('the .glb writer', () => {
 
   it('a static cloth: valid, its positions as they are, unit normals, the look\'s material', async () => {
     const { sim } = run(one, 20);
-    const glb = toGLB({ model: sim.model, positions: sim.state.positions, name: one.name, cloths: exportCloths(one) });
+    const glb = toGLB({ name: one.name, cloths: modelCloths(sim.model, sim.state.positions, exportCloths(one)) });
     expect(await validate(glb)).toEqual({ errors: 0, warnings: 0, messages: [] });
     const gltf = await load(glb);
     const [mesh] = meshes(gltf.scene);
@@ -82,7 +82,7 @@ describe('the .glb writer', () => {
 
   it('several cloths: one node and mesh each by its name (made plain), their materials shared by look', async () => {
     const { sim } = run(three, 5);
-    const glb = toGLB({ model: sim.model, positions: sim.state.positions, name: three.name, cloths: exportCloths(three) });
+    const glb = toGLB({ name: three.name, cloths: modelCloths(sim.model, sim.state.positions, exportCloths(three)) });
     expect(await validate(glb)).toEqual({ errors: 0, warnings: 0, messages: [] });
     const gltf = await load(glb);
     // three.js makes names fit its animation paths ('three_"quoted"_1'): the file's own are in its JSON
@@ -103,8 +103,8 @@ describe('the .glb writer', () => {
 
   it('a bake: one morph target per frame, an animation that three.js plays, each frame\'s positions back to 7 digits', async () => {
     const frames = 12;
-    const { sim, first, bake } = run(three, frames);
-    const glb = toGLB({ model: sim.model, positions: first, name: three.name, cloths: exportCloths(three), bake });
+    const { sim, first, shapes, bake } = run(three, frames);
+    const glb = toGLB({ name: three.name, cloths: modelCloths(sim.model, first, exportCloths(three), shapes), bake });
     expect(await validate(glb)).toEqual({ errors: 0, warnings: 0, messages: [] });
     const gltf = await load(glb);
     expect(gltf.animations).toHaveLength(1);
@@ -124,12 +124,12 @@ describe('the .glb writer', () => {
       const base = p.geometry.attributes.position.array;
       for (const k of [0, 6, frames - 1]) {
         const shape = Float32Array.from(base, (x, i) => x + morphs[k].array[i]);
-        const want = bake.frames[k].subarray(3 * starts[c], 3 * starts[c + 1]);
+        const want = shapes[k].subarray(3 * starts[c], 3 * starts[c + 1]);
         expect(worst(shape, want), `cloth ${c} frame ${k + 1}`).toBeLessThan(2e-7);
       }
     }
     // the size the app and the CLI announce is what the file holds beyond the static one, give or take its JSON
-    const still = toGLB({ model: sim.model, positions: first, name: three.name, cloths: exportCloths(three) });
+    const still = toGLB({ name: three.name, cloths: modelCloths(sim.model, first, exportCloths(three)) });
     const added = glb.length - still.length, predicted = bakeBytes(sim.model.particleCount, frames);
     expect(added).toBeGreaterThan(predicted);
     expect(added - predicted).toBeLessThan(3 * frames * 500);
@@ -140,7 +140,7 @@ describe('the .glb writer', () => {
     // a 1 × 1 PNG
     const png = Uint8Array.from(atob('iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNk+M9QDwADhgGAWjR9awAAAABJRU5ErkJggg=='), (c) => c.charCodeAt(0));
     const material = { ...LOOKS.cotton, texture: { png, repeat: 4 } };
-    const glb = toGLB({ model: sim.model, positions: sim.state.positions, name: 'textured', cloths: [{ name: 'cloth', material }] });
+    const glb = toGLB({ name: 'textured', cloths: modelCloths(sim.model, sim.state.positions, [{ name: 'cloth', material }]) });
     const report = await validate(glb);
     expect(report).toEqual({ errors: 0, warnings: 0, messages: [] });
     const file = json(glb);
@@ -150,14 +150,15 @@ describe('the .glb writer', () => {
     expect(file.images).toEqual([{ bufferView: expect.any(Number), mimeType: 'image/png' }]);
   });
 
-  it('refuses positions that are not finite, and a bake that does not match the model', () => {
-    const { sim, first, bake } = run(one, 2);
-    const input = { model: sim.model, positions: first, name: 'x', cloths: exportCloths(one) };
-    const bad = first.slice();
+  it('refuses positions that are not finite, and a bake or cloths that do not match', () => {
+    const { sim, first, shapes, bake } = run(one, 2);
+    const dress = exportCloths(one), bad = first.slice();
     bad[7] = NaN;
-    expect(() => toGLB({ ...input, positions: bad })).toThrow(/glb: the shape has positions that are not finite \(particle 2\)/);
-    expect(() => toGLB({ ...input, bake: { ...bake, frames: [bake.frames[0], bad] } })).toThrow(/baked frame 2 has positions that are not finite/);
-    expect(() => toGLB({ ...input, bake: { ...bake, times: [0.1, 0.1] } })).toThrow(/times must increase/);
-    expect(() => toGLB({ ...input, cloths: [] })).toThrow(/0 cloths given for a model of 1/);
+    expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, bad, dress) })).toThrow(/^glb: cloth 'cloth' has positions that are not finite \(vertex 2\)$/);
+    expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress, [shapes[0], bad]), bake })).toThrow(/cloth 'cloth''s baked frame 2 has positions that are not finite/);
+    expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress, shapes), bake: { ...bake, times: [0.1, 0.1] } })).toThrow(/times must increase/);
+    expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress, shapes.slice(1)), bake })).toThrow(/has 1 baked frames for 2 times/);
+    expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress), bake })).toThrow(/has 0 baked frames for 2 times/);
+    expect(() => modelCloths(sim.model, first, [])).toThrow(/0 cloths given for a model of 1/);
   });
 });

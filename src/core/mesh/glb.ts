@@ -1,5 +1,5 @@
 /**
- * Binary glTF 2.0 (.glb) of a model's cloths: one node and one mesh per cloth (named by the cloth) under a root node
+ * Binary glTF 2.0 (.glb) of cloths: one node and one mesh per cloth (named by the cloth) under a root node
  * named by the scene, each mesh one indexed triangle primitive with POSITION, NORMAL and TEXCOORD_0 and its cloth's
  * material (pbrMetallicRoughness, double-sided). A bake adds, to every cloth's mesh, one morph target per baked
  * frame (POSITION and NORMAL as differences from the first shape) and one animation whose channels turn each mesh's
@@ -23,10 +23,24 @@ export interface GlbMaterial extends LookMaterial {
   readonly texture?: GlbTexture;
 }
 
-/** The frames of a bake: their shapes after the first (`GlbInput.positions`, at time 0), each with its time. */
+/** One cloth: its own vertices and triangles (numbered from 0), its name and material. */
+export interface ExportCloth {
+  readonly name: string;
+  /** cloths given the same material object share it */
+  readonly material: GlbMaterial;
+  /** the shape written as the mesh [m] (stride 3); a bake's first frame */
+  readonly positions: Float32Array;
+  /** texture coordinates (stride 2), v from the texture's bottom as OBJ's and the model's */
+  readonly uvs: Float32Array;
+  readonly triangles: Uint32Array;
+  /** a bake's later shapes, one per GlbInput.bake time (stride 3, as many as `positions`) */
+  readonly frames?: readonly Float32Array[];
+  /** the node's extras (where its particles are in the scene's numbering) */
+  readonly extras?: Readonly<Record<string, number>>;
+}
+
+/** A bake's frames after the first shape (at time 0): their times and simulation frame numbers. */
 export interface GlbBake {
-  /** each baked frame's positions [m] (the model's particles, stride 3) */
-  readonly frames: readonly Float32Array[];
   /** each frame's time [s] from the first shape's, increasing */
   readonly times: readonly number[];
   /** each frame's number in the simulation (the animation's extras) */
@@ -34,14 +48,30 @@ export interface GlbBake {
 }
 
 export interface GlbInput {
-  readonly model: ClothModel;
-  /** the shape written as the meshes [m] (the model's particles, stride 3); a bake's first frame */
-  readonly positions: Float32Array;
   /** the scene's name: the root node's */
   readonly name: string;
-  /** one per cloth of the model, in its order; cloths given the same material object share it */
-  readonly cloths: readonly { readonly name: string; readonly material: GlbMaterial }[];
+  readonly cloths: readonly ExportCloth[];
   readonly bake?: GlbBake;
+}
+
+/**
+ * A model's cloths as the writer takes them, over `positions` (the model's particles; `frames`: a bake's later
+ * shapes of them) and cloth c named and dressed by `dress[c]`: views into the arrays, no copies.
+ */
+export function modelCloths(model: ClothModel, positions: Float32Array, dress: readonly { readonly name: string; readonly material: GlbMaterial }[], frames?: readonly Float32Array[]): ExportCloth[] {
+  const starts = model.clothStarts;
+  if (dress.length !== starts.length - 1) throw new RangeError(`glb: ${dress.length} cloths given for a model of ${starts.length - 1}`);
+  return dress.map((d, c) => {
+    const first = starts[c], last = starts[c + 1];
+    return {
+      ...d,
+      positions: positions.subarray(3 * first, 3 * last),
+      uvs: model.uvs.subarray(2 * first, 2 * last),
+      triangles: (model.clothParts?.[c] ?? model).triangles,
+      ...(frames ? { frames: frames.map((f) => f.subarray(3 * first, 3 * last)) } : {}),
+      extras: { firstParticle: first, particles: last - first },
+    };
+  });
 }
 
 /** Bytes a bake adds per vertex per baked frame: a POSITION and a NORMAL difference, float32 vec3 each. */
@@ -106,25 +136,37 @@ class Builder {
 }
 
 function checkFinite(x: Float32Array, what: string): void {
-  for (let i = 0; i < x.length; i++) if (!Number.isFinite(x[i])) throw new RangeError(`glb: ${what} has positions that are not finite (particle ${Math.floor(i / 3)})`);
+  for (let i = 0; i < x.length; i++) if (!Number.isFinite(x[i])) throw new RangeError(`glb: ${what} has positions that are not finite (vertex ${Math.floor(i / 3)})`);
+}
+
+/** Throws RangeError naming what is wrong with `input`: non-finite positions, arrays of the wrong size, a bad bake. */
+function check(input: GlbInput): void {
+  const { bake } = input;
+  const targets = bake?.times.length ?? 0;
+  if (bake) {
+    if (targets < 1 || bake.frameNumbers.length !== targets) throw new RangeError('glb: a bake needs at least one frame, each with a time and a number');
+    bake.times.forEach((t, k) => {
+      if (!(t > (k ? bake.times[k - 1] : 0)) || !Number.isFinite(t)) throw new RangeError('glb: the baked frames\' times must increase from 0');
+    });
+  }
+  for (const c of input.cloths) {
+    const n = c.positions.length / 3, what = `cloth '${plainText(c.name, 40)}'`;
+    if (c.uvs.length !== 2 * n) throw new RangeError(`glb: ${what} has ${c.uvs.length / 2} texture coordinates for ${n} vertices`);
+    for (let i = 0; i < c.triangles.length; i++) if (c.triangles[i] >= n) throw new RangeError(`glb: ${what} has a triangle on vertex ${c.triangles[i]} of ${n}`);
+    checkFinite(c.positions, what);
+    if ((c.frames?.length ?? 0) !== targets) throw new RangeError(`glb: ${what} has ${c.frames?.length ?? 0} baked frames for ${targets} times`);
+    c.frames?.forEach((f, k) => {
+      if (f.length !== c.positions.length) throw new RangeError(`glb: ${what}'s baked frame ${bake!.frameNumbers[k]} has ${f.length / 3} vertices for ${n}`);
+      checkFinite(f, `${what}'s baked frame ${bake!.frameNumbers[k]}`);
+    });
+  }
 }
 
 /** The .glb file of `input` (see the module's comment). Throws RangeError on non-finite positions or a bad bake. */
 export function toGLB(input: GlbInput): Uint8Array {
-  const { model, positions, bake } = input;
-  const starts = model.clothStarts, clothCount = starts.length - 1;
-  if (input.cloths.length !== clothCount) throw new RangeError(`glb: ${input.cloths.length} cloths given for a model of ${clothCount}`);
-  if (positions.length !== 3 * model.particleCount) throw new RangeError(`glb: ${positions.length / 3} positions for ${model.particleCount} particles`);
-  checkFinite(positions, 'the shape');
-  const targets = bake?.frames.length ?? 0;
-  if (bake) {
-    if (targets < 1 || bake.times.length !== targets || bake.frameNumbers.length !== targets) throw new RangeError('glb: a bake needs at least one frame, each with a time and a number');
-    bake.frames.forEach((f, k) => {
-      if (f.length !== positions.length) throw new RangeError(`glb: baked frame ${k} has ${f.length / 3} positions for ${model.particleCount} particles`);
-      checkFinite(f, `baked frame ${bake.frameNumbers[k]}`);
-      if (!(bake.times[k] > (k ? bake.times[k - 1] : 0))) throw new RangeError('glb: the baked frames\' times must increase from 0');
-    });
-  }
+  check(input);
+  const { bake } = input;
+  const targets = bake?.times.length ?? 0;
   const b = new Builder();
   const images: object[] = [], textures: object[] = [], materials: object[] = [];
   const materialIndex = new Map<GlbMaterial, number>();
@@ -158,26 +200,23 @@ export function toGLB(input: GlbInput): Uint8Array {
     weights = b.floats(w, 1, false);
   }
   const targetNames = bake ? bake.frameNumbers.map((f) => `frame ${f}`) : [];
-  for (let c = 0; c < clothCount; c++) {
-    const first = starts[c], n = starts[c + 1] - first;
-    const part = model.clothParts?.[c] ?? model;
-    const triangles = part.triangles;
-    const base = positions.slice(3 * first, 3 * (first + n));
-    const normals = vertexNormals(positions, triangles, first, n);
-    const uv = model.uvs.slice(2 * first, 2 * (first + n));
+  for (const cloth of input.cloths) {
+    const { triangles, positions: base } = cloth, n = base.length / 3;
+    const normals = vertexNormals(base, triangles);
+    const uv = cloth.uvs.slice();
     // glTF's texture coordinates start at the image's top, the model's (as OBJ's and three.js's) at its bottom
     for (let i = 1; i < uv.length; i += 2) uv[i] = 1 - uv[i];
     const primitive: Record<string, unknown> = {
       attributes: { POSITION: b.floats(base, 3, true, ARRAY_BUFFER), NORMAL: b.floats(normals, 3, false, ARRAY_BUFFER), TEXCOORD_0: b.floats(uv, 2, false, ARRAY_BUFFER) },
       indices: b.indices(triangles),
-      material: material(input.cloths[c].material),
+      material: material(cloth.material),
       mode: 4,
     };
-    const mesh: Record<string, unknown> = { name: plainText(input.cloths[c].name, 100), primitives: [primitive] };
+    const mesh: Record<string, unknown> = { name: plainText(cloth.name, 100), primitives: [primitive] };
     if (bake) {
-      primitive.targets = bake.frames.map((frame) => {
-        const dx = new Float32Array(3 * n), dn = vertexNormals(frame, triangles, first, n);
-        for (let i = 0; i < 3 * n; i++) { dx[i] = frame[3 * first + i] - base[i]; dn[i] -= normals[i]; }
+      primitive.targets = cloth.frames!.map((frame) => {
+        const dx = new Float32Array(3 * n), dn = vertexNormals(frame, triangles);
+        for (let i = 0; i < 3 * n; i++) { dx[i] = frame[i] - base[i]; dn[i] -= normals[i]; }
         return { POSITION: b.floats(dx, 3, true, ARRAY_BUFFER), NORMAL: b.floats(dn, 3, false, ARRAY_BUFFER) };
       });
       mesh.weights = new Array<number>(targets).fill(0);
@@ -187,7 +226,7 @@ export function toGLB(input: GlbInput): Uint8Array {
     }
     meshes.push(mesh);
     (nodes[0] as { children: number[] }).children.push(nodes.length);
-    nodes.push({ name: plainText(input.cloths[c].name, 100), mesh: meshes.length - 1, extras: { firstParticle: first, particles: n } });
+    nodes.push({ name: plainText(cloth.name, 100), mesh: meshes.length - 1, ...(cloth.extras ? { extras: cloth.extras } : {}) });
   }
 
   const gltf: Record<string, unknown> = {

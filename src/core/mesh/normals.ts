@@ -2,15 +2,15 @@
 
 /**
  * Each vertex's unit normal: the sum of its triangles' area-weighted normals (their edges' cross products),
- * normalised; a vertex whose triangles cancel or are degenerate gets +y. `positions` and the result have stride 3;
- * `triangles` index the vertices `first` … `first + count − 1` of `positions`, numbered from `first`.
+ * normalised; a vertex whose triangles cancel or are degenerate (or none) gets +y. `positions` and the result have
+ * stride 3.
  */
-export function vertexNormals(positions: Float32Array, triangles: Uint32Array, first = 0, count = positions.length / 3 - first): Float32Array {
-  const sum = new Float64Array(3 * count), x = positions, o = 3 * first;
+export function vertexNormals(positions: Float32Array, triangles: Uint32Array): Float32Array {
+  const count = positions.length / 3, sum = new Float64Array(3 * count), x = positions;
   for (let k = 0; k < triangles.length; k += 3) {
     const a = 3 * triangles[k], b = 3 * triangles[k + 1], c = 3 * triangles[k + 2];
-    const ux = x[o + b] - x[o + a], uy = x[o + b + 1] - x[o + a + 1], uz = x[o + b + 2] - x[o + a + 2];
-    const vx = x[o + c] - x[o + a], vy = x[o + c + 1] - x[o + a + 1], vz = x[o + c + 2] - x[o + a + 2];
+    const ux = x[b] - x[a], uy = x[b + 1] - x[a + 1], uz = x[b + 2] - x[a + 2];
+    const vx = x[c] - x[a], vy = x[c + 1] - x[a + 1], vz = x[c + 2] - x[a + 2];
     const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
     for (let j = 0; j < 3; j++) {
       const v = 3 * triangles[k + j];

@@ -1,15 +1,20 @@
 /**
  * Wavefront OBJ and its MTL of a model's cloths as they are now: positions [m] (as many digits as the float32 they
  * are: at least 7 significant), texture coordinates, vertex normals and triangles (1-based, v/vt/vn), one object
- * (`o`) per cloth over one vertex list in the scene's particle numbering, each with its material (`usemtl`). Strings
+ * (`o`) per cloth over one vertex list, the cloths' vertices one after another (for a model's cloths, modelCloths in
+ * glb.ts: the scene's particle numbering), each object with its material (`usemtl`). Strings
  * from the scene are written on one line each, without control characters: a name cannot add lines to the file.
  */
 import { plainText } from '../text.js';
-import type { GlbInput, GlbMaterial } from './glb.js';
+import type { ExportCloth, GlbMaterial } from './glb.js';
 import { vertexNormals } from './normals.js';
 
-/** What the OBJ writer takes: the glb writer's input without a bake; `mtllib` names the MTL file beside it. */
-export type ObjInput = Omit<GlbInput, 'bake'> & { readonly mtllib?: string };
+/** What the OBJ writer takes: the scene's name, its cloths as the glb writer's; `mtllib` names the MTL file beside it. */
+export interface ObjInput {
+  readonly name: string;
+  readonly cloths: readonly ExportCloth[];
+  readonly mtllib?: string;
+}
 
 /** one word: OBJ and MTL names end at white space */
 const word = (s: string) => plainText(s, 60).replace(/\s+/g, '_') || 'material';
@@ -29,29 +34,28 @@ function materialNames(input: ObjInput): Map<GlbMaterial, string> {
 
 /** The OBJ text (see the module's comment). */
 export function toOBJ(input: ObjInput): string {
-  const { model, positions: x } = input;
-  const safe = plainText(input.name, 100);
-  const starts = model.clothStarts, cloths = starts.length - 1, n = model.particleCount;
+  const safe = plainText(input.name, 100), cloths = input.cloths;
   const materials = materialNames(input);
-  const lines = [`# Drape cloth '${safe}': ${n} vertices, ${model.triangles.length / 3} triangles${cloths > 1 ? `, ${cloths} cloths` : ''}`];
+  const vertices = cloths.reduce((v, c) => v + c.positions.length / 3, 0), triangles = cloths.reduce((t, c) => t + c.triangles.length / 3, 0);
+  const lines = [`# Drape cloth '${safe}': ${vertices} vertices, ${triangles} triangles${cloths.length > 1 ? `, ${cloths.length} cloths` : ''}`];
   if (input.mtllib !== undefined) lines.push(`mtllib ${plainText(input.mtllib, 200)}`);
-  const normals = new Float32Array(3 * n);
-  for (let c = 0; c < cloths; c++) {
-    normals.set(vertexNormals(x, (model.clothParts?.[c] ?? model).triangles, starts[c], starts[c + 1] - starts[c]), 3 * starts[c]);
+  for (const { positions: x } of cloths) for (let i = 0; i < x.length; i += 3) lines.push(`v ${x[i]} ${x[i + 1]} ${x[i + 2]}`);
+  for (const { uvs } of cloths) for (let i = 0; i < uvs.length; i += 2) lines.push(`vt ${uvs[i]} ${uvs[i + 1]}`);
+  for (const c of cloths) {
+    const n = vertexNormals(c.positions, c.triangles);
+    for (let i = 0; i < n.length; i += 3) lines.push(`vn ${n[i]} ${n[i + 1]} ${n[i + 2]}`);
   }
-  const uv = model.uvs, t = model.triangles;
-  for (let i = 0; i < n; i++) lines.push(`v ${x[3 * i]} ${x[3 * i + 1]} ${x[3 * i + 2]}`);
-  for (let i = 0; i < n; i++) lines.push(`vt ${uv[2 * i]} ${uv[2 * i + 1]}`);
-  for (let i = 0; i < n; i++) lines.push(`vn ${normals[3 * i]} ${normals[3 * i + 1]} ${normals[3 * i + 2]}`);
-  for (let c = 0; c < cloths; c++) {
-    lines.push(`o ${cloths > 1 ? plainText(input.cloths[c].name, 100) : safe}`);
-    if (input.mtllib !== undefined) lines.push(`usemtl ${materials.get(input.cloths[c].material)}`);
+  // one vertex list: cloth c's vertices follow the earlier cloths' (1-based)
+  let first = 1;
+  for (const c of cloths) {
+    lines.push(`o ${cloths.length > 1 ? plainText(c.name, 100) : safe}`);
+    if (input.mtllib !== undefined) lines.push(`usemtl ${materials.get(c.material)}`);
+    const t = c.triangles;
     for (let k = 0; k < t.length; k += 3) {
-      // a triangle is its first vertex's cloth's
-      if (t[k] < starts[c] || t[k] >= starts[c + 1]) continue;
-      const a = t[k] + 1, b = t[k + 1] + 1, c3 = t[k + 2] + 1;
+      const a = t[k] + first, b = t[k + 1] + first, c3 = t[k + 2] + first;
       lines.push(`f ${a}/${a}/${a} ${b}/${b}/${b} ${c3}/${c3}/${c3}`);
     }
+    first += c.positions.length / 3;
   }
   return lines.join('\n') + '\n';
 }
