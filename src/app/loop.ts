@@ -43,7 +43,8 @@ export class FrameLoop {
           app.dirty = true;
         }
       });
-      app.sim.eagerReadback = app.views.some((v) => v.needsCpuPositions);
+      // a recording takes every frame's positions
+      app.sim.eagerReadback = app.recorder.active || app.views.some((v) => v.needsCpuPositions);
     }
     const redraw = app.dirty;
     if (app.dirty) {

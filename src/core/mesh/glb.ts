@@ -163,7 +163,7 @@ function check(input: GlbInput): void {
 }
 
 /** The .glb file of `input` (see the module's comment). Throws RangeError on non-finite positions or a bad bake. */
-export function toGLB(input: GlbInput): Uint8Array {
+export function toGLB(input: GlbInput): Uint8Array<ArrayBuffer> {
   check(input);
   const { bake } = input;
   const targets = bake?.times.length ?? 0;
