@@ -449,6 +449,13 @@ describe('WebGPU page', () => {
     // the last frame, as the page had it
     const base = g.attributes.position.array;
     last.forEach((p, i) => p.forEach((x, a) => expect(base[3 * i + a] + morphs[5].array[3 * i + a]).toBeCloseTo(x, 6)));
+
+    // a reset while recording ends the take, and it downloads all the same: a recording is never lost
+    await press(page, 'record');
+    for (let f = 0; f < 2; f++) await step(page, 1);
+    const interrupted = await download(page, 'reset');
+    expect(interrupted.name).toBe('silk-drape-recording.glb');
+    expect((await hook<{ text: string }>(page, 'lastMessage')).text).toContain('Recording ended (the simulation was reset): 3 frames');
   });
 
   it('the URL hash holds the scene: a link reproduces it; a bad link says so and shows the default', async () => {

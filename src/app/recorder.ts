@@ -8,7 +8,7 @@
 import { bakeBytes, type ClothModel, type Scene } from '../core/index.js';
 import type { App } from './app.js';
 
-/** Most bytes a take may grow to in the page's memory: the cap is lowered to fit (a 257² cloth: 340 frames). */
+/** Most bytes a take may grow to in the page's memory: the cap is lowered to fit (a 257² cloth: 338 frames). */
 export const MAX_TAKE_BYTES = 512 * 2 ** 20;
 
 /** What a take holds: each slot's cloths as they were at the start, and a copy of every frame recorded. */
@@ -52,9 +52,14 @@ export class Recorder {
   /** the cap, lowered so that a take of the cloths on screen stays within MAX_TAKE_BYTES */
   get effectiveCap(): number {
     const n = this.particles();
-    let cap = this.cap;
-    while (cap > 1 && bakeBytes(n, cap) > MAX_TAKE_BYTES) cap = Math.floor(cap / 2);
-    return cap;
+    if (bakeBytes(n, this.cap) <= MAX_TAKE_BYTES) return this.cap;
+    // the most frames that fit (bakeBytes grows with the frames)
+    let lo = 1, hi = this.cap;
+    while (hi - lo > 1) {
+      const mid = (lo + hi) >> 1;
+      if (bakeBytes(n, mid) <= MAX_TAKE_BYTES) lo = mid; else hi = mid;
+    }
+    return lo;
   }
 
   /** the animation's bytes for `frames` frames of the cloths on screen (or the take's) */
