@@ -2,13 +2,17 @@
  * Recording a span of the simulation as an animated .glb (the panel's Record button): from the press, every frame
  * whose positions reach the page (each worker answer; on the GPU each readback, every frame while recording) is
  * copied, until Record is pressed again, the frame cap is reached, or the cloths change under it (a reset, a rebuilt
- * cloth, a cloth that blew up). A take that ends is always downloaded, whatever ended it: nothing recorded is lost.
+ * cloth, a cloth that blew up, another backend). A take that ends is always downloaded, whatever ended it, and
+ * leaving the page while one is going asks first: nothing recorded is lost.
  * The file is the core's writer's (mesh/glb.ts) through FileExport.
  */
 import { bakeBytes, type ClothModel, type Scene } from '../core/index.js';
 import type { App } from './app.js';
 
-/** Most bytes a take may grow to in the page's memory: the cap is lowered to fit (a 257² cloth: 338 frames). */
+/**
+ * Most bytes a take's animation may have (bakeBytes: its part of the file, written at the end beside the take's own
+ * copies, half as big): the cap is lowered to fit (a 257² cloth: 338 frames).
+ */
 export const MAX_TAKE_BYTES = 512 * 2 ** 20;
 
 /** What a take holds: each slot's cloths as they were at the start, and a copy of every frame recorded. */
@@ -32,7 +36,10 @@ export class Recorder {
   cap = 600;
   private take: Take | null = null;
 
-  constructor(private readonly app: App) {}
+  constructor(private readonly app: App) {
+    // leaving the page while recording asks first (the take is downloaded only when it ends)
+    window.addEventListener('beforeunload', (e) => { if (this.take) e.preventDefault(); });
+  }
 
   get active(): boolean {
     return this.take !== null;

@@ -197,6 +197,7 @@ describe('drape CLI', () => {
     [['run', '--bake', 'x.glb', '--bake-stride', '0'], /^drape: --bake-stride: must be an integer in 1…1000000, got '0'$/],
     [['run', '--bake-stride', '2'], /^drape: --bake-stride: bakes with --bake FILE\.glb; give --bake too$/],
     [['run', '--bake', 'x.glb', '--backend', 'gpu'], /^drape: --bake: records every frame on the CPU backend only/],
+    [['run', '--bake', 'x.glb', '--export', './x.glb'], /^drape: --bake: x\.glb is the --export file too; give two names$/],
     [['run', '--bake', '/no/such/folder/x.glb'], /^drape: --bake \/no\/such\/folder\/x\.glb: the folder \/no\/such\/folder does not exist$/],
     [['run', '--backend', 'quantum'], /--backend: must be cpu or gpu/],
     [['run', '--backend', 'gpu', '--solver', 'mass-spring', '--frames', '1'], /only the xpbd solver runs on the GPU/],

@@ -6,7 +6,7 @@
  * Bad input exits with code 2 and one line on stderr; nothing prints a stack trace.
  */
 import { readFileSync, writeFileSync } from 'node:fs';
-import { basename } from 'node:path';
+import { basename, resolve } from 'node:path';
 import { parseArgs } from 'node:util';
 import {
   bakeBytes, builtinScene, exportCloths, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneDocument, sceneSchema,
@@ -273,6 +273,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     if (framesAsked === 0) throw new UsageError('--bake: --frames 0 runs no frame to bake; give --frames 1 or more');
     if (backend === 'gpu') throw new UsageError('--bake: records every frame on the CPU backend only; leave out --backend gpu');
     checkOutputPath(values.bake, '--bake');
+    if (values.export !== undefined && resolve(values.export) === resolve(values.bake)) throw new UsageError(`--bake: ${values.bake} is the --export file too; give two names`);
   }
   const loaded = loadScene(positionals[0]);
   let scene = loaded.scene;
