@@ -436,6 +436,7 @@ describe('WebGPU page', () => {
     expect(take.name).toBe('silk-drape-recording.glb');
     expect(await label()).toContain('record glTF animation');
     const bytes = new Uint8Array(take.data);
+    writeJson('recording', { scene: 'silk-drape', resolution: 4, frames: 7, bytes: bytes.length });
     const report = await validateBytes(bytes);
     expect(report.issues.numErrors, JSON.stringify(report.issues.messages)).toBe(0);
     // three's GLTFLoader, as a viewer loads it (its textures need a browser's image decoder: not decoded here)
