@@ -4,6 +4,7 @@ import { GLTFLoader, type GLTF } from 'three/examples/jsm/loaders/GLTFLoader.js'
 import { describe, expect, it } from 'vitest';
 import { exportCloths, LOOKS, Simulation, validateScene, type Scene } from '../index.js';
 import { bakeBytes, modelCloths, toGLB, type GlbBake } from './glb.js';
+import { parseGltf } from './gltf.js';
 
 /** The Khronos validator's report on a .glb: every issue but the infos (an unused TEXCOORD_0 without a texture). */
 async function validate(glb: Uint8Array) {
@@ -99,6 +100,10 @@ describe('the .glb writer', () => {
       expect(Array.from(p.geometry.attributes.position.array)).toEqual(Array.from(sim.state.positions.subarray(3 * starts[c], 3 * starts[c + 1])));
       expect(p.userData).toEqual({ name: fileMeshes[c].name, firstParticle: starts[c], particles: starts[c + 1] - starts[c] });
     });
+    // Drape's own glTF reader (a cloth from a file) takes it back: the cloths' vertices in order, every triangle
+    const back = parseGltf(glb, 'three.glb');
+    expect(Array.from(back.positions)).toEqual(Array.from(sim.state.positions));
+    expect(back.triangles.length).toBe(sim.model.triangles.length);
   });
 
   it('a bake: one morph target per frame, an animation that three.js plays, each frame\'s positions back to 7 digits', async () => {
