@@ -201,13 +201,15 @@ describe('WebGPU page', () => {
     expect(silk.solver.bending).toBe('hinges');
     await step(page, 30);
     expect((await centroid(page)).every(Number.isFinite)).toBe(true);
-    // self-contact is a switch, live, and goes into the link
+    // self-contact is a switch (on in the built-in scenes), live, and a change goes into the link
     await setChecked(page, 'solver.selfContact', true);
     expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
+    await setChecked(page, 'solver.selfContact', false);
+    expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(false);
     await step(page, 30);
     expect((await centroid(page)).every(Number.isFinite)).toBe(true);
-    await expect.poll(() => page.evaluate(() => location.hash)).toContain('selfContact');
-    await setChecked(page, 'solver.selfContact', false);
+    await expect.poll(() => page.evaluate(() => location.hash)).toContain('solver.selfContact=false');
+    await setChecked(page, 'solver.selfContact', true);
   });
 
   it('V cycles all six views and names each on screen', async () => {

@@ -14,6 +14,7 @@ import { Overlay } from '../ui/overlay.js';
 import { Panel } from '../ui/panel.js';
 import { Backend } from './backend.js';
 import { Commands } from './commands.js';
+import { ContactBudget } from './contact-budget.js';
 import { ContactMeter } from './contact-meter.js';
 import { FileExport } from './file-export.js';
 import { FileImport } from './file-import.js';
@@ -73,6 +74,8 @@ export class App {
   readonly meshes = new MeshStore();
   /** the HUD's count of particles lying on another part of their cloth */
   readonly contactMeter = new ContactMeter();
+  /** switches self-contact off where the frame budget does not allow it (a scene's own setting, not one chosen by hand) */
+  readonly contactBudget = new ContactBudget();
   readonly backend = new Backend(this);
   readonly slots = new Slots(this);
   readonly sweep = new Sweep(this);

@@ -150,6 +150,8 @@ export class Commands implements PanelHost, InteractionHost {
       const e = clothEntries(app.scene)[at.cloth];
       app.overlay.message(`${clothCount(app.scene) > 1 ? `${plainText(clothName(e, at.cloth), 60)}: ` : ''}${e.cloth.shape}: ${note}`, 'notice');
     }
+    // self-contact set by hand stays as set: the frame budget no longer switches it (contact-budget.ts)
+    if (path === 'solver.selfContact') app.contactBudget.chosen = true;
     app.dirty = true;
     app.link.schedule();
     return true;

@@ -6,6 +6,7 @@
 import { FRAME_DT } from '../core/index.js';
 import { captionFor } from '../ui/captions.js';
 import type { App } from './app.js';
+import { ContactBudget } from './contact-budget.js';
 import { GpuSim } from './gpu-sim.js';
 import { hudInfo } from './hud-feed.js';
 
@@ -80,6 +81,10 @@ export class FrameLoop {
     }
     if (now - this.hudTime >= 250) {
       this.hudTime = now;
+      if (app.contactBudget.watch(now, app.scene.solver.selfContact, app.sim.paused, app.sim.stats, this.fps)) {
+        const ms = app.sim.stats.stepMs;
+        if (app.commands.setPath('solver.selfContact', false)) app.overlay.message(ContactBudget.message(ms), 'notice');
+      }
       app.hud.update(hudInfo(app, this.fps, this.idle));
       app.layout.caption.set(captionFor(app.sceneKey, app.scene.description));
     }

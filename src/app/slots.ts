@@ -47,6 +47,8 @@ export class Slots {
       this.restore();
       throw e;
     }
+    // a scene loaded: its self-contact is the scene's again until chosen by hand (contact-budget.ts)
+    app.contactBudget.reset();
     // a scene loaded: whatever waited for mesh files is not what the page shows any more
     app.waiting = null;
     this.frameCamera(true);
