@@ -162,7 +162,7 @@ describe('GPU simulation backend', () => {
   });
 
   it('a recording on the GPU takes the frame read back: a morph target for the frame stepped', async () => {
-    await loadScene(page, 'Silk Drape', 4);
+    await gpuScene(page, 'Silk Drape', 4);
     await onGpu(page);
     await press(page, 'record');
     // (one frame: each step on SwiftShader's GPU takes seconds)
