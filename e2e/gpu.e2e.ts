@@ -6,7 +6,7 @@
 import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
-import { byId, centroid, choose, gpuReady, hook, loadScene, openApp, press, setChecked, shoot, step, writeJson } from './helpers.js';
+import { byId, centroid, choose, download, gpuReady, hook, loadScene, openApp, press, setChecked, shoot, step, writeJson } from './helpers.js';
 
 let browser: Browser;
 
@@ -162,6 +162,28 @@ describe('GPU simulation backend', () => {
     const c = await centroid(page);
     expect(c.every(Number.isFinite)).toBe(true);
     expect(errors).toEqual([]);
+  });
+
+  it('a recording on the GPU takes the frame read back: a morph target for the frame stepped', async () => {
+    await gpuScene(page, 'Silk Drape', 4);
+    await onGpu(page);
+    await press(page, 'record');
+    // (one frame: each step on SwiftShader's GPU takes seconds)
+    await step(page, 1);
+    const last = await hook<number[][]>(page, 'positions');
+    const take = await download(page, 'record');
+    const json = JSON.parse(take.data.toString('utf8', 20, 20 + take.data.readUInt32LE(12)));
+    expect(json.animations[0].extras.frames).toHaveLength(1);
+    expect(json.meshes[0].primitives[0].targets).toHaveLength(1);
+    // the target is the frame as the page read it back: the file's base and difference add up to it
+    const bin = 20 + take.data.readUInt32LE(12) + 8;
+    const floats = (accessor: number) => {
+      const view = json.bufferViews[json.accessors[accessor].bufferView];
+      return new Float32Array(take.data.buffer.slice(take.data.byteOffset + bin + view.byteOffset, take.data.byteOffset + bin + view.byteOffset + view.byteLength));
+    };
+    const primitive = json.meshes[0].primitives[0];
+    const base = floats(primitive.attributes.POSITION), diff = floats(primitive.targets[0].POSITION);
+    last.forEach((p, i) => p.forEach((x, a) => expect(base[3 * i + a] + diff[3 * i + a]).toBeCloseTo(x, 6)));
   });
 
   it('a lost device falls back to the CPU solver with the positions kept, and the page says so', async () => {

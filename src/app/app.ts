@@ -2,7 +2,7 @@
  * The app's composition root. It holds the state every job reads — the current scene (what a link or an exported
  * file reproduces), the simulation driver, the views of the cloths on screen ("slots") — and wires the jobs to it
  * and to the page: backend (backend.ts), slots (slots.ts), resolution sweep (sweep.ts, sweep-labels.ts), commands
- * from the panel, keyboard and pointer (commands.ts, shortcuts.ts), files (file-import.ts, file-export.ts), the
+ * from the panel, keyboard and pointer (commands.ts, shortcuts.ts), files (file-import.ts, file-export.ts, recorder.ts), the
  * link (url-sync.ts) and the frame loop (loop.ts, hud-feed.ts); imported mesh files (meshes.ts, mesh-import.ts).
  * It holds no physics: everything it knows about the cloth comes from the core's model and the worker's frames.
  */
@@ -23,6 +23,7 @@ import { Layout } from './layout.js';
 import { FrameLoop } from './loop.js';
 import { MeshImport, type WaitingScene } from './mesh-import.js';
 import { MeshStore } from './meshes.js';
+import { Recorder } from './recorder.js';
 import { shortcutListener } from './shortcuts.js';
 import type { SimDriver } from './sim-client.js';
 import { Slots } from './slots.js';
@@ -82,6 +83,7 @@ export class App {
   readonly commands = new Commands(this);
   readonly link = new UrlSync(this);
   readonly fileExport = new FileExport(this);
+  readonly recorder = new Recorder(this);
   readonly loop = new FrameLoop(this);
 
   private constructor(readonly root: HTMLElement, stage: Stage, options: AppOptions = {}) {

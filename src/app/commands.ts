@@ -194,6 +194,7 @@ export class Commands implements PanelHost, InteractionHost {
   reset(): void {
     const app = this.app;
     app.interaction.cancel();
+    app.recorder.interrupt('the simulation was reset');
     app.sweep.halted = false;
     if (sweeps(app.scene) && app.sweep.layout === 'sequence' && app.sweep.index !== 0) {
       app.sweep.index = 0;
@@ -365,5 +366,20 @@ export class Commands implements PanelHost, InteractionHost {
   /** Downloads the cloths as binary glTF. */
   exportGltf(): void {
     this.app.fileExport.exportGltf();
+  }
+
+  /** Starts recording, or stops and downloads the recording as an animated .glb. */
+  toggleRecording(): void {
+    this.app.recorder.toggle();
+  }
+
+  get recording() {
+    const r = this.app.recorder, cap = r.effectiveCap;
+    return { active: r.active, frames: r.frames, bytes: r.bytes(), cap, capBytes: r.bytes(cap) };
+  }
+
+  setRecordCap(frames: number): void {
+    this.app.recorder.cap = frames;
+    this.app.panel.syncRecording();
   }
 }

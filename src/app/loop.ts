@@ -44,7 +44,8 @@ export class FrameLoop {
           app.dirty = true;
         }
       });
-      app.sim.eagerReadback = app.views.some((v) => v.needsCpuPositions);
+      // a recording takes every frame's positions (paused, a step reads its frames back itself)
+      app.sim.eagerReadback = (app.recorder.active && !app.sim.paused) || app.views.some((v) => v.needsCpuPositions);
     }
     const redraw = app.dirty;
     if (app.dirty) {
