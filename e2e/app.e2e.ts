@@ -4,7 +4,10 @@
  * (`?backend=cpu`), which is what these tests time for; the GPU backend has its own tests in gpu.e2e.ts. Cloths are small and runs short: SwiftShader is slow;
  * the loop is paused and frames are stepped explicitly, so results do not depend on this machine's speed.
  */
+import { validateBytes } from 'gltf-validator';
 import type { Page } from 'playwright-core';
+import type { Mesh } from 'three';
+import { GLTFLoader, type GLTF } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
 import {
@@ -198,13 +201,15 @@ describe('WebGPU page', () => {
     expect(silk.solver.bending).toBe('hinges');
     await step(page, 30);
     expect((await centroid(page)).every(Number.isFinite)).toBe(true);
-    // self-contact is a switch, live, and goes into the link
+    // self-contact is a switch (on in the built-in scenes), live, and a change goes into the link
     await setChecked(page, 'solver.selfContact', true);
     expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
+    await setChecked(page, 'solver.selfContact', false);
+    expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(false);
     await step(page, 30);
     expect((await centroid(page)).every(Number.isFinite)).toBe(true);
-    await expect.poll(() => page.evaluate(() => location.hash)).toContain('selfContact');
-    await setChecked(page, 'solver.selfContact', false);
+    await expect.poll(() => page.evaluate(() => location.hash)).toContain('solver.selfContact=false');
+    await setChecked(page, 'solver.selfContact', true);
   });
 
   it('V cycles all six views and names each on screen', async () => {
@@ -419,6 +424,41 @@ describe('WebGPU page', () => {
     await choose(page, 'png.size', 'the view, as on screen');
     // the page's own canvas is back at its size after the export
     expect(await page.locator('canvas').first().evaluate((c: HTMLCanvasElement) => [c.width, c.height])).toEqual([960, 600]);
+  });
+
+  it('records a span of the simulation and downloads it as an animated glTF: valid, one morph target per frame', async () => {
+    await loadScene(page, 'Silk Drape', 4);
+    const label = () => byId(page, 'record').textContent();
+    await press(page, 'record');
+    expect(await label()).toContain('stop recording (0 frames, 0.0 MB)');
+    for (let f = 0; f < 6; f++) await step(page, 1);
+    expect(await label()).toContain('stop recording (6 frames');
+    const last = await hook<number[][]>(page, 'positions');
+    const take = await download(page, 'record');
+    expect(take.name).toBe('silk-drape-recording.glb');
+    expect(await label()).toContain('record glTF animation');
+    const bytes = new Uint8Array(take.data);
+    writeJson('recording', { scene: 'silk-drape', resolution: 4, frames: 7, bytes: bytes.length });
+    const report = await validateBytes(bytes);
+    expect(report.issues.numErrors, JSON.stringify(report.issues.messages)).toBe(0);
+    // three's GLTFLoader, as a viewer loads it (its textures need a browser's image decoder: not decoded here)
+    const loader = new GLTFLoader().register(() => ({ name: 'no-images', loadTexture: () => Promise.resolve(null) }) as never);
+    const gltf = await new Promise<GLTF>((done, fail) => loader.parse(bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength), '', done, fail));
+    expect(gltf.animations[0].duration).toBeCloseTo(6 / 60, 6);
+    let mesh: Mesh | undefined;
+    gltf.scene.traverse((o) => { if ((o as Mesh).isMesh) mesh = o as Mesh; });
+    const g = mesh!.geometry, morphs = g.morphAttributes.position ?? [];
+    expect(morphs).toHaveLength(6);
+    // the last frame, as the page had it
+    const base = g.attributes.position.array;
+    last.forEach((p, i) => p.forEach((x, a) => expect(base[3 * i + a] + morphs[5].array[3 * i + a]).toBeCloseTo(x, 6)));
+
+    // a reset while recording ends the take, and it downloads all the same: a recording is never lost
+    await press(page, 'record');
+    for (let f = 0; f < 2; f++) await step(page, 1);
+    const interrupted = await download(page, 'reset');
+    expect(interrupted.name).toBe('silk-drape-recording.glb');
+    expect((await hook<{ text: string }>(page, 'lastMessage')).text).toContain('Recording ended (the simulation was reset): 3 frames');
   });
 
   it('the URL hash holds the scene: a link reproduces it; a bad link says so and shows the default', async () => {

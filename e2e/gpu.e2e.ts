@@ -6,7 +6,7 @@
 import type { Page } from 'playwright-core';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { launch, type Browser } from './browser.js';
-import { byId, centroid, choose, gpuReady, hook, loadScene, openApp, press, setChecked, shoot, step, writeJson } from './helpers.js';
+import { byId, centroid, choose, download, gpuReady, hook, loadScene, openApp, press, setChecked, shoot, step, writeJson } from './helpers.js';
 
 let browser: Browser;
 
@@ -23,6 +23,16 @@ async function onGpu(page: Page): Promise<void> {
   if ((await hook<any>(page, 'scene')).solver.type !== 'xpbd') await choose(page, 'solver.type', 'xpbd');
   if (await hook(page, 'simBackend') !== 'gpu') await choose(page, 'backend', 'GPU (WebGPU compute, xpbd)');
   await gpuReady(page);
+}
+
+/**
+ * A built-in scene at a resolution with self-contact off: these tests are of the GPU backend, and SwiftShader takes
+ * seconds a frame for self-contact (its GPU tests: src/gpu/self-contact.test.ts; the budget that turns it off: below).
+ */
+async function gpuScene(page: Page, label: string, resolution?: number): Promise<void> {
+  await loadScene(page, label, resolution);
+  await setChecked(page, 'solver.selfContact', false);
+  await page.waitForFunction(() => (window as any).drape.scene().solver.selfContact === false);
 }
 
 const dist = (a: number[], b: number[]) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
@@ -46,9 +56,25 @@ describe('GPU simulation backend', () => {
     await page?.close();
   });
 
+  it('a GPU that cannot keep up with self-contact (SwiftShader) has it switched off while running, with a notice', async () => {
+    // the page opened on the default scene (self-contact on, as every built-in drape); let it run
+    expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
+    await press(page, 'play');
+    expect(await hook(page, 'paused')).toBe(false);
+    await expect.poll(() => hook<any>(page, 'scene').then((s) => s.solver.selfContact), { timeout: 120_000 }).toBe(false);
+    const said = await hook<{ text: string; kind: string }>(page, 'lastMessage');
+    expect(said.text).toMatch(/^Self-contact switched off: with it the simulation needs \d+ ms per 16\.7 ms frame here/);
+    expect(said.kind).toBe('notice');
+    expect(await byId(page, 'solver.selfContact').locator('input').isChecked()).toBe(false);
+    // set by hand it stays on
+    await setChecked(page, 'solver.selfContact', true);
+    await page.waitForTimeout(4000);
+    expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
+  });
+
   it('the GPU backend drapes a GPU-simulated cloth drawn from its buffers, switches backends keeping the cloth', async () => {
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('GPU');
-    await loadScene(page, 'Silk Drape', 16);
+    await gpuScene(page, 'Silk Drape', 16);
     await gpuReady(page);
     const t0 = performance.now();
     // (dropped 0.6 m onto the sphere, it lies on it from about frame 30: the CLI's centroid y is 0.596 then)
@@ -89,7 +115,7 @@ describe('GPU simulation backend', () => {
     await gpuReady(page);
 
     // pins changed live reach the GPU: hangs from two corners
-    await loadScene(page, 'Custom Parameters', 12);
+    await gpuScene(page, 'Custom Parameters', 12);
     await setChecked(page, 'pin.top-left', true);
     await setChecked(page, 'pin.top-right', true);
     await gpuReady(page);
@@ -101,14 +127,14 @@ describe('GPU simulation backend', () => {
     expect((await centroid(page))[1]).toBeLessThan(1.1);
 
     // the Mesh Resolution sequence goes on to 1024 faces per side on the GPU
-    await loadScene(page, 'Mesh Resolution');
+    await gpuScene(page, 'Mesh Resolution');
     expect((await hook<string[]>(page, 'labels'))[0]).toContain('1 / 11');
     expect(errors).toEqual([]);
   });
 
   it('a GPU cloth that stops being finite is stopped at its last finite shape, with Reset; exports refuse', async () => {
     await onGpu(page);
-    await loadScene(page, 'Silk Drape', 8);
+    await gpuScene(page, 'Silk Drape', 8);
     await gpuReady(page);
     await step(page, 10);
     const good = await hook<number[][]>(page, 'positions');
@@ -138,9 +164,31 @@ describe('GPU simulation backend', () => {
     expect(errors).toEqual([]);
   });
 
+  it('a recording on the GPU takes the frame read back: a morph target for the frame stepped', async () => {
+    await gpuScene(page, 'Silk Drape', 4);
+    await onGpu(page);
+    await press(page, 'record');
+    // (one frame: each step on SwiftShader's GPU takes seconds)
+    await step(page, 1);
+    const last = await hook<number[][]>(page, 'positions');
+    const take = await download(page, 'record');
+    const json = JSON.parse(take.data.toString('utf8', 20, 20 + take.data.readUInt32LE(12)));
+    expect(json.animations[0].extras.frames).toHaveLength(1);
+    expect(json.meshes[0].primitives[0].targets).toHaveLength(1);
+    // the target is the frame as the page read it back: the file's base and difference add up to it
+    const bin = 20 + take.data.readUInt32LE(12) + 8;
+    const floats = (accessor: number) => {
+      const view = json.bufferViews[json.accessors[accessor].bufferView];
+      return new Float32Array(take.data.buffer.slice(take.data.byteOffset + bin + view.byteOffset, take.data.byteOffset + bin + view.byteOffset + view.byteLength));
+    };
+    const primitive = json.meshes[0].primitives[0];
+    const base = floats(primitive.attributes.POSITION), diff = floats(primitive.targets[0].POSITION);
+    last.forEach((p, i) => p.forEach((x, a) => expect(base[3 * i + a] + diff[3 * i + a]).toBeCloseTo(x, 6)));
+  });
+
   it('a lost device falls back to the CPU solver with the positions kept, and the page says so', async () => {
     await onGpu(page);
-    await loadScene(page, 'Pins', 12);
+    await gpuScene(page, 'Pins', 12);
     await gpuReady(page);
     await step(page, 60);
     const before = await centroid(page);

@@ -133,7 +133,7 @@ describe('hostile scene names', () => {
     const dl = await download(page, 'exportObj');
     const obj = dl.data.toString();
     expect(dl.name).toBe('evil-v-1-2-3-script-.obj');
-    expect(obj.split('\n')[0]).toBe("# Drape cloth, scene 'evil\ufffdv 1 2 3\ufffd<script>'");
+    expect(obj.split('\n')[0]).toBe("# Drape cloth 'evil\ufffdv 1 2 3\ufffd<script>': 9 vertices, 8 triangles");
     expect(obj.split('\n').filter((l) => l.startsWith('v ')).length).toBe(9);
     expect(errors).toEqual([]);
   });

@@ -2,7 +2,7 @@
  * The app's composition root. It holds the state every job reads — the current scene (what a link or an exported
  * file reproduces), the simulation driver, the views of the cloths on screen ("slots") — and wires the jobs to it
  * and to the page: backend (backend.ts), slots (slots.ts), resolution sweep (sweep.ts, sweep-labels.ts), commands
- * from the panel, keyboard and pointer (commands.ts, shortcuts.ts), files (file-import.ts, file-export.ts), the
+ * from the panel, keyboard and pointer (commands.ts, shortcuts.ts), files (file-import.ts, file-export.ts, recorder.ts), the
  * link (url-sync.ts) and the frame loop (loop.ts, hud-feed.ts); imported mesh files (meshes.ts, mesh-import.ts).
  * It holds no physics: everything it knows about the cloth comes from the core's model and the worker's frames.
  */
@@ -14,6 +14,7 @@ import { Overlay } from '../ui/overlay.js';
 import { Panel } from '../ui/panel.js';
 import { Backend } from './backend.js';
 import { Commands } from './commands.js';
+import { ContactBudget } from './contact-budget.js';
 import { ContactMeter } from './contact-meter.js';
 import { FileExport } from './file-export.js';
 import { FileImport } from './file-import.js';
@@ -22,6 +23,7 @@ import { Layout } from './layout.js';
 import { FrameLoop } from './loop.js';
 import { MeshImport, type WaitingScene } from './mesh-import.js';
 import { PageMeshStore } from './meshes.js';
+import { Recorder } from './recorder.js';
 import { shortcutListener } from './shortcuts.js';
 import type { SimDriver } from '../three/sim/sim-client.js';
 import { Slots } from './slots.js';
@@ -72,6 +74,8 @@ export class App {
   readonly meshes = new PageMeshStore();
   /** the HUD's count of particles lying on another part of their cloth */
   readonly contactMeter = new ContactMeter();
+  /** switches self-contact off where the frame budget does not allow it (a scene's own setting, not one chosen by hand) */
+  readonly contactBudget = new ContactBudget();
   readonly backend = new Backend(this);
   readonly slots = new Slots(this);
   readonly sweep = new Sweep(this);
@@ -79,6 +83,7 @@ export class App {
   readonly commands = new Commands(this);
   readonly link = new UrlSync(this);
   readonly fileExport = new FileExport(this);
+  readonly recorder = new Recorder(this);
   readonly loop = new FrameLoop(this);
 
   private constructor(readonly root: HTMLElement, stage: Stage, options: AppOptions = {}) {

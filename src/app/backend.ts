@@ -81,6 +81,7 @@ export class Backend {
     const app = this.app;
     const d: SimDriver = kind === 'gpu' && app.stage.device ? new GpuSim(app.stage.device, app.meshes) : new SimClient(app.meshes);
     d.onFrame = () => { app.dirty = true; };
+    d.onPositions = (frames) => app.recorder.capture(frames);
     d.onError = (m) => app.overlay.message(m, 'error');
     d.onUnstable = (slot, frame) => this.onUnstable(slot, frame);
     return d;

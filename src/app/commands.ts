@@ -150,6 +150,8 @@ export class Commands implements PanelHost, InteractionHost {
       const e = clothEntries(app.scene)[at.cloth];
       app.overlay.message(`${clothCount(app.scene) > 1 ? `${plainText(clothName(e, at.cloth), 60)}: ` : ''}${e.cloth.shape}: ${note}`, 'notice');
     }
+    // self-contact set by hand stays as set: the frame budget no longer switches it (contact-budget.ts)
+    if (path === 'solver.selfContact') app.contactBudget.chosen = true;
     app.dirty = true;
     app.link.schedule();
     return true;
@@ -192,6 +194,7 @@ export class Commands implements PanelHost, InteractionHost {
   reset(): void {
     const app = this.app;
     app.interaction.cancel();
+    app.recorder.interrupt('the simulation was reset');
     app.sweep.halted = false;
     if (sweeps(app.scene) && app.sweep.layout === 'sequence' && app.sweep.index !== 0) {
       app.sweep.index = 0;
@@ -363,5 +366,20 @@ export class Commands implements PanelHost, InteractionHost {
   /** Downloads the cloths as binary glTF. */
   exportGltf(): void {
     this.app.fileExport.exportGltf();
+  }
+
+  /** Starts recording, or stops and downloads the recording as an animated .glb. */
+  toggleRecording(): void {
+    this.app.recorder.toggle();
+  }
+
+  get recording() {
+    const r = this.app.recorder, cap = r.effectiveCap;
+    return { active: r.active, frames: r.frames, bytes: r.bytes(), cap, capBytes: r.bytes(cap) };
+  }
+
+  setRecordCap(frames: number): void {
+    this.app.recorder.cap = frames;
+    this.app.panel.syncRecording();
   }
 }

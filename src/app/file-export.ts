@@ -1,14 +1,18 @@
 /**
- * Downloads: the scene as a JSON document, a PNG screenshot, and the cloths at their current shape as OBJ or
- * binary glTF (never a file with NaN in it): one object per cloth (a scene of several: each by its name, with its
- * fabric's look), its vertices in the scene's particle order (an OBJ's numbering is the scene's, as the CLI's
- * export). File names come from the scene's name, made safe.
+ * Downloads: the scene as a JSON document, a PNG screenshot, the cloths at their current shape as OBJ or binary
+ * glTF, and a recording as animated glTF (never a file with NaN in it): one object per cloth (a scene of several:
+ * each by its name, with its fabric's look), its vertices in the scene's particle order (an OBJ's numbering is the
+ * scene's). The files are the core's writers' (core/mesh/obj-export.ts, core/mesh/glb.ts), as the CLI's; the .glb
+ * files embed each look's texture. File names come from the scene's name, made safe.
  */
-import { BufferAttribute, BufferGeometry, DoubleSide, Group, Mesh, MeshStandardMaterial } from 'three/webgpu';
-import { clothEntries, clothName, plainText, sceneDocument } from '../core/index.js';
-import { localTriangles, trianglesByCloth } from '../render/cloth-parts.js';
+import {
+  clothEntries, clothName, FRAME_DT, LOOKS, modelCloths, plainText, sceneDocument, toGLB, toOBJ, type ClothModel, type ExportCloth,
+  type FabricKind, type GlbBake, type GlbMaterial, type Scene,
+} from '../core/index.js';
+import type { FabricLook } from '../render/textures.js';
 import type { App } from './app.js';
 import { baseName, meshNames } from './meshes.js';
+import type { Take } from './recorder.js';
 
 /**
  * A screenshot's pixel size: 'W×H' (written with an x) as it says, or 'view': the free part of the window, `viewW` ×
@@ -25,6 +29,9 @@ export function pngSize(size: string, viewW: number, viewH: number, ratio: numbe
 
 /** The page's downloads. */
 export class FileExport {
+  /** each look's material with its texture as PNG, made once */
+  private readonly materials = new Map<FabricKind, Promise<GlbMaterial>>();
+
   constructor(private readonly app: App) {}
 
   private download(blob: Blob, name: string): void {
@@ -39,8 +46,8 @@ export class FileExport {
   }
 
   /** a file name from the scene's name: letters, digits, '.', '_' and '-' only, never hidden or empty */
-  private fileBase(): string {
-    return plainText(this.app.scene.name, 60).replace(/[^\w.-]+/g, '-').replace(/^[.-]+/, '') || 'scene';
+  private fileBase(name = this.app.scene.name): string {
+    return plainText(name, 60).replace(/[^\w.-]+/g, '-').replace(/^[.-]+/, '') || 'scene';
   }
 
   /**
@@ -75,8 +82,8 @@ export class FileExport {
     });
   }
 
-  /** why the cloths cannot be exported now ('' when they can): never a file with NaN in it */
-  private exportProblem(): string {
+  /** why the cloths cannot be exported or recorded now ('' when they can): never a file with NaN in it */
+  exportProblem(): string {
     const app = this.app;
     for (const [k, m] of app.sim.mirrors.entries()) {
       if (m.unstableAt >= 0) return `${app.slots.clothName(k)} became unstable at frame ${m.unstableAt}; reset it first`;
@@ -86,63 +93,76 @@ export class FileExport {
     return '';
   }
 
-  /**
-   * The cloths as plain meshes with standard materials, at their current shape, for the exporters: one mesh per
-   * cloth (a sweep's row: one per slot; a scene of several: one per cloth of the list, over its own particles, in
-   * order), each with its look's texture.
-   */
-  private exportGroup(): Group {
-    const app = this.app;
-    const group = new Group();
-    group.name = plainText(app.scene.name, 100);
-    const materials = new Map<string, MeshStandardMaterial>();
-    app.sim.mirrors.forEach((m) => {
-      const { model, state, scene } = m.sim;
-      const entries = clothEntries(scene), parts = trianglesByCloth(model), looks = app.slots.looks(scene);
-      entries.forEach((e, c) => {
-        const from = model.clothStarts[c], to = model.clothStarts[c + 1];
-        const g = new BufferGeometry();
-        g.setAttribute('position', new BufferAttribute(state.positions.slice(3 * from, 3 * to), 3));
-        g.setAttribute('uv', new BufferAttribute(model.uvs.slice(2 * from, 2 * to), 2));
-        g.setIndex(new BufferAttribute(localTriangles(model, parts, c), 1));
-        g.computeVertexNormals();
-        const look = looks[c];
-        let material = materials.get(look.kind);
-        if (!material) {
-          material = new MeshStandardMaterial({ map: look.map, roughness: look.roughness, side: DoubleSide, name: `${look.kind} fabric` });
-          materials.set(look.kind, material);
-        }
-        const mesh = new Mesh(g, material);
-        mesh.name = entries.length > 1 ? plainText(clothName(e, c), 60)
-          : app.sim.mirrors.length > 1 ? `cloth-${scene.cloth.resolution}` : 'cloth';
-        group.add(mesh);
-      });
-    });
-    return group;
-  }
-
-  /** Downloads the cloths as OBJ; refused while one is unstable. */
+  /** Downloads the cloths as OBJ (the core's writer, as `drape run --export`, without the MTL); refused while one is unstable. */
   exportObj(): void {
     const problem = this.exportProblem();
     if (problem) { this.app.overlay.message(`OBJ export refused: ${problem}.`); return; }
-    void import('three/examples/jsm/exporters/OBJExporter.js').then(({ OBJExporter }) => {
-      // one comment line: the name cannot break out of it (no line breaks in plainText)
-      const text = `# Drape cloth, scene '${plainText(this.app.scene.name, 100)}'\n` + new OBJExporter().parse(this.exportGroup());
-      this.download(new Blob([text], { type: 'model/obj' }), `${this.fileBase()}.obj`);
-    });
+    const cloths = this.app.sim.mirrors.flatMap((m) => modelCloths(m.sim.model, m.sim.state.positions,
+      this.dress(m.sim.scene).map(({ name, look }) => ({ name, material: LOOKS[look.kind] }))));
+    const text = toOBJ({ name: this.app.scene.name, cloths });
+    this.download(new Blob([text], { type: 'model/obj' }), `${this.fileBase()}.obj`);
+  }
+
+  /**
+   * A slot's cloths named as the files' objects (one cloth: `cloth`; a sweep's row: cloth-<resolution>; a scene of
+   * several: each by its name), with their looks.
+   */
+  private dress(scene: Scene): { name: string; look: FabricLook }[] {
+    const entries = clothEntries(scene), looks = this.app.slots.looks(scene), slots = this.app.sim.mirrors.length;
+    return entries.map((e, c) => ({
+      name: entries.length > 1 ? plainText(clothName(e, c), 60) : slots > 1 ? `cloth-${scene.cloth.resolution}` : 'cloth',
+      look: looks[c],
+    }));
+  }
+
+  /** A look's material for the .glb: its roughness and its texture (the canvas as PNG, repeated as on screen). */
+  private material(look: FabricLook): Promise<GlbMaterial> {
+    let m = this.materials.get(look.kind);
+    if (!m) {
+      const canvas = look.map.image as HTMLCanvasElement;
+      m = new Promise<Blob | null>((done) => canvas.toBlob(done, 'image/png')).then(async (blob) => ({
+        ...LOOKS[look.kind], roughness: look.roughness,
+        ...(blob ? { texture: { png: new Uint8Array(await blob.arrayBuffer()), repeat: look.map.repeat.x } } : {}),
+      }));
+      this.materials.set(look.kind, m);
+    }
+    return m;
+  }
+
+  /** Each slot's cloths over `positions` (a recording's `frames` after them), named and dressed in their looks' textures. */
+  private async cloths(scenes: readonly Scene[], models: readonly ClothModel[], positions: readonly Float32Array[], frames?: readonly Float32Array[][]): Promise<ExportCloth[]> {
+    const slots = await Promise.all(scenes.map(async (scene, k) => {
+      const dress = await Promise.all(this.dress(scene).map(async ({ name, look }) => ({ name, material: await this.material(look) })));
+      return modelCloths(models[k], positions[k], dress, frames?.map((f) => f[k]));
+    }));
+    return slots.flat();
+  }
+
+  /** Writes and downloads a .glb; says so if the writer refuses (it never writes NaN). */
+  private async downloadGlb(scene: string, file: string, cloths: ExportCloth[], bake?: GlbBake): Promise<void> {
+    try {
+      const glb = toGLB({ name: scene, cloths, ...(bake ? { bake } : {}) });
+      this.download(new Blob([glb], { type: 'model/gltf-binary' }), file);
+    } catch (e) {
+      this.app.overlay.message(`glTF export failed: ${(e as Error).message}`);
+    }
   }
 
   /** Downloads the cloths as binary glTF (.glb); refused while one is unstable. */
   exportGltf(): void {
     const problem = this.exportProblem();
     if (problem) { this.app.overlay.message(`glTF export refused: ${problem}.`); return; }
-    void import('three/examples/jsm/exporters/GLTFExporter.js').then(async ({ GLTFExporter }) => {
-      try {
-        const out = await new GLTFExporter().parseAsync(this.exportGroup(), { binary: true });
-        this.download(new Blob([out as ArrayBuffer], { type: 'model/gltf-binary' }), `${this.fileBase()}.glb`);
-      } catch (e) {
-        this.app.overlay.message(`glTF export failed: ${(e as Error).message}`);
-      }
-    });
+    // the shapes now: the mirrors move on while the textures are encoded
+    const mirrors = this.app.sim.mirrors;
+    const shapes = mirrors.map((m) => m.sim.state.positions.slice());
+    void this.cloths(mirrors.map((m) => m.sim.scene), mirrors.map((m) => m.sim.model), shapes)
+      .then((cloths) => this.downloadGlb(this.app.scene.name, `${this.fileBase()}.glb`, cloths));
+  }
+
+  /** Downloads a recording (recorder.ts) as an animated .glb: its first frame at time 0, the others at theirs. */
+  async downloadTake(take: Take): Promise<void> {
+    const cloths = await this.cloths(take.scenes, take.models, take.first, take.shapes);
+    const times = take.frames.map((f) => (f - take.start) * FRAME_DT);
+    await this.downloadGlb(take.name, `${this.fileBase(take.name)}-recording.glb`, cloths, { times, frameNumbers: take.frames });
   }
 }

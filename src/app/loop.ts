@@ -7,6 +7,7 @@ import { FRAME_DT } from '../core/index.js';
 import { captionFor } from '../ui/captions.js';
 import type { App } from './app.js';
 import { GpuSim } from '../three/sim/gpu-sim.js';
+import { ContactBudget } from './contact-budget.js';
 import { hudInfo } from './hud-feed.js';
 
 /** The requestAnimationFrame loop, and what it measures (fps, first frame). */
@@ -43,7 +44,8 @@ export class FrameLoop {
           app.dirty = true;
         }
       });
-      app.sim.eagerReadback = app.views.some((v) => v.needsCpuPositions);
+      // a recording takes every frame's positions (paused, a step reads its frames back itself)
+      app.sim.eagerReadback = (app.recorder.active && !app.sim.paused) || app.views.some((v) => v.needsCpuPositions);
     }
     const redraw = app.dirty;
     if (app.dirty) {
@@ -79,6 +81,10 @@ export class FrameLoop {
     }
     if (now - this.hudTime >= 250) {
       this.hudTime = now;
+      if (app.contactBudget.watch(now, app.scene.solver.selfContact, app.sim.paused, app.sim.stats, this.fps)) {
+        const ms = app.sim.stats.stepMs;
+        if (app.commands.setPath('solver.selfContact', false)) app.overlay.message(ContactBudget.message(ms), 'notice');
+      }
       app.hud.update(hudInfo(app, this.fps, this.idle));
       app.layout.caption.set(captionFor(app.sceneKey, app.scene.description));
     }

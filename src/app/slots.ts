@@ -3,9 +3,9 @@
  * simulation, one view per slot, framing the camera, and putting things back after a refused change.
  */
 import { Box3, Vector3 } from 'three/webgpu';
-import { SceneError, clothCount, clothEntries, sceneMannequin, type Scene } from '../core/index.js';
+import { SceneError, clothCount, clothEntries, fabricFor, sceneMannequin, type Scene } from '../core/index.js';
 import { ClothView } from '../render/cloth-view.js';
-import { fabricFor, fabricLook, type FabricLook } from '../render/textures.js';
+import { fabricLook, type FabricLook } from '../render/textures.js';
 import type { App } from './app.js';
 import { contactDistance } from './contact-meter.js';
 import { emptyBounds, frameBounds } from './framing.js';
@@ -47,6 +47,8 @@ export class Slots {
       this.restore();
       throw e;
     }
+    // a scene loaded: its self-contact is the scene's again until chosen by hand (contact-budget.ts)
+    app.contactBudget.reset();
     // a scene loaded: whatever waited for mesh files is not what the page shows any more
     app.waiting = null;
     this.frameCamera(true);

@@ -1,20 +1,21 @@
 /**
  * `drape`: the headless front end over the same core and scenes as the app.
- *   drape run [SCENE|file.json] [--frames N] [--solver S] [--backend cpu] [--set PATH=VALUE]… [--json] [--export out.obj]
+ *   drape run [SCENE|file.json] [--frames N] [--solver S] [--backend cpu] [--set PATH=VALUE]… [--json] [--export out.obj|out.glb]
+ *             [--bake out.glb [--bake-stride K]]
  *   drape scenes | drape bench [...] | drape schema
  * Bad input exits with code 2 and one line on stderr; nothing prints a stack trace.
  */
 import { readFileSync, writeFileSync } from 'node:fs';
+import { basename, resolve } from 'node:path';
 import { parseArgs } from 'node:util';
 import {
-  builtinScene, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneDocument, sceneSchema, setScenePath, Simulation,
-  type MeshResolver, type Scene, type SimulationOptions,
+  bakeBytes, builtinScene, exportCloths, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneDocument, sceneSchema,
+  modelCloths, setScenePath, Simulation, toGLB, toMTL, toOBJ, type GlbBake, type MeshResolver, type Scene, type SimulationOptions,
 } from '../core/index.js';
 import { EXIT, UsageError } from './errors.js';
 import { checkOutputPath } from './files.js';
 import { loadSceneFile, meshReader } from './node.js';
 import { gpuRefusal, openGpu, type Gpu } from './gpu.js';
-import { toOBJ } from './obj.js';
 import { cpuOptions, runBench, runGpuBench, runSceneBench, runSelfContactBench } from './bench.js';
 import { maxThreads } from './threads.js';
 
@@ -41,7 +42,12 @@ Simulates a built-in scene (default: custom) or a scene file for N frames of 1/6
   --set PATH=VALUE      change any scene path, e.g. material.fabric=silk, wind.direction=[1,0,0],
                         colliders=[] ; VALUE is JSON when it parses, else a string (repeatable)
   --json                print exactly one JSON object
-  --export FILE.obj     write the cloth at the last frame as Wavefront OBJ
+  --export FILE         write the cloths at the last frame: FILE.obj (Wavefront, with FILE.mtl beside it) or
+                        FILE.glb (binary glTF): positions, texture coordinates, normals, each fabric's material
+  --bake FILE.glb       write the run as an animated binary glTF: one morph target per baked frame, played
+                        by the file's animation at the frames' times (needs --frames ≥ 1; CPU backend)
+  --bake-stride K       bake every K-th frame (default 1; the last frame always): a bake is about
+                        24 bytes per vertex per baked frame (a 64² cloth: 101 kB a frame)
 A scene with a resolutionSweep (e.g. 'resolution') runs once per resolution unless cloth.resolution is set.`,
   scenes: `drape scenes [--json]\n\nLists the built-in scenes with their descriptions.`,
   bench: `drape bench [options]
@@ -145,10 +151,26 @@ interface RunResult {
   cloths?: { name: string; first: number; particles: number; triangles: number; centroid: number[]; bounds: { min: number[]; max: number[] } }[];
   clamps: string[];
   sim: Simulation;
+  /** the run's frames for --bake: its start and every stride-th frame after it (the last always) */
+  bake?: GlbBake & { first: Float32Array; frames: Float32Array[] };
 }
 
-async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, options: SimulationOptions): Promise<RunResult> {
-  let sim: Simulation, ms: number, kernel = 'gpu', threads = 1;
+/** The .mtl file an OBJ export writes beside it. */
+const mtlPath = (obj: string) => obj.replace(/\.obj$/i, '.mtl');
+
+/** Most bytes a bake may have: past this --bake is refused before the run, naming a stride that fits. */
+const MAX_BAKE_BYTES = 2 ** 30;
+
+/** Which frames a bake of `frames` frames at `stride` keeps after frame 0: every stride-th, and the last. */
+function bakedFrames(frames: number, stride: number): number[] {
+  const kept: number[] = [];
+  for (let f = stride; f <= frames; f += stride) kept.push(f);
+  if (kept[kept.length - 1] !== frames) kept.push(frames);
+  return kept;
+}
+
+async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, options: SimulationOptions, bakeStride?: number): Promise<RunResult> {
+  let sim: Simulation, ms: number, kernel = 'gpu', threads = 1, bake: RunResult['bake'];
   if (gpu) {
     ({ sim, msPerFrame: ms } = await gpu.simulate(scene, frames, options.meshes));
   } else {
@@ -157,8 +179,24 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
       await sim.whenReady();
       kernel = sim.kernel;
       threads = sim.threads;
+      const kept = bakeStride === undefined ? [] : bakedFrames(frames, bakeStride);
+      const n = sim.model.particleCount;
+      if (bakeStride !== undefined && bakeBytes(n, kept.length) > MAX_BAKE_BYTES) {
+        let fits = bakeStride + 1;
+        while (bakeBytes(n, Math.ceil(frames / fits)) > MAX_BAKE_BYTES) fits++;
+        throw new UsageError(`--bake: ${kept.length} frames of ${n} particles would be ${(bakeBytes(n, kept.length) / 2 ** 30).toFixed(1)} GiB, more than 1 GiB; give --bake-stride ${fits} or more, or fewer --frames`);
+      }
+      const first = sim.state.positions.slice(), shapes: Float32Array[] = [];
       const t0 = performance.now();
-      sim.advance(frames);
+      let done = 0;
+      for (const f of kept) {
+        // a cloth that blew up stops advancing; the caller reports it and writes nothing
+        if (!sim.advance(f - done)) break;
+        done = f;
+        shapes.push(sim.state.positions.slice());
+      }
+      sim.advance(frames - done);
+      if (bakeStride !== undefined) bake = { first, frames: shapes, times: kept.map((f) => f * FRAME_DT), frameNumbers: kept };
       ms = sim.frame > 0 ? (performance.now() - t0) / sim.frame : 0;
     } finally {
       sim.dispose();
@@ -184,6 +222,7 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
     ...(r.cloths ? { cloths: r.cloths.map((c) => ({ ...c, centroid: vec(c.centroid), bounds: { min: vec(c.bounds.min), max: vec(c.bounds.max) } })) } : {}),
     clamps: sim.params.clamps,
     sim,
+    ...(bake ? { bake } : {}),
   };
 }
 
@@ -197,7 +236,7 @@ function unstableLine(scene: Scene, run: RunResult, frames: number, gpu: boolean
 
 /** What the CLI does to the file system, replaceable in tests. */
 export interface CliIo {
-  writeFile(path: string, text: string): void;
+  writeFile(path: string, data: string | Uint8Array): void;
 }
 const nodeIo: CliIo = { writeFile: (path, text) => writeFileSync(path, text) };
 
@@ -208,7 +247,8 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     options: {
       frames: { type: 'string' }, solver: { type: 'string' }, backend: { type: 'string' },
       kernel: { type: 'string' }, threads: { type: 'string' },
-      set: { type: 'string', multiple: true }, json: { type: 'boolean' }, export: { type: 'string' }, help: { type: 'boolean', short: 'h' },
+      set: { type: 'string', multiple: true }, json: { type: 'boolean' }, export: { type: 'string' },
+      bake: { type: 'string' }, 'bake-stride': { type: 'string' }, help: { type: 'boolean', short: 'h' },
     },
   });
   if (values.help) { out(HELP.run); return 0; }
@@ -220,9 +260,20 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     ...cpuOptions(threadsArg(values.threads, err)),
     kernel: checkKernel(values.kernel),
   };
+  // every destination is checked before simulating: a bad one costs nothing
   if (values.export !== undefined) {
-    if (!values.export.toLowerCase().endsWith('.obj')) throw new UsageError(`--export: only .obj files are supported, got '${values.export}'`);
-    checkOutputPath(values.export, '--export'); // before simulating: a bad destination costs nothing
+    if (!/\.(obj|glb)$/i.test(values.export)) throw new UsageError(`--export: .obj or .glb files only, got '${values.export}'`);
+    checkOutputPath(values.export, '--export');
+    if (/\.obj$/i.test(values.export)) checkOutputPath(mtlPath(values.export), '--export (its .mtl)');
+  }
+  if (values['bake-stride'] !== undefined && values.bake === undefined) throw new UsageError('--bake-stride: bakes with --bake FILE.glb; give --bake too');
+  const bakeStride = intArg('bake-stride', values['bake-stride'], 1, 1, 1_000_000);
+  if (values.bake !== undefined) {
+    if (!/\.glb$/i.test(values.bake)) throw new UsageError(`--bake: writes a .glb file, got '${values.bake}'`);
+    if (framesAsked === 0) throw new UsageError('--bake: --frames 0 runs no frame to bake; give --frames 1 or more');
+    if (backend === 'gpu') throw new UsageError('--bake: records every frame on the CPU backend only; leave out --backend gpu');
+    checkOutputPath(values.bake, '--bake');
+    if (values.export !== undefined && resolve(values.export) === resolve(values.bake)) throw new UsageError(`--bake: ${values.bake} is the --export file too; give two names`);
   }
   const loaded = loadScene(positionals[0]);
   let scene = loaded.scene;
@@ -244,7 +295,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     if (why) throw new UsageError(why);
   }
   const gpu = backend === 'gpu' ? await openGpu() : undefined;
-  const main = await simulate(scene, frames, gpu, options);
+  const main = await simulate(scene, frames, gpu, options, values.bake === undefined ? undefined : bakeStride);
   const sweepRuns: RunResult[] = [];
   for (const resolution of sweep ?? []) sweepRuns.push(await simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames, gpu, options));
   const unstable = [main, ...sweepRuns].find((r) => !r.finite);
@@ -261,20 +312,34 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     return EXIT.unstable;
   }
 
-  let exportError: string | undefined;
-  if (values.export) {
+  const errors: string[] = [];
+  const write = (flag: string, path: string, data: () => string | Uint8Array): boolean => {
     try {
-      io.writeFile(values.export, toOBJ(main.sim.model, main.sim.state, scene.name, main.cloths?.map((c) => c.name)));
+      io.writeFile(path, data());
+      return true;
     } catch (e) {
-      exportError = `could not write ${values.export} (${(e as NodeJS.ErrnoException).code ?? (e as Error).message.split('\n')[0]})`;
+      errors.push(`${flag}: could not write ${path} (${(e as NodeJS.ErrnoException).code ?? (e as Error).message.split('\n')[0]})`);
+      return false;
     }
-  }
-  const { sim: _sim, resolution: _r, clamps, ...fields } = main;
+  };
+  const { model, state } = main.sim, dress = exportCloths(scene), name = scene.name;
+  const cloths = modelCloths(model, state.positions, dress);
+  const exported = values.export !== undefined && (/\.glb$/i.test(values.export)
+    ? write('--export', values.export, () => toGLB({ name, cloths }))
+    : write('--export', values.export, () => toOBJ({ name, cloths, mtllib: basename(mtlPath(values.export!)) }))
+      && write('--export', mtlPath(values.export), () => toMTL({ name, cloths })));
+  const bake = main.bake;
+  const baked = values.bake !== undefined && bake !== undefined
+    && write('--bake', values.bake, () => toGLB({ name, cloths: modelCloths(model, bake.first, dress, bake.frames), bake }));
+  const bakeSummary = bake && `frame 0 and ${bake.frames.length} more (stride ${bakeStride}), ${(bakeBytes(model.particleCount, bake.frames.length) / 1e6).toFixed(1)} MB of morph targets`;
+  const exportError = errors.length ? errors.join('; ') : undefined;
+  const { sim: _sim, resolution: _r, bake: _b, clamps, ...fields } = main;
   if (values.json) {
     out(safeJson({
       scene: scene.name, solver: scene.solver.type, backend, frames, substeps: scene.solver.substeps, ...fields, clamps,
       ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.triangles / 2, ...r })) } : {}),
-      ...(values.export && !exportError ? { exported: values.export } : {}),
+      ...(exported ? { exported: values.export } : {}),
+      ...(baked ? { baked: values.bake, bakedFrames: bake!.frameNumbers.length + 1 } : {}),
       ...(exportError ? { exportError } : {}),
       resolvedScene: sceneDocument(scene),
     }));
@@ -299,10 +364,11 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
       out(`  resolution sweep (triangles → resting height of the centroid):`);
       for (const r of sweepRuns) out(`    ${String(r.triangles).padStart(6)} triangles  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);
     }
-    if (values.export && !exportError) out(`  exported     ${values.export}`);
+    if (exported) out(`  exported     ${values.export}${/\.obj$/i.test(values.export!) ? ` and ${mtlPath(values.export!)}` : ''}`);
+    if (baked) out(`  baked        ${values.bake}: ${bakeSummary}`);
   }
   if (exportError) {
-    err(`drape: --export: ${exportError}; the results above are complete`);
+    err(`drape: ${exportError}; the results above are complete`);
     return EXIT.exportFailed;
   }
   return 0;

@@ -22,18 +22,22 @@ afterAll(() => {
 });
 const digits = (v: readonly number[]) => v.map((x) => Number(x.toPrecision(9)));
 /**
- * The scenes held to the fixture: every built-in but those with self-contact (fold, layers), which are held to
- * their crossings instead (self-contact.test.ts, cloths.test.ts) and cost the most to step in TypeScript.
+ * The scenes held to the fixture: every built-in but the two made for self-contact (fold, layers), which are held to
+ * their crossings instead (self-contact.test.ts, cloths.test.ts) and cost the most to step in TypeScript. Each runs
+ * with self-contact off, as the fixture was recorded: the built-in scenes have it on since, and what it changes is
+ * held to its own tests; this one holds every other phase to its recorded result.
  */
-const PARITY_SCENES = SCENE_NAMES.filter((name) => !builtinScene(name).solver.selfContact);
+const SELF_CONTACT_SCENES = ['fold', 'layers'];
+const PARITY_SCENES = SCENE_NAMES.filter((name) => !SELF_CONTACT_SCENES.includes(name));
 
 describe('built-in scenes give the result recorded in the fixture (first recorded before cloths became triangle meshes)', () => {
-  it('the fixture covers every built-in scene without self-contact', () => {
+  it('the fixture covers every built-in scene but fold and layers', () => {
     expect(Object.keys(fixture.scenes).sort()).toEqual([...PARITY_SCENES].sort());
   });
   it.each([...PARITY_SCENES])('%s', (name) => {
     const scene = builtinScene(name);
     delete scene.resolutionSweep;
+    scene.solver.selfContact = false;
     const sim = new Simulation(scene, { kernel: 'ts' });
     sim.advance(120);
     const r = sim.report(), want = fixture.scenes[name];

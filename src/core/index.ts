@@ -16,6 +16,7 @@ export * from './metrics.js';
 export * from './pins.js';
 export * from './pick.js';
 export { plainText, safeJson } from './text.js';
+export { fabricFor, exportCloths, LOOKS, type FabricKind, type LookMaterial } from './looks.js';
 export { windVelocity } from './wind.js';
 export { mulberry32 } from './random.js';
 export { SOLVERS, step, type StepFn } from './solvers/index.js';
@@ -29,6 +30,9 @@ export { modelFor, parseMeshFile, meshFormat, CLOTH_SHAPES, MESH_EXTENSIONS, typ
 export { prepareMesh, MAX_MESH_PARTICLES, MAX_VERTEX_EDGES, WELD_TOLERANCE, type TriangleMesh } from './mesh/triangle-mesh.js';
 export { discMesh, tubeMesh, placeMesh, type ShapeSpec, type Placement } from './mesh/generators.js';
 export type { ExternalReader } from './mesh/gltf.js';
+export { toGLB, modelCloths, bakeBytes, BAKE_BYTES_PER_VERTEX, type GlbInput, type ExportCloth, type GlbMaterial, type GlbTexture, type GlbBake } from './mesh/glb.js';
+export { toOBJ, toMTL, type ObjInput } from './mesh/obj-export.js';
+export { vertexNormals } from './mesh/normals.js';
 export { countIntersections } from './intersections.js';
 export { selfContacts } from './contacts.js';
 export { selfContactDistance } from './self-contact.js';

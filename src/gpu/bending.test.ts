@@ -49,7 +49,7 @@ function hinged(B: number, iterations: number, kind: StencilModel = 'hinges'): S
   s.cloth.resolution = 16;
   s.pins = ['top-left', 'top-right'];
   s.material.bendingRigidity = B;
-  s.solver = { ...s.solver, bending: kind, iterations };
+  s.solver = { ...s.solver, bending: kind, iterations, selfContact: false };
   return validateScene(s);
 }
 

@@ -1,7 +1,8 @@
 /**
  * The triangles of a model of several cloths, cloth by cloth. The model's triangle list is sorted by colour, so the
- * cloths' triangles interleave; drawing each cloth with its own material (a geometry group per cloth) and writing
- * each as its own object needs them in runs. Pure: no three.js, unit-tested in cloth-parts.test.ts.
+ * cloths' triangles interleave; drawing each cloth with its own material (a geometry group per cloth) needs them in
+ * runs. Pure: no three.js, unit-tested in cloth-parts.test.ts. (The exports take each cloth's own triangles from
+ * model.clothParts: core/mesh/glb.ts, modelCloths.)
  */
 import { clothOf, type ClothModel } from '../core/index.js';
 
@@ -30,16 +31,4 @@ export function trianglesByCloth(model: ClothModel): ClothTriangles {
     indices[o] = t[3 * k]; indices[o + 1] = t[3 * k + 1]; indices[o + 2] = t[3 * k + 2];
   }
   return { indices, first };
-}
-
-/**
- * Cloth c's triangles numbered from its own first particle (its particles clothStarts[c] … clothStarts[c + 1] − 1
- * become 0 …): a mesh of that cloth alone, over its slice of the positions and uvs.
- */
-export function localTriangles(model: ClothModel, parts: ClothTriangles, c: number): Uint32Array {
-  const o = model.clothStarts[c];
-  const run = parts.indices.subarray(3 * parts.first[c], 3 * parts.first[c + 1]);
-  const out = new Uint32Array(run.length);
-  for (let j = 0; j < run.length; j++) out[j] = run[j] - o;
-  return out;
 }

@@ -9,9 +9,9 @@ import {
   LineBasicNodeMaterial, LineSegments, Mesh, MeshPhysicalNodeMaterial, MeshStandardNodeMaterial, Object3D,
   SphereGeometry,
 } from 'three/webgpu';
-import { BEND, selfContacts, STRUCTURAL, type ClothModel, type ClothState } from '../core/index.js';
+import { BEND, selfContacts, STRUCTURAL, type ClothModel, type ClothState, type FabricKind } from '../core/index.js';
 import { trianglesByCloth } from './cloth-parts.js';
-import type { FabricKind, FabricLook } from './textures.js';
+import type { FabricLook } from './textures.js';
 
 export const VIEWS = ['shaded', 'wireframe', 'particles', 'springs', 'strain', 'contacts'] as const;
 export type ViewName = (typeof VIEWS)[number];

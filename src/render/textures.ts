@@ -3,9 +3,7 @@
  * studio backdrop.
  */
 import { CanvasTexture, RepeatWrapping, SRGBColorSpace, type Texture } from 'three/webgpu';
-import { mulberry32 } from '../core/index.js';
-
-export type FabricKind = 'cotton' | 'silk' | 'leather' | 'rubber' | 'flag' | 'hammock' | 'checker';
+import { LOOKS, mulberry32, type FabricKind } from '../core/index.js';
 
 export interface FabricLook {
   kind: FabricKind;
@@ -16,26 +14,6 @@ export interface FabricLook {
   sheen: number;
   sheenColor: string;
   clearcoat: number;
-}
-
-/** the fabrics (core/fabrics.ts) that have a look of their own; the others (denim) look like cotton */
-const FABRIC_LOOKS: Partial<Record<string, FabricKind>> = { cotton: 'cotton', silk: 'silk', leather: 'leather', rubber: 'rubber' };
-
-/**
- * Which look a cloth gets: the built-in scenes that are about one thing have theirs (the Wind scene's flag, the Pins
- * hammock, the Mesh Resolution checker); any other cloth its fabric's (`material.fabric`), or, without a named
- * fabric, the one its scene's name starts with ('silk…'); cotton when neither says.
- */
-export function fabricFor(sceneName: string, fabric?: string): FabricKind {
-  if (sceneName === 'wind') return 'flag';
-  if (sceneName === 'pins') return 'hammock';
-  if (sceneName === 'resolution') return 'checker';
-  const own = fabric === undefined ? undefined : FABRIC_LOOKS[fabric];
-  if (own) return own;
-  if (fabric === undefined) {
-    for (const kind of ['silk', 'leather', 'rubber'] as const) if (sceneName.startsWith(kind)) return kind;
-  }
-  return 'cotton';
 }
 
 /** Every procedural canvas with the code that paints it, so all can be repainted (see repaintTextures). */
@@ -131,7 +109,7 @@ function cotton(): FabricLook {
     weave(g, size, 4, 0.05);
     noise(g, size, 0.08, 3, 2);
   }, FABRIC_PIXELS / 256);
-  return { kind: 'cotton', map: finish(c, 4), roughness: 0.9, sheen: 0.6, sheenColor: '#c9d8f0', clearcoat: 0 };
+  return { kind: 'cotton', map: finish(c, 4), roughness: LOOKS.cotton.roughness, sheen: 0.6, sheenColor: '#c9d8f0', clearcoat: 0 };
 }
 
 function silk(): FabricLook {
@@ -159,7 +137,7 @@ function silk(): FabricLook {
     }
     noise(g, size, 0.03, 5, 1);
   }, FABRIC_PIXELS / 256);
-  return { kind: 'silk', map: finish(c, 3), roughness: 0.38, sheen: 1, sheenColor: '#ffb3c4', clearcoat: 0 };
+  return { kind: 'silk', map: finish(c, 3), roughness: LOOKS.silk.roughness, sheen: 1, sheenColor: '#ffb3c4', clearcoat: 0 };
 }
 
 function leather(): FabricLook {
@@ -181,7 +159,7 @@ function leather(): FabricLook {
     g.strokeRect(18, 18, size - 36, size - 36);
   }, FABRIC_PIXELS / 512);
   // garment leather is satin, not lacquered: a faint, rough clearcoat (a strong one drew a whitish smear)
-  return { kind: 'leather', map: finish(c, 1), roughness: 0.62, sheen: 0.2, sheenColor: '#d8a27a', clearcoat: 0.06 };
+  return { kind: 'leather', map: finish(c, 1), roughness: LOOKS.leather.roughness, sheen: 0.2, sheenColor: '#d8a27a', clearcoat: 0.06 };
 }
 
 function rubber(): FabricLook {
@@ -199,7 +177,7 @@ function rubber(): FabricLook {
       g.beginPath(); g.arc(x, y, 6, 0, Math.PI * 2); g.fill();
     }
   }, FABRIC_PIXELS / 256);
-  return { kind: 'rubber', map: finish(c, 3), roughness: 0.32, sheen: 0, sheenColor: '#ffffff', clearcoat: 0.6 };
+  return { kind: 'rubber', map: finish(c, 3), roughness: LOOKS.rubber.roughness, sheen: 0, sheenColor: '#ffffff', clearcoat: 0.6 };
 }
 
 function flag(): FabricLook {
@@ -215,7 +193,7 @@ function flag(): FabricLook {
     g.fill();
     weave(g, size, 4, 0.04);
   }, FABRIC_PIXELS / 512);
-  return { kind: 'flag', map: finish(c, 1), roughness: 0.85, sheen: 0.5, sheenColor: '#ffffff', clearcoat: 0 };
+  return { kind: 'flag', map: finish(c, 1), roughness: LOOKS.flag.roughness, sheen: 0.5, sheenColor: '#ffffff', clearcoat: 0 };
 }
 
 function hammock(): FabricLook {
@@ -226,7 +204,7 @@ function hammock(): FabricLook {
     weave(g, size, 4, 0.07);
     noise(g, size, 0.06, 31, 2);
   }, FABRIC_PIXELS / 256);
-  return { kind: 'hammock', map: finish(c, 2), roughness: 0.92, sheen: 0.5, sheenColor: '#fff4dd', clearcoat: 0 };
+  return { kind: 'hammock', map: finish(c, 2), roughness: LOOKS.hammock.roughness, sheen: 0.5, sheenColor: '#fff4dd', clearcoat: 0 };
 }
 
 function checker(): FabricLook {
@@ -237,7 +215,7 @@ function checker(): FabricLook {
     }
     weave(g, size, 4, 0.04);
   }, FABRIC_PIXELS / 256);
-  return { kind: 'checker', map: finish(c, 1), roughness: 0.85, sheen: 0.4, sheenColor: '#ffe2cc', clearcoat: 0 };
+  return { kind: 'checker', map: finish(c, 1), roughness: LOOKS.checker.roughness, sheen: 0.4, sheenColor: '#ffe2cc', clearcoat: 0 };
 }
 
 const makers: Record<FabricKind, () => FabricLook> = { cotton, silk, leather, rubber, flag, hammock, checker };

@@ -73,6 +73,14 @@ export interface PanelHost {
   screenshot(size: string): void;
   exportObj(): void;
   exportGltf(): void;
+  /** starts a recording of the simulation, or stops it and downloads it as an animated .glb */
+  toggleRecording(): void;
+  /**
+   * the recording: whether one is going and its frames so far, the animation's bytes so far, the frame cap (lowered
+   * to what the page's memory holds for these cloths) and the bytes of a take that long
+   */
+  readonly recording: { active: boolean; frames: number; bytes: number; cap: number; capBytes: number };
+  setRecordCap(frames: number): void;
   showHelp(): void;
   /** shows or hides what the scene demonstrates */
   toggleExplain(): void;
@@ -147,6 +155,8 @@ export class Panel {
   private clothCtl!: Controller;
   private pinsFolder!: GUI;
   private mannequinFolder!: GUI;
+  private recordCtl!: Controller;
+  private recordCapCtl!: Controller;
 
   constructor(private readonly host: PanelHost) {
     this.gui = new GUI({ title: 'Drape', width: 300, injectStyles: false });
@@ -339,11 +349,24 @@ export class Panel {
           'the screenshot\'s size in pixels; it shows the view without the panel, centred as on screen');
       }
     }
+    p.record = () => host.toggleRecording();
+    this.recordCtl = this.tag(file.add(p, 'record'), 'record', 'records the simulation from now on as an animated glTF (one morph target per frame); press again to stop and download');
+    p['record.cap'] = 600;
+    this.recordCapCtl = this.tag(file.add(p, 'record.cap', 30, 3600, 30).onFinishChange((v: number) => host.setRecordCap(v)), 'record.cap',
+      'the most frames a recording takes (1/60 s each); it stops and downloads there. The size is the animation\'s, for the cloths on screen');
+    this.syncers.push(() => this.syncRecording());
     for (const f of [grav, solver, file]) f.close();
     // a dropdown keeps the focus after a choice, and would eat the shortcut keys: give it back to the page
     gui.domElement.addEventListener('change', (e) => {
       if (e.target instanceof HTMLSelectElement) e.target.blur();
     });
+  }
+
+  /** The Record button and the frame cap say what a recording is doing and what a take of the cap would weigh. */
+  syncRecording(): void {
+    const r = this.host.recording, mb = (b: number) => `${(b / 1e6).toFixed(1)} MB`;
+    this.recordCtl.name(r.active ? `■ stop recording (${r.frames} frames, ${mb(r.bytes)})` : '● record glTF animation');
+    this.recordCapCtl.name(`frame cap (${r.cap < (this.p['record.cap'] as number) ? `${r.cap} fit, ` : ''}${mb(r.capBytes)})`);
   }
 
   /**

@@ -40,6 +40,7 @@ export class GpuSim implements SimDriver {
   paused = false;
   readonly stats: SimStats = newStats();
   onFrame: (() => void) | null = null;
+  onPositions: ((frames: readonly number[]) => void) | null = null;
   onError: ((message: string) => void) | null = null;
   onUnstable: ((slot: number, frame: number) => void) | null = null;
   /** true: read back every frame (a view drawn from CPU positions is showing) */
@@ -235,6 +236,8 @@ export class GpuSim implements SimDriver {
     if (this.lost || (this.reading && !force)) return;
     this.reading = true;
     const gen = this.readGen;
+    // the read is queued after the frames encoded so far: the positions are of these frames
+    const frames = this.mirrors.map((m) => m.frame);
     try {
       await Promise.all(this.mirrors.map(async (m, k) => {
         if (!this.solverOf(k) || m.unstableAt >= 0) return;
@@ -271,6 +274,7 @@ export class GpuSim implements SimDriver {
     s.energy = total;
     s.maxStrain = maxStrain;
     s.clamps = [...clamps];
+    this.onPositions?.(frames);
     this.onFrame?.();
   }
 

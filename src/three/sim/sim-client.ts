@@ -49,6 +49,11 @@ export interface SimDriver {
   paused: boolean;
   readonly stats: SimStats;
   onFrame: (() => void) | null;
+  /**
+   * called when the mirrors hold new positions from the simulation, `frames[k]` the frame mirror k's are of (the
+   * worker's frames as they arrive; on the GPU, each readback)
+   */
+  onPositions: ((frames: readonly number[]) => void) | null;
   onError: ((message: string) => void) | null;
   /** a slot's cloth stopped being finite at `frame` (called once; see Mirror.unstableAt) */
   onUnstable: ((slot: number, frame: number) => void) | null;
@@ -77,6 +82,7 @@ export class SimClient implements SimDriver {
   readonly stats: SimStats = newStats();
   /** called after each frame from the worker has been applied to the mirrors */
   onFrame: (() => void) | null = null;
+  onPositions: ((frames: readonly number[]) => void) | null = null;
   /** called with a worker error message */
   onError: ((message: string) => void) | null = null;
   onUnstable: ((slot: number, frame: number) => void) | null = null;
@@ -253,6 +259,7 @@ export class SimClient implements SimDriver {
     const done = this.pending.get(msg.id);
     this.pending.delete(msg.id);
     done?.();
+    if (msg.frames > 0) this.onPositions?.(this.mirrors.map((m) => m.frame));
     this.onFrame?.();
   }
 }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { fabricFor } from './textures.js';
+import { fabricFor } from './looks.js';
 
 describe("a cloth's look", () => {
   it("is its fabric's, except the scenes that are about one thing; without a fabric, its scene's name says", () => {

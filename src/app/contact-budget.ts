@@ -1,0 +1,50 @@
+/**
+ * Self-contact "on by default where the frame budget allows" (issue 12). The built-in scenes come with
+ * `solver.selfContact` on; the page keeps it on while the simulation keeps real time. When the simulation itself
+ * holds the page back (slow-cause.ts slowCause: its own frame takes longer than the frame lasts) for OVER_MS of
+ * running time with self-contact on, and nobody chose self-contact on this page (the panel's switch), the app turns
+ * it off and says so; switched on again by hand it stays on. A new scene starts the watch afresh.
+ */
+import { FRAME_MS } from '../three/sim/frame-clock.js';
+import { slowCause } from './slow-cause.js';
+import type { SimStats } from '../three/sim/sim-client.js';
+
+/** how long the simulation must hold the page back before self-contact goes off [ms of running wall time] */
+export const OVER_MS = 2000;
+
+export class ContactBudget {
+  /** self-contact was set by hand on this page (the panel): the budget leaves it alone until the next scene */
+  chosen = false;
+  /** running wall time over budget so far [ms] */
+  private over = 0;
+  private last = -1;
+
+  /** A new scene (built-in, file, link): the watch starts again and nobody has chosen yet. */
+  reset(): void {
+    this.chosen = false;
+    this.over = 0;
+    this.last = -1;
+  }
+
+  /**
+   * One look at `now` [ms]: true (once) when self-contact should go off — it is on, the page runs (not paused),
+   * nobody chose it, and the simulation has been too slow for it for OVER_MS. `fps` is the display's frame rate.
+   */
+  watch(now: number, selfContact: boolean, paused: boolean, stats: SimStats, fps: number): boolean {
+    const dt = this.last < 0 ? 0 : Math.min(now - this.last, 500);
+    this.last = now;
+    if (!selfContact || paused || this.chosen) { this.over = 0; return false; }
+    const slow = stats.realTime < 0.9 && slowCause(stats.realTime, stats.stepMs, fps).by === 'simulation';
+    this.over = slow ? this.over + dt : 0;
+    if (this.over < OVER_MS) return false;
+    this.over = 0;
+    return true;
+  }
+
+  /** What the page says when it switched self-contact off, from the simulation's time per frame [ms]. */
+  static message(stepMs: number): string {
+    const step = Number.isFinite(stepMs) ? stepMs.toFixed(0) : '?';
+    return `Self-contact switched off: with it the simulation needs ${step} ms per ${FRAME_MS.toFixed(1)} ms frame here. ` +
+      'Switch it on again under Solver (it then stays on), or lower the resolution.';
+  }
+}
