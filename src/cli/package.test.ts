@@ -5,9 +5,10 @@
  * installed with it (three and webgpu optional peers).
  */
 import { execFileSync } from 'node:child_process';
-import { cpSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { cpSync, mkdtempSync, readFileSync, rmSync, symlinkSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { buildLib } from '../../scripts/build-lib.mjs';
 
@@ -61,6 +62,17 @@ describe('the npm package', () => {
     const js = readFileSync(join(dir, 'dist', 'core', 'simulation.js'), 'utf8');
     expect(dts).toMatch(/\/\*\*/);
     expect(js).not.toMatch(/\/\*\*/);
+  });
+
+  it('runs as packed: the CLI steps a scene, the library a cloth (the build the package ships, not the repository\'s)', async () => {
+    symlinkSync(join(root, 'node_modules'), join(dir, 'node_modules'), 'dir'); // ajv, as an install gives it
+    const out = execFileSync(process.execPath, [join(dir, 'bin', 'drape.js'), 'run', 'fold', '--frames', '3', '--json'], { encoding: 'utf8' });
+    const report = JSON.parse(out) as { finite: boolean; frames: number; intersections: number };
+    expect(report).toMatchObject({ finite: true, frames: 3, intersections: 0 });
+    const lib = await import(pathToFileURL(join(dir, 'dist', 'core', 'index.js')).href) as typeof import('../core/index.js');
+    const sim = new lib.Simulation({ cloth: { resolution: 4 } }, { kernel: 'ts' });
+    sim.advance(2);
+    expect(sim.state.positions.every(Number.isFinite)).toBe(true);
   });
 
   it('installs only ajv with it: three (the addon) and webgpu (the headless GPU backend) are optional peers', () => {
