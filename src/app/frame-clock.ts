@@ -57,6 +57,9 @@ export class FrameClock {
 
   /** `frames` were stepped, `msPerFrame` each: updates the smoothed step time, the frame count and the real-time ratio. */
   account(stats: SimStats, frames: number, msPerFrame: number, paused: boolean): void {
+    // no frame stepped (a step(0) that only waits for the backend): nothing was timed, and 0/0 or t/0 must not
+    // become the smoothed step time for good
+    if (!(frames > 0) || !Number.isFinite(msPerFrame)) return;
     stats.stepMs = stats.stepMs > 0 ? 0.8 * stats.stepMs + 0.2 * msPerFrame : msPerFrame;
     stats.framesDone += frames;
     const h = this.history;
@@ -69,6 +72,14 @@ export class FrameClock {
       stats.realTime = (n * FRAME_MS) / span;
     }
   }
+}
+
+/**
+ * Whether a simulation that needs `stepMs` per 1/60 s frame cannot keep real time however the display goes: its
+ * frame takes longer than the frame lasts (with a tenth's margin for the messages that carry it). Unmeasured: no.
+ */
+export function cannotKeepUp(stepMs: number): boolean {
+  return Number.isFinite(stepMs) && stepMs > 0.9 * FRAME_MS;
 }
 
 /** What keeps a page from real time, and what to try. */
@@ -90,7 +101,7 @@ export interface SlowCause {
 export function slowCause(realTime: number, stepMs: number, fps: number): SlowCause {
   const pct = `${(100 * realTime).toFixed(0)}% of real time`;
   const step = Number.isFinite(stepMs) ? stepMs : 0;
-  if (step > 0.9 * FRAME_MS) {
+  if (cannotKeepUp(step)) {
     return { by: 'simulation', text: `slow motion: ${pct} — the simulation needs ${step.toFixed(0)} ms per ${FRAME_MS.toFixed(1)} ms frame; try a lower resolution or fewer substeps` };
   }
   return {
