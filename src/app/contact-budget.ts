@@ -1,13 +1,12 @@
 /**
  * Self-contact "on by default where the frame budget allows" (issue 12). The built-in scenes come with
  * `solver.selfContact` on; the page keeps it on while the simulation keeps real time. When the simulation itself
- * holds the page back (slow-cause.ts slowCause: its own frame takes longer than the frame lasts) for OVER_MS of
+ * cannot keep up (slow-cause.ts cannotKeepUp: its own frame takes longer than the frame lasts) for OVER_MS of
  * running time with self-contact on, and nobody chose self-contact on this page (the panel's switch), the app turns
  * it off and says so; switched on again by hand it stays on. A new scene starts the watch afresh.
  */
 import { FRAME_MS } from '../three/sim/frame-clock.js';
-import { slowCause } from './slow-cause.js';
-import type { SimStats } from '../three/sim/sim-client.js';
+import { cannotKeepUp } from './slow-cause.js';
 
 /** how long the simulation must hold the page back before self-contact goes off [ms of running wall time] */
 export const OVER_MS = 2000;
@@ -28,14 +27,13 @@ export class ContactBudget {
 
   /**
    * One look at `now` [ms]: true (once) when self-contact should go off — it is on, the page runs (not paused),
-   * nobody chose it, and the simulation has been too slow for it for OVER_MS. `fps` is the display's frame rate.
+   * nobody chose it, and the simulation, needing `stepMs` per frame (smoothed), has been too slow for OVER_MS.
    */
-  watch(now: number, selfContact: boolean, paused: boolean, stats: SimStats, fps: number): boolean {
+  watch(now: number, selfContact: boolean, paused: boolean, stepMs: number): boolean {
     const dt = this.last < 0 ? 0 : Math.min(now - this.last, 500);
     this.last = now;
     if (!selfContact || paused || this.chosen) { this.over = 0; return false; }
-    const slow = stats.realTime < 0.9 && slowCause(stats.realTime, stats.stepMs, fps).by === 'simulation';
-    this.over = slow ? this.over + dt : 0;
+    this.over = cannotKeepUp(stepMs) ? this.over + dt : 0;
     if (this.over < OVER_MS) return false;
     this.over = 0;
     return true;

@@ -81,9 +81,12 @@ export class FrameLoop {
     }
     if (now - this.hudTime >= 250) {
       this.hudTime = now;
-      if (app.contactBudget.watch(now, app.scene.solver.selfContact, app.sim.paused, app.sim.stats, this.fps)) {
+      if (app.contactBudget.watch(now, app.scene.solver.selfContact, app.sim.paused, app.sim.stats.stepMs)) {
         const ms = app.sim.stats.stepMs;
-        if (app.commands.setPath('solver.selfContact', false)) app.overlay.message(ContactBudget.message(ms), 'notice');
+        if (app.commands.setPath('solver.selfContact', false)) {
+          app.panel.sync(); // the panel's switch shows it (setPath leaves the panel to the control that asked)
+          app.overlay.message(ContactBudget.message(ms), 'notice');
+        }
       }
       app.hud.update(hudInfo(app, this.fps, this.idle));
       app.layout.caption.set(captionFor(app.sceneKey, app.scene.description));

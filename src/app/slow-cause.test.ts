@@ -34,6 +34,17 @@ describe('slowCause: the HUD blames what limits the page', () => {
     expect(slowCause(stats.realTime, stats.stepMs, 1).by).toBe('drawing');
   });
 
+  it('a step of no frames (one that only waits for the backend) times nothing: the step time stays what it was', () => {
+    const clock = new FrameClock();
+    const stats = newStats();
+    clock.account(stats, 0, 12 / 0, false);
+    expect(stats.stepMs).toBe(0);
+    clock.account(stats, 2, 20, false);
+    clock.account(stats, 0, NaN, false);
+    expect(stats.stepMs).toBe(20);
+    expect(stats.framesDone).toBe(2);
+  });
+
   it('never shows NaN: an unmeasured step time or frame rate', () => {
     expect(slowCause(0.5, NaN, 30).text).not.toMatch(/NaN|Infinity/);
     // nothing drawn for half a second while running: a display frame takes longer than that

@@ -1,6 +1,14 @@
 /** What holds a page back from real time, in words for the HUD (the clock's numbers: three/sim/frame-clock.ts). */
 import { FRAME_MS } from '../three/sim/frame-clock.js';
 
+/**
+ * Whether a simulation that needs `stepMs` per 1/60 s frame cannot keep real time however the display goes: its
+ * frame takes longer than the frame lasts (with a tenth's margin for the messages that carry it). Unmeasured: no.
+ */
+export function cannotKeepUp(stepMs: number): boolean {
+  return Number.isFinite(stepMs) && stepMs > 0.9 * FRAME_MS;
+}
+
 /** What keeps a page from real time, and what to try. */
 export interface SlowCause {
   /** 'simulation': stepping a frame takes longer than it lasts; 'drawing': the simulation keeps up, but display
@@ -20,7 +28,7 @@ export interface SlowCause {
 export function slowCause(realTime: number, stepMs: number, fps: number): SlowCause {
   const pct = `${(100 * realTime).toFixed(0)}% of real time`;
   const step = Number.isFinite(stepMs) ? stepMs : 0;
-  if (step > 0.9 * FRAME_MS) {
+  if (cannotKeepUp(step)) {
     return { by: 'simulation', text: `slow motion: ${pct} — the simulation needs ${step.toFixed(0)} ms per ${FRAME_MS.toFixed(1)} ms frame; try a lower resolution or fewer substeps` };
   }
   return {

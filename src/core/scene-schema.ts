@@ -132,7 +132,13 @@ const materialSchema = {
 /** `pins`: a cloth's pinned particles (one of `cloths` has the same). */
 const clothPins = pinList(`pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding) or regions ({ min, max }: the particles that start in that box)`);
 
-export const sceneSchema = {
+/**
+ * A JSON Schema document, as the code reads it: the scene schema's own literal type would only repeat the
+ * schema (100 kB of declarations) in the package's types.
+ */
+export type SceneSchema = { readonly [key: string]: unknown };
+
+export const sceneSchema: SceneSchema = {
   $schema: 'http://json-schema.org/draft-07/schema#',
   $id: 'https://drape.dev/scene.schema.json',
   title: 'Drape scene',

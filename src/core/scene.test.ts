@@ -4,6 +4,9 @@ import { defaultScene, parseScene, parseSetValue, SceneError, setScenePath, vali
 import { sceneSchema } from './scene-schema.js';
 import { builtinScene, isBuiltinScene, SCENE_NAMES } from './scenes.js';
 
+/** the scene schema's fields, read as a tree (its declared type is any JSON Schema document) */
+type SchemaTree = { properties: Record<string, any> };
+
 const rejects = (doc: unknown, field: RegExp) => {
   expect(() => validateScene(doc)).toThrow(SceneError);
   expect(() => validateScene(doc)).toThrow(field);
@@ -46,8 +49,8 @@ describe('scenes', () => {
 
   it('an empty document is a full scene with every default from the schema', () => {
     const s = defaultScene();
-    expect(s.cloth.resolution).toBe(sceneSchema.properties.cloth.properties.resolution.default);
-    expect(s.material.arealDensity).toBe(sceneSchema.properties.material.properties.arealDensity.default);
+    expect(s.cloth.resolution).toBe((sceneSchema as SchemaTree).properties.cloth.properties.resolution.default);
+    expect(s.material.arealDensity).toBe((sceneSchema as SchemaTree).properties.material.properties.arealDensity.default);
     expect(s.material.mass).toBeUndefined();
     expect(s.solver.type).toBe('xpbd');
     expect(s.colliders.map((c) => c.type)).toEqual(['sphere', 'floor']);

@@ -13,6 +13,9 @@ import { createColliders, type ColliderShape } from './index.js';
 import { PlaneCollider } from './plane.js';
 import { closestPointOnTriangle } from './sphere.js';
 
+/** the scene schema's fields, read as a tree (its declared type is any JSON Schema document) */
+type SchemaTree = { properties: Record<string, any> };
+
 const n = new Float64Array(3);
 function sd(shape: ColliderShape, p: number[]): [number, number[]] {
   const d = shape.signedDistance(p[0], p[1], p[2], n);
@@ -225,7 +228,7 @@ describe('degenerate triangles', () => {
 
 describe('scenes name the shapes', () => {
   it('COLLIDER_TYPES is the schema\'s list, and every field of every shape has a description and a default', () => {
-    const items = (sceneSchema.properties.colliders as unknown as { items: { oneOf: { required: string[]; properties: Record<string, { const?: string; description?: string; default?: unknown }> }[] } }).items;
+    const items = ((sceneSchema as SchemaTree).properties.colliders as unknown as { items: { oneOf: { required: string[]; properties: Record<string, { const?: string; description?: string; default?: unknown }> }[] } }).items;
     expect(items.oneOf.map((o) => o.properties.type.const)).toEqual([...COLLIDER_TYPES]);
     for (const o of items.oneOf) {
       for (const [key, field] of Object.entries(o.properties)) {
@@ -239,7 +242,7 @@ describe('scenes name the shapes', () => {
     }
   });
   it('every collider may move and carry pins: the motion\'s fields have units, the keys defaults', () => {
-    const items = (sceneSchema.properties.colliders as unknown as { items: { oneOf: { properties: Record<string, unknown> }[] } }).items;
+    const items = ((sceneSchema as SchemaTree).properties.colliders as unknown as { items: { oneOf: { properties: Record<string, unknown> }[] } }).items;
     type Field = { description?: string; default?: unknown; properties?: Record<string, Field>; items?: Field };
     for (const o of items.oneOf) {
       const motion = o.properties.motion as Field;

@@ -13,6 +13,9 @@ import { grab, release, setPinned } from '../state.js';
 import { TsBackend, WasmBackend } from '../backend.js';
 import { sceneSchema } from '../scene-schema.js';
 
+/** the scene schema's fields, read as a tree (its declared type is any JSON Schema document) */
+type SchemaTree = { properties: Record<string, any> };
+
 /**
  * The built-in scenes the random fuzz tests start from: all but those with self-contact (fold, layers), which
  * self-contact.test.ts and cloths.test.ts hold to their own tests (in TypeScript, they cost many times the others).
@@ -212,7 +215,7 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     let seed = 12345;
     const rnd = () => ((seed = (Math.imul(seed, 1664525) + 1013904223) >>> 0) / 2 ** 32);
     const range = (lo: number, hi: number, log = false) => (log ? Math.exp(Math.log(lo) + rnd() * (Math.log(hi) - Math.log(lo))) : lo + rnd() * (hi - lo));
-    const mat = sceneSchema.properties.material.properties;
+    const mat = (sceneSchema as SchemaTree).properties.material.properties;
     // the material, solver and forces are what is random here: the mannequin's scenes (sixteen moving shapes, the
     // slowest contact there is) are left to their own tests
     const names = FUZZ_SCENES.filter((name) => name !== 'cape' && name !== 'skirt');

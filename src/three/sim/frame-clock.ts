@@ -58,6 +58,9 @@ export class FrameClock {
 
   /** `frames` were stepped, `msPerFrame` each: updates the smoothed step time, the frame count and the real-time ratio. */
   account(stats: SimStats, frames: number, msPerFrame: number, paused: boolean): void {
+    // no frame stepped (a step(0) that only waits for the backend): nothing was timed, and 0/0 or t/0 must not
+    // become the smoothed step time for good
+    if (!(frames > 0) || !Number.isFinite(msPerFrame)) return;
     stats.stepMs = stats.stepMs > 0 ? 0.8 * stats.stepMs + 0.2 * msPerFrame : msPerFrame;
     stats.framesDone += frames;
     const h = this.history;
