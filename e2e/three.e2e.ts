@@ -102,6 +102,27 @@ async function pull(page: Page): Promise<{ grabbedOnPress: boolean; releasedOnUp
   return { grabbedOnPress, releasedOnUp, before: at.y0, after };
 }
 
+/**
+ * On the running world: a second cloth added and taken out again (the world goes on with the page's cloth alone),
+ * then the ball taken out as a collider, so that the cloth falls past it onto the table (the page's box, top 0.2 m).
+ */
+async function removeWhileRunning(page: Page): Promise<{ clothsWithSecond: number; clothsAfter: number; particles: number; finite: boolean; maxY: number; minY: number; error: string; backend: string }> {
+  return page.evaluate(async () => {
+    const { world, cloth, ball } = (window as any).drapeExample;
+    // (the page's fabric: the GPU takes several cloths of one fabric; another would move the world to the CPU)
+    const second = world.addCloth({ fabric: 'silk', resolution: 6, width: 0.4, height: 0.4, position: [0, 1.6, 0] });
+    await world.step(5);
+    const clothsWithSecond = world.cloths.length;
+    world.removeCloth(second);
+    world.removeCollider(ball);
+    await world.step(60);
+    const x: Float32Array = cloth.positions;
+    let maxY = -Infinity, minY = Infinity;
+    for (let i = 1; i < x.length; i += 3) { maxY = Math.max(maxY, x[i]); minY = Math.min(minY, x[i]); }
+    return { clothsWithSecond, clothsAfter: world.cloths.length, particles: x.length / 3, finite: x.every(Number.isFinite), maxY, minY, error: world.error, backend: world.backend };
+  });
+}
+
 /** The cloth lies on the ball (its middle on the top, none of it inside) and hangs down around it. */
 function expectDraped(d: Drop): void {
   expect(d.error).toBe('');
@@ -143,6 +164,12 @@ describe('drape/three example page', () => {
     expect(g.grabbedOnPress).toBe(true);
     expect(g.after).toBeGreaterThan(g.before + 0.05);
     expect(g.releasedOnUp).toBe(true);
+    const r = await removeWhileRunning(page);
+    writeJson('three-webgl-remove', r);
+    expect([r.clothsWithSecond, r.clothsAfter, r.particles, r.finite, r.error]).toEqual([2, 1, 25 * 25, true, '']);
+    // no ball under it now: the silk lies on the table's top (0.2 m), its thickness above it, not through it
+    expect(r.maxY).toBeLessThan(0.3);
+    expect(r.minY).toBeGreaterThan(0.19);
     expect(errors).toEqual([]);
     await browser.close();
     browser = undefined;
@@ -159,6 +186,13 @@ describe('drape/three example page', () => {
     expect(d.backend).toBe('gpu');
     expect(d.backendNote).toBe('');
     expectDraped(d);
+    const r = await removeWhileRunning(page);
+    writeJson('three-webgpu-remove', r);
+    expect([r.clothsWithSecond, r.clothsAfter, r.particles, r.finite, r.error]).toEqual([2, 1, 25 * 25, true, '']);
+    expect(r.maxY).toBeLessThan(0.3);
+    expect(r.minY).toBeGreaterThan(0.19);
+    expect(r.backend).toBe('gpu');
+    expect(await page.evaluate(() => (window as any).drapeExample.world.gpuDrawing)).toBe(true);
     expect(errors).toEqual([]);
   });
 });

@@ -1,6 +1,6 @@
 import { BoxGeometry, Mesh, Object3D, PlaneGeometry, SphereGeometry } from 'three';
 import { describe, expect, it } from 'vitest';
-import { SceneError } from '../core/index.js';
+import { SceneError, type Scene } from '../core/index.js';
 import { DrapeWorld } from './world.js';
 
 // (what Node can check: the options, the cloths and colliders a world is made of; it simulates in a browser: e2e/three.e2e.ts)
@@ -58,5 +58,52 @@ describe('DrapeWorld: options and what it is made of', () => {
     expect(() => world.addCloth({ pins: [{ at: 0, to: {} as Object3D }] })).toThrow(/pins\[0\]\.to must be a THREE\.Object3D/);
     expect(() => world.addCloth({ pins: [0, { at: 'middle' as never, to: hook }] })).toThrow(/^DrapeWorld\.addCloth\('cloth 1'\): pins\[1\]: /);
     expect(world.cloths.length).toBe(1);
+  });
+
+  it('a cloth or a collider taken out is gone from the simulated scene; its pins on objects go with the cloth, stay with the mesh', () => {
+    const world = new DrapeWorld({ floor: 0 });
+    // (the scene the world would simulate, as it is now)
+    const scene = () => (world as unknown as { scene(): Scene }).scene();
+    const ball = new Mesh(new SphereGeometry(0.3));
+    ball.position.set(0, 0.5, 0);
+    const box = new Mesh(new BoxGeometry(0.4, 0.4, 0.4));
+    box.position.set(1.5, 0.2, 0);
+    world.addCollider(ball);
+    world.addCollider(box, { shape: 'mesh' });
+    const hook = new Object3D();
+    hook.position.set(0.5, 1.5, 0.5);
+    const a = world.addCloth({ resolution: 4, position: [0, 1.5, 0], pins: [{ at: 'top-left', to: hook }] });
+    const b = world.addCloth({ geometry: new PlaneGeometry(0.5, 0.5, 2, 2), position: [0, 2.2, 0], pins: [{ at: 0, to: ball }] });
+    const c = world.addCloth({ resolution: 2, position: [0, 3, 0] });
+    // floor, ball (carrying b's pin), box, the hook's anchor (carrying a's pin)
+    expect(scene().cloths!.length).toBe(3);
+    expect(scene().colliders.map((k) => [k.type, k.pins.length])).toEqual([['floor', 0], ['sphere', 1], ['mesh', 0], ['plane', 1]]);
+
+    let freed = 0;
+    a.geometry.addEventListener('dispose', () => freed++);
+    world.removeCloth(a);
+    expect(world.cloths).toEqual([b, c]);
+    expect(() => world.removeCloth(a)).toThrow('DrapeWorld.removeCloth: this cloth is not in the world');
+    // the hook carried only a's pin: no anchor now; b's pin (its particle 0, the world's 0 now) rides on the ball
+    expect(scene().colliders.map((k) => [k.type, k.pins])).toEqual([['floor', []], ['sphere', [0]], ['mesh', []]]);
+    // the geometry the world made for it is freed (three.js drops its GPU buffers)
+    expect(freed).toBe(1);
+
+    world.removeCollider(ball);
+    expect(() => world.removeCollider(ball)).toThrow('DrapeWorld.removeCollider: this mesh is no collider of the world');
+    // b's pin still follows the ball, carried by an anchor like any object's; the box's triangles are forgotten with it
+    expect(scene().colliders.map((k) => [k.type, k.pins])).toEqual([['floor', []], ['mesh', []], ['plane', [0]]]);
+    world.removeCollider(box);
+    expect(scene().colliders.map((k) => k.type)).toEqual(['floor', 'plane']);
+    expect(() => world.addCollider(box)).not.toThrow();
+
+    world.removeCloth(b);
+    world.removeCloth(c);
+    expect(world.cloths).toEqual([]);
+    expect(world.backend).toBeNull();
+    // a world emptied can be filled again
+    expect(world.addCloth({ resolution: 3 }).particleCount).toBe(16);
+    world.dispose();
+    expect(() => world.removeCloth(c)).toThrow(/disposed/);
   });
 });

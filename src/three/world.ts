@@ -219,6 +219,54 @@ export class DrapeWorld {
   }
 
   /**
+   * Takes a cloth out of the world: it is no longer simulated, its pins on objects go with it, and the geometry (and
+   * the material) the world made for it is freed; remove the mesh from your scene yourself. While the world runs it
+   * rebuilds the simulation, as `addCloth` does: the other cloths start again from their start poses (with no cloth
+   * left the simulation stops, and starts again when one is added). Throws when the cloth is not in this world.
+   */
+  removeCloth(cloth: DrapeCloth): void {
+    this.alive();
+    const k = this.cloths.indexOf(cloth);
+    if (k < 0) throw new Error(`${WHERE}.removeCloth: this cloth is not in the world`);
+    // particle numbers change with the model: a grab ends
+    this.release();
+    const attached = this.attached.filter((p) => p.cloth === cloth);
+    this.cloths.splice(k, 1);
+    for (const p of attached) this.attached.splice(this.attached.indexOf(p), 1);
+    // the objects that carried only its pins need no anchor now
+    for (const object of [...this.anchors.keys()]) if (!this.attached.some((p) => p.to === object)) this.anchors.delete(object);
+    if (!this.cloths.length) {
+      this.driver?.dispose();
+      this.driver = null;
+      this.starting = null;
+      this.model = null;
+      this.gpuPosition = this.gpuNormal = null;
+      this.gpuAttached = false;
+      this.scene();
+    } else {
+      this.structureChanged();
+    }
+    const mesh = cloth.part.entry.cloth?.mesh;
+    if (typeof mesh === 'string') this.meshes.delete(mesh);
+    cloth.disposeCloth();
+  }
+
+  /**
+   * Stops a mesh being a collider; it takes effect at once, and the cloths go on from where they are. Pins attached
+   * to the mesh stay attached, following it. Throws when the mesh is no collider of this world.
+   */
+  removeCollider(mesh: Mesh): void {
+    this.alive();
+    const k = this.colliders.findIndex((c) => c.object === mesh);
+    if (k < 0) throw new Error(`${WHERE}.removeCollider: this mesh is no collider of the world`);
+    const [gone] = this.colliders.splice(k, 1);
+    // its pins are carried by an anchor that follows the mesh, as pins on any other object are
+    if (this.attached.some((p) => p.to === mesh) && !this.anchors.has(mesh)) this.anchors.set(mesh, anchorOf(mesh));
+    this.structureChanged();
+    if (gone.spec.type === 'mesh') this.meshes.delete(gone.spec.mesh);
+  }
+
+  /**
    * Steps the world by `dt` seconds of wall time (default: the time since the last call), in whole 1/60 s frames
    * (what is left over waits for the next call; time the simulation cannot keep up with is dropped, never queued),
    * moves the colliders to where their meshes are, and refreshes the cloths. Call it once per displayed frame, before
