@@ -77,7 +77,7 @@ describe('DrapeWorld: options and what it is made of', () => {
     const c = world.addCloth({ resolution: 2, position: [0, 3, 0] });
     // floor, ball (carrying b's pin), box, the hook's anchor (carrying a's pin)
     expect(scene().cloths!.length).toBe(3);
-    expect(scene().colliders.map((k) => [k.type, k.pins.length])).toEqual([['floor', 0], ['sphere', 1], ['mesh', 0], ['plane', 1]]);
+    expect(scene().colliders.map((k) => [k.type, k.pins?.length])).toEqual([['floor', 0], ['sphere', 1], ['mesh', 0], ['plane', 1]]);
 
     let freed = 0;
     a.geometry.addEventListener('dispose', () => freed++);
