@@ -186,6 +186,12 @@ describe('drape/three example page', () => {
     expect(d.backend).toBe('gpu');
     expect(d.backendNote).toBe('');
     expectDraped(d);
+    // the pointer grabs on the GPU path too (picking from the last readback)
+    const g = await pull(page);
+    writeJson('three-webgpu-pull', g);
+    expect(g.grabbedOnPress).toBe(true);
+    expect(g.after).toBeGreaterThan(g.before + 0.05);
+    expect(g.releasedOnUp).toBe(true);
     const r = await removeWhileRunning(page);
     writeJson('three-webgpu-remove', r);
     expect([r.clothsWithSecond, r.clothsAfter, r.particles, r.finite, r.error]).toEqual([2, 1, 25 * 25, true, '']);
