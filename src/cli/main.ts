@@ -142,6 +142,8 @@ interface RunResult {
   maxPenetration: number;
   /** pairs of triangles sharing no vertex that cross each other at the last frame */
   intersections: number;
+  /** particles pressed nearer than half the self-contact distance to a triangle not their own (Report.squeezed) */
+  squeezed: number;
   centroid: number[];
   bounds: { min: number[]; max: number[] };
   energy: { kinetic: number; gravitational: number; elastic: number; bending: number };
@@ -215,6 +217,7 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
     maxStrain: round(r.maxStrain),
     maxPenetration: round(r.maxPenetration),
     intersections: r.intersections,
+    squeezed: r.squeezed,
     centroid: vec(r.centroid),
     bounds: { min: vec(r.bounds.min), max: vec(r.bounds.max) },
     energy: { kinetic: round(r.energy.kinetic), gravitational: round(r.energy.gravitational), elastic: round(r.energy.elastic), bending: round(r.energy.bending) },
@@ -357,6 +360,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     out(`  max strain   ${(main.maxStrain * 100).toFixed(2)} % (structural)`);
     out(`  penetration  ${(main.maxPenetration * 1000).toFixed(3)} mm`);
     out(`  intersections ${main.intersections} pairs of triangles crossing each other (sharing no vertex)`);
+    out(`  squeezed     ${main.squeezed} particles pressed nearer than half the self-contact distance to the cloth`);
     out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
     out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J (bending ${f(main.energy.bending)} J)`);
     if (main.test) out(`  test         ${Object.entries(main.test).map(([k, v]) => `${k} ${typeof v === 'number' ? (Number.isInteger(v) ? v : f(v)) : plainText(String(v), 40)}`).join(', ')}`);

@@ -110,6 +110,51 @@ describe('self-contact (solver.selfContact)', () => {
     const sim = new Simulation(builtinScene('fold'), { kernel, threads: 1 });
     expect(crossings(sim, 120)).toEqual(Array(12).fill(0));
     expect(sim.report().finite).toBe(true);
+    // its layers lie on each other at the contact distance: nothing pressed them nearer
+    expect(sim.report().squeezed).toBe(0);
     sim.dispose();
+  });
+
+  /**
+   * A cotton sheet lying on the floor and a smaller one pinned all over above it, `gap` [m] above the lower one's
+   * rest height (the floor's contact thickness): below the self-contact distance h, floor and pins hold the layers
+   * nearer than h, since both run after self-contact (docs/physics.md).
+   */
+  function squeeze(gap: number, kernel: 'ts' | 'wasm'): Simulation {
+    const t = 0.005;
+    return new Simulation(validateScene({
+      name: 'squeeze',
+      solver: { selfContact: true },
+      colliders: [{ type: 'floor', height: 0 }],
+      cloths: [
+        { name: 'lower', cloth: { resolution: 8, position: [0, t, 0], thickness: t }, material: { fabric: 'cotton' } },
+        {
+          name: 'upper', cloth: { resolution: 6, width: 0.6, height: 0.6, position: [0, t + gap, 0], thickness: t }, material: { fabric: 'cotton' },
+          pins: [{ min: [-1, -1, -1], max: [1, 1, 1] }],
+        },
+      ],
+    }), { kernel, threads: 1 });
+  }
+
+  it.each(['ts', 'wasm'] as const)('%s: where pins and a collider press two layers nearer than the contact distance, they win, and `squeezed` counts it', (kernel) => {
+    const pressed = squeeze(0.0015, kernel);
+    const h = selfContactDistance(pressed.model, pressed.params);
+    expect(h).toBe(0.005);
+    pressed.advance(30);
+    const r = pressed.report();
+    expect(r.finite).toBe(true);
+    // the floor holds the lower sheet up (never below it), the pins hold the upper one where it is: 1.5 mm apart
+    expect(r.bounds.min[1]).toBeGreaterThan(0);
+    const x = pressed.state.positions, upper = pressed.model.clothStarts[1];
+    expect(x[3 * upper + 1]).toBeCloseTo(0.0065, 6);
+    // the upper sheet's 49 particles and the lower one's under it (0.6 m of its 1 m: 5 × 5 at least) lie 1.5 mm from the other layer
+    expect(r.squeezed).toBeGreaterThanOrEqual(49 + 25);
+    expect(r.squeezed).toBeLessThanOrEqual(pressed.model.particleCount);
+    pressed.dispose();
+    // 2 h above: nothing pressed; each layer rests where it is
+    const free = squeeze(2 * 0.005, kernel);
+    free.advance(30);
+    expect(free.report().squeezed).toBe(0);
+    free.dispose();
   });
 });

@@ -113,10 +113,12 @@ interface SelfScratch {
   builds: number;
 }
 const scratchOf = new WeakMap<ClothModel, SelfScratch>();
+const restOf = new WeakMap<ClothModel, { minAltitude: number; meanEdge: number }>();
 
-function scratch(model: ClothModel): SelfScratch {
-  let s = scratchOf.get(model);
-  if (s) return s;
+/** `model`'s smallest rest altitude of a triangle and mean rest edge length [m] (computed once per model). */
+function restMeasures(model: ClothModel): { minAltitude: number; meanEdge: number } {
+  let r = restOf.get(model);
+  if (r) return r;
   const tri = model.triangles, x = model.restPositions, n = tri.length / 3;
   let minAltitude = Infinity;
   for (let t = 0; t < n; t++) {
@@ -133,9 +135,17 @@ function scratch(model: ClothModel): SelfScratch {
     const a = 3 * ed[e], b = 3 * ed[e + 1];
     edgeSum += Math.hypot(x[b] - x[a], x[b + 1] - x[a + 1], x[b + 2] - x[a + 2]);
   }
+  r = { minAltitude, meanEdge: ed.length > 0 ? edgeSum / (ed.length / 2) : 0 };
+  restOf.set(model, r);
+  return r;
+}
+
+function scratch(model: ClothModel): SelfScratch {
+  let s = scratchOf.get(model);
+  if (s) return s;
+  const n = model.triangles.length / 3;
   s = {
-    minAltitude,
-    meanEdge: ed.length > 0 ? edgeSum / (ed.length / 2) : 0,
+    ...restMeasures(model),
     boxes: new Float64Array(6 * n),
     grid: new BoxGrid(),
     stamp: new Int32Array(n),
@@ -174,7 +184,17 @@ function scratch(model: ClothModel): SelfScratch {
  * of any cloth).
  */
 export function selfContactDistance(model: ClothModel, params: SimParams): number {
-  return Math.min(params.thickness, 0.5 * scratch(model).minAltitude);
+  return Math.min(params.thickness, 0.5 * restMeasures(model).minAltitude);
+}
+
+/**
+ * The smallest self-contact distance of any pair on `model` [m]: each cloth's own thickness (between two cloths
+ * the mean of theirs, never below the thinner one's), at most half the smallest rest altitude.
+ */
+export function smallestSelfContactDistance(model: ClothModel, params: SimParams): number {
+  let h = selfContactDistance(model, params);
+  for (const t of params.perCloth.thickness) h = Math.min(h, t);
+  return h;
 }
 
 /** scratch for one pair's correction: barycentric weights of the triangle's point, the direction */

@@ -4,6 +4,8 @@
  * else (stiffness, damping, mass, wind, gravity, solver, colliders, pins) applies on the next step.
  */
 import { countIntersections } from './intersections.js';
+import { selfContacts } from './contacts.js';
+import { smallestSelfContactDistance } from './self-contact.js';
 import type { ClothModel } from './model.js';
 import { modelFor, type MeshResolver } from './cloth-shape.js';
 import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrain, type Bounds, type Energy } from './metrics.js';
@@ -52,6 +54,13 @@ export interface Report {
   maxPenetration: number;
   /** pairs of triangles that share no vertex and cross each other now (intersections.ts): 0 without self-intersection */
   intersections: number;
+  /**
+   * particles nearer than half the self-contact distance (the smallest of any pair, self-contact.ts) to a triangle
+   * not their own, now: layers pressed together harder than self-contact holds them apart. Colliders and pins run
+   * after self-contact and win where they squeeze cloth, so with self-contact on this counts what they squeezed
+   * (0 on a cloth left to itself); without it, every layer lying on another
+   */
+  squeezed: number;
   centroid: [number, number, number];
   bounds: Bounds;
   energy: Energy;
@@ -341,6 +350,7 @@ export class Simulation {
       maxStrain: maxStructuralStrain(model, state),
       maxPenetration: maxPenetration(model, state, params),
       intersections: countIntersections(model.triangles, state.positions),
+      squeezed: selfContacts(model.triangles, state.positions, model.particleCount, 0.5 * smallestSelfContactDistance(model, params)),
       centroid: centroid(state),
       bounds: bounds(state),
       energy: energy(model, state, params),
