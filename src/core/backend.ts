@@ -72,10 +72,11 @@ export class WasmBackend implements Backend {
   }
   /**
    * A kernel backend for `model` on `threads` threads (helpers started with `spawn` when given and threads > 1),
-   * or null where the runtime has no WebAssembly SIMD (or, with threads > 1, no shared memory).
+   * or null where the runtime has no WebAssembly SIMD (or, with threads > 1, no shared memory). `selfContact`
+   * false: a kernel without self-contact's memory (XpbdKernel.create), for a scene with it off.
    */
-  static create(model: ClothModel, threads = 1, spawn?: HelperSpawner): WasmBackend | null {
-    const kernel = XpbdKernel.create(model, threads);
+  static create(model: ClothModel, threads = 1, spawn?: HelperSpawner, selfContact = true): WasmBackend | null {
+    const kernel = XpbdKernel.create(model, threads, undefined, selfContact);
     if (!kernel) return null;
     if (spawn && kernel.threads > 1) kernel.startHelpers(spawn);
     return new WasmBackend(kernel);

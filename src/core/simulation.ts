@@ -239,7 +239,9 @@ export class Simulation {
     const spawnHelper = this.disposed ? undefined : this.options.spawnHelper;
     if (kernel !== 'ts' && this.scene.solver.type === 'xpbd') {
       const t = spawnHelper ? threadsFor(threads, spawnHelper.cores, this.model.particleCount) : 1;
-      const backend = WasmBackend.create(this.model, t, spawnHelper) ?? (t > 1 ? WasmBackend.create(this.model, 1) : null);
+      // self-contact's memory only for a scene with it on (setScene makes a new kernel when it is switched on)
+      const self = this.scene.solver.selfContact;
+      const backend = WasmBackend.create(this.model, t, spawnHelper, self) ?? (t > 1 ? WasmBackend.create(this.model, 1, undefined, self) : null);
       if (backend) return backend;
       if (kernel === 'wasm') throw new Error('the WebAssembly kernel needs WebAssembly SIMD, which this runtime lacks');
     }
@@ -305,6 +307,11 @@ export class Simulation {
       // XPBD steps in the kernel's memory, mass-spring in plain arrays: move the cloth over, as it is
       const moved = this.newBackend();
       if (moved.kind !== this.backendNow.kind) this.useBackend(moved);
+      else moved.dispose();
+    } else if (next.solver.selfContact && this.backendNow instanceof WasmBackend && !this.backendNow.kernel.hasSelfContact) {
+      // self-contact switched on over a kernel made without its memory: a kernel with it takes the cloth as it is
+      const moved = this.newBackend();
+      if (moved instanceof WasmBackend) this.useBackend(moved);
       else moved.dispose();
     }
     // colliders the library drives keep their drive while the scene keeps them

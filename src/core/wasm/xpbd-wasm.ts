@@ -19,6 +19,7 @@ import type { ClothModel } from '../model.js';
 import { perClothRefusal, type SimParams } from '../params.js';
 import { needsTriangleContact } from '../phases.js';
 import { PHASE, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../schedule.js';
+import { collideSelf } from '../self-contact.js';
 import { createState, type ClothState } from '../state.js';
 import {
   CTRL, CTRL_BYTES, KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE,
@@ -163,7 +164,8 @@ export class XpbdKernel implements PhaseBackend {
   private readonly ctrlI32: Int32Array;
   private readonly ctrlF64: Float64Array;
   private readonly alpha: Float32Array;
-  private readonly selfContact: KernelSelfContact;
+  /** self-contact's memory and passes in the kernel; null for a kernel made without (its phase then runs in the reference) */
+  private readonly selfContact: KernelSelfContact | null;
   private readonly helpers: { terminate(): void }[] = [];
   private paramsSeen: SimParams | undefined;
   /** with helpers: whether a frame runs with them (thread-mode.ts) */
@@ -172,7 +174,7 @@ export class XpbdKernel implements PhaseBackend {
   private helperError: Error | undefined;
   private disposed = false;
 
-  private constructor(model: ClothModel, threads: number, module: WebAssembly.Module, selfWindow?: number) {
+  private constructor(model: ClothModel, threads: number, module: WebAssembly.Module, withSelfContact: boolean, selfWindow?: number) {
     this.threads = threads;
     this.module = module;
     const n = model.particleCount, m = model.restLengths.length, nb = model.batches.length;
@@ -181,7 +183,7 @@ export class XpbdKernel implements PhaseBackend {
     const X = take(12 * n), XP = take(12 * n), XR = take(12 * n), XPR = take(12 * n), V = take(12 * n), W = take(4 * n), F = take(12 * n);
     const LAMBDA = take(4 * m), ANCHOR = take(4 * n), TLEN = take(4 * n);
     const SPRINGS = take(8 * m), REST = take(4 * m), ALPHA = take(4 * m), BATCHES = take(12 * nb);
-    const self = layoutSelfContact(model, take, selfWindow);
+    const self = withSelfContact ? layoutSelfContact(model, take, selfWindow) : null;
     const pages = Math.ceil(at / 65536);
     this.memory = threads > 1
       ? new WebAssembly.Memory({ initial: pages, maximum: pages, shared: true })
@@ -196,7 +198,7 @@ export class XpbdKernel implements PhaseBackend {
     const batches = new Int32Array(buf, BATCHES, 3 * nb);
     model.batches.forEach((b, k) => { batches[3 * k] = b.start; batches[3 * k + 1] = b.end; batches[3 * k + 2] = b.kind; });
     this.alpha = new Float32Array(buf, ALPHA, m);
-    this.selfContact = new KernelSelfContact(model, buf, self, this.exports);
+    this.selfContact = self ? new KernelSelfContact(model, buf, self, this.exports) : null;
     this.ctrlI32[CTRL.THREADS / 4] = 1;
     this.ctrlI32[CTRL.SPIN_LIMIT / 4] = SPIN_LIMIT;
     this.state = createState(model, {
@@ -220,11 +222,24 @@ export class XpbdKernel implements PhaseBackend {
    * A kernel and its state for `model`, or null where the runtime has no WebAssembly SIMD (or, with threads > 1,
    * no shared memory: then the caller may ask again with 1 thread). `selfWindow` [pairs]: the size of
    * self-contact's pair windows (tests: a small one; by default they grow with the cloth, self-contact-wasm.ts).
+   * `selfContact` false: no memory for self-contact's passes (about 2 kB a particle: a 256² cloth's kernel takes
+   * 13.5 MB instead of 147 MB); the phase, if asked for, then runs in the TypeScript reference (the same cloth, bit
+   * for bit).
    */
-  static create(model: ClothModel, threads = 1, selfWindow?: number): XpbdKernel | null {
+  static create(model: ClothModel, threads = 1, selfWindow?: number, selfContact = true): XpbdKernel | null {
     const t = Math.min(KERNEL_MAX_THREADS, Math.max(1, Math.floor(threads)));
     const module = kernelModule(t > 1);
-    return module ? new XpbdKernel(model, t, module, selfWindow) : null;
+    return module ? new XpbdKernel(model, t, module, selfContact, selfWindow) : null;
+  }
+
+  /** whether self-contact's passes run in the kernel (it was made with their memory) */
+  get hasSelfContact(): boolean {
+    return this.selfContact !== null;
+  }
+
+  /** the kernel's memory [bytes] */
+  get bytes(): number {
+    return this.memory.buffer.byteLength;
   }
 
   /** Starts the helper threads with `spawn` (threads − 1 of them); substeps use them once all have checked in. */
@@ -331,8 +346,9 @@ export class XpbdKernel implements PhaseBackend {
       return;
     }
     if ((mask & (self - 1)) !== 0) this.substep(mask & (self - 1), model, state, params, frame, log);
-    this.selfContact.run(model, state, params, frame.h, frame.substeps - frame.sub);
-    log?.push(PHASE.selfContact, false);
+    if (this.selfContact) this.selfContact.run(model, state, params, frame.h, frame.substeps - frame.sub);
+    else collideSelf(model, state, params, frame.h, frame.substeps - frame.sub);
+    log?.push(PHASE.selfContact, this.selfContact === null);
     if ((mask & ~(2 * self - 1)) !== 0) this.substep(mask & ~(2 * self - 1), model, state, params, frame, log);
   }
 
