@@ -261,8 +261,17 @@ export class DrapeWorld {
     if (k < 0) throw new Error(`${WHERE}.removeCollider: this mesh is no collider of the world`);
     const [gone] = this.colliders.splice(k, 1);
     // its pins are carried by an anchor that follows the mesh, as pins on any other object are
-    if (this.attached.some((p) => p.to === mesh) && !this.anchors.has(mesh)) this.anchors.set(mesh, anchorOf(mesh));
-    this.structureChanged();
+    const anchored = this.attached.some((p) => p.to === mesh) && !this.anchors.has(mesh);
+    if (anchored) this.anchors.set(mesh, anchorOf(mesh));
+    try {
+      this.structureChanged();
+    } catch (e) {
+      // refused (the anchor would cut through a cloth): nothing changes
+      if (anchored) this.anchors.delete(mesh);
+      this.colliders.splice(k, 0, gone);
+      this.scene();
+      throw e;
+    }
     if (gone.spec.type === 'mesh') this.meshes.delete(gone.spec.mesh);
   }
 
