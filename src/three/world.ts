@@ -266,7 +266,7 @@ export class DrapeWorld {
     try {
       this.structureChanged();
     } catch (e) {
-      // refused (the anchor would cut through a cloth): nothing changes
+      // refused by the simulation: nothing changes
       if (anchored) this.anchors.delete(mesh);
       this.colliders.splice(k, 0, gone);
       this.scene();
