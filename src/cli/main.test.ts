@@ -121,7 +121,8 @@ describe('drape CLI', () => {
   });
 
   it('the resolution scene runs its sweep from 1 to 4096 faces', async () => {
-    const j = JSON.parse((await run('run', 'resolution', '--frames', '60', '--json')).out);
+    // (without self-contact: single sheets dropped flat on the sphere, and the sweep is what is tested here)
+    const j = JSON.parse((await run('run', 'resolution', '--frames', '60', '--set', 'solver.selfContact=false', '--json')).out);
     expect(j.sweep.map((s: { faces: number }) => s.faces)).toEqual([1, 4, 16, 64, 256, 1024, 4096]);
     expect(j.sweep[0].centroid[1]).toBeGreaterThan(0.6); // the 1-face cloth rests on the sphere
   });

@@ -112,6 +112,8 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
       s.cloth = { ...s.cloth, orientation: 'hanging', position: [0, 1.5, 0], resolution: 24 };
       s.colliders = [];
       s.pins = ['top-left', 'top-right'];
+      // a sheet hanging from two corners never meets itself
+      s.solver.selfContact = false;
     }));
     let worst = 0;
     for (let f = 0; f < 180; f++) {
@@ -212,7 +214,7 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     expect(sim.state.pinned[p]).toBe(0);
   });
 
-  it('60 random parameter sets from the documented ranges stay finite and bounded', () => {
+  it('40 random parameter sets from the documented ranges stay finite and bounded', () => {
     let seed = 12345;
     const rnd = () => ((seed = (Math.imul(seed, 1664525) + 1013904223) >>> 0) / 2 ** 32);
     const range = (lo: number, hi: number, log = false) => (log ? Math.exp(Math.log(lo) + rnd() * (Math.log(hi) - Math.log(lo))) : lo + rnd() * (hi - lo));
@@ -220,7 +222,7 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     // the material, solver and forces are what is random here: the mannequin's scenes (sixteen moving shapes, the
     // slowest contact there is) are left to their own tests
     const names = FUZZ_SCENES.filter((name) => name !== 'cape' && name !== 'skirt');
-    for (let trial = 0; trial < 60; trial++) {
+    for (let trial = 0; trial < 40; trial++) {
       const sc = builtinScene(names[trial % names.length]);
       sc.solver = { ...sc.solver, type: solver, substeps: Math.round(range(1, 40)), iterations: Math.round(range(1, 3)), selfContact: rnd() < 0.5 };
       // a scene that pins particles by index (the skirt's waist) keeps its resolution: another would refuse its pins
@@ -256,7 +258,7 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const rnd = () => ((seed = (Math.imul(seed, 1664525) + 1013904223) >>> 0) / 2 ** 32);
     const range = (lo: number, hi: number) => lo + rnd() * (hi - lo);
     let ran = 0, refused = 0;
-    for (let trial = 0; trial < 90; trial++) {
+    for (let trial = 0; trial < 60; trial++) {
       const sc = builtinScene(FUZZ_SCENES[trial % FUZZ_SCENES.length]);
       sc.resolutionSweep = undefined;
       sc.solver.type = solver;
