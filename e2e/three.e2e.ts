@@ -124,12 +124,24 @@ async function removeWhileRunning(page: Page): Promise<{ clothsWithSecond: numbe
   });
 }
 
-/** The second cloth came and went, the page's cloth went on alone and, with no ball under it now, lies on the table. */
-function expectRemoved(r: Awaited<ReturnType<typeof removeWhileRunning>>): void {
+/**
+ * The pointer pulls the draped cloth up and lets go (pull); then a second cloth comes and goes, and the page's cloth
+ * goes on alone and, with no ball under it now, lies on the table (removeWhileRunning). Results in `tag`-pull.json
+ * and `tag`-remove.json.
+ */
+async function pullThenRemove(page: Page, tag: string): Promise<Awaited<ReturnType<typeof removeWhileRunning>>> {
+  const g = await pull(page);
+  writeJson(`${tag}-pull`, g);
+  expect(g.grabbedOnPress).toBe(true);
+  expect(g.after).toBeGreaterThan(g.before + 0.05);
+  expect(g.releasedOnUp).toBe(true);
+  const r = await removeWhileRunning(page);
+  writeJson(`${tag}-remove`, r);
   expect([r.clothsWithSecond, r.clothsAfter, r.particles, r.finite, r.error]).toEqual([2, 1, 25 * 25, true, '']);
   // on the table's top (0.2 m), the silk's thickness above it, not through it
   expect(r.maxY).toBeLessThan(0.3);
   expect(r.minY).toBeGreaterThan(0.19);
+  return r;
 }
 
 /** The cloth lies on the ball (its middle on the top, none of it inside) and hangs down around it. */
@@ -157,7 +169,7 @@ describe('drape/three example page', () => {
     await browser?.close();
   });
 
-  it('WebGL2 launch: the world simulates in the worker, the cloth drapes the page\'s own ball, the pointer pulls it', async () => {
+  it('WebGL2 launch: the world simulates in the worker, the cloth drapes the page\'s own ball, the pointer pulls it, a cloth and the ball are taken out', async () => {
     browser = await launch('webgl', { viewport: VIEWPORT });
     const page = await browser.context.newPage();
     const errors = collectErrors(page);
@@ -168,20 +180,13 @@ describe('drape/three example page', () => {
     expect(d.backend).toBe('cpu');
     expect(d.backendNote).toContain('no WebGPU device');
     expectDraped(d);
-    const g = await pull(page);
-    writeJson('three-webgl-pull', g);
-    expect(g.grabbedOnPress).toBe(true);
-    expect(g.after).toBeGreaterThan(g.before + 0.05);
-    expect(g.releasedOnUp).toBe(true);
-    const r = await removeWhileRunning(page);
-    writeJson('three-webgl-remove', r);
-    expectRemoved(r);
+    await pullThenRemove(page, 'three-webgl');
     expect(errors).toEqual([]);
     await browser.close();
     browser = undefined;
   });
 
-  it('WebGPU launch: the world simulates on the renderer\'s device, drawn from the solver\'s buffers', async () => {
+  it('WebGPU launch: the world simulates on the renderer\'s device, drawn from the solver\'s buffers; the pointer pulls it, a cloth and the ball are taken out', async () => {
     browser = await launch('webgpu', { viewport: VIEWPORT });
     const page = await browser.context.newPage();
     const errors = collectErrors(page);
@@ -193,14 +198,7 @@ describe('drape/three example page', () => {
     expect(d.backendNote).toBe('');
     expectDraped(d);
     // the pointer grabs on the GPU path too (picking from the last readback)
-    const g = await pull(page);
-    writeJson('three-webgpu-pull', g);
-    expect(g.grabbedOnPress).toBe(true);
-    expect(g.after).toBeGreaterThan(g.before + 0.05);
-    expect(g.releasedOnUp).toBe(true);
-    const r = await removeWhileRunning(page);
-    writeJson('three-webgpu-remove', r);
-    expectRemoved(r);
+    const r = await pullThenRemove(page, 'three-webgpu');
     expect(r.backend).toBe('gpu');
     expect(await page.evaluate(() => (window as any).drapeExample.world.gpuDrawing)).toBe(true);
     expect(errors).toEqual([]);
