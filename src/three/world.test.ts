@@ -91,10 +91,11 @@ describe('DrapeWorld: options and what it is made of', () => {
 
     world.removeCollider(ball);
     expect(() => world.removeCollider(ball)).toThrow('DrapeWorld.removeCollider: this mesh is no collider of the world');
-    // b's pin still follows the ball, carried by an anchor like any object's; the box's triangles are forgotten with it
+    // b's pin still follows the ball, carried by an anchor like any object's
     expect(scene().colliders.map((k) => [k.type, k.pins])).toEqual([['floor', []], ['mesh', []], ['plane', [0]]]);
     world.removeCollider(box);
     expect(scene().colliders.map((k) => k.type)).toEqual(['floor', 'plane']);
+    // a mesh taken out can be a collider again
     expect(() => world.addCollider(box)).not.toThrow();
 
     world.removeCloth(b);
