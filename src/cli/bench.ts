@@ -78,7 +78,7 @@ function drapeTiming(sim: Simulation, msPerFrame: number, start: number[]): Drap
   const mode = sim.backend instanceof WasmBackend ? sim.backend.kernel.mode : undefined;
   return {
     msPerFrame,
-    particleSubstepsPerSecond: (sim.model.particleCount * sim.scene.solver.substeps * 1000) / msPerFrame,
+    particleSubstepsPerSecond: (sim.model.particleCount * sim.params.substeps * 1000) / msPerFrame,
     finite,
     stable: isStable(finite, c, start, sim.model.size),
     centroid: c,
@@ -309,7 +309,7 @@ export async function runSceneBench(opts: SceneBenchOptions, out: (s: string) =>
       scene: name,
       particles: xpbd.sim.model.particleCount,
       colliders: scene.colliders.length,
-      substeps: scene.solver.substeps,
+      substeps: xpbd.sim.params.substeps,
       xpbd: { ...timing(xpbd), kernel: xpbd.kernel, threads: xpbd.threads },
       xpbdTs: timing(await timeDrape(scene, opts.frames, opts.warmup, { kernel: 'ts' })),
       massSpring: timing(await timeDrape(ms, opts.frames, opts.warmup, { kernel: 'ts' })),

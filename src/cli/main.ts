@@ -134,6 +134,8 @@ interface RunResult {
   triangles: number;
   constraints: number;
   msPerFrame: number;
+  /** substeps per frame the run took: solver.substeps, or more where self-contact needs them (a note in clamps) */
+  substeps: number;
   /** CPU kernel and threads ('gpu' on the GPU) */
   kernel: string;
   threads: number;
@@ -211,6 +213,7 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
     triangles: r.triangles,
     constraints: r.constraints,
     msPerFrame: round(ms, 4),
+    substeps: sim.params.substeps,
     kernel,
     threads,
     finite: r.finite,
@@ -307,7 +310,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     // --json still prints one object: what blew up and when, with no NaN in it
     if (values.json) {
       out(safeJson({
-        scene: scene.name, solver: scene.solver.type, backend, frames, substeps: scene.solver.substeps, resolution: unstable.resolution,
+        scene: scene.name, solver: scene.solver.type, backend, frames, substeps: unstable.substeps, resolution: unstable.resolution,
         finite: false, unstableFrame: gpu ? null : unstable.sim.unstableFrame, error: line,
       }));
     }
@@ -339,7 +342,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   const { sim: _sim, resolution: _r, bake: _b, clamps, ...fields } = main;
   if (values.json) {
     out(safeJson({
-      scene: scene.name, solver: scene.solver.type, backend, frames, substeps: scene.solver.substeps, ...fields, clamps,
+      scene: scene.name, solver: scene.solver.type, backend, frames, ...fields, clamps,
       ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.triangles / 2, ...r })) } : {}),
       ...(exported ? { exported: values.export } : {}),
       ...(baked ? { baked: values.bake, bakedFrames: bake!.frameNumbers.length + 1 } : {}),
@@ -350,7 +353,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     for (const c of clamps) err(`drape: note: ${c}`);
     const f = (v: number) => (Math.abs(v) < 1e-3 && v !== 0 ? v.toExponential(2) : v.toFixed(4));
     const where = backend === 'gpu' ? 'gpu' : `cpu (${main.kernel === 'wasm' ? `wasm SIMD, ${main.threads} thread${main.threads === 1 ? '' : 's'}` : 'TypeScript'})`;
-    out(`scene ${plainText(scene.name, 100)}: ${scene.solver.type} on ${where}, ${scene.solver.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
+    out(`scene ${plainText(scene.name, 100)}: ${scene.solver.type} on ${where}, ${main.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
     out(`  cloth        ${main.particles} particles, ${main.triangles} triangles, ${main.constraints} springs`);
     for (const c of main.cloths ?? []) {
       out(`    ${plainText(c.name, 40)}: particles ${c.first}…${c.first + c.particles - 1}, ${c.triangles} triangles, centroid [${c.centroid.map(f).join(', ')}] m`);

@@ -2,6 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { buildGridModel } from './model.js';
 import { axisSpringStiffness, resolveParams } from './params.js';
 import { validateScene } from './scene.js';
+import { modelFor } from './cloth-shape.js';
 import { STRUCTURAL, SHEAR } from './layout.generated.js';
 
 describe('the grid\'s axis springs leave the diagonals their share of the tensile stiffness', () => {
@@ -23,5 +24,46 @@ describe('the grid\'s axis springs leave the diagonals their share of the tensil
     expect(first(raw, STRUCTURAL)).toBe(600);
     const noShear = resolveParams(model, validateScene({ material: { fabric: 'rubber', shearStiffness: 0 } }));
     expect(first(noShear, STRUCTURAL)).toBe(600);
+  });
+});
+
+describe('substeps for self-contact (solver.selfContactSpeed)', () => {
+  const params = (res: number, solver: object, cloth: object = {}) => {
+    const scene = validateScene({ cloth: { resolution: res, ...cloth }, solver: { selfContact: true, ...solver } });
+    return resolveParams(modelFor(scene), scene);
+  };
+
+  it('raise the substeps, with a note, until cloth at that speed moves at most the contact distance in a substep', () => {
+    // a 1 m grid: h is the 5 mm thickness up to 64² faces a side (20 substeps: 6 m/s moves 5 mm), then half the
+    // smallest rest altitude, (1 m / N)/√2 / 2 — 3.68 mm at 96², 2.76 mm at 128²
+    for (const [res, n] of [[32, 20], [64, 20], [96, 28], [128, 37]]) {
+      const p = params(res, {});
+      expect(p.substeps, `${res}²`).toBe(n);
+      expect(p.substeps).toBe(Math.ceil((6 / 60) / Math.min(0.005, 1 / res / Math.SQRT2 / 2) - 1e-9));
+      expect(p.clamps.length).toBe(n > 20 ? 1 : 0);
+    }
+    expect(params(128, {}).clamps[0]).toBe('self-contact at 20 substeps: cloth moving at 6 m/s (solver.selfContactSpeed) would travel 1.81 times ' +
+      'the contact distance (2.76 mm) in one substep and could pass through itself, so it runs at 37 substeps — fewer with a thicker ' +
+      'cloth (cloth.thickness), a coarser mesh, a lower solver.selfContactSpeed, or self-contact off');
+  });
+
+  it('a thinner cloth needs more; more than the schema allows stops at its most and says how many it needed', () => {
+    expect(params(32, {}, { thickness: 0.001 }).substeps).toBe(100);
+    const p = params(32, {}, { thickness: 0.0002 });
+    expect(p.substeps).toBe(200);
+    expect(p.clamps[0]).toContain('so it runs at 200 substeps (the most there can be; 500 would keep it apart)');
+  });
+
+  it('keep what the scene asks when it is enough, when the speed is 0, without self-contact and with a zero thickness', () => {
+    expect(params(128, { substeps: 50 }).substeps).toBe(50);
+    expect(params(128, { selfContactSpeed: 3 }).substeps).toBe(20);
+    expect(params(128, { selfContactSpeed: 0, substeps: 7 })).toMatchObject({ substeps: 7, clamps: [] });
+    expect(params(128, { selfContact: false, substeps: 7 })).toMatchObject({ substeps: 7, clamps: [] });
+    expect(params(128, { substeps: 7 }, { thickness: 0 })).toMatchObject({ substeps: 7, clamps: [] });
+  });
+
+  it('between two cloths the thinner one sets it', () => {
+    const scene = validateScene({ solver: { selfContact: true }, cloths: [{ cloth: { resolution: 8 } }, { cloth: { resolution: 8, thickness: 0.002, position: [0, 1, 0] } }] });
+    expect(resolveParams(modelFor(scene), scene).substeps).toBe(50);
   });
 });

@@ -4,6 +4,8 @@ import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
 import { BEND, SHEAR, SPRING_KINDS, STRUCTURAL, bendingStencils, type ClothModel } from './model.js';
 import { resolvePins } from './pins.js';
 import { PHASE } from './layout.generated.js';
+import { MAX_SUBSTEPS } from './scene-schema.js';
+import { contactDistanceFor, selfContactSubsteps } from './self-contact.js';
 import { SceneError, clothEntries, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
 
 /** Particles carried by colliders: particle i = particles[k] sits at local[3k..3k+2] in collider[k]'s own frame. */
@@ -238,10 +240,6 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
   const stiffness = new Float32Array(springCount);
   for (let s = 0; s < springCount; s++) stiffness[s] = kindKs[owner[model.springs[2 * s]]][model.springKinds[s]] * model.stiffnessScales[s];
 
-  const substeps = scene.solver.substeps;
-  const h = dt / substeps;
-  const damping = m.damping;
-
   const perCloth = {
     thickness: Float64Array.from(entries, (e) => e.cloth.thickness),
     friction: Float64Array.from(entries, (e) => e.material.friction),
@@ -249,6 +247,23 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     damping: Float64Array.from(entries, (e) => e.material.damping),
     stretchFactor: Float64Array.from(entries, (e) => e.material.stretchFactor),
   };
+  // self-contact keeps two layers apart only while they move less than the contact distance in one substep
+  // (docs/physics.md, "Substeps for self-contact"): on a fine mesh or a thin cloth, more substeps than the scene asks
+  const asked = scene.solver.substeps, speed = scene.solver.selfContactSpeed;
+  const hContact = scene.solver.selfContact ? contactDistanceFor(model, perCloth.thickness) : 0;
+  const forContact = selfContactSubsteps(hContact, speed, dt);
+  const substeps = Math.max(asked, Math.min(forContact, MAX_SUBSTEPS));
+  if (forContact > asked) {
+    clamps.push(
+      `self-contact at ${asked} substeps: cloth moving at ${Number(speed.toPrecision(3))} m/s (solver.selfContactSpeed) would travel ` +
+      `${fmt((speed * dt) / asked / hContact)} times the contact distance (${fmt(hContact * 1000)} mm) in one substep and could pass ` +
+      `through itself, so it runs at ${substeps} substeps${forContact > MAX_SUBSTEPS ? ` (the most there can be; ${forContact} would keep it apart)` : ''} — ` +
+      'fewer with a thicker cloth (cloth.thickness), a coarser mesh, a lower solver.selfContactSpeed, or self-contact off',
+    );
+  }
+  const h = dt / substeps;
+  const damping = m.damping;
+
   const springDamping = new Float64Array(springCount);
   for (let s = 0; s < springCount; s++) springDamping[s] = perCloth.damping[owner[model.springs[2 * s]]];
   if (scene.solver.type === 'mass-spring') {

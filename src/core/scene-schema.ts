@@ -25,6 +25,8 @@ export const PIN_PRESETS = [
 export const MAX_KEYFRAMES = 10000;
 /** Most cloths one scene may have (`cloths`). */
 export const MAX_CLOTHS = 8;
+/** the most substeps per frame a scene may ask for (solver.substeps) and self-contact may raise them to [-] */
+export const MAX_SUBSTEPS = 200;
 
 /** A pin list: presets, particle indices or regions (the scene's `pins`, a collider's `pins`). */
 const pinList = (description: string) => ({
@@ -173,11 +175,12 @@ export const sceneSchema: SceneSchema = {
       default: {},
       properties: {
         type: { enum: ['xpbd', 'mass-spring'], default: 'xpbd', description: "'xpbd' (Macklin et al. 2016, small steps 2019) or 'mass-spring' (the seed: Verlet, Hooke springs, stretch limiting)" },
-        substeps: { type: 'integer', minimum: 1, maximum: 200, default: 20, description: 'substeps per 1/60 s frame [-]' },
+        substeps: { type: 'integer', minimum: 1, maximum: MAX_SUBSTEPS, default: 20, description: 'substeps per 1/60 s frame; with solver.selfContact, raised where solver.selfContactSpeed needs more [-]' },
         iterations: { type: 'integer', minimum: 1, maximum: 20, default: 1, description: 'constraint passes per substep (XPBD: Gauss–Seidel sweeps; mass-spring: stretch-limiting passes) [-]' },
         bending: { enum: ['springs', 'hinges', 'laplacian'], default: 'springs', description: "the xpbd solver's bending model: 'springs' (the seed's skip-one bend springs), 'hinges' (the isometric bending model of Bergou et al. 2006 on the triangles' hinges: energy ½·B·κ² per area, B = material.bendingRigidity; stiffer across a fold that no edge follows) or 'laplacian' (the cotangent Laplacian at the interior vertices, Wardetzky et al. 2007: the same energy, the same in every direction on the grid); the mass-spring solver always bends with springs" },
         stretch: { enum: ['gauss-seidel', 'global'], default: 'gauss-seidel', description: "how the xpbd solver solves its springs each substep: 'gauss-seidel' (XPBD, one spring at a time, solver.iterations sweeps) or 'global' (all together: solver.iterations local/global passes of Projective Dynamics, Bouaziz et al. 2014, on a system factored once; converges where a sweep lets a fine or soft cloth overstretch, so the tethers and the stretch limit are not applied; CPU backends only)" },
         selfContact: { type: 'boolean', default: false, description: "the cloth kept from passing through itself: each particle against the triangles near it and each edge against the edges near it, with side memory and the cloth's friction, every substep before collider contact (both solvers, every backend; docs/physics.md \"Self-contact\")" },
+        selfContactSpeed: { type: 'number', minimum: 0, maximum: 100, default: 6, description: "with solver.selfContact, the speed of cloth against cloth that self-contact is made to catch: the substeps are raised (with a note) until cloth this fast moves at most the self-contact distance in one substep, on a fine mesh or a thin cloth; 0 keeps solver.substeps as it is (docs/physics.md \"Substeps for self-contact\") [m/s]" },
         depenetrationSpeed: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'fastest the cloth is pushed out of a collider it did not move into (a cloth that starts inside one, or that a collider is moved into); contact the cloth moves into is undone at once [m/s]' },
       },
     },

@@ -30,7 +30,7 @@ export interface Scene {
    * top-level parts is not read
    */
   cloths?: ClothEntry[];
-  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; selfContact: boolean; depenetrationSpeed: number };
+  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; selfContact: boolean; selfContactSpeed: number; depenetrationSpeed: number };
   gravity: Vec3;
   wind: Wind;
   colliders: ColliderSpec[];

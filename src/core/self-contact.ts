@@ -192,9 +192,26 @@ export function selfContactDistance(model: ClothModel, params: SimParams): numbe
  * the mean of theirs, never below the thinner one's), at most half the smallest rest altitude.
  */
 export function smallestSelfContactDistance(model: ClothModel, params: SimParams): number {
-  let h = selfContactDistance(model, params);
-  for (const t of params.perCloth.thickness) h = Math.min(h, t);
+  return contactDistanceFor(model, params.perCloth.thickness);
+}
+
+/**
+ * The smallest self-contact distance on `model` for cloths of these thicknesses [m] (one per cloth): the thinnest,
+ * at most half the smallest rest altitude of a triangle (smallestSelfContactDistance, before the params exist).
+ */
+export function contactDistanceFor(model: ClothModel, thickness: ArrayLike<number>): number {
+  let h = 0.5 * restMeasures(model).minAltitude;
+  for (let c = 0; c < thickness.length; c++) h = Math.min(h, thickness[c]);
   return h;
+}
+
+/**
+ * The fewest substeps in a frame of dt [s] at which cloth moving at `speed` [m/s] (solver.selfContactSpeed) moves at
+ * most the contact distance h [m] in one substep; 0 when there is no such distance (a zero thickness: no
+ * self-contact) or no speed.
+ */
+export function selfContactSubsteps(h: number, speed: number, dt: number): number {
+  return h > 0 && Number.isFinite(h) && speed > 0 ? Math.ceil((speed * dt) / h - 1e-9) : 0;
 }
 
 /** scratch for one pair's correction: barycentric weights of the triangle's point, the direction */

@@ -271,6 +271,7 @@ export class Panel {
     this.addParam(solver, 'solver.bending', 'bending');
     this.addParam(solver, 'solver.stretch', 'stretch');
     this.addParam(solver, 'solver.selfContact', 'self-contact');
+    this.addParam(solver, 'solver.selfContactSpeed', 'self-contact speed', { unit: 'm/s' });
     p.backend = host.backendChoice;
     this.tag(solver.add(p, 'backend', { 'auto (GPU when there is a hardware WebGPU)': 'auto', 'GPU (WebGPU compute, xpbd)': 'gpu', 'CPU (worker)': 'cpu' })
       .name('backend').onChange((v: 'auto' | 'gpu' | 'cpu') => host.setBackend(v)), 'backend',
