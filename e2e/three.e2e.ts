@@ -1,7 +1,8 @@
 /**
  * The three.js addon's example page (examples/three, built into dist/web/examples/three): a cloth of `drape/three`
  * on the page's own ball and table, its own camera and renderer. Under the WebGL2 launch the world simulates in
- * the CPU worker; under the WebGPU launch (SwiftShader) on the renderer's device, drawn from the solver's buffers.
+ * the CPU worker; under the WebGPU launch (SwiftShader) 'auto' passes the software device by for the worker, and
+ * with ?backend=gpu the world simulates on the renderer's device, drawn from the solver's buffers.
  * Either way the cloth falls onto the ball and drapes over it, rises with it when the page moves the ball (its
  * collider follows the mesh), and the page logs no error (CSP violations included).
  */
@@ -39,9 +40,20 @@ interface Drop {
   error: string;
 }
 
-/** Opens the example with its test hook, steps it FRAMES frames and measures where the cloth is. */
-async function drop(page: Page): Promise<Drop> {
-  await page.goto(`${inject('baseURL')}examples/three/?testhook`);
+/** Opens the example with its test hook and `query`, and says where its world chose to simulate, and why. */
+async function open(page: Page, query = ''): Promise<{ backend: string | null; backendNote: string }> {
+  await page.goto(`${inject('baseURL')}examples/three/?testhook${query}`);
+  // until the chosen backend has stepped the cloth (the page's own loop steps it)
+  await page.waitForFunction(() => (window as any).drapeExample?.world.frame > 0, null, { timeout: 60_000, polling: POLL_MS });
+  return page.evaluate(() => {
+    const { world } = (window as any).drapeExample;
+    return { backend: world.backend, backendNote: world.backendNote };
+  });
+}
+
+/** Opens the example with its test hook and `query`, steps it FRAMES frames and measures where the cloth is. */
+async function drop(page: Page, query = ''): Promise<Drop> {
+  await page.goto(`${inject('baseURL')}examples/three/?testhook${query}`);
   await page.waitForFunction(() => (window as any).drapeExample !== undefined, null, { timeout: 60_000, polling: POLL_MS });
   return page.evaluate(async ({ frames, ball, lift, liftFrames }) => {
     const { world, cloth, ball: mesh } = (window as any).drapeExample;
@@ -106,7 +118,7 @@ async function pull(page: Page): Promise<{ grabbedOnPress: boolean; releasedOnUp
  * On the running world: a second cloth added and taken out again (the world goes on with the page's cloth alone),
  * then the ball taken out as a collider, so that the cloth falls past it onto the table (the page's box, top 0.2 m).
  */
-async function removeWhileRunning(page: Page): Promise<{ clothsWithSecond: number; clothsAfter: number; particles: number; finite: boolean; maxY: number; minY: number; error: string; backend: string }> {
+async function removeWhileRunning(page: Page): Promise<{ clothsWithSecond: number; clothsAfter: number; particles: number; finite: boolean; maxY: number; minY: number; error: string; backend: string; backendNote: string }> {
   return page.evaluate(async () => {
     const { world, cloth, ball } = (window as any).drapeExample;
     // (the page's fabric: the GPU takes several cloths of one fabric; another would move the world to the CPU)
@@ -120,7 +132,7 @@ async function removeWhileRunning(page: Page): Promise<{ clothsWithSecond: numbe
     const x: Float32Array = cloth.positions;
     let maxY = -Infinity, minY = Infinity;
     for (let i = 1; i < x.length; i += 3) { maxY = Math.max(maxY, x[i]); minY = Math.min(minY, x[i]); }
-    return { clothsWithSecond, clothsAfter: world.cloths.length, particles: x.length / 3, finite: x.every(Number.isFinite), maxY, minY, error: world.error, backend: world.backend };
+    return { clothsWithSecond, clothsAfter: world.cloths.length, particles: x.length / 3, finite: x.every(Number.isFinite), maxY, minY, error: world.error, backend: world.backend, backendNote: world.backendNote };
   });
 }
 
@@ -186,12 +198,21 @@ describe('drape/three example page', () => {
     browser = undefined;
   });
 
-  it('WebGPU launch: the world simulates on the renderer\'s device, drawn from the solver\'s buffers; the pointer pulls it, a cloth and the ball are taken out', async () => {
+  it('WebGPU launch: auto takes the worker on a software GPU; backend \'gpu\' simulates on the renderer\'s device, drawn from the solver\'s buffers; the pointer pulls it, a cloth and the ball are taken out', async () => {
     browser = await launch('webgpu', { viewport: VIEWPORT });
+    // SwiftShader is a software adapter: 'auto' passes it by for the worker, and says why
+    const autoPage = await browser.context.newPage();
+    const autoErrors = collectErrors(autoPage);
+    const auto = await open(autoPage);
+    writeJson('three-webgpu-auto', auto);
+    expect(auto.backend).toBe('cpu');
+    expect(auto.backendNote).toContain('auto: the WebGPU device is a software fallback');
+    expect(autoErrors).toEqual([]);
+    await autoPage.close();
     const page = await browser.context.newPage();
     const errors = collectErrors(page);
     const t0 = Date.now();
-    const d = await drop(page);
+    const d = await drop(page, '&backend=gpu');
     writeJson('three-webgpu', { ...d, wallMs: Date.now() - t0 });
     await page.screenshot({ path: `${RESULTS}/three-webgpu.png` });
     expect(d.backend).toBe('gpu');

@@ -30,7 +30,9 @@ table.position.set(0, 0.1, 0);
 scene.add(ball, table);
 
 // the cloth: a world on your renderer (its WebGPU device, else a worker), colliders from your meshes
-const world = new DrapeWorld({ renderer });
+// 'auto' simulates on the GPU unless it is a software one (then in a worker); ?backend=gpu insists on the GPU
+const backend = new URLSearchParams(location.search).get('backend') === 'gpu' ? 'gpu' : 'auto';
+const world = new DrapeWorld({ renderer, backend });
 world.addCollider(ball); // a sphere, inferred from its geometry
 world.addCollider(table); // a box
 const cloth = world.addCloth({ fabric: 'silk', width: 1.1, height: 1.1, resolution: 24, position: [0, 1.05, 0] });

@@ -8,6 +8,7 @@ import {
 } from 'three/webgpu';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { PosedCollider } from '../core/index.js';
+import { isSoftwareAdapter, type AdapterInfoLike } from '../gpu/adapter.js';
 import { colliderGeometry } from './collider-geometry.js';
 import { backdropTexture, floorTexture, repaintTextures } from './textures.js';
 
@@ -120,10 +121,9 @@ export class Stage {
       try {
         const adapter = await navigator.gpu.requestAdapter();
         if (adapter) {
-          // isFallbackAdapter moved from the adapter to its info; older Chromium has neither for SwiftShader
-          const a = adapter as unknown as { isFallbackAdapter?: boolean; info?: { isFallbackAdapter?: boolean; vendor?: string; architecture?: string; description?: string } };
-          const text = `${a.info?.vendor ?? ''} ${a.info?.architecture ?? ''} ${a.info?.description ?? ''}`;
-          this.softwareAdapter = Boolean(a.info?.isFallbackAdapter ?? a.isFallbackAdapter) || /swiftshader|llvmpipe|lavapipe/i.test(text);
+          // isFallbackAdapter moved from the adapter to its info
+          const a = adapter as unknown as { isFallbackAdapter?: boolean; info?: AdapterInfoLike };
+          this.softwareAdapter = isSoftwareAdapter(a.info, a.isFallbackAdapter);
           requiredLimits = {
             maxStorageBufferBindingSize: adapter.limits.maxStorageBufferBindingSize,
             maxBufferSize: adapter.limits.maxBufferSize,

@@ -11,6 +11,7 @@ import {
   FRAME_DT, Simulation, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
   type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
+import { isSoftwareAdapter, type AdapterInfoLike } from '../gpu/adapter.js';
 import { DrapeCloth } from './cloth.js';
 import { COLLIDER_SHAPE_OPTIONS, colliderOfMesh } from './colliders.js';
 import { Follower } from './follow.js';
@@ -448,8 +449,13 @@ export class DrapeWorld {
   private choose(scene: Scene): { kind: 'gpu' | 'cpu'; note: string } {
     const choice = this.options.backend ?? 'auto';
     if (choice === 'cpu') return { kind: 'cpu', note: '' };
-    const why = this.device() ? GpuSim.supports(scene) : 'no WebGPU device: the renderer is not a WebGPURenderer on WebGPU';
-    return why ? { kind: 'cpu', note: `GPU unavailable: ${why}` } : { kind: 'gpu', note: '' };
+    const device = this.device();
+    const why = device ? GpuSim.supports(scene) : 'no WebGPU device: the renderer is not a WebGPURenderer on WebGPU';
+    if (why) return { kind: 'cpu', note: `GPU unavailable: ${why}` };
+    if (choice === 'auto' && isSoftwareAdapter((device as GPUDevice & { adapterInfo?: AdapterInfoLike }).adapterInfo)) {
+      return { kind: 'cpu', note: "auto: the WebGPU device is a software fallback (e.g. SwiftShader), slower than the CPU worker; backend: 'gpu' uses it anyway" };
+    }
+    return { kind: 'gpu', note: '' };
   }
 
   /** the renderer's WebGPU backend, when it is a WebGPURenderer on WebGPU */

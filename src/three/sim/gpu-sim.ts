@@ -76,6 +76,7 @@ export class GpuSim implements SimDriver {
     const sims = scenes.map((scene) => new Simulation(scene, { kernel: 'ts', meshes: this.meshes.resolve }));
     this.destroySolvers();
     this.mirrors.length = 0;
+    this.slots.length = 0;
     for (const sim of sims) {
       this.mirrors.push({ sim, modelGen: 0, frame: 0, grabbed: -1, unstableAt: -1 });
       this.slots.push({ backend: null, model: null, creating: null, stale: false, lastGood: sim.state.positions.slice() });
@@ -253,7 +254,8 @@ export class GpuSim implements SimDriver {
         else slot.lastGood = m.sim.state.positions.slice();
       }));
     } catch (e) {
-      if (!this.lost && !this.disposed) this.onError?.(`GPU readback: ${(e as Error).message}`);
+      // a read of solvers let go meanwhile (a load or a rebuild destroyed their buffers) is moot, not a failure
+      if (!this.lost && !this.disposed && gen === this.readGen) this.onError?.(`GPU readback: ${(e as Error).message}`);
       return;
     } finally {
       this.reading = false;
