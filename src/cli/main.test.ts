@@ -93,14 +93,14 @@ describe('drape CLI', () => {
     const r = await run('bench', '--self-contact', '--scenes', 'layers', '--sizes', '8', '--frames', '40', '--no-peer', '--json');
     expect(r.code, r.err).toBe(0);
     const [row] = JSON.parse(r.out).rows;
-    expect(row).toMatchObject({ scene: 'layers', resolution: 8, particles: 3 * 81, kernel: 'wasm', finite: true, onMaxIntersections: 0, onIntersections: 0 });
+    expect(row).toMatchObject({ scene: 'layers', resolution: 8, particles: 3 * 81, kernel: 'wasm', finite: true, onMaxIntersections: 0, onIntersections: 0, offSubsteps: 20, onSubsteps: 20 });
     // the three cloths have landed on each other: without self-contact they cross
     expect(row.offIntersections).toBeGreaterThan(100);
     expect(row.ratio).toBeCloseTo(row.onMsPerFrame / row.offMsPerFrame, 6);
     expect(JSON.parse(r.out).strip).toBeUndefined();
     // the table, and the Ten Minute Physics demo's strip by its method and by Drape's (peers/particle-hash.ts)
     const table = await run('bench', '--self-contact', '--sizes', '4', '--frames', '1');
-    expect(table.out).toMatch(/^\| fold \| 4 \| 25 \| wasm, 1 thread \| [\d.]+ \| [\d.]+ \| [\d.]+× \| \d+ \| 0 \| 0 \| yes \|$/m);
+    expect(table.out).toMatch(/^\| fold \| 4 \| 25 \| wasm, 1 thread \| 20 \/ 20 \| [\d.]+ \| [\d.]+ \| [\d.]+× \| \d+ \| 0 \| 0 \| yes \|$/m);
     expect(table.out).toMatch(/^\| Ten Minute Physics 15: particle hash.* \| 6000 \| [\d.]+ \| \d+ \| \d+ \| [\d.]+ \| yes \|$/m);
     expect(table.out).toMatch(/^\| Drape XPBD, cotton, self-contact on \(wasm, \d threads?\) \| 6000 \| [\d.]+ \| 0 \| 0 \| [\d.]+ \| yes \|$/m);
     expect(table.out).toMatch(/^\| Drape XPBD, cotton, self-contact off .* \| 6000 \|/m);
@@ -118,6 +118,19 @@ describe('drape CLI', () => {
     const j = JSON.parse((await run('run', 'pins', '--frames', '0', '--solver', 'mass-spring', '--set', 'cloth.position=[0,2,0]', '--json')).out);
     expect(j).toMatchObject({ frames: 0, solver: 'mass-spring', msPerFrame: 0, maxStrain: 0 });
     expect(j.centroid[1]).toBeCloseTo(2, 5);
+  });
+
+  it('says how many substeps it ran: more than asked where self-contact needs them, with the note why', async () => {
+    // a 1 mm cloth: 6 m/s (solver.selfContactSpeed) moves 1 mm in 1/6000 s, so 100 substeps
+    const thin = ['run', 'cotton-basic', '--frames', '1', '--set', 'cloth.resolution=4', '--set', 'cloth.thickness=0.001'];
+    const j = JSON.parse((await run(...thin, '--json')).out);
+    expect(j.substeps).toBe(100);
+    expect(j.resolvedScene.solver).toMatchObject({ substeps: 20, selfContact: true, selfContactSpeed: 6 });
+    expect(j.clamps).toEqual([expect.stringMatching(/^self-contact at 20 substeps: .* so it runs at 100 substeps/)]);
+    const text = await run(...thin);
+    expect(text.out).toMatch(/^scene cotton-basic: xpbd on cpu \(.*\), 100 substeps, 1 frames/m);
+    expect(text.err).toMatch(/^drape: note: self-contact at 20 substeps: /m);
+    expect(JSON.parse((await run(...thin, '--set', 'solver.selfContactSpeed=0', '--json')).out)).toMatchObject({ substeps: 20, clamps: [] });
   });
 
   it('the resolution scene runs its sweep from 1 to 4096 faces', async () => {
