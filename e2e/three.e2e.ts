@@ -18,6 +18,8 @@ const FRAMES = 90;
 /** then the page's ball rises this much [m], a step each frame over this many frames, carrying the cloth up */
 const LIFT = 0.15;
 const LIFT_FRAMES = 15;
+/** then the page scales the ball by this [-] */
+const GROW = 1.2;
 /** a small page: SwiftShader draws each frame on the CPU the simulation needs too */
 const VIEWPORT = { width: 480, height: 300 };
 
@@ -36,6 +38,9 @@ interface Drop {
   /** after the ball rose LIFT over LIFT_FRAMES frames: its top's gap to the cloth above it, and the cloth's highest particle [m] */
   liftedGap: number;
   liftedMaxY: number;
+  /** after the page scaled the ball up to GROW times over LIFT_FRAMES frames (the collider made again at each size): the gap at its top, and the deepest inside [m] */
+  grownGap: number;
+  grownInside: number;
   backendNote: string;
   error: string;
 }
@@ -55,23 +60,23 @@ async function open(page: Page, query = ''): Promise<{ backend: string | null; b
 async function drop(page: Page, query = ''): Promise<Drop> {
   await page.goto(`${inject('baseURL')}examples/three/?testhook${query}`);
   await page.waitForFunction(() => (window as any).drapeExample !== undefined, null, { timeout: 60_000, polling: POLL_MS });
-  return page.evaluate(async ({ frames, ball, lift, liftFrames }) => {
+  return page.evaluate(async ({ frames, ball, lift, liftFrames, grow }) => {
     const { world, cloth, ball: mesh } = (window as any).drapeExample;
     // the page's own loop would step it too, in real time (slowly here): only these frames, at once
     world.paused = true;
     await world.step(frames);
-    const measure = (cy: number) => {
+    const measure = (cy: number, radius = ball.radius) => {
       const x: Float32Array = cloth.positions;
       let minY = Infinity, maxY = -Infinity, top = -1, topD = Infinity, inside = 0;
       for (let i = 0; i < x.length; i += 3) {
         minY = Math.min(minY, x[i + 1]);
         maxY = Math.max(maxY, x[i + 1]);
-        const d = Math.hypot(x[i] - ball.center[0], x[i + 1] - cy, x[i + 2] - ball.center[2]) - ball.radius;
+        const d = Math.hypot(x[i] - ball.center[0], x[i + 1] - cy, x[i + 2] - ball.center[2]) - radius;
         inside = Math.max(inside, -d);
         const r = Math.hypot(x[i] - ball.center[0], x[i + 2] - ball.center[2]);
         if (r < topD) { topD = r; top = i; }
       }
-      const topGap = Math.hypot(x[top] - ball.center[0], x[top + 1] - cy, x[top + 2] - ball.center[2]) - ball.radius;
+      const topGap = Math.hypot(x[top] - ball.center[0], x[top + 1] - cy, x[top + 2] - ball.center[2]) - radius;
       return { minY, maxY, topGap, inside, particles: x.length / 3 };
     };
     const draped = measure(ball.center[1]);
@@ -82,11 +87,18 @@ async function drop(page: Page, query = ''): Promise<Drop> {
     }
     await world.step(10);
     const lifted = measure(ball.center[1] + lift);
+    // the page scales its mesh, as an animation would: the world makes the collider again at each new size
+    for (let f = 1; f <= liftFrames; f++) {
+      mesh.scale.setScalar(1 + ((grow - 1) * f) / liftFrames);
+      await world.step(1);
+    }
+    await world.step(10);
+    const grown = measure(ball.center[1] + lift, ball.radius * grow);
     return {
       backend: world.backend, gpuDrawing: world.gpuDrawing, frame: world.frame, ...draped,
-      liftedGap: lifted.topGap, liftedMaxY: lifted.maxY, backendNote: world.backendNote, error: world.error,
+      liftedGap: lifted.topGap, liftedMaxY: lifted.maxY, grownGap: grown.topGap, grownInside: grown.inside, backendNote: world.backendNote, error: world.error,
     };
-  }, { frames: FRAMES, ball: BALL, lift: LIFT, liftFrames: LIFT_FRAMES });
+  }, { frames: FRAMES, ball: BALL, lift: LIFT, liftFrames: LIFT_FRAMES, grow: GROW });
 }
 
 /**
@@ -172,6 +184,10 @@ function expectDraped(d: Drop): void {
   expect(d.liftedGap).toBeGreaterThan(0);
   expect(d.liftedGap).toBeLessThan(0.03);
   expect(d.liftedMaxY).toBeGreaterThan(d.maxY + LIFT - 0.03);
+  // the ball grown by 6 cm in radius: the cloth lies on its new top, none of it inside
+  expect(d.grownGap).toBeGreaterThan(0);
+  expect(d.grownGap).toBeLessThan(0.03);
+  expect(d.grownInside).toBeLessThan(0.01);
 }
 
 describe('drape/three example page', () => {

@@ -62,7 +62,8 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
     paused: sim.paused,
     particles, triangles, springs, cloths,
     solver: scene.solver.type,
-    substeps: scene.solver.substeps,
+    // the substeps run: solver.substeps, or more for self-contact (the note says why)
+    substeps: first?.sim.params.substeps ?? scene.solver.substeps,
     clamps: sim.stats.clamps,
     view: app.view,
     maxStrain: sim.stats.maxStrain,

@@ -54,7 +54,7 @@ const vec = (x: Vector3): Vec3 => [x.x, x.y, x.z];
  * `shape` 'auto' infers it (inferShape). Every shape fits the geometry's bounds, which for three.js's own
  * geometries is the shape itself: a sphere its bounding sphere, a box its bounding box (turned with the mesh), a
  * capsule or cylinder along the mesh's own y axis, as wide as the wider of its x and z extents and as long as its y
- * extent (a capsule's caps included); a mesh its triangles. The mesh's scale is read here, once: a collider keeps its size. `meshName` names the triangles of a
+ * extent (a capsule's caps included); a mesh its triangles. The mesh's scale is read here: when it changes, DrapeWorld makes the collider again. `meshName` names the triangles of a
  * mesh shape in the scene. Throws an Error naming the mesh for a geometry without positions.
  */
 export function colliderOfMesh(mesh: Mesh, shapeOption: ColliderShapeOption, meshName: string): MeshColliderSource {

@@ -62,4 +62,24 @@ describe('a collider following its object', () => {
     expect(jump.translation![0]).toBeCloseTo(1, 12);
     expect(jump.velocity).toEqual([0, 0, 0]);
   });
+
+  it('says when the object\'s world scale is no longer the collider\'s, and takes a new one when told', () => {
+    const parent = new Mesh(new SphereGeometry(0.3));
+    const obj = new Mesh(new SphereGeometry(0.3));
+    parent.add(obj);
+    parent.updateMatrixWorld(true);
+    const follow = new Follower(obj, [0, 0, 0]);
+    expect(follow.rescaled()).toBe(false);
+    // moved and turned: a motion, not a new size
+    obj.position.set(1, 2, 3);
+    obj.rotation.set(0.3, 0.2, 0.1);
+    parent.updateMatrixWorld(true);
+    expect(follow.rescaled()).toBe(false);
+    // a parent's scale is the object's world scale
+    parent.scale.set(1, 1.001, 1);
+    parent.updateMatrixWorld(true);
+    expect(follow.rescaled()).toBe(true);
+    follow.keepScale();
+    expect(follow.rescaled()).toBe(false);
+  });
 });

@@ -3,8 +3,8 @@
  * motion that takes the object from where it stood when the collider was made to where it stands (translation of
  * the collider's pivot, rotation about it, Euler degrees as the core's), and the velocity and angular velocity of
  * that motion since the last look — so that over the frames stepped for the time since, the collider glides from
- * the object's last pose to its pose now, and friction drags the cloth with it. The object's scale is not followed
- * (a collider keeps the size it was made with). Pure.
+ * the object's last pose to its pose now, and friction drags the cloth with it. A change of the object's scale is
+ * not a motion: `rescaled` says the collider is to be made again at the new size (DrapeWorld does). Pure.
  */
 import { Matrix4, Quaternion, Vector3, type Object3D } from 'three';
 import type { ColliderPose, Vec3 } from '../core/index.js';
@@ -16,6 +16,8 @@ export class Follower {
   /** the object's world rotation and position when the collider was made */
   private readonly q0Inverse = new Quaternion();
   private readonly o0 = new Vector3();
+  /** the object's world scale the collider's size is of */
+  private readonly s0 = new Vector3();
   private readonly pivot: Vector3;
   /** the motion at the last look: translation, rotation */
   private readonly t = new Vector3();
@@ -25,9 +27,24 @@ export class Follower {
   /** `pivot`: the point [m] the collider's scene entry turns about (its centre, a mesh's origin) */
   constructor(readonly object: Object3D, pivot: Vec3) {
     object.updateWorldMatrix(true, false);
-    object.matrixWorld.decompose(this.o0, this.q0Inverse, st);
+    object.matrixWorld.decompose(this.o0, this.q0Inverse, this.s0);
     this.q0Inverse.invert();
     this.pivot = new Vector3(...pivot);
+  }
+
+  /**
+   * Whether the object's world scale is no longer the one the collider was made with (by more than a millionth):
+   * the collider's size is then wrong. Reads `object.matrixWorld`, as `look` does.
+   */
+  rescaled(): boolean {
+    this.object.matrixWorld.decompose(ot, qt, st);
+    const s0 = this.s0;
+    return Math.abs(st.x - s0.x) > 1e-6 * Math.abs(s0.x) || Math.abs(st.y - s0.y) > 1e-6 * Math.abs(s0.y) || Math.abs(st.z - s0.z) > 1e-6 * Math.abs(s0.z);
+  }
+
+  /** Takes the object's world scale now as the collider's (a collider that could not be made at it keeps its size). */
+  keepScale(): void {
+    this.object.matrixWorld.decompose(ot, qt, this.s0);
   }
 
   /** The next `look` tells the simulation the pose even if the object has not moved (a new simulation, a reset). */

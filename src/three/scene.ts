@@ -7,6 +7,7 @@ import { Vector3, type Object3D } from 'three';
 import { validateScene, type ClothEntry, type ColliderSpec, type DeepPartial, type Scene, type SceneInput, type Vec3 } from '../core/index.js';
 import { Follower } from './follow.js';
 import type { DrapeWorldOptions } from './options.js';
+import type { ColliderShapeOption } from './colliders.js';
 
 /**
  * How far below the object it follows an anchor's plane lies [m]: the cloth never comes near it (the plane keeps
@@ -20,6 +21,8 @@ export interface WorldCollider {
   readonly spec: ColliderSpec;
   /** null: it stays where it was made */
   readonly follower: Follower | null;
+  /** the shape it was asked to be ('auto': inferred), to make it again at a new scale (none: an anchor, of no size) */
+  readonly shape?: ColliderShapeOption;
 }
 
 /** What the scene needs of a cloth: its entry and its particles. */

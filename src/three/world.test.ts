@@ -98,6 +98,27 @@ describe('DrapeWorld: options and what it is made of', () => {
     // a mesh taken out can be a collider again
     expect(() => world.addCollider(box)).not.toThrow();
 
+    // a following collider whose mesh is scaled is made again at the new size, where the mesh is now
+    const rescale = () => (world as unknown as { rescale(): void }).rescale();
+    const sphere = () => scene().colliders.find((k) => k.type === 'sphere') as { radius: number; center: number[] } | undefined;
+    world.addCollider(ball);
+    expect(sphere()!.radius).toBeCloseTo(0.3, 6);
+    rescale();
+    expect(sphere()!.radius).toBeCloseTo(0.3, 6);
+    ball.scale.setScalar(1.5);
+    ball.position.set(0.1, 0.6, 0);
+    ball.updateMatrixWorld(true);
+    rescale();
+    expect(sphere()!.radius).toBeCloseTo(0.45, 6);
+    expect(sphere()!.center.map((v) => +v.toFixed(6))).toEqual([0.1, 0.6, 0]);
+    // (the box added again above, a box now: its shape inferred) stretched along x
+    const boxOf = () => scene().colliders.find((k) => k.type === 'box') as { halfExtents: number[] } | undefined;
+    expect(boxOf()!.halfExtents.map((v) => +v.toFixed(6))).toEqual([0.2, 0.2, 0.2]);
+    box.scale.set(2, 1, 1);
+    box.updateMatrixWorld(true);
+    rescale();
+    expect(boxOf()!.halfExtents.map((v) => +v.toFixed(6))).toEqual([0.4, 0.2, 0.2]);
+
     world.removeCloth(b);
     world.removeCloth(c);
     expect(world.cloths).toEqual([]);

@@ -209,7 +209,7 @@ export class DrapeWorld {
     const made = colliderOfMesh(mesh, options.shape ?? 'auto', meshName);
     if (made.triangles) this.meshes.add({ name: meshName, mesh: made.triangles });
     const follower = options.follow === false ? null : new Follower(mesh, made.pivot);
-    this.colliders.push({ object: mesh, spec: made.spec, follower });
+    this.colliders.push({ object: mesh, spec: made.spec, follower, shape: options.shape ?? 'auto' });
     try {
       this.structureChanged();
     } catch (e) {
@@ -535,15 +535,44 @@ export class DrapeWorld {
     this.fresh = true;
   }
 
-  /** Tells the simulation where each following collider's mesh is now. */
+  /** Tells the simulation where each following collider's mesh is now (made again first where its scale changed). */
   private follow(dt: number): void {
     const d = this.driver;
     if (!d) return;
+    this.rescale();
     this.sceneColliders.forEach((c, k) => {
       if (!c?.follower) return;
       c.object.updateWorldMatrix(true, false);
       const pose = c.follower.look(dt);
       if (pose) d.setColliderPose(0, k, pose);
+    });
+  }
+
+  /**
+   * Makes each following collider whose mesh's world scale changed again at the new size, where the mesh is now, as
+   * addCollider does (the cloths go on from where they are; one that the collider now overlaps is pushed out at
+   * solver.depenetrationSpeed). One the simulation refuses keeps its size until the scale changes again, and the
+   * refusal is reported (`error`, `onError`).
+   */
+  private rescale(): void {
+    this.colliders.forEach((c, k) => {
+      if (!c.follower || !(c.object as Mesh).isMesh) return;
+      c.object.updateWorldMatrix(true, false);
+      if (!c.follower.rescaled()) return;
+      const mesh = c.object as Mesh, meshName = `drape-three:collider-${this.names++}`;
+      const made = colliderOfMesh(mesh, c.shape ?? 'auto', meshName);
+      if (made.triangles) this.meshes.add({ name: meshName, mesh: made.triangles });
+      this.colliders[k] = { ...c, spec: made.spec, follower: new Follower(mesh, made.pivot) };
+      try {
+        this.structureChanged();
+        if (c.spec.type === 'mesh') this.meshes.delete(c.spec.mesh);
+      } catch (e) {
+        this.colliders[k] = c;
+        if (made.triangles) this.meshes.delete(meshName);
+        c.follower.keepScale();
+        this.scene();
+        this.report((e as Error).message);
+      }
     });
   }
 
