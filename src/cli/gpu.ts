@@ -10,7 +10,12 @@ export interface Gpu {
   device: GPUDevice;
   adapter: string;
   /** steps `scene` for `frames` frames on the GPU; the returned Simulation holds the read-back state */
-  simulate(scene: Scene, frames: number, meshes?: MeshResolver): Promise<{ sim: Simulation; msPerFrame: number }>;
+  /**
+   * Runs `scene` for `frames` frames on the GPU; `kept` (ascending, each ≤ frames): the frames whose positions are
+   * read back on the way, for a bake (each read waits for the GPU); `before` sees the Simulation before its first
+   * frame (and may throw to refuse the run). The Simulation is disposed, its state read back.
+   */
+  simulate(scene: Scene, frames: number, meshes?: MeshResolver, kept?: readonly number[], before?: (sim: Simulation) => void): Promise<{ sim: Simulation; msPerFrame: number; shapes: Float32Array[] }>;
   bench(sizes: number[], substeps: number, frames: number): Promise<GpuBenchResult[]>;
 }
 
@@ -64,16 +69,25 @@ async function openDevice(): Promise<Gpu & { lost: boolean }> {
     lost: false,
     device,
     adapter,
-    async simulate(scene, frames, meshes) {
+    async simulate(scene, frames, meshes, kept = [], before) {
       const sim = new Simulation(scene, { kernel: 'ts', meshes });
       try {
+        before?.(sim);
         sim.useBackend(await gpuModule.GpuBackend.create(device, sim.model));
+        const shapes: Float32Array[] = [];
         const t0 = performance.now();
-        sim.advance(frames);
+        let done = 0;
+        for (const f of kept) {
+          sim.advance(f - done);
+          done = f;
+          await sim.sync();
+          shapes.push(sim.state.positions.slice());
+        }
+        sim.advance(frames - done);
         await device.queue.onSubmittedWorkDone();
         const msPerFrame = frames > 0 ? (performance.now() - t0) / frames : 0;
         await sim.sync();
-        return { sim, msPerFrame };
+        return { sim, msPerFrame, shapes };
       } catch (e) {
         // what the GPU solver refuses (a solver it does not run, a limit) is the user's input
         const message = (e as Error).message;

@@ -175,21 +175,28 @@ function bakedFrames(frames: number, stride: number): number[] {
 
 async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, options: SimulationOptions, bakeStride?: number): Promise<RunResult> {
   let sim: Simulation, ms: number, kernel = 'gpu', threads = 1, bake: RunResult['bake'];
+  const kept = bakeStride === undefined ? [] : bakedFrames(frames, bakeStride);
+  // a bake too large for memory is refused before the run, naming a stride that fits
+  const fitBake = (n: number) => {
+    if (bakeStride === undefined || bakeBytes(n, kept.length) <= MAX_BAKE_BYTES) return;
+    let fits = bakeStride + 1;
+    while (bakeBytes(n, Math.ceil(frames / fits)) > MAX_BAKE_BYTES) fits++;
+    throw new UsageError(`--bake: ${kept.length} frames of ${n} particles would be ${(bakeBytes(n, kept.length) / 2 ** 30).toFixed(1)} GiB, more than 1 GiB; give --bake-stride ${fits} or more, or fewer --frames`);
+  };
   if (gpu) {
-    ({ sim, msPerFrame: ms } = await gpu.simulate(scene, frames, options.meshes));
+    let first: Float32Array | undefined, shapes: Float32Array[];
+    ({ sim, msPerFrame: ms, shapes } = await gpu.simulate(scene, frames, options.meshes, kept, (s) => {
+      fitBake(s.model.particleCount);
+      first = s.state.positions.slice();
+    }));
+    if (bakeStride !== undefined) bake = { first: first!, frames: shapes, times: kept.map((f) => f * FRAME_DT), frameNumbers: kept };
   } else {
     sim = new Simulation(scene, options);
     try {
       await sim.whenReady();
       kernel = sim.kernel;
       threads = sim.threads;
-      const kept = bakeStride === undefined ? [] : bakedFrames(frames, bakeStride);
-      const n = sim.model.particleCount;
-      if (bakeStride !== undefined && bakeBytes(n, kept.length) > MAX_BAKE_BYTES) {
-        let fits = bakeStride + 1;
-        while (bakeBytes(n, Math.ceil(frames / fits)) > MAX_BAKE_BYTES) fits++;
-        throw new UsageError(`--bake: ${kept.length} frames of ${n} particles would be ${(bakeBytes(n, kept.length) / 2 ** 30).toFixed(1)} GiB, more than 1 GiB; give --bake-stride ${fits} or more, or fewer --frames`);
-      }
+      fitBake(sim.model.particleCount);
       const first = sim.state.positions.slice(), shapes: Float32Array[] = [];
       const t0 = performance.now();
       let done = 0;
@@ -277,7 +284,6 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   if (values.bake !== undefined) {
     if (!/\.glb$/i.test(values.bake)) throw new UsageError(`--bake: writes a .glb file, got '${values.bake}'`);
     if (framesAsked === 0) throw new UsageError('--bake: --frames 0 runs no frame to bake; give --frames 1 or more');
-    if (backend === 'gpu') throw new UsageError('--bake: records every frame on the CPU backend only; leave out --backend gpu');
     checkOutputPath(values.bake, '--bake');
     if (values.export !== undefined && resolve(values.export) === resolve(values.bake)) throw new UsageError(`--bake: ${values.bake} is the --export file too; give two names`);
   }
@@ -413,7 +419,7 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
     return scenes;
   };
   if (selfContact) {
-    if (backend === 'gpu') throw new UsageError('--self-contact: times the CPU (the GPU solver has no self-contact yet); leave out --backend gpu');
+    if (backend === 'gpu') throw new UsageError('--self-contact: times the CPU kernels, not the GPU solver; leave out --backend gpu');
     await runSelfContactBench({
       scenes: sceneList(values.scenes ?? 'fold'),
       sizes,
