@@ -202,3 +202,41 @@ describe('the built-in scenes of several cloths', () => {
     expect(() => validateScene({ cloths: [{ cloth: { shape: 'mesh' } }] })).toThrow(SceneError);
   });
 });
+
+describe.each(['ts', 'wasm'] as const)('a cloth added or taken out of a running scene (setScene with carry), %s kernel', (kernel) => {
+  it('the cloths kept go on where they were, as they were moving, the clock with them; the new one from its start pose', async () => {
+    const sim = new Simulation(stacked(true, 6), { kernel });
+    await sim.whenReady();
+    sim.advance(20);
+    const doc = sceneDocument(sim.scene) as { cloths: object[] };
+    const before = { x: sim.state.positions.slice(), v: sim.state.velocities.slice(), time: sim.state.time, frame: sim.frame };
+    const n = sim.model.particleCount;
+    // a third cloth added after the two: they keep their particle numbers
+    const third = { name: 'third', cloth: { resolution: 4, width: 0.3, height: 0.3, position: [0, 1.5, 0] } };
+    expect(sim.setScene({ ...doc, cloths: [...doc.cloths, third] }, [{ from: 0, to: 0, count: n }])).toBe(true);
+    expect(Array.from(sim.state.positions.subarray(0, 3 * n))).toEqual(Array.from(before.x));
+    expect(Array.from(sim.state.velocities.subarray(0, 3 * n))).toEqual(Array.from(before.v));
+    expect([sim.state.time, sim.frame]).toEqual([before.time, before.frame]);
+    expect(Math.min(...sim.state.positions.subarray(3 * n).filter((_, k) => k % 3 === 1))).toBeCloseTo(1.5, 6);
+    // and going on from there: the first cloth as a simulation that never had the third (which falls far above it)
+    const alone = new Simulation(stacked(true, 6), { kernel });
+    await alone.whenReady();
+    alone.advance(21);
+    sim.advance(1);
+    const under = sim.model.clothStarts[1];
+    for (let i = 0; i < 3 * under; i++) expect(Math.abs(sim.state.positions[i] - alone.state.positions[i])).toBeLessThan(1e-6);
+
+    // the first cloth taken out: the others move down to start at particle 0
+    const over = sim.model.clothStarts[2] - under;
+    const kept = sim.state.positions.slice(3 * under);
+    expect(sim.setScene({ ...doc, cloths: [doc.cloths[1], third] }, [{ from: under, to: 0, count: sim.model.particleCount - under }])).toBe(true);
+    expect(sim.model.particleCount).toBe(over + 25);
+    expect(Array.from(sim.state.positions)).toEqual(Array.from(kept));
+    // a range outside either cloth is refused, naming it, and nothing changes
+    expect(() => sim.setScene(doc, [{ from: 0, to: 0, count: 10_000 }])).toThrow(/^Simulation\.setScene: carry \{"from":0,"to":0,"count":10000\} is outside the old cloth/);
+    expect(sim.model.particleCount).toBe(over + 25);
+    expect(sim.scene.cloths!.map((c) => c.name)).toEqual(['over', 'third']);
+    sim.dispose();
+    alone.dispose();
+  });
+});

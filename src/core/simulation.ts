@@ -282,8 +282,13 @@ export class Simulation {
     return this.setScene(setScenePath(this.scene, path, value, `Simulation.set('${plainText(path, 100)}')`));
   }
 
-  /** Replaces the whole scene, rebuilding only what the change needs. Returns true when the cloth restarted. */
-  setScene(input: SceneInput): boolean {
+  /**
+   * Replaces the whole scene, rebuilding only what the change needs. Returns true when the cloth was rebuilt: it
+   * restarts from its start pose, but for the particles `carry` names (old particle numbers to new ones: a
+   * cloth of the old scene's list that is also in the new one), which go on where they were, as they were moving,
+   * and the clock with them (state.time, state.substeps, frame).
+   */
+  setScene(input: SceneInput, carry: readonly ParticleRange[] = []): boolean {
     const next = validateScene(input);
     const prev = this.scene;
     const rebuild = needsRebuild(prev, next);
@@ -296,12 +301,18 @@ export class Simulation {
         prev.material.stretchFactor !== next.material.stretchFactor) {
       checkPlacement(model, params.colliders, pins, next.material.stretchFactor, sceneLabel(next));
     }
+    // (a carry outside either cloth is refused here too, before anything changes)
+    const kept = rebuild && carry.length ? carried(this.state, carry, model.particleCount) : null;
     this.scene = next;
     if (rebuild) {
       this.backendNow.dispose();
       this.model = model;
       this.backendNow = this.newBackend();
-      this.frame = 0;
+      if (kept) {
+        kept.into(this.state);
+      } else {
+        this.frame = 0;
+      }
       this.unstableFrame = null;
     } else if ((prev.solver.type === 'xpbd') !== (next.solver.type === 'xpbd') && this.backendNow.kind !== 'gpu') {
       // XPBD steps in the kernel's memory, mass-spring in plain arrays: move the cloth over, as it is
@@ -378,4 +389,38 @@ export class Simulation {
       bounds: bounds(state, starts[c], starts[c + 1]),
     }));
   }
+}
+
+/** Particles `count` from `from` of one model that are `to`… of another: a cloth kept across a rebuild (Simulation.setScene). */
+export interface ParticleRange {
+  readonly from: number;
+  readonly to: number;
+  readonly count: number;
+}
+
+/** Per-particle state, stride 3, that a carried particle keeps across a rebuild. */
+const CARRIED = ['positions', 'previousPositions', 'residuals', 'previousResiduals', 'velocities'] as const;
+
+/**
+ * What `carry` keeps of `state` (copied now: the old backend's memory goes), to put into a new model's state of `n`
+ * particles; throws a RangeError for a range outside either.
+ */
+function carried(state: ClothState, carry: readonly ParticleRange[], n: number): { into(next: ClothState): void } {
+  const old = state.positions.length / 3;
+  for (const r of carry) {
+    if (!(Number.isInteger(r.from) && Number.isInteger(r.to) && Number.isInteger(r.count) && r.from >= 0 && r.to >= 0 && r.count >= 0 && r.from + r.count <= old && r.to + r.count <= n)) {
+      throw new RangeError(`Simulation.setScene: carry ${JSON.stringify(r)} is outside the old cloth (${old} particles) or the new one (${n})`);
+    }
+  }
+  const copies = CARRIED.map((k) => state[k].slice());
+  const { time, substeps } = state;
+  return {
+    into(next) {
+      CARRIED.forEach((k, c) => {
+        for (const r of carry) next[k].set(copies[c].subarray(3 * r.from, 3 * (r.from + r.count)), 3 * r.to);
+      });
+      next.time = time;
+      next.substeps = substeps;
+    },
+  };
 }

@@ -9,7 +9,7 @@
 import { BufferAttribute, Vector3, type Mesh, type Object3D, type Raycaster } from 'three';
 import {
   FRAME_DT, Simulation, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
-  type PinEntry, type Scene, type Vec3,
+  type ParticleRange, type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { isSoftwareAdapter, type AdapterInfoLike } from '../gpu/adapter.js';
 import { DrapeCloth } from './cloth.js';
@@ -130,8 +130,9 @@ export class DrapeWorld {
 
   /**
    * Adds a cloth and returns it: a `THREE.Mesh` to add to your scene (its vertices are world coordinates). Made
-   * from a `geometry` or a generated `shape`, of a `fabric`. Added while the world runs, it rebuilds the simulation:
-   * every cloth starts again from its start pose. Throws an error naming the option that is wrong.
+   * from a `geometry` or a generated `shape`, of a `fabric`. Added while the world runs, it starts from its start
+   * pose and the other cloths go on where they are (on the GPU, from their last readback, up to ~0.1 s before).
+   * Throws an error naming the option that is wrong.
    */
   addCloth(options: DrapeClothOptions = {}): DrapeCloth {
     this.alive();
@@ -180,9 +181,11 @@ export class DrapeWorld {
       this.attached.push({ ...p, cloth });
       if (!this.anchors.has(p.to) && !this.colliders.some((c) => c.object === p.to)) this.anchors.set(p.to, anchorOf(p.to));
     }
+    // the cloths simulated so far go on where they are: the new one's particles come after theirs
+    const carry: ParticleRange[] = this.model ? [{ from: 0, to: 0, count: this.model.particleCount }] : [];
     this.cloths.push(cloth);
     try {
-      this.structureChanged();
+      this.structureChanged(carry);
     } catch (e) {
       this.cloths.pop();
       this.attached.splice(this.attached.length - attachedPins.length);
@@ -221,9 +224,9 @@ export class DrapeWorld {
 
   /**
    * Takes a cloth out of the world: it is no longer simulated, its pins on objects go with it, and the geometry (and
-   * the material) the world made for it is freed; remove the mesh from your scene yourself. While the world runs it
-   * rebuilds the simulation, as `addCloth` does: the other cloths start again from their start poses (with no cloth
-   * left the simulation stops, and starts again when one is added). Throws when the cloth is not in this world.
+   * the material) the world made for it is freed; remove the mesh from your scene yourself. While the world runs the
+   * other cloths go on where they are, as with `addCloth` (with no cloth left the simulation stops, and starts again
+   * when one is added). Throws when the cloth is not in this world.
    */
   removeCloth(cloth: DrapeCloth): void {
     this.alive();
@@ -232,6 +235,16 @@ export class DrapeWorld {
     // particle numbers change with the model: a grab ends
     this.release();
     const attached = this.attached.filter((p) => p.cloth === cloth);
+    // the other cloths go on where they are, each numbered from where the ones before it now end
+    const carry: ParticleRange[] = [];
+    if (this.model) {
+      let to = 0;
+      for (const c of this.cloths) {
+        if (c === cloth) continue;
+        carry.push({ from: c.start, to, count: c.particleCount });
+        to += c.particleCount;
+      }
+    }
     this.cloths.splice(k, 1);
     for (const p of attached) this.attached.splice(this.attached.indexOf(p), 1);
     // the objects that carried only its pins need no anchor now
@@ -245,7 +258,7 @@ export class DrapeWorld {
       this.gpuAttached = false;
       this.scene();
     } else {
-      this.structureChanged();
+      this.structureChanged(carry);
     }
     const mesh = cloth.part.entry.cloth?.mesh;
     if (typeof mesh === 'string') this.meshes.delete(mesh);
@@ -394,7 +407,8 @@ export class DrapeWorld {
   }
 
   /** A cloth or collider was added: a running world takes the new scene at once (a refusal throws, and nothing changes). */
-  private structureChanged(): void {
+  /** The world's scene changed: the driver takes it (`carry`: the particles that go on, where the model is rebuilt). */
+  private structureChanged(carry: readonly ParticleRange[] = []): void {
     const scene = this.scene();
     const d = this.driver;
     if (!d) return;
@@ -406,7 +420,7 @@ export class DrapeWorld {
       return;
     }
     try {
-      d.setScene(0, scene);
+      d.setScene(0, scene, carry);
     } catch (e) {
       throw optionError(e);
     }

@@ -10,7 +10,7 @@
  * on the GPU queue, time it cannot keep up with dropped.
  */
 import {
-  Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type ColliderPose, type Scene,
+  Simulation, energy, grab, isFinite3, maxStructuralStrain, release, type ClothModel, type ColliderPose, type ParticleRange, type Scene,
 } from '../../core/index.js';
 import { GpuBackend, sceneRefusal, type GpuClothSolver } from '../../gpu/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
@@ -117,11 +117,12 @@ export class GpuSim implements SimDriver {
     });
   }
 
-  setScene(slot: number, scene: Scene): boolean {
+  setScene(slot: number, scene: Scene, carry: readonly ParticleRange[] = []): boolean {
     const m = this.mirrors[slot];
-    const rebuilt = m.sim.setScene(scene);
+    // (the carried particles as last read back: up to READBACK_MS old)
+    const rebuilt = m.sim.setScene(scene, carry);
     if (rebuilt) {
-      m.frame = 0; m.grabbed = -1; m.unstableAt = -1;
+      m.frame = carry.length ? m.frame : 0; m.grabbed = -1; m.unstableAt = -1;
       this.readGen++;
       const s = this.slots[slot];
       s.lastGood = m.sim.state.positions.slice();

@@ -5,7 +5,7 @@
  * page never steps physics: it sends commands and renders the positions the worker sends back. Messages are
  * handled in order, so a command sent before an `advance` applies before those frames are stepped.
  */
-import type { ColliderPose, Energy, Scene } from '../../core/index.js';
+import type { ColliderPose, Energy, ParticleRange, Scene } from '../../core/index.js';
 import type { MeshEntry } from './meshes.js';
 
 export type ToWorker =
@@ -17,7 +17,7 @@ export type ToWorker =
   /** replace every slot with a fresh Simulation of each scene */
   | { type: 'load'; gen: number; scenes: Scene[] }
   /** change one slot's scene (Simulation.setScene: rebuilds only when the geometry changed) */
-  | { type: 'setScene'; gen: number; slot: number; scene: Scene }
+  | { type: 'setScene'; gen: number; slot: number; scene: Scene; carry: ParticleRange[] }
   /** restart slots at their start pose (all when slot is undefined); frames of older generations are dropped */
   | { type: 'reset'; gen: number; slot?: number }
   /** step every slot `frames` frames of 1/60 s and answer with a `frame` message */

@@ -7,7 +7,7 @@
  * are overwritten by each frame from the worker. Changing its scene with `setScene` tells us, by the core's own
  * rule, whether the worker is rebuilding the cloth; frames of an older cloth are then dropped.
  */
-import { Simulation, type ClothState, type ColliderPose, type Energy, type Scene, type TriangleMesh } from '../../core/index.js';
+import { Simulation, type ClothState, type ColliderPose, type Energy, type ParticleRange, type Scene, type TriangleMesh } from '../../core/index.js';
 import { FrameClock, newStats } from './frame-clock.js';
 import { sceneMeshes, type MeshStore } from './meshes.js';
 import type { FromWorker, ToWorker } from './protocol.js';
@@ -58,7 +58,8 @@ export interface SimDriver {
   /** a slot's cloth stopped being finite at `frame` (called once; see Mirror.unstableAt) */
   onUnstable: ((slot: number, frame: number) => void) | null;
   load(scenes: Scene[]): void;
-  setScene(slot: number, scene: Scene): boolean;
+  /** `carry`: the particles that go on where they are when the cloth is rebuilt (Simulation.setScene) */
+  setScene(slot: number, scene: Scene, carry?: readonly ParticleRange[]): boolean;
   reset(): void;
   resetSlot(slot: number): void;
   grab(slot: number, particle: number, target: [number, number, number]): void;
@@ -138,13 +139,13 @@ export class SimClient implements SimDriver {
   }
 
   /** Changes one slot's scene, live. Returns true when the cloth is rebuilt (and restarts). Refused: throws, changes nothing. */
-  setScene(slot: number, scene: Scene): boolean {
+  setScene(slot: number, scene: Scene, carry: readonly ParticleRange[] = []): boolean {
     const m = this.mirrors[slot];
     const gen = ++this.gen;
-    const rebuilt = m.sim.setScene(scene);
-    if (rebuilt) { m.modelGen = gen; m.frame = 0; m.grabbed = -1; m.unstableAt = -1; }
+    const rebuilt = m.sim.setScene(scene, carry);
+    if (rebuilt) { m.modelGen = gen; m.frame = carry.length ? m.frame : 0; m.grabbed = -1; m.unstableAt = -1; }
     this.sendMeshes(m.sim.scene);
-    this.post({ type: 'setScene', gen, slot, scene: m.sim.scene });
+    this.post({ type: 'setScene', gen, slot, scene: m.sim.scene, carry: [...carry] });
     return rebuilt;
   }
 

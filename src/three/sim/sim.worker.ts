@@ -72,7 +72,7 @@ function handle(msg: ToWorker): void {
     case 'setScene': {
       const slot = slots[msg.slot];
       if (!slot) return;
-      slot.sim.setScene(msg.scene);
+      slot.sim.setScene(msg.scene, msg.carry);
       slot.gen = msg.gen;
       return;
     }
