@@ -233,7 +233,7 @@ async function simulate(scene: Scene, frames: number, gpu: Gpu | undefined, opti
     energy: { kinetic: round(r.energy.kinetic), gravitational: round(r.energy.gravitational), elastic: round(r.energy.elastic), bending: round(r.energy.bending) },
     ...(r.test ? { test: Object.fromEntries(Object.entries(r.test).map(([k, v]) => [k, typeof v === 'number' ? round(v) : v])) } : {}),
     ...(r.cloths ? { cloths: r.cloths.map((c) => ({ ...c, centroid: vec(c.centroid), bounds: { min: vec(c.bounds.min), max: vec(c.bounds.max) } })) } : {}),
-    clamps: sim.params.clamps,
+    clamps: sim.notes,
     sim,
     ...(bake ? { bake } : {}),
   };

@@ -38,6 +38,11 @@ export interface Backend {
   whenReady(): Promise<void>;
   /** Releases threads and device memory; the state stays readable. */
   dispose(): void;
+  /**
+   * what the backend had to do differently from what the params ask, in words, as of its last sync (the GPU's
+   * self-contact list overflowing); none where absent. Simulation.notes adds them to the params' clamps.
+   */
+  readonly notes?: readonly string[];
 }
 
 /** The TypeScript reference: plain arrays, every phase in TypeScript (solvers/index.ts `step`). */

@@ -188,6 +188,15 @@ export class Simulation {
     return this.backendNow.state;
   }
 
+  /**
+   * what the simulation does differently from what the scene asks, in words: the params' clamps (params.ts: a
+   * softened spring, substeps raised for self-contact) and the backend's (the GPU's self-contact list overflowing,
+   * as of the last sync)
+   */
+  get notes(): string[] {
+    return [...this.params.clamps, ...(this.backendNow.notes ?? [])];
+  }
+
   /** the CPU kernel the substeps run in: 'wasm' only for XPBD (mass-spring always steps in TypeScript) */
   get kernel(): CpuKernel {
     return this.backendNow.kind === 'wasm' ? 'wasm' : 'ts';

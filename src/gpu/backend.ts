@@ -7,7 +7,7 @@
  * every frame.
  */
 import { createState, type Backend, type ClothModel, type ClothState, type SimParams } from '../core/index.js';
-import { GpuClothSolver } from './solver.js';
+import { GpuClothSolver, type GpuSolverOptions } from './solver.js';
 
 export class GpuBackend implements Backend {
   readonly kind = 'gpu';
@@ -28,8 +28,19 @@ export class GpuBackend implements Backend {
   }
 
   /** A GPU backend for `model` on `device` (kernels compiled once per device); rejects naming the GPU's error. */
-  static async create(device: GPUDevice, model: ClothModel): Promise<GpuBackend> {
-    return new GpuBackend(await GpuClothSolver.create(device, model), model);
+  static async create(device: GPUDevice, model: ClothModel, options?: GpuSolverOptions): Promise<GpuBackend> {
+    return new GpuBackend(await GpuClothSolver.create(device, model, options), model);
+  }
+
+  /** Whether self-contact dropped pairs in some pass, as of the last sync (GpuClothSolver.selfPairsMost). */
+  get notes(): readonly string[] {
+    const most = this.solver.selfPairsMost, room = this.solver.selfPairCapacity;
+    if (most <= room) return [];
+    return [
+      `GPU self-contact: a pass found ${most.toLocaleString('en')} candidate pairs, more than its list holds ` +
+      `(${room.toLocaleString('en')}); the ${(most - room).toLocaleString('en')} past it went unresolved in that substep, ` +
+      'so the cloth may have passed through itself there — the CPU backends have no such limit',
+    ];
   }
 
   frame(model: ClothModel, params: SimParams, dt: number): void {

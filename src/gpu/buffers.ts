@@ -12,7 +12,7 @@ import { bendingStencils, type ClothModel, type StencilModel } from '../core/mod
 import type { SimParams } from '../core/params.js';
 import type { ClothState } from '../core/state.js';
 import { updateTethers } from '../core/tethers.js';
-import { BUFFERS, KERNELS, VEC4, selfGridSize, type BufferName, type KernelName, type KernelSpec } from './layout.js';
+import { BUFFERS, KERNELS, SELF_PAIRS_PER_PRIMITIVE, VEC4, selfGridSize, type BufferName, type KernelName, type KernelSpec } from './layout.js';
 import { triangleAdjacency } from './topology.js';
 
 /** The buffers of the bending stencils: placeholders until params first use a stencil model. */
@@ -35,11 +35,17 @@ export class ClothBuffers {
   private stencilsMade: StencilModel | null = null;
   /** whether the self-contact buffers are made (makeSelfContact), else placeholders */
   private selfMade = false;
+
+  /** whether the self-contact buffers are made (the first params with self-contact make them) */
+  get hasSelfContact(): boolean {
+    return this.selfMade;
+  }
   private readonly device: GPUDevice;
   private readonly model: ClothModel;
 
   /** Buffers for `model` with its static data; the cloth at its rest pose, unpinned. */
-  constructor(device: GPUDevice, model: ClothModel, storageLayouts: Record<KernelName, GPUBindGroupLayout>) {
+  /** `pairsPerPrimitive`: the self-contact candidates' list's room per primitive (layout.ts selfGridSize) */
+  constructor(device: GPUDevice, model: ClothModel, storageLayouts: Record<KernelName, GPUBindGroupLayout>, readonly pairsPerPrimitive = SELF_PAIRS_PER_PRIMITIVE) {
     this.device = device;
     this.model = model;
     this.storageLayouts = storageLayouts;
@@ -160,10 +166,10 @@ export class ClothBuffers {
    */
   private makeSelfContact(): void {
     if (this.selfMade) return;
-    const { primitives, buckets, blocks, entries, pairs } = selfGridSize(this.model);
+    const { primitives, buckets, blocks, entries, pairs } = selfGridSize(this.model, this.pairsPerPrimitive);
     const sizes: Record<(typeof SELF_BUFFERS)[number], number> = {
       edges: this.model.edges.length / 2, selfBoxes: 2 * primitives, selfRanks: 8 * primitives, selfCounts: 1 + buckets,
-      selfStarts: 2 + buckets, selfBlocks: blocks, selfEntries: entries, selfPairs: 1 + 2 * pairs, selfArgs: 4,
+      selfStarts: 2 + buckets, selfBlocks: blocks, selfEntries: entries, selfPairs: 1 + 2 * pairs, selfArgs: 5,
       selfDelta: 4 * this.model.particleCount,
     };
     const limit = this.device.limits.maxStorageBufferBindingSize;
@@ -174,7 +180,7 @@ export class ClothBuffers {
     this.selfMade = true;
     for (const name of SELF_BUFFERS) {
       this.buffers[name].destroy();
-      this.buffers[name] = this.createBuffer(name, sizes[name], name === 'selfArgs' ? GPUBufferUsage.INDIRECT : 0);
+      this.buffers[name] = this.createBuffer(name, sizes[name], name === 'selfArgs' ? GPUBufferUsage.INDIRECT | GPUBufferUsage.COPY_SRC : 0);
     }
     if (this.model.edges.length) this.device.queue.writeBuffer(this.buffers.edges, 0, bytes(this.model.edges));
     this.regroup(SELF_BUFFERS);

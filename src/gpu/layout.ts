@@ -65,12 +65,13 @@ export const SELF_PAIRS_PER_PRIMITIVE = 8;
  * The sizes of a model's self-contact grid: `primitives` = the larger of its triangle and edge counts (one grid at a
  * time holds either), `buckets` of the spatial hash (a power of two, at least twice the primitives and SCAN_BLOCK),
  * `blocks` = buckets / SCAN_BLOCK, `entries` = 8 per primitive (a box spans at most 2 cells per axis: the cell is
- * the largest box), `pairs` the candidates' list holds (SELF_PAIRS_PER_PRIMITIVE per primitive).
+ * the largest box), `pairs` the candidates' list holds (`pairsPerPrimitive` per primitive, SELF_PAIRS_PER_PRIMITIVE
+ * unless a test asks for fewer).
  */
-export function selfGridSize(model: ClothModel): { primitives: number; buckets: number; blocks: number; entries: number; pairs: number } {
+export function selfGridSize(model: ClothModel, pairsPerPrimitive = SELF_PAIRS_PER_PRIMITIVE): { primitives: number; buckets: number; blocks: number; entries: number; pairs: number } {
   const primitives = Math.max(model.triangles.length / 3, model.edges.length / 2);
   const buckets = Math.max(SCAN_BLOCK, 2 ** Math.ceil(Math.log2(Math.max(1, 2 * primitives))));
-  return { primitives, buckets, blocks: buckets / SCAN_BLOCK, entries: 8 * primitives, pairs: SELF_PAIRS_PER_PRIMITIVE * primitives };
+  return { primitives, buckets, blocks: buckets / SCAN_BLOCK, entries: 8 * primitives, pairs: Math.max(1, Math.floor(pairsPerPrimitive * primitives)) };
 }
 
 /** Flags of a solve or bending pass record. */
@@ -271,7 +272,11 @@ export const BUFFERS = {
    * (atomic; selfPairArgs zeroes it), then the pairs, at most globals.selfPairCapacity of them
    */
   selfPairs: { type: 'atomic<u32>', bytes: 4 },
-  /** the indirect dispatch of the pair pass (workgroups x, y, z) and the pairs it resolves; INDIRECT usage */
+  /**
+   * the indirect dispatch of the pair pass (workgroups x, y, z) and the pairs it resolves; then the most pairs any
+   * pass found since the last readback (more than the list's capacity: pairs that went unresolved), which the
+   * readback zeroes; INDIRECT usage
+   */
   selfArgs: { type: 'u32', bytes: 4 },
   /**
    * per particle: the sum of its corrections of one pass in fixed point (xyz, SELF_FIXED per metre) and how many

@@ -1,11 +1,14 @@
 /**
  * Reading a GPU cloth back into a CPU state: positions, previous positions, velocities and the springs' λ of the last
- * substep, through one staging buffer, one read at a time.
+ * substep, through one staging buffer, one read at a time; and with self-contact, the most candidate pairs a pass
+ * found since the last read (layout.ts selfArgs).
  */
 import type {} from 'webgpu';
 import type { ClothModel } from '../core/model.js';
 import type { ClothState } from '../core/state.js';
 import { fromVec4, type ClothBuffers } from './buffers.js';
+
+const ZERO = new Uint32Array(1);
 
 /** The readback of one cloth: a staging buffer made on first use, reads serialised. */
 export class Readback {
@@ -14,6 +17,8 @@ export class Readback {
   private readonly buffers: ClothBuffers;
   private staging: GPUBuffer | undefined;
   private reading: Promise<void> = Promise.resolve();
+  /** the most self-contact candidate pairs any pass found, over every read so far (0 without self-contact) */
+  selfPairsMost = 0;
 
   /** A readback of `buffers` (a cloth of `model`) on `device`. */
   constructor(device: GPUDevice, model: ClothModel, buffers: ClothBuffers) {
@@ -33,7 +38,8 @@ export class Readback {
     const n = this.model.particleCount;
     const vecBytes = n * 16;
     const lambdaBytes = this.model.restLengths.length * 4;
-    const size = 3 * vecBytes + lambdaBytes;
+    const self = this.buffers.hasSelfContact;
+    const size = 3 * vecBytes + lambdaBytes + (self ? 4 : 0);
     if (!this.staging || this.staging.size < size) {
       this.staging?.destroy();
       this.staging = this.device.createBuffer({ label: 'drape readback', size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
@@ -45,7 +51,10 @@ export class Readback {
     encoder.copyBufferToBuffer(b.previous, 0, staging, vecBytes, vecBytes);
     encoder.copyBufferToBuffer(b.velocities, 0, staging, 2 * vecBytes, vecBytes);
     if (lambdaBytes) encoder.copyBufferToBuffer(b.lambdas, 0, staging, 3 * vecBytes, lambdaBytes);
+    if (self) encoder.copyBufferToBuffer(b.selfArgs, 16, staging, 3 * vecBytes + lambdaBytes, 4);
     this.device.queue.submit([encoder.finish()]);
+    // the count starts again after what was just copied (the queue keeps the order)
+    if (self) this.device.queue.writeBuffer(b.selfArgs, 16, ZERO);
     await staging.mapAsync(GPUMapMode.READ, 0, size);
     try {
       const all = new Float32Array(staging.getMappedRange(0, size));
@@ -57,6 +66,7 @@ export class Readback {
       state.residuals.fill(0);
       state.previousResiduals.fill(0);
       if (lambdaBytes) state.lambdas.set(all.subarray(12 * n, 12 * n + this.model.restLengths.length));
+      if (self) this.selfPairsMost = Math.max(this.selfPairsMost, new Uint32Array(all.buffer, all.byteOffset + 3 * vecBytes + lambdaBytes, 1)[0]);
     } finally {
       staging.unmap();
     }

@@ -9,6 +9,7 @@ import type {} from 'webgpu';
 import { Simulation, builtinScene, countIntersections, validateScene, type Scene } from '../core/index.js';
 import { selfContactDistance } from '../core/self-contact.js';
 import { GpuBackend } from './backend.js';
+import type { GpuSolverOptions } from './solver.js';
 import { sceneRefusal } from './encoder.js';
 import { testDevice } from './test-device.js';
 
@@ -20,10 +21,10 @@ afterAll(() => {
 });
 
 /** A Simulation of `scene` on the GPU (its state read back by `sync`). */
-async function onGpu(scene: Scene): Promise<Simulation> {
+async function onGpu(scene: Scene, options?: GpuSolverOptions): Promise<Simulation> {
   expect(sceneRefusal(scene)).toBeNull();
   const sim = new Simulation(scene, { kernel: 'ts' });
-  sim.useBackend(await GpuBackend.create(gpu!.device, sim.model));
+  sim.useBackend(await GpuBackend.create(gpu!.device, sim.model, options));
   sims.push(sim);
   return sim;
 }
@@ -100,6 +101,11 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
   test('two sheets dropped on a sphere stay layered, the upper one a contact distance above the lower', async () => {
     const sim = await onGpu(stacked(true));
     expect(await crossings(sim, 40)).toEqual(Array(4).fill(0));
+    // the candidates' list held every pair of every pass: nothing to report
+    const solver = (sim.backend as GpuBackend).solver;
+    expect(solver.selfPairsMost).toBeGreaterThan(0);
+    expect(solver.selfPairsMost).toBeLessThanOrEqual(solver.selfPairCapacity);
+    expect(sim.notes).toEqual([]);
     const h = selfContactDistance(sim.model, sim.params);
     expect(h).toBe(0.005);
     // the lower sheet on the sphere's top (within three thicknesses: a coarse sheet tents, 0.509 m without the upper
@@ -111,6 +117,19 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
     expect(over - under).toBeLessThan(2 * h);
     // (without it the upper sheet falls through: measured 223 crossing pairs at frame 60, its top 2.5 mm under the
     // other's; the fold above and cloths.test.ts on the CPU show what is lost without it)
+  });
+
+  test('a pass that finds more candidate pairs than its list holds is reported in the notes, with how many', async () => {
+    // a list with room for 1 pair in 20 triangles or edges (the default 8 per one): the landing overflows it
+    const sim = await onGpu(stacked(true), { selfPairsPerPrimitive: 0.05 });
+    sim.advance(15);
+    await sim.sync();
+    const solver = (sim.backend as GpuBackend).solver;
+    expect(solver.selfPairCapacity).toBe(Math.floor(0.05 * Math.max(sim.model.triangles.length / 3, sim.model.edges.length / 2)));
+    expect(solver.selfPairsMost).toBeGreaterThan(solver.selfPairCapacity);
+    expect(sim.notes).toEqual([expect.stringMatching(new RegExp(
+      `^GPU self-contact: a pass found ${solver.selfPairsMost.toLocaleString('en')} candidate pairs, more than its list holds \\(${solver.selfPairCapacity}\\); ` +
+      `the .* past it went unresolved in that substep`))]);
   });
 
   // two thin strips crossing like an X, the upper one falling on the pinned lower one (self-contact.test.ts in core):

@@ -18,12 +18,22 @@ import { ColliderTables } from './colliders.js';
 import { FrameEncoder, GPU_PHASES } from './encoder.js';
 import { kernelsFor, type Kernels } from './kernels.js';
 import { Readback } from './readback.js';
+import { SELF_PAIRS_PER_PRIMITIVE, selfGridSize } from './layout.js';
 import { dispatchesPerFrame, substepTraffic, type SubstepTraffic } from './traffic.js';
 import { UniformTables } from './uniforms.js';
 
 export type { SubstepTraffic };
 
 /** One cloth on the GPU: create, setParams, upload, then step every frame and read when the CPU needs the cloth. */
+/** How a GPU solver is made (GpuClothSolver.create). */
+export interface GpuSolverOptions {
+  /**
+   * room in the self-contact candidates' list per triangle or edge (the larger count) [-]; default
+   * SELF_PAIRS_PER_PRIMITIVE (8, 4× the most measured). Fewer is for tests of what an overflow reports.
+   */
+  selfPairsPerPrimitive?: number;
+}
+
 export class GpuClothSolver {
   /** the device it runs on */
   readonly device: GPUDevice;
@@ -41,13 +51,13 @@ export class GpuClothSolver {
    * Creates the buffers for `model` (the kernels are compiled once per device and reused: they do not depend on
    * the model); the cloth starts at its rest pose, unpinned.
    */
-  static async create(device: GPUDevice, model: ClothModel): Promise<GpuClothSolver> {
+  static async create(device: GPUDevice, model: ClothModel, options: GpuSolverOptions = {}): Promise<GpuClothSolver> {
     device.pushErrorScope('validation');
     device.pushErrorScope('out-of-memory');
     let solver: GpuClothSolver | undefined;
     let failure: unknown;
     try {
-      solver = new GpuClothSolver(device, model, await kernelsFor(device));
+      solver = new GpuClothSolver(device, model, await kernelsFor(device), options.selfPairsPerPrimitive ?? SELF_PAIRS_PER_PRIMITIVE);
     } catch (e) {
       failure = e;
     }
@@ -59,14 +69,26 @@ export class GpuClothSolver {
     return solver!;
   }
 
-  private constructor(device: GPUDevice, model: ClothModel, kernels: Kernels) {
+  private constructor(device: GPUDevice, model: ClothModel, kernels: Kernels, pairsPerPrimitive: number) {
     this.device = device;
     this.model = model;
-    this.buffers = new ClothBuffers(device, model, kernels.storageLayouts);
-    this.uniforms = new UniformTables(device, model, kernels.uniformLayout);
+    this.buffers = new ClothBuffers(device, model, kernels.storageLayouts, pairsPerPrimitive);
+    this.uniforms = new UniformTables(device, model, kernels.uniformLayout, pairsPerPrimitive);
+    this.selfPairCapacity = selfGridSize(model, pairsPerPrimitive).pairs;
     this.colliders = new ColliderTables(device, this.buffers);
     this.encoder = new FrameEncoder(device, model, kernels.pipelines, this.buffers, this.uniforms, this.colliders);
     this.readback = new Readback(device, model, this.buffers);
+  }
+
+  /** the self-contact candidate pairs one pass's list holds (layout.ts selfGridSize) */
+  readonly selfPairCapacity: number;
+
+  /**
+   * The most self-contact candidate pairs one pass found, over the readbacks so far: more than selfPairCapacity
+   * means pairs went unresolved in that pass (counted, not kept), and cloth may have passed through itself there.
+   */
+  get selfPairsMost(): number {
+    return this.readback.selfPairsMost;
   }
 
   /** Position buffer (`array<vec4f>`, x y z 0 per particle [m], usage VERTEX | STORAGE) for renderers. */

@@ -12,7 +12,7 @@ import { selfContactDistance } from '../core/self-contact.js';
 import type { ClothState } from '../core/state.js';
 import { windVelocity } from '../core/wind.js';
 import {
-  COLLIDER_MESH, GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SELF_EDGES, SELF_TRIANGLES, SUBSTEP, selfGridSize,
+  COLLIDER_MESH, GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SELF_EDGES, SELF_TRIANGLES, SUBSTEP, SELF_PAIRS_PER_PRIMITIVE, selfGridSize,
 } from './layout.js';
 
 /**
@@ -90,7 +90,8 @@ export class UniformTables {
   private readonly wind = new Float64Array(3);
 
   /** Tables for `model` (nothing grabbed); setParams fills in the params. */
-  constructor(device: GPUDevice, model: ClothModel, layout: GPUBindGroupLayout) {
+  /** `pairsPerPrimitive`: the self-contact candidates' list's room per primitive (layout.ts selfGridSize) */
+  constructor(device: GPUDevice, model: ClothModel, layout: GPUBindGroupLayout, pairsPerPrimitive = SELF_PAIRS_PER_PRIMITIVE) {
     this.device = device;
     this.model = model;
     this.layout = layout;
@@ -102,7 +103,7 @@ export class UniformTables {
     g.setUint32(GLOBALS.particleCount, model.particleCount, true);
     g.setUint32(GLOBALS.triangleCount, model.triangles.length / 3, true);
     g.setUint32(GLOBALS.edgeCount, model.edges.length / 2, true);
-    const grid = selfGridSize(model);
+    const grid = selfGridSize(model, pairsPerPrimitive);
     g.setUint32(GLOBALS.selfBuckets, grid.buckets, true);
     g.setUint32(GLOBALS.selfBlockCount, grid.blocks, true);
     g.setUint32(GLOBALS.selfPairCapacity, grid.pairs, true);

@@ -272,7 +272,7 @@ export class GpuSim implements SimDriver {
       const e = energy(m.sim.model, m.sim.state, m.sim.params);
       total.kinetic += e.kinetic; total.gravitational += e.gravitational; total.elastic += e.elastic; total.bending += e.bending;
       maxStrain = Math.max(maxStrain, maxStructuralStrain(m.sim.model, m.sim.state));
-      for (const c of m.sim.params.clamps) clamps.add(c);
+      for (const c of m.sim.notes) clamps.add(c);
     }
     s.energy = total;
     s.maxStrain = maxStrain;

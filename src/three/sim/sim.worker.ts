@@ -54,7 +54,7 @@ function frameMessage(id: number, frames: number, stepMs: number): void {
     total.elastic += e.elastic;
     total.bending += e.bending;
     maxStrain = Math.max(maxStrain, maxStructuralStrain(sim.model, sim.state));
-    for (const c of sim.params.clamps) clamps.add(c);
+    for (const c of sim.notes) clamps.add(c);
   }
   const kernel = slots[0]?.sim.kernel ?? '';
   const threads = slots[0]?.sim.threads ?? 1;
