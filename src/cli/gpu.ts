@@ -9,7 +9,6 @@ import { UsageError } from './errors.js';
 export interface Gpu {
   device: GPUDevice;
   adapter: string;
-  /** steps `scene` for `frames` frames on the GPU; the returned Simulation holds the read-back state */
   /**
    * Runs `scene` for `frames` frames on the GPU; `kept` (ascending, each ≤ frames): the frames whose positions are
    * read back on the way, for a bake (each read waits for the GPU); `before` sees the Simulation before its first

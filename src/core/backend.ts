@@ -39,8 +39,8 @@ export interface Backend {
   /** Releases threads and device memory; the state stays readable. */
   dispose(): void;
   /**
-   * what the backend had to do differently from what the params ask, in words, as of its last sync (the GPU's
-   * self-contact list overflowing); none where absent. Simulation.notes adds them to the params' clamps.
+   * what the backend had to do differently from what the params ask, in words, over the syncs since the cloth was
+   * last put anew (the GPU's self-contact list overflowing); none where absent. Simulation.notes adds them to the params' clamps.
    */
   readonly notes?: readonly string[];
 }

@@ -44,7 +44,7 @@ describe('substeps for self-contact (solver.selfContactSpeed)', () => {
     }
     expect(params(128, {}).clamps[0]).toBe('self-contact at 20 substeps: cloth moving at 6 m/s (solver.selfContactSpeed) would travel 1.81 times ' +
       'the contact distance (2.76 mm) in one substep and could pass through itself, so it runs at 37 substeps — fewer with a thicker ' +
-      'cloth (cloth.thickness), a coarser mesh, a lower solver.selfContactSpeed, or self-contact off');
+      'cloth (cloth.thickness), a coarser mesh (h is at most half the thinnest triangle\'s smallest altitude: one sliver sets it), a lower solver.selfContactSpeed, or self-contact off');
   });
 
   it('a thinner cloth needs more; more than the schema allows stops at its most and says how many it needed', () => {

@@ -258,7 +258,8 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
       `self-contact at ${asked} substeps: cloth moving at ${Number(speed.toPrecision(3))} m/s (solver.selfContactSpeed) would travel ` +
       `${fmt((speed * dt) / asked / hContact)} times the contact distance (${fmt(hContact * 1000)} mm) in one substep and could pass ` +
       `through itself, so it runs at ${substeps} substeps${forContact > MAX_SUBSTEPS ? ` (the most there can be; ${forContact} would keep it apart)` : ''} — ` +
-      'fewer with a thicker cloth (cloth.thickness), a coarser mesh, a lower solver.selfContactSpeed, or self-contact off',
+      'fewer with a thicker cloth (cloth.thickness), a coarser mesh (h is at most half the thinnest triangle\'s ' +
+      'smallest altitude: one sliver sets it), a lower solver.selfContactSpeed, or self-contact off',
     );
   }
   const h = dt / substeps;

@@ -32,7 +32,7 @@ export class GpuBackend implements Backend {
     return new GpuBackend(await GpuClothSolver.create(device, model, options), model);
   }
 
-  /** Whether self-contact dropped pairs in some pass, as of the last sync (GpuClothSolver.selfPairsMost). */
+  /** Whether self-contact dropped pairs in some pass, over the syncs since the last upload (GpuClothSolver.selfPairsMost). */
   get notes(): readonly string[] {
     const most = this.solver.selfPairsMost, room = this.solver.selfPairCapacity;
     if (most <= room) return [];

@@ -43,8 +43,10 @@ export class ClothBuffers {
   private readonly device: GPUDevice;
   private readonly model: ClothModel;
 
-  /** Buffers for `model` with its static data; the cloth at its rest pose, unpinned. */
-  /** `pairsPerPrimitive`: the self-contact candidates' list's room per primitive (layout.ts selfGridSize) */
+  /**
+   * Buffers for `model` with its static data; the cloth at its rest pose, unpinned. `pairsPerPrimitive`: the
+   * self-contact candidates' list's room per primitive (layout.ts selfGridSize).
+   */
   constructor(device: GPUDevice, model: ClothModel, storageLayouts: Record<KernelName, GPUBindGroupLayout>, readonly pairsPerPrimitive = SELF_PAIRS_PER_PRIMITIVE) {
     this.device = device;
     this.model = model;

@@ -17,7 +17,7 @@ export class Readback {
   private readonly buffers: ClothBuffers;
   private staging: GPUBuffer | undefined;
   private reading: Promise<void> = Promise.resolve();
-  /** the most self-contact candidate pairs any pass found, over every read so far (0 without self-contact) */
+  /** the most self-contact candidate pairs any pass found, over the reads since the cloth was last uploaded (0 without self-contact) */
   selfPairsMost = 0;
 
   /** A readback of `buffers` (a cloth of `model`) on `device`. */
@@ -70,6 +70,12 @@ export class Readback {
     } finally {
       staging.unmap();
     }
+  }
+
+  /** Starts the self-contact pair count again (selfPairsMost 0, and the GPU's since the last read too). */
+  forgetSelfPairs(): void {
+    this.selfPairsMost = 0;
+    if (this.buffers.hasSelfContact) this.device.queue.writeBuffer(this.buffers.buffers.selfArgs, 16, ZERO);
   }
 
   /** Frees the staging buffer. */

@@ -24,7 +24,6 @@ import { UniformTables } from './uniforms.js';
 
 export type { SubstepTraffic };
 
-/** One cloth on the GPU: create, setParams, upload, then step every frame and read when the CPU needs the cloth. */
 /** How a GPU solver is made (GpuClothSolver.create). */
 export interface GpuSolverOptions {
   /**
@@ -34,6 +33,7 @@ export interface GpuSolverOptions {
   selfPairsPerPrimitive?: number;
 }
 
+/** One cloth on the GPU: create, setParams, upload, then step every frame and read when the CPU needs the cloth. */
 export class GpuClothSolver {
   /** the device it runs on */
   readonly device: GPUDevice;
@@ -84,7 +84,7 @@ export class GpuClothSolver {
   readonly selfPairCapacity: number;
 
   /**
-   * The most self-contact candidate pairs one pass found, over the readbacks so far: more than selfPairCapacity
+   * The most self-contact candidate pairs one pass found, over the readbacks since the last upload: more than selfPairCapacity
    * means pairs went unresolved in that pass (counted, not kept), and cloth may have passed through itself there.
    */
   get selfPairsMost(): number {
@@ -130,6 +130,8 @@ export class GpuClothSolver {
     this.buffers.writeParticles(state);
     this.buffers.writePins(state);
     this.refreshNormals();
+    // a cloth put anew (a reset, a state copied in): what self-contact dropped before is no longer the cloth's
+    this.readback.forgetSelfPairs();
   }
 
   /** Copies only the pins (and tethers, recomputed first when `state.tethersStale`) from a CPU state. */

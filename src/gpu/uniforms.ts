@@ -89,8 +89,10 @@ export class UniformTables {
   private substepView = new DataView(this.substepData);
   private readonly wind = new Float64Array(3);
 
-  /** Tables for `model` (nothing grabbed); setParams fills in the params. */
-  /** `pairsPerPrimitive`: the self-contact candidates' list's room per primitive (layout.ts selfGridSize) */
+  /**
+   * Tables for `model` (nothing grabbed); setParams fills in the params. `pairsPerPrimitive`: the self-contact
+   * candidates' list's room per primitive (layout.ts selfGridSize).
+   */
   constructor(device: GPUDevice, model: ClothModel, layout: GPUBindGroupLayout, pairsPerPrimitive = SELF_PAIRS_PER_PRIMITIVE) {
     this.device = device;
     this.model = model;

@@ -79,7 +79,7 @@ describe('a collider following its object', () => {
     parent.scale.set(1, 1.001, 1);
     parent.updateMatrixWorld(true);
     expect(follow.rescaled()).toBe(true);
-    follow.keepScale();
+    follow.adoptScale();
     expect(follow.rescaled()).toBe(false);
   });
 });

@@ -43,7 +43,7 @@ export class Follower {
   }
 
   /** Takes the object's world scale now as the collider's (a collider that could not be made at it keeps its size). */
-  keepScale(): void {
+  adoptScale(): void {
     this.object.matrixWorld.decompose(ot, qt, this.s0);
   }
 

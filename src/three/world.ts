@@ -406,8 +406,10 @@ export class DrapeWorld {
     if (this.disposed) throw new Error(`${WHERE}: the world was disposed`);
   }
 
-  /** A cloth or collider was added: a running world takes the new scene at once (a refusal throws, and nothing changes). */
-  /** The world's scene changed: the driver takes it (`carry`: the particles that go on, where the model is rebuilt). */
+  /**
+   * A cloth or collider was added or taken out: a running world takes the new scene at once (a refusal throws, and
+   * nothing changes); `carry`: the particles that go on where they are, where the model is rebuilt.
+   */
   private structureChanged(carry: readonly ParticleRange[] = []): void {
     const scene = this.scene();
     const d = this.driver;
@@ -416,7 +418,7 @@ export class DrapeWorld {
     const refusal = d.kind === 'gpu' ? GpuSim.supports(scene) : null;
     if (refusal) {
       // (the CPU driver checks the placement as it loads: a refusal there throws and changes nothing)
-      this.fallBack(refusal, scene);
+      this.fallBack(refusal, scene, carry);
       return;
     }
     try {
@@ -511,7 +513,7 @@ export class DrapeWorld {
    * The GPU cannot go on (an error, a lost device, a scene it does not take): the cloths go on on the CPU from the
    * last positions read back (or start again, for a new model: `scene`, a structure change the GPU refuses).
    */
-  private fallBack(reason: string, scene?: Scene): void {
+  private fallBack(reason: string, scene?: Scene, carry: readonly ParticleRange[] = []): void {
     const old = this.driver;
     if (!old || old.kind !== 'gpu') return;
     const m = old.mirrors[0];
@@ -525,7 +527,20 @@ export class DrapeWorld {
     this.backendNote = `GPU unavailable: ${reason}`;
     const d = this.load('cpu', next);
     const same = d?.mirrors[0]?.sim.model.particleCount === m?.sim.model.particleCount;
-    if (d instanceof SimClient && m && m.unstableAt < 0 && same) d.setState(0, m.sim.state, m.frame);
+    if (d instanceof SimClient && m && m.unstableAt < 0) {
+      if (same && !carry.length) {
+        d.setState(0, m.sim.state, m.frame);
+      } else if (carry.length) {
+        // a cloth added or taken out as the world moved to the CPU: the cloths kept go on from the last readback
+        const was = m.sim.state, now = d.mirrors[0].sim.state;
+        for (const r of carry) {
+          for (const k of ['positions', 'previousPositions', 'velocities'] as const) now[k].set(was[k].subarray(3 * r.from, 3 * (r.from + r.count)), 3 * r.to);
+        }
+        now.time = was.time;
+        now.substeps = was.substeps;
+        d.setState(0, now, m.frame);
+      }
+    }
     this.grabbed = null;
   }
 
@@ -551,9 +566,11 @@ export class DrapeWorld {
 
   /** Tells the simulation where each following collider's mesh is now (made again first where its scale changed). */
   private follow(dt: number): void {
+    if (!this.driver) return;
+    this.rescale();
+    // (a rescale the GPU refuses moves the world to the CPU: the driver of now)
     const d = this.driver;
     if (!d) return;
-    this.rescale();
     this.sceneColliders.forEach((c, k) => {
       if (!c?.follower) return;
       c.object.updateWorldMatrix(true, false);
@@ -583,7 +600,7 @@ export class DrapeWorld {
       } catch (e) {
         this.colliders[k] = c;
         if (made.triangles) this.meshes.delete(meshName);
-        c.follower.keepScale();
+        c.follower.adoptScale();
         this.scene();
         this.report((e as Error).message);
       }

@@ -76,7 +76,6 @@ export class GpuSim implements SimDriver {
     const sims = scenes.map((scene) => new Simulation(scene, { kernel: 'ts', meshes: this.meshes.resolve }));
     this.destroySolvers();
     this.mirrors.length = 0;
-    this.slots.length = 0;
     for (const sim of sims) {
       this.mirrors.push({ sim, modelGen: 0, frame: 0, grabbed: -1, unstableAt: -1 });
       this.slots.push({ backend: null, model: null, creating: null, stale: false, lastGood: sim.state.positions.slice() });

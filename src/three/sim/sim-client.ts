@@ -138,7 +138,10 @@ export class SimClient implements SimDriver {
     this.clock.clear();
   }
 
-  /** Changes one slot's scene, live. Returns true when the cloth is rebuilt (and restarts). Refused: throws, changes nothing. */
+  /**
+   * Changes one slot's scene, live. Returns true when the cloth is rebuilt: it restarts, but for the particles
+   * `carry` keeps (Simulation.setScene). Refused: throws, changes nothing.
+   */
   setScene(slot: number, scene: Scene, carry: readonly ParticleRange[] = []): boolean {
     const m = this.mirrors[slot];
     const gen = ++this.gen;
