@@ -23,7 +23,7 @@ export { SOLVERS, step, type StepFn } from './solvers/index.js';
 export { PHASE, PHASES, PhaseLog, type Phase, type PhaseName, type BackendPhases } from './schedule.js';
 export { runFrame, type PhaseBackend, type FrameVars } from './frame.js';
 export * from './colliders/index.js';
-export { Simulation, needsRebuild, AUTO_THREADS_MIN_PARTICLES, type Report, type ClothReport, type CpuKernel, type SimulationOptions, type ParticleRange } from './simulation.js';
+export { Simulation, needsRebuild, AUTO_THREADS_MIN_PARTICLES, type Report, type ClothReport, type CpuKernel, type SimulationOptions, type ParticleRange, type CarriedState, copyCarried } from './simulation.js';
 export { TsBackend, WasmBackend, type Backend, type BackendKind } from './backend.js';
 export { wasmKernelAvailable, XpbdKernel, type HelperSpawner, type KernelHelperInit } from './wasm/xpbd-wasm.js';
 export { modelFor, parseMeshFile, meshFormat, CLOTH_SHAPES, MESH_EXTENSIONS, type ClothShape, type MeshResolver } from './cloth-shape.js';

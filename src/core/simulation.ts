@@ -411,6 +411,16 @@ export interface ParticleRange {
 /** Per-particle state, stride 3, that a carried particle keeps across a rebuild. */
 const CARRIED = ['positions', 'previousPositions', 'residuals', 'previousResiduals', 'velocities'] as const;
 
+/** What of a state a carry copies: the per-particle arrays above and the clock. */
+export type CarriedState = Pick<ClothState, (typeof CARRIED)[number] | 'time' | 'substeps'>;
+
+/** Copies the particles `carry` names from `from` into `to` (ranges already checked), and the clock. */
+export function copyCarried(from: CarriedState, to: ClothState, carry: readonly ParticleRange[]): void {
+  for (const k of CARRIED) for (const r of carry) to[k].set(from[k].subarray(3 * r.from, 3 * (r.from + r.count)), 3 * r.to);
+  to.time = from.time;
+  to.substeps = from.substeps;
+}
+
 /**
  * What `carry` keeps of `state` (copied now: the old backend's memory goes), to put into a new model's state of `n`
  * particles; throws a RangeError for a range outside either.
@@ -422,15 +432,9 @@ function carried(state: ClothState, carry: readonly ParticleRange[], n: number):
       throw new RangeError(`Simulation.setScene: carry ${JSON.stringify(r)} is outside the old cloth (${old} particles) or the new one (${n})`);
     }
   }
-  const copies = CARRIED.map((k) => state[k].slice());
-  const { time, substeps } = state;
-  return {
-    into(next) {
-      CARRIED.forEach((k, c) => {
-        for (const r of carry) next[k].set(copies[c].subarray(3 * r.from, 3 * (r.from + r.count)), 3 * r.to);
-      });
-      next.time = time;
-      next.substeps = substeps;
-    },
+  const copy: CarriedState = {
+    positions: state.positions.slice(), previousPositions: state.previousPositions.slice(), residuals: state.residuals.slice(),
+    previousResiduals: state.previousResiduals.slice(), velocities: state.velocities.slice(), time: state.time, substeps: state.substeps,
   };
+  return { into: (next) => copyCarried(copy, next, carry) };
 }

@@ -8,7 +8,7 @@
  */
 import { BufferAttribute, Vector3, type Mesh, type Object3D, type Raycaster } from 'three';
 import {
-  FRAME_DT, Simulation, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
+  FRAME_DT, Simulation, copyCarried, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
   type ParticleRange, type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { isSoftwareAdapter, type AdapterInfoLike } from '../gpu/adapter.js';
@@ -532,12 +532,8 @@ export class DrapeWorld {
         d.setState(0, m.sim.state, m.frame);
       } else if (carry.length) {
         // a cloth added or taken out as the world moved to the CPU: the cloths kept go on from the last readback
-        const was = m.sim.state, now = d.mirrors[0].sim.state;
-        for (const r of carry) {
-          for (const k of ['positions', 'previousPositions', 'velocities'] as const) now[k].set(was[k].subarray(3 * r.from, 3 * (r.from + r.count)), 3 * r.to);
-        }
-        now.time = was.time;
-        now.substeps = was.substeps;
+        const now = d.mirrors[0].sim.state;
+        copyCarried(m.sim.state, now, carry);
         d.setState(0, now, m.frame);
       }
     }
