@@ -1,7 +1,7 @@
 /**
  * A uniform grid over axis-aligned boxes, hashed into a table (Teschner et al. 2003, "Optimized Spatial Hashing for
  * Collision Detection of Deformable Objects"): the broad phase of the cloth's self-intersection count
- * (intersections.ts) and of self-contact (self-contact.ts). Boxes are six numbers each (min x, y, z, max x, y, z);
+ * (intersections.ts) and of the HUD's self-contact count (contacts.ts). Boxes are six numbers each (min x, y, z, max x, y, z);
  * the cell is a multiple of their mean largest side, at least a given size; each box is listed in every cell it
  * covers (a counting sort into compressed rows). Its arrays grow when a build needs more and are reused after.
  */
