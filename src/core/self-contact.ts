@@ -334,9 +334,10 @@ const REACH_SPAN = 1 / 3;
  * Finds the candidate pairs for the substeps left in the frame: each particle's reach box (its box over this
  * substep, carried on over the `left` substeps of length h at its motion so far and gravity — but no farther than a
  * third of the mean rest edge length — with a margin of half that motion and at least h/4), the triangles' and
- * edges' from their corners', and the pairs whose boxes meet (box-tree.ts: a tree over the particles' boxes against one
- * over the triangles', and one over the edges' against itself; at 64² on fold a search took 20 ms at rest and 39 ms
- * in the fall, against 29 and 51 ms by the uniform grids before, the same pairs). False when a box is not finite. (A fast cloth then finds them again more often instead of listing every
+ * edges' from their corners', and the pairs whose boxes meet (box-tree.ts: a tree over the particles' boxes
+ * against one over the triangles', and one over the edges' against itself; at 64² on fold a search took 20 ms at
+ * rest and 39 ms in the fall, against 29 and 51 ms by the uniform grids before, the same pairs). False when a box
+ * is not finite. (A fast cloth then finds them again more often instead of listing every
  * neighbour along a frame of its path: fold's fall at 64², frames 0–30, searched 191 times instead of 168 and
  * listed 95 k pairs instead of 143 k; frames 0–60 took 265 ms per frame instead of 463. A third beat a half and a
  * fifth.)
