@@ -27,10 +27,11 @@ export class BoxTree {
   /** Builds the tree over the primitives whose centres (3 numbers each, n of them) are `centres`: median splits along the longest side. */
   constructor(centres: Float64Array, n: number) {
     this.order = Int32Array.from({ length: n }, (_, i) => i);
-    const nodes = Math.max(1, 2 * Math.ceil(n / LEAF) + 1);
-    this.first = new Int32Array(2 * nodes);
-    this.size = new Int32Array(2 * nodes);
-    this.right = new Int32Array(2 * nodes);
+    // a binary tree whose leaves each hold a primitive or more (one empty leaf when n is 0) has fewer than 2n nodes
+    const most = 2 * Math.max(n, 1);
+    this.first = new Int32Array(most);
+    this.size = new Int32Array(most);
+    this.right = new Int32Array(most);
     let count = 0;
     const split = (from: number, to: number): void => {
       const node = count++;
@@ -82,7 +83,7 @@ export class BoxTree {
         }
       }
     }
-    // a NaN anywhere reaches the root (Math.min and Math.max keep it); a NaN a leaf's comparisons skipped leaves ±∞
+    // an infinite box reaches the root's; a NaN the leaves' comparisons skip, so it is looked for in the boxes
     for (let c = 0; c < 6; c++) if (!Number.isFinite(boxes[c])) return false;
     for (let i = 0; i < prims.length; i++) if (prims[i] !== prims[i]) return false;
     return true;
