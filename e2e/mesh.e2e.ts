@@ -105,12 +105,14 @@ async function expectDraped(page: Page): Promise<void> {
   expect(Math.min(...ys)).toBeGreaterThan(0.3);
 }
 
+/** the views and their labels; the last one, Shaded, is the view the page starts in */
+const VIEWS: [string, string][] = [['wireframe', 'Wireframe mesh'], ['particles', 'Particles'], ['springs', 'Springs by kind'], ['strain', 'Strain heat map'], ['shaded', 'Shaded']];
+
 /**
- * Every view draws the cloth (the views read the model's triangles and springs, whatever the shape); the last one,
- * Shaded, is the view the page starts in.
+ * Each of `views` draws the cloth (the views read the model's triangles and springs, whatever the shape): every
+ * view by default.
  */
-async function everyView(page: Page, tag: string): Promise<void> {
-  const views: [string, string][] = [['wireframe', 'Wireframe mesh'], ['particles', 'Particles'], ['springs', 'Springs by kind'], ['strain', 'Strain heat map'], ['shaded', 'Shaded']];
+async function everyView(page: Page, tag: string, views = VIEWS): Promise<void> {
   for (const [name, label] of views) {
     await choose(page, 'view', label);
     expect(await hook(page, 'view')).toBe(name);
@@ -319,7 +321,7 @@ describe('a mesh cloth in the app', () => {
     await page.close();
   });
 
-  it('the T-shirt drops onto the sphere on the GPU backend too, in every view; a mesh too big for the CPU stays on the GPU', async () => {
+  it('the T-shirt drops onto the sphere on the GPU backend too, drawn in the views of its springs; a mesh too big for the CPU stays on the GPU', async () => {
     const { page, errors } = await openApp(browser.context, '', '?lite&backend=gpu');
     await gpuReady(page);
     await pause(page);
@@ -332,7 +334,9 @@ describe('a mesh cloth in the app', () => {
     expect(await hook(page, 'simBackend')).toBe('gpu');
     await step(page, DRAPE_FRAMES);
     await expectDraped(page);
-    await everyView(page, 'tshirt-gpu');
+    // the views that read the mesh's springs, drawn from the GPU's buffers (every view on the GPU: cloths.e2e.ts; a
+    // view's pipelines take SwiftShader seconds to compile)
+    await everyView(page, 'tshirt-gpu', VIEWS.filter(([name]) => name === 'springs' || name === 'strain'));
     expect(await finite(page)).toBe(true);
 
     // a mesh the GPU takes but the CPU does not (more than 257² particles): the backend switch says why and stays
