@@ -32,14 +32,19 @@ export class GpuBackend implements Backend {
     return new GpuBackend(await GpuClothSolver.create(device, model, options), model);
   }
 
-  /** Whether self-contact dropped pairs in some pass, over the syncs since the last upload (GpuClothSolver.selfPairsMost). */
+  /**
+   * Whether self-contact dropped pairs in some pass, over the syncs since the last upload
+   * (GpuClothSolver.selfPairsOverflow), and how large the list is now.
+   */
   get notes(): readonly string[] {
-    const most = this.solver.selfPairsMost, room = this.solver.selfPairCapacity;
-    if (most <= room) return [];
+    const over = this.solver.selfPairsOverflow;
+    if (!over) return [];
+    const room = this.solver.selfPairCapacity;
     return [
-      `GPU self-contact: a pass found ${most.toLocaleString('en')} candidate pairs, more than its list holds ` +
-      `(${room.toLocaleString('en')}); the ${(most - room).toLocaleString('en')} past it went unresolved in that substep, ` +
-      'so the cloth may have passed through itself there — the CPU backends have no such limit',
+      `GPU self-contact: a pass found ${over.found.toLocaleString('en')} candidate pairs, more than its list held ` +
+      `(${over.held.toLocaleString('en')}); the ${(over.found - over.held).toLocaleString('en')} past it went unresolved in that substep, ` +
+      'so the cloth may have passed through itself there — ' +
+      (room > over.found ? `the list has grown to ${room.toLocaleString('en')} since` : `the list holds ${room.toLocaleString('en')}, the most this device binds in one buffer`),
     ];
   }
 

@@ -35,6 +35,8 @@ export class ClothBuffers {
   private stencilsMade: StencilModel | null = null;
   /** whether the self-contact buffers are made (makeSelfContact), else placeholders */
   private selfMade = false;
+  /** the pairs the self-contact candidates' list holds (0 before it is made) */
+  private selfPairRoom = 0;
 
   /** whether the self-contact buffers are made (the first params with self-contact make them) */
   get hasSelfContact(): boolean {
@@ -180,12 +182,36 @@ export class ClothBuffers {
       throw new Error(`GPU solver: self-contact needs ${Math.ceil((sizes[over] * BUFFERS[over].bytes) / 2 ** 20)} MiB in one buffer (${over}) for ${this.model.particleCount} particles; this device binds at most ${Math.floor(limit / 2 ** 20)} MiB`);
     }
     this.selfMade = true;
+    this.selfPairRoom = pairs;
     for (const name of SELF_BUFFERS) {
       this.buffers[name].destroy();
       this.buffers[name] = this.createBuffer(name, sizes[name], name === 'selfArgs' ? GPUBufferUsage.INDIRECT | GPUBufferUsage.COPY_SRC : 0);
     }
     if (this.model.edges.length) this.device.queue.writeBuffer(this.buffers.edges, 0, bytes(this.model.edges));
     this.regroup(SELF_BUFFERS);
+  }
+
+  /**
+   * The self-contact candidates' list anew with room for `pairs` pairs (empty: what it held is of passes already
+   * resolved), and the bind groups of the kernels that read it; the most the device binds in one buffer at most.
+   * Returns the pairs it holds now. Like `reserve`, never during a frame's encoding; only once self-contact's buffers
+   * are made.
+   */
+  growSelfPairs(pairs: number): number {
+    if (!this.selfMade) throw new Error('GPU solver: the self-contact list grows only once self-contact is on');
+    const most = Math.floor((this.device.limits.maxStorageBufferBindingSize / BUFFERS.selfPairs.bytes - 1) / 2);
+    const room = Math.min(pairs, most);
+    if (room <= this.selfPairRoom) return this.selfPairRoom;
+    this.buffers.selfPairs.destroy();
+    this.buffers.selfPairs = this.createBuffer('selfPairs', 1 + 2 * room, 0);
+    this.regroup(['selfPairs']);
+    this.selfPairRoom = room;
+    return room;
+  }
+
+  /** the pairs the self-contact candidates' list holds now (selfGridSize's `pairs` until growSelfPairs) */
+  get selfPairCapacity(): number {
+    return this.selfPairRoom;
   }
 
   /**

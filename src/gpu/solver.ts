@@ -18,7 +18,7 @@ import { ColliderTables } from './colliders.js';
 import { FrameEncoder, GPU_PHASES } from './encoder.js';
 import { kernelsFor, type Kernels } from './kernels.js';
 import { Readback } from './readback.js';
-import { SELF_PAIRS_PER_PRIMITIVE, selfGridSize } from './layout.js';
+import { SELF_PAIRS_PER_PRIMITIVE } from './layout.js';
 import { dispatchesPerFrame, substepTraffic, type SubstepTraffic } from './traffic.js';
 import { UniformTables } from './uniforms.js';
 
@@ -32,6 +32,12 @@ export interface GpuSolverOptions {
    */
   selfPairsPerPrimitive?: number;
 }
+
+/**
+ * How much larger than the most candidate pairs a pass found the self-contact list is made when they did not fit
+ * [-] (GpuClothSolver.selfPairsOverflow): room for a landing that goes on piling up, without growing every frame.
+ */
+const GROWTH = 1.5;
 
 /** One cloth on the GPU: create, setParams, upload, then step every frame and read when the CPU needs the cloth. */
 export class GpuClothSolver {
@@ -74,14 +80,18 @@ export class GpuClothSolver {
     this.model = model;
     this.buffers = new ClothBuffers(device, model, kernels.storageLayouts, pairsPerPrimitive);
     this.uniforms = new UniformTables(device, model, kernels.uniformLayout, pairsPerPrimitive);
-    this.selfPairCapacity = selfGridSize(model, pairsPerPrimitive).pairs;
     this.colliders = new ColliderTables(device, this.buffers);
     this.encoder = new FrameEncoder(device, model, kernels.pipelines, this.buffers, this.uniforms, this.colliders);
     this.readback = new Readback(device, model, this.buffers);
   }
 
-  /** the self-contact candidate pairs one pass's list holds (layout.ts selfGridSize) */
-  readonly selfPairCapacity: number;
+  /**
+   * The self-contact candidate pairs one pass's list holds now: layout.ts selfGridSize's `pairs` (0 until params
+   * with self-contact make the list), more once a pass found more (selfPairsOverflow).
+   */
+  get selfPairCapacity(): number {
+    return this.buffers.selfPairCapacity;
+  }
 
   /**
    * The most self-contact candidate pairs one pass found, over the readbacks since the last upload: more than selfPairCapacity
@@ -90,6 +100,24 @@ export class GpuClothSolver {
   get selfPairsMost(): number {
     return this.readback.selfPairsMost;
   }
+
+  /**
+   * Since the last upload, the pass that found the most candidate pairs past what its list held: `found` pairs,
+   * `held` in the list then (the `found − held` past it went unresolved in that substep); undefined when none
+   * did. The readback that shows it grows the list to half as much again as was found (GROWTH; at most what the
+   * device binds in one buffer), so that the passes of the frames encoded after it hold them.
+   */
+  get selfPairsOverflow(): { readonly found: number; readonly held: number } | undefined {
+    this.noteOverflow();
+    return this.overflow;
+  }
+
+  /** Keeps in `overflow` what the last readback shows, where it left more pairs unresolved than any pass before. */
+  private noteOverflow(): void {
+    const found = this.readback.selfPairsMost, held = this.buffers.selfPairCapacity;
+    if (found > held && (!this.overflow || found - held > this.overflow.found - this.overflow.held)) this.overflow = { found, held };
+  }
+  private overflow: { found: number; held: number } | undefined;
 
   /** Position buffer (`array<vec4f>`, x y z 0 per particle [m], usage VERTEX | STORAGE) for renderers. */
   get positionBuffer(): GPUBuffer { return this.buffers.buffers.positions; }
@@ -132,6 +160,16 @@ export class GpuClothSolver {
     this.refreshNormals();
     // a cloth put anew (a reset, a state copied in): what self-contact dropped before is no longer the cloth's
     this.readback.forgetSelfPairs();
+    this.overflow = undefined;
+  }
+
+  /** Where a readback showed a pass that found more candidate pairs than the list holds: a larger list (see selfPairsOverflow). */
+  private growSelfPairs(): void {
+    const found = this.readback.selfPairsMost, held = this.buffers.selfPairCapacity;
+    if (!this.buffers.hasSelfContact || found <= held) return;
+    this.noteOverflow();
+    const room = this.buffers.growSelfPairs(Math.ceil(GROWTH * found));
+    if (room > held) this.uniforms.setSelfPairCapacity(room);
   }
 
   /** Copies only the pins (and tethers, recomputed first when `state.tethersStale`) from a CPU state. */
@@ -162,11 +200,14 @@ export class GpuClothSolver {
 
   /**
    * Copies the GPU cloth back into `state`: positions, previous positions, velocities and the springs' λ of the
-   * last substep (what `energy` reads). Resolves once the data is in `state`. Calls are serialised.
+   * last substep (what `energy` reads). Resolves once the data is in `state` (and the self-contact list has grown
+   * where a pass found more pairs than it holds: selfPairsOverflow). Calls are serialised.
    */
   read(state: ClothState): Promise<void> {
     this.checkAlive();
-    return this.readback.read(state);
+    return this.readback.read(state).then(() => {
+      if (!this.destroyed) this.growSelfPairs();
+    });
   }
 
   /** Bytes one substep's kernels move with the current params (see docs/gpu.md, "Benchmark"). */

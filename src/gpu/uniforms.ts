@@ -112,6 +112,13 @@ export class UniformTables {
     g.setInt32(GLOBALS.grabbed, -1, true);
   }
 
+  /** The candidate pairs the self-contact list holds now (after ClothBuffers.growSelfPairs): for the next frame. */
+  setSelfPairCapacity(pairs: number): void {
+    const g = new DataView(this.globals);
+    g.setUint32(GLOBALS.selfPairCapacity, pairs, true);
+    this.device.queue.writeBuffer(this.globalsBuffer, GLOBALS.selfPairCapacity, this.globals, GLOBALS.selfPairCapacity, 4);
+  }
+
   private recordBuffer(label: string, records: number): GPUBuffer {
     return this.device.createBuffer({ label, size: records * RECORD_STRIDE, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
   }
