@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { countIntersections } from './intersections.js';
 import { builtinScene } from './scenes.js';
-import { selfContactBuilds, selfContactDistance } from './self-contact.js';
+import { findSelfCandidates, selfContactBuilds, selfContactDistance } from './self-contact.js';
 import { Simulation } from './simulation.js';
 import { validateScene } from './scene.js';
 import { copyState } from './state.js';
@@ -22,6 +22,39 @@ function crossings(sim: Simulation, frames: number): number[] {
     out.push(countIntersections(sim.model.triangles, sim.state.positions));
   }
   return out;
+}
+
+/** one substep of a frame at 20 substeps [s] */
+const FRAME_H = 1 / 60 / 20;
+
+type V = number[];
+const sub = (a: V, b: V) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const dot = (a: V, b: V) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const along = (a: V, b: V, s: number) => [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])];
+const clamp01 = (v: number) => Math.min(1, Math.max(0, v));
+/** distance from p to segment a–b */
+function pointSegment(p: V, a: V, b: V): number {
+  const ab = sub(b, a), l = dot(ab, ab);
+  const q = along(a, b, l > 0 ? clamp01(dot(sub(p, a), ab) / l) : 0);
+  return Math.hypot(...sub(p, q));
+}
+/** distance from p to triangle abc: to its plane where p projects inside it, else to the nearest side */
+function pointTriangle(p: V, a: V, b: V, c: V): number {
+  const u = sub(b, a), v = sub(c, a), w = sub(p, a);
+  const uu = dot(u, u), uv = dot(u, v), vv = dot(v, v), wu = dot(w, u), wv = dot(w, v), det = uu * vv - uv * uv;
+  const s = (vv * wu - uv * wv) / det, t = (uu * wv - uv * wu) / det;
+  if (s >= 0 && t >= 0 && s + t <= 1) return Math.hypot(...sub(w, [s * u[0] + t * v[0], s * u[1] + t * v[1], s * u[2] + t * v[2]]));
+  return Math.min(pointSegment(p, a, b), pointSegment(p, b, c), pointSegment(p, c, a));
+}
+/** distance between segments a–b and c–d: the nearest of ends against segments, or of a crossing in between (bisection on a convex function) */
+function segments(a: V, b: V, c: V, d: V): number {
+  let lo = 0, hi = 1;
+  const f = (s: number) => pointSegment(along(a, b, s), c, d);
+  for (let k = 0; k < 60; k++) {
+    const m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+    if (f(m1) < f(m2)) hi = m2; else lo = m1;
+  }
+  return Math.min(f(0), f(1), f((lo + hi) / 2));
 }
 
 describe('self-contact (solver.selfContact)', () => {
@@ -103,6 +136,60 @@ describe('self-contact (solver.selfContact)', () => {
     expect([...fresh.state.positions]).toEqual([...ahead.state.positions]);
     ahead.dispose();
     fresh.dispose();
+  });
+
+  it('lists only pairs that can come within the contact distance before they are found again: none in a sheet lying flat, every pair within it in a fold landing', () => {
+    // a sheet lying still on the floor: its particles' boxes meet the triangles and edges around them, but none of
+    // those can come within h of each other (0.71 and 0.5 of an edge apart, h a sixth of one): nothing to list
+    const flat = new Simulation(validateScene({
+      name: 'flat', solver: { selfContact: true }, gravity: [0, 0, 0],
+      colliders: [], cloth: { resolution: 16, position: [0, 0.5, 0], thickness: 0.01 },
+    }), { kernel: 'ts' });
+    const h = selfContactDistance(flat.model, flat.params);
+    expect(h).toBe(0.01);
+    const still = findSelfCandidates(flat.model, flat.state, flat.params, FRAME_H, 20)!;
+    expect([still.pairCount, still.edgePairCount]).toEqual([0, 0]);
+    flat.dispose();
+
+    // the fold at 32² landing in layers (frame 40): every particle and triangle, and every two edges, that share
+    // no particle and are within 1.8 h of each other now are listed (brute force): each particle's reach box has a
+    // margin of at least h/4 along each axis, so such a pair can come within h before the candidates are found again
+    const sim = new Simulation(builtinScene('fold'), { kernel: 'ts' });
+    sim.advance(40);
+    const x = sim.state.positions, tri = sim.model.triangles, edges = sim.model.edges;
+    const hf = 1.8 * selfContactDistance(sim.model, sim.params);
+    const c = findSelfCandidates(sim.model, sim.state, sim.params, FRAME_H, 20)!;
+    const listed = new Set<string>(), listedEdges = new Set<string>();
+    for (let q = 0; q < c.pairCount; q++) listed.add(`${c.pairs[2 * q]} ${c.pairs[2 * q + 1]}`);
+    for (let q = 0; q < c.edgePairCount; q++) listedEdges.add(`${c.edgePairs[2 * q]} ${c.edgePairs[2 * q + 1]}`);
+    const at = (i: number) => [x[3 * i], x[3 * i + 1], x[3 * i + 2]];
+    // whether the boxes of particles `ids` are farther apart than hf along some axis (then so are they)
+    const apart = (i: number[], j: number[]) => [0, 1, 2].some((k) => {
+      const xi = i.map((v) => x[3 * v + k]), xj = j.map((v) => x[3 * v + k]);
+      return Math.min(...xi) - Math.max(...xj) > hf || Math.min(...xj) - Math.max(...xi) > hf;
+    });
+    let near = 0, nearEdges = 0;
+    for (let t = 0; t < tri.length / 3; t++) {
+      const [a, b, cc] = [tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]];
+      for (let p = 0; p < sim.model.particleCount; p++) {
+        if (p === a || p === b || p === cc || apart([p], [a, b, cc]) || pointTriangle(at(p), at(a), at(b), at(cc)) >= hf) continue;
+        near++;
+        expect(listed.has(`${p} ${t}`), `particle ${p}, triangle ${t}`).toBe(true);
+      }
+    }
+    const ne = edges.length / 2;
+    for (let e = 0; e < ne; e++) {
+      for (let f = e + 1; f < ne; f++) {
+        const [a, b, d0, d1] = [edges[2 * e], edges[2 * e + 1], edges[2 * f], edges[2 * f + 1]];
+        if (a === d0 || a === d1 || b === d0 || b === d1 || apart([a, b], [d0, d1]) || segments(at(a), at(b), at(d0), at(d1)) >= hf) continue;
+        nearEdges++;
+        expect(listedEdges.has(`${e} ${f}`), `edges ${e}, ${f}`).toBe(true);
+      }
+    }
+    // (near pairs there are: the layers lie on each other; of the pairs listed, most are farther)
+    expect(near).toBeGreaterThan(100);
+    expect(nearEdges).toBeGreaterThan(100);
+    sim.dispose();
   });
 
   // the fold scene lands corner first in layers: without edge–edge contact 3–10 pairs crossed from frame 20 on

@@ -7,9 +7,9 @@
  *
  * - Each free particle p is tested against every triangle t not having it as a corner whose box — over the
  *   substep's start and end positions, widened by the self-contact distance h — meets p's own. The candidates are
- *   found ahead (findCandidates: bounding-box trees over boxes of where each particle can be until the frame's end),
- *   and found again only when some particle leaves its box: every pair whose boxes meet in a substep is among
- *   them, so this changes no result's pairs, only how often they are searched for; and they are resolved in
+ *   found ahead (findCandidates: bounding-box trees over boxes of where each particle can be until the frame's end,
+ *   less the pairs too far apart to come within h by then), and found again only when some particle leaves its
+ *   box: every pair that can come within h in a substep is among them; and they are resolved in
  *   (particle, triangle) order, ascending, whenever they were found (so neither does it change their order). (Leaving out its whole
  *   neighbourhood, the triangles touching its one-ring, saved a tenth of the time and let 8× as many tight folds
  *   through at 64²: not done.)
@@ -58,6 +58,11 @@ interface SelfScratch {
    * a substep stays inside its own
    */
   reach: Float64Array;
+  /**
+   * how far each particle can be from where it was when the candidates were found (`seen`) while they hold: the
+   * farthest corner of its reach box from there [m]
+   */
+  reachRadius: Float64Array;
   /** each particle's box over the substep (x_prev to x, as of the last substepBoxes), as `boxes` */
   particleBoxes: Float64Array;
   /** the triangles' and edges' reach boxes (their corners' reach boxes, widened by h and h/2) */
@@ -146,6 +151,7 @@ function scratch(model: ClothModel): SelfScratch {
     boxes: new Float64Array(6 * n),
     edgeBoxes: new Float64Array(3 * model.edges.length),
     reach: new Float64Array(6 * model.particleCount),
+    reachRadius: new Float64Array(model.particleCount),
     particleBoxes: new Float64Array(6 * model.particleCount),
     triangleReach: new Float64Array(6 * n),
     edgeReach: new Float64Array(3 * model.edges.length),
@@ -336,8 +342,9 @@ const REACH_SPAN = 1 / 3;
  * third of the mean rest edge length — with a margin of half that motion and at least h/4), the triangles' and
  * edges' from their corners', and the pairs whose boxes meet (box-tree.ts: a tree over the particles' boxes
  * against one over the triangles', and one over the edges' against itself; at 64² on fold a search took 20 ms at
- * rest and 39 ms in the fall, against 29 and 51 ms by the uniform grids before, the same pairs). False when a box
- * is not finite. (A fast cloth then finds them again more often instead of listing every
+ * rest and 39 ms in the fall, against 29 and 51 ms by the uniform grids before, the same pairs) less those farther
+ * apart now than h and their reach radii (Trees.addPair: at 64² on fold at rest 17.6 k particle and 52.9 k edge
+ * pairs listed instead of 27.0 k and 96.7 k). False when a box is not finite. (A fast cloth then finds them again more often instead of listing every
  * neighbour along a frame of its path: fold's fall at 64², frames 0–30, searched 191 times instead of 168 and
  * listed 95 k pairs instead of 143 k; frames 0–60 took 265 ms per frame instead of 463. A third beat a half and a
  * fifth.)
@@ -359,7 +366,13 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
       reach[r + 3 + c] = Math.max(xp[jp + c], x[jp + c], x[jp + c] + d);
     }
     const margin = Math.max(0.5 * dl * k, 0.25 * hMax);
-    for (let c = 0; c < 3; c++) { reach[r + c] -= margin; reach[r + 3 + c] += margin; }
+    let r2 = 0;
+    for (let c = 0; c < 3; c++) {
+      reach[r + c] -= margin; reach[r + 3 + c] += margin;
+      const far = Math.max(x[jp + c] - reach[r + c], reach[r + 3 + c] - x[jp + c]);
+      r2 += far * far;
+    }
+    s.reachRadius[p] = Math.sqrt(r2);
   }
   const tr = s.triangleReach;
   for (let t = 0; t < nt; t++) unionOf(reach, tri, 3 * t, 3, tr, 6 * t, hMax);
@@ -369,18 +382,19 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
   if (!trees.particles.refit(reach) || !trees.triangles.refit(tr) || !trees.edges.refit(er)) { s.builtFor = NaN; return false; }
   s.builds++;
   s.builtFor = hMax;
+  // distances are measured again from here
+  s.travel.fill(0);
+  s.seen.set(x);
 
   // particle against triangle, and edge against edge (each pair once, from its lower edge): the pairs whose reach
-  // boxes meet, then put in the order they are resolved
+  // boxes meet and that can come within hMax of each other before they are found again (apart), then put in the
+  // order they are resolved
   s.pairCount = 0;
   trees.particles.pairsWith(trees.triangles, reach, tr, trees.addPair);
   s.pairCount = sortPairs(s, s.pairs, s.pairCount, np);
   s.edgePairCount = 0;
   trees.edges.pairsWithin(er, trees.addEdgePair);
   const count = (s.edgePairCount = sortPairs(s, s.edgePairs, s.edgePairCount, ne));
-  // distances are measured again from here
-  s.travel.fill(0);
-  s.seen.set(x);
   if (s.edgeMemo.length < 2 * count) s.edgeMemo = new Float64Array(s.edgePairs.length);
   s.edgeMemo.fill(-Infinity, 0, 2 * count);
   return true;
@@ -423,12 +437,19 @@ interface Trees {
   particles: BoxTree;
   triangles: BoxTree;
   edges: BoxTree;
-  /** adds (particle, triangle) to the scratch's pairs unless the particle is a corner of the triangle */
+  /**
+   * adds (particle, triangle) to the scratch's pairs unless the particle is a corner of the triangle, or the two are
+   * apart: farther apart now than the distance the boxes were made for and their reach radii, tested where that
+   * sum is under a mean rest edge (beyond, the reach is long: in the fall, where it would leave out nothing)
+   */
   addPair: (p: number, t: number) => void;
-  /** adds (edge, edge) to the scratch's edge pairs unless the two share a particle */
+  /** adds (edge, edge) to the scratch's edge pairs unless the two share a particle or are apart (as addPair) */
   addEdgePair: (e: number, f: number) => void;
 }
 const treesFor = new WeakMap<ClothModel, Trees>();
+
+/** scratch for the vector between two edges' closest points when the candidates are found */
+const apart = new Float64Array(3);
 
 /** `model`'s trees, built once from its rest positions. */
 function treesOf(model: ClothModel, s: SelfScratch): Trees {
@@ -446,7 +467,12 @@ function treesOf(model: ClothModel, s: SelfScratch): Trees {
     triangles: new BoxTree(centre(tri, 3, nt), nt),
     edges: new BoxTree(centre(edges, 2, ne), ne),
     addPair: (p, t) => {
-      if (tri[3 * t] === p || tri[3 * t + 1] === p || tri[3 * t + 2] === p) return;
+      const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
+      if (a === p || b === p || c === p) return;
+      // apart: nearer than hMax by no time the candidates hold (every particle then within its reach radius of
+      // where it is now, and so every point of the triangle within its corners' largest)
+      const R = s.reachRadius, near = s.builtFor + R[p] + Math.max(R[a], R[b], R[c]) + SKIP_MARGIN;
+      if (near < s.meanEdge && closestPoint(s.seen, 3 * p, 3 * a, 3 * b, 3 * c) > near) return;
       const n = s.pairCount;
       if (2 * n + 2 > s.pairs.length) s.pairs = grown(s.pairs, 2 * n + 2);
       s.pairs[2 * n] = p; s.pairs[2 * n + 1] = t;
@@ -455,6 +481,9 @@ function treesOf(model: ClothModel, s: SelfScratch): Trees {
     addEdgePair: (e, f) => {
       const a = edges[2 * e], b = edges[2 * e + 1], c = edges[2 * f], d = edges[2 * f + 1];
       if (c === a || c === b || d === a || d === b) return;
+      // apart, as a particle and a triangle above
+      const R = s.reachRadius, near = s.builtFor + Math.max(R[a], R[b]) + Math.max(R[c], R[d]) + SKIP_MARGIN;
+      if (near < s.meanEdge && segmentClosest(s.seen, a, b, c, d, apart) > near) return;
       const n = s.edgePairCount;
       if (2 * n + 2 > s.edgePairs.length) s.edgePairs = grown(s.edgePairs, 2 * n + 2);
       s.edgePairs[2 * n] = e; s.edgePairs[2 * n + 1] = f;
