@@ -138,10 +138,13 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
       `through itself there — the list has grown to ${solver.selfPairCapacity.toLocaleString('en')} since`,
     ]);
     // the frames after it hold every pair their passes find (the sheets still landing on each other): no pass since
-    // left any unresolved
+    // left any unresolved; and they ran, with the new list bound (a destroyed buffer in a submit runs nothing)
+    const before = sim.state.positions.slice();
     sim.advance(5);
     await sim.sync();
     expect(solver.selfPairsOverflow).toEqual(over);
+    expect(sim.state.positions.some((v, i) => Math.abs(v - before[i]) > 1e-4)).toBe(true);
+    expect(sim.state.positions.every(Number.isFinite)).toBe(true);
     // a reset starts the count again: nothing to report, the list as large as it has grown
     const room = solver.selfPairCapacity;
     sim.reset();
