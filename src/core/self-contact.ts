@@ -10,7 +10,8 @@
  *   found ahead (findCandidates: bounding-box trees over boxes of where each particle can be until the frame's end,
  *   less the pairs too far apart to come within h by then), and found again only when some particle leaves its
  *   box: every pair that can come within h in a substep is among them; and they are resolved in
- *   (particle, triangle) order, ascending, whenever they were found (so neither does it change their order). (Leaving out its whole
+ *   (particle, triangle) order, ascending, whenever they were found (so when they were found does not change their
+ *   order). (Leaving out its whole
  *   neighbourhood, the triangles touching its one-ring, saved a tenth of the time and let 8× as many tight folds
  *   through at 64²: not done.)
  * - **Passed through** (side memory): p was on one side of t's plane at the substep's start and is on the other
