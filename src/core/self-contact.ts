@@ -345,10 +345,10 @@ const REACH_SPAN = 1 / 3;
  * against one over the triangles', and one over the edges' against itself; at 64² on fold a search took 20 ms at
  * rest and 39 ms in the fall, against 29 and 51 ms by the uniform grids before, the same pairs) less those farther
  * apart now than h and their reach radii (Trees.addPair: at 64² on fold at rest 17.6 k particle and 52.9 k edge
- * pairs listed instead of 27.0 k and 96.7 k). False when a box is not finite. (A fast cloth then finds them again more often instead of listing every
- * neighbour along a frame of its path: fold's fall at 64², frames 0–30, searched 191 times instead of 168 and
- * listed 95 k pairs instead of 143 k; frames 0–60 took 265 ms per frame instead of 463. A third beat a half and a
- * fifth.)
+ * pairs listed instead of 27.0 k and 96.7 k). False when a box is not finite. (A fast cloth then finds them again
+ * more often instead of listing every neighbour along a frame of its path: fold's fall at 64², frames 0–30,
+ * searched 191 times instead of 168 and listed 95 k pairs instead of 143 k; frames 0–60 took 265 ms per frame
+ * instead of 463. A third beat a half and a fifth.)
  */
 function findCandidates(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number, h: number, left: number): boolean {
   const tri = model.triangles, nt = tri.length / 3, np = model.particleCount, edges = model.edges, ne = edges.length / 2;
@@ -470,8 +470,8 @@ function treesOf(model: ClothModel, s: SelfScratch): Trees {
     addPair: (p, t) => {
       const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
       if (a === p || b === p || c === p) return;
-      // apart: nearer than hMax by no time the candidates hold (every particle then within its reach radius of
-      // where it is now, and so every point of the triangle within its corners' largest)
+      // apart: not within hMax of each other at any time while the candidates hold (every particle stays within
+      // its reach radius of where it is now, and so every point of the triangle within its corners' largest)
       const R = s.reachRadius, near = s.builtFor + R[p] + Math.max(R[a], R[b], R[c]) + SKIP_MARGIN;
       if (near < s.meanEdge && closestPoint(s.seen, 3 * p, 3 * a, 3 * b, 3 * c) > near) return;
       const n = s.pairCount;
