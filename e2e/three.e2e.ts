@@ -13,7 +13,10 @@ import { POLL_MS, RESULTS, writeJson } from './helpers.js';
 
 /** the example's ball: centre and radius [m] (examples/three/main.ts) */
 const BALL = { center: [0, 0.5, 0], radius: 0.3 };
-/** frames the test steps: dropped 0.25 m onto the ball (a quarter of a second), the cloth lies on it and hangs around it well before */
+/**
+ * frames the test steps: dropped 0.25 m onto the ball (a quarter of a second), the cloth lies on it and hangs around
+ * it well before
+ */
 const FRAMES = 60;
 /** then the page's ball rises this much [m], a step each frame over this many frames, carrying the cloth up */
 const LIFT = 0.15;
