@@ -108,14 +108,7 @@ export class GpuClothSolver {
    * device binds in one buffer), so that the passes of the frames encoded after it hold them.
    */
   get selfPairsOverflow(): { readonly found: number; readonly held: number } | undefined {
-    this.noteOverflow();
     return this.overflow;
-  }
-
-  /** Keeps in `overflow` what the last readback shows, where it left more pairs unresolved than any pass before. */
-  private noteOverflow(): void {
-    const found = this.readback.selfPairsMost, held = this.buffers.selfPairCapacity;
-    if (found > held && (!this.overflow || found - held > this.overflow.found - this.overflow.held)) this.overflow = { found, held };
   }
   private overflow: { found: number; held: number } | undefined;
 
@@ -163,11 +156,14 @@ export class GpuClothSolver {
     this.overflow = undefined;
   }
 
-  /** Where a readback showed a pass that found more candidate pairs than the list holds: a larger list (see selfPairsOverflow). */
+  /**
+   * Where a readback showed a pass that found more candidate pairs than the list holds: kept in `overflow` where it
+   * left more unresolved than any pass before, and a larger list (see selfPairsOverflow).
+   */
   private growSelfPairs(): void {
     const found = this.readback.selfPairsMost, held = this.buffers.selfPairCapacity;
     if (!this.buffers.hasSelfContact || found <= held) return;
-    this.noteOverflow();
+    if (!this.overflow || found - held > this.overflow.found - this.overflow.held) this.overflow = { found, held };
     const room = this.buffers.growSelfPairs(Math.ceil(GROWTH * found));
     if (room > held) this.uniforms.setSelfPairCapacity(room);
   }
