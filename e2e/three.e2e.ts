@@ -111,13 +111,19 @@ async function drop(page: Page, query = ''): Promise<Drop> {
  * pulls it up, letting go releases it. Returns the grabbed particle's height before and after, and the grab states.
  */
 async function pull(page: Page): Promise<{ grabbedOnPress: boolean; releasedOnUp: boolean; before: number; after: number }> {
-  // where the particle over the ball's top is on the screen
+  // where the particle over the ball's top is on the screen: aimed inside a triangle of it, a fifth of the way to
+  // its centre (a ray through the vertex itself meets its triangles on their edges, where rounding may miss them all)
   const at = await page.evaluate(() => {
     const { cloth, camera } = (window as any).drapeExample;
     const x: Float32Array = cloth.positions;
     let top = 0;
     for (let i = 0; i < x.length; i += 3) if (x[i + 1] > x[top + 1]) top = i;
-    const p = camera.position.clone().set(x[top], x[top + 1], x[top + 2]).project(camera);
+    // (the page's cloth is the world's first: its geometry indexes its own particles)
+    const tri: ArrayLike<number> = cloth.geometry.index.array;
+    let k = 0;
+    while (3 * tri[k] !== top) k++;
+    const t = k - (k % 3), aim = [0, 1, 2].map((c) => (4 * x[top + c] + (x[3 * tri[t] + c] + x[3 * tri[t + 1] + c] + x[3 * tri[t + 2] + c]) / 3) / 5);
+    const p = camera.position.clone().set(aim[0], aim[1], aim[2]).project(camera);
     return { x: ((p.x + 1) / 2) * innerWidth, y: ((1 - p.y) / 2) * innerHeight, particle: top / 3, y0: x[top + 1] };
   });
   await page.mouse.move(at.x, at.y);

@@ -206,6 +206,21 @@ function frictionScale(tangential: number, depth: number, params: SimParams, clo
 }
 
 /**
+ * The part of a push-out that bounds friction [m]: of an overlap of `overlap` [m] (contact thickness less distance),
+ * `movedIn` [m] is what the point moved into the surface this substep, the rest was there before it, undone at most
+ * `recover` [m] a substep. What the point moved into presses on the surface (the normal impulse, times h²/m), and
+ * so does a leftover the push closes within this substep (over ≤ recover: the cloth resting in contact, as before).
+ * A deeper overlap, one the push takes more than two substeps to undo, is a depenetration: it moves the cloth
+ * without pressing it and gives no friction (between the two, linearly less). Counted as pressure, it let static
+ * friction hold a cloth on a collider grown under it while the cloth stretched, a slingshot released when the
+ * overlap closed (docs/physics.md, "Overlaps").
+ */
+function pressedDepth(overlap: number, movedIn: number, recover: number): number {
+  const over = overlap - movedIn;
+  return over <= 0 ? overlap : movedIn + Math.max(0, Math.min(over, 2 * recover - over));
+}
+
+/**
  * Whether the surface can poke between a triangle's vertices by more than half the contact thickness when the
  * vertices themselves are kept outside: the sag of a surface of curvature radius r under an edge e is
  * e²/(8(r + th)); edges are allowed to stretch to twice their rest length.
@@ -228,7 +243,8 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
  * that a collider is moved into) is undone at no more than `depenetrationSpeed` (triangles share it among the
  * triangles of a particle), so the constraints that follow drag the rest of the cloth along no faster. And of the
  * outward motion left after the push-out, the part the push-out made (at most its depth) also moves x_prev: it is
- * not velocity. A particle arriving from outside ends with zero normal velocity, as before.
+ * not velocity. A particle arriving from outside ends with zero normal velocity, as before. Friction is bounded by
+ * the part of the push-out that presses on the surface (pressedDepth), not by a depenetration.
  *
  * A moving collider is first put where it is at the substep's end (PosedCollider.moveTo), and every motion above is
  * taken relative to its surface (the surface point's own motion over the substep subtracted): a collider moving
@@ -269,9 +285,10 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
         mx -= surface[0]; my -= surface[1]; mz -= surface[2];
       }
       const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
-      const depth = Math.min(th - d, Math.max(-mn, 0) + recover);
+      const movedIn = Math.max(-mn, 0);
+      const depth = Math.min(th - d, movedIn + recover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
-      const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params, cloth);
+      const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), pressedDepth(th - d, movedIn, recover), params, cloth);
       x[j] += depth * normal[0] - s * tx;
       x[j + 1] += depth * normal[1] - s * ty;
       x[j + 2] += depth * normal[2] - s * tz;
@@ -331,9 +348,10 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
         mx -= surface[0]; my -= surface[1]; mz -= surface[2];
       }
       const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
-      const depth = Math.min(th - d, Math.max(-mn, 0) + triangleRecover);
+      const movedIn = Math.max(-mn, 0);
+      const depth = Math.min(th - d, movedIn + triangleRecover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
-      const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth, params, cloth);
+      const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), pressedDepth(th - d, movedIn, triangleRecover), params, cloth);
       // desired displacement of the contact point, spread so that Σ bary_i·Δx_i equals it; and what of it
       // moves x_prev likewise
       const made = Math.min(mn + depth, depth);

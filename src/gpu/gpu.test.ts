@@ -216,7 +216,7 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
   });
 
   // Overlaps without chaos: a cloth that starts 3 cm under a floor plane is lifted onto it at depenetrationSpeed
-  // (1 m/s: two frames), then rests; a floor raised into the resting cloth lifts it again. Seen 1e-12 m → 1e-6 m.
+  // (0.25 m/s: 8 frames), then rests; a floor raised into the resting cloth lifts it again. Seen 1e-12 m → 1e-6 m.
   test('a cloth lifted out of a floor it starts in, and by a floor raised into it: as on the CPU', async () => {
     const p = await pair(scene('cotton-basic', (s) => { s.colliders = [{ type: 'floor', height: 1.23 }]; }));
     await p.advance(40);
@@ -226,6 +226,30 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
     expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-6);
     expect(centroid(p.gpu)[1]).toBeCloseTo(1.3 + 0.005, 4); // on the floor at the contact thickness
     for (const v of p.gpu.velocities) expect(Math.abs(v)).toBeLessThan(1e-3); // lifted, not thrown
+  });
+
+  // A sphere grown at once under a draped cloth (physics.test.ts, the slingshot): from the CPU's draped rubber, the
+  // GPU lifts it onto the new top as the CPU does, its friction bounded by what presses (pressedDepth), not thrown.
+  // Seen (SwiftShader): 3.2e-4 m apart after 30 frames, the top 5.4 mm over the new one (12² sags); with friction
+  // from the whole push on the GPU alone, 0.36 m apart and 12 cm → 1e-3 m, 2.5 cm.
+  test('a sphere grown at once under draped rubber: lifted onto its new top as on the CPU, not thrown', async () => {
+    const sc = scene('rubber-stretch');
+    const p = await pair(sc);
+    for (let f = 0; f < 120; f++) step(p.model, p.cpu, p.params, FRAME_DT);
+    copyState(p.cpu, p.gpu);
+    p.solver.upload(p.gpu);
+    const radius = 0.36;
+    p.params = resolveParams(p.model, scene('rubber-stretch', (s) => { if (s.colliders[0].type === 'sphere') s.colliders[0].radius = radius; }));
+    const sphere = sc.colliders[0];
+    const top = (sphere.type === 'sphere' ? sphere.center[1] : NaN) + radius + sc.cloth.thickness;
+    let highest = -Infinity;
+    for (let f = 0; f < 30; f++) {
+      await p.advance(1);
+      for (let i = 1; i < p.gpu.positions.length; i += 3) highest = Math.max(highest, p.gpu.positions[i]);
+    }
+    expect(maxDistance(p.gpu.positions, p.cpu.positions)).toBeLessThan(1e-3);
+    expect(highest).toBeGreaterThan(top - 2e-3);
+    expect(highest - top).toBeLessThan(0.025);
   });
 
   test('3 iterations (λ accumulation): positions and elastic energy', async () => {

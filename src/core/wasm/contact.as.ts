@@ -33,6 +33,12 @@ function boundingRadius(type: i32, s0: f64, s1: f64, s2: f64): f64 {
   return min((load<f64>(FRICTION) * depth) / tangential, 1);
 }
 
+/** The push-out depth that bounds friction, as phases.ts pressedDepth(). */
+@inline function pressedDepth(overlap: f64, movedIn: f64, recover: f64): f64 {
+  const over = overlap - movedIn;
+  return over <= 0 ? overlap : movedIn + max(0, min(over, 2 * recover - over));
+}
+
 // the outward normal in the shape's own frame of the last localDistance()
 let LX: f64 = 0, LY: f64 = 0, LZ: f64 = 0;
 
@@ -113,9 +119,10 @@ function contactParticle(i: i32, rec: usize, far: f64, th: f64, recover: f64): v
     mz -= pz - (field(rec, D, 6) * px + field(rec, D, 7) * py + field(rec, D, 8) * pz + field(rec, COLLIDER_RECORD_OD, 2));
   }
   const mn = mx * nx + my * ny + mz * nz;
-  const depth = min(th - d, max(-mn, 0) + recover);
+  const movedIn = max(-mn, 0);
+  const depth = min(th - d, movedIn + recover);
   const tx = mx - mn * nx, ty = my - mn * ny, tz = mz - mn * nz;
-  const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), depth);
+  const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), pressedDepth(th - d, movedIn, recover));
   store<f32>(j, <f32>(px + (depth * nx - s * tx)));
   store<f32>(j, <f32>(py + (depth * ny - s * ty)), 4);
   store<f32>(j, <f32>(pz + (depth * nz - s * tz)), 8);
@@ -210,12 +217,17 @@ export function collideParticles(p0: i32, p1: i32): void {
         mz = f32x4.sub(f32x4.add(dot3(d6, d7, d8, px, py, pz), e2), ez);
       }
       const mn = dot3(mx, my, mz, nx, ny, nz);
-      const depth = f32x4.min(f32x4.sub(vTh, d), f32x4.add(f32x4.max(f32x4.neg(mn), zero), vRecover));
+      const movedIn = f32x4.max(f32x4.neg(mn), zero);
+      // pressedDepth() in lanes
+      const overlap = f32x4.sub(vTh, d), over = f32x4.sub(overlap, movedIn);
+      const depth = f32x4.min(overlap, f32x4.add(movedIn, vRecover));
+      const pressed = v128.bitselect(overlap,
+        f32x4.add(movedIn, f32x4.max(zero, f32x4.min(over, f32x4.sub(f32x4.add(vRecover, vRecover), over)))), f32x4.le(over, zero));
       const tx = f32x4.sub(mx, f32x4.mul(mn, nx)), ty = f32x4.sub(my, f32x4.mul(mn, ny)), tz = f32x4.sub(mz, f32x4.mul(mn, nz));
       const tl = f32x4.sqrt(dot3(tx, ty, tz, tx, ty, tz));
-      // frictionScale(): 0 for no motion, 1 inside the static cone, else min(μk·depth/|t|, 1)
-      const kinetic = f32x4.min(f32x4.div(f32x4.mul(vMuK, depth), f32x4.max(tl, tiny)), one);
-      const scale = v128.and(v128.bitselect(one, kinetic, f32x4.lt(tl, f32x4.mul(vMuS, depth))), f32x4.ge(tl, tiny));
+      // frictionScale() of the pressed depth: 0 for no motion, 1 inside the static cone, else min(μk·pressed/|t|, 1)
+      const kinetic = f32x4.min(f32x4.div(f32x4.mul(vMuK, pressed), f32x4.max(tl, tiny)), one);
+      const scale = v128.and(v128.bitselect(one, kinetic, f32x4.lt(tl, f32x4.mul(vMuS, pressed))), f32x4.ge(tl, tiny));
       store4(x, o, o + 12, o + 24, o + 36,
         v128.bitselect(f32x4.add(px, f32x4.sub(f32x4.mul(depth, nx), f32x4.mul(scale, tx))), px, touching),
         v128.bitselect(f32x4.add(py, f32x4.sub(f32x4.mul(depth, ny), f32x4.mul(scale, ty))), py, touching),

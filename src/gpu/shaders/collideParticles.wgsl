@@ -26,9 +26,11 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
     var m = x - xp;
     if (c.moving != 0u) { m -= surfaceMotion(c, x); }
     let mn = dot(m, n);
-    let depth = min(th - d, max(-mn, 0.0) + sub.recover);
+    let movedIn = max(-mn, 0.0);
+    let depth = min(th - d, movedIn + sub.recover);
     let t = m - mn * n;
-    x += depth * n - frictionScale(length(t), depth) * t;
+    // friction bounded by what presses on the surface, not by a depenetration
+    x += depth * n - frictionScale(length(t), pressedDepth(th - d, movedIn, sub.recover)) * t;
     moved = true;
     let made = min(mn + depth, depth);
     if (made > 0.0) {

@@ -41,9 +41,10 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   var m = bary.x * (xa - pa) + bary.y * (xb - pb) + bary.z * (xc - pc);
   if (shape.moving != 0u) { m -= surfaceMotion(shape, bary.x * xa + bary.y * xb + bary.z * xc); }
   let mn = dot(m, n);
-  let depth = min(th - d, max(-mn, 0.0) + sub.recoverTriangle);
+  let movedIn = max(-mn, 0.0);
+  let depth = min(th - d, movedIn + sub.recoverTriangle);
   let tang = m - mn * n;
-  let fs = frictionScale(length(tang), depth);
+  let fs = frictionScale(length(tang), pressedDepth(th - d, movedIn, sub.recoverTriangle));
   let dx = (depth * n - fs * tang) / denom;
   positions[a] = vec4f(xa + wa * dx, 0.0);
   positions[b] = vec4f(xb + wb * dx, 0.0);
