@@ -34,7 +34,8 @@ export class GpuBackend implements Backend {
 
   /**
    * Whether self-contact dropped pairs in some pass, over the syncs since the last upload
-   * (GpuClothSolver.selfPairsOverflow), and how large the list is now.
+   * (GpuClothSolver.selfPairsOverflow), and how large the list is now, or that it can grow no more (the most the
+   * device binds in one buffer: later passes may still find more than it holds).
    */
   get notes(): readonly string[] {
     const over = this.solver.selfPairsOverflow;
@@ -44,7 +45,7 @@ export class GpuBackend implements Backend {
       `GPU self-contact: a pass found ${over.found.toLocaleString('en')} candidate pairs, more than its list held ` +
       `(${over.held.toLocaleString('en')}); the ${(over.found - over.held).toLocaleString('en')} past it went unresolved in that substep, ` +
       'so the cloth may have passed through itself there — ' +
-      (room > over.found ? `the list has grown to ${room.toLocaleString('en')} since` : `the list holds ${room.toLocaleString('en')}, the most this device binds in one buffer`),
+      (this.solver.selfPairsAtDeviceMost ? `the list holds ${room.toLocaleString('en')}, the most this device binds in one buffer` : `the list has grown to ${room.toLocaleString('en')} since`),
     ];
   }
 

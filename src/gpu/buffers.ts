@@ -199,14 +199,18 @@ export class ClothBuffers {
    */
   growSelfPairs(pairs: number): number {
     if (!this.selfMade) throw new Error('GPU solver: the self-contact list grows only once self-contact is on');
-    const most = Math.floor((this.device.limits.maxStorageBufferBindingSize / BUFFERS.selfPairs.bytes - 1) / 2);
-    const room = Math.min(pairs, most);
+    const room = Math.min(pairs, this.selfPairMost);
     if (room <= this.selfPairRoom) return this.selfPairRoom;
     this.buffers.selfPairs.destroy();
     this.buffers.selfPairs = this.createBuffer('selfPairs', 1 + 2 * room, 0);
     this.regroup(['selfPairs']);
     this.selfPairRoom = room;
     return room;
+  }
+
+  /** the most pairs a self-contact candidates' list can hold: what the device binds in one buffer */
+  get selfPairMost(): number {
+    return Math.floor((this.device.limits.maxStorageBufferBindingSize / BUFFERS.selfPairs.bytes - 1) / 2);
   }
 
   /** the pairs the self-contact candidates' list holds now (selfGridSize's `pairs` until growSelfPairs) */

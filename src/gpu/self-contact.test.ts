@@ -11,6 +11,7 @@ import { selfContactDistance } from '../core/self-contact.js';
 import { GpuBackend } from './backend.js';
 import type { GpuSolverOptions } from './solver.js';
 import { sceneRefusal } from './encoder.js';
+import { BUFFERS } from './layout.js';
 import { testDevice } from './test-device.js';
 
 const gpu = await testDevice('src/gpu/self-contact.test.ts');
@@ -20,11 +21,11 @@ afterAll(() => {
   for (const s of sims) s.dispose();
 });
 
-/** A Simulation of `scene` on the GPU (its state read back by `sync`). */
-async function onGpu(scene: Scene, options?: GpuSolverOptions): Promise<Simulation> {
+/** A Simulation of `scene` on the GPU (its state read back by `sync`), on the test's device or `device`. */
+async function onGpu(scene: Scene, options?: GpuSolverOptions, device: GPUDevice = gpu!.device): Promise<Simulation> {
   expect(sceneRefusal(scene)).toBeNull();
   const sim = new Simulation(scene, { kernel: 'ts' });
-  sim.useBackend(await GpuBackend.create(gpu!.device, sim.model, options));
+  sim.useBackend(await GpuBackend.create(device, sim.model, options));
   sims.push(sim);
   return sim;
 }
@@ -150,6 +151,44 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
     sim.reset();
     expect(sim.notes).toEqual([]);
     expect(solver.selfPairCapacity).toBe(room);
+  });
+
+  test('a list that cannot grow as far as it would, for what the device binds in one buffer, says so and holds that many', async () => {
+    // the test's device, whose limits say what the test sets once self-contact's buffers are made
+    const real = gpu!.device;
+    const limits: Record<string, unknown> = {};
+    for (const k in real.limits) limits[k] = real.limits[k as keyof GPUSupportedLimits];
+    const device = new Proxy(real, {
+      get: (target, key) => {
+        if (key === 'limits') return limits;
+        const v = Reflect.get(target, key);
+        return typeof v === 'function' ? v.bind(target) : v;
+      },
+    });
+    const sim = await onGpu(stacked(true), { selfPairsPerPrimitive: 0.05 }, device);
+    const solver = (sim.backend as GpuBackend).solver;
+    // the first frame makes the buffers and overflows the list (1 pair in 20 primitives: the sheets' own
+    // neighbours fill it); before its readback grows the list, the device is made to bind 10 pairs more than it holds
+    sim.advance(1);
+    const first = solver.selfPairCapacity;
+    const most = first + 10;
+    limits.maxStorageBufferBindingSize = BUFFERS.selfPairs.bytes * (1 + 2 * most);
+    await sim.sync();
+    const over = solver.selfPairsOverflow!;
+    expect(over.held).toBe(first);
+    expect(over.found).toBeGreaterThan(most);
+    expect(solver.selfPairCapacity).toBe(most);
+    expect(sim.notes).toEqual([
+      `GPU self-contact: a pass found ${over.found.toLocaleString('en')} candidate pairs, more than its list held (${first}); ` +
+      `the ${(over.found - first).toLocaleString('en')} past it went unresolved in that substep, so the cloth may have passed ` +
+      `through itself there — the list holds ${most}, the most this device binds in one buffer`,
+    ]);
+    // it stays that size, and the frames after it run with it
+    sim.advance(5);
+    await sim.sync();
+    expect(solver.selfPairCapacity).toBe(most);
+    expect(sim.state.positions.every(Number.isFinite)).toBe(true);
+    expect(sim.notes[0]).toMatch(/the list holds \d+, the most this device binds in one buffer$/);
   });
 
   // two thin strips crossing like an X, the upper one falling on the pinned lower one (self-contact.test.ts in core):

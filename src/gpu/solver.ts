@@ -93,6 +93,11 @@ export class GpuClothSolver {
     return this.buffers.selfPairCapacity;
   }
 
+  /** whether the self-contact candidates' list is as large as this device binds in one buffer: it grows no more */
+  get selfPairsAtDeviceMost(): boolean {
+    return this.buffers.selfPairCapacity >= this.buffers.selfPairMost;
+  }
+
   /**
    * The most self-contact candidate pairs one pass found, over the readbacks since the last upload: more than selfPairCapacity
    * means pairs went unresolved in that pass (counted, not kept), and cloth may have passed through itself there.
