@@ -112,8 +112,6 @@ interface SelfScratch {
   substepAt: number;
   /** the distance h the reach boxes were widened by (NaN: none found yet) */
   builtFor: number;
-  /** how many times the candidates were found (for the tests: about once a frame on a falling cloth) */
-  builds: number;
 }
 const scratchOf = new WeakMap<ClothModel, SelfScratch>();
 const restOf = new WeakMap<ClothModel, { minAltitude: number; meanEdge: number }>();
@@ -174,7 +172,6 @@ function scratch(model: ClothModel): SelfScratch {
     clock: 0,
     substepAt: 0,
     builtFor: NaN,
-    builds: 0,
   };
   scratchOf.set(model, s);
   return s;
@@ -220,9 +217,17 @@ export function selfContactSubsteps(h: number, speed: number, dt: number): numbe
 const bary = new Float64Array(3);
 const dir = new Float64Array(3);
 
+/** how many times each model's candidates were found, by either CPU kernel (for the tests: about once a frame on a falling cloth) */
+const buildsOf = new WeakMap<ClothModel, number>();
+
 /** How many times `model`'s self-contact candidates have been found (the tests check it is not every substep). */
 export function selfContactBuilds(model: ClothModel): number {
-  return scratch(model).builds;
+  return buildsOf.get(model) ?? 0;
+}
+
+/** Counts a search for `model`'s candidates (findCandidates here, or the WebAssembly kernel's own). */
+export function countSelfSearch(model: ClothModel): void {
+  buildsOf.set(model, selfContactBuilds(model) + 1);
 }
 
 /** Candidate pairs found ahead, as the WebAssembly kernel's self-contact reads them (self-contact-wasm.ts). */
@@ -245,6 +250,12 @@ export interface SelfCandidates {
 export function findSelfCandidates(model: ClothModel, state: ClothState, params: SimParams, h: number, left: number): SelfCandidates | null {
   const s = scratch(model);
   return findCandidates(model, state, params, s, selfContactDistance(model, params), h, left) ? s : null;
+}
+
+/** `model`'s candidate pairs as the reference's last search left them (tests), or null before the first. */
+export function lastSelfCandidates(model: ClothModel): SelfCandidates | null {
+  const s = scratchOf.get(model);
+  return s && s.builtFor === s.builtFor ? s : null;
 }
 
 /**
@@ -338,6 +349,15 @@ function track(s: SelfScratch, x: Float32Array, xp: Float32Array, p: number): vo
 const REACH_SPAN = 1 / 3;
 
 /**
+ * What a search on `model` reads besides the state, for a kernel that searches itself: the mean rest edge length
+ * [m] (a pair farther apart than it is tested as it is) and the most predicted motion a reach box spans [m].
+ */
+export function selfSearchLengths(model: ClothModel): { meanEdge: number; span: number } {
+  const { meanEdge } = restMeasures(model);
+  return { meanEdge, span: REACH_SPAN * meanEdge };
+}
+
+/**
  * Finds the candidate pairs for the substeps left in the frame: each particle's reach box (its box over this
  * substep, carried on over the `left` substeps of length h at its motion so far and gravity — but no farther than a
  * third of the mean rest edge length — with a margin of half that motion and at least h/4), the triangles' and
@@ -381,7 +401,7 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
   for (let e = 0; e < ne; e++) unionOf(reach, edges, 2 * e, 2, er, 6 * e, 0.5 * hMax);
   const trees = treesOf(model, s);
   if (!trees.particles.refit(reach) || !trees.triangles.refit(tr) || !trees.edges.refit(er)) { s.builtFor = NaN; return false; }
-  s.builds++;
+  countSelfSearch(model);
   s.builtFor = hMax;
   // distances are measured again from here
   s.travel.fill(0);
@@ -434,10 +454,7 @@ function sortPairs(s: SelfScratch, list: Int32Array, count: number, n: number): 
 }
 
 /** The trees over `model`'s particles, triangles and edges (box-tree.ts) and what their pairs are added by. */
-interface Trees {
-  particles: BoxTree;
-  triangles: BoxTree;
-  edges: BoxTree;
+interface Trees extends SelfContactTrees {
   /**
    * adds (particle, triangle) to the scratch's pairs unless the particle is a corner of the triangle, or the two are
    * apart: farther apart now than the distance the boxes were made for and their reach radii, tested where that
@@ -452,9 +469,20 @@ const treesFor = new WeakMap<ClothModel, Trees>();
 /** scratch for the vector between two edges' closest points when the candidates are found */
 const apart = new Float64Array(3);
 
-/** `model`'s trees, built once from its rest positions. */
-function treesOf(model: ClothModel, s: SelfScratch): Trees {
-  let t = treesFor.get(model);
+/** The bounding-box trees of a model's self-contact: over its particles, its triangles and its edges. */
+export interface SelfContactTrees {
+  readonly particles: BoxTree;
+  readonly triangles: BoxTree;
+  readonly edges: BoxTree;
+}
+const structureOf = new WeakMap<ClothModel, SelfContactTrees>();
+
+/**
+ * `model`'s trees, built once from its rest positions (each primitive by its centre) and refitted at each search:
+ * the reference's, and the WebAssembly kernel's, which copies their structure into its memory.
+ */
+export function selfContactTrees(model: ClothModel): SelfContactTrees {
+  let t = structureOf.get(model);
   if (t) return t;
   const x = model.restPositions, tri = model.triangles, edges = model.edges;
   const np = model.particleCount, nt = tri.length / 3, ne = edges.length / 2;
@@ -467,6 +495,18 @@ function treesOf(model: ClothModel, s: SelfScratch): Trees {
     particles: new BoxTree(Float64Array.from(x), np),
     triangles: new BoxTree(centre(tri, 3, nt), nt),
     edges: new BoxTree(centre(edges, 2, ne), ne),
+  };
+  structureOf.set(model, t);
+  return t;
+}
+
+/** `model`'s trees and the callbacks that add their pairs to the scratch `s`. */
+function treesOf(model: ClothModel, s: SelfScratch): Trees {
+  let t = treesFor.get(model);
+  if (t) return t;
+  const tri = model.triangles, edges = model.edges;
+  t = {
+    ...selfContactTrees(model),
     addPair: (p, t) => {
       const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
       if (a === p || b === p || c === p) return;

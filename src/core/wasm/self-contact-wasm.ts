@@ -1,18 +1,22 @@
 /**
  * The WebAssembly kernel's self-contact (the `selfContact` phase; self-contact.ts is the reference): the host's
- * part. The candidate pairs are found ahead in TypeScript (findSelfCandidates, the reference's own search) and
- * copied into the kernel's memory after each search; every substep the kernel (self-contact.as.ts) computes the
- * particles' boxes over the substep and checks them against the reach boxes, and runs the particle–triangle and
- * edge–edge passes over the pairs, with the reference's operations in its order: the same cloth bit for bit. The
- * passes run on the calling thread (Gauss–Seidel, in the pairs' order) between two substep() calls of the other
- * phases. The pairs live in two windows of fixed size in the kernel's memory (its size is fixed when the kernel is
- * made); a search that finds more pairs than a window holds keeps them here and copies them in window by window
- * every substep, in order, which only costs the copies. Several cloths: each particle's cloth and each cloth's
- * thickness and friction are in the kernel's memory, so cloths that differ in them run here too.
+ * part. The kernel finds the candidate pairs ahead itself (self-search.as.ts: the reference's search on the
+ * reference's trees, whose structure is copied into its memory once, the same pairs in the same order) into two
+ * pair windows; every substep it computes the particles' boxes over the substep and checks them against the reach
+ * boxes, and runs the particle–triangle and edge–edge passes over the pairs (self-contact.as.ts), with the
+ * reference's operations in its order: the same cloth bit for bit. Search and passes run on the calling thread
+ * (Gauss–Seidel, in the pairs' order) between two substep() calls of the other phases. The windows have a fixed
+ * size in the kernel's memory (its size is fixed when the kernel is made); a search that finds more pairs than a
+ * window holds is made again in TypeScript (findSelfCandidates), which keeps them here and copies them in window
+ * by window every substep, in order, which only costs the copies. Several cloths: each particle's cloth and each
+ * cloth's thickness and friction are in the kernel's memory, so cloths that differ in them run here too.
  */
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
-import { findSelfCandidates, selfContactDistance, type SelfCandidates } from '../self-contact.js';
+import {
+  countSelfSearch, findSelfCandidates, selfContactDistance, selfContactTrees, selfSearchLengths, type SelfCandidates,
+} from '../self-contact.js';
+import type { BoxTree } from '../box-tree.js';
 import type { ClothState } from '../state.js';
 
 /** What the kernel exports for self-contact (self-contact.as.ts). */
@@ -24,18 +28,32 @@ export interface SelfContactExports {
   selfParticles(count: number, hMax: number): void;
   selfEdgeBoxes(hMax: number): void;
   selfEdges(count: number, hMax: number, memo: boolean): void;
+  configureSearch(...layout: number[]): void;
+  selfSearch(hMax: number, left: number, h: number, gx: number, gy: number, gz: number, span: number, edge: number, window: number, edgeWindow: number): number;
+  foundPairs(): number;
+  foundEdgePairs(): number;
 }
 
-/** Pairs a window holds by default [pairs]: per particle, particle–triangle and edge–edge, and at least. */
-const WINDOW_PER_PARTICLE = 16;
-const EDGE_WINDOW_PER_PARTICLE = 48;
+/**
+ * Pairs a window holds by default [pairs]: per particle, particle–triangle and edge–edge, and at least (fold's
+ * landing at 64², the most a search found: 23 and 69 per particle).
+ */
+const WINDOW_PER_PARTICLE = 24;
+const EDGE_WINDOW_PER_PARTICLE = 72;
 const WINDOW_MIN = 1 << 14;
+/** node pairs the kernel's tree traversals can hold (a traversal's stack grows by at most two a level: ~60 at 256²) */
+const STACK_PAIRS = 1024;
+/** one tree's descriptor in the kernel (self-search.as.ts Tree): order, first, size, right, boxes, node count */
+const TREE_FIELDS = 6;
 
 /** Where self-contact's arrays lie in the kernel's memory (byte offsets) and how many pairs each window holds. */
 export interface SelfContactLayout {
   tris: number; edges: number; owner: number; cloth: number; reach: number; pbox: number; tbox: number; ebox: number;
   tframe: number; eframe: number; tframeAt: number; eframeAt: number; movedAt: number; pairs: number; edgePairs: number;
   travel: number; seen: number; move: number; edgeMemo: number; window: number; edgeWindow: number;
+  /** the search's: the three trees' descriptors and arrays, the reach radii and boxes, its scratch */
+  trees: number; tree: { order: number; first: number; size: number; right: number; boxes: number }[];
+  radius: number; treach: number; ereach: number; bucket: number; stack: number;
 }
 
 /**
@@ -45,13 +63,26 @@ export interface SelfContactLayout {
 export function layoutSelfContact(model: ClothModel, take: (bytes: number) => number, window?: number): SelfContactLayout {
   const n = model.particleCount, nt = model.triangles.length / 3, ne = model.edges.length / 2;
   const w = window ?? Math.max(WINDOW_MIN, WINDOW_PER_PARTICLE * n), we = window ?? Math.max(WINDOW_MIN, EDGE_WINDOW_PER_PARTICLE * n);
+  const { particles, triangles, edges } = selfContactTrees(model);
+  const tree = [particles, triangles, edges].map((t: BoxTree) => ({
+    order: take(4 * t.order.length), first: take(4 * t.nodeCount), size: take(4 * t.nodeCount), right: take(4 * t.nodeCount), boxes: take(48 * t.nodeCount),
+  }));
   return {
+    trees: take(4 * TREE_FIELDS * 3), tree, radius: take(8 * n), treach: take(48 * nt), ereach: take(48 * ne),
+    bucket: take(4 * (Math.max(n, ne) + 1)), stack: take(8 * STACK_PAIRS),
     tris: take(12 * nt), edges: take(8 * ne), owner: take(n), cloth: take(24 * (model.clothStarts.length - 1)),
     reach: take(48 * n), pbox: take(48 * n), tbox: take(48 * nt), ebox: take(48 * ne),
     tframe: take(80 * nt), eframe: take(48 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
     pairs: take(8 * w), edgePairs: take(8 * we), travel: take(8 * n), seen: take(12 * n), move: take(8 * n), edgeMemo: take(16 * we),
     window: w, edgeWindow: we,
   };
+}
+
+/** Candidate pairs as a search left them: (particle, triangle) and (edge, edge), and whether the kernel or TypeScript found them. */
+export interface ListedPairs {
+  readonly pairs: Int32Array;
+  readonly edgePairs: Int32Array;
+  readonly foundBy: 'kernel' | 'typescript';
 }
 
 /** A pair list kept on the host while it is larger than its window, and the window it is copied into. */
@@ -66,6 +97,17 @@ class PairList {
 
   constructor(memory: ArrayBufferLike, at: number, pairs: number) {
     this.pairWindow = new Int32Array(memory, at, 2 * pairs);
+  }
+
+  /** A copy of the list's pairs. */
+  copy(): Int32Array {
+    return (this.resident ? this.pairWindow : this.overflow).slice(0, 2 * this.count);
+  }
+
+  /** The kernel's search wrote `count` pairs into the window. */
+  found(count: number): void {
+    this.count = count;
+    this.resident = true;
   }
 
   /** Takes the first `count` pairs of `list` (after a search): into the window when they fit, else kept here. */
@@ -108,7 +150,12 @@ export class KernelSelfContact {
   private readonly edgePairs: PairList;
   /** the distance h [m] the candidates in the kernel were found for (NaN: none) */
   private builtFor = NaN;
+  /** who found the candidates last */
+  private foundBy: ListedPairs['foundBy'] | null = null;
   private paramsSeen: SimParams | undefined;
+  /** the search's lengths [m] (selfSearchLengths) and the windows' sizes [pairs] */
+  private readonly lengths: { meanEdge: number; span: number };
+  private readonly windows: [number, number];
   private readonly particles: (count: number, hMax: number) => void;
   private readonly edges: (count: number, hMax: number, resident: boolean) => void;
 
@@ -126,6 +173,19 @@ export class KernelSelfContact {
     const l = layout;
     exports.configureSelf(l.tris, l.edges, l.owner, l.cloth, l.reach, l.pbox, l.tbox, l.ebox, l.tframe, l.eframe,
       l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, nt, ne);
+    // the trees' structure (the reference's, built once), and where each tree lies
+    const trees = selfContactTrees(model), descriptors = new Int32Array(memory, l.trees, TREE_FIELDS * 3);
+    [trees.particles, trees.triangles, trees.edges].forEach((t, k) => {
+      const at = l.tree[k], nodes = t.nodeCount;
+      new Int32Array(memory, at.order, t.order.length).set(t.order);
+      new Int32Array(memory, at.first, nodes).set(t.first.subarray(0, nodes));
+      new Int32Array(memory, at.size, nodes).set(t.size.subarray(0, nodes));
+      new Int32Array(memory, at.right, nodes).set(t.right.subarray(0, nodes));
+      descriptors.set([at.order, at.first, at.size, at.right, at.boxes, nodes], TREE_FIELDS * k);
+    });
+    exports.configureSearch(l.trees, l.radius, l.treach, l.ereach, l.bucket, l.stack, STACK_PAIRS, nt, ne);
+    this.lengths = selfSearchLengths(model);
+    this.windows = [l.window, l.edgeWindow];
     this.particles = (count, hMax) => exports.selfParticles(count, hMax);
     // the edge pairs' measured distances hold while the window keeps its pairs
     this.edges = (count, hMax, resident) => exports.selfEdges(count, hMax, resident);
@@ -160,8 +220,26 @@ export class KernelSelfContact {
     this.edgePairs.run(this.edges, hMax);
   }
 
-  /** Finds the candidates (findSelfCandidates) and copies them into the kernel; false for an unstable cloth. */
+  /**
+   * Finds the candidates: in the kernel, or where they do not fit its windows in TypeScript (findSelfCandidates),
+   * copied into the kernel; false for an unstable cloth.
+   */
   private find(model: ClothModel, state: ClothState, params: SimParams, hMax: number, h: number, left: number): boolean {
+    const g = params.gravity, ex = this.exports;
+    const found = ex.selfSearch(hMax, left, h, g[0], g[1], g[2], this.lengths.span, this.lengths.meanEdge, this.windows[0], this.windows[1]);
+    if (found === 0) {
+      this.builtFor = NaN;
+      return false;
+    }
+    if (found === 1) {
+      countSelfSearch(model);
+      this.pairs.found(ex.foundPairs());
+      this.edgePairs.found(ex.foundEdgePairs());
+      ex.selfFound(ex.foundEdgePairs());
+      this.builtFor = hMax;
+      this.foundBy = 'kernel';
+      return true;
+    }
     const c: SelfCandidates | null = findSelfCandidates(model, state, params, h, left);
     if (!c) {
       this.builtFor = NaN;
@@ -172,6 +250,12 @@ export class KernelSelfContact {
     this.edgePairs.take(c.edgePairs, c.edgePairCount);
     this.exports.selfFound(this.edgePairs.resident ? c.edgePairCount : 0);
     this.builtFor = hMax;
+    this.foundBy = 'typescript';
     return true;
+  }
+
+  /** The candidates as the last search left them (tests), or null before the first. */
+  listed(): ListedPairs | null {
+    return this.foundBy && { pairs: this.pairs.copy(), edgePairs: this.edgePairs.copy(), foundBy: this.foundBy };
   }
 }

@@ -8,15 +8,15 @@ import { N, W, X, XP } from './arrays.as';
 
 // The arrays (byte offsets, laid out by the host: self-contact-wasm.ts) and counts, set by configureSelf().
 /** the triangles' particles, u32 × 3 per triangle */
-let TRIS: usize = 0;
+export let TRIS: usize = 0;
 /** the edges' particles, u32 × 2 per edge */
-let EDGES: usize = 0;
+export let EDGES: usize = 0;
 /** the cloth of each particle, u8 */
 let OWNER: usize = 0;
 /** per cloth: thickness [m], kinetic and static friction [-], f64 × 3 */
 let CLOTH: usize = 0;
 /** each particle's reach box (the host's, copied after each search), f64 × 6: min x, y, z, max x, y, z [m] */
-let REACH: usize = 0;
+export let REACH: usize = 0;
 /** each particle's box over the substep, f64 × 6 [m] */
 let PBOX: usize = 0;
 /** each triangle's box over the substep widened by h, and each edge's widened by h/2, f64 × 6 [m] */
@@ -33,8 +33,8 @@ let TFRAME_AT: usize = 0;
 let EFRAME_AT: usize = 0;
 let MOVED_AT: usize = 0;
 /** the candidate pairs: (particle, triangle) and (edge, edge), i32 × 2 each */
-let PAIRS: usize = 0;
-let EDGE_PAIRS: usize = 0;
+export let PAIRS: usize = 0;
+export let EDGE_PAIRS: usize = 0;
 /**
  * how far each particle can have moved since the candidates were found [m], f64 (the sum of its moves between the
  * times self-contact looked at it: each phase's start, each correction), and where it was the last time, f32 × 3
@@ -47,7 +47,7 @@ let MOVE: usize = 0;
  * per edge pair of EDGE_PAIRS: a lower bound on its distance [m] once measured (−∞ before) and its four particles'
  * travel then [m], f64 × 2
  */
-let EDGE_MEMO: usize = 0;
+export let EDGE_MEMO: usize = 0;
 /** triangles and edges */
 let NT: i32 = 0;
 let NE: i32 = 0;
@@ -60,7 +60,7 @@ let clock: i32 = 0;
 let substepAt: i32 = 0;
 
 /** How far beyond h [m] a bound must say a pair is before it is skipped (self-contact.ts SKIP_MARGIN). */
-const SKIP_MARGIN: f64 = 1e-7;
+export const SKIP_MARGIN: f64 = 1e-7;
 
 /** Sets the arrays' byte offsets and the counts (the host's layout). */
 export function configureSelf(
@@ -185,7 +185,7 @@ export function selfEdgeBoxes(hMax: f64): void {
 }
 
 /** Whether the boxes at byte offsets a and b meet. */
-@inline function overlap(a: usize, b: usize): bool {
+@inline export function overlap(a: usize, b: usize): bool {
   return !(f64At(a, 0) > f64At(b, 3) || f64At(a, 3) < f64At(b, 0) || f64At(a, 1) > f64At(b, 4) ||
     f64At(a, 4) < f64At(b, 1) || f64At(a, 2) > f64At(b, 5) || f64At(a, 5) < f64At(b, 2));
 }
@@ -283,7 +283,7 @@ function projectionInside(base: usize, jp: usize, ja: usize, jb: usize, jc: usiz
 }
 
 /** Distance [m] from jp to the closest point of triangle (ja, jb, jc) now, its weights into B0…B2 (Ericson 2005, §5.1.5). */
-function closestPoint(jp: usize, ja: usize, jb: usize, jc: usize): f64 {
+export function closestPoint(jp: usize, ja: usize, jb: usize, jc: usize): f64 {
   const abx = xn(jb, 0) - xn(ja, 0), aby = xn(jb, 1) - xn(ja, 1), abz = xn(jb, 2) - xn(ja, 2);
   const acx = xn(jc, 0) - xn(ja, 0), acy = xn(jc, 1) - xn(ja, 1), acz = xn(jc, 2) - xn(ja, 2);
   const apx = xn(jp, 0) - xn(ja, 0), apy = xn(jp, 1) - xn(ja, 1), apz = xn(jp, 2) - xn(ja, 2);
@@ -424,7 +424,7 @@ let GX: f64 = 0, GY: f64 = 0, GZ: f64 = 0;
  * Closest points of segments a–b and c–d (byte offsets) of positions `base` (Ericson 2005, §5.1.9): their
  * parameters into S, T, the vector p − q into GX, GY, GZ; returns its length [m].
  */
-function segmentClosest(base: usize, ja: usize, jb: usize, jc: usize, jd: usize): f64 {
+export function segmentClosest(base: usize, ja: usize, jb: usize, jc: usize, jd: usize): f64 {
   const ax = <f64>load<f32>(base + ja), ay = <f64>load<f32>(base + ja, 4), az = <f64>load<f32>(base + ja, 8);
   const cx = <f64>load<f32>(base + jc), cy = <f64>load<f32>(base + jc, 4), cz = <f64>load<f32>(base + jc, 8);
   const ux = <f64>load<f32>(base + jb) - ax, uy = <f64>load<f32>(base + jb, 4) - ay, uz = <f64>load<f32>(base + jb, 8) - az;

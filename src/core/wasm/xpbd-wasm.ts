@@ -26,7 +26,7 @@ import {
   KERNEL_MAX_ITERATIONS, KERNEL_MAX_THREADS, MAX_COLLIDERS, COLLIDER_RECORD_FLOATS, COLLIDER_BOX, COLLIDER_CAPSULE,
   COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
 } from '../layout.generated.js';
-import { KernelSelfContact, layoutSelfContact, type SelfContactExports } from './self-contact-wasm.js';
+import { KernelSelfContact, layoutSelfContact, type ListedPairs, type SelfContactExports } from './self-contact-wasm.js';
 import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
@@ -50,7 +50,8 @@ function contactRefusal(params: SimParams): string | null {
 
 /**
  * The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter, and
- * stencil bending; self-contact's narrow phase in the kernel, its candidate search in TypeScript: self-contact-wasm.ts).
+ * stencil bending; self-contact's candidate search and narrow phase, with the TypeScript search as the fallback where
+ * a window overflows: self-contact-wasm.ts).
  */
 export const KERNEL_PHASES: BackendPhases = {
   name: 'WebAssembly kernel',
@@ -222,8 +223,8 @@ export class XpbdKernel implements PhaseBackend {
    * A kernel and its state for `model`, or null where the runtime has no WebAssembly SIMD (or, with threads > 1,
    * no shared memory: then the caller may ask again with 1 thread). `selfWindow` [pairs]: the size of
    * self-contact's pair windows (tests: a small one; by default they grow with the cloth, self-contact-wasm.ts).
-   * `selfContact` false: no memory for self-contact's passes (about 2 kB a particle: a 256² cloth's kernel takes
-   * 13.5 MB instead of 147 MB); the phase, if asked for, then runs in the TypeScript reference (the same cloth, bit
+   * `selfContact` false: no memory for self-contact's passes (about 3.1 kB a particle: a 256² cloth's kernel takes
+   * 13.5 MB instead of 221 MB); the phase, if asked for, then runs in the TypeScript reference (the same cloth, bit
    * for bit).
    */
   static create(model: ClothModel, threads = 1, selfWindow?: number, selfContact = true): XpbdKernel | null {
@@ -235,6 +236,11 @@ export class XpbdKernel implements PhaseBackend {
   /** whether self-contact's passes run in the kernel (it was made with their memory) */
   get hasSelfContact(): boolean {
     return this.selfContact !== null;
+  }
+
+  /** self-contact's candidate pairs as the last search left them, and who searched (null: none yet, or no self-contact) */
+  selfCandidates(): ListedPairs | null {
+    return this.selfContact?.listed() ?? null;
   }
 
   /** the kernel's memory [bytes] */

@@ -9,6 +9,7 @@
 //   contact.as.ts      particle contact against the collider records
 //   self-contact.as.ts self-contact's passes over the candidate pairs (the host calls them between two substep()
 //                      calls, on thread 0: the selfContact phase is never part of a substep() here)
+//   self-search.as.ts  self-contact's search for those pairs (likewise called by the host, on thread 0)
 //   simd.as.ts         the f32x4 lane helpers they share
 //   arrays.as.ts       the arrays' byte offsets (configure())
 //   threads.as.ts      the protocol under which threads share a substep
@@ -37,6 +38,7 @@ import {
 
 export { configure } from './arrays.as';
 export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfParticles, selfTriangleBoxes } from './self-contact.as';
+export { configureSearch, foundEdgePairs, foundPairs, selfSearch } from './self-search.as';
 
 /**
  * Helper thread t's loop: wait for a dispatch, take part in that substep, repeat until told to exit. It reads the

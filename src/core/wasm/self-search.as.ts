@@ -1,0 +1,330 @@
+// Self-contact's candidate search in the kernel (the reference is self-contact.ts findCandidates, which says what
+// it finds and why): each particle's reach box and radius, the triangles' and edges' reach boxes, the three
+// bounding-box trees refitted to them (box-tree.ts refit; their structure is the host's, built once from the rest
+// positions and copied here), the (particle, triangle) pairs of one tree against another and the (edge, edge) pairs
+// of one tree with itself (BoxTree.pairsWith, pairsWithin), less those that cannot come within h before the next
+// search (the reference's Trees.addPair, addEdgePair), sorted into the order they are resolved (sortPairs) and
+// written into the pair windows that the passes read (self-contact.as.ts). The same operations on the same numbers
+// as the reference, so the same pairs. One thread: the host calls it on thread 0 between two substep() calls.
+import { N, X, XP } from './arrays.as';
+import { EDGE_MEMO, EDGE_PAIRS, EDGES, PAIRS, REACH, SKIP_MARGIN, TRIS, closestPoint, overlap, segmentClosest } from './self-contact.as';
+
+/** A tree's arrays (byte offsets) and node count, as the host writes them (self-contact-wasm.ts, TREE_FIELDS). */
+@unmanaged class Tree {
+  /** the primitives, leaf by leaf, i32 */
+  order: usize;
+  /** per node: its first primitive in `order`, how many it holds, its right child (−1: a leaf), i32 */
+  first: usize;
+  size: usize;
+  right: usize;
+  /** per node: its box, f64 × 6 (min x, y, z, max x, y, z) */
+  boxes: usize;
+  nodes: i32;
+}
+
+/** the trees over the particles, the triangles and the edges */
+let PARTICLE_TREE: Tree = changetype<Tree>(0);
+let TRIANGLE_TREE: Tree = changetype<Tree>(0);
+let EDGE_TREE: Tree = changetype<Tree>(0);
+/** each particle's reach radius [m], f64 */
+let RADIUS: usize = 0;
+/** each triangle's and each edge's reach box (its corners' reach boxes widened by h and h/2), f64 × 6 */
+let TREACH: usize = 0;
+let EREACH: usize = 0;
+/**
+ * where the trees put the pairs they find, before they are sorted, and how many it holds: for the particle pairs the
+ * edge pairs' window, for the edge pairs the edge pairs' memo (16 bytes a pair, reset after each search), both
+ * written over before they are read again
+ */
+let RAW: usize = 0;
+let RAW_CAP: i32 = 0;
+/** the counting sort's counts, i32 × (max(particles, edges) + 1) */
+let BUCKET: usize = 0;
+/** the traversals' stack of node pairs, i32 × 2 × STACK_CAP */
+let STACK: usize = 0;
+let STACK_CAP: i32 = 0;
+/** triangles, edges */
+let NT: i32 = 0;
+let NE: i32 = 0;
+
+/** what the last search found: pairs and edge pairs (in PAIRS and EDGE_PAIRS) */
+let pairCount: i32 = 0;
+let edgePairCount: i32 = 0;
+/** the search's distance h and mean rest edge [m] (the pair filters read them) */
+let hFor: f64 = 0;
+let meanEdge: f64 = 0;
+
+/** Sets the arrays' byte offsets (the host's layout): the trees' descriptors (Tree, 24 bytes each) and the scratch. */
+export function configureSearch(
+  trees: usize, radius: usize, treach: usize, ereach: usize, bucket: usize, stack: usize, stackCap: i32, triangles: i32, edgeCount: i32,
+): void {
+  PARTICLE_TREE = changetype<Tree>(trees);
+  TRIANGLE_TREE = changetype<Tree>(trees + offsetof<Tree>());
+  EDGE_TREE = changetype<Tree>(trees + 2 * offsetof<Tree>());
+  RADIUS = radius; TREACH = treach; EREACH = ereach; BUCKET = bucket;
+  STACK = stack; STACK_CAP = stackCap; NT = triangles; NE = edgeCount;
+}
+
+/** pairs the last search found (selfSearch returned 1) */
+export function foundPairs(): i32 { return pairCount; }
+export function foundEdgePairs(): i32 { return edgePairCount; }
+
+@inline function i32At(base: usize, k: i32): i32 { return load<i32>(base + (<usize>k << 2)); }
+@inline function radius(p: u32): f64 { return load<f64>(RADIUS + (<usize>p << 3)); }
+
+/**
+ * Finds the candidate pairs for the substeps left in the frame (`left` of length h [s]; distance hMax [m], gravity
+ * (gx, gy, gz) [m/s²], `span` and `edge` from selfSearchLengths) into the pair windows of `window` and `edgeWindow`
+ * pairs. Returns 1 when found, 0 when a box is not finite (an unstable cloth: the reference's false), −1 when the
+ * pairs do not fit the windows or the stack (the host then searches in TypeScript and copies them in window by window).
+ */
+export function selfSearch(
+  hMax: f64, left: f64, h: f64, gx: f64, gy: f64, gz: f64, span: f64, edge: f64, window: i32, edgeWindow: i32,
+): i32 {
+  const T = left * h;
+  for (let p = 0; p < N; p++) {
+    const j = <usize>p * 12, r = REACH + <usize>p * 48;
+    const x0 = <f64>load<f32>(X + j), x1 = <f64>load<f32>(X + j, 4), x2 = <f64>load<f32>(X + j, 8);
+    const q0 = <f64>load<f32>(XP + j), q1 = <f64>load<f32>(XP + j, 4), q2 = <f64>load<f32>(XP + j, 8);
+    const dx = (x0 - q0) * left + 0.5 * gx * T * T;
+    const dy = (x1 - q1) * left + 0.5 * gy * T * T;
+    const dz = (x2 - q2) * left + 0.5 * gz * T * T;
+    const dl = Math.sqrt(dx * dx + dy * dy + dz * dz), k = dl > span ? span / dl : 1;
+    const margin = max(0.5 * dl * k, 0.25 * hMax);
+    // per axis: the box over x_prev, x and x + the predicted motion, widened by the margin; the farthest corner
+    const e0 = reachAxis(r, 0, q0, x0, dx * k, margin), e1 = reachAxis(r, 1, q1, x1, dy * k, margin), e2 = reachAxis(r, 2, q2, x2, dz * k, margin);
+    let r2: f64 = 0;
+    r2 += e0 * e0; r2 += e1 * e1; r2 += e2 * e2;
+    store<f64>(RADIUS + (<usize>p << 3), Math.sqrt(r2));
+  }
+  for (let t = 0; t < NT; t++) unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
+  const half = 0.5 * hMax;
+  for (let e = 0; e < NE; e++) unionOf(REACH, EDGES + <usize>e * 8, 0, 2, EREACH + <usize>e * 48, half);
+  if (!refit(PARTICLE_TREE, REACH, N) || !refit(TRIANGLE_TREE, TREACH, NT) || !refit(EDGE_TREE, EREACH, NE)) return 0;
+  hFor = hMax;
+  meanEdge = edge;
+
+  // (window ≤ edgeWindow: the host's layout)
+  RAW = EDGE_PAIRS; RAW_CAP = window;
+  const found = pairsWith(PARTICLE_TREE, TRIANGLE_TREE, REACH, TREACH);
+  if (found < 0) return -1;
+  sortInto(found, N, PAIRS);
+  pairCount = found;
+  RAW = EDGE_MEMO; RAW_CAP = edgeWindow;
+  const foundEdges = pairsWithin(EDGE_TREE, EREACH);
+  if (foundEdges < 0) return -1;
+  sortInto(foundEdges, NE, EDGE_PAIRS);
+  edgePairCount = foundEdges;
+  return 1;
+}
+
+/**
+ * Axis k of a reach box at byte offset r: from min(x_prev, x, x + d) to max(…), each widened by the margin [m]
+ * (the reference's order: the box, then the margin); returns the farthest of its ends from x [m].
+ */
+@inline function reachAxis(r: usize, k: usize, q: f64, x: f64, d: f64, margin: f64): f64 {
+  const to = x + d;
+  const lo = min(min(q, x), to) - margin, hi = max(max(q, x), to) + margin;
+  store<f64>(r + (k << 3), lo);
+  store<f64>(r + 24 + (k << 3), hi);
+  return max(x - lo, hi - x);
+}
+
+/**
+ * Box `out` = the union of the boxes (f64 × 6 each, from `base`) whose indices (32-bit) are `ids[from..to)`, widened
+ * by `pad` [m].
+ */
+function unionOf(base: usize, ids: usize, from: i32, to: i32, out: usize, pad: f64): void {
+  let l0 = Infinity, l1 = Infinity, l2 = Infinity, h0 = -Infinity, h1 = -Infinity, h2 = -Infinity;
+  for (let n = from; n < to; n++) {
+    const r = base + <usize>load<u32>(ids + (<usize>n << 2)) * 48;
+    const a0 = load<f64>(r), a1 = load<f64>(r, 8), a2 = load<f64>(r, 16);
+    const b0 = load<f64>(r, 24), b1 = load<f64>(r, 32), b2 = load<f64>(r, 40);
+    if (a0 < l0) l0 = a0;
+    if (a1 < l1) l1 = a1;
+    if (a2 < l2) l2 = a2;
+    if (b0 > h0) h0 = b0;
+    if (b1 > h1) h1 = b1;
+    if (b2 > h2) h2 = b2;
+  }
+  store<f64>(out, l0 - pad); store<f64>(out, l1 - pad, 8); store<f64>(out, l2 - pad, 16);
+  store<f64>(out, h0 + pad, 24); store<f64>(out, h1 + pad, 32); store<f64>(out, h2 + pad, 40);
+}
+
+/** The tree's nodes' boxes from its `count` primitives' (`prims`, f64 × 6 each); false when a box is not finite. */
+function refit(t: Tree, prims: usize, count: i32): bool {
+  const boxes = t.boxes;
+  for (let node = t.nodes - 1; node >= 0; node--) {
+    const o = boxes + <usize>node * 48, right = i32At(t.right, node);
+    if (right < 0) {
+      const first = i32At(t.first, node);
+      unionOf(prims, t.order, first, first + i32At(t.size, node), o, 0);
+    } else {
+      const l = o + 48, r = boxes + <usize>right * 48;
+      v128.store(o, f64x2.min(v128.load(l), v128.load(r)));
+      store<f64>(o, min(load<f64>(l, 16), load<f64>(r, 16)), 16);
+      store<f64>(o, max(load<f64>(l, 24), load<f64>(r, 24)), 24);
+      v128.store(o, f64x2.max(v128.load(l, 32), v128.load(r, 32)), 32);
+    }
+  }
+  // an infinite box reaches the root's; a NaN the leaves' comparisons skip, so it is looked for in the boxes
+  for (let c = 0; c < 6; c++) if (!isFinite<f64>(load<f64>(boxes + (<usize>c << 3)))) return false;
+  for (let i = 0, n = 6 * count; i < n; i++) {
+    const v = load<f64>(prims + (<usize>i << 3));
+    if (v != v) return false;
+  }
+  return true;
+}
+
+/**
+ * Adds (particle p, triangle t) to RAW as the `n`th pair unless p is a corner of t or the two are apart (the
+ * reference's Trees.addPair); returns the pairs in RAW after it, −1 when RAW is full.
+ */
+@inline function addPair(p: i32, t: i32, n: i32): i32 {
+  const tr = TRIS + <usize>t * 12;
+  const a = load<u32>(tr), b = load<u32>(tr, 4), c = load<u32>(tr, 8);
+  if (a == <u32>p || b == <u32>p || c == <u32>p) return n;
+  const near = hFor + radius(<u32>p) + max(max(radius(a), radius(b)), radius(c)) + SKIP_MARGIN;
+  if (near < meanEdge && closestPoint(<usize>p * 12, <usize>a * 12, <usize>b * 12, <usize>c * 12) > near) return n;
+  if (n >= RAW_CAP) return -1;
+  const at = RAW + (<usize>n << 3);
+  store<i32>(at, p); store<i32>(at, t, 4);
+  return n + 1;
+}
+
+/** Adds (edge e, edge f), e < f, as addPair does (the reference's Trees.addEdgePair). */
+@inline function addEdgePair(e: i32, f: i32, n: i32): i32 {
+  const ea = EDGES + <usize>e * 8, fa = EDGES + <usize>f * 8;
+  const a = load<u32>(ea), b = load<u32>(ea, 4), c = load<u32>(fa), d = load<u32>(fa, 4);
+  if (c == a || c == b || d == a || d == b) return n;
+  const near = hFor + max(radius(a), radius(b)) + max(radius(c), radius(d)) + SKIP_MARGIN;
+  if (near < meanEdge && segmentClosest(X, <usize>a * 12, <usize>b * 12, <usize>c * 12, <usize>d * 12) > near) return n;
+  if (n >= RAW_CAP) return -1;
+  const at = RAW + (<usize>n << 3);
+  store<i32>(at, e); store<i32>(at, f, 4);
+  return n + 1;
+}
+
+@inline function push(top: i32, a: i32, b: i32): void {
+  const at = STACK + (<usize>top << 2);
+  store<i32>(at, a); store<i32>(at, b, 4);
+}
+
+/**
+ * Every primitive p of tree A and q of tree B whose boxes (`mine`, `theirs`) meet, through addPair into RAW;
+ * returns how many were added, −1 when RAW or the stack is full.
+ */
+function pairsWith(A: Tree, B: Tree, mine: usize, theirs: usize): i32 {
+  let top = 0, n = 0;
+  push(top, 0, 0); top += 2;
+  while (top > 0) {
+    top -= 2;
+    const a = i32At(STACK, top), b = i32At(STACK, top + 1);
+    if (!overlap(A.boxes + <usize>a * 48, B.boxes + <usize>b * 48)) continue;
+    const ra = i32At(A.right, a), rb = i32At(B.right, b);
+    if (ra < 0 && rb < 0) {
+      for (let i = i32At(A.first, a), ie = i + i32At(A.size, a); i < ie; i++) {
+        const p = i32At(A.order, i);
+        for (let j = i32At(B.first, b), je = j + i32At(B.size, b); j < je; j++) {
+          const q = i32At(B.order, j);
+          if (overlap(mine + <usize>p * 48, theirs + <usize>q * 48)) {
+            n = addPair(p, q, n);
+            if (n < 0) return -1;
+          }
+        }
+      }
+      continue;
+    }
+    if (top + 4 > 2 * STACK_CAP) return -1;
+    if (rb < 0 || (ra >= 0 && i32At(A.size, a) >= i32At(B.size, b))) {
+      push(top, a + 1, b); push(top + 2, ra, b);
+    } else {
+      push(top, a, b + 1); push(top + 2, a, rb);
+    }
+    top += 4;
+  }
+  return n;
+}
+
+/** Every two primitives p < q of tree A whose boxes (`prims`) meet, through addEdgePair into RAW (as pairsWith). */
+function pairsWithin(A: Tree, prims: usize): i32 {
+  let top = 0, n = 0;
+  push(top, 0, 0); top += 2;
+  while (top > 0) {
+    top -= 2;
+    const a = i32At(STACK, top), b = i32At(STACK, top + 1);
+    if (top + 6 > 2 * STACK_CAP) return -1;
+    const ra = i32At(A.right, a);
+    if (a == b) {
+      if (ra < 0) {
+        for (let i = i32At(A.first, a), end = i + i32At(A.size, a); i < end; i++) {
+          for (let j = i + 1; j < end; j++) {
+            const p = i32At(A.order, i), q = i32At(A.order, j);
+            if (overlap(prims + <usize>p * 48, prims + <usize>q * 48)) {
+              n = addEdgePair(min(p, q), max(p, q), n);
+              if (n < 0) return -1;
+            }
+          }
+        }
+      } else {
+        const l = a + 1;
+        push(top, l, l); push(top + 2, ra, ra); push(top + 4, l, ra);
+        top += 6;
+      }
+      continue;
+    }
+    if (!overlap(A.boxes + <usize>a * 48, A.boxes + <usize>b * 48)) continue;
+    const rb = i32At(A.right, b);
+    if (ra < 0 && rb < 0) {
+      for (let i = i32At(A.first, a), ie = i + i32At(A.size, a); i < ie; i++) {
+        const p = i32At(A.order, i);
+        for (let j = i32At(A.first, b), je = j + i32At(A.size, b); j < je; j++) {
+          const q = i32At(A.order, j);
+          if (overlap(prims + <usize>p * 48, prims + <usize>q * 48)) {
+            n = addEdgePair(min(p, q), max(p, q), n);
+            if (n < 0) return -1;
+          }
+        }
+      }
+    } else if (rb < 0 || (ra >= 0 && i32At(A.size, a) >= i32At(A.size, b))) {
+      push(top, a + 1, b); push(top + 2, ra, b);
+      top += 4;
+    } else {
+      push(top, a, b + 1); push(top + 2, a, rb);
+      top += 4;
+    }
+  }
+  return n;
+}
+
+/**
+ * The first `count` pairs of RAW (first entries below n) into `out` in the order they are resolved, ascending by
+ * first then second entry (the reference's sortPairs: a counting sort by the first, then insertion by the second).
+ */
+function sortInto(count: i32, n: i32, out: usize): void {
+  memory.fill(BUCKET, 0, (<usize>n + 1) << 2);
+  for (let q = 0; q < count; q++) {
+    const at = BUCKET + ((<usize>load<i32>(RAW + (<usize>q << 3)) + 1) << 2);
+    store<i32>(at, load<i32>(at) + 1);
+  }
+  for (let i = 0; i < n; i++) {
+    const at = BUCKET + ((<usize>i + 1) << 2);
+    store<i32>(at, load<i32>(at) + i32At(BUCKET, i));
+  }
+  for (let q = 0; q < count; q++) {
+    const src = RAW + (<usize>q << 3), first = load<i32>(src), at = BUCKET + (<usize>first << 2), k = load<i32>(at);
+    store<i32>(at, k + 1);
+    store<i64>(out + (<usize>k << 3), load<i64>(src));
+  }
+  // each bucket now ends where the next begins
+  for (let i = 0, from = 0; i < n; i++) {
+    const to = i32At(BUCKET, i);
+    for (let a = from + 1; a < to; a++) {
+      const v = load<i32>(out + (<usize>a << 3), 4);
+      let b = a - 1;
+      for (; b >= from && load<i32>(out + (<usize>b << 3), 4) > v; b--) store<i32>(out + (<usize>(b + 1) << 3), load<i32>(out + (<usize>b << 3), 4), 4);
+      store<i32>(out + (<usize>(b + 1) << 3), v, 4);
+    }
+    from = to;
+  }
+}
