@@ -9,9 +9,9 @@ import { GpuSim } from '../three/sim/gpu-sim.js';
 import { capCloth } from './limits.js';
 import { refusal } from './refusal.js';
 import { SimClient, type SimDriver } from '../three/sim/sim-client.js';
+import { carriable, carryState, chooseBackend, type BackendChoice } from '../three/sim/backend-choice.js';
 
-/** the panel's and the link's backend choice; auto = the GPU when there is a hardware WebGPU device and the scene allows */
-export type BackendChoice = 'auto' | 'gpu' | 'cpu';
+export type { BackendChoice };
 /** every backend choice, as the panel and the link name them */
 export const BACKEND_CHOICES: readonly BackendChoice[] = ['auto', 'gpu', 'cpu'];
 
@@ -65,16 +65,9 @@ export class Backend {
   /** The backend the current scene and renderer allow for the choice, and why if it differs from the choice. */
   wanted(): { kind: 'cpu' | 'gpu'; note: string } {
     const { stage, scene } = this.app;
-    if (this.choice === 'cpu') return { kind: 'cpu', note: '' };
-    // what the scene needs comes before the adapter: it is the reason whatever the machine (auto says it too)
-    const sceneWhy = GpuSim.supports(scene);
-    const why = this.gpuLost ? 'the WebGPU device was lost'
-      : sceneWhy ?? (stage.backend !== 'webgpu' || !stage.device ? 'no WebGPU adapter (WebGL2)' : null);
-    if (why) return { kind: 'cpu', note: this.choice === 'gpu' || why === sceneWhy ? `GPU unavailable: ${why}` : '' };
-    if (this.choice === 'auto' && stage.softwareAdapter) {
-      return { kind: 'cpu', note: 'auto: the WebGPU adapter is a software fallback, slower than the CPU worker; choose GPU to use it anyway' };
-    }
-    return { kind: 'gpu', note: '' };
+    const missing = this.gpuLost ? 'the WebGPU device was lost'
+      : stage.backend !== 'webgpu' || !stage.device ? 'no WebGPU adapter (WebGL2)' : null;
+    return chooseBackend(this.choice, scene, { missing, software: stage.softwareAdapter }, { override: 'choose GPU to use it anyway', explainAuto: false });
   }
 
   private makeDriver(kind: 'cpu' | 'gpu'): SimDriver {
@@ -149,19 +142,7 @@ export class Backend {
     }
     app.sim.mirrors.forEach((m, k) => {
       const from = oldMirrors[k];
-      if (!from || from.sim.model.particleCount !== m.sim.model.particleCount) return;
-      const st = from.sim.state;
-      if (app.sim instanceof SimClient) {
-        app.sim.setState(k, st, from.frame);
-      } else if (app.sim instanceof GpuSim) {
-        // the worker's mirrors carry positions only: the cloth goes on from there at rest
-        m.sim.state.positions.set(st.positions);
-        m.sim.state.previousPositions.set(st.positions);
-        m.sim.state.velocities.fill(0);
-        m.sim.state.residuals.fill(0);
-        m.sim.state.previousResiduals.fill(0);
-        app.sim.upload(k, from.frame);
-      }
+      if (carriable(from, m)) carryState(app.sim, k, from.sim.state, from.frame);
     });
     app.slots.drawColliders();
     app.slots.rebuildViews();

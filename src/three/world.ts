@@ -24,6 +24,7 @@ import { anchorOf, worldScene, type AttachedPin, type WorldCollider } from './sc
 import { GpuSim } from './sim/gpu-sim.js';
 import { MeshStore } from './sim/meshes.js';
 import { SimClient, type SimDriver } from './sim/sim-client.js';
+import { carriable, carryState, chooseBackend } from './sim/backend-choice.js';
 
 /** Where a picking ray met a cloth. */
 export interface DrapeHit {
@@ -463,15 +464,12 @@ export class DrapeWorld {
 
   /** The backend the choice, the renderer and the scene allow, and why it is not the GPU. */
   private choose(scene: Scene): { kind: 'gpu' | 'cpu'; note: string } {
-    const choice = this.options.backend ?? 'auto';
-    if (choice === 'cpu') return { kind: 'cpu', note: '' };
     const device = this.device();
-    const why = device ? GpuSim.supports(scene) : 'no WebGPU device: the renderer is not a WebGPURenderer on WebGPU';
-    if (why) return { kind: 'cpu', note: `GPU unavailable: ${why}` };
-    if (choice === 'auto' && isSoftwareAdapter((device as GPUDevice & { adapterInfo?: AdapterInfoLike }).adapterInfo)) {
-      return { kind: 'cpu', note: "auto: the WebGPU device is a software fallback (e.g. SwiftShader), slower than the CPU worker; backend: 'gpu' uses it anyway" };
-    }
-    return { kind: 'gpu', note: '' };
+    const offer = {
+      missing: device ? null : 'no WebGPU device: the renderer is not a WebGPURenderer on WebGPU',
+      software: !!device && isSoftwareAdapter((device as GPUDevice & { adapterInfo?: AdapterInfoLike }).adapterInfo),
+    };
+    return chooseBackend(this.options.backend ?? 'auto', scene, offer, { override: "backend: 'gpu' uses it anyway", explainAuto: true });
   }
 
   /** the renderer's WebGPU backend, when it is a WebGPURenderer on WebGPU */
@@ -526,16 +524,13 @@ export class DrapeWorld {
     this.driver = null;
     this.backendNote = `GPU unavailable: ${reason}`;
     const d = this.load('cpu', next);
-    const same = d?.mirrors[0]?.sim.model.particleCount === m?.sim.model.particleCount;
-    if (d instanceof SimClient && m && m.unstableAt < 0) {
-      if (same && !carry.length) {
-        d.setState(0, m.sim.state, m.frame);
-      } else if (carry.length) {
-        // a cloth added or taken out as the world moved to the CPU: the cloths kept go on from the last readback
-        const now = d.mirrors[0].sim.state;
-        copyCarried(m.sim.state, now, carry);
-        d.setState(0, now, m.frame);
-      }
+    const now = d?.mirrors[0];
+    if (d && now && carry.length && m && m.unstableAt < 0) {
+      // a cloth added or taken out as the world moved to the CPU: the cloths kept go on from the last readback
+      copyCarried(m.sim.state, now.sim.state, carry);
+      carryState(d, 0, now.sim.state, m.frame);
+    } else if (d && !carry.length && carriable(m, now)) {
+      carryState(d, 0, m.sim.state, m.frame);
     }
     this.grabbed = null;
   }
