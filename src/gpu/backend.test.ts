@@ -2,14 +2,13 @@
  * The GPU as a core Backend: a Simulation steps on it like on the CPU, and what the CPU changes (pins, a reset, a
  * cloth moved over) reaches the GPU without bringing back an older cloth. Same adapter rule as gpu.test.ts.
  */
-import { afterAll, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import type {} from 'webgpu';
 import { Simulation, TsBackend, validateScene } from '../core/index.js';
 import { GpuBackend } from './backend.js';
 import { testDevice } from './test-device.js';
 
 const device = (await testDevice('src/gpu/backend.test.ts'))?.device;
-afterAll(() => device?.destroy());
 
 const scene = () => validateScene({ cloth: { resolution: 8 }, colliders: [] });
 

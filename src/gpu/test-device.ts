@@ -8,11 +8,25 @@ import { centroid } from '../core/metrics.js';
 import type { ClothState } from '../core/state.js';
 import { createNodeDevice } from './node.js';
 
-/** The device and adapter for `file`'s tests, or undefined (with a warning) where none is found outside CI. */
+/** the device every GPU test file of this process shares (vitest.config.ts runs them in one, not isolated) */
+let shared: Promise<{ device: GPUDevice; adapter: string }> | null = null;
+
+/**
+ * The device and adapter for `file`'s tests, or undefined (with a warning) where none is found outside CI. The files
+ * share one device, so its kernels are compiled once for all of them (2.6 s on SwiftShader here): a file destroys
+ * its solvers, never the device.
+ */
 export async function testDevice(file: string): Promise<{ device: GPUDevice; adapter: string } | undefined> {
   try {
-    return await createNodeDevice();
+    if (!shared) {
+      const made = createNodeDevice();
+      shared = made;
+      // a lost device is not handed on: the next file makes its own
+      void made.then(({ device }) => device.lost.then(() => { if (shared === made) shared = null; }), () => undefined);
+    }
+    return await shared;
   } catch (e) {
+    shared = null;
     const reason = (e as Error).message;
     if (process.env.CI) throw new Error(`GPU tests need a WebGPU adapter in CI: ${reason}`);
     console.warn(`${file}: GPU tests skipped: ${reason}`);
