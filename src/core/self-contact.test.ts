@@ -64,8 +64,8 @@ describe('self-contact (solver.selfContact)', () => {
     sim.dispose();
   });
 
-  // every CPU kernel: the WebAssembly kernel runs the phase itself (its passes in the kernel, the candidate search in
-  // TypeScript: wasm/self-contact-wasm.test.ts holds it to the reference bit for bit)
+  // every CPU kernel: the WebAssembly kernel runs the phase itself (its search and passes: wasm/self-contact-wasm.test.ts
+  // holds it to the reference bit for bit)
   it.each(['ts', 'wasm'] as const)('%s: with it, no two triangles cross at any 10th frame of 1.5 s, and the cloth stays on the sphere', (kernel) => {
     const sim = rubber(true, kernel);
     expect(crossings(sim, 90)).toEqual(Array(9).fill(0));

@@ -230,7 +230,7 @@ export function countSelfSearch(model: ClothModel): void {
   buildsOf.set(model, selfContactBuilds(model) + 1);
 }
 
-/** Candidate pairs found ahead, as the WebAssembly kernel's self-contact reads them (self-contact-wasm.ts). */
+/** Candidate pairs found ahead in TypeScript, as the WebAssembly kernel's self-contact takes them where its own search overflows (self-contact-wasm.ts). */
 export interface SelfCandidates {
   /** each particle's reach box: min x, y, z, max x, y, z [m] */
   readonly reach: Float64Array;

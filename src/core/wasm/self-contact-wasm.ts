@@ -35,11 +35,12 @@ export interface SelfContactExports {
 }
 
 /**
- * Pairs a window holds by default [pairs]: per particle, particle–triangle and edge–edge, and at least (fold's
- * landing at 64², the most a search found: 23 and 69 per particle).
+ * Pairs a window holds by default [pairs]: per particle, particle–triangle and edge–edge, and at least. The most a
+ * search found in fold's landing: 23 and 69 per particle at 64², 29.8 and 85.9 at 128² (where the contact distance
+ * is a larger share of an edge, as at every finer size: half the smallest rest altitude).
  */
-const WINDOW_PER_PARTICLE = 24;
-const EDGE_WINDOW_PER_PARTICLE = 72;
+const WINDOW_PER_PARTICLE = 32;
+const EDGE_WINDOW_PER_PARTICLE = 96;
 const WINDOW_MIN = 1 << 14;
 /** node pairs the kernel's tree traversals can hold (a traversal's stack grows by at most two a level: ~60 at 256²) */
 const STACK_PAIRS = 1024;
@@ -229,13 +230,15 @@ export class KernelSelfContact {
     const found = ex.selfSearch(hMax, left, h, g[0], g[1], g[2], this.lengths.span, this.lengths.meanEdge, this.windows[0], this.windows[1]);
     if (found === 0) {
       this.builtFor = NaN;
+      this.foundBy = null;
       return false;
     }
     if (found === 1) {
       countSelfSearch(model);
+      const edgePairs = ex.foundEdgePairs();
       this.pairs.found(ex.foundPairs());
-      this.edgePairs.found(ex.foundEdgePairs());
-      ex.selfFound(ex.foundEdgePairs());
+      this.edgePairs.found(edgePairs);
+      ex.selfFound(edgePairs);
       this.builtFor = hMax;
       this.foundBy = 'kernel';
       return true;
@@ -243,6 +246,7 @@ export class KernelSelfContact {
     const c: SelfCandidates | null = findSelfCandidates(model, state, params, h, left);
     if (!c) {
       this.builtFor = NaN;
+      this.foundBy = null;
       return false;
     }
     this.reach.set(c.reach);

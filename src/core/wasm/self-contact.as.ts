@@ -1,7 +1,7 @@
 // Self-contact's narrow phase (the selfContact phase; self-contact.ts is the reference and says what it does): each
 // substep, every particle's box over the substep and the check that it is still inside its reach box, then the
-// particle–triangle pass and the edge–edge pass over the candidate pairs the host found ahead (findCandidates, in
-// TypeScript) and wrote here. The same operations in the same order as the reference, f64 on the f32 positions, so
+// particle–triangle pass and the edge–edge pass over the candidate pairs found ahead (by selfSearch, self-search.as.ts,
+// or where its windows overflow by the host's findCandidates in TypeScript, copied here). The same operations in the same order as the reference, f64 on the f32 positions, so
 // the same cloth bit for bit. One thread, a Gauss–Seidel pass in the pairs' order: the host calls these on thread 0
 // between two substep() calls (the helpers wait for the next dispatch).
 import { N, W, X, XP } from './arrays.as';
@@ -15,7 +15,7 @@ export let EDGES: usize = 0;
 let OWNER: usize = 0;
 /** per cloth: thickness [m], kinetic and static friction [-], f64 × 3 */
 let CLOTH: usize = 0;
-/** each particle's reach box (the host's, copied after each search), f64 × 6: min x, y, z, max x, y, z [m] */
+/** each particle's reach box (selfSearch's, or the host's copied after a search in TypeScript), f64 × 6: min x, y, z, max x, y, z [m] */
 export let REACH: usize = 0;
 /** each particle's box over the substep, f64 × 6 [m] */
 let PBOX: usize = 0;

@@ -104,8 +104,8 @@ export function selfSearch(
   hFor = hMax;
   meanEdge = edge;
 
-  // (window ≤ edgeWindow: the host's layout)
-  RAW = EDGE_PAIRS; RAW_CAP = window;
+  // the particle pairs' scratch is the edge window, so no more than it holds (the host makes it the larger)
+  RAW = EDGE_PAIRS; RAW_CAP = min(window, edgeWindow);
   const found = pairsWith(PARTICLE_TREE, TRIANGLE_TREE, REACH, TREACH);
   if (found < 0) return -1;
   sortInto(found, N, PAIRS);

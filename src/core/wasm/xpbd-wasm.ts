@@ -3,7 +3,7 @@
  * kernel's memory, so the TypeScript reference (reference.ts) and the kernel work on the same arrays with no copy.
  * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
  * (KERNEL_PHASES: integration, the grab, the distance constraints, tethers, stretch limiting, self-contact — its
- * passes; the candidates are found in TypeScript, self-contact-wasm.ts — and particle contact against every analytic
+ * candidate search and passes, self-contact-wasm.ts — and particle contact against every analytic
  * collider, moving or not) and runs each substep's run of them in one call (two, around self-contact); the phases it
  * lacks (the start and end of a frame, wind, carried pins, triangle contact) run in TypeScript in their place in the
  * schedule.
@@ -223,8 +223,8 @@ export class XpbdKernel implements PhaseBackend {
    * A kernel and its state for `model`, or null where the runtime has no WebAssembly SIMD (or, with threads > 1,
    * no shared memory: then the caller may ask again with 1 thread). `selfWindow` [pairs]: the size of
    * self-contact's pair windows (tests: a small one; by default they grow with the cloth, self-contact-wasm.ts).
-   * `selfContact` false: no memory for self-contact's passes (about 3.1 kB a particle: a 256² cloth's kernel takes
-   * 13.5 MB instead of 221 MB); the phase, if asked for, then runs in the TypeScript reference (the same cloth, bit
+   * `selfContact` false: no memory for self-contact's passes (about 3.8 kB a particle: a 256² cloth's kernel takes
+   * 13.5 MB instead of 264 MB); the phase, if asked for, then runs in the TypeScript reference (the same cloth, bit
    * for bit).
    */
   static create(model: ClothModel, threads = 1, selfWindow?: number, selfContact = true): XpbdKernel | null {
@@ -342,8 +342,8 @@ export class XpbdKernel implements PhaseBackend {
 
   /**
    * The kernel's phases of `mask` (of one substep: frame.sub, starting at state.time): those before self-contact in
-   * one substep() call, self-contact on this thread (self-contact-wasm.ts: the candidate search here, the passes in
-   * the kernel), those after it in another substep() call; it lists what it ran for `log`.
+   * one substep() call, self-contact on this thread (self-contact-wasm.ts: its search and passes in the kernel, called
+   * from here), those after it in another substep() call; it lists what it ran for `log`.
    */
   run(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
     const self = 1 << PHASE.selfContact;
