@@ -100,6 +100,33 @@ describe('self-contact in the WebAssembly kernel', () => {
     expect(runs.map((r) => [r.sameList, r.foundBy])).toEqual([[true, 'typescript'], [true, 'typescript']]);
   });
 
+  it('a particle no longer finite: the kernel\'s search finds nothing, as the reference\'s, and the passes leave the cloth as the reference does', () => {
+    const sim = new Simulation(builtinScene('fold'), { kernel: 'ts' });
+    const { model, params } = sim;
+    const kernel = XpbdKernel.create(model, 1)!;
+    sim.advance(20);
+    const ts = createState(model);
+    const frame = { h: FRAME_DT / params.substeps, substeps: params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3) };
+    // the kernel has found pairs before (the landing)
+    copyState(sim.state, kernel.state);
+    kernel.state.invMass.set(sim.state.invMass);
+    kernel.run(1 << PHASE.selfContact, model, kernel.state, params, frame, undefined);
+    expect(kernel.selfCandidates()?.foundBy).toBe('kernel');
+    copyState(sim.state, ts);
+    ts.positions[3 * (model.particleCount >> 1) + 1] = NaN;
+    copyState(ts, kernel.state);
+    expect(findSelfCandidates(model, ts, params, frame.h, frame.substeps)).toBeNull();
+    collideSelf(model, ts, params, frame.h, frame.substeps);
+    kernel.run(1 << PHASE.selfContact, model, kernel.state, params, frame, undefined);
+    expect(lastSelfCandidates(model)).toBeNull();
+    expect(kernel.selfCandidates()).toBeNull();
+    // nothing kept apart on either side: every position as it was, the NaN included
+    expect([...kernel.state.positions]).toEqual([...ts.positions]);
+    expect(ts.positions.filter((v) => Number.isNaN(v))).toHaveLength(1);
+    kernel.dispose();
+    sim.dispose();
+  });
+
   it('layers, 60 frames: the TypeScript kernel\'s cloth bit for bit (the kernel\'s other phases there are the reference\'s: the cloths differ in damping, friction and stretch limit)', () => {
     // substep after substep: the frames, the clock and the edge pairs' measured distances carried across substeps
     const ts = new Simulation(builtinScene('layers'), { kernel: 'ts' }), wasm = new Simulation(builtinScene('layers'), { kernel: 'wasm', threads: 1 });
