@@ -10,6 +10,7 @@ import {
   SphereGeometry,
 } from 'three/webgpu';
 import { BEND, selfContacts, STRUCTURAL, type ClothModel, type ClothState, type FabricKind } from '../core/index.js';
+import { drawFromSolver, type AttributeBuffers } from '../three/sim/solver-buffers.js';
 import { trianglesByCloth } from './cloth-parts.js';
 import type { FabricLook } from './textures.js';
 
@@ -230,13 +231,9 @@ export class ClothView {
    * Disposing the view destroys those buffers with it (three.js destroys attribute buffers): dispose the view and
    * the solver together.
    */
-  attachGpu(backend: { get(object: object): { buffer?: GPUBuffer } }, positions: GPUBuffer, normals: GPUBuffer): void {
+  attachGpu(backend: AttributeBuffers, positions: GPUBuffer, normals: GPUBuffer): void {
     if (!this.gpu || this.gpuAttached) return;
-    for (const [attr, buffer] of [[this.position, positions], [this.geometry.getAttribute('normal') as BufferAttribute, normals]] as const) {
-      const data = backend.get(attr);
-      if (data.buffer && data.buffer !== buffer) data.buffer.destroy();
-      data.buffer = buffer;
-    }
+    drawFromSolver(backend, [[this.position, positions], [this.geometry.getAttribute('normal'), normals]]);
     this.gpuAttached = true;
   }
 

@@ -25,6 +25,7 @@ import { GpuSim } from './sim/gpu-sim.js';
 import { MeshStore } from './sim/meshes.js';
 import { SimClient, type SimDriver } from './sim/sim-client.js';
 import { carriable, carryState, chooseBackend } from './sim/backend-choice.js';
+import { drawFromSolver } from './sim/solver-buffers.js';
 
 /** Where a picking ray met a cloth. */
 export interface DrapeHit {
@@ -607,11 +608,7 @@ export class DrapeWorld {
       const solver = d.solverOf(0);
       const backend = this.webGpu();
       if (!this.gpuAttached && solver && backend && this.gpuPosition && this.gpuNormal) {
-        for (const [attr, buffer] of [[this.gpuPosition, solver.positionBuffer], [this.gpuNormal, solver.normalBuffer]] as const) {
-          const data = backend.get(attr);
-          if (data.buffer && data.buffer !== buffer) data.buffer.destroy();
-          data.buffer = buffer;
-        }
+        drawFromSolver(backend, [[this.gpuPosition, solver.positionBuffer], [this.gpuNormal, solver.normalBuffer]]);
         this.gpuAttached = true;
       }
     }
