@@ -38,6 +38,22 @@ describe('BoxTree', () => {
     expect(within.sort()).toEqual(wantWithin.sort());
   });
 
+  it('finds exactly the primitives whose boxes meet one box', () => {
+    const a = randomBoxes(300, 0.3, 1), q = randomBoxes(40, 0.25, 4);
+    const t = new BoxTree(randomBoxes(300, 0.1, 3).centres, 300);
+    expect(t.refit(a.boxes)).toBe(true);
+    let found = 0;
+    for (let k = 0; k < 40; k++) {
+      const got: number[] = [];
+      t.query(q.boxes, 6 * k, a.boxes, k, (id, j) => { expect(id).toBe(k); got.push(j); });
+      const want: number[] = [];
+      for (let j = 0; j < 300; j++) if (meets(a.boxes, j, q.boxes, k)) want.push(j);
+      expect(got.sort((x, y) => x - y)).toEqual(want);
+      found += want.length;
+    }
+    expect(found).toBeGreaterThan(40);
+  });
+
   it('refuses a box that is not finite', () => {
     const a = randomBoxes(50, 0.1, 4), t = new BoxTree(a.centres, 50);
     expect(t.refit(a.boxes)).toBe(true);

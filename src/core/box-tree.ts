@@ -166,6 +166,26 @@ export class BoxTree {
     }
   }
 
+  /**
+   * Calls visit(id, j) for every primitive j of this tree whose box (`prims`, as refitted) meets box[o…o+5] (`id`:
+   * the box's own, handed on, so that visit needs no closure of its own).
+   */
+  query(box: Float64Array, o: number, prims: Float64Array, id: number, visit: (id: number, j: number) => void): void {
+    let stack: Int32Array = this.stack, top = 0;
+    stack[top++] = 0;
+    const A = this.boxes, { first, size, right, order } = this;
+    while (top > 0) {
+      const a = stack[--top];
+      if (!meets(A, 6 * a, box, o)) continue;
+      if (right[a] < 0) {
+        for (let i = first[a], end = i + size[a]; i < end; i++) if (meets(prims, 6 * order[i], box, o)) visit(id, order[i]);
+        continue;
+      }
+      if (top + 2 > stack.length) stack = this.grow();
+      stack[top++] = a + 1; stack[top++] = right[a];
+    }
+  }
+
   private grow(): Int32Array {
     const s = new Int32Array(2 * this.stack.length);
     s.set(this.stack);

@@ -9,7 +9,8 @@
  *   substep's start and end positions, widened by the self-contact distance h — meets p's own. The candidates are
  *   found ahead (findCandidates: bounding-box trees over boxes of where each particle can be until the frame's end,
  *   less the pairs too far apart to come within h by then), and found again only when some particle leaves its
- *   box: every pair that can come within h in a substep is among them; and they are resolved in
+ *   box — for those particles alone where they are few (updateCandidates), else whole: every pair that can come
+ *   within h in a substep is among them; and they are resolved in
  *   (particle, triangle) order, ascending, whenever they were found (so when they were found does not change their
  *   order). (Leaving out its whole
  *   neighbourhood, the triangles touching its one-ring, saved a tenth of the time and let 8× as many tight folds
@@ -112,6 +113,16 @@ interface SelfScratch {
   substepAt: number;
   /** the distance h the reach boxes were widened by (NaN: none found yet) */
   builtFor: number;
+  /** each particle's triangles and edges (compressed rows: particle p's are list[start[p]…start[p+1]−1]) */
+  particleTriangles: { start: Int32Array; list: Int32Array };
+  particleEdges: { start: Int32Array; list: Int32Array };
+  /** updateCandidates: the particles it moved the boxes of, and the triangles and edges they are in, listed and marked */
+  escaped: Int32Array;
+  touchedTriangles: Int32Array;
+  touchedEdges: Int32Array;
+  escapedMark: Uint8Array;
+  triangleMark: Uint8Array;
+  edgeMark: Uint8Array;
 }
 const scratchOf = new WeakMap<ClothModel, SelfScratch>();
 const restOf = new WeakMap<ClothModel, { minAltitude: number; meanEdge: number }>();
@@ -139,6 +150,16 @@ function restMeasures(model: ClothModel): { minAltitude: number; meanEdge: numbe
   r = { minAltitude, meanEdge: ed.length > 0 ? edgeSum / (ed.length / 2) : 0 };
   restOf.set(model, r);
   return r;
+}
+
+/** For each of `np` particles, the primitives (of `k` particles each, in `ids`) it is one of, as compressed rows. */
+function rowsOf(ids: Uint32Array, k: number, np: number): { start: Int32Array; list: Int32Array } {
+  const start = new Int32Array(np + 1), list = new Int32Array(ids.length);
+  for (let i = 0; i < ids.length; i++) start[ids[i] + 1]++;
+  for (let p = 0; p < np; p++) start[p + 1] += start[p];
+  const at = start.slice(0, np);
+  for (let i = 0; i < ids.length; i++) list[at[ids[i]]++] = Math.floor(i / k);
+  return { start, list };
 }
 
 function scratch(model: ClothModel): SelfScratch {
@@ -172,6 +193,14 @@ function scratch(model: ClothModel): SelfScratch {
     clock: 0,
     substepAt: 0,
     builtFor: NaN,
+    particleTriangles: rowsOf(model.triangles, 3, model.particleCount),
+    particleEdges: rowsOf(model.edges, 2, model.particleCount),
+    escaped: new Int32Array(model.particleCount),
+    touchedTriangles: new Int32Array(n),
+    touchedEdges: new Int32Array(model.edges.length / 2),
+    escapedMark: new Uint8Array(model.particleCount),
+    triangleMark: new Uint8Array(n),
+    edgeMark: new Uint8Array(model.edges.length / 2),
   };
   scratchOf.set(model, s);
   return s;
@@ -225,6 +254,13 @@ export function selfContactBuilds(model: ClothModel): number {
   return buildsOf.get(model) ?? 0;
 }
 
+const updatesOf = new WeakMap<ClothModel, number>();
+
+/** How many times `model`'s candidates were updated for the particles that left their boxes (updateCandidates). */
+export function selfContactUpdates(model: ClothModel): number {
+  return updatesOf.get(model) ?? 0;
+}
+
 /** Counts a search for `model`'s candidates (findCandidates here, or the WebAssembly kernel's own). */
 export function countSelfSearch(model: ClothModel): void {
   buildsOf.set(model, selfContactBuilds(model) + 1);
@@ -274,7 +310,7 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
 
   // the candidates hold while every particle's box over this substep is inside its reach box
   const within = substepBoxes(s, x, xp, np, true);
-  if (!(s.builtFor === hMax && within) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
+  if (!(s.builtFor === hMax && within) && !updateCandidates(model, state, params, s, hMax, h, left) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
 
   // triangle boxes over the substep (their corners'), widened by h
   const boxes = s.boxes, pb = s.particleBoxes;
@@ -312,7 +348,7 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   }
   // the particle pass may have pushed a particle out of its reach box: the edges' candidates must hold for where
   // the particles are now
-  if (!substepBoxes(s, x, xp, np, false) && !findCandidates(model, state, params, s, hMax, h, left)) return;
+  if (!substepBoxes(s, x, xp, np, false) && !updateCandidates(model, state, params, s, hMax, h, left) && !findCandidates(model, state, params, s, hMax, h, left)) return;
   collideEdges(model, state, params, s, hMax);
 }
 
@@ -375,26 +411,7 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
   const x = state.positions, xp = state.previousPositions, g = params.gravity;
   const reach = s.reach, T = left * h;
   const span = REACH_SPAN * s.meanEdge;
-  for (let p = 0; p < np; p++) {
-    const jp = 3 * p, r = 6 * p;
-    const dx = (x[jp] - xp[jp]) * left + 0.5 * g[0] * T * T;
-    const dy = (x[jp + 1] - xp[jp + 1]) * left + 0.5 * g[1] * T * T;
-    const dz = (x[jp + 2] - xp[jp + 2]) * left + 0.5 * g[2] * T * T;
-    const dl = Math.sqrt(dx * dx + dy * dy + dz * dz), k = dl > span ? span / dl : 1;
-    for (let c = 0; c < 3; c++) {
-      const d = (c === 0 ? dx : c === 1 ? dy : dz) * k;
-      reach[r + c] = Math.min(xp[jp + c], x[jp + c], x[jp + c] + d);
-      reach[r + 3 + c] = Math.max(xp[jp + c], x[jp + c], x[jp + c] + d);
-    }
-    const margin = Math.max(0.5 * dl * k, 0.25 * hMax);
-    let r2 = 0;
-    for (let c = 0; c < 3; c++) {
-      reach[r + c] -= margin; reach[r + 3 + c] += margin;
-      const far = Math.max(x[jp + c] - reach[r + c], reach[r + 3 + c] - x[jp + c]);
-      r2 += far * far;
-    }
-    s.reachRadius[p] = Math.sqrt(r2);
-  }
+  for (let p = 0; p < np; p++) reachBox(s, x, xp, g, p, left, T, span, hMax);
   const tr = s.triangleReach;
   for (let t = 0; t < nt; t++) unionOf(reach, tri, 3 * t, 3, tr, 6 * t, hMax);
   const er = s.edgeReach;
@@ -419,6 +436,132 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
   if (s.edgeMemo.length < 2 * count) s.edgeMemo = new Float64Array(s.edgePairs.length);
   s.edgeMemo.fill(-Infinity, 0, 2 * count);
   return true;
+}
+
+/**
+ * Particle p's reach box and radius (findCandidates): its box over this substep carried on over the `left` substeps
+ * (T [s] in all) at its motion so far and gravity, no farther than `span` [m], with a margin of half that motion and
+ * at least hMax/4 [m].
+ */
+function reachBox(s: SelfScratch, x: Float32Array, xp: Float32Array, g: Float64Array, p: number, left: number, T: number, span: number, hMax: number): void {
+  const reach = s.reach, jp = 3 * p, r = 6 * p;
+  const dx = (x[jp] - xp[jp]) * left + 0.5 * g[0] * T * T;
+  const dy = (x[jp + 1] - xp[jp + 1]) * left + 0.5 * g[1] * T * T;
+  const dz = (x[jp + 2] - xp[jp + 2]) * left + 0.5 * g[2] * T * T;
+  const dl = Math.sqrt(dx * dx + dy * dy + dz * dz), k = dl > span ? span / dl : 1;
+  for (let c = 0; c < 3; c++) {
+    const d = (c === 0 ? dx : c === 1 ? dy : dz) * k;
+    reach[r + c] = Math.min(xp[jp + c], x[jp + c], x[jp + c] + d);
+    reach[r + 3 + c] = Math.max(xp[jp + c], x[jp + c], x[jp + c] + d);
+  }
+  const margin = Math.max(0.5 * dl * k, 0.25 * hMax);
+  let r2 = 0;
+  for (let c = 0; c < 3; c++) {
+    reach[r + c] -= margin; reach[r + 3 + c] += margin;
+    const far = Math.max(x[jp + c] - reach[r + c], reach[r + 3 + c] - x[jp + c]);
+    r2 += far * far;
+  }
+  s.reachRadius[p] = Math.sqrt(r2);
+}
+
+/** The most particles out of their reach boxes that updateCandidates takes, as a share of the cloth's [-]. */
+const UPDATE_MOST = 1 / 200;
+
+/**
+ * Updates the candidates for the particles that left their reach boxes, when they are at most UPDATE_MOST of the
+ * cloth (else false: findCandidates searches again whole). Those particles get new reach boxes, and their
+ * triangles and edges new ones from their corners'; every pair of them is taken out of the lists and found again
+ * against the trees (refitted), with the same tests as findCandidates. The other particles keep their boxes,
+ * which still hold them. The apart test of the pairs found now measures every particle's reach radius from where
+ * it is now (its box may have been made earlier, from elsewhere in it). The edge pairs' memo starts again, as after
+ * a search. The pairs listed differ from a new search's, but a pair that is not listed cannot come within hMax, and
+ * the lists are in the same order, so the cloth is the same: fold at 32² over 120 frames and at 64² over 90 (on the
+ * TypeScript kernel) gave the same positions bit for bit with and without the updates, and layers steps as the
+ * WebAssembly kernel, which always searches whole (wasm/self-contact-wasm.test.ts). Once fold has landed, a
+ * search is mostly for a few particles (scripts/self-search-escapes.mjs); at 64² the fall and landing (90 frames)
+ * took 225–242 ms per frame with the updates and 291 without (updates at most 1/200 and 1/50 of the cloth; with
+ * up to an eighth 278: each update still costs the refits and the lists' passes, O(pairs)).
+ */
+function updateCandidates(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number, h: number, left: number): boolean {
+  if (s.builtFor !== hMax) return false;
+  const np = model.particleCount, tri = model.triangles, edges = model.edges;
+  const x = state.positions, xp = state.previousPositions;
+  const reach = s.reach, pb = s.particleBoxes;
+  const { escaped, touchedTriangles, touchedEdges, escapedMark, triangleMark, edgeMark } = s;
+  let k = 0;
+  for (let p = 0; p < np; p++) {
+    const r = 6 * p;
+    for (let c = 0; c < 3; c++) {
+      if (pb[r + c] >= reach[r + c] && pb[r + 3 + c] <= reach[r + 3 + c]) continue;
+      if (k + 1 > UPDATE_MOST * np) return false;
+      escaped[k++] = p;
+      break;
+    }
+  }
+  const T = left * h, span = REACH_SPAN * s.meanEdge;
+  let nt = 0, ne = 0;
+  for (let i = 0; i < k; i++) {
+    const p = escaped[i];
+    reachBox(s, x, xp, params.gravity, p, left, T, span, hMax);
+    escapedMark[p] = 1;
+    for (let j = s.particleTriangles.start[p]; j < s.particleTriangles.start[p + 1]; j++) {
+      const t = s.particleTriangles.list[j];
+      if (!triangleMark[t]) { triangleMark[t] = 1; touchedTriangles[nt++] = t; }
+    }
+    for (let j = s.particleEdges.start[p]; j < s.particleEdges.start[p + 1]; j++) {
+      const e = s.particleEdges.list[j];
+      if (!edgeMark[e]) { edgeMark[e] = 1; touchedEdges[ne++] = e; }
+    }
+  }
+  const tr = s.triangleReach, er = s.edgeReach;
+  for (let i = 0; i < nt; i++) unionOf(reach, tri, 3 * touchedTriangles[i], 3, tr, 6 * touchedTriangles[i], hMax);
+  for (let i = 0; i < ne; i++) unionOf(reach, edges, 2 * touchedEdges[i], 2, er, 6 * touchedEdges[i], 0.5 * hMax);
+  const trees = treesOf(model, s);
+  const refitted = trees.particles.refit(reach) && trees.triangles.refit(tr) && trees.edges.refit(er);
+  if (refitted) {
+    for (let p = 0; p < np; p++) {
+      if (escapedMark[p]) continue;
+      const r = 6 * p, j = 3 * p;
+      let r2 = 0;
+      for (let c = 0; c < 3; c++) {
+        const far = Math.max(x[j + c] - reach[r + c], reach[r + 3 + c] - x[j + c]);
+        r2 += far * far;
+      }
+      s.reachRadius[p] = Math.sqrt(r2);
+    }
+    updatesOf.set(model, selfContactUpdates(model) + 1);
+    s.travel.fill(0);
+    s.seen.set(x);
+    // the particle pairs of the particles and triangles moved out, and found again
+    const pairs = s.pairs;
+    let n = 0;
+    for (let q = 0; q < s.pairCount; q++) {
+      const p = pairs[2 * q], t = pairs[2 * q + 1];
+      if (escapedMark[p] || triangleMark[t]) continue;
+      pairs[2 * n] = p; pairs[2 * n + 1] = t; n++;
+    }
+    s.pairCount = n;
+    for (let i = 0; i < k; i++) trees.triangles.query(reach, 6 * escaped[i], tr, escaped[i], trees.addPair);
+    for (let i = 0; i < nt; i++) trees.particles.query(tr, 6 * touchedTriangles[i], reach, touchedTriangles[i], trees.addStillPair);
+    s.pairCount = sortPairs(s, s.pairs, s.pairCount, np);
+    // the edge pairs of the edges moved out (each pair once, from its lower edge where both moved)
+    const ep = s.edgePairs;
+    n = 0;
+    for (let q = 0; q < s.edgePairCount; q++) {
+      const e = ep[2 * q], f = ep[2 * q + 1];
+      if (edgeMark[e] || edgeMark[f]) continue;
+      ep[2 * n] = e; ep[2 * n + 1] = f; n++;
+    }
+    s.edgePairCount = n;
+    for (let i = 0; i < ne; i++) trees.edges.query(er, 6 * touchedEdges[i], er, touchedEdges[i], trees.addMovedEdgePair);
+    const count = (s.edgePairCount = sortPairs(s, s.edgePairs, s.edgePairCount, edges.length / 2));
+    if (s.edgeMemo.length < 2 * count) s.edgeMemo = new Float64Array(s.edgePairs.length);
+    s.edgeMemo.fill(-Infinity, 0, 2 * count);
+  }
+  for (let i = 0; i < k; i++) escapedMark[escaped[i]] = 0;
+  for (let i = 0; i < nt; i++) triangleMark[touchedTriangles[i]] = 0;
+  for (let i = 0; i < ne; i++) edgeMark[touchedEdges[i]] = 0;
+  return refitted;
 }
 
 /**
@@ -463,6 +606,10 @@ interface Trees extends SelfContactTrees {
   addPair: (p: number, t: number) => void;
   /** adds (edge, edge) to the scratch's edge pairs unless the two share a particle or are apart (as addPair) */
   addEdgePair: (e: number, f: number) => void;
+  /** updateCandidates': addPair(p, t) for a particle whose box did not move (escapedMark) */
+  addStillPair: (t: number, p: number) => void;
+  /** updateCandidates': addEdgePair for the pair of e, an edge whose box moved, and f, once (from the lower where both did) */
+  addMovedEdgePair: (e: number, f: number) => void;
 }
 const treesFor = new WeakMap<ClothModel, Trees>();
 
@@ -502,34 +649,38 @@ export function selfContactTrees(model: ClothModel): SelfContactTrees {
 
 /** `model`'s trees and the callbacks that add their pairs to the scratch `s`. */
 function treesOf(model: ClothModel, s: SelfScratch): Trees {
-  let t = treesFor.get(model);
-  if (t) return t;
+  const known = treesFor.get(model);
+  if (known) return known;
   const tri = model.triangles, edges = model.edges;
-  t = {
+  const addPair = (p: number, t: number): void => {
+    const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
+    if (a === p || b === p || c === p) return;
+    // apart: not within hMax of each other at any time while the candidates hold (every particle stays within
+    // its reach radius of where it is now, and so every point of the triangle within its corners' largest)
+    const R = s.reachRadius, near = s.builtFor + R[p] + Math.max(R[a], R[b], R[c]) + SKIP_MARGIN;
+    if (near < s.meanEdge && closestPoint(s.seen, 3 * p, 3 * a, 3 * b, 3 * c) > near) return;
+    const n = s.pairCount;
+    if (2 * n + 2 > s.pairs.length) s.pairs = grown(s.pairs, 2 * n + 2);
+    s.pairs[2 * n] = p; s.pairs[2 * n + 1] = t;
+    s.pairCount = n + 1;
+  };
+  const addEdgePair = (e: number, f: number): void => {
+    const a = edges[2 * e], b = edges[2 * e + 1], c = edges[2 * f], d = edges[2 * f + 1];
+    if (c === a || c === b || d === a || d === b) return;
+    // apart, as a particle and a triangle above
+    const R = s.reachRadius, near = s.builtFor + Math.max(R[a], R[b]) + Math.max(R[c], R[d]) + SKIP_MARGIN;
+    if (near < s.meanEdge && segmentClosest(s.seen, a, b, c, d, apart) > near) return;
+    const n = s.edgePairCount;
+    if (2 * n + 2 > s.edgePairs.length) s.edgePairs = grown(s.edgePairs, 2 * n + 2);
+    s.edgePairs[2 * n] = e; s.edgePairs[2 * n + 1] = f;
+    s.edgePairCount = n + 1;
+  };
+  const t: Trees = {
     ...selfContactTrees(model),
-    addPair: (p, t) => {
-      const a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
-      if (a === p || b === p || c === p) return;
-      // apart: not within hMax of each other at any time while the candidates hold (every particle stays within
-      // its reach radius of where it is now, and so every point of the triangle within its corners' largest)
-      const R = s.reachRadius, near = s.builtFor + R[p] + Math.max(R[a], R[b], R[c]) + SKIP_MARGIN;
-      if (near < s.meanEdge && closestPoint(s.seen, 3 * p, 3 * a, 3 * b, 3 * c) > near) return;
-      const n = s.pairCount;
-      if (2 * n + 2 > s.pairs.length) s.pairs = grown(s.pairs, 2 * n + 2);
-      s.pairs[2 * n] = p; s.pairs[2 * n + 1] = t;
-      s.pairCount = n + 1;
-    },
-    addEdgePair: (e, f) => {
-      const a = edges[2 * e], b = edges[2 * e + 1], c = edges[2 * f], d = edges[2 * f + 1];
-      if (c === a || c === b || d === a || d === b) return;
-      // apart, as a particle and a triangle above
-      const R = s.reachRadius, near = s.builtFor + Math.max(R[a], R[b]) + Math.max(R[c], R[d]) + SKIP_MARGIN;
-      if (near < s.meanEdge && segmentClosest(s.seen, a, b, c, d, apart) > near) return;
-      const n = s.edgePairCount;
-      if (2 * n + 2 > s.edgePairs.length) s.edgePairs = grown(s.edgePairs, 2 * n + 2);
-      s.edgePairs[2 * n] = e; s.edgePairs[2 * n + 1] = f;
-      s.edgePairCount = n + 1;
-    },
+    addPair,
+    addEdgePair,
+    addStillPair: (t, p) => { if (!s.escapedMark[p]) addPair(p, t); },
+    addMovedEdgePair: (e, f) => { if (f !== e && !(s.edgeMark[f] && f < e)) addEdgePair(Math.min(e, f), Math.max(e, f)); },
   };
   treesFor.set(model, t);
   return t;
