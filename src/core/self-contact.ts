@@ -533,26 +533,12 @@ function updateCandidates(model: ClothModel, state: ClothState, params: SimParam
     s.travel.fill(0);
     s.seen.set(x);
     // the particle pairs of the particles and triangles moved out, and found again
-    const pairs = s.pairs;
-    let n = 0;
-    for (let q = 0; q < s.pairCount; q++) {
-      const p = pairs[2 * q], t = pairs[2 * q + 1];
-      if (escapedMark[p] || triangleMark[t]) continue;
-      pairs[2 * n] = p; pairs[2 * n + 1] = t; n++;
-    }
-    s.pairCount = n;
+    s.pairCount = keepUnmarked(s.pairs, s.pairCount, escapedMark, triangleMark);
     for (let i = 0; i < k; i++) trees.triangles.query(reach, 6 * escaped[i], tr, escaped[i], trees.addPair);
     for (let i = 0; i < nt; i++) trees.particles.query(tr, 6 * touchedTriangles[i], reach, touchedTriangles[i], trees.addStillPair);
     s.pairCount = sortPairs(s, s.pairs, s.pairCount, np);
     // the edge pairs of the edges moved out (each pair once, from its lower edge where both moved)
-    const ep = s.edgePairs;
-    n = 0;
-    for (let q = 0; q < s.edgePairCount; q++) {
-      const e = ep[2 * q], f = ep[2 * q + 1];
-      if (edgeMark[e] || edgeMark[f]) continue;
-      ep[2 * n] = e; ep[2 * n + 1] = f; n++;
-    }
-    s.edgePairCount = n;
+    s.edgePairCount = keepUnmarked(s.edgePairs, s.edgePairCount, edgeMark, edgeMark);
     for (let i = 0; i < ne; i++) trees.edges.query(er, 6 * touchedEdges[i], er, touchedEdges[i], trees.addMovedEdgePair);
     const count = (s.edgePairCount = sortPairs(s, s.edgePairs, s.edgePairCount, edges.length / 2));
     if (s.edgeMemo.length < 2 * count) s.edgeMemo = new Float64Array(s.edgePairs.length);
@@ -562,6 +548,17 @@ function updateCandidates(model: ClothModel, state: ClothState, params: SimParam
   for (let i = 0; i < nt; i++) triangleMark[touchedTriangles[i]] = 0;
   for (let i = 0; i < ne; i++) edgeMark[touchedEdges[i]] = 0;
   return refitted;
+}
+
+/** Keeps, in order, those of the first `count` pairs of `list` whose first is unmarked in `a` and second in `b`; returns how many. */
+function keepUnmarked(list: Int32Array, count: number, a: Uint8Array, b: Uint8Array): number {
+  let n = 0;
+  for (let q = 0; q < count; q++) {
+    const i = list[2 * q], j = list[2 * q + 1];
+    if (a[i] || b[j]) continue;
+    list[2 * n] = i; list[2 * n + 1] = j; n++;
+  }
+  return n;
 }
 
 /**
