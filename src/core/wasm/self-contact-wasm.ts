@@ -105,7 +105,7 @@ class PairList {
     return (this.resident ? this.pairWindow : this.overflow).slice(0, 2 * this.count);
   }
 
-  /** The kernel's search wrote `count` pairs into the window. */
+  /** The kernel's search wrote `count` pairs into the window (they are all there). */
   found(count: number): void {
     this.count = count;
     this.resident = true;
