@@ -116,8 +116,10 @@ interface SelfScratch {
   /** each particle's triangles and edges (compressed rows: particle p's are list[start[p]…start[p+1]−1]) */
   particleTriangles: { start: Int32Array; list: Int32Array };
   particleEdges: { start: Int32Array; list: Int32Array };
-  /** updateCandidates: the particles it moved the boxes of, and the triangles and edges they are in, listed and marked */
+  /** the particles out of their reach boxes at the last substepBoxes (the first escapedCount) */
   escaped: Int32Array;
+  escapedCount: number;
+  /** updateCandidates: the triangles and edges of the escaped particles, listed, and all three marked */
   touchedTriangles: Int32Array;
   touchedEdges: Int32Array;
   escapedMark: Uint8Array;
@@ -196,6 +198,7 @@ function scratch(model: ClothModel): SelfScratch {
     particleTriangles: rowsOf(model.triangles, 3, model.particleCount),
     particleEdges: rowsOf(model.edges, 2, model.particleCount),
     escaped: new Int32Array(model.particleCount),
+    escapedCount: 0,
     touchedTriangles: new Int32Array(n),
     touchedEdges: new Int32Array(model.edges.length / 2),
     escapedMark: new Uint8Array(model.particleCount),
@@ -354,21 +357,25 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
 
 /**
  * Each particle's box over the substep (x_prev to x) into particleBoxes, and (`start`: the phase's start) its
- * travel and move (track); whether every box lies inside its reach box (false for a non-finite position).
+ * travel and move (track); the particles whose box is not inside their reach box into `escaped` (escapedCount;
+ * a non-finite position is not inside); whether there are none.
  */
 function substepBoxes(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number, start: boolean): boolean {
   const reach = s.reach, pb = s.particleBoxes;
-  let inside = true;
+  let out = 0;
   for (let p = 0; p < np; p++) {
     const jp = 3 * p, r = 6 * p;
+    let inside = true;
     for (let c = 0; c < 3; c++) {
       const lo = Math.min(x[jp + c], xp[jp + c]), hi = Math.max(x[jp + c], xp[jp + c]);
       pb[r + c] = lo; pb[r + 3 + c] = hi;
       if (!(lo >= reach[r + c] && hi <= reach[r + 3 + c])) inside = false;
     }
+    if (!inside) s.escaped[out++] = p;
     if (start) track(s, x, xp, p);
   }
-  return inside;
+  s.escapedCount = out;
+  return out === 0;
 }
 
 /** Particle p's travel up to where it is now (SelfScratch.travel, seen) and its move over the substep so far. */
@@ -475,29 +482,18 @@ const UPDATE_MOST = 1 / 200;
  * which still hold them. The apart test of the pairs found now measures every particle's reach radius from where
  * it is now (its box may have been made earlier, from elsewhere in it). The edge pairs' memo starts again, as after
  * a search. The pairs listed differ from a new search's, but a pair that is not listed cannot come within hMax, and
- * the lists are in the same order, so the cloth is the same: fold at 32² over 120 frames and at 64² over 90 (on the
- * TypeScript kernel) gave the same positions bit for bit with and without the updates, and layers steps as the
- * WebAssembly kernel, which always searches whole (wasm/self-contact-wasm.test.ts). Once fold has landed, a
- * search is mostly for a few particles (scripts/self-search-escapes.mjs); at 64² the fall and landing (90 frames)
- * took 225–242 ms per frame with the updates and 291 without (updates at most 1/200 and 1/50 of the cloth; with
- * up to an eighth 278: each update still costs the refits and the lists' passes, O(pairs)).
+ * the lists are in the same order, so the cloth is the same: layers steps as the WebAssembly kernel, which always
+ * searches whole, bit for bit (wasm/self-contact-wasm.test.ts). Once fold has landed, a search is mostly for a few
+ * particles (scripts/self-search-escapes.mjs); what the updates save, and what they still cost (the refits and the
+ * lists' passes, O(pairs)): docs/physics.md, "Its cost".
  */
 function updateCandidates(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number, h: number, left: number): boolean {
   if (s.builtFor !== hMax) return false;
   const np = model.particleCount, tri = model.triangles, edges = model.edges;
   const x = state.positions, xp = state.previousPositions;
-  const reach = s.reach, pb = s.particleBoxes;
-  const { escaped, touchedTriangles, touchedEdges, escapedMark, triangleMark, edgeMark } = s;
-  let k = 0;
-  for (let p = 0; p < np; p++) {
-    const r = 6 * p;
-    for (let c = 0; c < 3; c++) {
-      if (pb[r + c] >= reach[r + c] && pb[r + 3 + c] <= reach[r + 3 + c]) continue;
-      if (k + 1 > UPDATE_MOST * np) return false;
-      escaped[k++] = p;
-      break;
-    }
-  }
+  const reach = s.reach;
+  const { escaped, escapedCount: k, touchedTriangles, touchedEdges, escapedMark, triangleMark, edgeMark } = s;
+  if (k > UPDATE_MOST * np) return false;
   const T = left * h, span = REACH_SPAN * s.meanEdge;
   let nt = 0, ne = 0;
   for (let i = 0; i < k; i++) {
