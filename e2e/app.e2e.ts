@@ -98,7 +98,7 @@ describe('WebGPU page', () => {
     // the standard fabric tests show what they measure
     await loadScene(page, 'Cantilever (ASTM D1388)', 16);
     await step(page, 60);
-    await expect.poll(() => byId(page, 'hud-test').innerText()).toMatch(/^cantilever: tip \d+\.\d° below the edge, 3\.76 cm out → bending length \d+\.\d\d cm$/);
+    await expect.poll(() => byId(page, 'hud-test').innerText()).toMatch(/^cantilever: tip \d+\.\d° below the edge, 4\.00 cm out → bending length \d+\.\d\d cm$/);
     await loadScene(page, 'Cusick Drape (BS 5058)');
     await choose(page, 'cloth.resolution', '24 faces across');
     await page.waitForFunction(() => (window as any).drape.frame() === 0);

@@ -35,7 +35,8 @@ describe('drape CLI', () => {
     const j = JSON.parse(r.out);
     expect(j.frames).toBe(15);
     expect(j.resolvedScene.material).toMatchObject({ fabric: 'silk', arealDensity: 0.061 });
-    expect(j.test).toMatchObject({ type: 'cantilever', overhang: 0.0376 });
+    expect(j.test).toMatchObject({ type: 'cantilever' });
+    expect(j.test.overhang).toBeCloseTo(0.04, 6);
     expect(j.test.bendingLength).toBeGreaterThan(0);
     const c = JSON.parse((await run('run', 'cusick', '--set', 'cloth.resolution=12', '--frames', '0', '--json')).out);
     expect(c.test.drapeCoefficient).toBeCloseTo(1, 1); // flat at the start

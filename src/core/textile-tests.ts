@@ -17,9 +17,9 @@ import type { ClothState } from './state.js';
 /** What a cantilever scene reports. */
 export interface CantileverResult {
   type: 'cantilever';
-  /** length of strip beyond the clamp's edge, at rest [m] */
+  /** length of strip beyond where the clamp holds it (its last pinned particles behind the edge), at rest [m] */
   overhang: number;
-  /** angle of the chord from the edge to the tip below the horizontal [degrees] */
+  /** angle of the chord from the clamp's last row to the tip below the horizontal [degrees] */
   chordAngle: number;
   /** the bending length the chord angle says, c = (B/(ρ_A·g))^(1/3) [m] */
   bendingLength: number;
@@ -49,22 +49,28 @@ function cantilever(model: ClothModel, state: ClothState, edge: readonly number[
   const dl = Math.hypot(direction[0], direction[2]) || 1;
   const ux = direction[0] / dl, uz = direction[2] / dl;
   const rest = model.restPositions, x = state.positions;
+  const out = (i: number) => (rest[3 * i] - edge[0]) * ux + (rest[3 * i + 2] - edge[2]) * uz;
+  // where the strip stops being held: the pinned particles farthest out that are not beyond the scene's edge. A
+  // clamp made by a pin region holds every particle behind the edge, so on a grid whose rows miss the edge the last
+  // held row lies behind it, and the strip bends from there: the overhang and the chord are measured from that row.
+  let clamp = -Infinity;
+  for (let i = 0; i < model.particleCount; i++) {
+    if (state.pinned[i] && out(i) <= 1e-6 && out(i) > clamp) clamp = out(i);
+  }
+  if (clamp === -Infinity) clamp = 0;
   // the tip: the free particles farthest out along the strip at rest (a row of them on a grid)
   let far = -Infinity;
-  for (let i = 0; i < model.particleCount; i++) {
-    if (state.pinned[i]) continue;
-    far = Math.max(far, (rest[3 * i] - edge[0]) * ux + (rest[3 * i + 2] - edge[2]) * uz);
-  }
+  for (let i = 0; i < model.particleCount; i++) if (!state.pinned[i]) far = Math.max(far, out(i));
   let along = 0, drop = 0, count = 0;
   for (let i = 0; i < model.particleCount; i++) {
-    if (state.pinned[i]) continue;
-    if ((rest[3 * i] - edge[0]) * ux + (rest[3 * i + 2] - edge[2]) * uz < far - 1e-6) continue;
-    along += (x[3 * i] - edge[0]) * ux + (x[3 * i + 2] - edge[2]) * uz;
+    if (state.pinned[i] || out(i) < far - 1e-6) continue;
+    along += (x[3 * i] - edge[0]) * ux + (x[3 * i + 2] - edge[2]) * uz - clamp;
     drop += edge[1] - x[3 * i + 1];
     count++;
   }
   const theta = Math.atan2(drop / count, along / count);
-  return { type: 'cantilever', overhang: far, chordAngle: (theta * 180) / Math.PI, bendingLength: far / Math.cbrt(elasticaLoad(theta)) };
+  const overhang = far - clamp;
+  return { type: 'cantilever', overhang, chordAngle: (theta * 180) / Math.PI, bendingLength: overhang / Math.cbrt(elasticaLoad(theta)) };
 }
 
 /**
