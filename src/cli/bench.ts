@@ -562,3 +562,202 @@ export async function runSelfContactBench(opts: SelfContactBenchOptions, out: (s
   }
   return rows;
 }
+
+export interface HangingBenchOptions {
+  /** faces per side of the 1 m sheet */
+  faces: number;
+  /** the fabrics hung, by name (material.fabric) */
+  fabrics: string[];
+  /** simulated time a run may take to settle [s] */
+  seconds: number;
+  /** JoltPhysics.js iteration counts tried, ascending, until one settles */
+  joltIterations: number[];
+  /** run JoltPhysics.js beside Drape */
+  peer: boolean;
+  /** threads of the WebAssembly XPBD kernel */
+  threads: number | 'auto';
+  json: boolean;
+}
+
+/** How one solver's hanging sheet approached its static elongation. */
+export interface Settling {
+  /** what ran: 'Drape …' or 'Jolt, N iterations' */
+  solver: string;
+  /**
+   * simulated time [s] from which the elongation stayed within 25 % of theory for the rest of the run, the run going
+   * on for a further second to show it stays; null: never within the run's time
+   */
+  settledAt: number | null;
+  /** wall time to simulate up to settledAt [s] (null: never) */
+  wallSeconds: number | null;
+  msPerFrame: number;
+  /** elongation / theory at the end of the run (NaN once not finite) */
+  ratio: number;
+}
+
+interface HangingRow {
+  fabric: string;
+  faces: number;
+  /** ρ_A·g·L²/(2k) [m]: how far a 1 m sheet of the fabric hanging from its top edge lengthens at rest */
+  theory: number;
+  runs: Settling[];
+  peerError?: string;
+}
+
+/** Within this fraction of the static elongation counts as settled (issue 10: the stretch target's 25 %). */
+export const SETTLED_WITHIN = 0.25;
+
+/** The 1 m hanging sheet: pinned along its top edge, no colliders, no self-contact (it never meets itself). */
+export function hangingSheet(fabric: string, faces: number, solver: Partial<Scene['solver']> = {}): Scene {
+  return validateScene({
+    name: 'hanging-sheet',
+    description: 'A 1 m sheet hanging from its top edge, for its static elongation',
+    cloth: { resolution: faces, width: 1, height: 1, orientation: 'hanging', position: [0, 1.5, 0] },
+    material: { fabric },
+    solver: { ...solver, selfContact: false },
+    colliders: [],
+    pins: ['top-edge'],
+  });
+}
+
+/** The sheet's measure: its top and bottom rows' middle halves (the sides pull in, the corners do not count). */
+function hangingRows(rest: Float32Array): { top: number[]; bottom: number[]; height: number } {
+  let ymin = Infinity, ymax = -Infinity, xmin = Infinity, xmax = -Infinity;
+  for (let i = 0; i < rest.length; i += 3) {
+    ymin = Math.min(ymin, rest[i + 1]); ymax = Math.max(ymax, rest[i + 1]);
+    xmin = Math.min(xmin, rest[i]); xmax = Math.max(xmax, rest[i]);
+  }
+  const mid = 0.5 * (xmin + xmax), quarter = 0.25 * (xmax - xmin) + 1e-9, eps = 1e-6 * (ymax - ymin);
+  const top: number[] = [], bottom: number[] = [];
+  for (let i = 0; i < rest.length / 3; i++) {
+    if (Math.abs(rest[3 * i] - mid) > quarter) continue;
+    if (rest[3 * i + 1] > ymax - eps) top.push(i);
+    else if (rest[3 * i + 1] < ymin + eps) bottom.push(i);
+  }
+  return { top, bottom, height: ymax - ymin };
+}
+
+function elongation(x: Float32Array, rows: { top: number[]; bottom: number[]; height: number }): number {
+  let t = 0, b = 0;
+  for (const i of rows.top) t += x[3 * i + 1];
+  for (const i of rows.bottom) b += x[3 * i + 1];
+  return t / rows.top.length - b / rows.bottom.length - rows.height;
+}
+
+/**
+ * Watches a hanging sheet settle: `step(n)` runs n frames and returns their wall ms, `read()` the positions. Stops a
+ * second after the elongation entered the 25 % band for good, or at `seconds` of simulated time.
+ */
+function watchSettling(solver: string, theory: number, rows: ReturnType<typeof hangingRows>, seconds: number,
+  step: (frames: number) => number, read: () => Float32Array): Settling {
+  const frames = Math.round(seconds / FRAME_DT), hold = Math.round(1 / FRAME_DT);
+  let wall = 0, since = -1, wallAtSince = 0, ratio = NaN, f = 0;
+  for (; f < frames; f++) {
+    wall += step(1);
+    ratio = elongation(read(), rows) / theory;
+    if (!Number.isFinite(ratio)) { since = -1; break; }
+    if (Math.abs(ratio - 1) <= SETTLED_WITHIN) {
+      if (since < 0) { since = f; wallAtSince = wall; }
+      if (f - since >= hold) { f++; break; }
+    } else since = -1;
+  }
+  const settled = since >= 0 && f - since > hold;
+  return {
+    solver,
+    settledAt: settled ? (since + 1) * FRAME_DT : null,
+    wallSeconds: settled ? wallAtSince / 1000 : null,
+    msPerFrame: wall / Math.max(1, f),
+    ratio,
+  };
+}
+
+/**
+ * `drape bench --hanging`: how long a 1 m sheet hanging from its top edge takes to reach its static elongation,
+ * ρ_A·g·L²/(2k), within 25 % (issue 10's stretch target): Drape at its default solver settings and with the
+ * springs solved together (solver.stretch 'global'), and JoltPhysics.js on the same particles and constraints with
+ * as many iterations as it needs (the first of --jolt-iterations that settles), or never within the run's time.
+ */
+export async function runHangingBench(opts: HangingBenchOptions, out: (s: string) => void): Promise<HangingRow[]> {
+  let joltCloth: typeof import('./peers/jolt.js').JoltCloth | undefined;
+  let peerError: string | undefined;
+  if (opts.peer) {
+    try {
+      ({ JoltCloth: joltCloth } = await import('./peers/jolt.js'));
+    } catch (e) {
+      peerError = (e as Error).message.split('\n')[0];
+    }
+  }
+  const rows: HangingRow[] = [];
+  for (const fabric of opts.fabrics) {
+    const base = hangingSheet(fabric, opts.faces);
+    // the sheet as the TypeScript reference builds it: its weight per area for the theory, its constraints for Jolt
+    const ref = new Simulation(base, { kernel: 'ts' });
+    let mass = 0;
+    for (const m of ref.params.particleMass) mass += m;
+    const theory = ((mass / ref.model.area) * Math.hypot(...base.gravity) * base.cloth.height ** 2) / (2 * base.material.structuralStiffness);
+    const row: HangingRow = { fabric, faces: opts.faces, theory, runs: [] };
+    const settings: [string, Partial<Scene['solver']>][] = [
+      [`Drape default (xpbd, ${base.solver.substeps} substeps × ${base.solver.iterations}, ${base.solver.stretch})`, {}],
+      ['Drape solver.stretch global', { stretch: 'global' }],
+    ];
+    for (const [name, solver] of settings) {
+      const sim = new Simulation(hangingSheet(fabric, opts.faces, solver), cpuOptions(opts.threads));
+      try {
+        await sim.whenReady();
+        const rowsOf = hangingRows(sim.model.restPositions);
+        row.runs.push(watchSettling(name, theory, rowsOf, opts.seconds, (n) => {
+          const t0 = performance.now();
+          sim.advance(n);
+          return performance.now() - t0;
+        }, () => sim.state.positions));
+      } finally {
+        sim.dispose();
+      }
+    }
+    if (joltCloth) {
+      const sim = ref;
+      const invMass = Float32Array.from(sim.params.particleInvMass, (w, i) => (sim.state.pinned[i] ? 0 : w));
+      const rowsOf = hangingRows(sim.model.restPositions);
+      try {
+        for (const iterations of opts.joltIterations) {
+          const cloth = await joltCloth.create({
+            positions: sim.model.restPositions, invMass, edges: sim.model.springs, compliance: sim.params.compliance,
+            triangles: sim.model.triangles, sphere: null, floorY: null, gravity: base.gravity, iterations,
+            friction: sim.params.friction, vertexRadius: sim.params.thickness,
+          });
+          const x = new Float32Array(3 * sim.model.particleCount);
+          try {
+            const run = watchSettling(`Jolt, ${iterations} iterations`, theory, rowsOf, opts.seconds, (n) => cloth.step(n), () => cloth.positions(x));
+            row.runs.push(run);
+            if (run.settledAt !== null) break;
+          } finally {
+            cloth.dispose();
+          }
+        }
+      } catch (e) {
+        row.peerError = (e as Error).message.split('\n')[0];
+      }
+    } else if (peerError) row.peerError = peerError;
+    ref.dispose();
+    rows.push(row);
+  }
+  const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  if (opts.json) {
+    out(JSON.stringify({ machine, faces: opts.faces, seconds: opts.seconds, within: SETTLED_WITHIN, threads: opts.threads, rows }));
+    return rows;
+  }
+  out(`drape bench --hanging — a 1 m sheet of ${opts.faces}² faces hanging from its top edge: the simulated time until its`);
+  out(`elongation stays within ${100 * SETTLED_WITHIN} % of ρ_A·g·L²/(2k) (checked for a second more), and the wall time to get there;`);
+  out(`each run at most ${opts.seconds} s of simulated time; Jolt on the same particles and constraints, the fewest iterations that settle; ${machine}`);
+  out('');
+  out('| fabric | theory [mm] | solver | settled after [s simulated] | wall time to settle [s] | ms/frame | elongation / theory at the end |');
+  out('|---|---|---|---|---|---|---|');
+  for (const r of rows) {
+    for (const run of r.runs) {
+      out(`| ${r.fabric} | ${fmt(1000 * r.theory, 3)} | ${run.solver} | ${run.settledAt === null ? `never (${opts.seconds} s)` : fmt(run.settledAt)} | ` +
+        `${run.wallSeconds === null ? '—' : fmt(run.wallSeconds)} | ${fmt(run.msPerFrame)} | ${Number.isFinite(run.ratio) ? fmt(run.ratio) : 'NaN'} |`);
+    }
+    if (r.peerError) out(`| ${r.fabric} | ${fmt(1000 * r.theory, 3)} | Jolt | n/a: ${r.peerError} | | | |`);
+  }
+  return rows;
+}

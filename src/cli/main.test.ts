@@ -108,6 +108,31 @@ describe('drape CLI', () => {
     expect((await run('bench', '--self-contact', '--backend', 'gpu')).err).toMatch(/^drape: --self-contact: times the CPU/);
   });
 
+  it('bench --hanging says how long a hanging sheet takes to settle at its static elongation, for Drape and for Jolt', async () => {
+    const r = await run('bench', '--hanging', '--sizes', '8', '--fabrics', 'rubber', '--seconds', '3', '--jolt-iterations', '1,40', '--json');
+    expect(r.code, r.err).toBe(0);
+    const j = JSON.parse(r.out);
+    expect(j).toMatchObject({ faces: 8, seconds: 3, within: 0.25 });
+    const [row] = j.rows;
+    // rubber, 0.38 kg/m² and 600 N/m: a 1 m sheet lengthens by 0.38 · 9.81 / 1200 m
+    expect(row.theory).toBeCloseTo((0.38 * 9.81) / 1200, 6);
+    const by = (name: RegExp) => row.runs.find((x: { solver: string }) => name.test(x.solver));
+    // the springs solved together settle within the band and stay there; the end of the run is inside it
+    const global = by(/stretch global/);
+    expect(global.settledAt).toBeGreaterThan(0);
+    expect(global.settledAt).toBeLessThan(2);
+    expect(Math.abs(global.ratio - 1)).toBeLessThanOrEqual(0.25);
+    expect(by(/^Drape default/)).toBeDefined();
+    // Jolt: 1 iteration overstretches for good, so the next is tried; 40 settles, and nothing after it is tried
+    expect(by(/^Jolt, 1 iterations$/)).toMatchObject({ settledAt: null, wallSeconds: null });
+    expect(by(/^Jolt, 1 iterations$/).ratio).toBeGreaterThan(1.25);
+    expect(by(/^Jolt, 40 iterations$/).settledAt).toBeGreaterThan(0);
+    expect(row.runs).toHaveLength(4);
+    const table = await run('bench', '--hanging', '--sizes', '4', '--fabrics', 'cotton', '--seconds', '3', '--no-peer');
+    expect(table.out).toMatch(/^\| cotton \| 0\.068 \| Drape solver\.stretch global \| [\d.]+ \| [\d.]+ \| [\d.]+ \| [01]\.\d\d \|$/m);
+    expect(table.out).toMatch(/^\| cotton \| 0\.068 \| Drape default \(xpbd, 20 substeps × 1, gauss-seidel\) \| (never \(3 s\)|[\d.]+) \|/m);
+  });
+
   it('bench times the default threads against one thread on a machine it keeps busy', async () => {
     const r = await run('bench', '--sizes', '51', '--frames', '3', '--warmup', '1', '--no-peer');
     expect(r.code).toBe(0);
@@ -218,6 +243,10 @@ describe('drape CLI', () => {
     [['bench', '--sizes', '64,x'], /--sizes: must be an integer/],
     [['bench', '--scenes', 'cape,nope'], /--scenes: unknown scene 'nope' \(built-in scenes: .*cape, skirt/],
     [['bench', '--scenes', 'cape', '--backend', 'gpu'], /--scenes: times the CPU solvers/],
+    [['bench', '--hanging', '--fabrics', 'tweed'], /^drape: --fabrics: unknown fabric 'tweed' \(named fabrics: cotton, silk, leather, rubber, denim\)$/],
+    [['bench', '--hanging', '--sizes', '32,64'], /^drape: --hanging: one size/],
+    [['bench', '--hanging', '--self-contact'], /^drape: --hanging and --self-contact are two different benchmarks/],
+    [['bench', '--hanging', '--seconds', '0'], /^drape: --seconds: must be an integer in 1…600, got '0'$/],
     [['run', '--kernel', 'gpu'], /--kernel: must be wasm or ts/],
     [['run', '--threads', '0'], /--threads: must be an integer in 1…1024/],
     [['fly'], /unknown command 'fly'/],

@@ -9,14 +9,14 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { basename, resolve } from 'node:path';
 import { parseArgs } from 'node:util';
 import {
-  bakeBytes, builtinScene, exportCloths, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneDocument, sceneSchema,
+  bakeBytes, builtinScene, FABRIC_NAMES, exportCloths, FRAME_DT, isBuiltinScene, parseSetValue, plainText, safeJson, SCENE_NAMES, sceneDocument, sceneSchema,
   modelCloths, setScenePath, Simulation, toGLB, toMTL, toOBJ, type GlbBake, type MeshResolver, type Scene, type SimulationOptions,
 } from '../core/index.js';
 import { EXIT, UsageError } from './errors.js';
 import { checkOutputPath } from './files.js';
 import { loadSceneFile, meshReader } from './node.js';
 import { gpuRefusal, openGpu, type Gpu } from './gpu.js';
-import { cpuOptions, runBench, runGpuBench, runSceneBench, runSelfContactBench } from './bench.js';
+import { cpuOptions, runBench, runGpuBench, runHangingBench, runSceneBench, runSelfContactBench } from './bench.js';
 import { maxThreads } from './threads.js';
 
 const HELP: Record<string, string> = {
@@ -67,6 +67,11 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
                         solver.selfContact off and on, and the crossing triangle pairs of each; then the
                         Ten Minute Physics 15 demo's strip (30 × 200 particles) by its particle-hash method
                         and by Drape (--no-peer skips it)
+  --hanging             time the stretch instead: a 1 m sheet of --sizes faces per side (default 64) hanging from
+                        its top edge, for each of --fabrics (default rubber,cotton): the simulated and the wall time
+                        until its elongation stays within 25 % of ρ_A·g·L²/(2k), for Drape at its defaults and
+                        with solver.stretch global, and for JoltPhysics.js with the fewest of --jolt-iterations
+                        (default 10,20,40,80,160,320) that settles; each run at most --seconds (default 10)
   --no-peer             skip JoltPhysics.js
   --no-contention       skip the busy-machine table (the default threads against one thread while other
                         processes, started and stopped by the bench, keep every core busy)
@@ -403,6 +408,7 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
       sizes: { type: 'string' }, substeps: { type: 'string' }, frames: { type: 'string' }, warmup: { type: 'string' },
       backend: { type: 'string' }, threads: { type: 'string' }, 'no-peer': { type: 'boolean' }, 'no-contention': { type: 'boolean' },
       scenes: { type: 'string' }, 'self-contact': { type: 'boolean' },
+      hanging: { type: 'boolean' }, fabrics: { type: 'string' }, seconds: { type: 'string' }, 'jolt-iterations': { type: 'string' },
       json: { type: 'boolean' },
       help: { type: 'boolean', short: 'h' },
     },
@@ -411,8 +417,27 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
   const backend = checkBackend(values.backend);
   const threads = threadsArg(values.threads, err);
   const selfContact = values['self-contact'] ?? false;
-  const sizes = (values.sizes ?? (selfContact ? '64' : backend === 'gpu' ? '64,128,256,512,1024' : '64,128')).split(',')
-    .map((s) => intArg('sizes', s.trim(), 0, selfContact ? 1 : 2, selfContact ? 256 : 1025));
+  const hanging = values.hanging ?? false;
+  if (selfContact && hanging) throw new UsageError('--hanging and --self-contact are two different benchmarks: give one');
+  const sizes = (values.sizes ?? (selfContact || hanging ? '64' : backend === 'gpu' ? '64,128,256,512,1024' : '64,128')).split(',')
+    .map((s) => intArg('sizes', s.trim(), 0, selfContact || hanging ? 1 : 2, selfContact || hanging ? 256 : 1025));
+  if (hanging) {
+    if (backend === 'gpu') throw new UsageError('--hanging: times the CPU solvers, not the GPU solver; leave out --backend gpu');
+    if (sizes.length !== 1) throw new UsageError('--hanging: one size, the sheet\'s faces per side (e.g. --sizes 64)');
+    const fabrics = (values.fabrics ?? 'rubber,cotton').split(',').map((f) => f.trim());
+    for (const f of fabrics) if (!(FABRIC_NAMES as readonly string[]).includes(f)) throw new UsageError(`--fabrics: unknown fabric '${plainText(f, 100)}' (named fabrics: ${FABRIC_NAMES.join(', ')})`);
+    const iterations = (values['jolt-iterations'] ?? '10,20,40,80,160,320').split(',').map((s) => intArg('jolt-iterations', s.trim(), 0, 1, 10_000));
+    await runHangingBench({
+      faces: sizes[0],
+      fabrics,
+      seconds: intArg('seconds', values.seconds, 10, 1, 600),
+      joltIterations: iterations,
+      peer: !values['no-peer'],
+      threads,
+      json: values.json ?? false,
+    }, out);
+    return 0;
+  }
   const sceneList = (raw: string) => {
     const scenes = raw.split(',').map((s) => s.trim());
     for (const s of scenes) if (!isBuiltinScene(s)) throw new UsageError(`--scenes: unknown scene '${plainText(s, 100)}' (built-in scenes: ${SCENE_NAMES.join(', ')})`);

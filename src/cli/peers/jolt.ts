@@ -21,9 +21,10 @@ export interface PeerClothSpec {
   compliance: Float32Array;
   /** triangles as index triples, length 3t (Jolt faces; needed for its soft body) */
   triangles: Uint32Array;
-  sphere: { center: [number, number, number]; radius: number };
-  /** floor height [m]: a static box whose top face is at this y */
-  floorY: number;
+  /** a static sphere collider, or none */
+  sphere: { center: [number, number, number]; radius: number } | null;
+  /** floor height [m]: a static box whose top face is at this y; null for none */
+  floorY: number | null;
   gravity: [number, number, number];
   /** Jolt SoftBodySharedSettings/creation mNumIterations (it substeps per iteration) */
   iterations: number;
@@ -122,45 +123,60 @@ function validate(spec: PeerClothSpec): number {
 }
 
 /**
- * Simulates `warmup + frames` frames of 1/60 s of the cloth in Jolt and times
- * the last `frames` of them. Never throws for a blow-up: NaN/Inf positions are
- * reported as `finite: false`.
- *
- * Loads jolt-physics lazily (dynamic import). Throws an Error with a one-line message if it is not installed.
+ * The cloth of a spec in its own Jolt physics system, stepped a frame at a time and read back: what runJoltCloth
+ * times, and what the bench's hanging sheet watches settle. `dispose()` frees it (Jolt's heap is shared by the
+ * process; each cloth frees what it made).
  */
-export async function runJoltCloth(spec: PeerClothSpec, frames: number, warmup: number): Promise<PeerResult> {
-  const n = validate(spec);
-  if (!(Number.isInteger(frames) && frames >= 1)) throw new Error(`frames must be an integer >= 1, got ${frames}`);
-  if (!(Number.isInteger(warmup) && warmup >= 0)) throw new Error(`warmup must be an integer >= 0, got ${warmup}`);
-  const Jolt = await loadJolt();
+export class JoltCloth {
+  /** Jolt version/build string if obtainable, else 'jolt-physics' */
+  readonly name = joltName();
+  private readonly bodies: JoltTypes.Body[] = [];
+  private shared: JoltTypes.SoftBodySharedSettings | undefined;
+  private cloth: JoltTypes.Body | undefined;
+  private disposed = false;
 
-  // --- Physics system: two object layers (non-moving / moving), 1:1 broad phase layers.
-  const objectFilter = new Jolt.ObjectLayerPairFilterTable(NUM_OBJECT_LAYERS);
-  objectFilter.EnableCollision(LAYER_NON_MOVING, LAYER_MOVING);
-  objectFilter.EnableCollision(LAYER_MOVING, LAYER_MOVING);
-  const bpNonMoving = new Jolt.BroadPhaseLayer(0);
-  const bpMoving = new Jolt.BroadPhaseLayer(1);
-  const bpInterface = new Jolt.BroadPhaseLayerInterfaceTable(NUM_OBJECT_LAYERS, NUM_BROAD_PHASE_LAYERS);
-  bpInterface.MapObjectToBroadPhaseLayer(LAYER_NON_MOVING, bpNonMoving);
-  bpInterface.MapObjectToBroadPhaseLayer(LAYER_MOVING, bpMoving);
-  Jolt.destroy(bpNonMoving); // copied into bpInterface
-  Jolt.destroy(bpMoving);
-  const settings = new Jolt.JoltSettings();
-  settings.mObjectLayerPairFilter = objectFilter;
-  settings.mBroadPhaseLayerInterface = bpInterface;
-  settings.mObjectVsBroadPhaseLayerFilter = new Jolt.ObjectVsBroadPhaseLayerFilterTable(
-    bpInterface,
-    NUM_BROAD_PHASE_LAYERS,
-    objectFilter,
-    NUM_OBJECT_LAYERS,
-  );
-  // The JoltInterface takes ownership of the three filter/layer objects.
-  const jolt = new Jolt.JoltInterface(settings);
-  Jolt.destroy(settings);
+  private constructor(private readonly Jolt: JoltModule, private readonly jolt: JoltTypes.JoltInterface, readonly particles: number) {}
 
-  const bodies: JoltTypes.Body[] = [];
-  let shared: JoltTypes.SoftBodySharedSettings | undefined;
-  try {
+  /** Builds the spec's cloth and colliders. Loads jolt-physics lazily; throws a one-line Error if it is not installed. */
+  static async create(spec: PeerClothSpec): Promise<JoltCloth> {
+    const n = validate(spec);
+    const Jolt = await loadJolt();
+    // --- Physics system: two object layers (non-moving / moving), 1:1 broad phase layers.
+    const objectFilter = new Jolt.ObjectLayerPairFilterTable(NUM_OBJECT_LAYERS);
+    objectFilter.EnableCollision(LAYER_NON_MOVING, LAYER_MOVING);
+    objectFilter.EnableCollision(LAYER_MOVING, LAYER_MOVING);
+    const bpNonMoving = new Jolt.BroadPhaseLayer(0);
+    const bpMoving = new Jolt.BroadPhaseLayer(1);
+    const bpInterface = new Jolt.BroadPhaseLayerInterfaceTable(NUM_OBJECT_LAYERS, NUM_BROAD_PHASE_LAYERS);
+    bpInterface.MapObjectToBroadPhaseLayer(LAYER_NON_MOVING, bpNonMoving);
+    bpInterface.MapObjectToBroadPhaseLayer(LAYER_MOVING, bpMoving);
+    Jolt.destroy(bpNonMoving); // copied into bpInterface
+    Jolt.destroy(bpMoving);
+    const settings = new Jolt.JoltSettings();
+    settings.mObjectLayerPairFilter = objectFilter;
+    settings.mBroadPhaseLayerInterface = bpInterface;
+    settings.mObjectVsBroadPhaseLayerFilter = new Jolt.ObjectVsBroadPhaseLayerFilterTable(
+      bpInterface,
+      NUM_BROAD_PHASE_LAYERS,
+      objectFilter,
+      NUM_OBJECT_LAYERS,
+    );
+    // The JoltInterface takes ownership of the three filter/layer objects.
+    const jolt = new Jolt.JoltInterface(settings);
+    Jolt.destroy(settings);
+    const self = new JoltCloth(Jolt, jolt, n);
+    try {
+      self.build(spec);
+    } catch (e) {
+      self.dispose();
+      throw e;
+    }
+    return self;
+  }
+
+  private build(spec: PeerClothSpec): void {
+    const { Jolt, jolt, bodies } = this;
+    const n = this.particles;
     const physicsSystem = jolt.GetPhysicsSystem();
     const bodyInterface = physicsSystem.GetBodyInterface();
     const g = new Jolt.Vec3(spec.gravity[0], spec.gravity[1], spec.gravity[2]);
@@ -181,16 +197,20 @@ export async function runJoltCloth(spec: PeerClothSpec, frames: number, warmup: 
       bodyInterface.AddBody(body.GetID(), Jolt.EActivation_DontActivate);
       bodies.push(body);
     };
-    // Sphere collider.
-    const [sx, sy, sz] = spec.sphere.center;
-    addStatic(new Jolt.SphereShape(spec.sphere.radius), sx, sy, sz);
-    // Floor: a 100 m x 1 m x 100 m static box whose top face is at floorY.
-    const half = new Jolt.Vec3(50, 0.5, 50);
-    addStatic(new Jolt.BoxShape(half, 0.05), 0, spec.floorY - 0.5, 0);
-    Jolt.destroy(half);
+    if (spec.sphere) {
+      const [sx, sy, sz] = spec.sphere.center;
+      addStatic(new Jolt.SphereShape(spec.sphere.radius), sx, sy, sz);
+    }
+    if (spec.floorY !== null) {
+      // a 100 m x 1 m x 100 m static box whose top face is at floorY
+      const half = new Jolt.Vec3(50, 0.5, 50);
+      addStatic(new Jolt.BoxShape(half, 0.05), 0, spec.floorY - 0.5, 0);
+      Jolt.destroy(half);
+    }
 
     // --- Soft body: vertices, edge constraints, faces (no bend/volume/LRA constraints).
-    shared = new Jolt.SoftBodySharedSettings();
+    const shared = new Jolt.SoftBodySharedSettings();
+    this.shared = shared;
     shared.AddRef(); // we hold a reference until after the body is destroyed
     const vertex = new Jolt.SoftBodySharedSettingsVertex();
     const vertexPos = vertex.mPosition; // view into `vertex`
@@ -245,19 +265,23 @@ export async function runJoltCloth(spec: PeerClothSpec, frames: number, warmup: 
     Jolt.destroy(sbcs);
     bodyInterface.AddBody(cloth.GetID(), Jolt.EActivation_Activate);
     bodies.push(cloth);
+    this.cloth = cloth;
     Jolt.destroy(identity);
+  }
 
-    // --- Simulate.
-    for (let f = 0; f < warmup; f++) jolt.Step(FRAME_DT, 1);
-    let totalMs = 0;
-    for (let f = 0; f < frames; f++) {
-      const t0 = performance.now();
-      jolt.Step(FRAME_DT, 1);
-      totalMs += performance.now() - t0;
-    }
+  /** Steps `frames` frames of 1/60 s (one collision step each); returns the wall-clock ms they took. */
+  step(frames: number): number {
+    const t0 = performance.now();
+    for (let f = 0; f < frames; f++) this.jolt.Step(FRAME_DT, 1);
+    return performance.now() - t0;
+  }
 
-    // --- Read back. Soft body vertex positions are relative to the body's
-    // centre-of-mass transform (which moves with the cloth when mUpdatePosition).
+  /** The particles' world positions [m], xyz interleaved, into `out` (made when not given). */
+  positions(out = new Float32Array(3 * this.particles)): Float32Array {
+    const { Jolt } = this;
+    const cloth = this.cloth!;
+    // Soft body vertex positions are relative to the body's centre-of-mass transform (which moves with the cloth
+    // when mUpdatePosition).
     const motion = Jolt.castObject(cloth.GetMotionProperties(), Jolt.SoftBodyMotionProperties);
     const xf = cloth.GetCenterOfMassTransform();
     const tr = xf.GetTranslation();
@@ -268,8 +292,7 @@ export async function runJoltCloth(spec: PeerClothSpec, frames: number, warmup: 
     const Y = [ay.GetX(), ay.GetY(), ay.GetZ()] as const;
     const az = xf.GetAxisZ();
     const Z = [az.GetX(), az.GetY(), az.GetZ()] as const;
-    const count = motion.GetVertices().size();
-
+    const count = Math.min(motion.GetVertices().size(), this.particles);
     // Read positions straight from the wasm heap: wrapping 16k vertices with
     // GetVertex(i) would fill emscripten's per-pointer wrapper cache.
     const heap = Jolt.HEAPF32;
@@ -282,39 +305,67 @@ export async function runJoltCloth(spec: PeerClothSpec, frames: number, warmup: 
       posOffset = Jolt.getPointer(v0.mPosition) - base;
       stride = count > 1 ? Jolt.getPointer(motion.GetVertex(1)) - base : 0;
     }
-    let finite = count === n;
-    let cx = 0;
-    let cy = 0;
-    let cz = 0;
+    out.fill(NaN);
     for (let i = 0; i < count; i++) {
       const p = (base + i * stride + posOffset) >> 2;
       const lx = heap[p]!;
       const ly = heap[p + 1]!;
       const lz = heap[p + 2]!;
-      const wx = T[0] + X[0] * lx + Y[0] * ly + Z[0] * lz;
-      const wy = T[1] + X[1] * lx + Y[1] * ly + Z[1] * lz;
-      const wz = T[2] + X[2] * lx + Y[2] * ly + Z[2] * lz;
-      if (!(Number.isFinite(wx) && Number.isFinite(wy) && Number.isFinite(wz))) finite = false;
-      cx += wx;
-      cy += wy;
-      cz += wz;
+      out[3 * i] = T[0] + X[0] * lx + Y[0] * ly + Z[0] * lz;
+      out[3 * i + 1] = T[1] + X[1] * lx + Y[1] * ly + Z[1] * lz;
+      out[3 * i + 2] = T[2] + X[2] * lx + Y[2] * ly + Z[2] * lz;
     }
-    const inv = count > 0 ? 1 / count : NaN;
-    return {
-      msPerFrame: totalMs / frames,
-      finite,
-      centroid: [cx * inv, cy * inv, cz * inv],
-      name: joltName(),
-    };
-  } finally {
+    return out;
+  }
+
+  /** Frees the bodies, the shared settings and the physics system. */
+  dispose(): void {
+    if (this.disposed) return;
+    this.disposed = true;
+    const { Jolt, jolt } = this;
     // Bodies first (they hold references to shapes and the shared settings), then the system.
     const bodyInterface = jolt.GetPhysicsSystem().GetBodyInterface();
-    for (const body of bodies) {
+    for (const body of this.bodies) {
       const id = body.GetID();
       bodyInterface.RemoveBody(id);
       bodyInterface.DestroyBody(id);
     }
-    shared?.Release();
+    this.shared?.Release();
     Jolt.destroy(jolt);
+  }
+}
+
+/**
+ * Simulates `warmup + frames` frames of 1/60 s of the cloth in Jolt and times
+ * the last `frames` of them. Never throws for a blow-up: NaN/Inf positions are
+ * reported as `finite: false`.
+ *
+ * Loads jolt-physics lazily (dynamic import). Throws an Error with a one-line message if it is not installed.
+ */
+export async function runJoltCloth(spec: PeerClothSpec, frames: number, warmup: number): Promise<PeerResult> {
+  if (!(Number.isInteger(frames) && frames >= 1)) throw new Error(`frames must be an integer >= 1, got ${frames}`);
+  if (!(Number.isInteger(warmup) && warmup >= 0)) throw new Error(`warmup must be an integer >= 0, got ${warmup}`);
+  const cloth = await JoltCloth.create(spec);
+  try {
+    cloth.step(warmup);
+    let totalMs = 0;
+    // frame by frame, as before: the time of Jolt's steps only
+    for (let f = 0; f < frames; f++) totalMs += cloth.step(1);
+    const x = cloth.positions();
+    const n = cloth.particles;
+    let finite = true;
+    let cx = 0;
+    let cy = 0;
+    let cz = 0;
+    for (let i = 0; i < n; i++) {
+      if (!(Number.isFinite(x[3 * i]) && Number.isFinite(x[3 * i + 1]) && Number.isFinite(x[3 * i + 2]))) finite = false;
+      cx += x[3 * i];
+      cy += x[3 * i + 1];
+      cz += x[3 * i + 2];
+    }
+    const inv = n > 0 ? 1 / n : NaN;
+    return { msPerFrame: totalMs / frames, finite, centroid: [cx * inv, cy * inv, cz * inv], name: cloth.name };
+  } finally {
+    cloth.dispose();
   }
 }
