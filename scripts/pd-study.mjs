@@ -12,13 +12,16 @@
 //   timing: ms per frame of the direct solver at 32², 64², 128² and of Chebyshev-Jacobi.
 //
 //   newton: the cantilever's converged answer for the same discrete energy (static Newton): the model's own error.
+//   fabrics: the built-in cantilever scene's converged answer for every named fabric (static Newton), not in 'all'.
+//   gn: the built-in cantilever scene stepped by the Gauss–Newton prototype (gn-solver.mjs), not in 'all'.
 //
 // Parts (--part): hanging, cantilever, newton, all (default: those three, ~3 min on a free core; the 128² rows are
 // most of it), jacobi (Chebyshev-accelerated Jacobi on both setups; not in 'all').
 //   npx tsc -p tsconfig.build.json && node scripts/pd-study.mjs [--part hanging] [--faces 16,32,64,128]
 //       [--settings 1x3,1x10] [--fabrics rubber,cotton] [--bending springs|hinges|laplacian (the hanging sheet's bending model)]
 //       [--stencils hinges|laplacian (the cantilever's bending model in the newton part)]
-import { modelFor, resolveParams, scenePins } from '../dist/core/index.js';
+import { FABRICS, FABRIC_NAMES, builtinScene, measureTest, modelFor, resolveParams, scenePins, setScenePath, validateScene } from '../dist/core/index.js';
+import { GNSolver } from './gn-solver.mjs';
 import { PDSolver, newtonStatic } from './pd-solver.mjs';
 import {
   arg, cantileverScene, hangingScene, hangingTheory, kinetic, measureCantilever, measureHanging, pct, CANTILEVER,
@@ -119,6 +122,71 @@ function newtonCantilever() {
   }
 }
 
+/**
+ * The built-in `cantilever` scene's converged answer for every named fabric (static Newton on its discrete energy,
+ * from the flat strip): the bending length the scene's own measurement reads, as a ratio to c = (B/(ρ_A·g))^(1/3),
+ * at several resolutions. What any solver that converges would report; the model's own error.
+ */
+function fabricCantilevers() {
+  const facesList = arg('faces', '16,32,64').split(',').map(Number);
+  const stencils = arg('stencils', 'hinges');
+  console.log(`\nThe cantilever scene (${stencils}), converged static equilibrium of the discrete model (Newton from the flat strip): c / c_theory`);
+  console.log(`| fabric | c theory [cm] | ${facesList.map((f) => `${f} faces: chord → c / c_theory (Newton iterations)`).join(' | ')} |`);
+  console.log(`|---|---|${facesList.map(() => '---|').join('')}`);
+  for (const fabric of arg('fabrics', FABRIC_NAMES.join(',')).split(',')) {
+    const f = FABRICS[fabric];
+    const c = Math.cbrt(f.bendingRigidity / (f.arealDensity * 9.81));
+    const cells = [];
+    for (const faces of facesList) {
+      let scene = setScenePath(builtinScene('cantilever'), 'material.fabric', fabric);
+      scene = validateScene({ ...scene, cloth: { ...scene.cloth, resolution: faces }, solver: { ...scene.solver, bending: stencils } });
+      const pd = solverFor(scene, { substeps: 1, iterations: 1 });
+      const r = newtonStatic(pd, 300);
+      const t = measureTest(pd.model, { positions: pd.x, pinned: pd.pinned }, scene);
+      cells.push(`${t.chordAngle.toFixed(1)}° → ${(t.bendingLength / c).toFixed(3)} (${r.iterations})`);
+    }
+    console.log(`| ${fabric} | ${(100 * c).toFixed(2)} | ${cells.join(' | ')} |`);
+  }
+}
+
+/**
+ * The cantilever scene for each fabric with the Gauss–Newton prototype (gn-solver.mjs) at the default 20 substeps:
+ * where the strip is after the scene's 6 s, how far it still swings over the sixth second (nothing damps its
+ * bending), the conjugate gradient iterations a substep took, and ms per frame.
+ */
+function gnCantilevers() {
+  const facesList = arg('faces', '32').split(',').map(Number);
+  const stencils = arg('stencils', 'hinges');
+  console.log(`\nThe cantilever scene (${stencils}), Gauss–Newton prototype, 20 substeps × 1, conjugate gradients to 1e-3`);
+  console.log('| fabric | faces | chord at 6 s → c / c_theory | chord over the sixth second | CG iterations per substep | ms/frame |');
+  console.log('|---|---|---|---|---|---|');
+  for (const fabric of arg('fabrics', FABRIC_NAMES.join(',')).split(',')) {
+    const f = FABRICS[fabric];
+    const c = Math.cbrt(f.bendingRigidity / (f.arealDensity * 9.81));
+    for (const faces of facesList) {
+      let scene = setScenePath(builtinScene('cantilever'), 'material.fabric', fabric);
+      scene = validateScene({ ...scene, cloth: { ...scene.cloth, resolution: faces }, solver: { ...scene.solver, bending: stencils } });
+      const model = modelFor(scene);
+      const params = resolveParams(model, scene);
+      const pinned = new Uint8Array(model.particleCount);
+      for (const i of scenePins(model, scene)) pinned[i] = 1;
+      const gn = new GNSolver(model, params, pinned, { substeps: 20, iterations: 1 });
+      const read = () => measureTest(model, { positions: gn.x, pinned }, scene);
+      const t0 = performance.now();
+      let lo = Infinity, hi = -Infinity;
+      for (let fr = 0; fr < 360; fr++) {
+        gn.frame();
+        if (fr >= 300) { const a = read().chordAngle; lo = Math.min(lo, a); hi = Math.max(hi, a); }
+      }
+      const ms = (performance.now() - t0) / 360;
+      const t = read();
+      console.log(`| ${fabric} | ${faces} | ${t.chordAngle.toFixed(1)}° → ${(t.bendingLength / c).toFixed(3)} | ${lo.toFixed(1)}–${hi.toFixed(1)}° | ${(gn.cgIterations / gn.substepsRun).toFixed(1)} | ${ms.toFixed(0)} |`);
+    }
+  }
+}
+
+if (part === 'fabrics') fabricCantilevers();
+if (part === 'gn') gnCantilevers();
 if (part === 'all' || part === 'hanging') hanging('direct');
 if (part === 'all' || part === 'newton') newtonCantilever();
 if (part === 'all' || part === 'cantilever') cantilever('direct');

@@ -1,0 +1,192 @@
+// A Gauss–Newton prototype on XPBD's constraints (issue 10's converged solver, a candidate) over Drape's own model and
+// parameters, for scripts/pd-study.mjs (--part gn). Standalone like pd-solver.mjs: it reads a ClothModel and SimParams
+// built by the library (dist/) and steps its own float64 arrays. Not integrated into the core.
+//
+// Per substep h it solves implicit Euler with the springs as compliant constraints (Macklin et al. 2016's XPBD, its
+// Newton step taken whole instead of one Gauss–Seidel sweep; Goldenthal et al. 2007's fast projection with compliance):
+//   A·x = M/h²·x̃ + Jᵀ·f + (pinned terms),   C(x) + α·f = 0,   A = M/h² + Σ_stencils (B/A_e)·K_eK_eᵀ,
+// f the springs' forces [N] (f = −k·C), J the springs' directions, α = 1/k. A holds the inertia and the bending
+// stencils, which are quadratic: it is one scalar matrix for the three coordinates, ordered once (RCM) and factored
+// once (envelope Cholesky, pd-solver.mjs). Each Gauss–Newton iteration takes the directions where the cloth is now —
+// so a spring turns freely and only its length is stiff, which a constant matrix of the springs (Projective Dynamics)
+// cannot give — and solves the Schur complement (J·A⁻¹·Jᵀ + α)·δf = −C − α·f − J·(x̂ − x), x̂ = A⁻¹(M/h²·x̃ + Jᵀf +
+// pins), by conjugate gradients preconditioned by its diagonal; then x = x̂ + A⁻¹Jᵀδf. The forces start each substep
+// from the last (a static load is not rebuilt from nothing every substep, as XPBD's λ is). No damping: implicit Euler's.
+import { EnvelopeCholesky, rcm } from './pd-solver.mjs';
+
+export class GNSolver {
+  /**
+   * model, params: the library's; pinned: Uint8Array (1 = fixed); opts: { substeps, iterations (Gauss–Newton
+   * iterations per substep), tol (the conjugate gradients' relative residual), maxCg }.
+   */
+  constructor(model, params, pinned, opts) {
+    this.model = model;
+    this.params = params;
+    this.opts = { substeps: 20, iterations: 1, tol: 1e-3, maxCg: 500, ...opts };
+    const n = model.particleCount;
+    this.n = n;
+    this.pinned = pinned;
+    this.x = Float64Array.from(model.restPositions);
+    this.v = new Float64Array(3 * n);
+    this.mass = Float64Array.from(params.particleMass);
+    const sp = [], al = [], rl = [];
+    for (let s = 0; s < model.restLengths.length; s++) {
+      const alpha = params.compliance[s], a = model.springs[2 * s], b = model.springs[2 * s + 1];
+      if (!(alpha < Infinity) || (pinned[a] && pinned[b])) continue;
+      sp.push(a, b); al.push(alpha); rl.push(model.restLengths[s]);
+    }
+    this.springs = Int32Array.from(sp); this.alpha = Float64Array.from(al); this.rest = Float64Array.from(rl);
+    const m = this.alpha.length;
+    // the bending stencils of params.bending (none for the skip-one springs, which are springs above)
+    const st = params.bending === 'springs' ? null : model.stencils[params.bending];
+    const adj = Array.from({ length: n }, () => new Set());
+    this.stencils = [];
+    if (st) {
+      for (let e = 0; e < st.areas.length; e++) {
+        const a = params.stencilCompliance[e];
+        if (!(a < Infinity)) continue;
+        const idx = Array.from(st.vertices.subarray(st.offsets[e], st.offsets[e + 1]));
+        if (idx.every((i) => pinned[i])) continue;
+        this.stencils.push({ idx, K: Array.from(st.weights.subarray(st.offsets[e], st.offsets[e + 1])), w: 1 / a });
+        for (const i of idx) for (const j of idx) if (i !== j && !pinned[i] && !pinned[j]) adj[i].add(j);
+      }
+    }
+    const free = [];
+    for (let i = 0; i < n; i++) if (!pinned[i]) free.push(i);
+    const local = new Int32Array(n).fill(-1);
+    free.forEach((i, k) => { local[i] = k; });
+    const order = rcm(free.map((i) => [...adj[i]].map((j) => local[j])));
+    this.nf = free.length;
+    this.row = new Int32Array(n).fill(-1);
+    for (let r = 0; r < this.nf; r++) this.row[free[order[r]]] = r;
+    this.h = 1 / 60 / this.opts.substeps;
+    const inertia = 1 / (this.h * this.h);
+    const first = new Int32Array(this.nf);
+    for (let i = 0; i < n; i++) {
+      if (pinned[i]) continue;
+      let f = this.row[i];
+      for (const j of adj[i]) f = Math.min(f, this.row[j]);
+      first[this.row[i]] = f;
+    }
+    this.chol = new EnvelopeCholesky(this.nf, first);
+    // A's diagonal (by particle), for the preconditioner
+    this.Adiag = new Float64Array(n).fill(Infinity);
+    for (let i = 0; i < n; i++) if (!pinned[i]) { this.chol.add(this.row[i], this.row[i], this.mass[i] * inertia); this.Adiag[i] = this.mass[i] * inertia; }
+    for (const { idx, K, w } of this.stencils) {
+      for (let p = 0; p < idx.length; p++) {
+        const i = idx[p];
+        if (pinned[i]) continue;
+        this.Adiag[i] += w * K[p] * K[p];
+        for (let q = 0; q <= p; q++) {
+          const j = idx[q];
+          if (!pinned[j]) this.chol.add(this.row[i], this.row[j], w * K[p] * K[q]);
+        }
+      }
+    }
+    this.chol.factor();
+    this.f = new Float64Array(m);
+    this.nrm = new Float64Array(3 * m);
+    this.xt = new Float64Array(3 * n); this.xOld = new Float64Array(3 * n); this.c0 = new Float64Array(3 * n);
+    this.xh = new Float64Array(3 * n); this.w3 = new Float64Array(3 * n); this.D = new Float64Array(3 * n); this.b = new Float64Array(3 * this.nf);
+    this.rhs = new Float64Array(m); this.r = new Float64Array(m); this.z = new Float64Array(m); this.p = new Float64Array(m);
+    this.sp = new Float64Array(m); this.df = new Float64Array(m); this.diag = new Float64Array(m);
+    for (let s = 0; s < m; s++) this.diag[s] = 1 / this.Adiag[this.springs[2 * s]] + 1 / this.Adiag[this.springs[2 * s + 1]] + this.alpha[s];
+    /** conjugate gradient iterations and substeps so far */
+    this.cgIterations = 0;
+    this.substepsRun = 0;
+  }
+
+  /** v ← A⁻¹v (by particle, stride 3; pinned particles do not move: 0 there) */
+  solveA(v) {
+    const { b, row, n, pinned } = this;
+    for (let i = 0; i < n; i++) if (!pinned[i]) { const q = 3 * row[i]; b[q] = v[3 * i]; b[q + 1] = v[3 * i + 1]; b[q + 2] = v[3 * i + 2]; }
+    this.chol.solve3(b);
+    for (let i = 0; i < n; i++) {
+      if (pinned[i]) { v[3 * i] = v[3 * i + 1] = v[3 * i + 2] = 0; continue; }
+      const q = 3 * row[i]; v[3 * i] = b[q]; v[3 * i + 1] = b[q + 1]; v[3 * i + 2] = b[q + 2];
+    }
+  }
+
+  /** out (3n) = Jᵀq */
+  jt(q, out) {
+    const { springs, nrm } = this;
+    out.fill(0);
+    for (let s = 0; s < q.length; s++) {
+      const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1], v = q[s];
+      for (let c = 0; c < 3; c++) { out[a + c] += v * nrm[3 * s + c]; out[b + c] -= v * nrm[3 * s + c]; }
+    }
+  }
+
+  /** out (m) = J·u */
+  j(u, out) {
+    const { springs, nrm } = this;
+    for (let s = 0; s < out.length; s++) {
+      const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+      out[s] = nrm[3 * s] * (u[a] - u[b]) + nrm[3 * s + 1] * (u[a + 1] - u[b + 1]) + nrm[3 * s + 2] * (u[a + 2] - u[b + 2]);
+    }
+  }
+
+  /** One frame of 1/60 s. */
+  frame() {
+    const { n, x, v, xt, xOld, c0, xh, w3, D, pinned, opts, springs, rest, alpha, f, nrm, rhs, r, z, p, sp, df, diag, mass } = this;
+    const h = this.h, g = this.params.gravity, inertia = 1 / (h * h), m = alpha.length;
+    for (let sub = 0; sub < opts.substeps; sub++) {
+      xOld.set(x);
+      for (let i = 0; i < n; i++) {
+        for (let c = 0; c < 3; c++) xt[3 * i + c] = pinned[i] ? x[3 * i + c] : x[3 * i + c] + h * v[3 * i + c] + h * h * g[c];
+        for (let c = 0; c < 3; c++) c0[3 * i + c] = pinned[i] ? 0 : mass[i] * inertia * xt[3 * i + c];
+      }
+      for (const { idx, K, w } of this.stencils) {
+        for (let a = 0; a < idx.length; a++) {
+          if (pinned[idx[a]]) continue;
+          for (let b = 0; b < idx.length; b++) if (pinned[idx[b]]) for (let c = 0; c < 3; c++) c0[3 * idx[a] + c] -= w * K[a] * K[b] * xt[3 * idx[b] + c];
+        }
+      }
+      x.set(xt);
+      for (let it = 0; it < opts.iterations; it++) {
+        for (let s = 0; s < m; s++) {
+          const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+          const d0 = x[a] - x[b], d1 = x[a + 1] - x[b + 1], d2 = x[a + 2] - x[b + 2], l = Math.hypot(d0, d1, d2);
+          nrm[3 * s] = d0 / l; nrm[3 * s + 1] = d1 / l; nrm[3 * s + 2] = d2 / l;
+          rhs[s] = -(l - rest[s]) - alpha[s] * f[s];
+        }
+        // x̂ = A⁻¹(c0 + Jᵀf), pinned where they are
+        this.jt(f, xh);
+        for (let k = 0; k < 3 * n; k++) xh[k] += c0[k];
+        this.solveA(xh);
+        for (let i = 0; i < n; i++) if (pinned[i]) for (let c = 0; c < 3; c++) xh[3 * i + c] = x[3 * i + c];
+        for (let k = 0; k < 3 * n; k++) w3[k] = xh[k] - x[k];
+        this.j(w3, sp);
+        let rr0 = 0;
+        for (let s = 0; s < m; s++) { rhs[s] -= sp[s]; rr0 += rhs[s] * rhs[s]; }
+        // conjugate gradients on (J A⁻¹ Jᵀ + α)·δf = rhs, preconditioned by its diagonal; D accumulates A⁻¹Jᵀδf
+        df.fill(0); D.fill(0); r.set(rhs);
+        let rz = 0;
+        for (let s = 0; s < m; s++) { z[s] = r[s] / diag[s]; rz += r[s] * z[s]; }
+        p.set(z);
+        for (let k = 0; k < opts.maxCg && rz > 0; k++) {
+          this.cgIterations++;
+          this.jt(p, w3);
+          this.solveA(w3);
+          this.j(w3, sp);
+          let pSp = 0;
+          for (let s = 0; s < m; s++) { sp[s] += alpha[s] * p[s]; pSp += p[s] * sp[s]; }
+          const ak = rz / pSp;
+          let rr = 0;
+          for (let s = 0; s < m; s++) { df[s] += ak * p[s]; r[s] -= ak * sp[s]; rr += r[s] * r[s]; }
+          for (let q = 0; q < 3 * n; q++) D[q] += ak * w3[q];
+          if (rr <= opts.tol * opts.tol * rr0) break;
+          let rzNew = 0;
+          for (let s = 0; s < m; s++) { z[s] = r[s] / diag[s]; rzNew += r[s] * z[s]; }
+          const bk = rzNew / rz;
+          rz = rzNew;
+          for (let s = 0; s < m; s++) p[s] = z[s] + bk * p[s];
+        }
+        for (let s = 0; s < m; s++) f[s] += df[s];
+        for (let i = 0; i < n; i++) if (!pinned[i]) for (let c = 0; c < 3; c++) x[3 * i + c] = xh[3 * i + c] + D[3 * i + c];
+      }
+      for (let k = 0; k < 3 * n; k++) v[k] = (x[k] - xOld[k]) / h;
+      this.substepsRun++;
+    }
+  }
+}
