@@ -338,7 +338,8 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     thickness: Math.max(...perCloth.thickness),
     depenetrationSpeed: scene.solver.depenetrationSpeed,
     wind: {
-      enabled: scene.wind.enabled && len > 0 && scene.wind.strength > 0,
+      // on: the air acts, its drag on the moving cloth and its push where it blows (strength 0 or no direction: still air)
+      enabled: scene.wind.enabled,
       strength: scene.wind.strength,
       direction,
       airDensity: scene.wind.airDensity,

@@ -190,9 +190,9 @@ export const sceneSchema: SceneSchema = {
       additionalProperties: false,
       default: {},
       properties: {
-        enabled: { type: 'boolean', default: false, description: 'wind on or off' },
-        strength: { type: 'number', minimum: 0, maximum: 30, default: 5, description: 'wind speed [m/s]' },
-        direction: vec3('direction the wind blows towards (normalised; a zero vector means no wind) [-]', -100, 100, [1, 0, 0]),
+        enabled: { type: 'boolean', default: false, description: 'the air on or off: on, the air pushes the cloth where it blows and drags on the cloth where it moves through it (at strength 0, still air: the drag alone); off, no air forces at all (free fall in a vacuum)' },
+        strength: { type: 'number', minimum: 0, maximum: 30, default: 5, description: 'wind speed [m/s] (0: still air)' },
+        direction: vec3('direction the wind blows towards (normalised; a zero vector: still air) [-]', -100, 100, [1, 0, 0]),
         airDensity: { type: 'number', minimum: 0, maximum: 10, default: 1.225, description: 'air density ρ in F = ½ρ·|v|(v·n)·area·n [kg/m³]' },
         gusts: {
           type: 'object',

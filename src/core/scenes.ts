@@ -53,6 +53,12 @@ const CANTILEVER_EDGE = 0;
 /** Self-contact on (issue 12): every built-in scene has it but the two standard fabric tests (see `cantilever`). */
 const SELF = { selfContact: true } as const;
 
+/**
+ * Still air, for the standard fabric tests: they are made in a room, whose air drags on a swinging strip or a disc's
+ * skirt until it comes to rest (the wind on at 0 m/s: the drag alone, docs/physics.md "Forces").
+ */
+const STILL_AIR = { enabled: true, strength: 0 } as const;
+
 const drop = (name: string, description: string, material: object) => ({ name, description, material, solver: SELF });
 
 /** The built-in scene documents; a function makes its document when asked (the mannequin's keys are work to make). */
@@ -124,6 +130,7 @@ const BUILTIN: Record<string, object | (() => object)> = {
     colliders: [{ type: 'floor', height: 0 }],
     // the clamp: every particle that starts behind the edge or on it (10 µm spare for the rows' rounding), half the strip
     pins: [{ min: [-1, 0, -1], max: [1, 1, CANTILEVER_EDGE + 1e-5] }],
+    wind: STILL_AIR,
     duration: 6,
     test: { type: 'cantilever', edge: [0, 0.5, CANTILEVER_EDGE], direction: [0, 0, 1] },
   },
@@ -133,6 +140,7 @@ const BUILTIN: Record<string, object | (() => object)> = {
     cloth: { shape: 'disc', width: 0.3, resolution: 48, position: [0, 0.506, 0] },
     material: { fabric: 'cotton' },
     colliders: [{ type: 'cylinder', center: [0, 0.25, 0], axis: [0, 1, 0], radius: 0.09, height: 0.5 }, { type: 'floor', height: 0 }],
+    wind: STILL_AIR,
     duration: 6,
     test: { type: 'cusick', center: [0, 0, 0], pedestalRadius: 0.09 },
   },
