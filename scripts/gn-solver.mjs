@@ -12,6 +12,7 @@
 // cannot give — and solves the Schur complement (J·A⁻¹·Jᵀ + α)·δf = −C − α·f − J·(x̂ − x), x̂ = A⁻¹(M/h²·x̃ + Jᵀf +
 // pins), by conjugate gradients preconditioned by its diagonal; then x = x̂ + A⁻¹Jᵀδf. The forces start each substep
 // from the last (a static load is not rebuilt from nothing every substep, as XPBD's λ is). No damping: implicit Euler's.
+import { EnvelopeCholesky as Envelope, reverseCuthillMcKee } from '../dist/core/solvers/sparse.js';
 import { EnvelopeCholesky, rcm } from './pd-solver.mjs';
 
 export class GNSolver {
@@ -22,7 +23,7 @@ export class GNSolver {
   constructor(model, params, pinned, opts) {
     this.model = model;
     this.params = params;
-    this.opts = { substeps: 20, iterations: 1, tol: 1e-3, maxCg: 500, ...opts };
+    this.opts = { substeps: 20, iterations: 1, tol: 1e-3, maxCg: 500, precondition: 'diagonal', refresh: Infinity, ...opts };
     const n = model.particleCount;
     this.n = n;
     this.pinned = pinned;
@@ -91,9 +92,132 @@ export class GNSolver {
     this.rhs = new Float64Array(m); this.r = new Float64Array(m); this.z = new Float64Array(m); this.p = new Float64Array(m);
     this.sp = new Float64Array(m); this.df = new Float64Array(m); this.diag = new Float64Array(m);
     for (let s = 0; s < m; s++) this.diag[s] = 1 / this.Adiag[this.springs[2 * s]] + 1 / this.Adiag[this.springs[2 * s + 1]] + this.alpha[s];
+    if (this.opts.precondition === 'rest') this.restPreconditioner();
+    if (this.opts.precondition === 'woodbury') this.woodburyPreconditioner();
     /** conjugate gradient iterations and substeps so far */
     this.cgIterations = 0;
     this.substepsRun = 0;
+  }
+
+  /**
+   * The preconditioner 'rest': P = J₀·D⁻¹·J₀ᵀ + α, the Schur complement with A lumped to its diagonal D and the
+   * springs' directions at rest, factored once in the springs' space (RCM, envelope Cholesky). A rigid turn of the
+   * cloth leaves J·D⁻¹·Jᵀ as it is (its entries are the springs' relative angles), so it stays near the true one.
+   */
+  restPreconditioner() {
+    const { springs, alpha, Adiag, model } = this, m = alpha.length, rest = model.restPositions;
+    const dir = new Float64Array(3 * m);
+    for (let s = 0; s < m; s++) {
+      const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+      const d0 = rest[a] - rest[b], d1 = rest[a + 1] - rest[b + 1], d2 = rest[a + 2] - rest[b + 2], l = Math.hypot(d0, d1, d2);
+      dir[3 * s] = d0 / l; dir[3 * s + 1] = d1 / l; dir[3 * s + 2] = d2 / l;
+    }
+    // springs by particle, for the pairs that share one
+    const by = Array.from({ length: this.n }, () => []);
+    for (let s = 0; s < m; s++) for (const [e, sign] of [[0, 1], [1, -1]]) { const i = springs[2 * s + e]; if (!this.pinned[i]) by[i].push([s, sign]); }
+    const adj = Array.from({ length: m }, () => new Set());
+    for (const list of by) for (const [s] of list) for (const [t] of list) if (s !== t) adj[s].add(t);
+    const rowStart = new Int32Array(m + 1);
+    for (let s = 0; s < m; s++) rowStart[s + 1] = rowStart[s] + adj[s].size;
+    const cols = new Int32Array(rowStart[m]);
+    for (let s = 0; s < m; s++) { let k = rowStart[s]; for (const t of adj[s]) cols[k++] = t; }
+    const order = reverseCuthillMcKee(rowStart, cols);
+    const row = new Int32Array(m);
+    for (let r = 0; r < m; r++) row[order[r]] = r;
+    const first = new Int32Array(m);
+    for (let r = 0; r < m; r++) { const s = order[r]; let f = r; for (let k = rowStart[s]; k < rowStart[s + 1]; k++) f = Math.min(f, row[cols[k]]); first[r] = f; }
+    const P = new Envelope(first);
+    for (let s = 0; s < m; s++) P.add(row[s], row[s], alpha[s]);
+    for (let i = 0; i < this.n; i++) {
+      const list = by[i], w = 1 / Adiag[i];
+      for (const [s, ss] of list) for (const [t, st] of list) {
+        if (row[t] > row[s]) continue;
+        const dot = dir[3 * s] * dir[3 * t] + dir[3 * s + 1] * dir[3 * t + 1] + dir[3 * s + 2] * dir[3 * t + 2];
+        P.add(row[s], row[t], ss * st * dot * w);
+      }
+    }
+    P.factor();
+    this.pre = { P, row, b: new Float64Array(m) };
+  }
+
+  /**
+   * The preconditioner 'woodbury': the Schur complement at rest, (J₀·A⁻¹·J₀ᵀ + α)⁻¹, exactly, through Woodbury's
+   * identity α⁻¹ − α⁻¹·J₀·H₀⁻¹·J₀ᵀ·α⁻¹ with H₀ = A + J₀ᵀ·α⁻¹·J₀ (the Gauss–Newton matrix of the positions with the
+   * springs along their rest directions: 3n × 3n, factored once, RCM order of the particles).
+   */
+  woodburyPreconditioner(at = this.model.restPositions) {
+    const { springs, alpha, pinned, n, row, nf } = this, m = alpha.length, rest = at;
+    this.refactors = (this.refactors ?? -1) + 1;
+    const dir = new Float64Array(3 * m);
+    for (let s = 0; s < m; s++) {
+      const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+      const d0 = rest[a] - rest[b], d1 = rest[a + 1] - rest[b + 1], d2 = rest[a + 2] - rest[b + 2], l = Math.hypot(d0, d1, d2);
+      dir[3 * s] = d0 / l; dir[3 * s + 1] = d1 / l; dir[3 * s + 2] = d2 / l;
+    }
+    // the particles' order and envelope of A's factor, widened by the springs, three rows a particle
+    const adj = Array.from({ length: n }, () => new Set());
+    for (const { idx } of this.stencils) for (const i of idx) for (const j of idx) if (i !== j && !pinned[i] && !pinned[j]) adj[i].add(j);
+    for (let s = 0; s < m; s++) { const a = springs[2 * s], b = springs[2 * s + 1]; if (!pinned[a] && !pinned[b]) { adj[a].add(b); adj[b].add(a); } }
+    const first = new Int32Array(3 * nf);
+    for (let i = 0; i < n; i++) {
+      if (pinned[i]) continue;
+      let f = row[i];
+      for (const j of adj[i]) f = Math.min(f, row[j]);
+      for (let c = 0; c < 3; c++) first[3 * row[i] + c] = 3 * f;
+    }
+    const H = new Envelope(first);
+    const inertia = 1 / (this.h * this.h);
+    for (let i = 0; i < n; i++) if (!pinned[i]) for (let c = 0; c < 3; c++) H.add(3 * row[i] + c, 3 * row[i] + c, this.mass[i] * inertia);
+    for (const { idx, K, w } of this.stencils) {
+      for (let p = 0; p < idx.length; p++) {
+        if (pinned[idx[p]]) continue;
+        for (let q = 0; q <= p; q++) {
+          if (pinned[idx[q]]) continue;
+          for (let c = 0; c < 3; c++) H.add(3 * row[idx[p]] + c, 3 * row[idx[q]] + c, w * K[p] * K[q]);
+        }
+      }
+    }
+    for (let s = 0; s < m; s++) {
+      const ends = [[springs[2 * s], 1], [springs[2 * s + 1], -1]].filter(([i]) => !pinned[i]);
+      for (const [i, si] of ends) for (const [j, sj] of ends) {
+        if (row[j] > row[i]) continue;
+        for (let c = 0; c < 3; c++) for (let e = 0; e < 3; e++) {
+          if (i === j && e > c) continue;
+          H.add(3 * row[i] + c, 3 * row[j] + e, (si * sj * dir[3 * s + c] * dir[3 * s + e]) / alpha[s]);
+        }
+      }
+    }
+    H.factor();
+    this.wood = { H, dir, t: new Float64Array(m), v: new Float64Array(3 * nf) };
+  }
+
+  /** z ← P⁻¹r: the diagonal's, or the factored one at rest */
+  precondition(r, z) {
+    if (this.wood) {
+      const { H, dir, t, v } = this.wood, { springs, alpha, row, pinned } = this;
+      v.fill(0);
+      for (let s = 0; s < r.length; s++) {
+        t[s] = r[s] / alpha[s];
+        const a = springs[2 * s], b = springs[2 * s + 1];
+        for (let c = 0; c < 3; c++) {
+          if (!pinned[a]) v[3 * row[a] + c] += t[s] * dir[3 * s + c];
+          if (!pinned[b]) v[3 * row[b] + c] -= t[s] * dir[3 * s + c];
+        }
+      }
+      H.solve(v);
+      for (let s = 0; s < r.length; s++) {
+        const a = springs[2 * s], b = springs[2 * s + 1];
+        let u = 0;
+        for (let c = 0; c < 3; c++) u += dir[3 * s + c] * ((pinned[a] ? 0 : v[3 * row[a] + c]) - (pinned[b] ? 0 : v[3 * row[b] + c]));
+        z[s] = (r[s] - u) / alpha[s];
+      }
+      return;
+    }
+    if (!this.pre) { for (let s = 0; s < r.length; s++) z[s] = r[s] / this.diag[s]; return; }
+    const { P, row, b } = this.pre;
+    for (let s = 0; s < r.length; s++) b[row[s]] = r[s];
+    P.solve(b);
+    for (let s = 0; s < r.length; s++) z[s] = b[row[s]];
   }
 
   /** v ← A⁻¹v (by particle, stride 3; pinned particles do not move: 0 there) */
@@ -143,6 +267,9 @@ export class GNSolver {
         }
       }
       x.set(xt);
+      // refactor the preconditioner at the cloth's directions now when the last substep needed too many iterations
+      if (this.wood && this.lastCg > opts.refresh) this.woodburyPreconditioner(x);
+      const cg0 = this.cgIterations;
       for (let it = 0; it < opts.iterations; it++) {
         for (let s = 0; s < m; s++) {
           const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
@@ -162,7 +289,8 @@ export class GNSolver {
         // conjugate gradients on (J A⁻¹ Jᵀ + α)·δf = rhs, preconditioned by its diagonal; D accumulates A⁻¹Jᵀδf
         df.fill(0); D.fill(0); r.set(rhs);
         let rz = 0;
-        for (let s = 0; s < m; s++) { z[s] = r[s] / diag[s]; rz += r[s] * z[s]; }
+        this.precondition(r, z);
+        for (let s = 0; s < m; s++) rz += r[s] * z[s];
         p.set(z);
         for (let k = 0; k < opts.maxCg && rz > 0; k++) {
           this.cgIterations++;
@@ -177,7 +305,8 @@ export class GNSolver {
           for (let q = 0; q < 3 * n; q++) D[q] += ak * w3[q];
           if (rr <= opts.tol * opts.tol * rr0) break;
           let rzNew = 0;
-          for (let s = 0; s < m; s++) { z[s] = r[s] / diag[s]; rzNew += r[s] * z[s]; }
+          this.precondition(r, z);
+          for (let s = 0; s < m; s++) rzNew += r[s] * z[s];
           const bk = rzNew / rz;
           rz = rzNew;
           for (let s = 0; s < m; s++) p[s] = z[s] + bk * p[s];
@@ -186,6 +315,7 @@ export class GNSolver {
         for (let i = 0; i < n; i++) if (!pinned[i]) for (let c = 0; c < 3; c++) x[3 * i + c] = xh[3 * i + c] + D[3 * i + c];
       }
       for (let k = 0; k < 3 * n; k++) v[k] = (x[k] - xOld[k]) / h;
+      this.lastCg = this.cgIterations - cg0;
       this.substepsRun++;
     }
   }

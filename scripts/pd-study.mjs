@@ -14,6 +14,7 @@
 //   newton: the cantilever's converged answer for the same discrete energy (static Newton): the model's own error.
 //   fabrics: the built-in cantilever scene's converged answer for every named fabric (static Newton), not in 'all'.
 //   gn: the built-in cantilever scene stepped by the Gauss–Newton prototype (gn-solver.mjs), not in 'all'.
+//   gn-hanging: the prototype on a hanging sheet and on a sheet swinging from one corner, not in 'all'.
 //
 // Parts (--part): hanging, cantilever, newton, all (default: those three, ~3 min on a free core; the 128² rows are
 // most of it), jacobi (Chebyshev-accelerated Jacobi on both setups; not in 'all').
@@ -157,7 +158,7 @@ function fabricCantilevers() {
 function gnCantilevers() {
   const facesList = arg('faces', '32').split(',').map(Number);
   const stencils = arg('stencils', 'hinges');
-  console.log(`\nThe cantilever scene (${stencils}), Gauss–Newton prototype, 20 substeps × 1, conjugate gradients to 1e-3`);
+  console.log(`\nThe cantilever scene (${stencils}), Gauss–Newton prototype, ${arg('substeps', '20')} substeps × 1, conjugate gradients to 1e-3, preconditioner ${arg('precondition', 'diagonal')}`);
   console.log('| fabric | faces | chord at 6 s → c / c_theory | chord over the sixth second | CG iterations per substep | ms/frame |');
   console.log('|---|---|---|---|---|---|');
   for (const fabric of arg('fabrics', FABRIC_NAMES.join(',')).split(',')) {
@@ -170,7 +171,7 @@ function gnCantilevers() {
       const params = resolveParams(model, scene);
       const pinned = new Uint8Array(model.particleCount);
       for (const i of scenePins(model, scene)) pinned[i] = 1;
-      const gn = new GNSolver(model, params, pinned, { substeps: 20, iterations: 1 });
+      const gn = new GNSolver(model, params, pinned, { substeps: Number(arg('substeps', '20')), iterations: 1, precondition: arg('precondition', 'diagonal') });
       const read = () => measureTest(model, { positions: gn.x, pinned }, scene);
       const t0 = performance.now();
       let lo = Infinity, hi = -Infinity;
@@ -185,7 +186,51 @@ function gnCantilevers() {
   }
 }
 
+/**
+ * The Gauss–Newton prototype where its preconditioner is furthest from the truth: a hanging sheet (the stretch
+ * converged?) and a horizontal sheet held by one corner, which falls and swings through 90° (every spring turned far
+ * from its rest direction). Conjugate gradient iterations per substep and ms per frame at --substeps; --refresh N
+ * refactors the 'woodbury' preconditioner at the cloth's directions after a substep that took more than N.
+ */
+function gnHanging() {
+  const substeps = Number(arg('substeps', '5'));
+  const precondition = arg('precondition', 'woodbury');
+  console.log(`\nGauss–Newton prototype, ${substeps} substeps × 1, preconditioner ${precondition}, refactored past ${arg('refresh', 'Infinity')} iterations`);
+  console.log('| case | faces | result | CG iterations per substep (most in a frame) | ms/frame |');
+  console.log('|---|---|---|---|---|');
+  for (const faces of arg('faces', '32,64').split(',').map(Number)) {
+    for (const fabric of ['rubber', 'cotton']) {
+      const scene = hangingScene(fabric, faces, substeps, 1, 'hinges');
+      const model = modelFor(scene), params = resolveParams(model, scene);
+      const pinned = new Uint8Array(model.particleCount);
+      for (const i of scenePins(model, scene)) pinned[i] = 1;
+      const gn = new GNSolver(model, params, pinned, { substeps, iterations: 1, precondition });
+      const t0 = performance.now();
+      let most = 0;
+      for (let f = 0; f < 180; f++) { const c0 = gn.cgIterations; gn.frame(); most = Math.max(most, (gn.cgIterations - c0) / substeps); }
+      const ratio = measureHanging(gn.x, faces).elongation / hangingTheory(fabric).elongation;
+      console.log(`| hanging ${fabric}, 3 s | ${faces}² | elongation / theory ${ratio.toFixed(3)} | ${(gn.cgIterations / gn.substepsRun).toFixed(1)} (${most.toFixed(1)}) | ${((performance.now() - t0) / 180).toFixed(0)} |`);
+    }
+    // cotton held by one corner, horizontal at the start: it falls and swings down through 90°
+    const scene = validateScene({
+      cloth: { resolution: faces, width: 1, height: 1, position: [0, 1.5, 0] },
+      material: { fabric: 'cotton' }, solver: { substeps, bending: 'hinges', selfContact: false }, colliders: [], pins: ['top-left'],
+    });
+    const model = modelFor(scene), params = resolveParams(model, scene);
+    const pinned = new Uint8Array(model.particleCount);
+    for (const i of scenePins(model, scene)) pinned[i] = 1;
+    const gn = new GNSolver(model, params, pinned, { substeps, iterations: 1, precondition, refresh: Number(arg('refresh', 'Infinity')) });
+    const t0 = performance.now();
+    let most = 0, finite = true;
+    // (it swings down through the bottom and up the other side within the 2 s: a pendulum the air does not damp)
+    for (let f = 0; f < 120; f++) { const c0 = gn.cgIterations; gn.frame(); most = Math.max(most, (gn.cgIterations - c0) / substeps); }
+    for (const v of gn.x) if (!Number.isFinite(v)) finite = false;
+    console.log(`| cotton from one corner, 2 s | ${faces}² | ${finite ? 'finite' : 'not finite'}${gn.refactors ? `, ${gn.refactors} refactors` : ''} | ${(gn.cgIterations / gn.substepsRun).toFixed(1)} (${most.toFixed(1)}) | ${((performance.now() - t0) / 120).toFixed(0)} |`);
+  }
+}
+
 if (part === 'fabrics') fabricCantilevers();
+if (part === 'gn-hanging') gnHanging();
 if (part === 'gn') gnCantilevers();
 if (part === 'all' || part === 'hanging') hanging('direct');
 if (part === 'all' || part === 'newton') newtonCantilever();
