@@ -18,7 +18,10 @@ import { EnvelopeCholesky, rcm } from './pd-solver.mjs';
 export class GNSolver {
   /**
    * model, params: the library's; pinned: Uint8Array (1 = fixed); opts: { substeps, iterations (Gauss–Newton
-   * iterations per substep), tol (the conjugate gradients' relative residual), maxCg }.
+   * iterations per substep), tol (the conjugate gradients' relative residual), maxCg, precondition ('diagonal';
+   * 'rest': J₀·D⁻¹·J₀ᵀ + α factored once; 'woodbury': the Schur complement at rest, exactly), refresh (with
+   * 'woodbury': refactor it at the cloth's directions after a substep of more than this many iterations) }.
+   * Gravity and pins only: no colliders, no air.
    */
   constructor(model, params, pinned, opts) {
     this.model = model;

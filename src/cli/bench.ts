@@ -141,21 +141,25 @@ export function cpuOptions(threads: number | 'auto'): SimulationOptions {
   return { kernel: 'auto', threads, spawnHelper: spawnNodeHelper };
 }
 
-function peerSpec(sim: Simulation): PeerClothSpec {
-  const { model, params, scene } = sim;
+/**
+ * The cloth of `sim` as Jolt takes it: the same particles (pinned ones held), masses, distance constraints and
+ * compliances; with `colliders`, the scene's sphere and floor (the drop the bench times), else none.
+ */
+function peerSpec(sim: Simulation, iterations: number, colliders = true): PeerClothSpec {
+  const { model, params, scene, state } = sim;
   const sphere = scene.colliders.find((c) => c.type === 'sphere');
   const floor = scene.colliders.find((c) => c.type === 'floor');
-  if (!sphere || sphere.type !== 'sphere' || !floor || floor.type !== 'floor') throw new Error('bench scene needs a sphere and a floor');
+  if (colliders && (!sphere || sphere.type !== 'sphere' || !floor || floor.type !== 'floor')) throw new Error('bench scene needs a sphere and a floor');
   return {
     positions: model.restPositions,
-    invMass: params.particleInvMass,
+    invMass: Float32Array.from(params.particleInvMass, (w, i) => (state.pinned[i] ? 0 : w)),
     edges: model.springs,
     compliance: params.compliance,
     triangles: model.triangles,
-    sphere: { center: sphere.center, radius: sphere.radius },
-    floorY: floor.height,
+    sphere: colliders && sphere?.type === 'sphere' ? { center: sphere.center, radius: sphere.radius } : null,
+    floorY: colliders && floor?.type === 'floor' ? floor.height : null,
     gravity: scene.gravity,
-    iterations: params.substeps,
+    iterations,
     friction: params.friction,
     vertexRadius: params.thickness,
   };
@@ -192,7 +196,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
     };
     if (runJolt) {
       try {
-        const j = await runJolt(peerSpec(xpbd.sim), opts.frames, opts.warmup);
+        const j = await runJolt(peerSpec(xpbd.sim, xpbd.sim.params.substeps), opts.frames, opts.warmup);
         row.jolt = {
           name: j.name,
           msPerFrame: j.msPerFrame,
@@ -591,7 +595,7 @@ export interface Settling {
   /** wall time to simulate up to settledAt [s] (null: never) */
   wallSeconds: number | null;
   msPerFrame: number;
-  /** elongation / theory at the end of the run (NaN once not finite) */
+  /** elongation / theory at the end of the run (NaN once not finite: null in --json) */
   ratio: number;
 }
 
@@ -655,7 +659,7 @@ function watchSettling(solver: string, theory: number, rows: ReturnType<typeof h
   for (; f < frames; f++) {
     wall += step(1);
     ratio = elongation(read(), rows) / theory;
-    if (!Number.isFinite(ratio)) { since = -1; break; }
+    if (!Number.isFinite(ratio)) { since = -1; f++; break; }
     if (Math.abs(ratio - 1) <= SETTLED_WITHIN) {
       if (since < 0) { since = f; wallAtSince = wall; }
       if (f - since >= hold) { f++; break; }
@@ -692,53 +696,50 @@ export async function runHangingBench(opts: HangingBenchOptions, out: (s: string
     const base = hangingSheet(fabric, opts.faces);
     // the sheet as the TypeScript reference builds it: its weight per area for the theory, its constraints for Jolt
     const ref = new Simulation(base, { kernel: 'ts' });
-    let mass = 0;
-    for (const m of ref.params.particleMass) mass += m;
-    const theory = ((mass / ref.model.area) * Math.hypot(...base.gravity) * base.cloth.height ** 2) / (2 * base.material.structuralStiffness);
-    const row: HangingRow = { fabric, faces: opts.faces, theory, runs: [] };
-    const settings: [string, Partial<Scene['solver']>][] = [
-      [`Drape default (xpbd, ${base.solver.substeps} substeps × ${base.solver.iterations}, ${base.solver.stretch})`, {}],
-      ['Drape solver.stretch global', { stretch: 'global' }],
-    ];
-    for (const [name, solver] of settings) {
-      const sim = new Simulation(hangingSheet(fabric, opts.faces, solver), cpuOptions(opts.threads));
-      try {
-        await sim.whenReady();
-        const rowsOf = hangingRows(sim.model.restPositions);
-        row.runs.push(watchSettling(name, theory, rowsOf, opts.seconds, (n) => {
-          const t0 = performance.now();
-          sim.advance(n);
-          return performance.now() - t0;
-        }, () => sim.state.positions));
-      } finally {
-        sim.dispose();
-      }
-    }
-    if (joltCloth) {
-      const sim = ref;
-      const invMass = Float32Array.from(sim.params.particleInvMass, (w, i) => (sim.state.pinned[i] ? 0 : w));
-      const rowsOf = hangingRows(sim.model.restPositions);
-      try {
-        for (const iterations of opts.joltIterations) {
-          const cloth = await joltCloth.create({
-            positions: sim.model.restPositions, invMass, edges: sim.model.springs, compliance: sim.params.compliance,
-            triangles: sim.model.triangles, sphere: null, floorY: null, gravity: base.gravity, iterations,
-            friction: sim.params.friction, vertexRadius: sim.params.thickness,
-          });
-          const x = new Float32Array(3 * sim.model.particleCount);
-          try {
-            const run = watchSettling(`Jolt, ${iterations} iterations`, theory, rowsOf, opts.seconds, (n) => cloth.step(n), () => cloth.positions(x));
-            row.runs.push(run);
-            if (run.settledAt !== null) break;
-          } finally {
-            cloth.dispose();
-          }
+    let row: HangingRow;
+    try {
+      let mass = 0;
+      for (const m of ref.params.particleMass) mass += m;
+      const theory = ((mass / ref.model.area) * Math.hypot(...base.gravity) * base.cloth.height ** 2) / (2 * base.material.structuralStiffness);
+      row = { fabric, faces: opts.faces, theory, runs: [] };
+      const rowsOf = hangingRows(ref.model.restPositions);
+      const settings: [string, Partial<Scene['solver']>][] = [
+        [`Drape default (xpbd, ${base.solver.substeps} substeps × ${base.solver.iterations}, ${base.solver.stretch})`, {}],
+        ['Drape solver.stretch global', { stretch: 'global' }],
+      ];
+      for (const [name, solver] of settings) {
+        const sim = new Simulation(hangingSheet(fabric, opts.faces, solver), cpuOptions(opts.threads));
+        try {
+          await sim.whenReady();
+          row.runs.push(watchSettling(name, theory, rowsOf, opts.seconds, (n) => {
+            const t0 = performance.now();
+            sim.advance(n);
+            return performance.now() - t0;
+          }, () => sim.state.positions));
+        } finally {
+          sim.dispose();
         }
-      } catch (e) {
-        row.peerError = (e as Error).message.split('\n')[0];
       }
-    } else if (peerError) row.peerError = peerError;
-    ref.dispose();
+      if (joltCloth) {
+        try {
+          const x = new Float32Array(3 * ref.model.particleCount);
+          for (const iterations of opts.joltIterations) {
+            const cloth = await joltCloth.create(peerSpec(ref, iterations, false));
+            try {
+              const run = watchSettling(`Jolt, ${iterations} iterations`, theory, rowsOf, opts.seconds, (n) => cloth.step(n), () => cloth.positions(x));
+              row.runs.push(run);
+              if (run.settledAt !== null) break;
+            } finally {
+              cloth.dispose();
+            }
+          }
+        } catch (e) {
+          row.peerError = (e as Error).message.split('\n')[0];
+        }
+      } else if (peerError) row.peerError = peerError;
+    } finally {
+      ref.dispose();
+    }
     rows.push(row);
   }
   const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;

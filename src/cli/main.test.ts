@@ -109,7 +109,7 @@ describe('drape CLI', () => {
   });
 
   it('bench --hanging says how long a hanging sheet takes to settle at its static elongation, for Drape and for Jolt', async () => {
-    const r = await run('bench', '--hanging', '--sizes', '8', '--fabrics', 'rubber', '--seconds', '3', '--jolt-iterations', '1,40', '--json');
+    const r = await run('bench', '--hanging', '--sizes', '8', '--fabrics', 'rubber', '--seconds', '3', '--jolt-iterations', '40,1', '--json');
     expect(r.code, r.err).toBe(0);
     const j = JSON.parse(r.out);
     expect(j).toMatchObject({ faces: 8, seconds: 3, within: 0.25 });
@@ -123,7 +123,7 @@ describe('drape CLI', () => {
     expect(global.settledAt).toBeLessThan(2);
     expect(Math.abs(global.ratio - 1)).toBeLessThanOrEqual(0.25);
     expect(by(/^Drape default/)).toBeDefined();
-    // Jolt: 1 iteration overstretches for good, so the next is tried; 40 settles, and nothing after it is tried
+    // Jolt, its counts tried in ascending order: 1 iteration overstretches for good, so the next is tried; 40 settles
     expect(by(/^Jolt, 1 iterations$/)).toMatchObject({ settledAt: null, wallSeconds: null });
     expect(by(/^Jolt, 1 iterations$/).ratio).toBeGreaterThan(1.25);
     expect(by(/^Jolt, 40 iterations$/).settledAt).toBeGreaterThan(0);
@@ -246,7 +246,11 @@ describe('drape CLI', () => {
     [['bench', '--hanging', '--fabrics', 'tweed'], /^drape: --fabrics: unknown fabric 'tweed' \(named fabrics: cotton, silk, leather, rubber, denim\)$/],
     [['bench', '--hanging', '--sizes', '32,64'], /^drape: --hanging: one size/],
     [['bench', '--hanging', '--self-contact'], /^drape: --hanging and --self-contact are two different benchmarks/],
-    [['bench', '--hanging', '--seconds', '0'], /^drape: --seconds: must be an integer in 1…600, got '0'$/],
+    [['bench', '--hanging', '--seconds', '1'], /^drape: --seconds: must be an integer in 2…600, got '1'$/],
+    [['bench', '--hanging', '--sizes', '1'], /^drape: --sizes: must be an integer in 2…256, got '1'$/],
+    [['bench', '--hanging', '--scenes', 'cape'], /^drape: --hanging: runs each sheet until it settles or --seconds pass; --scenes is for the other benchmarks$/],
+    [['bench', '--fabrics', 'silk'], /^drape: --fabrics: belongs to --hanging; give --hanging too$/],
+    [['bench', '--scenes', 'cape', '--seconds', '5'], /^drape: --seconds: belongs to --hanging; give --hanging too$/],
     [['run', '--kernel', 'gpu'], /--kernel: must be wasm or ts/],
     [['run', '--threads', '0'], /--threads: must be an integer in 1…1024/],
     [['fly'], /unknown command 'fly'/],

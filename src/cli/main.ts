@@ -71,7 +71,8 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
                         its top edge, for each of --fabrics (default rubber,cotton): the simulated and the wall time
                         until its elongation stays within 25 % of ρ_A·g·L²/(2k), for Drape at its defaults and
                         with solver.stretch global, and for JoltPhysics.js with the fewest of --jolt-iterations
-                        (default 10,20,40,80,160,320) that settles; each run at most --seconds (default 10)
+                        (default 10,20,40,80,160,320) that settles; each run at most --seconds (default 10,
+                        at least 2: a run must stay settled a second)
   --no-peer             skip JoltPhysics.js
   --no-contention       skip the busy-machine table (the default threads against one thread while other
                         processes, started and stopped by the bench, keep every core busy)
@@ -419,18 +420,30 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
   const selfContact = values['self-contact'] ?? false;
   const hanging = values.hanging ?? false;
   if (selfContact && hanging) throw new UsageError('--hanging and --self-contact are two different benchmarks: give one');
+  // flags that belong to one benchmark are refused by the others rather than passed over
+  const given = (names: string[]) => names.filter((name) => (values as Record<string, unknown>)[name] !== undefined);
+  if (hanging) {
+    const stray = given(['scenes', 'frames', 'warmup', 'substeps', 'no-contention']);
+    if (stray.length) throw new UsageError(`--hanging: runs each sheet until it settles or --seconds pass; --${stray[0]} is for the other benchmarks`);
+  } else {
+    const stray = given(['fabrics', 'seconds', 'jolt-iterations']);
+    if (stray.length) throw new UsageError(`--${stray[0]}: belongs to --hanging; give --hanging too`);
+  }
   const sizes = (values.sizes ?? (selfContact || hanging ? '64' : backend === 'gpu' ? '64,128,256,512,1024' : '64,128')).split(',')
-    .map((s) => intArg('sizes', s.trim(), 0, selfContact || hanging ? 1 : 2, selfContact || hanging ? 256 : 1025));
+    .map((s) => intArg('sizes', s.trim(), 0, selfContact ? 1 : 2, selfContact || hanging ? 256 : 1025));
   if (hanging) {
     if (backend === 'gpu') throw new UsageError('--hanging: times the CPU solvers, not the GPU solver; leave out --backend gpu');
     if (sizes.length !== 1) throw new UsageError('--hanging: one size, the sheet\'s faces per side (e.g. --sizes 64)');
     const fabrics = (values.fabrics ?? 'rubber,cotton').split(',').map((f) => f.trim());
     for (const f of fabrics) if (!(FABRIC_NAMES as readonly string[]).includes(f)) throw new UsageError(`--fabrics: unknown fabric '${plainText(f, 100)}' (named fabrics: ${FABRIC_NAMES.join(', ')})`);
-    const iterations = (values['jolt-iterations'] ?? '10,20,40,80,160,320').split(',').map((s) => intArg('jolt-iterations', s.trim(), 0, 1, 10_000));
+    // tried in ascending order, each count once: the first that settles is the fewest
+    const iterations = [...new Set((values['jolt-iterations'] ?? '10,20,40,80,160,320').split(',').map((s) => intArg('jolt-iterations', s.trim(), 0, 1, 10_000)))]
+      .sort((a, b) => a - b);
     await runHangingBench({
       faces: sizes[0],
       fabrics,
-      seconds: intArg('seconds', values.seconds, 10, 1, 600),
+      // a settled run stays in the band a further second, so a run shorter than 2 s could never settle
+      seconds: intArg('seconds', values.seconds, 10, 2, 600),
       joltIterations: iterations,
       peer: !values['no-peer'],
       threads,

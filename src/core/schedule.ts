@@ -21,9 +21,9 @@ export type PhaseId = (typeof PHASE)[PhaseName];
 /** When a phase runs: once before the substeps, every substep, or once after them. */
 export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
 /**
- * What a phase needs to be part of a frame: nothing, the wind blowing, a grabbed particle, pins a collider carries,
- * a collider whose surface can poke between the cloth's vertices (phases.ts needsTriangleContact), a stencil
- * bending model (solver.bending 'hinges' or 'laplacian'), the springs solved together (solver.stretch 'global') or
+ * What a phase needs to be part of a frame: nothing, the air acting (wind.enabled: a wind, or still air), a
+ * grabbed particle, pins a collider carries, a collider whose surface can poke between the cloth's vertices
+ * (phases.ts needsTriangleContact), a stencil bending model (solver.bending 'hinges' or 'laplacian'), the springs solved together (solver.stretch 'global') or
  * one at a time ('gauss-seidel'), self-contact (solver.selfContact).
  */
 export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'global' | 'local' | 'self';
@@ -80,7 +80,7 @@ export function solverPhases(solver: SolverType): number {
 }
 
 /**
- * The phases this frame runs: those of params.solver whose condition holds now (wind blowing, a grab, carried pins,
+ * The phases this frame runs: those of params.solver whose condition holds now (the air acting, a grab, carried pins,
  * a collider that needs triangle contact on this model, a stencil bending model, the stretch solve).
  */
 export function framePhases(model: ClothModel, state: ClothState, params: SimParams): number {

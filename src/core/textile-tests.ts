@@ -2,8 +2,8 @@
  * The standard fabric tests a scene can be (`test` in the scene): what they measure on a running cloth.
  *
  * - **Cantilever** (ASTM D1388, Peirce 1930, "The 'handle' of cloth as a measurable quantity"): a strip clamped
- *   flat (pinned) with an overhang L beyond the clamp's edge bends under its own weight; the chord from the edge to
- *   the tip falls θ below the horizontal. The bending length c = (B/(ρ_A·g))^(1/3) follows from θ and L through the
+ *   flat (pinned) with an overhang L beyond the clamp's last row bends under its own weight; the chord from that row
+ *   to the tip falls θ below the horizontal. The bending length c = (B/(ρ_A·g))^(1/3) follows from θ and L through the
  *   heavy elastica (an inextensible strip of rigidity B and weight ρ_A·g per area, clamped horizontally), solved
  *   here numerically: the standard's rule, θ = 41.5° at L = 2c, is one point of that curve (tested).
  * - **Cusick drape** (BS 5058, ISO 9073-9): a disc on a smaller pedestal; the drape coefficient is (projected area −
@@ -50,7 +50,8 @@ function cantilever(model: ClothModel, state: ClothState, edge: readonly number[
   const ux = direction[0] / dl, uz = direction[2] / dl;
   const rest = model.restPositions, x = state.positions;
   const out = (i: number) => (rest[3 * i] - edge[0]) * ux + (rest[3 * i + 2] - edge[2]) * uz;
-  // where the strip stops being held: the pinned particles farthest out that are not beyond the scene's edge. A
+  // where the strip stops being held: the pinned particles farthest out that are not beyond the scene's edge (1 µm
+  // spare for rounding, as the built-in scene's clamp region has). A
   // clamp made by a pin region holds every particle behind the edge, so on a grid whose rows miss the edge the last
   // held row lies behind it, and the strip bends from there: the overhang and the chord are measured from that row.
   let clamp = -Infinity;

@@ -36,9 +36,9 @@ export interface DrapeWorldOptions {
   backend?: DrapeBackend;
   /** gravity [m/s², y up]. Default [0, −9.81, 0] */
   gravity?: Vec3;
-  /** the wind; off by default */
+  /** the air: given, it pushes the cloths where it blows and drags on them where they move; not given (the default), no air at all */
   wind?: {
-    /** wind speed [m/s], 0 … 30. Default 0 (no wind) */
+    /** wind speed [m/s], 0 … 30. Default 0 (still air: the drag alone) */
     strength?: number;
     /** direction it blows towards (any length but zero) [-]. Default [1, 0, 0] */
     direction?: Vec3;

@@ -38,6 +38,10 @@ describe('a world\'s scene', () => {
     // one cloth: none unless asked; asked: as asked
     expect(worldScene({}, [a], [], new Map(), []).scene.solver.selfContact).toBe(false);
     expect(worldScene({ solver: { selfContact: true } }, [a], [], new Map(), []).scene.solver.selfContact).toBe(true);
+    // the air: none unless `wind` is given; given at strength 0, still air (its drag alone)
+    expect(worldScene({}, [a], [], new Map(), []).scene.wind.enabled).toBe(false);
+    expect(worldScene({ wind: {} }, [a], [], new Map(), []).scene.wind).toMatchObject({ enabled: true, strength: 0 });
+    expect(worldScene({ wind: { strength: 4 } }, [a], [], new Map(), []).scene.wind).toMatchObject({ enabled: true, strength: 4 });
     // an anchor without pins is left out
     expect(worldScene({}, [a], [], anchors, []).scene.colliders).toEqual([]);
   });

@@ -80,8 +80,9 @@ export function worldScene(
     name: 'drape-three',
     cloths: entries,
     gravity: o.gravity ?? [0, -9.81, 0],
+    // `wind` given: the air acts, its push and its drag (at strength 0, still air: the drag alone); not given: no air
     wind: {
-      enabled: (w.strength ?? 0) > 0, strength: w.strength ?? 0, direction: w.direction ?? [1, 0, 0],
+      enabled: o.wind !== undefined, strength: w.strength ?? 0, direction: w.direction ?? [1, 0, 0],
       gusts: { enabled: w.gusts ?? false, seed: w.seed ?? 1 },
     },
     // cloths of one world keep out of each other by default; one cloth alone passes through itself unless asked

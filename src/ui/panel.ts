@@ -278,7 +278,7 @@ export class Panel {
     'where the simulation runs: auto picks the GPU when there is a WebGPU device; mass-spring runs on the CPU only');
 
     const wind = gui.addFolder('Wind');
-    this.addParam(wind, 'wind.enabled', 'wind on');
+    this.addParam(wind, 'wind.enabled', 'air on (wind, drag)');
     this.addParam(wind, 'wind.strength', 'strength', { unit: 'm/s' });
     // direction as a compass heading in the ground plane (keeps the vertical component)
     p.heading = 0;

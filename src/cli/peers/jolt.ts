@@ -271,6 +271,7 @@ export class JoltCloth {
 
   /** Steps `frames` frames of 1/60 s (one collision step each); returns the wall-clock ms they took. */
   step(frames: number): number {
+    if (this.disposed) throw new Error('JoltCloth: stepped after dispose()');
     const t0 = performance.now();
     for (let f = 0; f < frames; f++) this.jolt.Step(FRAME_DT, 1);
     return performance.now() - t0;
@@ -278,6 +279,7 @@ export class JoltCloth {
 
   /** The particles' world positions [m], xyz interleaved, into `out` (made when not given). */
   positions(out = new Float32Array(3 * this.particles)): Float32Array {
+    if (this.disposed) throw new Error('JoltCloth: read after dispose()');
     const { Jolt } = this;
     const cloth = this.cloth!;
     // Soft body vertex positions are relative to the body's centre-of-mass transform (which moves with the cloth
