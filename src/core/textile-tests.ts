@@ -51,9 +51,9 @@ function cantilever(model: ClothModel, state: ClothState, edge: readonly number[
   const rest = model.restPositions, x = state.positions;
   const out = (i: number) => (rest[3 * i] - edge[0]) * ux + (rest[3 * i + 2] - edge[2]) * uz;
   // where the strip stops being held: the pinned particles farthest out that are not beyond the scene's edge (1 µm
-  // spare for rounding, as the built-in scene's clamp region has). A
-  // clamp made by a pin region holds every particle behind the edge, so on a grid whose rows miss the edge the last
-  // held row lies behind it, and the strip bends from there: the overhang and the chord are measured from that row.
+  // spare for rounding, as the built-in scene's clamp region has). A clamp made by a pin region holds every particle
+  // behind the edge, so on a grid whose rows miss the edge the last held row lies behind it, and the strip bends
+  // from there: the overhang and the chord are measured from that row.
   let clamp = -Infinity;
   for (let i = 0; i < model.particleCount; i++) {
     if (state.pinned[i] && out(i) <= 1e-6 && out(i) > clamp) clamp = out(i);
