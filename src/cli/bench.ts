@@ -5,7 +5,7 @@
 import { availableParallelism, cpus } from 'node:os';
 import { builtinScene, centroid, countIntersections, FRAME_DT, isFinite3, sceneDocument, Simulation, validateScene, WasmBackend, type Scene, type SimulationOptions } from '../core/index.js';
 import type { Gpu } from './gpu.js';
-import type { PeerClothSpec, PeerResult } from './peers/jolt.js';
+import type { PeerClothSpec } from './peers/jolt.js';
 import { whileBusy } from './busy.js';
 import { spawnNodeHelper } from './threads.js';
 import { hangingStrip, ParticleHashCloth } from './peers/particle-hash.js';
@@ -168,16 +168,28 @@ function peerSpec(sim: Simulation, iterations: number, colliders = true): PeerCl
 const fmt = (v: number, d = 2) => v.toFixed(d);
 const sci = (v: number) => v.toExponential(2);
 
-export async function runBench(opts: BenchOptions, out: (s: string) => void): Promise<Row[]> {
-  let runJolt: ((spec: PeerClothSpec, frames: number, warmup: number) => Promise<PeerResult>) | undefined;
-  let peerError: string | undefined;
-  if (opts.peer) {
-    try {
-      ({ runJoltCloth: runJolt } = await import('./peers/jolt.js'));
-    } catch (e) {
-      peerError = (e as Error).message.split('\n')[0];
-    }
+/** An error's first line, for a table cell or a note. */
+const firstLine = (e: unknown): string => (e as Error).message.split('\n')[0];
+
+/** The machine a bench ran on, for its header. */
+const machineLine = () => `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+
+/**
+ * The JoltPhysics.js peer module, loaded lazily when `wanted` (an optional dependency): the module, or why it did
+ * not load (one line), or neither when not wanted.
+ */
+async function loadJoltPeer(wanted: boolean): Promise<{ peer?: typeof import('./peers/jolt.js'); error?: string }> {
+  if (!wanted) return {};
+  try {
+    return { peer: await import('./peers/jolt.js') };
+  } catch (e) {
+    return { error: firstLine(e) };
   }
+}
+
+export async function runBench(opts: BenchOptions, out: (s: string) => void): Promise<Row[]> {
+  const { peer, error: peerError } = await loadJoltPeer(opts.peer);
+  const runJolt = peer?.runJoltCloth;
   const rows: Row[] = [];
   for (const side of opts.sizes) {
     const scene = benchScene(side, opts.substeps, 'xpbd');
@@ -208,7 +220,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
         row.ratio = xpbd.msPerFrame / j.msPerFrame;
         row.ratio1 = xpbd1.msPerFrame / j.msPerFrame;
       } catch (e) {
-        row.peerError = (e as Error).message.split('\n')[0];
+        row.peerError = firstLine(e);
       }
     } else if (peerError) {
       row.peerError = peerError;
@@ -231,7 +243,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
     });
   }
 
-  const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  const machine = machineLine();
   if (opts.json) {
     out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, warmup: opts.warmup, threads: opts.threads, rows }));
     return rows;
@@ -321,7 +333,7 @@ export async function runSceneBench(opts: SceneBenchOptions, out: (s: string) =>
       gpuRefusal: refusal(scene),
     });
   }
-  const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  const machine = machineLine();
   if (opts.json) {
     out(JSON.stringify({ machine, frames: opts.frames, warmup: opts.warmup, threads: opts.threads, rows }));
     return rows;
@@ -365,7 +377,7 @@ export async function runGpuBench(gpu: Gpu, opts: GpuBenchOptions, out: (s: stri
       ? (await timeDrape(benchScene(r.size, opts.substeps, 'xpbd'), Math.max(5, Math.min(opts.frames, 30)), 5, cpuOptions(opts.threads))).msPerFrame
       : undefined);
   }
-  const machine = `${gpu.adapter}; host ${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  const machine = `${gpu.adapter}; host ${machineLine()}`;
   if (opts.json) {
     out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, rows: results.map((r, k) => ({ ...r, cpuMsPerFrame: cpu[k] ?? null })) }));
     return;
@@ -542,7 +554,7 @@ export async function runSelfContactBench(opts: SelfContactBenchOptions, out: (s
     }
   }
   const strip = opts.peer ? await stripComparison(opts.frames, opts.threads) : undefined;
-  const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  const machine = machineLine();
   if (opts.json) {
     out(JSON.stringify({ machine, frames: opts.frames, threads: opts.threads, rows, ...(strip ? { strip } : {}) }));
     return rows;
@@ -609,10 +621,10 @@ interface HangingRow {
 }
 
 /** Within this fraction of the static elongation counts as settled (issue 10: the stretch target's 25 %). */
-export const SETTLED_WITHIN = 0.25;
+const SETTLED_WITHIN = 0.25;
 
 /** The 1 m hanging sheet: pinned along its top edge, no colliders, no self-contact (it never meets itself). */
-export function hangingSheet(fabric: string, faces: number, solver: Partial<Scene['solver']> = {}): Scene {
+function hangingSheet(fabric: string, faces: number, solver: Partial<Scene['solver']> = {}): Scene {
   return validateScene({
     name: 'hanging-sheet',
     description: 'A 1 m sheet hanging from its top edge, for its static elongation',
@@ -682,15 +694,8 @@ function watchSettling(solver: string, theory: number, rows: ReturnType<typeof h
  * as many iterations as it needs (the first of --jolt-iterations that settles), or never within the run's time.
  */
 export async function runHangingBench(opts: HangingBenchOptions, out: (s: string) => void): Promise<HangingRow[]> {
-  let joltCloth: typeof import('./peers/jolt.js').JoltCloth | undefined;
-  let peerError: string | undefined;
-  if (opts.peer) {
-    try {
-      ({ JoltCloth: joltCloth } = await import('./peers/jolt.js'));
-    } catch (e) {
-      peerError = (e as Error).message.split('\n')[0];
-    }
-  }
+  const { peer, error: peerError } = await loadJoltPeer(opts.peer);
+  const joltCloth = peer?.JoltCloth;
   const rows: HangingRow[] = [];
   for (const fabric of opts.fabrics) {
     const base = hangingSheet(fabric, opts.faces);
@@ -734,7 +739,7 @@ export async function runHangingBench(opts: HangingBenchOptions, out: (s: string
             }
           }
         } catch (e) {
-          row.peerError = (e as Error).message.split('\n')[0];
+          row.peerError = firstLine(e);
         }
       } else if (peerError) row.peerError = peerError;
     } finally {
@@ -742,7 +747,7 @@ export async function runHangingBench(opts: HangingBenchOptions, out: (s: string
     }
     rows.push(row);
   }
-  const machine = `${cpus()[0]?.model ?? 'unknown CPU'} × ${cpus().length}, Node ${process.version}`;
+  const machine = machineLine();
   if (opts.json) {
     out(JSON.stringify({ machine, faces: opts.faces, seconds: opts.seconds, within: SETTLED_WITHIN, threads: opts.threads, rows }));
     return rows;
