@@ -3,7 +3,7 @@
  * simulation, one view per slot, framing the camera, and putting things back after a refused change.
  */
 import { Box3, Vector3 } from 'three/webgpu';
-import { SceneError, clothCount, clothEntries, fabricFor, sceneMannequin, type Scene } from '../core/index.js';
+import { SceneError, clothCount, clothEntries, clothName, fabricFor, sceneMannequin, type Scene } from '../core/index.js';
 import { ClothView } from '../render/cloth-view.js';
 import { fabricLook, type FabricLook } from '../render/textures.js';
 import type { App } from './app.js';
@@ -91,7 +91,8 @@ export class Slots {
     const gpu = app.sim.kind === 'gpu';
     this.lookedAt = app.sim.mirrors.map((m) => m.sim.scene);
     app.views = app.sim.mirrors.map((m) => {
-      const v = new ClothView(m.sim.model, this.looks(m.sim.scene), gpu);
+      const looks = this.looks(m.sim.scene);
+      const v = new ClothView(m.sim.model, clothEntries(m.sim.scene).map((entry, c) => ({ entry, name: clothName(entry, c), look: looks[c] })), gpu);
       v.setView(app.view);
       v.setContactDistance(contactDistance(m.sim));
       app.stage.content.add(v.group);

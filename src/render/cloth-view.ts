@@ -1,17 +1,19 @@
 /**
- * Draws one model in the five views of the seed ('V' cycles them): shaded, wireframe, particles, springs coloured
- * by kind, and a strain heat map; plus markers for pinned particles and the grabbed one. A model of several cloths
- * (a scene's `cloths`) is one geometry with a group per cloth, each shaded with its own fabric's look. Reads a model
- * and a state; never changes them.
+ * Draws one model in the six views ('V' cycles them): shaded, wireframe, particles, springs coloured by kind, a
+ * strain heat map and the self-contacts; plus markers for pinned particles and the grabbed one. The cloths themselves
+ * are the addon's: a DrapeCloth per cloth of the model (a scene's `cloths`), shaded with its own fabric's look and
+ * drawn by a ClothDrawing as a DrapeWorld draws its cloths (src/three/cloth-drawing.ts), from the CPU state or the
+ * GPU solver's buffers. Reads a model and a state; never changes them.
  */
 import {
   BufferAttribute, BufferGeometry, Color, DoubleSide, DynamicDrawUsage, Group, IcosahedronGeometry, InstancedMesh,
   LineBasicNodeMaterial, LineSegments, Mesh, MeshPhysicalNodeMaterial, MeshStandardNodeMaterial, Object3D,
   SphereGeometry,
 } from 'three/webgpu';
-import { BEND, selfContacts, STRUCTURAL, type ClothModel, type ClothState, type FabricKind } from '../core/index.js';
-import { drawFromSolver, type AttributeBuffers } from '../three/sim/solver-buffers.js';
-import { trianglesByCloth } from './cloth-parts.js';
+import { BEND, selfContacts, STRUCTURAL, type ClothEntry, type ClothModel, type ClothState, type FabricKind } from '../core/index.js';
+import { DrapeCloth } from '../three/cloth.js';
+import { ClothDrawing } from '../three/cloth-drawing.js';
+import type { AttributeBuffers } from '../three/sim/solver-buffers.js';
 import type { FabricLook } from './textures.js';
 
 export const VIEWS = ['shaded', 'wireframe', 'particles', 'springs', 'strain', 'contacts'] as const;
@@ -46,13 +48,22 @@ export function strainColor(e: number, out: Color): Color {
   return out.setRGB(1 - 0.2 * u, 0.85 - 0.75 * u, 0.15 - 0.1 * u, 'srgb');
 }
 
+/** One cloth of a slot's model, as the view draws it. */
+export interface ViewCloth {
+  /** its scene entry (clothEntries) */
+  readonly entry: ClothEntry;
+  /** its name (clothName) */
+  readonly name: string;
+  /** its fabric's look in the shaded view */
+  readonly look: FabricLook;
+}
+
 export class ClothView {
   readonly group = new Group();
-  readonly mesh: Mesh;
-  private readonly geometry: BufferGeometry;
-  private readonly position: BufferAttribute;
-  private readonly color: BufferAttribute;
-  /** one per cloth of the model, in its order (the geometry's groups) */
+  /** the cloths, as the addon draws a world's (drape/three's DrapeCloth, ClothDrawing): one per cloth of the model */
+  readonly cloths: readonly DrapeCloth[];
+  private readonly drawing: ClothDrawing;
+  /** one per cloth of the model, in its order */
   private readonly shadedMaterials: MeshPhysicalNodeMaterial[];
   private readonly strainMaterial: MeshStandardNodeMaterial;
   private readonly wire: LineSegments;
@@ -70,46 +81,27 @@ export class ClothView {
   /** the particles the contact view marked at its last update */
   contacts = 0;
 
-  /** drawn from a GPU solver's buffers (see attachGpu) */
-  private gpuAttached = false;
-
   /**
-   * `gpu`: the cloth will be drawn from a GpuClothSolver's buffers: position and normal attributes are vec4
-   * (the solver's layout) and static, so three.js never uploads them once attachGpu has put the solver's buffers
-   * in their place. `looks`: one per cloth of the model (model.clothStarts), in its order.
+   * `gpu`: the cloths will be drawn from a GpuClothSolver's buffers (attachGpu). `cloths`: one per cloth of the
+   * model (model.clothStarts), in its order.
    */
-  constructor(readonly model: ClothModel, looks: readonly FabricLook[], readonly gpu = false) {
-    const n = model.particleCount, cloths = model.clothStarts.length - 1;
-    if (looks.length !== cloths) throw new RangeError(`${looks.length} looks for a model of ${cloths} cloths`);
-    const g = new BufferGeometry();
-    const stride = gpu ? 4 : 3;
-    this.position = new BufferAttribute(gpu ? vec4(model.restPositions) : new Float32Array(model.restPositions), stride);
-    if (!gpu) this.position.setUsage(DynamicDrawUsage);
-    this.color = new BufferAttribute(new Float32Array(3 * n).fill(1), 3).setUsage(DynamicDrawUsage);
-    g.setAttribute('position', this.position);
-    g.setAttribute('uv', new BufferAttribute(new Float32Array(model.uvs), 2));
-    g.setAttribute('color', this.color);
-    // the triangles in a run per cloth, each run a group drawn with its cloth's material
-    const parts = trianglesByCloth(model);
-    g.setIndex(new BufferAttribute(parts.indices, 1));
-    for (let c = 0; c < cloths; c++) g.addGroup(3 * parts.first[c], 3 * (parts.first[c + 1] - parts.first[c]), c);
-    if (gpu) g.setAttribute('normal', new BufferAttribute(new Float32Array(4 * n), 4));
-    g.computeVertexNormals();
-    if (!gpu) (g.getAttribute('normal') as BufferAttribute).setUsage(DynamicDrawUsage);
-    this.geometry = g;
-
-    this.shadedMaterials = looks.map((look) => new MeshPhysicalNodeMaterial({
+  constructor(readonly model: ClothModel, cloths: readonly ViewCloth[], readonly gpu = false) {
+    const n = model.particleCount, count = model.clothStarts.length - 1;
+    if (cloths.length !== count) throw new RangeError(`${cloths.length} cloths to view a model of ${count}`);
+    this.shadedMaterials = cloths.map(({ look }) => new MeshPhysicalNodeMaterial({
       map: look.map, roughness: look.roughness, metalness: 0, side: DoubleSide,
       sheen: look.sheen, sheenRoughness: 0.6, sheenColor: new Color(look.sheenColor), clearcoat: look.clearcoat,
       clearcoatRoughness: 0.4, userData: { look: look.kind },
     }));
-    // (one material for the whole model: three.js draws every group with it)
+    this.cloths = cloths.map((c, k) => {
+      const cloth = new DrapeCloth({ entry: c.entry, model: model.clothParts?.[k] ?? model }, this.shadedMaterials[k], c.name);
+      cloth.castShadow = true;
+      cloth.receiveShadow = true;
+      return cloth;
+    });
+    // the strain and contact views colour the particles (the drawing's colour attribute)
+    this.drawing = new ClothDrawing(model, this.cloths, { gpu, colors: true });
     this.strainMaterial = new MeshStandardNodeMaterial({ vertexColors: true, roughness: 0.8, side: DoubleSide });
-    this.mesh = new Mesh(g, this.shadedMaterials);
-    this.mesh.castShadow = true;
-    this.mesh.receiveShadow = true;
-    this.mesh.frustumCulled = false;
-    this.mesh.name = 'cloth';
 
     // wireframe: each triangle edge once, sharing the cloth's positions
     const edges = new Set<number>();
@@ -123,7 +115,7 @@ export class ClothView {
       }
     }
     const wg = new BufferGeometry();
-    wg.setAttribute('position', this.position);
+    wg.setAttribute('position', this.drawing.position);
     wg.setIndex(new BufferAttribute(new Uint32Array(edgeList), 1));
     this.wire = new LineSegments(wg, new LineBasicNodeMaterial({ color: 0x26303d }));
     this.wire.frustumCulled = false;
@@ -169,7 +161,7 @@ export class ClothView {
       this.strainCount[model.springs[2 * s + 1]]++;
     }
 
-    this.group.add(this.mesh, this.wire, this.springs, this.points, this.pins, this.grabMarker);
+    this.group.add(...this.cloths, this.wire, this.springs, this.points, this.pins, this.grabMarker);
     this.setView('shaded');
   }
 
@@ -196,8 +188,11 @@ export class ClothView {
 
   setView(view: ViewName): void {
     this.view = view;
-    this.mesh.visible = view === 'shaded' || view === 'strain' || view === 'contacts';
-    this.mesh.material = view === 'strain' || view === 'contacts' ? this.strainMaterial : this.shadedMaterials;
+    const colours = view === 'strain' || view === 'contacts';
+    this.cloths.forEach((c, k) => {
+      c.visible = view === 'shaded' || colours;
+      c.material = colours ? this.strainMaterial : this.shadedMaterials[k];
+    });
     this.wire.visible = view === 'wireframe';
     this.springs.visible = view === 'springs';
     this.points.visible = view === 'particles';
@@ -218,27 +213,22 @@ export class ClothView {
     });
   }
 
-  /** What the shaded view draws for each cloth: its look and its triangles (a geometry group each). */
+  /** What the shaded view draws for each cloth: its look and its triangles. */
   get drawnCloths(): { look: FabricKind; triangles: number }[] {
-    return this.geometry.groups.map((g) => ({ look: this.shadedMaterials[g.materialIndex ?? 0].userData.look as FabricKind, triangles: g.count / 3 }));
+    return this.cloths.map((c, k) => ({ look: this.shadedMaterials[k].userData.look as FabricKind, triangles: c.geometry.getIndex()!.count / 3 }));
   }
 
   /**
-   * Draws the cloth from a GPU solver's position and normal buffers (`array<vec4f>`, VERTEX usage) on the
-   * renderer's WebGPU backend: the buffers take the place of the ones three.js would create for the position and
-   * normal attributes (its backend keeps each attribute's GPUBuffer in `backend.get(attribute).buffer` and creates
-   * one only when there is none). The shaded, strain and wireframe views then never touch positions on the CPU.
-   * Disposing the view destroys those buffers with it (three.js destroys attribute buffers): dispose the view and
-   * the solver together.
+   * Draws the cloths from a GPU solver's position and normal buffers (`array<vec4f>`, VERTEX usage) on the
+   * renderer's WebGPU backend (ClothDrawing.attach): the shaded, strain, contact and wireframe views then never
+   * touch positions on the CPU. Dispose the view and the solver together.
    */
   attachGpu(backend: AttributeBuffers, positions: GPUBuffer, normals: GPUBuffer): void {
-    if (!this.gpu || this.gpuAttached) return;
-    drawFromSolver(backend, [[this.position, positions], [this.geometry.getAttribute('normal'), normals]]);
-    this.gpuAttached = true;
+    this.drawing.attach(backend, positions, normals);
   }
 
   get attached(): boolean {
-    return this.gpuAttached;
+    return this.drawing.attached;
   }
 
   /** whether the current view draws from CPU positions (springs, particles, strain and contact colours) */
@@ -258,23 +248,7 @@ export class ClothView {
   update(state: ClothState, grabbed: number): void {
     const x = state.positions;
     const model = this.model;
-    if (this.gpu) {
-      // until the solver is attached, draw the CPU state (its start pose) through the vec4 attributes
-      if (!this.gpuAttached) {
-        const p = this.position.array as Float32Array;
-        for (let i = 0; i < model.particleCount; i++) { p[4 * i] = x[3 * i]; p[4 * i + 1] = x[3 * i + 1]; p[4 * i + 2] = x[3 * i + 2]; }
-        this.position.needsUpdate = true;
-        this.geometry.computeVertexNormals();
-        this.geometry.getAttribute('normal').needsUpdate = true;
-      }
-    } else {
-      this.position.array.set(x);
-      this.position.needsUpdate = true;
-      if (this.view === 'shaded' || this.view === 'strain' || this.view === 'contacts') {
-        this.geometry.computeVertexNormals();
-        this.geometry.getAttribute('normal').needsUpdate = true;
-      }
-    }
+    this.drawing.update(x, this.view === 'shaded' || this.view === 'strain' || this.view === 'contacts');
     if (this.view === 'strain') this.updateStrain(x);
     if (this.view === 'contacts') this.updateContacts(x);
     if (this.view === 'springs') {
@@ -327,12 +301,12 @@ export class ClothView {
   private updateContacts(x: Float32Array): void {
     const model = this.model, flags = this.contactFlags;
     this.contacts = selfContacts(model.triangles, x, model.particleCount, this.contactDistance, flags);
-    const col = this.color.array as Float32Array;
+    const color = this.drawing.color!, col = color.array as Float32Array;
     for (let i = 0; i < model.particleCount; i++) {
       const c = flags[i] ? IN_CONTACT : FREE_COLOR;
       col[3 * i] = c.r; col[3 * i + 1] = c.g; col[3 * i + 2] = c.b;
     }
-    this.color.needsUpdate = true;
+    color.needsUpdate = true;
   }
 
   private updateStrain(x: Float32Array): void {
@@ -346,17 +320,16 @@ export class ClothView {
       const e = Math.sqrt(dx * dx + dy * dy + dz * dz) / rest[s] - 1;
       sum[a] += e; sum[b] += e;
     }
-    const col = this.color.array as Float32Array;
+    const color = this.drawing.color!, col = color.array as Float32Array;
     for (let i = 0; i < model.particleCount; i++) {
       strainColor(this.strainCount[i] ? sum[i] / this.strainCount[i] : 0, tmpColor);
       col[3 * i] = tmpColor.r; col[3 * i + 1] = tmpColor.g; col[3 * i + 2] = tmpColor.b;
     }
-    this.color.needsUpdate = true;
+    color.needsUpdate = true;
   }
 
   dispose(): void {
-    this.gpuAttached = false;
-    this.geometry.dispose();
+    this.drawing.dispose();
     this.wire.geometry.dispose();
     this.springs.geometry.dispose();
     this.points.geometry.dispose();
@@ -372,9 +345,3 @@ export class ClothView {
 }
 
 
-/** stride 3 → stride 4 (w = 0), the GPU solver's layout */
-function vec4(src: Float32Array): Float32Array {
-  const n = src.length / 3, out = new Float32Array(4 * n);
-  for (let i = 0; i < n; i++) { out[4 * i] = src[3 * i]; out[4 * i + 1] = src[3 * i + 1]; out[4 * i + 2] = src[3 * i + 2]; }
-  return out;
-}

@@ -1,12 +1,14 @@
 /**
  * One cloth of a DrapeWorld as a `THREE.Mesh`: the user adds it to their scene and draws it with their camera and
  * renderer. Its vertices are the simulated particles in world coordinates, so it belongs in the scene itself (or
- * under parents that do not move it); its geometry is made and refreshed by its world — on the CPU path from the
- * worker's positions (its own position and normal attributes), on the GPU path straight from the solver's buffers
- * (attributes every cloth of the world shares, vec4, indexed from the cloth's first particle).
+ * under parents that do not move it); its geometry is made and refreshed by its world's ClothDrawing
+ * (cloth-drawing.ts): triangles indexed from the cloth's first particle into attributes every cloth of the world
+ * shares — filled from the worker's positions on the CPU path, the solver's own buffers on the GPU path. The app's
+ * cloths are DrapeCloths too, drawn the same way (src/render/cloth-view.ts).
  */
-import { BufferAttribute, BufferGeometry, DoubleSide, DynamicDrawUsage, Mesh, MeshStandardMaterial, type Material } from 'three';
+import { BufferGeometry, DoubleSide, Mesh, MeshStandardMaterial, type Material } from 'three';
 import type { ClothEntry, ClothModel, DeepPartial } from '../core/index.js';
+import { ClothDrawing } from './cloth-drawing.js';
 
 /** The world's side of a cloth: what it was made from, and where its particles are in the world's model. */
 export interface ClothPart {
@@ -19,8 +21,10 @@ export interface ClothPart {
 export class DrapeCloth extends Mesh<BufferGeometry, Material | Material[]> {
   /** whether the world made the material (and so disposes it) */
   private readonly ownMaterial: boolean;
-  /** the cloth's first particle in the world's model (set by the world when it builds the simulation) */
+  /** the cloth's first particle in the model it is drawn from (its world's; set by its ClothDrawing) */
   start = 0;
+  /** its drawing alone, at its start pose, until a world draws it with its other cloths */
+  private solo: ClothDrawing | null = null;
   /** the positions the cloth was last drawn or read back with [m], xyz per particle (see `positions`) */
   private readonly latest: Float32Array;
 
@@ -32,7 +36,8 @@ export class DrapeCloth extends Mesh<BufferGeometry, Material | Material[]> {
     this.latest = new Float32Array(part.model.restPositions);
     // the vertices move every frame, anywhere: no bounds to cull by
     this.frustumCulled = false;
-    this.useCpuGeometry();
+    // until its world simulates it: drawn alone, at its start pose
+    this.solo = new ClothDrawing(part.model, [this]);
   }
 
   /** particles of the cloth [-] */
@@ -48,59 +53,30 @@ export class DrapeCloth extends Mesh<BufferGeometry, Material | Material[]> {
     return this.latest;
   }
 
-  /** @internal Draws from CPU positions: attributes of its own, refreshed by `setPositions`. */
-  useCpuGeometry(): void {
-    const { model } = this.part;
-    const g = new BufferGeometry();
-    g.setAttribute('position', new BufferAttribute(new Float32Array(this.latest), 3).setUsage(DynamicDrawUsage));
-    g.setAttribute('normal', new BufferAttribute(new Float32Array(3 * model.particleCount), 3).setUsage(DynamicDrawUsage));
-    g.setAttribute('uv', new BufferAttribute(new Float32Array(model.uvs), 2));
-    g.setIndex(new BufferAttribute(new Uint32Array(model.triangles), 1));
-    g.computeVertexNormals();
-    this.replaceGeometry(g);
+  /**
+   * @internal Drawn as the cloth starting at particle `start` of a ClothDrawing's model, by `geometry` (over the
+   * drawing's attributes). The drawing it had alone, before its world simulated it, is freed.
+   */
+  draw(start: number, geometry: BufferGeometry): void {
+    const solo = this.solo;
+    this.solo = null;
+    solo?.dispose();
+    this.start = start;
+    this.geometry = geometry;
+  }
+
+  /** @internal The drawing's model's positions [m] (all its particles, xyz): the cloth's own are kept as `positions`. */
+  take(world: Float32Array): void {
+    this.latest.set(world.subarray(3 * this.start, 3 * (this.start + this.part.model.particleCount)));
   }
 
   /**
-   * @internal Draws from the world's shared vec4 position and normal attributes (the GPU solver's buffers once
-   * attached), its triangles indexed from its first particle.
+   * @internal Frees its drawing alone if it still has it (a world's drawing is the world's to free:
+   * ClothDrawing.dispose), and the material when the world made it.
    */
-  useGpuGeometry(position: BufferAttribute, normal: BufferAttribute): void {
-    const { model } = this.part;
-    const g = new BufferGeometry();
-    g.setAttribute('position', position);
-    g.setAttribute('normal', normal);
-    // the uvs of every particle of the world, its own at its place (the shared attributes index the whole model)
-    const uv = new Float32Array(2 * position.count);
-    uv.set(model.uvs, 2 * this.start);
-    g.setAttribute('uv', new BufferAttribute(uv, 2));
-    const tri = new Uint32Array(model.triangles.length);
-    for (let k = 0; k < tri.length; k++) tri[k] = model.triangles[k] + this.start;
-    g.setIndex(new BufferAttribute(tri, 1));
-    this.replaceGeometry(g);
-  }
-
-  /** @internal The world's positions [m] (all its particles, xyz): the cloth's own are copied and drawn (CPU path). */
-  setPositions(world: Float32Array, draw: boolean): void {
-    const n = this.part.model.particleCount;
-    this.latest.set(world.subarray(3 * this.start, 3 * (this.start + n)));
-    if (!draw) return;
-    const position = this.geometry.getAttribute('position') as BufferAttribute;
-    (position.array as Float32Array).set(this.latest);
-    position.needsUpdate = true;
-    this.geometry.computeVertexNormals();
-    this.geometry.boundingSphere = null;
-  }
-
-  private replaceGeometry(g: BufferGeometry): void {
-    const old = this.geometry;
-    this.geometry = g;
-    // (the world replaces every cloth's GPU geometry at once, when the solver its shared attributes drew from is gone)
-    old.dispose();
-  }
-
-  /** @internal Frees the geometry, and the material when the world made it. */
   disposeCloth(): void {
-    this.geometry.dispose();
+    this.solo?.dispose();
+    this.solo = null;
     if (this.ownMaterial) (this.material as Material).dispose();
   }
 }

@@ -6,13 +6,14 @@
  * app's own (src/three/sim). The world steps whole 1/60 s frames from the time `update(dt)` is given (the drivers'
  * FrameClock), moves each collider to where its mesh is, and refreshes the cloths' geometries.
  */
-import { BufferAttribute, Vector3, type Mesh, type Object3D, type Raycaster } from 'three';
+import { Vector3, type Mesh, type Object3D, type Raycaster } from 'three';
 import {
   FRAME_DT, Simulation, copyCarried, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
   type ParticleRange, type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { isSoftwareAdapter, type AdapterInfoLike } from '../gpu/adapter.js';
 import { DrapeCloth } from './cloth.js';
+import { ClothDrawing } from './cloth-drawing.js';
 import { COLLIDER_SHAPE_OPTIONS, colliderOfMesh } from './colliders.js';
 import { Follower } from './follow.js';
 import { meshOfGeometry } from './geometry.js';
@@ -25,7 +26,6 @@ import { GpuSim } from './sim/gpu-sim.js';
 import { MeshStore } from './sim/meshes.js';
 import { SimClient, type SimDriver } from './sim/sim-client.js';
 import { carriable, carryState, chooseBackend } from './sim/backend-choice.js';
-import { drawFromSolver } from './sim/solver-buffers.js';
 
 /** Where a picking ray met a cloth. */
 export interface DrapeHit {
@@ -59,10 +59,8 @@ export class DrapeWorld {
   private starting: Promise<void> | null = null;
   /** the world's model the cloths' geometries were made for */
   private model: ClothModel | null = null;
-  /** the GPU path's shared vec4 attributes (every cloth's geometry indexes them), and whether the solver's buffers are in them */
-  private gpuPosition: BufferAttribute | null = null;
-  private gpuNormal: BufferAttribute | null = null;
-  private gpuAttached = false;
+  /** the cloths drawn from the model's positions (CPU) or the GPU solver's buffers: made for `model` */
+  private drawing: ClothDrawing | null = null;
   /** new positions arrived since the cloths were last refreshed */
   private fresh = false;
   private lastNow = 0;
@@ -100,7 +98,7 @@ export class DrapeWorld {
 
   /** whether the cloths are drawn straight from the GPU solver's buffers */
   get gpuDrawing(): boolean {
-    return this.gpuAttached;
+    return this.drawing?.attached ?? false;
   }
 
   /** frames of 1/60 s simulated since the cloths (re)started */
@@ -256,8 +254,8 @@ export class DrapeWorld {
       this.driver = null;
       this.starting = null;
       this.model = null;
-      this.gpuPosition = this.gpuNormal = null;
-      this.gpuAttached = false;
+      this.drawing?.dispose();
+      this.drawing = null;
       this.scene();
     } else {
       this.structureChanged(carry);
@@ -400,8 +398,9 @@ export class DrapeWorld {
     if (this.raf) cancelAnimationFrame(this.raf);
     this.driver?.dispose();
     this.driver = null;
+    this.drawing?.dispose();
+    this.drawing = null;
     for (const c of this.cloths) c.disposeCloth();
-    this.gpuPosition = this.gpuNormal = null;
   }
 
   private alive(): void {
@@ -536,23 +535,13 @@ export class DrapeWorld {
     this.grabbed = null;
   }
 
-  /** The cloths' geometries for the world's model (a new model: every cloth restarts). */
+  /** The cloths' drawing for the world's model (a new model: every cloth restarts). */
   private adopt(model: ClothModel): void {
     this.model = model;
-    const gpu = this.driver instanceof GpuSim;
-    this.gpuAttached = false;
-    this.cloths.forEach((c, k) => { c.start = model.clothStarts[k]; });
-    if (gpu) {
-      const n = model.particleCount, x = model.restPositions;
-      const p = new Float32Array(4 * n);
-      for (let i = 0; i < n; i++) { p[4 * i] = x[3 * i]; p[4 * i + 1] = x[3 * i + 1]; p[4 * i + 2] = x[3 * i + 2]; }
-      this.gpuPosition = new BufferAttribute(p, 4);
-      this.gpuNormal = new BufferAttribute(new Float32Array(4 * n), 4);
-      for (const c of this.cloths) { c.setPositions(this.driver!.mirrors[0].sim.state.positions, false); c.useGpuGeometry(this.gpuPosition, this.gpuNormal); }
-    } else {
-      this.gpuPosition = this.gpuNormal = null;
-      for (const c of this.cloths) { c.setPositions(this.driver!.mirrors[0].sim.state.positions, false); c.useCpuGeometry(); }
-    }
+    // (the drawing before is freed first: with it, the buffers of a GPU solver that is gone)
+    this.drawing?.dispose();
+    this.drawing = new ClothDrawing(model, this.cloths, { gpu: this.driver instanceof GpuSim });
+    this.drawing.update(this.driver!.mirrors[0].sim.state.positions);
     this.fresh = true;
   }
 
@@ -604,18 +593,12 @@ export class DrapeWorld {
     const d = this.driver, m = d?.mirrors[0];
     if (!d || !m) return;
     if (m.sim.model !== this.model) this.adopt(m.sim.model);
-    if (d instanceof GpuSim) {
-      const solver = d.solverOf(0);
-      const backend = this.webGpu();
-      if (!this.gpuAttached && solver && backend && this.gpuPosition && this.gpuNormal) {
-        drawFromSolver(backend, [[this.gpuPosition, solver.positionBuffer], [this.gpuNormal, solver.normalBuffer]]);
-        this.gpuAttached = true;
-      }
-    }
+    const solver = d instanceof GpuSim ? d.solverOf(0) : null;
+    const backend = this.webGpu();
+    if (solver && backend) this.drawing?.attach(backend, solver.positionBuffer, solver.normalBuffer);
     if (!this.fresh) return;
     this.fresh = false;
-    const cpu = !(d instanceof GpuSim);
-    for (const c of this.cloths) c.setPositions(m.sim.state.positions, cpu);
+    this.drawing?.update(m.sim.state.positions);
   }
 
   private clothOf(particle: number): DrapeCloth | null {
