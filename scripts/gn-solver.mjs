@@ -19,7 +19,9 @@ export class GNSolver {
   /**
    * model, params: the library's; pinned: Uint8Array (1 = fixed); opts: { substeps, iterations (Gauss–Newton
    * iterations per substep), tol (the conjugate gradients' relative residual), maxCg, precondition ('diagonal';
-   * 'rest': J₀·D⁻¹·J₀ᵀ + α factored once; 'woodbury': the Schur complement at rest, exactly), refresh (with
+   * 'rest': J₀·D⁻¹·J₀ᵀ + α factored once; 'woodbury': the Schur complement at rest, exactly; 'warped': the same
+   * with H₀ turned particle by particle; 'primal': Gauss–Newton on the positions, preconditioned by the turned H₀),
+   * refresh (with
    * 'woodbury': refactor it at the cloth's directions after a substep of more than this many iterations) }.
    * Gravity and pins only: no colliders, no air.
    */
@@ -96,7 +98,9 @@ export class GNSolver {
     this.sp = new Float64Array(m); this.df = new Float64Array(m); this.diag = new Float64Array(m);
     for (let s = 0; s < m; s++) this.diag[s] = 1 / this.Adiag[this.springs[2 * s]] + 1 / this.Adiag[this.springs[2 * s + 1]] + this.alpha[s];
     if (this.opts.precondition === 'rest') this.restPreconditioner();
-    if (this.opts.precondition === 'woodbury') this.woodburyPreconditioner();
+    if (['woodbury', 'warped', 'primal'].includes(this.opts.precondition)) this.woodburyPreconditioner();
+    if (this.opts.precondition === 'warped' || this.opts.precondition === 'primal') this.warp = { q: new Float64Array(4 * n).fill(0), R: new Float64Array(9 * n), A: new Float64Array(9 * n) };
+    if (this.warp) for (let i = 0; i < n; i++) { this.warp.q[4 * i + 3] = 1; this.warp.R.set([1, 0, 0, 0, 1, 0, 0, 0, 1], 9 * i); }
     /** conjugate gradient iterations and substeps so far */
     this.cgIterations = 0;
     this.substepsRun = 0;
@@ -196,6 +200,7 @@ export class GNSolver {
 
   /** z ← P⁻¹r: the diagonal's, or the factored one at rest */
   precondition(r, z) {
+    if (this.warp) { this.preconditionWarped(r, z); return; }
     if (this.wood) {
       const { H, dir, t, v } = this.wood, { springs, alpha, row, pinned } = this;
       v.fill(0);
@@ -221,6 +226,113 @@ export class GNSolver {
     for (let s = 0; s < r.length; s++) b[row[s]] = r[s];
     P.solve(b);
     for (let s = 0; s < r.length; s++) z[s] = b[row[s]];
+  }
+
+  /**
+   * The preconditioner 'warped': the Woodbury one with H₀ turned, particle by particle, to where the cloth is now
+   * (stiffness warping, Müller, Dorsey, McMillan, Jagnow & Cutler 2002): H ≈ R·H₀·Rᵀ, R = diag(R_i), each R_i the
+   * rotation of particle i's springs from rest (rotations), and the springs' current directions in J. For a cloth
+   * turned as a whole by R it is exact: J = J₀·Rᵀ and A (a scalar matrix for the three coordinates) commutes with R.
+   */
+  preconditionWarped(r, z) {
+    const { H, t, v } = this.wood, { R } = this.warp, { springs, alpha, row, pinned, nrm } = this, n = this.n;
+    v.fill(0);
+    for (let s = 0; s < r.length; s++) {
+      t[s] = r[s] / alpha[s];
+      const a = springs[2 * s], b = springs[2 * s + 1];
+      for (let c = 0; c < 3; c++) {
+        if (!pinned[a]) v[3 * row[a] + c] += t[s] * nrm[3 * s + c];
+        if (!pinned[b]) v[3 * row[b] + c] -= t[s] * nrm[3 * s + c];
+      }
+    }
+    // into each particle's rest frame (Rᵀ), solve with H₀, back (R)
+    for (let i = 0; i < n; i++) {
+      if (pinned[i]) continue;
+      const q = 3 * row[i], o = 9 * i, x = v[q], y = v[q + 1], w = v[q + 2];
+      v[q] = R[o] * x + R[o + 3] * y + R[o + 6] * w;
+      v[q + 1] = R[o + 1] * x + R[o + 4] * y + R[o + 7] * w;
+      v[q + 2] = R[o + 2] * x + R[o + 5] * y + R[o + 8] * w;
+    }
+    H.solve(v);
+    for (let i = 0; i < n; i++) {
+      if (pinned[i]) continue;
+      const q = 3 * row[i], o = 9 * i, x = v[q], y = v[q + 1], w = v[q + 2];
+      v[q] = R[o] * x + R[o + 1] * y + R[o + 2] * w;
+      v[q + 1] = R[o + 3] * x + R[o + 4] * y + R[o + 5] * w;
+      v[q + 2] = R[o + 6] * x + R[o + 7] * y + R[o + 8] * w;
+    }
+    for (let s = 0; s < r.length; s++) {
+      const a = springs[2 * s], b = springs[2 * s + 1];
+      let u = 0;
+      for (let c = 0; c < 3; c++) u += nrm[3 * s + c] * ((pinned[a] ? 0 : v[3 * row[a] + c]) - (pinned[b] ? 0 : v[3 * row[b] + c]));
+      z[s] = (r[s] - u) / alpha[s];
+    }
+  }
+
+  /**
+   * Each particle's rotation from rest (row-major R_i, its quaternion warm-started from the last): the rotational
+   * part of A_i = Σ d·d₀ᵀ over its springs (d the spring now, d₀ at rest) plus l²·n·n₀ᵀ (the normals of its
+   * triangles, now and at rest, so that a flat one-ring has a full-rank A_i), by Müller, Bender, Chentanez & Macklin
+   * 2016, "A Robust Method to Extract the Rotational Part of Deformations".
+   */
+  rotations(x) {
+    const { A, q, R } = this.warp, { springs, model, n } = this, x0 = model.restPositions, tri = model.triangles;
+    A.fill(0);
+    const add = (i, d, e, w) => { const o = 9 * i; for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) A[o + 3 * r + c] += w * d[r] * e[c]; };
+    const d = [0, 0, 0], e = [0, 0, 0];
+    for (let s = 0; s < this.alpha.length; s++) {
+      const a = springs[2 * s], b = springs[2 * s + 1];
+      for (let c = 0; c < 3; c++) { d[c] = x[3 * a + c] - x[3 * b + c]; e[c] = x0[3 * a + c] - x0[3 * b + c]; }
+      add(a, d, e, 1); add(b, d, e, 1);
+    }
+    const cross = (u, v, out) => { out[0] = u[1] * v[2] - u[2] * v[1]; out[1] = u[2] * v[0] - u[0] * v[2]; out[2] = u[0] * v[1] - u[1] * v[0]; };
+    const u = [0, 0, 0], w = [0, 0, 0], u0 = [0, 0, 0], w0 = [0, 0, 0];
+    for (let k = 0; k < tri.length; k += 3) {
+      const a = 3 * tri[k], b = 3 * tri[k + 1], c3 = 3 * tri[k + 2];
+      for (let c = 0; c < 3; c++) { u[c] = x[b + c] - x[a + c]; w[c] = x[c3 + c] - x[a + c]; u0[c] = x0[b + c] - x0[a + c]; w0[c] = x0[c3 + c] - x0[a + c]; }
+      cross(u, w, d); cross(u0, w0, e);
+      // |d|, |e| are twice the areas: d·eᵀ/|e| weighs the normal pair as one of the triangle's edges
+      const l0 = Math.hypot(e[0], e[1], e[2]), l = Math.hypot(d[0], d[1], d[2]);
+      if (!(l0 > 0 && l > 0)) continue;
+      const scale = 1 / l;
+      for (const i of [tri[k], tri[k + 1], tri[k + 2]]) add(i, d, e, scale);
+    }
+    const M = new Float64Array(9);
+    for (let i = 0; i < n; i++) {
+      if (this.pinned[i]) continue;
+      const o = 9 * i;
+      let qx = q[4 * i], qy = q[4 * i + 1], qz = q[4 * i + 2], qw = q[4 * i + 3];
+      for (let it = 0; it < 20; it++) {
+        // R from q (row-major)
+        M[0] = 1 - 2 * (qy * qy + qz * qz); M[1] = 2 * (qx * qy - qz * qw); M[2] = 2 * (qx * qz + qy * qw);
+        M[3] = 2 * (qx * qy + qz * qw); M[4] = 1 - 2 * (qx * qx + qz * qz); M[5] = 2 * (qy * qz - qx * qw);
+        M[6] = 2 * (qx * qz - qy * qw); M[7] = 2 * (qy * qz + qx * qw); M[8] = 1 - 2 * (qx * qx + qy * qy);
+        // ω = Σ_c r_c × a_c / |Σ_c r_c·a_c| (columns c of R and A)
+        let ox = 0, oy = 0, oz = 0, dot = 0;
+        for (let c = 0; c < 3; c++) {
+          const rx = M[c], ry = M[3 + c], rz = M[6 + c], ax = A[o + c], ay = A[o + 3 + c], az = A[o + 6 + c];
+          ox += ry * az - rz * ay; oy += rz * ax - rx * az; oz += rx * ay - ry * ax;
+          dot += rx * ax + ry * ay + rz * az;
+        }
+        const inv = 1 / (Math.abs(dot) + 1e-12);
+        ox *= inv; oy *= inv; oz *= inv;
+        const angle = Math.hypot(ox, oy, oz);
+        if (angle < 1e-9) break;
+        const sn = Math.sin(angle / 2) / angle, cs = Math.cos(angle / 2);
+        const px = ox * sn, py = oy * sn, pz = oz * sn, pw = cs;
+        // q ← p·q
+        const nx = pw * qx + px * qw + py * qz - pz * qy;
+        const ny = pw * qy - px * qz + py * qw + pz * qx;
+        const nz = pw * qz + px * qy - py * qx + pz * qw;
+        const nw = pw * qw - px * qx - py * qy - pz * qz;
+        const len = Math.hypot(nx, ny, nz, nw);
+        qx = nx / len; qy = ny / len; qz = nz / len; qw = nw / len;
+      }
+      q[4 * i] = qx; q[4 * i + 1] = qy; q[4 * i + 2] = qz; q[4 * i + 3] = qw;
+      R[o] = 1 - 2 * (qy * qy + qz * qz); R[o + 1] = 2 * (qx * qy - qz * qw); R[o + 2] = 2 * (qx * qz + qy * qw);
+      R[o + 3] = 2 * (qx * qy + qz * qw); R[o + 4] = 1 - 2 * (qx * qx + qz * qz); R[o + 5] = 2 * (qy * qz - qx * qw);
+      R[o + 6] = 2 * (qx * qz - qy * qw); R[o + 7] = 2 * (qy * qz + qx * qw); R[o + 8] = 1 - 2 * (qx * qx + qy * qy);
+    }
   }
 
   /** v ← A⁻¹v (by particle, stride 3; pinned particles do not move: 0 there) */
@@ -253,8 +365,123 @@ export class GNSolver {
     }
   }
 
+  /** out = A·u (inertia and bending stencils; pinned particles' rows and columns left out) */
+  applyA(u, out) {
+    const { n, pinned, mass } = this, inertia = 1 / (this.h * this.h);
+    for (let i = 0; i < n; i++) for (let c = 0; c < 3; c++) out[3 * i + c] = pinned[i] ? 0 : mass[i] * inertia * u[3 * i + c];
+    for (const { idx, K, w } of this.stencils) {
+      for (let c = 0; c < 3; c++) {
+        let kx = 0;
+        for (let a = 0; a < idx.length; a++) if (!pinned[idx[a]]) kx += K[a] * u[3 * idx[a] + c];
+        for (let a = 0; a < idx.length; a++) if (!pinned[idx[a]]) out[3 * idx[a] + c] += w * K[a] * kx;
+      }
+    }
+  }
+
+  /**
+   * One frame in the primal form (precondition 'primal'): per substep, Gauss–Newton steps on the positions,
+   * H·δx = −∇E, E = ½‖x − x̃‖²_M/h² + the stencils' ½xᵀBx + Σ ½k(|x_a − x_b| − l)², H = A + Σ k·n·nᵀ (the springs'
+   * directions now), by conjugate gradients preconditioned by R·H₀⁻¹·Rᵀ: H₀ the same matrix at rest (factored once,
+   * woodburyPreconditioner), R the particles' rotations from rest (stiffness warping, Müller et al. 2002) — symmetric
+   * positive definite whatever R is.
+   */
+  framePrimal() {
+    const { n, x, v, xt, xOld, c0, w3, D, pinned, opts, springs, rest, alpha, nrm, mass } = this;
+    const h = this.h, g = this.params.gravity, inertia = 1 / (h * h), m = alpha.length;
+    const { H, v: hv } = this.wood, { R } = this.warp, row = this.row;
+    const gr = this.gr ??= new Float64Array(3 * n), rr3 = this.rr3 ??= new Float64Array(3 * n), z3 = this.z3 ??= new Float64Array(3 * n);
+    const p3 = this.p3 ??= new Float64Array(3 * n), q3 = this.q3 ??= new Float64Array(3 * n), len = this.len ??= new Float64Array(m);
+    const precondition = (r, z) => {
+      for (let i = 0; i < n; i++) {
+        if (pinned[i]) continue;
+        const q = 3 * row[i], o = 9 * i, a = r[3 * i], b = r[3 * i + 1], c = r[3 * i + 2];
+        hv[q] = R[o] * a + R[o + 3] * b + R[o + 6] * c;
+        hv[q + 1] = R[o + 1] * a + R[o + 4] * b + R[o + 7] * c;
+        hv[q + 2] = R[o + 2] * a + R[o + 5] * b + R[o + 8] * c;
+      }
+      H.solve(hv);
+      for (let i = 0; i < n; i++) {
+        if (pinned[i]) { z[3 * i] = z[3 * i + 1] = z[3 * i + 2] = 0; continue; }
+        const q = 3 * row[i], o = 9 * i, a = hv[q], b = hv[q + 1], c = hv[q + 2];
+        z[3 * i] = R[o] * a + R[o + 1] * b + R[o + 2] * c;
+        z[3 * i + 1] = R[o + 3] * a + R[o + 4] * b + R[o + 5] * c;
+        z[3 * i + 2] = R[o + 6] * a + R[o + 7] * b + R[o + 8] * c;
+      }
+    };
+    // out = H·u
+    const applyH = (u, out) => {
+      this.applyA(u, out);
+      for (let s = 0; s < m; s++) {
+        const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+        const dn = nrm[3 * s] * (u[a] - u[b]) + nrm[3 * s + 1] * (u[a + 1] - u[b + 1]) + nrm[3 * s + 2] * (u[a + 2] - u[b + 2]);
+        const t = dn / alpha[s];
+        for (let c = 0; c < 3; c++) { out[a + c] += t * nrm[3 * s + c]; out[b + c] -= t * nrm[3 * s + c]; }
+      }
+      for (let i = 0; i < n; i++) if (pinned[i]) out[3 * i] = out[3 * i + 1] = out[3 * i + 2] = 0;
+    };
+    for (let sub = 0; sub < opts.substeps; sub++) {
+      xOld.set(x);
+      for (let i = 0; i < n; i++) for (let c = 0; c < 3; c++) xt[3 * i + c] = pinned[i] ? x[3 * i + c] : x[3 * i + c] + h * v[3 * i + c] + h * h * g[c];
+      x.set(xt);
+      const cg0 = this.cgIterations;
+      for (let it = 0; it < opts.iterations; it++) {
+        this.rotations(x);
+        // ∇E = M/h²(x − x̃) + B·x + Σ k(l − l₀)·n (pinned particles: none)
+        for (let k = 0; k < 3 * n; k++) w3[k] = x[k];
+        this.applyA(w3, gr);
+        for (let i = 0; i < n; i++) if (!pinned[i]) for (let c = 0; c < 3; c++) gr[3 * i + c] -= mass[i] * inertia * xt[3 * i + c];
+        // the stencils' terms of pinned particles (applyA leaves them out): B·x over every entry
+        for (const { idx, K, w } of this.stencils) {
+          for (let c = 0; c < 3; c++) {
+            let kx = 0;
+            for (let a = 0; a < idx.length; a++) if (pinned[idx[a]]) kx += K[a] * x[3 * idx[a] + c];
+            for (let a = 0; a < idx.length; a++) if (!pinned[idx[a]]) gr[3 * idx[a] + c] += w * K[a] * kx;
+          }
+        }
+        for (let s = 0; s < m; s++) {
+          const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+          const d0 = x[a] - x[b], d1 = x[a + 1] - x[b + 1], d2 = x[a + 2] - x[b + 2], l = Math.hypot(d0, d1, d2);
+          len[s] = l;
+          nrm[3 * s] = d0 / l; nrm[3 * s + 1] = d1 / l; nrm[3 * s + 2] = d2 / l;
+          const t = (l - rest[s]) / alpha[s];
+          for (let c = 0; c < 3; c++) { gr[a + c] += t * nrm[3 * s + c]; gr[b + c] -= t * nrm[3 * s + c]; }
+        }
+        for (let i = 0; i < n; i++) if (pinned[i]) gr[3 * i] = gr[3 * i + 1] = gr[3 * i + 2] = 0;
+        // conjugate gradients on H·δx = −∇E
+        let r0 = 0;
+        for (let k = 0; k < 3 * n; k++) { rr3[k] = -gr[k]; r0 += rr3[k] * rr3[k]; }
+        D.fill(0);
+        precondition(rr3, z3);
+        let rz = 0;
+        for (let k = 0; k < 3 * n; k++) rz += rr3[k] * z3[k];
+        p3.set(z3);
+        for (let k = 0; k < opts.maxCg && rz > 0; k++) {
+          this.cgIterations++;
+          applyH(p3, q3);
+          let pq = 0;
+          for (let j = 0; j < 3 * n; j++) pq += p3[j] * q3[j];
+          const ak = rz / pq;
+          let rr = 0;
+          for (let j = 0; j < 3 * n; j++) { D[j] += ak * p3[j]; rr3[j] -= ak * q3[j]; rr += rr3[j] * rr3[j]; }
+          if (rr <= opts.tol * opts.tol * r0) break;
+          precondition(rr3, z3);
+          let rzNew = 0;
+          for (let j = 0; j < 3 * n; j++) rzNew += rr3[j] * z3[j];
+          const bk = rzNew / rz;
+          rz = rzNew;
+          for (let j = 0; j < 3 * n; j++) p3[j] = z3[j] + bk * p3[j];
+        }
+        for (let k = 0; k < 3 * n; k++) x[k] += D[k];
+      }
+      for (let k = 0; k < 3 * n; k++) v[k] = (x[k] - xOld[k]) / h;
+      this.lastCg = this.cgIterations - cg0;
+      this.substepsRun++;
+    }
+  }
+
   /** One frame of 1/60 s. */
   frame() {
+    if (this.opts.precondition === 'primal') { this.framePrimal(); return; }
     const { n, x, v, xt, xOld, c0, xh, w3, D, pinned, opts, springs, rest, alpha, f, nrm, rhs, r, z, p, sp, df, diag, mass } = this;
     const h = this.h, g = this.params.gravity, inertia = 1 / (h * h), m = alpha.length;
     for (let sub = 0; sub < opts.substeps; sub++) {
@@ -280,6 +507,7 @@ export class GNSolver {
           nrm[3 * s] = d0 / l; nrm[3 * s + 1] = d1 / l; nrm[3 * s + 2] = d2 / l;
           rhs[s] = -(l - rest[s]) - alpha[s] * f[s];
         }
+        if (this.warp) this.rotations(x);
         // x̂ = A⁻¹(c0 + Jᵀf), pinned where they are
         this.jt(f, xh);
         for (let k = 0; k < 3 * n; k++) xh[k] += c0[k];

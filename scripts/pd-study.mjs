@@ -190,7 +190,9 @@ function gnCantilevers() {
  * The Gauss–Newton prototype where its preconditioner is furthest from the truth: a hanging sheet (the stretch
  * converged?) and a horizontal sheet held by one corner, which falls and swings through 90° (every spring turned far
  * from its rest direction). Conjugate gradient iterations per substep and ms per frame at --substeps; --refresh N
- * refactors the 'woodbury' preconditioner at the cloth's directions after a substep that took more than N.
+ * refactors the 'woodbury' preconditioner at the cloth's directions after a substep that took more than N;
+ * --precondition warped or primal: H₀ turned particle by particle (gn-solver.mjs; docs/physics.md, "Turning the rest
+ * preconditioner does not help").
  */
 function gnHanging() {
   const substeps = Number(arg('substeps', '5'));
