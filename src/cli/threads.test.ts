@@ -82,6 +82,27 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
     }
   });
 
+  it.each(['hinges', 'laplacian'] as const)('bending on the %s stencils (chunks of a colour batch on both threads): 2 threads give the same cloth as 1, bit for bit', async (bending) => {
+    // 41² particles on the sphere: each colour batch of the stencils is 2–4 chunks of the bending phase
+    const sc = builtinScene('cotton-basic')!;
+    sc.cloth.resolution = 40;
+    sc.solver = { ...sc.solver, bending, selfContact: false };
+    sc.material.bendingRigidity = 1e-4;
+    const one = new Simulation(sc, { kernel: 'wasm', threads: 1 });
+    const many = new Simulation(sc, { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
+    try {
+      await many.whenReady();
+      (many.backend as WasmBackend).kernel.mode.hold(true);
+      for (let f = 0; f < 30; f++) { one.advance(1); many.advance(1); }
+      expect((many.backend as WasmBackend).kernel.mode.framesAlone).toBe(0);
+      expect([...many.state.positions]).toEqual([...one.state.positions]);
+      expect([...many.state.bendingLambdas]).toEqual([...one.state.bendingLambdas]);
+      expect(many.report().finite).toBe(true);
+    } finally {
+      many.dispose();
+    }
+  });
+
   it('a rebuild stops the old helpers and starts new ones; after dispose it steps on one thread', async () => {
     const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
     await sim.whenReady();

@@ -121,6 +121,7 @@ export const CONTROL = [
   ['ITERATIONS', 'i32', 1, 'distance constraint passes per substep (at most KERNEL_MAX_ITERATIONS: the DESC field)'],
   ['SUBSTEP_PHASES', 'i32', 1, 'the phases the next substep() runs, a bit per phase id (consecutive in the schedule)'],
   ['COLLIDERS', 'i32', 1, 'collider records in use'],
+  ['STENCILS', 'i32', 1, 'the bending stencils the bending phase solves: 0 none, 1 the hinges, 2 the Laplacian (model.stencils)'],
   ['READY', 'i32', 1, 'helpers that entered helperLoop'],
   ['SPIN_LIMIT', 'i32', 1, 'polls of a word before a waiting thread sleeps'],
   ['DESC', 'i64', 1, 'the dispatched substep, described by the DESC_* fields (xpbd.as.ts describe())'],

@@ -133,10 +133,12 @@ export const CTRL = {
   SUBSTEP_PHASES: 28,
   /** i32: collider records in use */
   COLLIDERS: 32,
+  /** i32: the bending stencils the bending phase solves: 0 none, 1 the hinges, 2 the Laplacian (model.stencils) */
+  STENCILS: 36,
   /** i32: helpers that entered helperLoop */
-  READY: 36,
+  READY: 40,
   /** i32: polls of a word before a waiting thread sleeps */
-  SPIN_LIMIT: 40,
+  SPIN_LIMIT: 44,
   /** i64: the dispatched substep, described by the DESC_* fields (xpbd.as.ts describe()) */
   DESC: 48,
   /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */

@@ -64,6 +64,8 @@ export interface StateArrays {
   lambdas: Float32Array;
   tetherAnchors: Int32Array;
   tetherLengths: Float32Array;
+  /** λ of the bending stencils, 3 per stencil of the model's larger stencil set (new when not given) */
+  bendingLambdas?: Float32Array;
 }
 
 /**
@@ -87,7 +89,7 @@ export function createState(model: ClothModel, arrays?: StateArrays): ClothState
   a.tetherAnchors.fill(-1);
   const state: ClothState = {
     ...a,
-    bendingLambdas: new Float32Array(3 * Math.max(model.stencils.hinges.areas.length, model.stencils.laplacian.areas.length)),
+    bendingLambdas: a.bendingLambdas ?? new Float32Array(3 * Math.max(model.stencils.hinges.areas.length, model.stencils.laplacian.areas.length)),
     pinned: new Uint8Array(n),
     tethersStale: true,
     grabbed: -1,

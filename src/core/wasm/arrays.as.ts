@@ -29,6 +29,19 @@ export let ALPHA: usize = 0;
 export let BATCHES: usize = 0;
 /** colour batches */
 export let BATCH_COUNT: i32 = 0;
+/**
+ * Each bending stencil model's arrays (model.ts BendingStencils; [0] the hinges, [1] the Laplacian): entry offsets
+ * (u32 × stencils + 1), particles (u32 per entry), weights K (f32 per entry), colour batches (i32 × 2: start, end)
+ */
+export const STENCIL_OFFSETS = new StaticArray<usize>(2);
+export const STENCIL_VERTICES = new StaticArray<usize>(2);
+export const STENCIL_WEIGHTS = new StaticArray<usize>(2);
+export const STENCIL_BATCHES = new StaticArray<usize>(2);
+export const STENCIL_BATCH_COUNT = new StaticArray<i32>(2);
+/** compliance per stencil of the model in use, f32 */
+export let STENCIL_ALPHA: usize = 0;
+/** λ per stencil of the model in use, f32 × 3 */
+export let STENCIL_LAMBDA: usize = 0;
 /** particles */
 export let N: i32 = 0;
 
@@ -36,7 +49,15 @@ export let N: i32 = 0;
 export function configure(
   x: usize, xp: usize, xr: usize, xpr: usize, w: usize, f: usize, lambda: usize, anchor: usize, tlen: usize,
   springs: usize, rest: usize, alpha: usize, batches: usize, batchCount: i32, particles: i32,
+  hingeOffsets: usize, hingeVertices: usize, hingeWeights: usize, hingeBatches: usize, hingeBatchCount: i32,
+  laplacianOffsets: usize, laplacianVertices: usize, laplacianWeights: usize, laplacianBatches: usize, laplacianBatchCount: i32,
+  stencilAlpha: usize, stencilLambda: usize,
 ): void {
   X = x; XP = xp; XR = xr; XPR = xpr; W = w; F = f; LAMBDA = lambda; ANCHOR = anchor; TLEN = tlen;
   SPRINGS = springs; REST = rest; ALPHA = alpha; BATCHES = batches; BATCH_COUNT = batchCount; N = particles;
+  STENCIL_OFFSETS[0] = hingeOffsets; STENCIL_VERTICES[0] = hingeVertices; STENCIL_WEIGHTS[0] = hingeWeights;
+  STENCIL_BATCHES[0] = hingeBatches; STENCIL_BATCH_COUNT[0] = hingeBatchCount;
+  STENCIL_OFFSETS[1] = laplacianOffsets; STENCIL_VERTICES[1] = laplacianVertices; STENCIL_WEIGHTS[1] = laplacianWeights;
+  STENCIL_BATCHES[1] = laplacianBatches; STENCIL_BATCH_COUNT[1] = laplacianBatchCount;
+  STENCIL_ALPHA = stencilAlpha; STENCIL_LAMBDA = stencilLambda;
 }

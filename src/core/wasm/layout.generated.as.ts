@@ -128,10 +128,12 @@ export const ITERATIONS: usize = 24;
 export const SUBSTEP_PHASES: usize = 28;
 /** i32: collider records in use */
 export const COLLIDERS: usize = 32;
+/** i32: the bending stencils the bending phase solves: 0 none, 1 the hinges, 2 the Laplacian (model.stencils) */
+export const STENCILS: usize = 36;
 /** i32: helpers that entered helperLoop */
-export const READY: usize = 36;
+export const READY: usize = 40;
 /** i32: polls of a word before a waiting thread sleeps */
-export const SPIN_LIMIT: usize = 40;
+export const SPIN_LIMIT: usize = 44;
 /** i64: the dispatched substep, described by the DESC_* fields (xpbd.as.ts describe()) */
 export const DESC: usize = 48;
 /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */

@@ -21,6 +21,8 @@ import {
 export const CHUNK_SPRINGS: i32 = 256;
 /** Particles per chunk. */
 export const CHUNK_PARTICLES: i32 = 1024;
+/** Bending stencils per chunk (a stencil is 4–13 particles). */
+export const CHUNK_STENCILS: i32 = 128;
 /** longest single sleep [ms]: a safety net, the thread is woken when the word changes */
 const SLEEP_MS: f64 = 20;
 

@@ -5,7 +5,8 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { FRAME_DT, builtinScene, createState, SCENE_NAMES, Simulation, step, validateScene, type Scene } from '../index.js';
-import { PhaseLog } from '../schedule.js';
+import { PHASE, PhaseLog } from '../schedule.js';
+import { REFERENCE } from '../reference.js';
 import { GENERATED_FILE, generateKernelModule } from './gen-wasm.mjs';
 import { wasmKernelAvailable } from './xpbd-wasm.js';
 import { WasmBackend } from '../backend.js';
@@ -181,6 +182,46 @@ describe('xpbd wasm kernel', () => {
     sim.advance(5);
     expect(sim.report().finite).toBe(true);
     expect(new Simulation({ ...sc, solver: { ...sc.solver, type: 'mass-spring' } }).kernel).toBe('ts');
+  });
+
+  // the kernel's bending phase is the reference's arithmetic (f64 on f32 data, the same order): the same cloth to the bit
+  it.each([['hinges', 1], ['laplacian', 1], ['hinges', 3], ['laplacian', 3]] as const)('the %s stencils, %i pass(es) a substep: the kernel\'s bending phase moves every particle as the reference does, bit for bit', (bending, iterations) => {
+    const sc = builtinScene('cotton-basic')!;
+    sc.cloth.resolution = 16;
+    sc.solver = { ...sc.solver, bending, iterations, selfContact: false };
+    const sim = new Simulation(sc, { kernel: 'wasm' });
+    // a draped, bent cloth (40 frames: on the sphere), then the kernel's phase against the reference on a copy
+    sim.advance(40);
+    const kernel = (sim.backend as WasmBackend).kernel, st = sim.state;
+    const copy = createState(sim.model);
+    copy.positions.set(st.positions);
+    copy.invMass.set(st.invMass);
+    const frame = { h: FRAME_DT / sim.params.substeps, substeps: sim.params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3) };
+    const before = Float32Array.from(st.positions);
+    const log = new PhaseLog();
+    kernel.run(1 << PHASE.bending, sim.model, st, sim.params, frame, log);
+    REFERENCE[PHASE.bending](sim.model, copy, sim.params, frame);
+    expect(log.names()).toEqual(['bending']);
+    // the phase did act (it moved particles), and as the reference
+    expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
+    expect([...st.positions]).toEqual([...copy.positions]);
+    expect([...st.bendingLambdas]).toEqual([...copy.bendingLambdas]);
+  });
+
+  it('the bending model switched between frames: the kernel takes the other stencils and their compliances', () => {
+    const sc = builtinScene('cotton-basic')!;
+    sc.cloth.resolution = 12;
+    sc.solver = { ...sc.solver, bending: 'hinges', selfContact: false };
+    const [ts, wasm] = pair(sc);
+    ts.advance(10); wasm.advance(10);
+    for (const sim of [ts, wasm]) { sim.set('solver.bending', 'laplacian'); sim.set('material.bendingRigidity', 1e-4); }
+    ts.advance(1); wasm.advance(1);
+    const log = new PhaseLog();
+    (wasm.backend as WasmBackend).kernel.frame(wasm.model, wasm.state, wasm.params, FRAME_DT, log);
+    expect(log.names()).toContain('bending');
+    expect(log.names().some((n) => n.startsWith('bending ('))).toBe(false);
+    ts.advance(1);
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-5);
   });
 
   it('createState still makes plain arrays; kernel states keep theirs in the kernel memory', () => {

@@ -2,10 +2,10 @@
  * The XPBD solver's substep in WebAssembly (SIMD, optionally threads): a ClothState whose arrays live in the
  * kernel's memory, so the TypeScript reference (reference.ts) and the kernel work on the same arrays with no copy.
  * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
- * (KERNEL_PHASES: integration, the grab, the distance constraints, tethers, stretch limiting, self-contact — its
+ * (KERNEL_PHASES: integration, the grab, the distance constraints, the bending stencils, tethers, stretch limiting, self-contact — its
  * candidate search and passes, self-contact-wasm.ts — and particle contact against every analytic
  * collider, moving or not) and runs each substep's run of them in one call (two, around self-contact); the phases it
- * lacks (the start and end of a frame, wind, carried pins, triangle contact) run in TypeScript in their place in the
+ * lacks (the start and end of a frame, wind, carried pins, triangle contact, the global stretch step) run in TypeScript in their place in the
  * schedule.
  *
  * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
@@ -49,8 +49,8 @@ function contactRefusal(params: SimParams): string | null {
 }
 
 /**
- * The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter, and
- * stencil bending; self-contact's candidate search and narrow phase, with the TypeScript search as the fallback where
+ * The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter; the bending
+ * stencils as well, bit for bit as the reference: bending.as.ts; self-contact's candidate search and narrow phase, with the TypeScript search as the fallback where
  * a window overflows: self-contact-wasm.ts).
  */
 export const KERNEL_PHASES: BackendPhases = {
@@ -58,7 +58,7 @@ export const KERNEL_PHASES: BackendPhases = {
   where: 'in the WebAssembly kernel',
   sharesMemory: true,
   solvers: ['xpbd'],
-  phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.tethers) |
+  phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.tethers) |
     (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact),
   // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
   // that read it to the reference (self-contact reads each particle's cloth: it takes any)
@@ -165,6 +165,7 @@ export class XpbdKernel implements PhaseBackend {
   private readonly ctrlI32: Int32Array;
   private readonly ctrlF64: Float64Array;
   private readonly alpha: Float32Array;
+  private readonly stencilAlpha: Float32Array;
   /** self-contact's memory and passes in the kernel; null for a kernel made without (its phase then runs in the reference) */
   private readonly selfContact: KernelSelfContact | null;
   private readonly helpers: { terminate(): void }[] = [];
@@ -184,13 +185,21 @@ export class XpbdKernel implements PhaseBackend {
     const X = take(12 * n), XP = take(12 * n), XR = take(12 * n), XPR = take(12 * n), V = take(12 * n), W = take(4 * n), F = take(12 * n);
     const LAMBDA = take(4 * m), ANCHOR = take(4 * n), TLEN = take(4 * n);
     const SPRINGS = take(8 * m), REST = take(4 * m), ALPHA = take(4 * m), BATCHES = take(12 * nb);
+    // both bending stencil models (params.bending chooses one, and may change between frames), their compliances and λ
+    const { hinges, laplacian } = model.stencils, stencilMost = Math.max(hinges.areas.length, laplacian.areas.length);
+    const stencilArrays = [hinges, laplacian].map((st) => ({
+      st, offsets: take(4 * st.offsets.length), vertices: take(4 * st.vertices.length), weights: take(4 * st.weights.length),
+      batches: take(8 * st.batches.length),
+    }));
+    const SALPHA = take(4 * stencilMost), SLAMBDA = take(12 * stencilMost);
     const self = withSelfContact ? layoutSelfContact(model, take, selfWindow) : null;
     const pages = Math.ceil(at / 65536);
     this.memory = threads > 1
       ? new WebAssembly.Memory({ initial: pages, maximum: pages, shared: true })
       : new WebAssembly.Memory({ initial: pages });
     const buf = this.memory.buffer;
-    this.layout = [X, XP, XR, XPR, W, F, LAMBDA, ANCHOR, TLEN, SPRINGS, REST, ALPHA, BATCHES, nb, n];
+    this.layout = [X, XP, XR, XPR, W, F, LAMBDA, ANCHOR, TLEN, SPRINGS, REST, ALPHA, BATCHES, nb, n,
+      ...stencilArrays.flatMap((a) => [a.offsets, a.vertices, a.weights, a.batches, a.st.batches.length]), SALPHA, SLAMBDA];
     this.exports = instantiateKernel(module, this.memory, this.layout);
     this.ctrlI32 = new Int32Array(buf, 0, CTRL_BYTES / 4);
     this.ctrlF64 = new Float64Array(buf, 0, CTRL_BYTES / 8);
@@ -199,6 +208,14 @@ export class XpbdKernel implements PhaseBackend {
     const batches = new Int32Array(buf, BATCHES, 3 * nb);
     model.batches.forEach((b, k) => { batches[3 * k] = b.start; batches[3 * k + 1] = b.end; batches[3 * k + 2] = b.kind; });
     this.alpha = new Float32Array(buf, ALPHA, m);
+    for (const a of stencilArrays) {
+      new Uint32Array(buf, a.offsets, a.st.offsets.length).set(a.st.offsets);
+      new Uint32Array(buf, a.vertices, a.st.vertices.length).set(a.st.vertices);
+      new Float32Array(buf, a.weights, a.st.weights.length).set(a.st.weights);
+      const b = new Int32Array(buf, a.batches, 2 * a.st.batches.length);
+      a.st.batches.forEach((r, k) => { b[2 * k] = r.start; b[2 * k + 1] = r.end; });
+    }
+    this.stencilAlpha = new Float32Array(buf, SALPHA, stencilMost);
     this.selfContact = self ? new KernelSelfContact(model, buf, self, this.exports) : null;
     this.ctrlI32[CTRL.THREADS / 4] = 1;
     this.ctrlI32[CTRL.SPIN_LIMIT / 4] = SPIN_LIMIT;
@@ -213,6 +230,7 @@ export class XpbdKernel implements PhaseBackend {
       lambdas: new Float32Array(buf, LAMBDA, m),
       tetherAnchors: new Int32Array(buf, ANCHOR, n),
       tetherLengths: new Float32Array(buf, TLEN, n),
+      bendingLambdas: new Float32Array(buf, SLAMBDA, 3 * stencilMost),
     });
   }
 
@@ -306,6 +324,8 @@ export class XpbdKernel implements PhaseBackend {
   private upload(state: ClothState, params: SimParams, h: number): void {
     if (params !== this.paramsSeen) {
       this.alpha.set(params.compliance);
+      this.stencilAlpha.set(params.stencilCompliance);
+      this.ctrlI32[CTRL.STENCILS / 4] = params.bending === 'hinges' ? 1 : params.bending === 'laplacian' ? 2 : 0;
       this.paramsSeen = params;
     }
     const f = this.ctrlF64, i = this.ctrlI32;
@@ -364,9 +384,11 @@ export class XpbdKernel implements PhaseBackend {
    */
   private substep(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
     const f = this.ctrlF64, i = this.ctrlI32;
+    // (the distance and bending phases make as many passes: solver.iterations; KERNEL_FLAG_ACCUMULATE is both's)
     const accumulate = phasePasses(PHASE.distance, params) > 1;
     // λ starts from zero in every substep where it accumulates across passes
     if (accumulate && (mask & (1 << PHASE.distance)) !== 0) state.lambdas.fill(0);
+    if (accumulate && (mask & (1 << PHASE.bending)) !== 0) state.bendingLambdas.fill(0);
     // λ is kept only where it is read: across iterations, and after the frame (energy) from its last substep
     i[CTRL.FLAGS / 4] = (frame.forced ? KERNEL_FLAG_FORCES : 0) | (accumulate ? KERNEL_FLAG_ACCUMULATE | KERNEL_FLAG_STORE_LAMBDA : 0) |
       (frame.sub === frame.substeps - 1 ? KERNEL_FLAG_STORE_LAMBDA : 0) | (log ? KERNEL_FLAG_TRACE : 0);

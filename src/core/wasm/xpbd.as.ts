@@ -2,10 +2,12 @@
 // xpbd-kernel.generated.ts): the kernel's entry points and its walk of the phase schedule. The host (xpbd-wasm.ts)
 // runs the frame loop (frame.ts) and hands the kernel, per substep, the run of the schedule's phases the kernel
 // implements (a mask of phase ids from the one table, gen-layout.mjs); the kernel runs them in schedule order, as
-// the TypeScript reference does (reference.ts): integrate, the grab, distance constraints batch by batch, tethers,
-// stretch limiting batch by batch, particle contact. The phases themselves live beside this file, one job each:
+// the TypeScript reference does (reference.ts): integrate, the grab, distance constraints batch by batch, bending
+// stencils batch by batch, tethers, stretch limiting batch by batch, particle contact. The phases themselves live
+// beside this file, one job each:
 //   integrate.as.ts    integration and the grab
 //   constraints.as.ts  distance constraints, tethers, stretch limiting
+//   bending.as.ts      the bending stencils (hinges, Laplacian)
 //   contact.as.ts      particle contact against the collider records
 //   self-contact.as.ts self-contact's passes over the candidate pairs (the host calls them between two substep()
 //                      calls, on thread 0: the selfContact phase is never part of a substep() here)
@@ -21,19 +23,20 @@
 // Memory: the caller lays out every array and passes their byte offsets to configure(); the control block at
 // CTRL holds the per-substep scalars (its layout is generated, for both sides, by gen-layout.mjs).
 
-import { BATCH_COUNT, BATCHES, N } from './arrays.as';
+import { BATCH_COUNT, BATCHES, N, STENCIL_BATCH_COUNT, STENCIL_BATCHES } from './arrays.as';
+import { solveStencils } from './bending.as';
 import { collideParticles } from './contact.as';
 import { limitStretch, solveDistance, solveTethers } from './constraints.as';
 import { integrate, moveGrabbed } from './integrate.as';
 import {
   BEND, COMMAND, DAMPING, DESC, DESC_ITERATIONS_MASK, DESC_ITERATIONS_SHIFT, DESC_PHASES_MASK, DESC_PHASES_SHIFT,
   DESC_SEQ_MASK, DESC_SEQ_SHIFT, DESC_THREADS_MASK, DESC_THREADS_SHIFT, DISPATCH, FLAGS, H, ITERATIONS,
-  KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE, PHASE, PHASE_CONTACT,
+  KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE, PHASE, PHASE_BENDING, PHASE_CONTACT,
   PHASE_COUNT, PHASE_DISTANCE, PHASE_GRAB, PHASE_INTEGRATE, PHASE_STRETCH_LIMIT, PHASE_TETHERS, READY, STRETCH,
-  SUBSTEP_PHASES, THREADS, TRACE, TRACE_COUNT,
+  STENCILS, SUBSTEP_PHASES, THREADS, TRACE, TRACE_COUNT,
 } from './layout.generated.as';
 import {
-  CHUNK_PARTICLES, CHUNK_SPRINGS, claim, dispatchExit, dispatchSubstep, report, waitDispatch, waitPhase,
+  CHUNK_PARTICLES, CHUNK_SPRINGS, CHUNK_STENCILS, claim, dispatchExit, dispatchSubstep, report, waitDispatch, waitPhase,
 } from './threads.as';
 
 export { configure } from './arrays.as';
@@ -130,6 +133,19 @@ function schedulePhase(t: i32, T: i32, seq: i32, alone: bool, id: i32, iteration
         }
       }
       break;
+    case PHASE_BENDING: {
+      // (the host asks for it only with stencils: STENCILS 1 or 2)
+      const kind = load<i32>(STENCILS) - 1;
+      if (kind < 0) return seq;
+      const batches = STENCIL_BATCHES[kind], count = STENCIL_BATCH_COUNT[kind];
+      for (let it = 0; it < iterations; it++) {
+        for (let b = 0; b < count; b++) {
+          const rec = batches + <usize>b * 8;
+          seq = phase(t, T, seq, alone, id, b, load<i32>(rec), load<i32>(rec, 4), CHUNK_STENCILS);
+        }
+      }
+      break;
+    }
     case PHASE_STRETCH_LIMIT:
       for (let b = 0; b < BATCH_COUNT; b++) {
         const rec = BATCHES + <usize>b * 12;
@@ -179,6 +195,11 @@ function run(id: i32, batch: i32, i0: i32, i1: i32): void {
       const bend = load<i32>(BATCHES + <usize>batch * 12, 8) == BEND;
       solveDistance(i0, i1, <f32>(1 / (h * h)), <f32>(load<f64>(DAMPING) / h), bend ? Infinity : <f32>load<f64>(STRETCH),
         (flags & KERNEL_FLAG_ACCUMULATE) != 0, (flags & KERNEL_FLAG_STORE_LAMBDA) != 0);
+      break;
+    }
+    case PHASE_BENDING: {
+      const h = load<f64>(H);
+      solveStencils(load<i32>(STENCILS) - 1, i0, i1, 1 / (h * h), (flags & KERNEL_FLAG_ACCUMULATE) != 0);
       break;
     }
     case PHASE_TETHERS: solveTethers(i0, i1, load<f64>(STRETCH)); break;
