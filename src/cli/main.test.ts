@@ -2,6 +2,7 @@ import { execFileSync, spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, symlinkSync, writeFileSync } from 'node:fs';
 import { availableParallelism, tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { validateBytes } from 'gltf-validator';
 import { describe, expect, it, vi } from 'vitest';
 import { Simulation, countIntersections } from '../core/index.js';
 import { main, type CliIo } from './main.js';
@@ -198,6 +199,11 @@ describe('drape CLI', () => {
     const baked = chunk(bake);
     expect(baked.animations[0].extras.frames).toEqual([3, 6, 7]);
     expect(baked.meshes[0].primitives[0].targets).toHaveLength(3);
+    // the files as the CLI wrote them pass the Khronos validator: no error, no warning
+    for (const file of [glb, bake]) {
+      const { issues } = await validateBytes(new Uint8Array(readFileSync(file)), { maxIssues: 100 });
+      expect({ file, errors: issues.numErrors, warnings: issues.numWarnings }).toEqual({ file, errors: 0, warnings: 0 });
+    }
   });
 
   it('a bake larger than 1 GiB is refused before the run, naming a stride that fits', async () => {

@@ -18,13 +18,6 @@ export interface RendererLike {
   init?(): Promise<unknown>;
 }
 
-/** What the world reads of a `WebGPURenderer`'s backend: its device, and where it keeps an attribute's GPU buffer. */
-export interface WebGpuBackendLike {
-  readonly isWebGPUBackend?: boolean;
-  readonly device?: GPUDevice | null;
-  get(object: object): { buffer?: GPUBuffer };
-}
-
 export interface DrapeWorldOptions {
   /**
    * the renderer the cloths are drawn with. A three.js `WebGPURenderer` on a WebGPU device lets the world simulate

@@ -19,7 +19,6 @@ import { Follower } from './follow.js';
 import { meshOfGeometry } from './geometry.js';
 import {
   DRAPE_BACKENDS, checkObject, checkOneOf, optionError, type DrapeClothOptions, type DrapeColliderOptions, type DrapePin, type DrapeWorldOptions,
-  type WebGpuBackendLike,
 } from './options.js';
 import { anchorOf, worldScene, type AttachedPin, type WorldCollider } from './scene.js';
 import { GpuSim } from './sim/gpu-sim.js';
@@ -36,6 +35,16 @@ export interface DrapeHit {
   readonly point: Vector3;
   /** from the ray's origin to the hit [m, for a unit direction] */
   readonly distance: number;
+}
+
+/**
+ * What the world reads of a `WebGPURenderer`'s backend: its device, and where it keeps an attribute's GPU buffer.
+ * (Not in the options' types: a page type-checked without the WebGPU types still takes the world's.)
+ */
+interface WebGpuBackendLike {
+  readonly isWebGPUBackend?: boolean;
+  readonly device?: GPUDevice | null;
+  get(object: object): { buffer?: GPUBuffer };
 }
 
 const WHERE = 'DrapeWorld';
