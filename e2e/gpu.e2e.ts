@@ -186,6 +186,31 @@ describe('GPU simulation backend', () => {
     last.forEach((p, i) => p.forEach((x, a) => expect(base[3 * i + a] + diff[3 * i + a]).toBeCloseTo(x, 6)));
   });
 
+  it('a GPU simulation that fails goes on on the CPU from the positions read back, says why, and the GPU chosen again takes it back', async () => {
+    await onGpu(page);
+    await gpuScene(page, 'Pins', 12);
+    await gpuReady(page);
+    await step(page, 40);
+    const before = await centroid(page);
+    const frame = await hook<number>(page, 'frame');
+    expect(await page.evaluate(() => (window as any).drape.gpuError('GPU solver: out of memory (test)'))).toBe(true);
+    expect(await hook(page, 'simBackend')).toBe('cpu');
+    const msg = await hook<{ text: string; kind: string }>(page, 'lastMessage');
+    expect(msg.text).toContain('GPU solver: out of memory (test)');
+    expect(msg.text).toContain('continues on the CPU');
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('the GPU simulation failed');
+    expect(await hook(page, 'frame')).toBe(frame);
+    expect(dist(await centroid(page), before)).toBeLessThan(1e-3);
+    await step(page, 20);
+    expect(dist(await centroid(page), before)).toBeLessThan(0.05);
+    expect(await hook(page, 'frame')).toBe(frame + 20);
+    // the GPU chosen again in the panel is tried again
+    await choose(page, 'backend', 'CPU (worker)');
+    await onGpu(page);
+    expect(await hook(page, 'simBackend')).toBe('gpu');
+    expect(errors).toEqual([]);
+  });
+
   it('a lost device falls back to the CPU solver with the positions kept, and the page says so', async () => {
     await onGpu(page);
     await gpuScene(page, 'Pins', 12);

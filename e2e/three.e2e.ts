@@ -143,25 +143,33 @@ async function pull(page: Page): Promise<{ grabbedOnPress: boolean; releasedOnUp
  */
 async function removeWhileRunning(page: Page): Promise<{
   clothsWithSecond: number; clothsAfter: number; particles: number; finite: boolean; maxY: number; minY: number; error: string; backend: string; backendNote: string;
-  drapedLowest: number[]; secondLowest: number; tableInside: number;
+  drapedLowest: number[]; carried: number[]; secondLowest: number; tableInside: number;
 }> {
   return page.evaluate(async () => {
     const { world, cloth, ball } = (window as any).drapeExample;
     const lowest = (x: Float32Array) => { let m = Infinity; for (let i = 1; i < x.length; i += 3) m = Math.min(m, x[i]); return m; };
     // the page's cloth hangs around the ball: its lowest particle, now, with the second cloth in, and after it is out
     const drapedLowest = [lowest(cloth.positions)];
+    const moved = (from: Float32Array) => { let m = 0; for (let i = 0; i < from.length; i++) m = Math.max(m, Math.abs(cloth.positions[i] - from[i])); return m; };
     // (the page's fabric: the GPU takes several cloths of one fabric; another would move the world to the CPU)
+    let before = Float32Array.from(cloth.positions);
     const second = world.addCloth({ fabric: 'silk', resolution: 6, width: 0.4, height: 0.4, position: [0, 1.6, 0] });
+    await world.step(0);
+    // the page's cloth goes on exactly where it was (a restart would put it back at its start pose)
+    const carried = [moved(before)];
     await world.step(2);
     drapedLowest.push(lowest(cloth.positions));
     const secondLowest = lowest(second.positions);
     const clothsWithSecond = world.cloths.length;
+    before = Float32Array.from(cloth.positions);
     world.removeCloth(second);
+    await world.step(0);
+    carried.push(moved(before));
     await world.step(1);
     drapedLowest.push(lowest(cloth.positions));
     world.removeCollider(ball);
-    // from 1.05 m onto the table (0.2 m): 0.42 s of fall, 25 frames, then at rest
-    await world.step(40);
+    // from about 1 m onto the table (0.2 m): 0.4 s of fall, 25 frames, then folding down onto it
+    await world.step(60);
     const x: Float32Array = cloth.positions;
     let maxY = -Infinity, minY = Infinity, tableInside = 0;
     for (let i = 0; i < x.length; i += 3) {
@@ -173,7 +181,7 @@ async function removeWhileRunning(page: Page): Promise<{
     }
     return {
       clothsWithSecond, clothsAfter: world.cloths.length, particles: x.length / 3, finite: x.every(Number.isFinite), maxY, minY,
-      error: world.error, backend: world.backend, backendNote: world.backendNote, drapedLowest, secondLowest, tableInside,
+      error: world.error, backend: world.backend, backendNote: world.backendNote, drapedLowest, carried, secondLowest, tableInside,
     };
   });
 }
@@ -192,9 +200,10 @@ async function pullThenRemove(page: Page, tag: string): Promise<Awaited<ReturnTy
   const r = await removeWhileRunning(page);
   writeJson(`${tag}-remove`, r);
   expect([r.clothsWithSecond, r.clothsAfter, r.particles, r.finite, r.error]).toEqual([2, 1, 25 * 25, true, '']);
-  // the page's cloth went on draped around the ball (its start pose is flat at 1.05 m) while the second came and
-  // went; the second started from its own start pose (1.6 m)
-  for (const y of r.drapedLowest) expect(Math.abs(y - r.drapedLowest[0])).toBeLessThan(0.02);
+  // the page's cloth went on from where it was as the second came and went (not back to its start pose, flat at
+  // 1.05 m: where it is then after the pull, still on the ball or sliding off it, is chaotic); the second started
+  // from its own start pose (1.6 m)
+  expect(r.carried).toEqual([0, 0]);
   expect(r.drapedLowest[0]).toBeLessThan(1);
   expect(r.secondLowest).toBeGreaterThan(1.5);
   // fallen off where the ball was (its top 1.01 m) onto the table (top 0.2 m), in folds, none of it inside the table

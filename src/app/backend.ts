@@ -25,6 +25,8 @@ export class Backend {
   inLink = false;
   /** the WebGPU device was lost: the GPU backend is gone for this page */
   private gpuLost = false;
+  /** why the GPU simulation failed (its solver could not be made, a readback failed), until the GPU is chosen again */
+  private gpuFailure = '';
 
   constructor(private readonly app: App) {}
 
@@ -62,11 +64,34 @@ export class Backend {
     }
   }
 
+  /**
+   * The GPU simulation failed (GpuSim's onError: a solver that could not be made, a readback that failed): the
+   * cloths go on on the CPU from the last positions read back, and the page says why. Choosing the GPU in the panel
+   * tries it again.
+   */
+  private gpuFailed(message: string): void {
+    const app = this.app;
+    app.dirty = true;
+    this.gpuFailure = message;
+    try {
+      this.place(true);
+    } catch (e) {
+      // a cloth the CPU cannot take and cannot clamp (a mesh file of more particles than its cap)
+      if (!(e instanceof SceneError)) throw e;
+      this.toDefault();
+      app.overlay.message(`${message}. The CPU cannot take this cloth (${e.message}): showing the default scene instead.`);
+      return;
+    }
+    app.overlay.message(`${message}. The simulation continues on the CPU from the last positions read back from the GPU; choose GPU to try it again.`, 'notice');
+    app.panel?.sync();
+  }
+
   /** The backend the current scene and renderer allow for the choice, and why if it differs from the choice. */
   wanted(): { kind: 'cpu' | 'gpu'; note: string } {
     const { stage, scene } = this.app;
     const missing = this.gpuLost ? 'the WebGPU device was lost'
-      : stage.backend !== 'webgpu' || !stage.device ? 'no WebGPU adapter (WebGL2)' : null;
+      : stage.backend !== 'webgpu' || !stage.device ? 'no WebGPU adapter (WebGL2)'
+        : this.gpuFailure ? `the GPU simulation failed (${this.gpuFailure})` : null;
     return chooseBackend(this.choice, scene, { missing, software: stage.softwareAdapter }, { override: 'choose GPU to use it anyway', explainAuto: false });
   }
 
@@ -75,7 +100,11 @@ export class Backend {
     const d: SimDriver = kind === 'gpu' && app.stage.device ? new GpuSim(app.stage.device, app.meshes) : new SimClient(app.meshes);
     d.onFrame = () => { app.dirty = true; };
     d.onPositions = (frames) => app.recorder.capture(frames);
-    d.onError = (m) => app.overlay.message(m, 'error');
+    // a GPU that fails goes on on the CPU, as a DrapeWorld does (world.ts fallBack); the worker's errors are said
+    d.onError = (m) => {
+      if (d.kind === 'gpu' && app.sim === d) this.gpuFailed(m);
+      else app.overlay.message(m, 'error');
+    };
     d.onUnstable = (slot, frame) => this.onUnstable(slot, frame);
     return d;
   }
@@ -172,7 +201,9 @@ export class Backend {
   /** The panel's backend choice: moves the cloths to that backend when it changes where they run. */
   set(choice: BackendChoice): void {
     const app = this.app;
-    const before = { choice: this.choice, inLink: this.inLink, note: this.note };
+    const before = { choice: this.choice, inLink: this.inLink, note: this.note, gpuFailure: this.gpuFailure };
+    // the GPU chosen by hand is tried again after a failure
+    if (choice === 'gpu') this.gpuFailure = '';
     this.choice = choice;
     this.inLink = true;
     const sweepBefore = app.sweep.list().length;

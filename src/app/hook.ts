@@ -3,8 +3,8 @@
  * server, and in a production build only when the page's query has `?testhook` (main.ts): a link cannot call it —
  * the site's Content-Security-Policy lets only the site's own scripts run — and nothing in it runs code or reaches
  * outside the page. Queries return plain JSON values. What it can change: stepping (`step`, for tests that must
- * not depend on the machine's speed), `import` (the same path as the panel's import button), and two test-only
- * faults, `loseDevice` and `poison`.
+ * not depend on the machine's speed), `import` (the same path as the panel's import button), and three test-only
+ * faults, `loseDevice`, `gpuError` and `poison`.
  */
 import { Vector3 } from 'three/webgpu';
 import { clothEntries, clothName, sceneDocument } from '../core/index.js';
@@ -22,6 +22,8 @@ export interface DrapeHook {
   gpuDrawing(): boolean;
   /** tests: destroys the renderer's WebGPU device, as a GPU reset would (false when there is none) */
   loseDevice(): boolean;
+  /** tests: the GPU simulation reports `message` as its error (as a solver that cannot be made would); false when it is not on the GPU */
+  gpuError(message: string): boolean;
   /** tests: makes one particle's position NaN in the simulation (worker or GPU), as a blown-up solve would */
   poison(slot?: number): void;
   /** frame at which a slot's cloth became unstable (non-finite) and was stopped; -1 while it is fine */
@@ -94,6 +96,11 @@ export function installHook(app: App): DrapeHook {
       const d = app.stage.device;
       if (!d) return false;
       d.destroy();
+      return true;
+    },
+    gpuError: (message) => {
+      if (app.sim.kind !== 'gpu' || !app.sim.onError) return false;
+      app.sim.onError(String(message).slice(0, 200));
       return true;
     },
     poison: (slot = 0) => { mirror(slot); app.sim.poison(slot); },

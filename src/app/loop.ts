@@ -7,6 +7,7 @@ import { FRAME_DT } from '../core/index.js';
 import { captionFor } from '../ui/captions.js';
 import type { App } from './app.js';
 import { GpuSim } from '../three/sim/gpu-sim.js';
+import { webGpuBackend } from '../three/sim/solver-buffers.js';
 import { ContactBudget } from './contact-budget.js';
 import { hudInfo } from './hud-feed.js';
 
@@ -36,10 +37,10 @@ export class FrameLoop {
     app.sweep.advance();
     app.slots.syncViews();
     if (app.sim instanceof GpuSim && !app.sim.lost) {
-      const backend = app.stage.renderer.backend as unknown as { get(o: object): { buffer?: GPUBuffer } };
+      const backend = webGpuBackend(app.stage.renderer);
       app.views.forEach((v, k) => {
         const solver = (app.sim as GpuSim).solverOf(k);
-        if (solver && !v.attached && v.model === app.sim.mirrors[k].sim.model) {
+        if (backend && solver && !v.attached && v.model === app.sim.mirrors[k].sim.model) {
           v.attachGpu(backend, solver.positionBuffer, solver.normalBuffer);
           app.dirty = true;
         }

@@ -94,7 +94,7 @@ export class ClothView {
       clearcoatRoughness: 0.4, userData: { look: look.kind },
     }));
     this.cloths = cloths.map((c, k) => {
-      const cloth = new DrapeCloth({ entry: c.entry, model: model.clothParts?.[k] ?? model }, this.shadedMaterials[k], c.name);
+      const cloth = new DrapeCloth({ entry: c.entry, model: model.clothParts?.[k] ?? model }, this.shadedMaterials[k], c.name, false);
       cloth.castShadow = true;
       cloth.receiveShadow = true;
       return cloth;

@@ -28,8 +28,11 @@ export class DrapeCloth extends Mesh<BufferGeometry, Material | Material[]> {
   /** the positions the cloth was last drawn or read back with [m], xyz per particle (see `positions`) */
   private readonly latest: Float32Array;
 
-  /** @internal made by DrapeWorld.addCloth */
-  constructor(readonly part: ClothPart, material: Material | undefined, name: string) {
+  /**
+   * @internal made by DrapeWorld.addCloth (and the app's views); `alone` false: no drawing of its own at its start
+   * pose (a ClothDrawing draws it at once)
+   */
+  constructor(readonly part: ClothPart, material: Material | undefined, name: string, alone = true) {
     super(new BufferGeometry(), material ?? new MeshStandardMaterial({ color: 0xd7dde8, roughness: 0.85, side: DoubleSide }));
     this.ownMaterial = material === undefined;
     this.name = name;
@@ -37,7 +40,7 @@ export class DrapeCloth extends Mesh<BufferGeometry, Material | Material[]> {
     // the vertices move every frame, anywhere: no bounds to cull by
     this.frustumCulled = false;
     // until its world simulates it: drawn alone, at its start pose
-    this.solo = new ClothDrawing(part.model, [this]);
+    if (alone) this.solo = new ClothDrawing(part.model, [this]);
   }
 
   /** particles of the cloth [-] */

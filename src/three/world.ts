@@ -23,6 +23,7 @@ import {
 import { anchorOf, worldScene, type AttachedPin, type WorldCollider } from './scene.js';
 import { GpuSim } from './sim/gpu-sim.js';
 import { MeshStore } from './sim/meshes.js';
+import { webGpuBackend, type WebGpuBackendLike } from './sim/solver-buffers.js';
 import { SimClient, type SimDriver } from './sim/sim-client.js';
 import { carriable, carryState, chooseBackend } from './sim/backend-choice.js';
 
@@ -35,16 +36,6 @@ export interface DrapeHit {
   readonly point: Vector3;
   /** from the ray's origin to the hit [m, for a unit direction] */
   readonly distance: number;
-}
-
-/**
- * What the world reads of a `WebGPURenderer`'s backend: its device, and where it keeps an attribute's GPU buffer.
- * (Not in the options' types: a page type-checked without the WebGPU types still takes the world's.)
- */
-interface WebGpuBackendLike {
-  readonly isWebGPUBackend?: boolean;
-  readonly device?: GPUDevice | null;
-  get(object: object): { buffer?: GPUBuffer };
 }
 
 const WHERE = 'DrapeWorld';
@@ -483,8 +474,7 @@ export class DrapeWorld {
 
   /** the renderer's WebGPU backend, when it is a WebGPURenderer on WebGPU */
   private webGpu(): WebGpuBackendLike | null {
-    const r = this.options.renderer, b = r?.backend as WebGpuBackendLike | undefined;
-    return r?.isWebGPURenderer && b?.isWebGPUBackend && b.device && typeof b.get === 'function' ? b : null;
+    return webGpuBackend(this.options.renderer);
   }
 
   private device(): GPUDevice | null {
