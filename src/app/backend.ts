@@ -73,6 +73,7 @@ export class Backend {
     const app = this.app;
     app.dirty = true;
     this.gpuFailure = message;
+    const capBefore = app.capNote;
     try {
       this.place(true);
     } catch (e) {
@@ -82,7 +83,10 @@ export class Backend {
       app.overlay.message(`${message}. The CPU cannot take this cloth (${e.message}): showing the default scene instead.`);
       return;
     }
-    app.overlay.message(`${message}. The simulation continues on the CPU from the last positions read back from the GPU; choose GPU to try it again.`, 'notice');
+    app.overlay.message(app.capNote !== capBefore
+      ? `${message}. The simulation moves to the CPU, which takes a smaller cloth (${app.capNote}): it restarts; choose GPU to try the GPU again.`
+      : `${message}. The simulation continues on the CPU from the last positions read back from the GPU; choose GPU to try it again.`,
+    'notice');
     app.panel?.sync();
   }
 

@@ -86,6 +86,8 @@ export class ClothDrawing {
    */
   update(positions: Float32Array, normals = true): void {
     for (const c of this.cloths) c.take(positions);
+    // (a raycaster's bounds are computed again when asked: the cloths move)
+    for (const g of this.geometries) g.boundingSphere = null;
     if (this.attachedToSolver) return;
     const n = this.model.particleCount, p = this.position.array as Float32Array;
     if (this.gpu) {

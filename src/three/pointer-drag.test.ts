@@ -114,6 +114,13 @@ describe('PointerDrag: the pointer handling of the addon\'s PointerGrab and of t
     // no longer listening
     pointer(el, 'pointerdown', 200, 200, 4);
     expect(drag.grabbing).toBe(false);
+    // a second finger that lands on the cloth while the first is down elsewhere grabs nothing: it is the page's
+    const { el: el2, passedOn, listen } = element();
+    const drag2 = new PointerDrag(el2, camera, t);
+    listen();
+    el2.dispatchEvent(Object.assign(new Event('pointerdown', { cancelable: true }), { clientX: 200, clientY: 200, pointerId: 9, button: 0, isPrimary: false }));
+    expect(drag2.grabbing).toBe(false);
+    expect(passedOn).toEqual(['pointerdown']);
     // a secondary button grabs nothing
     const again = new PointerDrag(el, camera, t);
     pointer(el, 'pointerdown', 200, 200, 5, 2);

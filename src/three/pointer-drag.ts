@@ -68,7 +68,8 @@ export class PointerDrag<H extends DragHit> {
       swallow(e);
       return;
     }
-    if (e.button !== 0) return;
+    // the primary pointer's press only: a second finger that lands while the first orbits is the orbit's (a pinch)
+    if (e.button !== 0 || e.isPrimary === false) return;
     const ray = this.ray(e.clientX, e.clientY);
     if (this.options.press?.(e, ray)) { swallow(e); return; }
     const hit = this.target.pick(ray);
@@ -76,9 +77,9 @@ export class PointerDrag<H extends DragHit> {
     swallow(e);
     this.camera().getWorldDirection(this.at);
     this.plane.setFromNormalAndCoplanarPoint(this.at, hit.position);
+    this.target.grab(hit, hit.position.clone());
     this.grabbed = { pointer: e.pointerId, hit, offset: hit.position.clone().sub(hit.point) };
     try { this.element.setPointerCapture(e.pointerId); } catch { /* a synthetic event's pointer */ }
-    this.target.grab(hit, hit.position.clone());
     this.options.onGrab?.(true);
   };
 
@@ -96,9 +97,7 @@ export class PointerDrag<H extends DragHit> {
     if (!g) return;
     e.stopImmediatePropagation();
     if (e.pointerId !== g.pointer) return;
-    // (let go first: releasing the capture may send lostpointercapture at once)
     this.end();
-    try { this.element.releasePointerCapture(e.pointerId); } catch { /* released already */ }
   };
 
   /** Lets go of a grab without a pointer event (a scene change, a reset). */
@@ -118,7 +117,9 @@ export class PointerDrag<H extends DragHit> {
 
   private end(): void {
     const g = this.grabbed!;
+    // (let go first: releasing the capture may send lostpointercapture at once)
     this.grabbed = null;
+    try { this.element.releasePointerCapture(g.pointer); } catch { /* released already */ }
     this.target.release(g.hit);
     this.options.onGrab?.(false);
   }

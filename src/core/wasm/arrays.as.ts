@@ -29,15 +29,19 @@ export let ALPHA: usize = 0;
 export let BATCHES: usize = 0;
 /** colour batches */
 export let BATCH_COUNT: i32 = 0;
-/**
- * Each bending stencil model's arrays (model.ts BendingStencils; [0] the hinges, [1] the Laplacian): entry offsets
- * (u32 × stencils + 1), particles (u32 per entry), weights K (f32 per entry), colour batches (i32 × 2: start, end)
- */
-export const STENCIL_OFFSETS = new StaticArray<usize>(2);
-export const STENCIL_VERTICES = new StaticArray<usize>(2);
-export const STENCIL_WEIGHTS = new StaticArray<usize>(2);
-export const STENCIL_BATCHES = new StaticArray<usize>(2);
-export const STENCIL_BATCH_COUNT = new StaticArray<i32>(2);
+// Each bending stencil model's arrays (model.ts BendingStencils; 0 the hinges, 1 the Laplacian): entry offsets
+// (u32 × stencils + 1), particles (u32 per entry), weights K (f32 per entry), colour batches (i32 × 2: start, end).
+// Plain globals, as every offset here: the kernel allocates nothing (its static data would sit in the control block).
+export let HINGE_OFFSETS: usize = 0;
+export let HINGE_VERTICES: usize = 0;
+export let HINGE_WEIGHTS: usize = 0;
+export let HINGE_BATCHES: usize = 0;
+export let HINGE_BATCH_COUNT: i32 = 0;
+export let LAPLACIAN_OFFSETS: usize = 0;
+export let LAPLACIAN_VERTICES: usize = 0;
+export let LAPLACIAN_WEIGHTS: usize = 0;
+export let LAPLACIAN_BATCHES: usize = 0;
+export let LAPLACIAN_BATCH_COUNT: i32 = 0;
 /** compliance per stencil of the model in use, f32 */
 export let STENCIL_ALPHA: usize = 0;
 /** λ per stencil of the model in use, f32 × 3 */
@@ -55,9 +59,9 @@ export function configure(
 ): void {
   X = x; XP = xp; XR = xr; XPR = xpr; W = w; F = f; LAMBDA = lambda; ANCHOR = anchor; TLEN = tlen;
   SPRINGS = springs; REST = rest; ALPHA = alpha; BATCHES = batches; BATCH_COUNT = batchCount; N = particles;
-  STENCIL_OFFSETS[0] = hingeOffsets; STENCIL_VERTICES[0] = hingeVertices; STENCIL_WEIGHTS[0] = hingeWeights;
-  STENCIL_BATCHES[0] = hingeBatches; STENCIL_BATCH_COUNT[0] = hingeBatchCount;
-  STENCIL_OFFSETS[1] = laplacianOffsets; STENCIL_VERTICES[1] = laplacianVertices; STENCIL_WEIGHTS[1] = laplacianWeights;
-  STENCIL_BATCHES[1] = laplacianBatches; STENCIL_BATCH_COUNT[1] = laplacianBatchCount;
+  HINGE_OFFSETS = hingeOffsets; HINGE_VERTICES = hingeVertices; HINGE_WEIGHTS = hingeWeights;
+  HINGE_BATCHES = hingeBatches; HINGE_BATCH_COUNT = hingeBatchCount;
+  LAPLACIAN_OFFSETS = laplacianOffsets; LAPLACIAN_VERTICES = laplacianVertices; LAPLACIAN_WEIGHTS = laplacianWeights;
+  LAPLACIAN_BATCHES = laplacianBatches; LAPLACIAN_BATCH_COUNT = laplacianBatchCount;
   STENCIL_ALPHA = stencilAlpha; STENCIL_LAMBDA = stencilLambda;
 }

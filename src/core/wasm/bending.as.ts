@@ -2,7 +2,10 @@
 // of Wardetzky et al. 2007; model.ts BendingStencils), scalar f64 on f32 data in the TypeScript reference's order
 // of operations (solvers/xpbd.ts solveBending), so that both give the same cloth bit for bit. Stencils of a colour
 // batch share no particle: threads take a batch's stencils in chunks.
-import { STENCIL_ALPHA, STENCIL_LAMBDA, STENCIL_OFFSETS, STENCIL_VERTICES, STENCIL_WEIGHTS, W, X } from './arrays.as';
+import {
+  HINGE_OFFSETS, HINGE_VERTICES, HINGE_WEIGHTS, LAPLACIAN_OFFSETS, LAPLACIAN_VERTICES, LAPLACIAN_WEIGHTS, STENCIL_ALPHA,
+  STENCIL_LAMBDA, W, X,
+} from './arrays.as';
 
 /**
  * Stencils [e0, e1) of model `kind` (0 the hinges, 1 the Laplacian): C = Σ K_k x_k, a 3-vector, with compliance
@@ -10,7 +13,8 @@ import { STENCIL_ALPHA, STENCIL_LAMBDA, STENCIL_OFFSETS, STENCIL_VERTICES, STENC
  * accumulates (several passes a substep) and always written.
  */
 export function solveStencils(kind: i32, e0: i32, e1: i32, invH2: f64, accumulate: bool): void {
-  const offsets = STENCIL_OFFSETS[kind], vertices = STENCIL_VERTICES[kind], weights = STENCIL_WEIGHTS[kind];
+  const offsets = kind == 0 ? HINGE_OFFSETS : LAPLACIAN_OFFSETS;
+  const vertices = kind == 0 ? HINGE_VERTICES : LAPLACIAN_VERTICES, weights = kind == 0 ? HINGE_WEIGHTS : LAPLACIAN_WEIGHTS;
   const x = X, w = W, alphaP = STENCIL_ALPHA, lamP = STENCIL_LAMBDA;
   for (let e = e0; e < e1; e++) {
     const alpha = <f64>load<f32>(alphaP + (<usize>e << 2));

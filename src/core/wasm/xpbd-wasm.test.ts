@@ -9,6 +9,7 @@ import { PHASE, PhaseLog } from '../schedule.js';
 import { REFERENCE } from '../reference.js';
 import { GENERATED_FILE, generateKernelModule } from './gen-wasm.mjs';
 import { wasmKernelAvailable } from './xpbd-wasm.js';
+import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 import { WasmBackend } from '../backend.js';
 
 function maxDiff(a: Float32Array, b: Float32Array): number {
@@ -206,6 +207,38 @@ describe('xpbd wasm kernel', () => {
     expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
     expect([...st.positions]).toEqual([...copy.positions]);
     expect([...st.bendingLambdas]).toEqual([...copy.bendingLambdas]);
+  });
+
+  it('the kernel keeps nothing of its own in memory (no data segment, no start function): the control block starts at 0', () => {
+    // static data (a StaticArray, a string) would be laid out from address 1024 on, inside the control block's
+    // collider records, and a start function would rewrite it whenever a helper thread instantiates the module
+    for (const base64 of [XPBD_WASM_SINGLE, XPBD_WASM_THREADS]) {
+      const b = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
+      const sections: number[] = [];
+      let p = 8;
+      const leb = () => { let r = 0, shift = 0, x: number; do { x = b[p++]; r |= (x & 0x7f) << shift; shift += 7; } while (x & 0x80); return r >>> 0; };
+      while (p < b.length) { const id = b[p++]; const len = leb(); sections.push(id); p += len; }
+      expect(sections).not.toContain(8); // start
+      expect(sections).not.toContain(11); // data
+    }
+  });
+
+  it('the bending stencils beside six colliders (their records fill the control block): as the reference', () => {
+    const sc = validateScene({
+      cloth: { resolution: 12, position: [0, 1.2, 0] }, material: { fabric: 'cotton' }, solver: { bending: 'laplacian', selfContact: false },
+      colliders: [
+        { type: 'sphere', center: [0, 0.5, 0], radius: 0.3 }, { type: 'sphere', center: [0.6, 0.3, 0], radius: 0.1 },
+        { type: 'box', center: [-0.6, 0.2, 0], halfExtents: [0.1, 0.1, 0.1] }, { type: 'capsule', a: [0, 0.1, 0.6], b: [0.3, 0.1, 0.6], radius: 0.05 },
+        { type: 'cylinder', center: [0, 0.2, -0.6], axis: [0, 1, 0], radius: 0.1, height: 0.2 }, { type: 'floor', height: 0 },
+      ],
+    });
+    expect(sc.colliders).toHaveLength(6);
+    const [ts, wasm] = pair(sc);
+    ts.advance(1); wasm.advance(1);
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-6);
+    ts.advance(20); wasm.advance(20);
+    expect(wasm.report().finite).toBe(true);
+    expect(maxDiff(ts.state.positions, wasm.state.positions)).toBeLessThan(1e-3);
   });
 
   it('the bending model switched between frames: the kernel takes the other stencils and their compliances', () => {

@@ -23,7 +23,7 @@
 // Memory: the caller lays out every array and passes their byte offsets to configure(); the control block at
 // CTRL holds the per-substep scalars (its layout is generated, for both sides, by gen-layout.mjs).
 
-import { BATCH_COUNT, BATCHES, N, STENCIL_BATCH_COUNT, STENCIL_BATCHES } from './arrays.as';
+import { BATCH_COUNT, BATCHES, HINGE_BATCH_COUNT, HINGE_BATCHES, LAPLACIAN_BATCH_COUNT, LAPLACIAN_BATCHES, N } from './arrays.as';
 import { solveStencils } from './bending.as';
 import { collideParticles } from './contact.as';
 import { limitStretch, solveDistance, solveTethers } from './constraints.as';
@@ -137,7 +137,7 @@ function schedulePhase(t: i32, T: i32, seq: i32, alone: bool, id: i32, iteration
       // (the host asks for it only with stencils: STENCILS 1 or 2)
       const kind = load<i32>(STENCILS) - 1;
       if (kind < 0) return seq;
-      const batches = STENCIL_BATCHES[kind], count = STENCIL_BATCH_COUNT[kind];
+      const batches = kind == 0 ? HINGE_BATCHES : LAPLACIAN_BATCHES, count = kind == 0 ? HINGE_BATCH_COUNT : LAPLACIAN_BATCH_COUNT;
       for (let it = 0; it < iterations; it++) {
         for (let b = 0; b < count; b++) {
           const rec = batches + <usize>b * 8;
