@@ -39,26 +39,11 @@ export class Backend {
   deviceLost(): void {
     const app = this.app;
     app.dirty = true;
+    this.gpuLost = true;
     // the GPU simulation lived on the lost device: go on on the CPU from the last positions read back
     if (app.sim?.kind === 'gpu') {
-      const frame = app.sim.mirrors[0]?.frame ?? 0;
-      this.gpuLost = true;
-      const capBefore = app.capNote;
-      try {
-        this.place(true);
-      } catch (e) {
-        // a cloth the CPU cannot take and cannot clamp (a mesh file of more particles than its cap)
-        if (!(e instanceof SceneError)) throw e;
-        this.toDefault();
-        app.overlay.message(`WebGPU device lost; switched to WebGL2. The CPU cannot take this cloth (${e.message}): showing the default scene instead.`);
-        return;
-      }
-      app.overlay.message(app.capNote !== capBefore
-        ? `WebGPU device lost; switched to WebGL2. The simulation moves to the CPU, which takes a smaller cloth (${app.capNote}): it restarts.`
-        : `WebGPU device lost; switched to WebGL2. The simulation continues on the CPU from the last positions read back from the GPU (frame ${frame}).`,
-      'notice');
+      this.moveToCpu('WebGPU device lost; switched to WebGL2', '');
     } else {
-      this.gpuLost = true;
       this.note = this.choice === 'gpu' ? 'GPU unavailable: the WebGPU device was lost' : '';
       app.panel?.sync();
     }
@@ -70,9 +55,20 @@ export class Backend {
    * tries it again.
    */
   private gpuFailed(message: string): void {
-    const app = this.app;
-    app.dirty = true;
+    this.app.dirty = true;
     this.gpuFailure = message;
+    this.moveToCpu(message, '; choose GPU to try it again');
+    this.app.panel?.sync();
+  }
+
+  /**
+   * The GPU simulation cannot go on (`cause`, said first): the cloths go on on the CPU from the last positions read
+   * back — a cloth the CPU's size cap clamps restarts smaller, one it cannot take at all gives way to the default
+   * scene — and the page says which; `tail` ends the notice.
+   */
+  private moveToCpu(cause: string, tail: string): void {
+    const app = this.app;
+    const frame = app.sim.mirrors[0]?.frame ?? 0;
     const capBefore = app.capNote;
     try {
       this.place(true);
@@ -80,14 +76,13 @@ export class Backend {
       // a cloth the CPU cannot take and cannot clamp (a mesh file of more particles than its cap)
       if (!(e instanceof SceneError)) throw e;
       this.toDefault();
-      app.overlay.message(`${message}. The CPU cannot take this cloth (${e.message}): showing the default scene instead.`);
+      app.overlay.message(`${cause}. The CPU cannot take this cloth (${e.message}): showing the default scene instead.`);
       return;
     }
     app.overlay.message(app.capNote !== capBefore
-      ? `${message}. The simulation moves to the CPU, which takes a smaller cloth (${app.capNote}): it restarts; choose GPU to try the GPU again.`
-      : `${message}. The simulation continues on the CPU from the last positions read back from the GPU; choose GPU to try it again.`,
+      ? `${cause}. The simulation moves to the CPU, which takes a smaller cloth (${app.capNote}): it restarts${tail}.`
+      : `${cause}. The simulation continues on the CPU from the last positions read back from the GPU (frame ${frame})${tail}.`,
     'notice');
-    app.panel?.sync();
   }
 
   /** The backend the current scene and renderer allow for the choice, and why if it differs from the choice. */
