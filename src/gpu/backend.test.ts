@@ -44,4 +44,19 @@ describe.skipIf(!device)('GpuBackend', () => {
     sim.reset();
     expect(sim.report().centroid[1]).toBeCloseTo(1.2, 6);
   });
+
+  it('a read asked for before the cloth is let go, and run after it, touches no freed buffer: it rejects, and the device reports nothing', async () => {
+    // (as in the app: a load lets the solvers go while a readback is queued behind one in flight; a copy from freed
+    // buffers would be a validation error that a new solver's error scope, open while it is made, takes for its own)
+    const sim = new Simulation(scene(), { kernel: 'ts' });
+    const backend = await GpuBackend.create(device!, sim.model);
+    sim.useBackend(backend);
+    sim.advance(2);
+    device!.pushErrorScope('validation');
+    const first = backend.solver.read(sim.state), second = backend.solver.read(sim.state);
+    backend.dispose();
+    const results = await Promise.allSettled([first, second]);
+    expect(results.map((r) => r.status)).toEqual(['rejected', 'rejected']);
+    expect(await device!.popErrorScope()).toBeNull();
+  });
 });

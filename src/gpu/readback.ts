@@ -17,6 +17,7 @@ export class Readback {
   private readonly buffers: ClothBuffers;
   private staging: GPUBuffer | undefined;
   private reading: Promise<void> = Promise.resolve();
+  private destroyed = false;
   /** the most self-contact candidate pairs any pass found, over the reads since the cloth was last uploaded (0 without self-contact) */
   selfPairsMost = 0;
 
@@ -35,6 +36,10 @@ export class Readback {
   }
 
   private async readNow(state: ClothState): Promise<void> {
+    // a read asked for before the cloth's buffers were freed runs after the reads ahead of it: by then there may be
+    // nothing to copy, and a copy submitted from freed buffers is a validation error on the device, which an error
+    // scope open elsewhere (a new solver being made: solver.ts create) would take for its own
+    if (this.destroyed) throw new Error('GPU readback: the cloth was freed before its read ran');
     const n = this.model.particleCount;
     const vecBytes = n * 16;
     const lambdaBytes = this.model.restLengths.length * 4;
@@ -78,8 +83,9 @@ export class Readback {
     if (this.buffers.hasSelfContact) this.device.queue.writeBuffer(this.buffers.buffers.selfArgs, 16, ZERO);
   }
 
-  /** Frees the staging buffer. */
+  /** Frees the staging buffer; reads not yet run reject without touching the device. */
   destroy(): void {
+    this.destroyed = true;
     this.staging?.destroy();
   }
 }
