@@ -60,13 +60,31 @@ interface Row {
   peerError?: string;
   /** on a busy machine: Drape XPBD with the default threads and with one, and their ratio */
   busy?: { xpbd: Timing & { threads: number; aloneFraction: number }; xpbd1: Timing; ratio: number };
+  /**
+   * the same cloth with Drape's default fabric model (modelScene): its bending, stretch and substeps, on the default
+   * threads, one thread and in TypeScript; `ratio1` its 1-thread ms over the like-for-like 1-thread ms
+   */
+  model: { bending: string; stretch: string; substeps: number; xpbd: Timing & { threads: number }; xpbd1: Timing; xpbdTs: Timing; ratio1: number };
 }
 
 function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-spring'): Scene {
   const scene = builtinScene('cotton-basic');
   scene.cloth.resolution = side - 1;
-  // like for like with Jolt, which has no self-contact: the particles, the springs and these substeps, no more
-  scene.solver = { ...scene.solver, type: solver, substeps, iterations: 1, selfContact: false };
+  // like for like with Jolt, which has no self-contact and bends with distance constraints: the particles, the
+  // springs (bend springs too, whatever the default bending model) and these substeps, no more
+  scene.solver = { ...scene.solver, type: solver, substeps, iterations: 1, selfContact: false, bending: 'springs' };
+  return scene;
+}
+
+/**
+ * The bench's cloth with Drape's default fabric model instead: the scene's own bending model, stretch solve and
+ * substeps, so that the cost of what a user gets by default stands beside the like-for-like rows. Self-contact off,
+ * as there: it has its own bench (--self-contact).
+ */
+function modelScene(side: number): Scene {
+  const scene = builtinScene('cotton-basic');
+  scene.cloth.resolution = side - 1;
+  scene.solver = { ...scene.solver, selfContact: false };
   return scene;
 }
 
@@ -197,6 +215,12 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
     const xpbd1 = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(1));
     const xpbdTs = await timeDrape(scene, opts.frames, opts.warmup, { kernel: 'ts' });
     const ms = await timeDrape(benchScene(side, opts.substeps, 'mass-spring'), opts.frames, opts.warmup, { kernel: 'ts' });
+    const model = modelScene(side);
+    const [mx, mx1, mts] = [
+      await timeDrape(model, opts.frames, opts.warmup, cpuOptions(opts.threads)),
+      await timeDrape(model, opts.frames, opts.warmup, cpuOptions(1)),
+      await timeDrape(model, opts.frames, opts.warmup, { kernel: 'ts' }),
+    ];
     const row: Row = {
       particlesPerSide: side,
       particles: xpbd.sim.model.particleCount,
@@ -205,6 +229,10 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
       xpbd1: { ...timing(xpbd1), kernel: xpbd1.kernel },
       xpbdTs: timing(xpbdTs),
       massSpring: timing(ms),
+      model: {
+        bending: mx.sim.params.bending, stretch: mx.sim.params.stretch, substeps: mx.sim.params.substeps,
+        xpbd: { ...timing(mx), threads: mx.threads }, xpbd1: timing(mx1), xpbdTs: timing(mts), ratio1: mx1.msPerFrame / xpbd1.msPerFrame,
+      },
     };
     if (runJolt) {
       try {
@@ -267,6 +295,16 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
   }
   const errs = [...new Set(rows.map((r) => r.peerError).filter(Boolean))];
   for (const e of errs) out(`peer: ${e}`);
+  out('');
+  out("Drape's default fabric model on the same cloth (not like for like: the scenes' default bending, stretch and substeps, self-contact off):");
+  out('');
+  out('| particles | bending | stretch | substeps | XPBD ms/frame | threads | 1 thread ms/frame | TypeScript ms/frame | 1 thread / like-for-like 1 thread | stable |');
+  out('|---|---|---|---|---|---|---|---|---|---|');
+  for (const r of rows) {
+    const m = r.model;
+    out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${m.bending} | ${m.stretch} | ${m.substeps} | ${fmt(m.xpbd.msPerFrame)} | ${m.xpbd.threads} | ` +
+      `${fmt(m.xpbd1.msPerFrame)} | ${fmt(m.xpbdTs.msPerFrame)} | ${fmt(m.ratio1)} | ${m.xpbd.stable ? 'yes' : m.xpbd.finite ? 'NO (flew off)' : 'NO (NaN)'} |`);
+  }
   if (opts.contention) {
     out('');
     out(`Busy machine: ${availableParallelism()} other processes keep every core busy (started by the bench, each bounded in time).`);

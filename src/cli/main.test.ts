@@ -77,6 +77,10 @@ describe('drape CLI', () => {
     expect(row.xpbd.threads).toBe(1); // 'auto' on a cloth this small
     expect(row.xpbd1).toMatchObject({ kernel: 'wasm', finite: true });
     for (const t of [row.xpbd, row.xpbd1, row.xpbdTs, row.massSpring]) expect(t.msPerFrame).toBeGreaterThan(0);
+    // beside the like-for-like rows, the same cloth with the default fabric model: its bending and stretch at 20 substeps
+    expect(row.model).toMatchObject({ bending: 'springs', stretch: 'gauss-seidel', substeps: 20 });
+    for (const t of [row.model.xpbd, row.model.xpbd1, row.model.xpbdTs]) expect(t).toMatchObject({ finite: true, stable: true });
+    expect(row.model.ratio1).toBeCloseTo(row.model.xpbd1.msPerFrame / row.xpbd1.msPerFrame, 10);
   });
 
   it('bench --scenes times built-in scenes as they are on each CPU solver and says what the GPU makes of them', async () => {
@@ -139,6 +143,7 @@ describe('drape CLI', () => {
     expect(r.code).toBe(0);
     expect(r.out).toMatch(/Busy machine: \d+ other processes keep every core busy/);
     expect(r.out).toMatch(/^\| 51×51 \| [\d.]+ \| \d \| \d+ % \| [\d.]+ \| [\d.]+ \|$/m);
+    expect(r.out).toMatch(/^\| 51×51 \| springs \| gauss-seidel \| 20 \| [\d.]+ \| \d \| [\d.]+ \| [\d.]+ \| [\d.]+ \| yes \|$/m);
   });
 
   it('--frames 0 reports the start state; --solver and --set change the scene', async () => {
