@@ -74,6 +74,11 @@ const meshes = (path) => files[path];
   const params = {
     ...resolved, substeps: 1, gravity: new Float64Array(3), compliance: new Float32Array(resolved.compliance.length).fill(Infinity),
     stretchFactor: 1e9, thickness: 0.02, depenetrationSpeed: 1e4, friction: 0, staticFriction: 0, damping: 0,
+    // no bending stencils either, whatever the scene's bending model, and the reference reads each cloth's own values
+    // (as the test sets them)
+    bending: 'springs',
+    perCloth: { thickness: Float64Array.of(0.02), friction: Float64Array.of(0), staticFriction: Float64Array.of(0), damping: Float64Array.of(0), stretchFactor: Float64Array.of(1e9) },
+    springDamping: new Float64Array(resolved.springDamping.length),
   };
   const random = mulberry32(7), cpu = createState(model), x = cpu.positions;
   for (let i = 0; i < model.particleCount; i++) {
