@@ -1,7 +1,7 @@
 #!/usr/bin/env node
-// How a built-in scene comes to rest, second by second (docs/physics.md, "The default bending model"): the wall time
-// per frame, the kinetic energy at the second's end and how many times self-contact searched its candidates again
-// in that second, for a bending model. The WebAssembly kernel on one thread, as `drape run --threads 1`.
+// How a built-in scene comes to rest, second by second (docs/physics.md, "The Laplacian as the default: tried, not
+// kept"): the wall time per frame, the kinetic energy at the second's end and how many times self-contact searched
+// its candidates again in that second, for a bending model. The WebAssembly kernel on one thread, as `drape run --threads 1`.
 //
 //   npx tsc -p tsconfig.build.json && node scripts/settling.mjs
 //   options: --scene cotton-basic  --bending springs,laplacian  --seconds 10
