@@ -37,6 +37,15 @@ async function gpuScene(page: Page, label: string, resolution?: number): Promise
 
 const dist = (a: number[], b: number[]) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 
+/** The hammock (Pins, 12 faces a side) on the GPU run `frames` frames: its centroid and frame then, to fall back from. */
+async function hammockOnGpu(page: Page, frames: number): Promise<{ before: number[]; frame: number }> {
+  await onGpu(page);
+  await gpuScene(page, 'Pins', 12);
+  await gpuReady(page);
+  await step(page, frames);
+  return { before: await centroid(page), frame: await hook<number>(page, 'frame') };
+}
+
 /**
  * One page on the GPU backend for all the tests (opening one compiles the solver's pipelines on SwiftShader,
  * seconds each time): each test loads its own scene, and the device loss comes last. (What the automatic choice
@@ -187,12 +196,7 @@ describe('GPU simulation backend', () => {
   });
 
   it('a GPU simulation that fails goes on on the CPU from the positions read back, says why, and the GPU chosen again takes it back', async () => {
-    await onGpu(page);
-    await gpuScene(page, 'Pins', 12);
-    await gpuReady(page);
-    await step(page, 40);
-    const before = await centroid(page);
-    const frame = await hook<number>(page, 'frame');
+    const { before, frame } = await hammockOnGpu(page, 40);
     expect(await page.evaluate(() => (window as any).drape.gpuError('GPU solver: out of memory (test)'))).toBe(true);
     expect(await hook(page, 'simBackend')).toBe('cpu');
     const msg = await hook<{ text: string; kind: string }>(page, 'lastMessage');
@@ -212,12 +216,7 @@ describe('GPU simulation backend', () => {
   });
 
   it('a lost device falls back to the CPU solver with the positions kept, and the page says so', async () => {
-    await onGpu(page);
-    await gpuScene(page, 'Pins', 12);
-    await gpuReady(page);
-    await step(page, 60);
-    const before = await centroid(page);
-    const frame = await hook<number>(page, 'frame');
+    const { before, frame } = await hammockOnGpu(page, 60);
     expect(await hook(page, 'loseDevice')).toBe(true);
     await page.waitForFunction(() => (window as any).drape.backend() === 'webgl2' && (window as any).drape.simBackend() === 'cpu', null, { timeout: 20_000 });
     const msg = await hook<{ text: string; kind: string }>(page, 'lastMessage');

@@ -185,6 +185,8 @@ function peerSpec(sim: Simulation, iterations: number, colliders = true): PeerCl
 
 const fmt = (v: number, d = 2) => v.toFixed(d);
 const sci = (v: number) => v.toExponential(2);
+/** A timed run's stability, as the tables say it. */
+const stability = (t: Timing) => (t.stable ? 'yes' : t.finite ? 'NO (flew off)' : 'NO (NaN)');
 
 /** An error's first line, for a table cell or a note. */
 const firstLine = (e: unknown): string => (e as Error).message.split('\n')[0];
@@ -290,7 +292,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
     out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${r.constraints} | ${fmt(r.xpbd.msPerFrame)} | ${sci(r.xpbd.particleSubstepsPerSecond)} | ` +
       `${j ? fmt(j.msPerFrame) : 'n/a'} | ${r.ratio !== undefined ? fmt(r.ratio) : 'n/a'} | ` +
       `${fmt(r.xpbd1.msPerFrame)} | ${r.ratio1 !== undefined ? fmt(r.ratio1) : 'n/a'} | ${fmt(r.xpbdTs.msPerFrame)} | ${fmt(r.massSpring.msPerFrame)} | ` +
-      `${r.xpbd.stable ? 'yes' : r.xpbd.finite ? 'NO (flew off)' : 'NO (NaN)'} / ${j ? (j.stable ? 'yes' : j.finite ? 'NO (flew off)' : 'NO (NaN)') : 'n/a'} | ` +
+      `${stability(r.xpbd)} / ${j ? stability(j) : 'n/a'} | ` +
       `${fmt(r.xpbd.centroid[1], 3)} / ${j ? (j.finite ? fmt(j.centroid[1], 3) : 'NaN') : 'n/a'} |`);
   }
   const errs = [...new Set(rows.map((r) => r.peerError).filter(Boolean))];
@@ -303,7 +305,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
   for (const r of rows) {
     const m = r.model;
     out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${m.bending} | ${m.stretch} | ${m.substeps} | ${fmt(m.xpbd.msPerFrame)} | ${m.xpbd.threads} | ` +
-      `${fmt(m.xpbd1.msPerFrame)} | ${fmt(m.xpbdTs.msPerFrame)} | ${fmt(m.ratio1)} | ${m.xpbd.stable ? 'yes' : m.xpbd.finite ? 'NO (flew off)' : 'NO (NaN)'} |`);
+      `${fmt(m.xpbd1.msPerFrame)} | ${fmt(m.xpbdTs.msPerFrame)} | ${fmt(m.ratio1)} | ${stability(m.xpbd)} |`);
   }
   if (opts.contention) {
     out('');
@@ -382,10 +384,9 @@ export async function runSceneBench(opts: SceneBenchOptions, out: (s: string) =>
   out('');
   out('| scene | particles | colliders | substeps | XPBD (wasm kernel) ms/frame | XPBD TypeScript ms/frame | mass-spring ms/frame | stable (XPBD / TS / mass-spring) | GPU |');
   out('|---|---|---|---|---|---|---|---|---|');
-  const ok = (t: Timing) => (t.stable ? 'yes' : t.finite ? 'NO (flew off)' : 'NO (NaN)');
   for (const r of rows) {
     out(`| ${r.scene} | ${r.particles} | ${r.colliders} | ${r.substeps} | ${fmt(r.xpbd.msPerFrame)} (${r.xpbd.kernel}, ${r.xpbd.threads} thread${r.xpbd.threads === 1 ? '' : 's'}) | ` +
-      `${fmt(r.xpbdTs.msPerFrame)} | ${fmt(r.massSpring.msPerFrame)} | ${ok(r.xpbd)} / ${ok(r.xpbdTs)} / ${ok(r.massSpring)} | ` +
+      `${fmt(r.xpbdTs.msPerFrame)} | ${fmt(r.massSpring.msPerFrame)} | ${stability(r.xpbd)} / ${stability(r.xpbdTs)} / ${stability(r.massSpring)} | ` +
       `${r.gpuRefusal === null ? 'takes it (time with --backend gpu)' : r.gpuRefusal === 'n/a' ? 'n/a (GPU module not loaded)' : `refused: ${r.gpuRefusal}`} |`);
   }
   return rows;

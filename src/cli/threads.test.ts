@@ -18,6 +18,25 @@ function scene(): Scene {
   return sc;
 }
 
+/**
+ * Steps `sc` for `frames` frames on one thread and on two (every frame with the helper), then `compare`s the two
+ * cloths; the two-thread one never ran a frame alone and stays finite.
+ */
+async function sideBySide(sc: Scene, frames: number, compare: (one: Simulation, many: Simulation) => void): Promise<void> {
+  const one = new Simulation(sc, { kernel: 'wasm', threads: 1 });
+  const many = new Simulation(sc, { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
+  try {
+    await many.whenReady();
+    (many.backend as WasmBackend).kernel.mode.hold(true);
+    for (let f = 0; f < frames; f++) { one.advance(1); many.advance(1); }
+    expect((many.backend as WasmBackend).kernel.mode.framesAlone).toBe(0);
+    compare(one, many);
+    expect(many.report().finite).toBe(true);
+  } finally {
+    many.dispose();
+  }
+}
+
 // threads need a second core to mean anything (CI machines have 2)
 describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
   it.each([['spinning briefly before they sleep', 32768], ['sleeping at every wait (the path of a busy machine)', 0]])('2 threads give the same cloth as 1, bit for bit, %s', async (_label, spins) => {
@@ -67,19 +86,10 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
         { type: 'floor', height: 0.2 },
       ].map((c) => ({ ...c, motion })),
     });
-    const one = new Simulation(sc, { kernel: 'wasm', threads: 1 });
-    const many = new Simulation(sc, { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
-    try {
-      await many.whenReady();
-      (many.backend as WasmBackend).kernel.mode.hold(true);
-      for (let f = 0; f < 15; f++) { one.advance(1); many.advance(1); }
-      expect((many.backend as WasmBackend).kernel.mode.framesAlone).toBe(0);
+    await sideBySide(sc, 15, (one, many) => {
       expect([...many.state.positions]).toEqual([...one.state.positions]);
       expect([...many.state.velocities]).toEqual([...one.state.velocities]);
-      expect(many.report().finite).toBe(true);
-    } finally {
-      many.dispose();
-    }
+    });
   });
 
   it.each(['hinges', 'laplacian'] as const)('bending on the %s stencils (chunks of a colour batch on both threads): 2 threads give the same cloth as 1, bit for bit', async (bending) => {
@@ -88,19 +98,10 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
     sc.cloth.resolution = 40;
     sc.solver = { ...sc.solver, bending, selfContact: false };
     sc.material.bendingRigidity = 1e-4;
-    const one = new Simulation(sc, { kernel: 'wasm', threads: 1 });
-    const many = new Simulation(sc, { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
-    try {
-      await many.whenReady();
-      (many.backend as WasmBackend).kernel.mode.hold(true);
-      for (let f = 0; f < 30; f++) { one.advance(1); many.advance(1); }
-      expect((many.backend as WasmBackend).kernel.mode.framesAlone).toBe(0);
+    await sideBySide(sc, 30, (one, many) => {
       expect([...many.state.positions]).toEqual([...one.state.positions]);
       expect([...many.state.bendingLambdas]).toEqual([...one.state.bendingLambdas]);
-      expect(many.report().finite).toBe(true);
-    } finally {
-      many.dispose();
-    }
+    });
   });
 
   it('a rebuild stops the old helpers and starts new ones; after dispose it steps on one thread', async () => {
