@@ -6,7 +6,7 @@
  */
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
-import { keepGrabOutside } from './phases.js';
+import { grabFrameTarget, keepGrabOutside } from './phases.js';
 import { REFERENCE } from './reference.js';
 import { PHASE_COUNT, SCOPE_PHASES, assignPhases, framePhases, type BackendPhases, type PhaseLog } from './schedule.js';
 import type { ClothState } from './state.js';
@@ -23,6 +23,8 @@ export interface FrameVars {
   forced: boolean;
   /** position of the grabbed particle after the frame-start phases [m] (the grab carries it from there) */
   readonly grabFrom: Float64Array;
+  /** where the grab carries it by the frame's end [m]: the grab target, or as far toward it as params.grabSpeed allows */
+  readonly grabTo: Float64Array;
 }
 
 /** A backend the frame loop hands phases to. */
@@ -36,7 +38,7 @@ export interface PhaseBackend {
   run(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void;
 }
 
-const vars: FrameVars = { h: 0, substeps: 0, sub: 0, forced: false, grabFrom: new Float64Array(3) };
+const vars: FrameVars = { h: 0, substeps: 0, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
 
 /**
  * Advances the cloth by dt [s] in params.substeps substeps: the schedule's phases for params.solver, run by
@@ -57,7 +59,14 @@ export function runFrame(
   keepGrabOutside(state, params, state.time, state.time + dt);
   runPhases(phases & SCOPE_PHASES['frame-start'], own, backend, model, state, params, log);
   const g = state.grabbed, x = state.positions, from = f.grabFrom;
-  if (g >= 0) { from[0] = x[3 * g]; from[1] = x[3 * g + 1]; from[2] = x[3 * g + 2]; }
+  if (g >= 0) {
+    from[0] = x[3 * g]; from[1] = x[3 * g + 1]; from[2] = x[3 * g + 2];
+    grabFrameTarget(from, state.grabTarget, params.grabSpeed * dt, f.grabTo);
+    // short of the target, the frame's own end is kept out of the colliders too (the target already is)
+    if (f.grabTo[0] !== state.grabTarget[0] || f.grabTo[1] !== state.grabTarget[1] || f.grabTo[2] !== state.grabTarget[2]) {
+      keepGrabOutside(state, params, state.time, state.time + dt, f.grabTo);
+    }
+  }
   for (let sub = 0; sub < n; sub++) {
     f.sub = sub;
     f.forced = false;

@@ -53,6 +53,30 @@ describe('picking, pins and live changes', () => {
     s.dispose();
   });
 
+  // dragged from the sphere's top to below it, the grab goes at solver.selfContactSpeed (self-contact is on), so
+  // each frame ends short of the target, somewhere on the line through the sphere: that point is kept out too, and
+  // the particle goes round the sphere instead of through it
+  it.each(['ts', 'wasm'] as const)('%s: a grab dragged through the sphere goes round it, outside it at every frame', (kernel) => {
+    const scene = builtinScene('custom')!;
+    scene.cloth.resolution = 8;
+    const s = new Simulation(scene, { kernel });
+    expect(s.params.grabSpeed).toBe(scene.solver.selfContactSpeed);
+    const sphere = scene.colliders.find((c) => c.type === 'sphere')!;
+    if (sphere.type !== 'sphere') throw new Error('custom has a sphere');
+    const [cx, cy, cz] = sphere.center;
+    const p = 4 * 9 + 4, x = s.state.positions, th = s.params.thickness;
+    s.advance(30); // lying on the sphere's top
+    grab(s.state, p, [cx, cy - sphere.radius - 0.05, cz + 0.01]);
+    let least = Infinity;
+    for (let f = 0; f < 30; f++) {
+      s.advance(1);
+      least = Math.min(least, Math.hypot(x[3 * p] - cx, x[3 * p + 1] - cy, x[3 * p + 2] - cz));
+    }
+    expect(least).toBeGreaterThanOrEqual(sphere.radius + th - 1e-6);
+    expect(x[3 * p + 1]).toBeLessThan(cy - sphere.radius); // under it by now
+    s.dispose();
+  });
+
   it('a particle pinned at run time stops, and moves again when unpinned', () => {
     const s = sim();
     s.advance(5);

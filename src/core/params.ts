@@ -90,6 +90,11 @@ export interface SimParams {
   stretch: StretchSolve;
   /** whether the cloth is kept from passing through itself (solver.selfContact; self-contact.ts) */
   selfContact: boolean;
+  /**
+   * fastest the grab carries its particle [m/s]: with self-contact, solver.selfContactSpeed (the speed the substeps
+   * let self-contact catch; a faster drag tears the grabbed corner through the cloth), else Infinity
+   */
+  grabSpeed: number;
   /** bending rigidity B of the sheet [N·m] (material.bendingRigidity; the first cloth's, each stencil's own is in stencilCompliance) */
   bendingRigidity: number;
   /**
@@ -328,6 +333,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     bending,
     stretch: scene.solver.type === 'xpbd' ? scene.solver.stretch : 'gauss-seidel',
     selfContact: scene.solver.selfContact,
+    grabSpeed: scene.solver.selfContact && speed > 0 ? speed : Infinity,
     bendingRigidity,
     stencilCompliance,
     damping,

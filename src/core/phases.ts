@@ -154,14 +154,27 @@ export function carryPinned(state: ClothState, params: SimParams, t0: number, t1
   }
 }
 
-/** Moves the grabbed particle a fraction of the way from `from` to the grab target (kinematic). */
-export function moveGrabbed(state: ClothState, fx: number, fy: number, fz: number, fraction: number): void {
+/**
+ * Where the grab carries its particle over this frame [m], into `out`: the grab target, or, where that is farther
+ * from `from` (the particle at the frame's start) than `maxMove` [m], the point `maxMove` along the way to it — the
+ * rest comes in the frames after (runFrame: params.grabSpeed × the frame's length).
+ */
+export function grabFrameTarget(from: ArrayLike<number>, target: ArrayLike<number>, maxMove: number, out: Float64Array): void {
+  const dx = target[0] - from[0], dy = target[1] - from[1], dz = target[2] - from[2];
+  const d = Math.hypot(dx, dy, dz);
+  const s = d > maxMove ? maxMove / d : 1;
+  out[0] = from[0] + dx * s;
+  out[1] = from[1] + dy * s;
+  out[2] = from[2] + dz * s;
+}
+
+/** Moves the grabbed particle a fraction of the way from `from` to `to` (kinematic). */
+export function moveGrabbed(state: ClothState, from: ArrayLike<number>, to: ArrayLike<number>, fraction: number): void {
   const g = state.grabbed;
   if (g < 0) return;
-  const t = state.grabTarget;
-  place(state, 3 * g, fx + (t[0] - fx) * fraction);
-  place(state, 3 * g + 1, fy + (t[1] - fy) * fraction);
-  place(state, 3 * g + 2, fz + (t[2] - fz) * fraction);
+  place(state, 3 * g, from[0] + (to[0] - from[0]) * fraction);
+  place(state, 3 * g + 1, from[1] + (to[1] - from[1]) * fraction);
+  place(state, 3 * g + 2, from[2] + (to[2] - from[2]) * fraction);
 }
 
 /**
@@ -169,11 +182,12 @@ export function moveGrabbed(state: ClothState, fx: number, fy: number, fz: numbe
  * which writes the target into its uniforms): the grabbed particle is kinematic, so contact never moves it, and a
  * pointer dragged into a collider would pull it inside. A target nearer a collider's surface than the contact
  * thickness is moved out along the surface normal to that distance, each collider posed where it is at the
- * frame's end `t1` (from `t0`); two rounds over the colliders settle a target in a corner between two.
+ * frame's end `t1` (from `t0`); two rounds over the colliders settle a target in a corner between two. `point`
+ * (default the grab target) is the point kept out: runFrame keeps the frame's own target (grabFrameTarget) out too.
  */
-export function keepGrabOutside(state: ClothState, params: SimParams, t0: number, t1: number): void {
+export function keepGrabOutside(state: ClothState, params: SimParams, t0: number, t1: number, point: Float64Array = state.grabTarget): void {
   if (state.grabbed < 0 || params.colliders.length === 0) return;
-  const t = state.grabTarget, th = params.perCloth.thickness[params.owner[state.grabbed]];
+  const t = point, th = params.perCloth.thickness[params.owner[state.grabbed]];
   for (let round = 0; round < 2; round++) {
     for (const shape of params.colliders) {
       shape.moveTo(t0, t1);

@@ -38,10 +38,7 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
   },
   integrate: (_model, state, params, frame) => integrate(state, params, frame.h, frame.forced),
   carry: (_model, state, params, frame) => carryPinned(state, params, state.time, state.time + frame.h),
-  grab(_model, state, _params, frame) {
-    const from = frame.grabFrom;
-    moveGrabbed(state, from[0], from[1], from[2], (frame.sub + 1) / frame.substeps);
-  },
+  grab: (_model, state, _params, frame) => moveGrabbed(state, frame.grabFrom, frame.grabTo, (frame.sub + 1) / frame.substeps),
   globalStretch: (model, state, params, frame) => solveGlobalStretch(model, state, params, frame.h, phasePasses(PHASE.globalStretch, params)),
   distance(model, state, params, frame) {
     const passes = phasePasses(PHASE.distance, params);

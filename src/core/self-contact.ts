@@ -5,7 +5,8 @@
  * Collisions, Contact and Friction for Cloth Animation", their repulsion step) in position-based form (Müller et al.
  * 2007; Macklin et al. 2014 for the friction):
  *
- * - Each free particle p is tested against every triangle t not having it as a corner whose box — over the
+ * - Each particle p (a pinned or grabbed one too: moved by a pin's collider or the grab, it pushes the cloth it
+ *   meets) is tested against every triangle t not having it as a corner whose box — over the
  *   substep's start and end positions, widened by the self-contact distance h — meets p's own. The candidates are
  *   found ahead (findCandidates: bounding-box trees over boxes of where each particle can be until the frame's end,
  *   less the pairs too far apart to come within h by then), and found again only when some particle leaves its
@@ -331,7 +332,6 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   const pairs = s.pairs;
   for (let q = 0; q < s.pairCount; q++) {
     const p = pairs[2 * q], t = pairs[2 * q + 1];
-    if (w[p] === 0) continue;
     const jp = 3 * p, bb = 6 * t;
     const px = x[jp], py = x[jp + 1], pz = x[jp + 2];
     if (px < boxes[bb] || px > boxes[bb + 3] || py < boxes[bb + 1] || py > boxes[bb + 4] || pz < boxes[bb + 2] || pz > boxes[bb + 5]) {

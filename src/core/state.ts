@@ -139,8 +139,9 @@ export function setPinned(state: ClothState, particle: number, pinned: boolean):
 }
 
 /**
- * Starts (or moves) a grab: the particle is carried to `target` [m] over the next step and held there. The target
- * must be three finite numbers within ±MAX_GRAB_COORDINATE.
+ * Starts (or moves) a grab: the particle is carried to `target` [m] over the next step and held there — with
+ * self-contact on, at most at solver.selfContactSpeed (params.grabSpeed), so a far target takes more steps. The
+ * target must be three finite numbers within ±MAX_GRAB_COORDINATE.
  */
 export function grab(state: ClothState, particle: number, target: readonly [number, number, number]): void {
   checkParticle('grab', state, particle);

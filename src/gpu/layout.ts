@@ -408,10 +408,10 @@ export const KERNELS = {
     bindings: [['selfBoxes', 'read'], ['selfStarts', 'read'], ['selfRanks', 'read'], ['selfEntries', 'read_write']],
     libs: ['selfGrid'],
   },
-  /** collideSelf's candidates, particle part: each free particle against the triangles of its cells, pairs listed */
+  /** collideSelf's candidates, particle part: each particle (pinned and grabbed ones too) against the triangles of its cells, pairs listed */
   selfFindPoints: {
     bindings: [
-      ['positions', 'read'], ['previous', 'read'], ['invMass', 'read'], ['triangles', 'read'], ['selfBoxes', 'read'],
+      ['positions', 'read'], ['previous', 'read'], ['triangles', 'read'], ['selfBoxes', 'read'],
       ['selfStarts', 'read'], ['selfEntries', 'read'], ['selfPairs', 'read_write'],
     ],
     libs: ['selfGrid', 'selfList'],
@@ -488,6 +488,7 @@ const SUBSTEP_FIELDS = [
   ['invH2', 'f32', '1/h²'],
   ['betaOverH', 'f32', 'damping/h'],
   ['grabFraction', 'f32', '(sub + 1)/substeps'],
+  ['grabMaxMove', 'f32', 'most the grab carries its particle this frame, params.grabSpeed × dt; −1: no limit [m]'],
   ['windOn', 'u32', '1 when the wind blows'],
   ['recover', 'f32', 'depenetrationSpeed·h: most a collider overlap the cloth did not move into is undone [m]'],
   ['recoverTriangle', 'f32', 'recover / model.maxTriangleValence: the same for triangle contact [m]'],

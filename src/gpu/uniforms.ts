@@ -259,6 +259,7 @@ export class UniformTables {
       sv.setFloat32(at + SUBSTEP.invH2, 1 / (h * h), true);
       sv.setFloat32(at + SUBSTEP.betaOverH, params.damping / h, true);
       sv.setFloat32(at + SUBSTEP.grabFraction, (sub + 1) / n, true);
+      sv.setFloat32(at + SUBSTEP.grabMaxMove, Number.isFinite(params.grabSpeed) ? params.grabSpeed * dt : -1, true);
       sv.setUint32(at + SUBSTEP.windOn, windOn ? 1 : 0, true);
       sv.setFloat32(at + SUBSTEP.recover, params.depenetrationSpeed * h, true);
       sv.setFloat32(at + SUBSTEP.recoverTriangle, (params.depenetrationSpeed * h) / Math.max(1, this.model.maxTriangleValence), true);

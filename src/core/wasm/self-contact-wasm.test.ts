@@ -40,7 +40,7 @@ function phaseParity(scene: Scene, frames: number[], window?: number): { same: b
     sim.advance(f - at);
     at = f;
     copyState(sim.state, ts);
-    const frame = { h: FRAME_DT / params.substeps, substeps: params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3) };
+    const frame = { h: FRAME_DT / params.substeps, substeps: params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
     const phases = framePhases(model, ts, params);
     for (let id = 0; id < PHASE.selfContact; id++) if ((phases & (1 << id)) !== 0) REFERENCE[id](model, ts, params, frame);
     copyState(ts, kernel.state);
@@ -106,7 +106,7 @@ describe('self-contact in the WebAssembly kernel', () => {
     const kernel = XpbdKernel.create(model, 1)!;
     sim.advance(20);
     const ts = createState(model);
-    const frame = { h: FRAME_DT / params.substeps, substeps: params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3) };
+    const frame = { h: FRAME_DT / params.substeps, substeps: params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
     // the kernel has found pairs before (the landing)
     copyState(sim.state, kernel.state);
     kernel.state.invMass.set(sim.state.invMass);

@@ -194,14 +194,13 @@ export function selfEdgeBoxes(hMax: f64): void {
 @inline function clothValue(c: i32, k: usize): f64 { return f64At(CLOTH + <usize>c * 24, k); }
 
 /**
- * Particle–triangle pairs [0, count) of PAIRS, in order, as collideSelf's particle pass: a free particle whose
+ * Particle–triangle pairs [0, count) of PAIRS, in order, as collideSelf's particle pass: a particle whose
  * position now or then lies in the triangle's box, with its pair's distance (at most hMax [m]) and friction.
  */
 export function selfParticles(count: i32, hMax: f64): void {
   for (let q = 0; q < count; q++) {
     const pr = PAIRS + (<usize>q << 3);
     const p = load<i32>(pr), t = load<i32>(pr, 4);
-    if (load<f32>(W + (<usize>p << 2)) == 0) continue;
     const jp = <usize>p * 12, bb = TBOX + <usize>t * 48;
     if (!inBox(bb, xn(jp, 0), xn(jp, 1), xn(jp, 2)) && !inBox(bb, xs(jp, 0), xs(jp, 1), xs(jp, 2))) continue;
     const tr = TRIS + <usize>t * 12;

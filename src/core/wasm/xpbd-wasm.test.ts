@@ -200,7 +200,7 @@ describe('xpbd wasm kernel', () => {
     const copy = createState(sim.model);
     copy.positions.set(st.positions);
     copy.invMass.set(st.invMass);
-    const frame = { h: FRAME_DT / sim.params.substeps, substeps: sim.params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3) };
+    const frame = { h: FRAME_DT / sim.params.substeps, substeps: sim.params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
     const before = Float32Array.from(st.positions);
     const log = new PhaseLog();
     kernel.run(1 << PHASE.bending, sim.model, st, sim.params, frame, log);

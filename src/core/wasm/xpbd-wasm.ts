@@ -394,7 +394,7 @@ export class XpbdKernel implements PhaseBackend {
       (frame.sub === frame.substeps - 1 ? KERNEL_FLAG_STORE_LAMBDA : 0) | (log ? KERNEL_FLAG_TRACE : 0);
     f[CTRL.TAYLOR / 8] = state.substeps === 0 ? 0.5 : 1;
     if ((mask & (1 << PHASE.grab)) !== 0) {
-      const frac = (frame.sub + 1) / frame.substeps, t = state.grabTarget, from = frame.grabFrom;
+      const frac = (frame.sub + 1) / frame.substeps, t = frame.grabTo, from = frame.grabFrom;
       f[CTRL.GRAB_AT / 8] = from[0] + (t[0] - from[0]) * frac;
       f[CTRL.GRAB_AT / 8 + 1] = from[1] + (t[1] - from[1]) * frac;
       f[CTRL.GRAB_AT / 8 + 2] = from[2] + (t[2] - from[2]) * frac;

@@ -1,4 +1,5 @@
-// Self-contact, the particles' candidates (selfGrid.wgsl): each free particle p against the triangles of the
+// Self-contact, the particles' candidates (selfGrid.wgsl): each particle p (a pinned or grabbed one too: moved, it
+// pushes the cloth it meets) against the triangles of the
 // triangle grid's cells of its box over the substep, listed in selfPairs for selfPoints where the CPU's tests could
 // act on them: the triangle's box over the substep (widened by h) holds p now or at the substep's start (collideSelf's
 // test), the triangle does not have p as a corner, and either p is within h of the triangle's box now (it may be too
@@ -16,7 +17,6 @@ fn sameSide(x: vec3f, q: vec3f, lo1: vec3f, hi1: vec3f, lo0: vec3f, hi0: vec3f) 
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
   let p = flatIndex(gid, nwg);
   if (p >= globals.particleCount) { return; }
-  if (invMass[p] == 0.0) { return; }
   let bits = selfStarts[0];
   if (bits >= SELF_NOT_FINITE) { return; }
   let inv = cellInverse(bits);

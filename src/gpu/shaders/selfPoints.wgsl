@@ -128,6 +128,6 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   if (k >= selfArgs[3]) { return; }
   let p = selfPairs[1u + 2u * k];
   let t = selfPairs[2u + 2u * k];
-  // p is free: selfFindPoints lists no pinned or grabbed particle
+  // p may be pinned or grabbed (inverse mass 0): then the triangle alone moves
   resolvePair(p, invMass[p], triangles[3u * t], triangles[3u * t + 1u], triangles[3u * t + 2u]);
 }
