@@ -33,5 +33,6 @@ for (let f = 11; f <= 10 + frames; f++) {
   const moved = Math.hypot(x[3 * p] - from[0], x[3 * p + 1] - from[1], x[3 * p + 2] - from[2]);
   console.log(`| ${f} | ${(performance.now() - t).toFixed(0)} | ${moved.toFixed(4)} | ${sim.report().intersections} |`);
 }
+if (kernel === 'gpu' && sim.backend.notes.length) console.log(`notes: ${sim.backend.notes.join('; ')}`);
 sim.dispose();
 process.exit(0);

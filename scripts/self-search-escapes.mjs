@@ -15,7 +15,7 @@ import { lastSelfCandidates } from '../dist/core/self-contact.js';
 import { arg } from './solver-study-common.mjs';
 
 const faces = Number(arg('faces', '64')), frames = Number(arg('frames', '120'));
-const scene = builtinScene('fold');
+const scene = builtinScene(arg('scene', 'fold'));
 scene.cloth.resolution = faces;
 const sim = new Simulation(validateScene(scene), { kernel: 'ts' });
 const n = sim.model.particleCount;
