@@ -245,6 +245,18 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
   return (e * e) / (8 * (shape.minCurvatureRadius + thickness)) > 0.5 * thickness;
 }
 
+/** The box of the first n particles of x [m] into `box` (min xyz, max xyz). */
+function clothBox(x: Float32Array, n: number): void {
+  box[0] = box[1] = box[2] = Infinity; box[3] = box[4] = box[5] = -Infinity;
+  for (let i = 0; i < n; i++) {
+    for (let k = 0; k < 3; k++) {
+      const v = x[3 * i + k];
+      if (v < box[k]) box[k] = v;
+      if (v > box[3 + k]) box[3 + k] = v;
+    }
+  }
+}
+
 /**
  * Particle contact against every collider, for a substep of h [s] (the `contact` phase): each particle within the
  * contact thickness of a collider is pushed out along the surface normal, with friction. `collideTriangles` (the
@@ -272,14 +284,7 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
   const n = model.particleCount;
   // the cloth's box (pinned particles too: a triangle from a pin to a free particle can touch): every particle and
   // triangle point the contact below can move lies in it
-  box[0] = box[1] = box[2] = Infinity; box[3] = box[4] = box[5] = -Infinity;
-  for (let i = 0; i < n; i++) {
-    for (let k = 0; k < 3; k++) {
-      const v = x[3 * i + k];
-      if (v < box[k]) box[k] = v;
-      if (v > box[3 + k]) box[3 + k] = v;
-    }
-  }
+  clothBox(x, n);
   for (const shape of params.colliders) {
     shape.moveTo(state.time, state.time + h);
     // a shape whose bounding ball is farther than the thickness from that box touches nothing this substep
@@ -330,16 +335,29 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
   const owner = params.owner, thickness = params.perCloth.thickness, thMax = params.thickness;
   // a particle can be the contact point of every triangle around it: they share its recovery
   const triangleRecover = (params.depenetrationSpeed * h) / Math.max(1, model.maxTriangleValence);
+  const reach = thMax + 2 * model.maxTriangleEdge;
+  let boxed = false;
   for (const shape of params.colliders) {
     const triangleDeepest = shape.triangleDeepest;
     if (!triangleDeepest || !needsTriangleContact(model, shape, thMax)) continue;
     // idempotent: where collideParticles put it for this substep
     shape.moveTo(state.time, state.time + h);
+    // the shape's bounding ball, widened by the reach (a little more, for rounding: the test below says the same
+    // for a vertex outside it): a shape whose ball misses the cloth's box is skipped, and a triangle whose vertex a
+    // lies outside the ball is as far as the distance test below would find it (the mannequin's limbs: most
+    // triangles are far from most of them)
+    const o = shape.o, ball = (shape.boundingRadius + reach) * (1 + 1e-9), ball2 = ball * ball;
+    if (ball2 < Infinity) {
+      if (!boxed) { clothBox(x, model.particleCount); boxed = true; }
+      const gx = Math.max(box[0] - o[0], 0, o[0] - box[3]), gy = Math.max(box[1] - o[1], 0, o[1] - box[4]), gz = Math.max(box[2] - o[2], 0, o[2] - box[5]);
+      if (gx * gx + gy * gy + gz * gz > ball2) continue;
+    }
     const moving = shape.moving;
     const tri = model.triangles;
-    const reach = thMax + 2 * model.maxTriangleEdge;
     for (let t = 0; t < tri.length; t += 3) {
       const a = tri[t], b = tri[t + 1], c = tri[t + 2], cloth = owner[a], th = thickness[cloth];
+      const ex = x[3 * a] - o[0], ey = x[3 * a + 1] - o[1], ez = x[3 * a + 2] - o[2];
+      if (ex * ex + ey * ey + ez * ez > ball2) continue;
       // every point of a triangle stretched at most 2× lies within `reach` of vertex a
       if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal, reach) >= reach) continue;
       const d = triangleDeepest.call(shape, x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);
