@@ -358,8 +358,16 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       const a = tri[t], b = tri[t + 1], c = tri[t + 2], cloth = owner[a], th = thickness[cloth];
       const ex = x[3 * a] - o[0], ey = x[3 * a + 1] - o[1], ez = x[3 * a + 2] - o[2];
       if (ex * ex + ey * ey + ez * ez > ball2) continue;
-      // every point of a triangle stretched at most 2× lies within `reach` of vertex a
-      if (shape.signedDistance(x[3 * a], x[3 * a + 1], x[3 * a + 2], normal, reach) >= reach) continue;
+      // the triangle's own ball (its centroid, its farthest corner from it): farther than the thickness from the
+      // shape, so is every point of the triangle
+      const cx = (x[3 * a] + x[3 * b] + x[3 * c]) / 3, cy = (x[3 * a + 1] + x[3 * b + 1] + x[3 * c + 1]) / 3, cz = (x[3 * a + 2] + x[3 * b + 2] + x[3 * c + 2]) / 3;
+      const r = Math.sqrt(Math.max(
+        (x[3 * a] - cx) ** 2 + (x[3 * a + 1] - cy) ** 2 + (x[3 * a + 2] - cz) ** 2,
+        (x[3 * b] - cx) ** 2 + (x[3 * b + 1] - cy) ** 2 + (x[3 * b + 2] - cz) ** 2,
+        (x[3 * c] - cx) ** 2 + (x[3 * c + 1] - cy) ** 2 + (x[3 * c + 2] - cz) ** 2,
+      ));
+      const far = th + r * (1 + 1e-9);
+      if (shape.signedDistance(cx, cy, cz, normal, far) >= far) continue;
       const d = triangleDeepest.call(shape, x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);
       if (d >= th) continue;
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
