@@ -16,6 +16,8 @@ const bary = new Float64Array(3);
 const surface = new Float64Array(3);
 /** the cloth's bounding box this substep: min x, y, z, max x, y, z */
 const box = new Float64Array(6);
+/** a shape's world half extents (collideTriangles) */
+const half = new Float64Array(3);
 
 /**
  * Start of a step of substep length h: effective inverse masses, tethers if the pins changed, and previous
@@ -354,8 +356,17 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
     }
     const moving = shape.moving;
     const tri = model.triangles;
+    // the shape's box, widened by the thickness: a triangle whose box misses it is farther than that (a pole
+    // beside a flag: its ball holds the flag, its box a few triangles)
+    shape.worldHalfExtents(half);
+    const lx = o[0] - half[0] - thMax, hx = o[0] + half[0] + thMax, ly = o[1] - half[1] - thMax;
+    const hy = o[1] + half[1] + thMax, lz = o[2] - half[2] - thMax, hz = o[2] + half[2] + thMax;
     for (let t = 0; t < tri.length; t += 3) {
       const a = tri[t], b = tri[t + 1], c = tri[t + 2], cloth = owner[a], th = thickness[cloth];
+      const ja = 3 * a, jb = 3 * b, jc = 3 * c;
+      if (Math.max(x[ja], x[jb], x[jc]) < lx || Math.min(x[ja], x[jb], x[jc]) > hx ||
+        Math.max(x[ja + 1], x[jb + 1], x[jc + 1]) < ly || Math.min(x[ja + 1], x[jb + 1], x[jc + 1]) > hy ||
+        Math.max(x[ja + 2], x[jb + 2], x[jc + 2]) < lz || Math.min(x[ja + 2], x[jb + 2], x[jc + 2]) > hz) continue;
       const ex = x[3 * a] - o[0], ey = x[3 * a + 1] - o[1], ez = x[3 * a + 2] - o[2];
       if (ex * ex + ey * ey + ez * ez > ball2) continue;
       // the triangle's own ball (its centroid, its farthest corner from it): farther than the thickness from the

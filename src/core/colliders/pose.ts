@@ -134,6 +134,8 @@ export class PosedCollider implements ColliderShape {
   readonly shapeParams: readonly [number, number, number];
   /** radius of a ball about `o` that holds the whole shape [m] (Infinity for a floor, a plane or a mesh: none is kept) */
   readonly boundingRadius: number;
+  /** half extents of the shape's box about `o` in its own frame [m] (Infinity for a floor, a plane or a mesh) */
+  private readonly localHalf: Float64Array;
   /** world = R·local + o at the end of the current substep; R row-major */
   readonly R = new Float64Array(9);
   readonly o = new Float64Array(3);
@@ -165,6 +167,8 @@ export class PosedCollider implements ColliderShape {
     const [p0, p1, p2] = this.shapeParams;
     this.boundingRadius = this.typeId === COLLIDER_SPHERE ? p0 : this.typeId === COLLIDER_BOX ? Math.hypot(p0, p1, p2)
       : this.typeId === COLLIDER_CAPSULE ? p0 + p1 : this.typeId === COLLIDER_CYLINDER ? Math.hypot(p0, p1) : Infinity;
+    this.localHalf = new Float64Array(this.typeId === COLLIDER_SPHERE ? [p0, p0, p0] : this.typeId === COLLIDER_BOX ? [p0, p1, p2]
+      : this.typeId === COLLIDER_CAPSULE ? [p1, p0 + p1, p1] : this.typeId === COLLIDER_CYLINDER ? [p0, p1, p0] : [Infinity, Infinity, Infinity]);
     this.placeR = new Float64Array(placeR);
     this.placeO = new Float64Array(placeO);
     this.pivot = new Float64Array(motion?.pivot ?? placeO);
@@ -265,6 +269,17 @@ export class PosedCollider implements ColliderShape {
     let moved = false;
     for (let k = 0; k < 9 && !moved; k++) moved = RD[k] !== IDENTITY[k];
     this.moving = moved || oD[0] !== 0 || oD[1] !== 0 || oD[2] !== 0;
+  }
+
+  /**
+   * Half extents of the world box about `o` that holds the shape where it is now (after moveTo) [m], to out[0..2]:
+   * its own frame's box turned by R (Infinity for a floor, a plane or a mesh).
+   */
+  worldHalfExtents(out: Float64Array): void {
+    const R = this.R, e = this.localHalf;
+    for (let i = 0; i < 3; i++) {
+      out[i] = e[0] === Infinity ? Infinity : Math.abs(R[3 * i]) * e[0] + Math.abs(R[3 * i + 1]) * e[1] + Math.abs(R[3 * i + 2]) * e[2];
+    }
   }
 
   /** How far the surface point now at p moved over the current substep [m], to out[0..2]. */
