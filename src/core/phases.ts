@@ -379,7 +379,7 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       ));
       const far = th + r * (1 + 1e-9);
       if (shape.signedDistance(cx, cy, cz, normal, far) >= far) continue;
-      const d = triangleDeepest.call(shape, x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);
+      const d = shape.triangleDeepest!(x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);
       if (d >= th) continue;
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
       const denom = wa * bary[0] + wb * bary[1] + wc * bary[2];

@@ -37,6 +37,21 @@ export function segmentSegmentClosest(
   p2x: number, p2y: number, p2z: number, q2x: number, q2y: number, q2z: number,
   out: Float64Array,
 ): number {
+  // through an array, as closestPointOnTriangle (sphere.ts): a small wrapper V8 inlines, so no number is boxed
+  const v = segmentArgs;
+  v[0] = p1x; v[1] = p1y; v[2] = p1z; v[3] = q1x; v[4] = q1y; v[5] = q1z;
+  v[6] = p2x; v[7] = p2y; v[8] = p2z; v[9] = q2x; v[10] = q2y; v[11] = q2z;
+  segmentSegmentIn(v, out);
+  return v[12];
+}
+
+/** segmentSegmentClosest's arguments p1, q1, p2, q2, and (v[12]) its answer */
+const segmentArgs = new Float64Array(13);
+
+/** segmentSegmentClosest on p1, q1, p2, q2 in v[0…11]; the squared distance to v[12]. */
+function segmentSegmentIn(v: Float64Array, out: Float64Array): void {
+  const p1x = v[0], p1y = v[1], p1z = v[2], q1x = v[3], q1y = v[4], q1z = v[5];
+  const p2x = v[6], p2y = v[7], p2z = v[8], q2x = v[9], q2y = v[10], q2z = v[11];
   const d1x = q1x - p1x, d1y = q1y - p1y, d1z = q1z - p1z;
   const d2x = q2x - p2x, d2y = q2y - p2y, d2z = q2z - p2z;
   const rx = p1x - p2x, ry = p1y - p2y, rz = p1z - p2z;
@@ -64,7 +79,7 @@ export function segmentSegmentClosest(
   }
   out[0] = s; out[1] = t;
   const dx = p1x + d1x * s - (p2x + d2x * t), dy = p1y + d1y * s - (p2y + d2y * t), dz = p1z + d1z * s - (p2z + d2z * t);
-  return dx * dx + dy * dy + dz * dz;
+  v[12] = dx * dx + dy * dy + dz * dz;
 }
 
 /**
@@ -78,6 +93,21 @@ export function segmentTriangleClosest(
   ax: number, ay: number, az: number, bx: number, by: number, bz: number, cx: number, cy: number, cz: number,
   bary: Float64Array, seg: Float64Array,
 ): number {
+  // through an array, as closestPointOnTriangle (sphere.ts): a small wrapper V8 inlines, so no number is boxed
+  const v = segmentTriangleArgs;
+  v[0] = px; v[1] = py; v[2] = pz; v[3] = qx; v[4] = qy; v[5] = qz;
+  v[6] = ax; v[7] = ay; v[8] = az; v[9] = bx; v[10] = by; v[11] = bz; v[12] = cx; v[13] = cy; v[14] = cz;
+  segmentTriangleIn(v, bary, seg);
+  return v[15];
+}
+
+/** segmentTriangleClosest's arguments p, q, a, b, c, and (v[15]) its answer */
+const segmentTriangleArgs = new Float64Array(16);
+
+/** segmentTriangleClosest on p, q, a, b, c in v[0…14]; the squared distance to v[15]. */
+function segmentTriangleIn(v: Float64Array, bary: Float64Array, seg: Float64Array): void {
+  const px = v[0], py = v[1], pz = v[2], qx = v[3], qy = v[4], qz = v[5];
+  const ax = v[6], ay = v[7], az = v[8], bx = v[9], by = v[10], bz = v[11], cx = v[12], cy = v[13], cz = v[14];
   const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;
   const nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
   const nn = nx * nx + ny * ny + nz * nz;
@@ -90,10 +120,11 @@ export function segmentTriangleClosest(
         const ix = px + t * (qx - px) - ax, iy = py + t * (qy - py) - ay, iz = pz + t * (qz - pz) - az;
         // barycentric of the crossing: (n · (ab × ai)) / |n|² etc.
         const w = (nx * (aby * iz - abz * iy) + ny * (abz * ix - abx * iz) + nz * (abx * iy - aby * ix)) / nn;
-        const v = (nx * (iy * acz - iz * acy) + ny * (iz * acx - ix * acz) + nz * (ix * acy - iy * acx)) / nn;
-        if (v >= 0 && w >= 0 && v + w <= 1) {
-          bary[0] = 1 - v - w; bary[1] = v; bary[2] = w; seg[0] = t;
-          return 0;
+        const u = (nx * (iy * acz - iz * acy) + ny * (iz * acx - ix * acz) + nz * (ix * acy - iy * acx)) / nn;
+        if (u >= 0 && w >= 0 && u + w <= 1) {
+          bary[0] = 1 - u - w; bary[1] = u; bary[2] = w; seg[0] = t;
+          v[15] = 0;
+          return;
         }
       }
     }
@@ -122,7 +153,7 @@ export function segmentTriangleClosest(
       seg[0] = segST[0];
     }
   }
-  return best;
+  v[15] = best;
 }
 
 /**
