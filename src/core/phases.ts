@@ -340,8 +340,7 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
   const reach = thMax + 2 * model.maxTriangleEdge;
   let boxed = false;
   for (const shape of params.colliders) {
-    const triangleDeepest = shape.triangleDeepest;
-    if (!triangleDeepest || !needsTriangleContact(model, shape, thMax)) continue;
+    if (!needsTriangleContact(model, shape, thMax)) continue;
     // idempotent: where collideParticles put it for this substep
     shape.moveTo(state.time, state.time + h);
     // the shape's bounding ball, widened by the reach (a little more, for rounding: the test below says the same
