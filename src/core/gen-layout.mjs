@@ -137,6 +137,8 @@ export const CONTROL = [
   ['FRICTION', 'f64', 1, 'kinetic friction coefficient [-]'],
   ['STATIC_FRICTION', 'f64', 1, 'static friction coefficient [-]'],
   ['DEPENETRATION', 'f64', 1, 'depenetrationSpeed [m/s]'],
+  ['TRIANGLE_REACH', 'f64', 1, 'triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m]'],
+  ['TRIANGLE_RECOVER', 'f64', 1, 'triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m]'],
   ['COLLIDER_RECORDS', 'f64', C.MAX_COLLIDERS * C.COLLIDER_RECORD_FLOATS, 'MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep'],
   ['PHASE', 'i32', 1, 'sequence number of the open phase (grows by one per phase, wraps)', true],
   ['DONE', 'i32', 1, 'chunks of the open phase completed and reported', true],

@@ -165,8 +165,12 @@ export const CTRL = {
   STATIC_FRICTION: 216,
   /** f64: depenetrationSpeed [m/s] */
   DEPENETRATION: 224,
+  /** f64: triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m] */
+  TRIANGLE_REACH: 232,
+  /** f64: triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m] */
+  TRIANGLE_RECOVER: 240,
   /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-  COLLIDER_RECORDS: 232,
+  COLLIDER_RECORDS: 248,
   /** i32: sequence number of the open phase (grows by one per phase, wraps) */
   PHASE: 15616,
   /** i32: chunks of the open phase completed and reported */

@@ -247,6 +247,12 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
   return (e * e) / (8 * (shape.minCurvatureRadius + thickness)) > 0.5 * thickness;
 }
 
+/** Squared distance [m²] from the point (cx, cy, cz) to particle j/3 of x. */
+function cornerDistance2(x: Float32Array, j: number, cx: number, cy: number, cz: number): number {
+  const dx = x[j] - cx, dy = x[j + 1] - cy, dz = x[j + 2] - cz;
+  return dx * dx + dy * dy + dz * dz;
+}
+
 /** The box of the first n particles of x [m] into `box` (min xyz, max xyz). */
 function clothBox(x: Float32Array, n: number): void {
   box[0] = box[1] = box[2] = Infinity; box[3] = box[4] = box[5] = -Infinity;
@@ -371,11 +377,7 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       // the triangle's own ball (its centroid, its farthest corner from it): farther than the thickness from the
       // shape, so is every point of the triangle
       const cx = (x[3 * a] + x[3 * b] + x[3 * c]) / 3, cy = (x[3 * a + 1] + x[3 * b + 1] + x[3 * c + 1]) / 3, cz = (x[3 * a + 2] + x[3 * b + 2] + x[3 * c + 2]) / 3;
-      const r = Math.sqrt(Math.max(
-        (x[3 * a] - cx) ** 2 + (x[3 * a + 1] - cy) ** 2 + (x[3 * a + 2] - cz) ** 2,
-        (x[3 * b] - cx) ** 2 + (x[3 * b + 1] - cy) ** 2 + (x[3 * b + 2] - cz) ** 2,
-        (x[3 * c] - cx) ** 2 + (x[3 * c + 1] - cy) ** 2 + (x[3 * c + 2] - cz) ** 2,
-      ));
+      const r = Math.sqrt(Math.max(cornerDistance2(x, ja, cx, cy, cz), cornerDistance2(x, jb, cx, cy, cz), cornerDistance2(x, jc, cx, cy, cz)));
       const far = th + r * (1 + 1e-9);
       if (shape.signedDistance(cx, cy, cz, normal, far) >= far) continue;
       const d = shape.triangleDeepest!(x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);

@@ -46,6 +46,9 @@ export let LAPLACIAN_BATCH_COUNT: i32 = 0;
 export let STENCIL_ALPHA: usize = 0;
 /** λ per stencil of the model in use, f32 × 3 */
 export let STENCIL_LAMBDA: usize = 0;
+/** the cloth's triangles, u32 × 3 each (model.triangles: triangle contact) */
+export let TRIANGLES: usize = 0;
+export let TRIANGLE_COUNT: i32 = 0;
 /** particles */
 export let N: i32 = 0;
 
@@ -55,7 +58,7 @@ export function configure(
   springs: usize, rest: usize, alpha: usize, batches: usize, batchCount: i32, particles: i32,
   hingeOffsets: usize, hingeVertices: usize, hingeWeights: usize, hingeBatches: usize, hingeBatchCount: i32,
   laplacianOffsets: usize, laplacianVertices: usize, laplacianWeights: usize, laplacianBatches: usize, laplacianBatchCount: i32,
-  stencilAlpha: usize, stencilLambda: usize,
+  stencilAlpha: usize, stencilLambda: usize, triangles: usize, triangleCount: i32,
 ): void {
   X = x; XP = xp; XR = xr; XPR = xpr; W = w; F = f; LAMBDA = lambda; ANCHOR = anchor; TLEN = tlen;
   SPRINGS = springs; REST = rest; ALPHA = alpha; BATCHES = batches; BATCH_COUNT = batchCount; N = particles;
@@ -64,4 +67,5 @@ export function configure(
   LAPLACIAN_OFFSETS = laplacianOffsets; LAPLACIAN_VERTICES = laplacianVertices; LAPLACIAN_WEIGHTS = laplacianWeights;
   LAPLACIAN_BATCHES = laplacianBatches; LAPLACIAN_BATCH_COUNT = laplacianBatchCount;
   STENCIL_ALPHA = stencilAlpha; STENCIL_LAMBDA = stencilLambda;
+  TRIANGLES = triangles; TRIANGLE_COUNT = triangleCount;
 }

@@ -160,8 +160,12 @@ export const FRICTION: usize = 208;
 export const STATIC_FRICTION: usize = 216;
 /** f64: depenetrationSpeed [m/s] */
 export const DEPENETRATION: usize = 224;
+/** f64: triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m] */
+export const TRIANGLE_REACH: usize = 232;
+/** f64: triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m] */
+export const TRIANGLE_RECOVER: usize = 240;
 /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-export const COLLIDER_RECORDS: usize = 232;
+export const COLLIDER_RECORDS: usize = 248;
 /** i32: sequence number of the open phase (grows by one per phase, wraps) */
 export const PHASE: usize = 15616;
 /** i32: chunks of the open phase completed and reported */

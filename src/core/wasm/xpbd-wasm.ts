@@ -49,6 +49,18 @@ function contactRefusal(params: SimParams): string | null {
 }
 
 /**
+ * Why the kernel cannot take this scene's triangle contact, or null: it has the sphere's (triangle-contact.as.ts);
+ * a scene whose other shapes need triangle contact (capsules, boxes, cylinders, meshes whose surface can poke
+ * between the vertices) leaves the phase to the TypeScript reference on the kernel's memory.
+ */
+function triangleRefusal(model: ClothModel, params: SimParams): string | null {
+  const refused = contactRefusal(params);
+  if (refused) return refused;
+  const other = params.colliders.find((s) => s.typeId !== COLLIDER_SPHERE && needsTriangleContact(model, s, params.thickness));
+  return other ? `triangle contact with a ${other.type} has no kernel code` : null;
+}
+
+/**
  * The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter; the bending
  * stencils as well, bit for bit as the reference: bending.as.ts; self-contact's candidate search and narrow phase, with the TypeScript search as the fallback where
  * a window overflows: self-contact-wasm.ts).
@@ -59,11 +71,12 @@ export const KERNEL_PHASES: BackendPhases = {
   sharesMemory: true,
   solvers: ['xpbd'],
   phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.tethers) |
-    (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact),
+    (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles),
   // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
   // that read it to the reference (self-contact reads each particle's cloth: it takes any)
-  refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
-    (id === PHASE.contact ? contactRefusal(params) : null) ?? perClothRefusal(id, params),
+  refusal: (id: PhaseId, model: ClothModel, params: SimParams) =>
+    (id === PHASE.contact ? contactRefusal(params) : id === PHASE.contactTriangles ? triangleRefusal(model, params) : null) ??
+    perClothRefusal(id, params),
 };
 
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
@@ -192,6 +205,7 @@ export class XpbdKernel implements PhaseBackend {
       batches: take(8 * st.batches.length),
     }));
     const SALPHA = take(4 * stencilMost), SLAMBDA = take(12 * stencilMost);
+    const nt = model.triangles.length / 3, TRIANGLES = take(12 * nt);
     const self = withSelfContact ? layoutSelfContact(model, take, selfWindow) : null;
     const pages = Math.ceil(at / 65536);
     this.memory = threads > 1
@@ -199,12 +213,13 @@ export class XpbdKernel implements PhaseBackend {
       : new WebAssembly.Memory({ initial: pages });
     const buf = this.memory.buffer;
     this.layout = [X, XP, XR, XPR, W, F, LAMBDA, ANCHOR, TLEN, SPRINGS, REST, ALPHA, BATCHES, nb, n,
-      ...stencilArrays.flatMap((a) => [a.offsets, a.vertices, a.weights, a.batches, a.st.batches.length]), SALPHA, SLAMBDA];
+      ...stencilArrays.flatMap((a) => [a.offsets, a.vertices, a.weights, a.batches, a.st.batches.length]), SALPHA, SLAMBDA, TRIANGLES, nt];
     this.exports = instantiateKernel(module, this.memory, this.layout);
     this.ctrlI32 = new Int32Array(buf, 0, CTRL_BYTES / 4);
     this.ctrlF64 = new Float64Array(buf, 0, CTRL_BYTES / 8);
     new Uint32Array(buf, SPRINGS, 2 * m).set(model.springs);
     new Float32Array(buf, REST, m).set(model.restLengths);
+    new Uint32Array(buf, TRIANGLES, 3 * nt).set(model.triangles);
     const batches = new Int32Array(buf, BATCHES, 3 * nb);
     model.batches.forEach((b, k) => { batches[3 * k] = b.start; batches[3 * k + 1] = b.end; batches[3 * k + 2] = b.kind; });
     this.alpha = new Float32Array(buf, ALPHA, m);
@@ -399,7 +414,12 @@ export class XpbdKernel implements PhaseBackend {
       f[CTRL.GRAB_AT / 8 + 1] = from[1] + (t[1] - from[1]) * frac;
       f[CTRL.GRAB_AT / 8 + 2] = from[2] + (t[2] - from[2]) * frac;
     }
-    if ((mask & (1 << PHASE.contact)) !== 0) {
+    if ((mask & (1 << PHASE.contactTriangles)) !== 0) {
+      // (phases.ts collideTriangles' reach and recovery)
+      f[CTRL.TRIANGLE_REACH / 8] = params.thickness + 2 * model.maxTriangleEdge;
+      f[CTRL.TRIANGLE_RECOVER / 8] = (params.depenetrationSpeed * frame.h) / Math.max(1, model.maxTriangleValence);
+    }
+    if ((mask & ((1 << PHASE.contact) | (1 << PHASE.contactTriangles))) !== 0) {
       // each collider where it is at the substep's end, and its surface motion over the substep
       const shapes = params.colliders;
       for (let k = 0; k < shapes.length; k++) {

@@ -3,12 +3,13 @@
 // runs the frame loop (frame.ts) and hands the kernel, per substep, the run of the schedule's phases the kernel
 // implements (a mask of phase ids from the one table, gen-layout.mjs); the kernel runs them in schedule order, as
 // the TypeScript reference does (reference.ts): integrate, the grab, distance constraints batch by batch, bending
-// stencils batch by batch, tethers, stretch limiting batch by batch, particle contact. The phases themselves live
+// stencils batch by batch, tethers, stretch limiting batch by batch, particle contact, triangle contact. The phases themselves live
 // beside this file, one job each:
 //   integrate.as.ts    integration and the grab
 //   constraints.as.ts  distance constraints, tethers, stretch limiting
 //   bending.as.ts      the bending stencils (hinges, Laplacian)
 //   contact.as.ts      particle contact against the collider records
+//   triangle-contact.as.ts  triangle contact against the sphere records that have it (one thread, in order)
 //   self-contact.as.ts self-contact's passes over the candidate pairs (the host calls them between two substep()
 //                      calls, on thread 0: the selfContact phase is never part of a substep() here)
 //   self-search.as.ts  self-contact's search for those pairs (likewise called by the host, on thread 0)
@@ -26,12 +27,13 @@
 import { BATCH_COUNT, BATCHES, HINGE_BATCH_COUNT, HINGE_BATCHES, LAPLACIAN_BATCH_COUNT, LAPLACIAN_BATCHES, N } from './arrays.as';
 import { solveStencils } from './bending.as';
 import { collideParticles } from './contact.as';
+import { collideTriangles } from './triangle-contact.as';
 import { limitStretch, solveDistance, solveTethers } from './constraints.as';
 import { integrate, moveGrabbed } from './integrate.as';
 import {
   BEND, COMMAND, DAMPING, DESC, DESC_ITERATIONS_MASK, DESC_ITERATIONS_SHIFT, DESC_PHASES_MASK, DESC_PHASES_SHIFT,
   DESC_SEQ_MASK, DESC_SEQ_SHIFT, DESC_THREADS_MASK, DESC_THREADS_SHIFT, DISPATCH, FLAGS, H, ITERATIONS,
-  KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE, PHASE, PHASE_BENDING, PHASE_CONTACT,
+  KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE, PHASE, PHASE_BENDING, PHASE_CONTACT, PHASE_CONTACT_TRIANGLES,
   PHASE_COUNT, PHASE_DISTANCE, PHASE_GRAB, PHASE_INTEGRATE, PHASE_STRETCH_LIMIT, PHASE_TETHERS, READY, STRETCH,
   STENCILS, SUBSTEP_PHASES, THREADS, TRACE, TRACE_COUNT,
 } from './layout.generated.as';
@@ -123,6 +125,8 @@ function schedulePhase(t: i32, T: i32, seq: i32, alone: bool, id: i32, iteration
       seq = phase(t, T, seq, alone, id, 0, 0, N, CHUNK_PARTICLES);
       break;
     case PHASE_GRAB:
+    case PHASE_CONTACT_TRIANGLES:
+      // one item: one thread (triangle contact goes through the triangles in order, Gauss–Seidel)
       seq = phase(t, T, seq, alone, id, 0, 0, 1, 1);
       break;
     case PHASE_DISTANCE:
@@ -204,6 +208,7 @@ function run(id: i32, batch: i32, i0: i32, i1: i32): void {
     }
     case PHASE_TETHERS: solveTethers(i0, i1, load<f64>(STRETCH)); break;
     case PHASE_STRETCH_LIMIT: limitStretch(i0, i1, <f32>load<f64>(STRETCH)); break;
-    case PHASE_CONTACT: collideParticles(i0, i1);
+    case PHASE_CONTACT: collideParticles(i0, i1); break;
+    case PHASE_CONTACT_TRIANGLES: collideTriangles();
   }
 }
