@@ -66,9 +66,11 @@ describe('the npm package', () => {
     }
   });
 
-  // measured: 295 kB, of which the three.js addon is about 24 kB (its files gzipped together), 2026-12-05
-  it('packs into at most 300 kB', () => {
-    expect(packed.size).toBeLessThanOrEqual(300_000);
+  // measured: 295 kB, of which the three.js addon is about 24 kB (its files gzipped together), 2026-12-05; then 301
+  // kB the same day, when the WebAssembly kernel took a sphere's triangle contact (its two builds, base64, 4 kB
+  // more gzipped; the default scene's frame a fifth faster): the budget keeps 10 kB above what ships
+  it('packs into at most 310 kB', () => {
+    expect(packed.size).toBeLessThanOrEqual(310_000);
   });
 
   it('declares its doc comments in the types and ships the code without them', () => {

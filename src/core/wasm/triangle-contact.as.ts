@@ -91,6 +91,13 @@ function closestPoint(
   return dx * dx + dy * dy + dz * dz;
 }
 
+/** Adds w·(kx, ky, kz) [m] to the f32 point at byte j (the reference's `x[j] += w * k`). */
+function nudge(j: usize, w: f64, kx: f64, ky: f64, kz: f64): void {
+  store<f32>(j, <f32>(xAt(j) + w * kx));
+  store<f32>(j + 4, <f32>(xAt(j + 4) + w * ky));
+  store<f32>(j + 8, <f32>(xAt(j + 8) + w * kz));
+}
+
 /** Triangle contact with every sphere record that has it (phases.ts collideTriangles, for spheres). */
 export function collideTriangles(): void {
   const th = load<f64>(THICKNESS), reach = load<f64>(TRIANGLE_REACH), recover = load<f64>(TRIANGLE_RECOVER);
@@ -181,14 +188,10 @@ export function collideTriangles(): void {
       const fs = tl < 1e-12 ? 0 : tl < muS * pressed ? 1 : min((muK * pressed) / tl, 1);
       const made = min(mn + depth, depth);
       const kx = (depth * nx - fs * tx) / denom, ky = (depth * ny - fs * ty) / denom, kz = (depth * nz - fs * tz) / denom;
-      store<f32>(ja, <f32>(xAt(ja) + wa * kx)); store<f32>(ja + 4, <f32>(xAt(ja + 4) + wa * ky)); store<f32>(ja + 8, <f32>(xAt(ja + 8) + wa * kz));
-      store<f32>(jb, <f32>(xAt(jb) + wb * kx)); store<f32>(jb + 4, <f32>(xAt(jb + 4) + wb * ky)); store<f32>(jb + 8, <f32>(xAt(jb + 8) + wb * kz));
-      store<f32>(jc, <f32>(xAt(jc) + wc * kx)); store<f32>(jc + 4, <f32>(xAt(jc + 4) + wc * ky)); store<f32>(jc + 8, <f32>(xAt(jc + 8) + wc * kz));
+      nudge(ja, wa, kx, ky, kz); nudge(jb, wb, kx, ky, kz); nudge(jc, wc, kx, ky, kz);
       if (made > 0) {
         const px = (made * nx) / denom, py = (made * ny) / denom, pz = (made * nz) / denom;
-        store<f32>(pa, <f32>(xAt(pa) + wa * px)); store<f32>(pa + 4, <f32>(xAt(pa + 4) + wa * py)); store<f32>(pa + 8, <f32>(xAt(pa + 8) + wa * pz));
-        store<f32>(pb, <f32>(xAt(pb) + wb * px)); store<f32>(pb + 4, <f32>(xAt(pb + 4) + wb * py)); store<f32>(pb + 8, <f32>(xAt(pb + 8) + wb * pz));
-        store<f32>(pc, <f32>(xAt(pc) + wc * px)); store<f32>(pc + 4, <f32>(xAt(pc + 4) + wc * py)); store<f32>(pc + 8, <f32>(xAt(pc + 8) + wc * pz));
+        nudge(pa, wa, px, py, pz); nudge(pb, wb, px, py, pz); nudge(pc, wc, px, py, pz);
       }
     }
   }
