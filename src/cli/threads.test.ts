@@ -104,6 +104,16 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
     });
   });
 
+  it('triangle contact with the sphere (one chunk: one thread takes it, in order): 2 threads give the same cloth as 1, bit for bit', async () => {
+    // 33² particles on the sphere, whose surface pokes between them: the kernel's triangle pass every substep
+    const sc = builtinScene('cotton-basic')!;
+    sc.cloth.resolution = 32;
+    sc.solver = { ...sc.solver, selfContact: false };
+    await sideBySide(sc, 40, (one, many) => {
+      expect([...many.state.positions]).toEqual([...one.state.positions]);
+    });
+  });
+
   it('a rebuild stops the old helpers and starts new ones; after dispose it steps on one thread', async () => {
     const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
     await sim.whenReady();
