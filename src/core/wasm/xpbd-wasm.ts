@@ -3,10 +3,10 @@
  * kernel's memory, so the TypeScript reference (reference.ts) and the kernel work on the same arrays with no copy.
  * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
  * (KERNEL_PHASES: integration, the grab, the distance constraints, the bending stencils, tethers, stretch limiting, self-contact — its
- * candidate search and passes, self-contact-wasm.ts — and particle contact against every analytic
- * collider, moving or not) and runs each substep's run of them in one call (two, around self-contact); the phases it
- * lacks (the start and end of a frame, wind, carried pins, triangle contact, the global stretch step) run in TypeScript in their place in the
- * schedule.
+ * candidate search and passes, self-contact-wasm.ts — particle contact against every analytic collider, moving or
+ * not, and triangle contact with spheres) and runs each substep's run of them in one call (two, around self-contact);
+ * the phases it lacks (the start and end of a frame, wind, carried pins, triangle contact with other shapes, the
+ * global stretch step) run in TypeScript in their place in the schedule.
  *
  * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
  * (a Web Worker or a Node worker thread each) with helperInit(); until every helper has checked in, substeps run
