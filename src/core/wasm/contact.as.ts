@@ -10,7 +10,7 @@ import { dot3, hi2, lanesXY0, lanesXY1, lo2, store4 } from './simd.as';
 const COLLIDER_BYTES: usize = <usize>COLLIDER_RECORD_FLOATS * 8;
 
 /** Field k of a collider record at `rec` (COLLIDER_RECORD in gen-layout.mjs: offsets in f64s). */
-@inline function field(rec: usize, at: i32, k: i32 = 0): f64 {
+@inline export function field(rec: usize, at: i32, k: i32 = 0): f64 {
   return load<f64>(rec + (<usize>(at + k) << 3));
 }
 
@@ -27,16 +27,27 @@ function boundingRadius(type: i32, s0: f64, s1: f64, s2: f64): f64 {
 }
 
 /** Position-based Coulomb friction scale, as phases.ts frictionScale(). */
-@inline function frictionScale(tangential: f64, depth: f64): f64 {
+@inline export function frictionScale(tangential: f64, depth: f64): f64 {
   if (tangential < 1e-12) return 0;
   if (tangential < load<f64>(STATIC_FRICTION) * depth) return 1;
   return min((load<f64>(FRICTION) * depth) / tangential, 1);
 }
 
 /** The push-out depth that bounds friction, as phases.ts pressedDepth(). */
-@inline function pressedDepth(overlap: f64, movedIn: f64, recover: f64): f64 {
+@inline export function pressedDepth(overlap: f64, movedIn: f64, recover: f64): f64 {
   const over = overlap - movedIn;
   return over <= 0 ? overlap : movedIn + max(0, min(over, 2 * recover - over));
+}
+
+// how far the surface point at p moved over the substep, p − (RD·p + OD), of the last surfaceMotion()
+export let SMX: f64 = 0, SMY: f64 = 0, SMZ: f64 = 0;
+
+/** The surface motion of the moving collider record `rec` at world point p [m] (PosedCollider.surfaceMotion), to SMX…SMZ. */
+@inline export function surfaceMotion(rec: usize, px: f64, py: f64, pz: f64): void {
+  const D = COLLIDER_RECORD_RD;
+  SMX = px - (field(rec, D) * px + field(rec, D, 1) * py + field(rec, D, 2) * pz + field(rec, COLLIDER_RECORD_OD));
+  SMY = py - (field(rec, D, 3) * px + field(rec, D, 4) * py + field(rec, D, 5) * pz + field(rec, COLLIDER_RECORD_OD, 1));
+  SMZ = pz - (field(rec, D, 6) * px + field(rec, D, 7) * py + field(rec, D, 8) * pz + field(rec, COLLIDER_RECORD_OD, 2));
 }
 
 // the outward normal in the shape's own frame of the last localDistance()
@@ -98,7 +109,7 @@ function contactParticle(i: i32, rec: usize, far: f64, th: f64, recover: f64): v
   if (load<f32>(W + (<usize>i << 2)) == 0) return;
   const j = X + <usize>i * 12, jp = XP + <usize>i * 12;
   const px = <f64>load<f32>(j), py = <f64>load<f32>(j, 4), pz = <f64>load<f32>(j, 8);
-  const R = COLLIDER_RECORD_R, D = COLLIDER_RECORD_RD;
+  const R = COLLIDER_RECORD_R;
   const dx = px - field(rec, COLLIDER_RECORD_O), dy = py - field(rec, COLLIDER_RECORD_O, 1), dz = pz - field(rec, COLLIDER_RECORD_O, 2);
   if (far > 0 && dx * dx + dy * dy + dz * dz >= far * far) return;
   const d = localDistance(<i32>field(rec, COLLIDER_RECORD_TYPE),
@@ -114,9 +125,8 @@ function contactParticle(i: i32, rec: usize, far: f64, th: f64, recover: f64): v
   // motion over the substep so far relative to the surface: less the surface point's own (p − (RD·p + OD))
   let mx = px - ex, my = py - ey, mz = pz - ez;
   if (field(rec, COLLIDER_RECORD_MOVING) != 0) {
-    mx -= px - (field(rec, D) * px + field(rec, D, 1) * py + field(rec, D, 2) * pz + field(rec, COLLIDER_RECORD_OD));
-    my -= py - (field(rec, D, 3) * px + field(rec, D, 4) * py + field(rec, D, 5) * pz + field(rec, COLLIDER_RECORD_OD, 1));
-    mz -= pz - (field(rec, D, 6) * px + field(rec, D, 7) * py + field(rec, D, 8) * pz + field(rec, COLLIDER_RECORD_OD, 2));
+    surfaceMotion(rec, px, py, pz);
+    mx -= SMX; my -= SMY; mz -= SMZ;
   }
   const mn = mx * nx + my * ny + mz * nz;
   const movedIn = max(-mn, 0);

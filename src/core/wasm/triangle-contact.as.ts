@@ -4,17 +4,13 @@
 // the reference's bit for bit. The host asks for the phase only when every shape with triangle contact is a sphere
 // (xpbd-wasm.ts triangleRefusal); it runs on one thread, the triangles in order (Gauss–Seidel).
 import { N, TRIANGLE_COUNT, TRIANGLES, W, X, XP } from './arrays.as';
+import { SMX, SMY, SMZ, field, frictionScale, pressedDepth, surfaceMotion } from './contact.as';
 import {
-  COLLIDER_RECORD_EXACT, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_OD,
-  COLLIDER_RECORD_R, COLLIDER_RECORD_RD, COLLIDER_RECORD_SHAPE, COLLIDER_RECORDS, COLLIDERS, FRICTION, STATIC_FRICTION,
-  THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
+  COLLIDER_RECORD_EXACT, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
+  COLLIDER_RECORD_SHAPE, COLLIDER_RECORDS, COLLIDERS, THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
 } from './layout.generated.as';
 
 const COLLIDER_BYTES: usize = <usize>COLLIDER_RECORD_FLOATS * 8;
-
-@inline function field(rec: usize, at: i32, k: i32 = 0): f64 {
-  return load<f64>(rec + (<usize>(at + k) << 3));
-}
 
 @inline function xAt(j: usize): f64 {
   return <f64>load<f32>(j);
@@ -101,7 +97,6 @@ function nudge(j: usize, w: f64, kx: f64, ky: f64, kz: f64): void {
 /** Triangle contact with every sphere record that has it (phases.ts collideTriangles, for spheres). */
 export function collideTriangles(): void {
   const th = load<f64>(THICKNESS), reach = load<f64>(TRIANGLE_REACH), recover = load<f64>(TRIANGLE_RECOVER);
-  const muS = load<f64>(STATIC_FRICTION), muK = load<f64>(FRICTION);
   const count = load<i32>(COLLIDERS);
   let boxed = false;
   for (let k = 0; k < count; k++) {
@@ -114,7 +109,7 @@ export function collideTriangles(): void {
     const gx = max(max(BX0 - o0, 0), o0 - BX1), gy = max(max(BY0 - o1, 0), o1 - BY1), gz = max(max(BZ0 - o2, 0), o2 - BZ1);
     if (gx * gx + gy * gy + gz * gz > ball2) continue;
     const moving = field(rec, COLLIDER_RECORD_MOVING) != 0;
-    const R = COLLIDER_RECORD_R, D = COLLIDER_RECORD_RD;
+    const R = COLLIDER_RECORD_R;
     const r0 = field(rec, R), r1 = field(rec, R, 1), r2 = field(rec, R, 2), r3 = field(rec, R, 3), r4 = field(rec, R, 4);
     const r5 = field(rec, R, 5), r6 = field(rec, R, 6), r7 = field(rec, R, 7), r8 = field(rec, R, 8);
     // PosedCollider.worldHalfExtents of the sphere's box (radius on every axis), widened by the thickness
@@ -172,20 +167,14 @@ export function collideTriangles(): void {
       let my = u0 * (ay - xAt(pa + 4)) + u1 * (by - xAt(pb + 4)) + u2 * (cy0 - xAt(pc + 4));
       let mz = u0 * (az - xAt(pa + 8)) + u1 * (bz - xAt(pb + 8)) + u2 * (cz0 - xAt(pc + 8));
       if (moving) {
-        const px = u0 * ax + u1 * bx + u2 * cx0, py = u0 * ay + u1 * by + u2 * cy0, pz = u0 * az + u1 * bz + u2 * cz0;
-        mx -= px - (field(rec, D) * px + field(rec, D, 1) * py + field(rec, D, 2) * pz + field(rec, COLLIDER_RECORD_OD));
-        my -= py - (field(rec, D, 3) * px + field(rec, D, 4) * py + field(rec, D, 5) * pz + field(rec, COLLIDER_RECORD_OD, 1));
-        mz -= pz - (field(rec, D, 6) * px + field(rec, D, 7) * py + field(rec, D, 8) * pz + field(rec, COLLIDER_RECORD_OD, 2));
+        surfaceMotion(rec, u0 * ax + u1 * bx + u2 * cx0, u0 * ay + u1 * by + u2 * cy0, u0 * az + u1 * bz + u2 * cz0);
+        mx -= SMX; my -= SMY; mz -= SMZ;
       }
       const mn = mx * nx + my * ny + mz * nz;
       const movedIn = max(-mn, 0);
       const depth = min(th - d, movedIn + recover);
       const tx = mx - mn * nx, ty = my - mn * ny, tz = mz - mn * nz;
-      // frictionScale(|t|, pressedDepth(th − d, movedIn, recover))
-      const tl = Math.sqrt(tx * tx + ty * ty + tz * tz);
-      const overlap = th - d, over = overlap - movedIn;
-      const pressed = over <= 0 ? overlap : movedIn + max(0, min(over, 2 * recover - over));
-      const fs = tl < 1e-12 ? 0 : tl < muS * pressed ? 1 : min((muK * pressed) / tl, 1);
+      const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), pressedDepth(th - d, movedIn, recover));
       const made = min(mn + depth, depth);
       const kx = (depth * nx - fs * tx) / denom, ky = (depth * ny - fs * ty) / denom, kz = (depth * nz - fs * tz) / denom;
       nudge(ja, wa, kx, ky, kz); nudge(jb, wb, kx, ky, kz); nudge(jc, wc, kx, ky, kz);

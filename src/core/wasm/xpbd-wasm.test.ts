@@ -4,8 +4,8 @@
  */
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { FRAME_DT, builtinScene, createState, SCENE_NAMES, Simulation, step, validateScene, type Scene, type Vec3 } from '../index.js';
-import { PHASE, PhaseLog } from '../schedule.js';
+import { FRAME_DT, builtinScene, createState, SCENE_NAMES, Simulation, step, validateScene, type ClothState, type Scene, type Vec3 } from '../index.js';
+import { PHASE, PHASES, PhaseLog } from '../schedule.js';
 import { REFERENCE } from '../reference.js';
 import { GENERATED_FILE, generateKernelModule } from './gen-wasm.mjs';
 import { wasmKernelAvailable } from './xpbd-wasm.js';
@@ -16,6 +16,27 @@ function maxDiff(a: Float32Array, b: Float32Array): number {
   let d = 0;
   for (let i = 0; i < a.length; i++) d = Math.max(d, Math.abs(a[i] - b[i]));
   return d;
+}
+
+/**
+ * One substep of phase `id` by `sim`'s kernel on its state and by the reference on a copy (positions, previous
+ * positions, inverse masses, time), the kernel's run checked to be that phase alone: the state, the copy and the
+ * positions before.
+ */
+function kernelAgainstReference(sim: Simulation, id: number): { st: ClothState; copy: ClothState; before: Float32Array } {
+  const kernel = (sim.backend as WasmBackend).kernel, st = sim.state;
+  const copy = createState(sim.model);
+  copy.positions.set(st.positions);
+  copy.previousPositions.set(st.previousPositions);
+  copy.invMass.set(st.invMass);
+  copy.time = st.time;
+  const frame = { h: FRAME_DT / sim.params.substeps, substeps: sim.params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
+  const before = Float32Array.from(st.positions);
+  const log = new PhaseLog();
+  kernel.run(1 << id, sim.model, st, sim.params, frame, log);
+  REFERENCE[id](sim.model, copy, sim.params, frame);
+  expect(log.names()).toEqual([PHASES[id].name]);
+  return { st, copy, before };
 }
 
 function pair(sc: Scene): [Simulation, Simulation] {
@@ -197,16 +218,7 @@ describe('xpbd wasm kernel', () => {
     const sim = new Simulation(sc, { kernel: 'wasm' });
     // a draped, bent cloth (40 frames: on the sphere), then the kernel's phase against the reference on a copy
     sim.advance(40);
-    const kernel = (sim.backend as WasmBackend).kernel, st = sim.state;
-    const copy = createState(sim.model);
-    copy.positions.set(st.positions);
-    copy.invMass.set(st.invMass);
-    const frame = { h: FRAME_DT / sim.params.substeps, substeps: sim.params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
-    const before = Float32Array.from(st.positions);
-    const log = new PhaseLog();
-    kernel.run(1 << PHASE.bending, sim.model, st, sim.params, frame, log);
-    REFERENCE[PHASE.bending](sim.model, copy, sim.params, frame);
-    expect(log.names()).toEqual(['bending']);
+    const { st, copy, before } = kernelAgainstReference(sim, PHASE.bending);
     // the phase did act (it moved particles), and as the reference
     expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
     expect([...st.positions]).toEqual([...copy.positions]);
@@ -222,18 +234,7 @@ describe('xpbd wasm kernel', () => {
     if (how === 'moving') sc.colliders = sc.colliders.map((c) => c.type === 'sphere' ? { ...c, motion } : c);
     const sim = new Simulation(validateScene(sc), { kernel: 'wasm' });
     sim.advance(40);
-    const kernel = (sim.backend as WasmBackend).kernel, st = sim.state;
-    const copy = createState(sim.model);
-    copy.positions.set(st.positions);
-    copy.previousPositions.set(st.previousPositions);
-    copy.invMass.set(st.invMass);
-    copy.time = st.time;
-    const frame = { h: FRAME_DT / sim.params.substeps, substeps: sim.params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
-    const before = Float32Array.from(st.positions);
-    const log = new PhaseLog();
-    kernel.run(1 << PHASE.contactTriangles, sim.model, st, sim.params, frame, log);
-    REFERENCE[PHASE.contactTriangles](sim.model, copy, sim.params, frame);
-    expect(log.names()).toEqual(['contactTriangles']);
+    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
     // the phase did act (the sag between vertices pushed out), and as the reference, x_prev too
     expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
     expect([...st.positions]).toEqual([...copy.positions]);
