@@ -265,6 +265,11 @@ export function selfContactUpdates(model: ClothModel): number {
   return updatesOf.get(model) ?? 0;
 }
 
+/** Counts an update of `model`'s candidates (updateCandidates here, or the WebAssembly kernel's own). */
+export function countSelfUpdate(model: ClothModel): void {
+  updatesOf.set(model, selfContactUpdates(model) + 1);
+}
+
 /** Counts a search for `model`'s candidates (findCandidates here, or the WebAssembly kernel's own). */
 export function countSelfSearch(model: ClothModel): void {
   buildsOf.set(model, selfContactBuilds(model) + 1);
@@ -471,8 +476,8 @@ function reachBox(s: SelfScratch, x: Float32Array, xp: Float32Array, g: Float64A
   s.reachRadius[p] = Math.sqrt(r2);
 }
 
-/** The most particles out of their reach boxes that updateCandidates takes, as a share of the cloth's [-]. */
-const UPDATE_MOST = 1 / 200;
+/** The most particles out of their reach boxes that updateCandidates takes (and the kernel's), as a share of the cloth's [-]. */
+export const UPDATE_MOST = 1 / 200;
 
 /**
  * Updates the candidates for the particles that left their reach boxes, when they are at most UPDATE_MOST of the
@@ -482,10 +487,11 @@ const UPDATE_MOST = 1 / 200;
  * which still hold them. The apart test of the pairs found now measures every particle's reach radius from where
  * it is now (its box may have been made earlier, from elsewhere in it). The edge pairs' memo starts again, as after
  * a search. The pairs listed differ from a new search's, but a pair that is not listed cannot come within hMax, and
- * the lists are in the same order, so the cloth is the same: layers steps as the WebAssembly kernel, which always
- * searches whole, bit for bit (wasm/self-contact-wasm.test.ts). Once fold has landed, a search is mostly for a few
- * particles (scripts/self-search-escapes.mjs); what the updates save, and what they still cost (the refits and the
- * lists' passes, O(pairs)): docs/physics.md, "Its cost".
+ * the lists are in the same order, so the cloth is the same: the WebAssembly kernel, which updates as this does
+ * (self-search.as.ts selfUpdate: the same lists), steps layers and fold bit for bit as when it searches whole
+ * (wasm/self-contact-wasm.test.ts). Once fold has landed, a search is mostly for a few particles
+ * (scripts/self-search-escapes.mjs); what the updates save, and what they still cost (the refits and the lists'
+ * passes, O(pairs)): docs/physics.md, "Its cost".
  */
 function updateCandidates(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number, h: number, left: number): boolean {
   if (s.builtFor !== hMax) return false;
@@ -525,7 +531,7 @@ function updateCandidates(model: ClothModel, state: ClothState, params: SimParam
       }
       s.reachRadius[p] = Math.sqrt(r2);
     }
-    updatesOf.set(model, selfContactUpdates(model) + 1);
+    countSelfUpdate(model);
     s.travel.fill(0);
     s.seen.set(x);
     // the particle pairs of the particles and triangles moved out, and found again

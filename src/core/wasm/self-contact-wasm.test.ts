@@ -8,7 +8,7 @@ import { FRAME_DT } from '../params.js';
 import { REFERENCE } from '../reference.js';
 import { builtinScene } from '../scenes.js';
 import { PHASE, PhaseLog, framePhases } from '../schedule.js';
-import { collideSelf, findSelfCandidates, lastSelfCandidates, selfContactUpdates } from '../self-contact.js';
+import { collideSelf, findSelfCandidates, lastSelfCandidates, selfContactBuilds, selfContactUpdates } from '../self-contact.js';
 import { Simulation } from '../simulation.js';
 import { copyState, createState } from '../state.js';
 import type { Scene } from '../scene.js';
@@ -127,17 +127,40 @@ describe('self-contact in the WebAssembly kernel', () => {
     sim.dispose();
   });
 
-  it('layers, 60 frames: the TypeScript kernel\'s cloth bit for bit (the kernel\'s other phases there are the reference\'s: the cloths differ in damping, friction and stretch limit)', () => {
+  it('layers, 60 frames: the TypeScript kernel\'s cloth bit for bit, and its candidates (the kernel\'s other phases there are the reference\'s: the cloths differ in damping, friction and stretch limit)', () => {
     // substep after substep: the frames, the clock and the edge pairs' measured distances carried across substeps
     const ts = new Simulation(builtinScene('layers'), { kernel: 'ts' }), wasm = new Simulation(builtinScene('layers'), { kernel: 'wasm', threads: 1 });
     ts.advance(60); wasm.advance(60);
     expect([...wasm.state.positions]).toEqual([...ts.state.positions]);
-    // the reference updated its candidates for a few particles at a time where the kernel searched again whole:
-    // the same cloth all the same
+    // both updated their candidates for a few particles at a time, as often, to the same lists
     expect(selfContactUpdates(ts.model)).toBeGreaterThan(10);
+    expect(selfContactUpdates(wasm.model)).toBe(selfContactUpdates(ts.model));
+    expect(selfContactBuilds(wasm.model)).toBe(selfContactBuilds(ts.model));
+    const ref = lastSelfCandidates(ts.model)!, listed = (wasm.backend as WasmBackend).kernel.selfCandidates()!;
+    expect(listed.foundBy).toBe('kernel');
+    expect(String(listed.pairs)).toBe(String(ref.pairs.subarray(0, 2 * ref.pairCount)));
+    expect(String(listed.edgePairs)).toBe(String(ref.edgePairs.subarray(0, 2 * ref.edgePairCount)));
     expect(countIntersections(wasm.model.triangles, wasm.state.positions)).toBe(0);
     ts.dispose();
     wasm.dispose();
+  });
+
+  it.each([
+    ['layers', 60],
+    ['fold', 90],
+  ] as const)('%s, %i frames: updating the candidates for the particles out of their boxes gives the cloth of searching whole, bit for bit', (scene, frames) => {
+    const updating = new Simulation(builtinScene(scene), { kernel: 'wasm', threads: 1 });
+    const whole = new Simulation(builtinScene(scene), { kernel: 'wasm', threads: 1 });
+    // this kernel never updates: wherever a particle leaves its box it searches whole
+    const self = ((whole.backend as WasmBackend).kernel as unknown as { selfContact: { update: () => boolean } }).selfContact;
+    self.update = () => false;
+    updating.advance(frames); whole.advance(frames);
+    expect(selfContactUpdates(whole.model)).toBe(0);
+    expect(selfContactUpdates(updating.model)).toBeGreaterThan(10);
+    expect(selfContactBuilds(updating.model)).toBeLessThan(selfContactBuilds(whole.model));
+    expect([...updating.state.positions]).toEqual([...whole.state.positions]);
+    updating.dispose();
+    whole.dispose();
   });
 
   it('fold (32²) on the kernel crosses itself nowhere at frame 300', () => {

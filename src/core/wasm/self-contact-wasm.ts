@@ -9,12 +9,15 @@
  * size in the kernel's memory (its size is fixed when the kernel is made); a search that finds more pairs than a
  * window holds is made again in TypeScript (findSelfCandidates), which keeps them here and copies them in window
  * by window every substep, in order, which only costs the copies. Several cloths: each particle's cloth and each
- * cloth's thickness and friction are in the kernel's memory, so cloths that differ in them run here too.
+ * cloth's thickness and friction are in the kernel's memory, so cloths that differ in them run here too. Where a
+ * few particles left their reach boxes (at most UPDATE_MOST of the cloth), the kernel updates its own search's
+ * candidates for them (selfUpdate: the reference's updateCandidates, the same pairs) instead of searching whole.
  */
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import {
-  countSelfSearch, findSelfCandidates, selfContactDistance, selfContactTrees, selfSearchLengths, type SelfCandidates,
+  UPDATE_MOST, countSelfSearch, countSelfUpdate, findSelfCandidates, selfContactDistance, selfContactTrees, selfSearchLengths,
+  type SelfCandidates,
 } from '../self-contact.js';
 import type { BoxTree } from '../box-tree.js';
 import type { ClothState } from '../state.js';
@@ -30,6 +33,7 @@ export interface SelfContactExports {
   selfEdges(count: number, hMax: number, memo: boolean): void;
   configureSearch(...layout: number[]): void;
   selfSearch(hMax: number, left: number, h: number, gx: number, gy: number, gz: number, span: number, edge: number, window: number, edgeWindow: number): number;
+  selfUpdate(count: number, hMax: number, left: number, h: number, gx: number, gy: number, gz: number, span: number, window: number, edgeWindow: number): number;
   foundPairs(): number;
   foundEdgePairs(): number;
 }
@@ -44,8 +48,14 @@ const EDGE_WINDOW_PER_PARTICLE = 96;
 const WINDOW_MIN = 1 << 14;
 /** node pairs the kernel's tree traversals can hold (a traversal's stack grows by at most two a level: ~60 at 256²) */
 const STACK_PAIRS = 1024;
-/** one tree's descriptor in the kernel (self-search.as.ts Tree): order, first, size, right, boxes, node count */
-const TREE_FIELDS = 6;
+/**
+ * Pairs an update may find per particle it takes (selfUpdate's scratch; one that finds more searches whole): the
+ * particles' and the triangles' pairs, or the edges' (an escaped particle's up to 12 edges, each with the pairs of
+ * an edge: about 64 at fold's 64² landing).
+ */
+const FRESH_PER_UPDATED = 1024;
+/** one tree's descriptor in the kernel (self-search.as.ts Tree): order, first, size, right, boxes, node count, parent, leaf */
+const TREE_FIELDS = 8;
 
 /** Where self-contact's arrays lie in the kernel's memory (byte offsets) and how many pairs each window holds. */
 export interface SelfContactLayout {
@@ -53,8 +63,10 @@ export interface SelfContactLayout {
   tframe: number; eframe: number; tframeAt: number; eframeAt: number; movedAt: number; pairs: number; edgePairs: number;
   travel: number; seen: number; move: number; edgeMemo: number; window: number; edgeWindow: number;
   /** the search's: the three trees' descriptors and arrays, the reach radii and boxes, its scratch */
-  trees: number; tree: { order: number; first: number; size: number; right: number; boxes: number }[];
+  trees: number; tree: { order: number; first: number; size: number; right: number; boxes: number; parent: number; leaf: number }[];
   radius: number; treach: number; ereach: number; bucket: number; stack: number;
+  /** the update's: the particles out of their boxes, marks, the triangles and edges it does, its fresh pairs (freshCap) */
+  escaped: number; marks: number; touched: number; fresh: number; freshCap: number;
 }
 
 /**
@@ -67,10 +79,13 @@ export function layoutSelfContact(model: ClothModel, take: (bytes: number) => nu
   const { particles, triangles, edges } = selfContactTrees(model);
   const tree = [particles, triangles, edges].map((t: BoxTree) => ({
     order: take(4 * t.order.length), first: take(4 * t.nodeCount), size: take(4 * t.nodeCount), right: take(4 * t.nodeCount), boxes: take(48 * t.nodeCount),
+    parent: take(4 * t.nodeCount), leaf: take(4 * t.order.length),
   }));
+  const freshCap = Math.max(1 << 12, FRESH_PER_UPDATED * Math.ceil(UPDATE_MOST * n));
   return {
     trees: take(4 * TREE_FIELDS * 3), tree, radius: take(8 * n), treach: take(48 * nt), ereach: take(48 * ne),
     bucket: take(4 * (Math.max(n, ne) + 1)), stack: take(8 * STACK_PAIRS),
+    escaped: take(4 * n), marks: take(n + nt + ne), touched: take(4 * (nt + ne)), fresh: take(16 * freshCap), freshCap,
     tris: take(12 * nt), edges: take(8 * ne), owner: take(n), cloth: take(24 * (model.clothStarts.length - 1)),
     reach: take(48 * n), pbox: take(48 * n), tbox: take(48 * nt), ebox: take(48 * ne),
     tframe: take(80 * nt), eframe: take(48 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
@@ -173,7 +188,7 @@ export class KernelSelfContact {
     this.exports = exports;
     const l = layout;
     exports.configureSelf(l.tris, l.edges, l.owner, l.cloth, l.reach, l.pbox, l.tbox, l.ebox, l.tframe, l.eframe,
-      l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, nt, ne);
+      l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, l.escaped, nt, ne);
     // the trees' structure (the reference's, built once), and where each tree lies
     const trees = selfContactTrees(model), descriptors = new Int32Array(memory, l.trees, TREE_FIELDS * 3);
     [trees.particles, trees.triangles, trees.edges].forEach((t, k) => {
@@ -182,9 +197,9 @@ export class KernelSelfContact {
       new Int32Array(memory, at.first, nodes).set(t.first.subarray(0, nodes));
       new Int32Array(memory, at.size, nodes).set(t.size.subarray(0, nodes));
       new Int32Array(memory, at.right, nodes).set(t.right.subarray(0, nodes));
-      descriptors.set([at.order, at.first, at.size, at.right, at.boxes, nodes], TREE_FIELDS * k);
+      descriptors.set([at.order, at.first, at.size, at.right, at.boxes, nodes, at.parent, at.leaf], TREE_FIELDS * k);
     });
-    exports.configureSearch(l.trees, l.radius, l.treach, l.ereach, l.bucket, l.stack, STACK_PAIRS, nt, ne);
+    exports.configureSearch(l.trees, l.radius, l.treach, l.ereach, l.bucket, l.stack, STACK_PAIRS, nt, ne, l.marks, l.touched, l.fresh, l.freshCap);
     this.lengths = selfSearchLengths(model);
     this.windows = [l.window, l.edgeWindow];
     this.particles = (count, hMax) => exports.selfParticles(count, hMax);
@@ -211,14 +226,30 @@ export class KernelSelfContact {
     }
     const ex = this.exports;
     // the candidates hold while every particle's box over this substep is inside its reach box
-    const within = ex.selfBoxes(true) === 1;
-    if (!(this.builtFor === hMax && within) && !this.find(model, state, params, hMax, h, left)) return;
+    const out = ex.selfBoxes(true);
+    if (!(this.builtFor === hMax && out === 0) && !this.update(model, params, out, hMax, h, left) && !this.find(model, state, params, hMax, h, left)) return;
     ex.selfTriangleBoxes(hMax);
     this.pairs.run(this.particles, hMax);
     // the particle pass may have pushed a particle out of its reach box
-    if (ex.selfBoxes(false) !== 1 && !this.find(model, state, params, hMax, h, left)) return;
+    const pushed = ex.selfBoxes(false);
+    if (pushed !== 0 && !this.update(model, params, pushed, hMax, h, left) && !this.find(model, state, params, hMax, h, left)) return;
     ex.selfEdgeBoxes(hMax);
     this.edgePairs.run(this.edges, hMax);
+  }
+
+  /**
+   * Updates the kernel's own candidates for the `out` particles out of their reach boxes where they are few, as
+   * the reference's updateCandidates; false where it does not (too many, none found yet or found in TypeScript, an
+   * unstable cloth, or pairs beyond the windows: a whole search follows).
+   */
+  private update(model: ClothModel, params: SimParams, out: number, hMax: number, h: number, left: number): boolean {
+    if (this.builtFor !== hMax || this.foundBy !== 'kernel' || out > UPDATE_MOST * model.particleCount) return false;
+    const g = params.gravity, ex = this.exports;
+    if (ex.selfUpdate(out, hMax, left, h, g[0], g[1], g[2], this.lengths.span, this.windows[0], this.windows[1]) !== 1) return false;
+    countSelfUpdate(model);
+    this.pairs.found(ex.foundPairs());
+    this.edgePairs.found(ex.foundEdgePairs());
+    return true;
   }
 
   /**

@@ -48,6 +48,8 @@ let MOVE: usize = 0;
  * travel then [m], f64 × 2
  */
 export let EDGE_MEMO: usize = 0;
+/** the particles out of their reach boxes at the last selfBoxes, i32 (the first selfBoxes returned) */
+export let ESCAPED: usize = 0;
 /** triangles and edges */
 let NT: i32 = 0;
 let NE: i32 = 0;
@@ -66,11 +68,12 @@ export const SKIP_MARGIN: f64 = 1e-7;
 export function configureSelf(
   tris: usize, edges: usize, owner: usize, cloth: usize, reach: usize, pbox: usize, tbox: usize, ebox: usize,
   tframe: usize, eframe: usize, tframeAt: usize, eframeAt: usize, movedAt: usize, pairs: usize, edgePairs: usize,
-  travel: usize, seen: usize, move: usize, edgeMemo: usize, triangles: i32, edgeCount: i32,
+  travel: usize, seen: usize, move: usize, edgeMemo: usize, escaped: usize, triangles: i32, edgeCount: i32,
 ): void {
   TRIS = tris; EDGES = edges; OWNER = owner; CLOTH = cloth; REACH = reach; PBOX = pbox; TBOX = tbox; EBOX = ebox;
   TFRAME = tframe; EFRAME = eframe; TFRAME_AT = tframeAt; EFRAME_AT = eframeAt; MOVED_AT = movedAt;
   PAIRS = pairs; EDGE_PAIRS = edgePairs; TRAVEL = travel; SEEN = seen; MOVE = move; EDGE_MEMO = edgeMemo;
+  ESCAPED = escaped;
   NT = triangles; NE = edgeCount;
   resetClock();
 }
@@ -98,23 +101,25 @@ function resetClock(): void {
 
 /**
  * Each particle's box over the substep (x_prev to x) into PBOX, and (`start`: the phase's start) its travel and move
- * (track); 1 when every box lies inside its reach box, else 0 (also for a non-finite position): self-contact.ts
- * substepBoxes().
+ * (track); the particles whose box does not lie inside their reach box (a non-finite position's does not) into
+ * ESCAPED, and how many they are (0: the candidates hold): self-contact.ts substepBoxes().
  */
 export function selfBoxes(start: bool): i32 {
-  let inside = 1;
+  let out = 0;
   for (let p = 0; p < N; p++) {
     const j = <usize>p * 12, r = <usize>p * 48;
+    let inside = true;
     for (let k: usize = 0; k < 3; k++) {
       const a = xn(j, k), b = xs(j, k);
       const lo = min(a, b), hi = max(a, b);
       store<f64>(PBOX + r + (k << 3), lo);
       store<f64>(PBOX + r + 24 + (k << 3), hi);
-      if (!(lo >= f64At(REACH + r, k) && hi <= f64At(REACH + r, k + 3))) inside = 0;
+      if (!(lo >= f64At(REACH + r, k) && hi <= f64At(REACH + r, k + 3))) inside = false;
     }
+    if (!inside) store<i32>(ESCAPED + (<usize>(out++) << 2), p);
     if (start) track(p);
   }
-  return inside;
+  return out;
 }
 
 /** Particle p's travel up to where it is now (TRAVEL, SEEN) and its move over the substep so far (MOVE). */

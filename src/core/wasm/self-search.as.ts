@@ -6,8 +6,11 @@
 // search (the reference's Trees.addPair, addEdgePair), sorted into the order they are resolved (sortPairs) and
 // written into the pair windows that the passes read (self-contact.as.ts). The same operations on the same numbers
 // as the reference, so the same pairs. One thread: the host calls it on thread 0 between two substep() calls.
+// selfUpdate is the reference's updateCandidates: where a few particles left their reach boxes, their boxes, their
+// triangles' and edges' and the trees' nodes above them are made again, and only their pairs are found again and
+// merged into the lists (the reference's pairs, in its order).
 import { N, X, XP } from './arrays.as';
-import { EDGE_MEMO, EDGE_PAIRS, EDGES, PAIRS, REACH, SKIP_MARGIN, TRIS, closestPoint, overlap, segmentClosest } from './self-contact.as';
+import { EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, PAIRS, REACH, SKIP_MARGIN, TRIS, closestPoint, overlap, segmentClosest } from './self-contact.as';
 
 /** A tree's arrays (byte offsets) and node count, as the host writes them (self-contact-wasm.ts, TREE_FIELDS). */
 @unmanaged class Tree {
@@ -20,6 +23,9 @@ import { EDGE_MEMO, EDGE_PAIRS, EDGES, PAIRS, REACH, SKIP_MARGIN, TRIS, closestP
   /** per node: its box, f64 × 6 (min x, y, z, max x, y, z) */
   boxes: usize;
   nodes: i32;
+  /** per node its parent (−1: the root), per primitive its leaf, i32 (made by configureSearch) */
+  parent: usize;
+  leaf: usize;
 }
 
 /** the trees over the particles, the triangles and the edges */
@@ -46,6 +52,16 @@ let STACK_CAP: i32 = 0;
 /** triangles, edges */
 let NT: i32 = 0;
 let NE: i32 = 0;
+/** selfUpdate's marks (u8 per particle, triangle and edge), its triangles and edges to do (i32), and where it finds pairs */
+let PMARK: usize = 0;
+let TMARK: usize = 0;
+let EMARK: usize = 0;
+let TOUCHED_T: usize = 0;
+let TOUCHED_E: usize = 0;
+/** the pairs selfUpdate finds, unsorted then sorted, i32 × 2 × FRESH_CAP each */
+let FRESH: usize = 0;
+let FRESH_SORTED: usize = 0;
+let FRESH_CAP: i32 = 0;
 
 /** what the last search found: pairs and edge pairs (in PAIRS and EDGE_PAIRS) */
 let pairCount: i32 = 0;
@@ -54,15 +70,38 @@ let edgePairCount: i32 = 0;
 let hFor: f64 = 0;
 let meanEdge: f64 = 0;
 
-/** Sets the arrays' byte offsets (the host's layout): the trees' descriptors (Tree, 24 bytes each) and the scratch. */
+/**
+ * Sets the arrays' byte offsets (the host's layout): the trees' descriptors (Tree, 32 bytes each) and the scratch;
+ * makes each tree's parents and leaves.
+ */
 export function configureSearch(
   trees: usize, radius: usize, treach: usize, ereach: usize, bucket: usize, stack: usize, stackCap: i32, triangles: i32, edgeCount: i32,
+  marks: usize, touched: usize, fresh: usize, freshCap: i32,
 ): void {
   PARTICLE_TREE = changetype<Tree>(trees);
   TRIANGLE_TREE = changetype<Tree>(trees + offsetof<Tree>());
   EDGE_TREE = changetype<Tree>(trees + 2 * offsetof<Tree>());
   RADIUS = radius; TREACH = treach; EREACH = ereach; BUCKET = bucket;
   STACK = stack; STACK_CAP = stackCap; NT = triangles; NE = edgeCount;
+  PMARK = marks; TMARK = marks + <usize>N; EMARK = TMARK + <usize>triangles;
+  memory.fill(marks, 0, <usize>N + <usize>triangles + <usize>edgeCount);
+  TOUCHED_T = touched; TOUCHED_E = touched + (<usize>triangles << 2);
+  FRESH = fresh; FRESH_SORTED = fresh + (<usize>freshCap << 3); FRESH_CAP = freshCap;
+  links(PARTICLE_TREE); links(TRIANGLE_TREE); links(EDGE_TREE);
+}
+
+/** Tree t's parents and leaves (nodes depth first: node i's left child is i + 1, its right child right[i]). */
+function links(t: Tree): void {
+  store<i32>(t.parent, -1);
+  for (let node = 0; node < t.nodes; node++) {
+    const right = i32At(t.right, node);
+    if (right >= 0) {
+      store<i32>(t.parent + ((<usize>node + 1) << 2), node);
+      store<i32>(t.parent + (<usize>right << 2), node);
+      continue;
+    }
+    for (let i = i32At(t.first, node), end = i + i32At(t.size, node); i < end; i++) store<i32>(t.leaf + (<usize>i32At(t.order, i) << 2), node);
+  }
 }
 
 /** pairs the last search found (selfSearch returned 1) */
@@ -82,21 +121,7 @@ export function selfSearch(
   hMax: f64, left: f64, h: f64, gx: f64, gy: f64, gz: f64, span: f64, edge: f64, window: i32, edgeWindow: i32,
 ): i32 {
   const T = left * h;
-  for (let p = 0; p < N; p++) {
-    const j = <usize>p * 12, r = REACH + <usize>p * 48;
-    const x0 = <f64>load<f32>(X + j), x1 = <f64>load<f32>(X + j, 4), x2 = <f64>load<f32>(X + j, 8);
-    const q0 = <f64>load<f32>(XP + j), q1 = <f64>load<f32>(XP + j, 4), q2 = <f64>load<f32>(XP + j, 8);
-    const dx = (x0 - q0) * left + 0.5 * gx * T * T;
-    const dy = (x1 - q1) * left + 0.5 * gy * T * T;
-    const dz = (x2 - q2) * left + 0.5 * gz * T * T;
-    const dl = Math.sqrt(dx * dx + dy * dy + dz * dz), k = dl > span ? span / dl : 1;
-    const margin = max(0.5 * dl * k, 0.25 * hMax);
-    // per axis: the box over x_prev, x and x + the predicted motion, widened by the margin; the farthest corner
-    const e0 = reachAxis(r, 0, q0, x0, dx * k, margin), e1 = reachAxis(r, 1, q1, x1, dy * k, margin), e2 = reachAxis(r, 2, q2, x2, dz * k, margin);
-    let r2: f64 = 0;
-    r2 += e0 * e0; r2 += e1 * e1; r2 += e2 * e2;
-    store<f64>(RADIUS + (<usize>p << 3), Math.sqrt(r2));
-  }
+  for (let p = 0; p < N; p++) reachOf(p, left, T, gx, gy, gz, span, hMax);
   for (let t = 0; t < NT; t++) unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
   const half = 0.5 * hMax;
   for (let e = 0; e < NE; e++) unionOf(REACH, EDGES + <usize>e * 8, 0, 2, EREACH + <usize>e * 48, half);
@@ -116,6 +141,208 @@ export function selfSearch(
   sortInto(foundEdges, NE, EDGE_PAIRS);
   edgePairCount = foundEdges;
   return 1;
+}
+
+/**
+ * The reference's updateCandidates, for the `count` particles in ESCAPED (out of their reach boxes; the host has
+ * checked that they are few and that this kernel's own search found the lists): their reach boxes made again, their
+ * triangles' and edges', the trees' nodes above them, every other particle's reach radius from where it is now; their
+ * pairs taken out of the lists, found again against the trees with the search's tests, sorted and merged in, so that
+ * the lists are the reference's in its order. Unlike the reference it keeps the particles' travel and the edge pairs'
+ * measured distances (carried with their pairs; the new pairs' unknown), which still bound them. Returns 1 when
+ * updated, 0 when a box is not finite (as selfSearch), −1 when the pairs do not fit the windows, the fresh pairs'
+ * scratch or the stack (the host then searches whole).
+ */
+export function selfUpdate(
+  count: i32, hMax: f64, left: f64, h: f64, gx: f64, gy: f64, gz: f64, span: f64, window: i32, edgeWindow: i32,
+): i32 {
+  const T = left * h;
+  for (let i = 0; i < count; i++) {
+    const p = i32At(ESCAPED, i);
+    reachOf(p, left, T, gx, gy, gz, span, hMax);
+    store<u8>(PMARK + <usize>p, 1);
+  }
+  // their triangles and edges (any order: the pairs are sorted after)
+  let nt = 0, ne = 0;
+  for (let t = 0; t < NT; t++) {
+    const tr = TRIS + <usize>t * 12;
+    if ((load<u8>(PMARK + <usize>load<u32>(tr)) | load<u8>(PMARK + <usize>load<u32>(tr, 4)) | load<u8>(PMARK + <usize>load<u32>(tr, 8))) == 0) continue;
+    store<u8>(TMARK + <usize>t, 1);
+    store<i32>(TOUCHED_T + (<usize>(nt++) << 2), t);
+    unionOf(REACH, tr, 0, 3, TREACH + <usize>t * 48, hMax);
+  }
+  const half = 0.5 * hMax;
+  for (let e = 0; e < NE; e++) {
+    const ed = EDGES + <usize>e * 8;
+    if ((load<u8>(PMARK + <usize>load<u32>(ed)) | load<u8>(PMARK + <usize>load<u32>(ed, 4))) == 0) continue;
+    store<u8>(EMARK + <usize>e, 1);
+    store<i32>(TOUCHED_E + (<usize>(ne++) << 2), e);
+    unionOf(REACH, ed, 0, 2, EREACH + <usize>e * 48, half);
+  }
+  let result = 1;
+  if (!refitAbove(PARTICLE_TREE, REACH, ESCAPED, count) || !refitAbove(TRIANGLE_TREE, TREACH, TOUCHED_T, nt) || !refitAbove(EDGE_TREE, EREACH, TOUCHED_E, ne)) {
+    result = 0;
+  } else {
+    // the others keep their boxes, which still hold them; their radii are measured from where they are now
+    for (let p = 0; p < N; p++) {
+      if (load<u8>(PMARK + <usize>p) != 0) continue;
+      const j = <usize>p * 12, r = REACH + <usize>p * 48;
+      let r2: f64 = 0;
+      for (let c: usize = 0; c < 3; c++) {
+        const x = <f64>load<f32>(X + j + (c << 2));
+        const far = max(x - load<f64>(r + (c << 3)), load<f64>(r + 24 + (c << 3)) - x);
+        r2 += far * far;
+      }
+      store<f64>(RADIUS + (<usize>p << 3), Math.sqrt(r2));
+    }
+    result = updatePairs(count, nt, window) && updateEdgePairs(ne, edgeWindow) ? 1 : -1;
+  }
+  for (let i = 0; i < count; i++) store<u8>(PMARK + <usize>i32At(ESCAPED, i), 0);
+  for (let i = 0; i < nt; i++) store<u8>(TMARK + <usize>i32At(TOUCHED_T, i), 0);
+  for (let i = 0; i < ne; i++) store<u8>(EMARK + <usize>i32At(TOUCHED_E, i), 0);
+  return result;
+}
+
+/**
+ * selfUpdate's particle pairs: those of the marked particles and triangles out, those of the `count` escaped
+ * particles against every triangle and of the `nt` touched triangles against every other particle in; false when
+ * they do not fit.
+ */
+function updatePairs(count: i32, nt: i32, window: i32): bool {
+  const kept = keepUnmarked(PAIRS, pairCount, PMARK, TMARK, 0);
+  RAW = FRESH; RAW_CAP = FRESH_CAP;
+  let n = 0;
+  for (let i = 0; i < count && n >= 0; i++) {
+    const p = i32At(ESCAPED, i);
+    n = query(TRIANGLE_TREE, REACH + <usize>p * 48, TREACH, p, QUERY_TRIANGLES, n);
+  }
+  for (let i = 0; i < nt && n >= 0; i++) {
+    const t = i32At(TOUCHED_T, i);
+    n = query(PARTICLE_TREE, TREACH + <usize>t * 48, REACH, t, QUERY_PARTICLES, n);
+  }
+  if (n < 0 || kept + n > window) return false;
+  sortInto(n, N, FRESH_SORTED);
+  mergeInto(PAIRS, kept, n, 0);
+  pairCount = kept + n;
+  return true;
+}
+
+/** selfUpdate's edge pairs: those of the `ne` touched edges out, and found again against every edge; false when they do not fit. */
+function updateEdgePairs(ne: i32, edgeWindow: i32): bool {
+  const kept = keepUnmarked(EDGE_PAIRS, edgePairCount, EMARK, EMARK, EDGE_MEMO);
+  RAW = FRESH; RAW_CAP = FRESH_CAP;
+  let n = 0;
+  for (let i = 0; i < ne && n >= 0; i++) {
+    const e = i32At(TOUCHED_E, i);
+    n = query(EDGE_TREE, EREACH + <usize>e * 48, EREACH, e, QUERY_EDGES, n);
+  }
+  if (n < 0 || kept + n > edgeWindow) return false;
+  sortInto(n, NE, FRESH_SORTED);
+  mergeInto(EDGE_PAIRS, kept, n, EDGE_MEMO);
+  edgePairCount = kept + n;
+  return true;
+}
+
+/**
+ * Keeps, in order, those of the first `count` pairs of `list` whose first entry is unmarked in `a` and second in
+ * `b` (u8 marks), with their memo (16 bytes a pair at `memo`, 0: none); returns how many.
+ */
+function keepUnmarked(list: usize, count: i32, a: usize, b: usize, memo: usize): i32 {
+  let n = 0;
+  for (let q = 0; q < count; q++) {
+    const at = list + (<usize>q << 3);
+    if ((load<u8>(a + <usize>load<i32>(at)) | load<u8>(b + <usize>load<i32>(at, 4))) != 0) continue;
+    if (n != q) {
+      store<i64>(list + (<usize>n << 3), load<i64>(at));
+      if (memo != 0) v128.store(memo + (<usize>n << 4), v128.load(memo + (<usize>q << 4)));
+    }
+    n++;
+  }
+  return n;
+}
+
+/**
+ * Merges the `fresh` sorted pairs of FRESH_SORTED into the `kept` sorted pairs at the front of `list`, from the back
+ * (in place: the list has room after them), ascending by first then second entry; a fresh pair's memo (`memo` ≠ 0)
+ * is unknown, a kept one's moves with it.
+ */
+function mergeInto(list: usize, kept: i32, fresh: i32, memo: usize): void {
+  let i = kept - 1, j = fresh - 1;
+  for (let k = kept + fresh - 1; j >= 0; k--) {
+    const f = FRESH_SORTED + (<usize>j << 3);
+    const ff = load<i32>(f), fs = load<i32>(f, 4);
+    let takeKept = false;
+    if (i >= 0) {
+      const kf = load<i32>(list + (<usize>i << 3)), ks = load<i32>(list + (<usize>i << 3), 4);
+      takeKept = kf > ff || (kf == ff && ks > fs);
+    }
+    if (takeKept) {
+      store<i64>(list + (<usize>k << 3), load<i64>(list + (<usize>i << 3)));
+      if (memo != 0) v128.store(memo + (<usize>k << 4), v128.load(memo + (<usize>i << 4)));
+      i--;
+    } else {
+      store<i64>(list + (<usize>k << 3), load<i64>(f));
+      if (memo != 0) { store<f64>(memo + (<usize>k << 4), -Infinity); store<f64>(memo + (<usize>k << 4), 0, 8); }
+      j--;
+    }
+  }
+}
+
+/** what a query adds (query's `kind`): (id, triangle), (particle, id) for an unmarked particle, (id, edge) once */
+const QUERY_TRIANGLES = 0;
+const QUERY_PARTICLES = 1;
+const QUERY_EDGES = 2;
+
+/**
+ * Every primitive j of tree A whose box (`prims`) meets the box at `box` (primitive `id`'s), added to RAW as the
+ * `n`th pair on through addPair or addEdgePair as `kind` says (the reference's BoxTree.query with Trees.addPair,
+ * addStillPair, addMovedEdgePair); returns the pairs in RAW after, −1 when RAW or the stack is full.
+ */
+function query(A: Tree, box: usize, prims: usize, id: i32, kind: i32, n: i32): i32 {
+  let top = 0;
+  store<i32>(STACK, 0); top = 1;
+  while (top > 0) {
+    const a = i32At(STACK, --top);
+    if (!overlap(A.boxes + <usize>a * 48, box)) continue;
+    const right = i32At(A.right, a);
+    if (right < 0) {
+      for (let i = i32At(A.first, a), end = i + i32At(A.size, a); i < end; i++) {
+        const j = i32At(A.order, i);
+        if (!overlap(prims + <usize>j * 48, box)) continue;
+        if (kind == QUERY_TRIANGLES) n = addPair(id, j, n);
+        else if (kind == QUERY_PARTICLES) {
+          if (load<u8>(PMARK + <usize>j) == 0) n = addPair(j, id, n);
+        } else if (j != id && !(load<u8>(EMARK + <usize>j) != 0 && j < id)) n = addEdgePair(min(id, j), max(id, j), n);
+        if (n < 0) return -1;
+      }
+      continue;
+    }
+    if (top + 2 > 2 * STACK_CAP) return -1;
+    store<i32>(STACK + (<usize>top << 2), a + 1); store<i32>(STACK + ((<usize>top + 1) << 2), right);
+    top += 2;
+  }
+  return n;
+}
+
+/**
+ * Particle p's reach box and radius (the reference's reachBox): its box over this substep carried on over the `left`
+ * substeps (T [s] in all) at its motion so far and gravity (gx, gy, gz) [m/s²], no farther than `span` [m], with a
+ * margin of half that motion and at least hMax/4 [m]; its radius the farthest corner from where it is.
+ */
+@inline function reachOf(p: i32, left: f64, T: f64, gx: f64, gy: f64, gz: f64, span: f64, hMax: f64): void {
+  const j = <usize>p * 12, r = REACH + <usize>p * 48;
+  const x0 = <f64>load<f32>(X + j), x1 = <f64>load<f32>(X + j, 4), x2 = <f64>load<f32>(X + j, 8);
+  const q0 = <f64>load<f32>(XP + j), q1 = <f64>load<f32>(XP + j, 4), q2 = <f64>load<f32>(XP + j, 8);
+  const dx = (x0 - q0) * left + 0.5 * gx * T * T;
+  const dy = (x1 - q1) * left + 0.5 * gy * T * T;
+  const dz = (x2 - q2) * left + 0.5 * gz * T * T;
+  const dl = Math.sqrt(dx * dx + dy * dy + dz * dz), k = dl > span ? span / dl : 1;
+  const margin = max(0.5 * dl * k, 0.25 * hMax);
+  // per axis: the box over x_prev, x and x + the predicted motion, widened by the margin; the farthest corner
+  const e0 = reachAxis(r, 0, q0, x0, dx * k, margin), e1 = reachAxis(r, 1, q1, x1, dy * k, margin), e2 = reachAxis(r, 2, q2, x2, dz * k, margin);
+  let r2: f64 = 0;
+  r2 += e0 * e0; r2 += e1 * e1; r2 += e2 * e2;
+  store<f64>(RADIUS + (<usize>p << 3), Math.sqrt(r2));
 }
 
 /**
@@ -153,26 +380,45 @@ function unionOf(base: usize, ids: usize, from: i32, to: i32, out: usize, pad: f
 
 /** The tree's nodes' boxes from its `count` primitives' (`prims`, f64 × 6 each); false when a box is not finite. */
 function refit(t: Tree, prims: usize, count: i32): bool {
-  const boxes = t.boxes;
-  for (let node = t.nodes - 1; node >= 0; node--) {
-    const o = boxes + <usize>node * 48, right = i32At(t.right, node);
-    if (right < 0) {
-      const first = i32At(t.first, node);
-      unionOf(prims, t.order, first, first + i32At(t.size, node), o, 0);
-    } else {
-      const l = o + 48, r = boxes + <usize>right * 48;
-      v128.store(o, f64x2.min(v128.load(l), v128.load(r)));
-      store<f64>(o, min(load<f64>(l, 16), load<f64>(r, 16)), 16);
-      store<f64>(o, max(load<f64>(l, 24), load<f64>(r, 24)), 24);
-      v128.store(o, f64x2.max(v128.load(l, 32), v128.load(r, 32)), 32);
-    }
-  }
+  for (let node = t.nodes - 1; node >= 0; node--) refitNode(t, node, prims);
   // an infinite box reaches the root's; a NaN the leaves' comparisons skip, so it is looked for in the boxes
-  for (let c = 0; c < 6; c++) if (!isFinite<f64>(load<f64>(boxes + (<usize>c << 3)))) return false;
+  for (let c = 0; c < 6; c++) if (!isFinite<f64>(load<f64>(t.boxes + (<usize>c << 3)))) return false;
   for (let i = 0, n = 6 * count; i < n; i++) {
     const v = load<f64>(prims + (<usize>i << 3));
     if (v != v) return false;
   }
+  return true;
+}
+
+/** Node `node`'s box: its primitives' (a leaf) or its children's. */
+@inline function refitNode(t: Tree, node: i32, prims: usize): void {
+  const o = t.boxes + <usize>node * 48, right = i32At(t.right, node);
+  if (right < 0) {
+    const first = i32At(t.first, node);
+    unionOf(prims, t.order, first, first + i32At(t.size, node), o, 0);
+  } else {
+    const l = o + 48, r = t.boxes + <usize>right * 48;
+    v128.store(o, f64x2.min(v128.load(l), v128.load(r)));
+    store<f64>(o, min(load<f64>(l, 16), load<f64>(r, 16)), 16);
+    store<f64>(o, max(load<f64>(l, 24), load<f64>(r, 24)), 24);
+    v128.store(o, f64x2.max(v128.load(l, 32), v128.load(r, 32)), 32);
+  }
+}
+
+/**
+ * The boxes of the nodes above the `count` primitives `ids` (i32) of the tree, after theirs (`prims`) changed: the
+ * same boxes as a whole refit, the others being as they were; false when a box is not finite (as refit).
+ */
+function refitAbove(t: Tree, prims: usize, ids: usize, count: i32): bool {
+  for (let i = 0; i < count; i++) {
+    const id = i32At(ids, i);
+    for (let c = 0; c < 6; c++) {
+      const v = load<f64>(prims + <usize>id * 48 + (<usize>c << 3));
+      if (v != v) return false;
+    }
+    for (let node = i32At(t.leaf, id); node >= 0; node = i32At(t.parent, node)) refitNode(t, node, prims);
+  }
+  for (let c = 0; c < 6; c++) if (!isFinite<f64>(load<f64>(t.boxes + (<usize>c << 3)))) return false;
   return true;
 }
 

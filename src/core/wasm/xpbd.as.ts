@@ -43,7 +43,7 @@ import {
 
 export { configure } from './arrays.as';
 export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfParticles, selfTriangleBoxes } from './self-contact.as';
-export { configureSearch, foundEdgePairs, foundPairs, selfSearch } from './self-search.as';
+export { configureSearch, foundEdgePairs, foundPairs, selfSearch, selfUpdate } from './self-search.as';
 
 /**
  * Helper thread t's loop: wait for a dispatch, take part in that substep, repeat until told to exit. It reads the
