@@ -114,6 +114,12 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
     });
   });
 
+  it('triangle contact with the mannequin\'s capsules (the skirt, self-contact on): 2 threads give the same cloth as 1, bit for bit', async () => {
+    await sideBySide(builtinScene('skirt')!, 60, (one, many) => {
+      expect([...many.state.positions]).toEqual([...one.state.positions]);
+    });
+  });
+
   it('a rebuild stops the old helpers and starts new ones; after dispose it steps on one thread', async () => {
     const sim = new Simulation(scene(), { kernel: 'wasm', threads: 2, spawnHelper: spawnNodeHelper });
     await sim.whenReady();

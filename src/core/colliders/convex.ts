@@ -423,7 +423,8 @@ export function axisCrossingNormal(
     const sx = nx - k * ux, sy = ny - k * uy, sz = nz - k * uz;
     if (sx * sx + sy * sy + sz * sz > 1e-6 * (nx * nx + ny * ny + nz * nz)) { nx = sx; ny = sy; nz = sz; }
   }
-  const l = Math.hypot(nx, ny, nz) || 1;
+  // (a square root of the sum, not Math.hypot, whose scaling and compensated sum the kernel could not repeat bit for bit)
+  const l = Math.sqrt(nx * nx + ny * ny + nz * nz) || 1;
   normal[0] = nx / l; normal[1] = ny / l; normal[2] = nz / l;
   return -radius;
 }

@@ -1,13 +1,14 @@
-// Triangle contact (phases.ts collideTriangles) against the sphere records that have it (the record's EXACT): the
-// reference's culls, deepest point and push-out, one triangle after another in its order and its arithmetic (f64 on
-// the f32 data, the corners turned into the sphere's frame in f32 as a PosedCollider does), so that the cloth is
-// the reference's bit for bit. The host asks for the phase only when every shape with triangle contact is a sphere
+// Triangle contact (phases.ts collideTriangles) against the sphere and capsule records that have it (the record's
+// EXACT): the reference's culls, deepest point and push-out, one triangle after another in its order and its
+// arithmetic (f64 on the f32 data, the corners turned into the shape's frame in f32 as a PosedCollider does; a
+// capsule's deepest point by convex.ts segmentTriangleClosest, operation for operation), so that the cloth is the
+// reference's bit for bit. The host asks for the phase only when every shape with triangle contact is one of these
 // (xpbd-wasm.ts triangleRefusal); it runs on one thread, the triangles in order (Gauss–Seidel).
 import { N, TRIANGLE_COUNT, TRIANGLES, W, X, XP } from './arrays.as';
 import { SMX, SMY, SMZ, field, frictionScale, pressedDepth, surfaceMotion } from './contact.as';
 import {
-  COLLIDER_RECORD_EXACT, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
-  COLLIDER_RECORD_SHAPE, COLLIDER_RECORDS, COLLIDERS, THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
+  COLLIDER_CAPSULE, COLLIDER_RECORD_EXACT, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
+  COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_RECORDS, COLLIDERS, THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
 } from './layout.generated.as';
 
 const COLLIDER_BYTES: usize = <usize>COLLIDER_RECORD_FLOATS * 8;
@@ -81,6 +82,149 @@ function closestPoint(
   U0 = 1 - v - w; U1 = v; U2 = w;
 }
 
+// segmentSegment's parameters and squared distance; segmentTriangle's segment parameter
+let SS: f64 = 0, ST: f64 = 0;
+
+/** convex.ts segmentSegmentIn: the closest points of p1–q1 and p2–q2 (parameters to SS, ST); the squared distance. */
+function segmentSegment(
+  p1x: f64, p1y: f64, p1z: f64, q1x: f64, q1y: f64, q1z: f64, p2x: f64, p2y: f64, p2z: f64, q2x: f64, q2y: f64, q2z: f64,
+): f64 {
+  const d1x = q1x - p1x, d1y = q1y - p1y, d1z = q1z - p1z;
+  const d2x = q2x - p2x, d2y = q2y - p2y, d2z = q2z - p2z;
+  const rx = p1x - p2x, ry = p1y - p2y, rz = p1z - p2z;
+  const a = d1x * d1x + d1y * d1y + d1z * d1z;
+  const e = d2x * d2x + d2y * d2y + d2z * d2z;
+  const f = d2x * rx + d2y * ry + d2z * rz;
+  let s: f64, t: f64;
+  const eps = 1e-300;
+  if (a <= eps && e <= eps) {
+    s = 0; t = 0;
+  } else if (a <= eps) {
+    s = 0; t = min(max(f / e, 0), 1);
+  } else {
+    const c = d1x * rx + d1y * ry + d1z * rz;
+    if (e <= eps) {
+      t = 0; s = min(max(-c / a, 0), 1);
+    } else {
+      const b = d1x * d2x + d1y * d2y + d1z * d2z;
+      const denom = a * e - b * b;
+      s = denom > 1e-15 * a * e ? min(max((b * f - c * e) / denom, 0), 1) : 0;
+      t = (b * s + f) / e;
+      if (t < 0) { t = 0; s = min(max(-c / a, 0), 1); }
+      else if (t > 1) { t = 1; s = min(max((b - c) / a, 0), 1); }
+    }
+  }
+  SS = s; ST = t;
+  const dx = p1x + d1x * s - (p2x + d2x * t), dy = p1y + d1y * s - (p2y + d2y * t), dz = p1z + d1z * s - (p2z + d2z * t);
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/**
+ * convex.ts segmentTriangleIn: the closest points of segment p–q and triangle (a, b, c), the triangle's weights to
+ * U0, U1, U2; the squared distance (0 where the segment crosses the triangle).
+ */
+function segmentTriangle(
+  px: f64, py: f64, pz: f64, qx: f64, qy: f64, qz: f64,
+  ax: f64, ay: f64, az: f64, bx: f64, by: f64, bz: f64, cx: f64, cy: f64, cz: f64,
+): f64 {
+  const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;
+  const nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+  const nn = nx * nx + ny * ny + nz * nz;
+  if (nn > 0) {
+    const d0 = nx * (px - ax) + ny * (py - ay) + nz * (pz - az);
+    const d1 = nx * (qx - ax) + ny * (qy - ay) + nz * (qz - az);
+    if ((d0 <= 0 && d1 >= 0) || (d0 >= 0 && d1 <= 0)) {
+      if (d0 != d1) {
+        const t = d0 / (d0 - d1);
+        const ix = px + t * (qx - px) - ax, iy = py + t * (qy - py) - ay, iz = pz + t * (qz - pz) - az;
+        const w = (nx * (aby * iz - abz * iy) + ny * (abz * ix - abx * iz) + nz * (abx * iy - aby * ix)) / nn;
+        const u = (nx * (iy * acz - iz * acy) + ny * (iz * acx - ix * acz) + nz * (ix * acy - iy * acx)) / nn;
+        if (u >= 0 && w >= 0 && u + w <= 1) {
+          U0 = 1 - u - w; U1 = u; U2 = w;
+          return 0;
+        }
+      }
+    }
+  }
+  let best = Infinity, b0: f64 = 0, b1: f64 = 0, b2: f64 = 0;
+  // end points against the triangle
+  for (let k = 0; k < 2; k++) {
+    const ex = k ? qx : px, ey = k ? qy : py, ez = k ? qz : pz;
+    closestPoint(ex, ey, ez, ax, ay, az, bx, by, bz, cx, cy, cz);
+    const tx = U0 * ax + U1 * bx + U2 * cx - ex;
+    const ty = U0 * ay + U1 * by + U2 * cy - ey;
+    const tz = U0 * az + U1 * bz + U2 * cz - ez;
+    const d2 = tx * tx + ty * ty + tz * tz;
+    if (d2 < best) { best = d2; b0 = U0; b1 = U1; b2 = U2; }
+  }
+  // the segment against each edge
+  for (let k = 0; k < 3; k++) {
+    const ux = k == 0 ? ax : k == 1 ? bx : cx, uy = k == 0 ? ay : k == 1 ? by : cy, uz = k == 0 ? az : k == 1 ? bz : cz;
+    const vx = k == 0 ? bx : k == 1 ? cx : ax, vy = k == 0 ? by : k == 1 ? cy : ay, vz = k == 0 ? bz : k == 1 ? cz : az;
+    const d2 = segmentSegment(px, py, pz, qx, qy, qz, ux, uy, uz, vx, vy, vz);
+    if (d2 < best) {
+      best = d2;
+      const t = ST;
+      b0 = k == 0 ? 1 - t : k == 2 ? t : 0;
+      b1 = k == 1 ? 1 - t : k == 0 ? t : 0;
+      b2 = k == 2 ? 1 - t : k == 1 ? t : 0;
+    }
+  }
+  U0 = b0; U1 = b1; U2 = b2;
+  return best;
+}
+
+// the deepest point's normal in the shape's frame
+let LNX: f64 = 0, LNY: f64 = 1, LNZ: f64 = 0;
+
+/**
+ * capsule.ts signedDistance for the capsule of half length `half` along y and `radius` [m], at local (px, py, pz),
+ * with `within` [m] (Infinity: none): the normal to LNX…LNZ, unless it returns `within` (farther than that).
+ */
+function capsuleDistance(half: f64, radius: f64, px: f64, py: f64, pz: f64, within: f64): f64 {
+  // closestPointOnSegment from a = (0, −half, 0) to b = (0, half, 0)
+  const a0: f64 = 0, a1 = -half, a2: f64 = 0, b0: f64 = 0, b1 = half, b2: f64 = 0;
+  const ux = b0 - a0, uy = b1 - a1, uz = b2 - a2;
+  const uu = ux * ux + uy * uy + uz * uz;
+  let t: f64 = 0;
+  if (uu != 0) {
+    const s = ((px - a0) * ux + (py - a1) * uy + (pz - a2) * uz) / uu;
+    t = s < 0 ? 0 : s > 1 ? 1 : s;
+  }
+  const dx = px - (a0 + t * (b0 - a0)), dy = py - (a1 + t * (b1 - a1)), dz = pz - (a2 + t * (b2 - a2));
+  const d2 = dx * dx + dy * dy + dz * dz;
+  const far = radius + within;
+  if (far > 0 && d2 >= far * far) return within;
+  const d = Math.sqrt(d2);
+  // the perpendicular for a point on the axis: the axis × the world axis it is least aligned with (CapsuleCollider)
+  if (d > 1e-12) { LNX = dx / d; LNY = dy / d; LNZ = dz / d; } else if (half > 0) { LNX = 0; LNY = 0; LNZ = -1; } else { LNX = 0; LNY = 1; LNZ = 0; }
+  return d - radius;
+}
+
+/**
+ * capsule.ts triangleDeepest on the local corners: the triangle's point closest to the axis (weights to U0…U2), its
+ * signed distance [m] and normal (LNX…LNZ); where the axis crosses the triangle, convex.ts axisCrossingNormal.
+ */
+function capsuleDeepest(half: f64, radius: f64, ax: f64, ay: f64, az: f64, bx: f64, by: f64, bz: f64, cx: f64, cy: f64, cz: f64): f64 {
+  const d2 = segmentTriangle(0, -half, 0, 0, half, 0, ax, ay, az, bx, by, bz, cx, cy, cz);
+  const qx = U0 * ax + U1 * bx + U2 * cx, qy = U0 * ay + U1 * by + U2 * cy, qz = U0 * az + U1 * bz + U2 * cz;
+  if (d2 > 1e-24) return capsuleDistance(half, radius, qx, qy, qz, Infinity);
+  // the axis crosses the triangle: off it sideways, along the triangle's normal made perpendicular to the axis u
+  const ux: f64 = 0 - 0, uy = half - -half, uz: f64 = 0 - 0;
+  const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;
+  let nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+  const uu = ux * ux + uy * uy + uz * uz;
+  if (uu > 0) {
+    const k = (nx * ux + ny * uy + nz * uz) / uu;
+    const sx = nx - k * ux, sy = ny - k * uy, sz = nz - k * uz;
+    if (sx * sx + sy * sy + sz * sz > 1e-6 * (nx * nx + ny * ny + nz * nz)) { nx = sx; ny = sy; nz = sz; }
+  }
+  let l = Math.sqrt(nx * nx + ny * ny + nz * nz);
+  if (l == 0 || l != l) l = 1;
+  LNX = nx / l; LNY = ny / l; LNZ = nz / l;
+  return -radius;
+}
+
 /** Squared distance [m²] from (cx, cy, cz) to the particle at byte j of X (phases.ts cornerDistance2). */
 @inline function cornerDistance2(j: usize, cx: f64, cy: f64, cz: f64): f64 {
   const dx = xAt(j) - cx, dy = xAt(j + 4) - cy, dz = xAt(j + 8) - cz;
@@ -94,7 +238,7 @@ function nudge(j: usize, w: f64, kx: f64, ky: f64, kz: f64): void {
   store<f32>(j + 8, <f32>(xAt(j + 8) + w * kz));
 }
 
-/** Triangle contact with every sphere record that has it (phases.ts collideTriangles, for spheres). */
+/** Triangle contact with every sphere and capsule record that has it (phases.ts collideTriangles, for those shapes). */
 export function collideTriangles(): void {
   const th = load<f64>(THICKNESS), reach = load<f64>(TRIANGLE_REACH), recover = load<f64>(TRIANGLE_RECOVER);
   const count = load<i32>(COLLIDERS);
@@ -102,9 +246,13 @@ export function collideTriangles(): void {
   for (let k = 0; k < count; k++) {
     const rec = COLLIDER_RECORDS + <usize>k * COLLIDER_BYTES;
     if (field(rec, COLLIDER_RECORD_EXACT) == 0) continue;
-    const radius = field(rec, COLLIDER_RECORD_SHAPE);
+    // a sphere's radius; a capsule's half length (its axis along y) and radius (PosedCollider.shapeParams)
+    const capsule = <i32>field(rec, COLLIDER_RECORD_TYPE) == COLLIDER_CAPSULE;
+    const s0 = field(rec, COLLIDER_RECORD_SHAPE), s1 = field(rec, COLLIDER_RECORD_SHAPE, 1);
+    // PosedCollider.boundingRadius, and its box's half extents in its own frame
+    const bound = capsule ? s0 + s1 : s0, e0 = capsule ? s1 : s0, e1 = capsule ? s0 + s1 : s0, e2 = e0;
     const o0 = field(rec, COLLIDER_RECORD_O), o1 = field(rec, COLLIDER_RECORD_O, 1), o2 = field(rec, COLLIDER_RECORD_O, 2);
-    const ball = (radius + reach) * (1 + 1e-9), ball2 = ball * ball;
+    const ball = (bound + reach) * (1 + 1e-9), ball2 = ball * ball;
     if (!boxed) { clothBox(); boxed = true; }
     const gx = max(max(BX0 - o0, 0), o0 - BX1), gy = max(max(BY0 - o1, 0), o1 - BY1), gz = max(max(BZ0 - o2, 0), o2 - BZ1);
     if (gx * gx + gy * gy + gz * gz > ball2) continue;
@@ -112,10 +260,10 @@ export function collideTriangles(): void {
     const R = COLLIDER_RECORD_R;
     const r0 = field(rec, R), r1 = field(rec, R, 1), r2 = field(rec, R, 2), r3 = field(rec, R, 3), r4 = field(rec, R, 4);
     const r5 = field(rec, R, 5), r6 = field(rec, R, 6), r7 = field(rec, R, 7), r8 = field(rec, R, 8);
-    // PosedCollider.worldHalfExtents of the sphere's box (radius on every axis), widened by the thickness
-    const h0 = Math.abs(r0) * radius + Math.abs(r1) * radius + Math.abs(r2) * radius;
-    const h1 = Math.abs(r3) * radius + Math.abs(r4) * radius + Math.abs(r5) * radius;
-    const h2 = Math.abs(r6) * radius + Math.abs(r7) * radius + Math.abs(r8) * radius;
+    // PosedCollider.worldHalfExtents, widened by the thickness
+    const h0 = Math.abs(r0) * e0 + Math.abs(r1) * e1 + Math.abs(r2) * e2;
+    const h1 = Math.abs(r3) * e0 + Math.abs(r4) * e1 + Math.abs(r5) * e2;
+    const h2 = Math.abs(r6) * e0 + Math.abs(r7) * e1 + Math.abs(r8) * e2;
     const lx = o0 - h0 - th, hx = o0 + h0 + th, ly = o1 - h1 - th, hy = o1 + h1 + th, lz = o2 - h2 - th, hz = o2 + h2 + th;
     for (let t = 0; t < TRIANGLE_COUNT; t++) {
       const tr = TRIANGLES + <usize>t * 12;
@@ -129,33 +277,44 @@ export function collideTriangles(): void {
         max(max(az, bz), cz0) < lz || min(min(az, bz), cz0) > hz) continue;
       const ex = ax - o0, ey = ay - o1, ez = az - o2;
       if (ex * ex + ey * ey + ez * ez > ball2) continue;
-      // the triangle's own ball against the thickness: the posed sphere's signedDistance(centroid, within = far)
+      // the triangle's own ball against the thickness: the posed shape's signedDistance(centroid, within = far)
       const mx0 = (ax + bx + cx0) / 3, my0 = (ay + by + cy0) / 3, mz0 = (az + bz + cz0) / 3;
       const rr = Math.sqrt(max(max(cornerDistance2(ja, mx0, my0, mz0), cornerDistance2(jb, mx0, my0, mz0)), cornerDistance2(jc, mx0, my0, mz0)));
       const far = th + rr * (1 + 1e-9);
       {
         const dx = mx0 - o0, dy = my0 - o1, dz = mz0 - o2;
         const qx = r0 * dx + r3 * dy + r6 * dz, qy = r1 * dx + r4 * dy + r7 * dz, qz = r2 * dx + r5 * dy + r8 * dz;
-        const d2 = qx * qx + qy * qy + qz * qz;
-        const farR = radius + far;
-        if (farR > 0 && d2 >= farR * farR) continue;
-        if (Math.sqrt(d2) - radius >= far) continue;
+        if (capsule) {
+          if (capsuleDistance(s0, s1, qx, qy, qz, far) >= far) continue;
+        } else {
+          const d2 = qx * qx + qy * qy + qz * qz;
+          const farR = s0 + far;
+          if (farR > 0 && d2 >= farR * farR) continue;
+          if (Math.sqrt(d2) - s0 >= far) continue;
+        }
       }
-      // the corners in the sphere's frame, in f32 (PosedCollider.triangleDeepest), and the deepest point: the one
-      // closest to the centre (SphereCollider.triangleDeepest)
+      // the corners in the shape's frame, in f32 (PosedCollider.triangleDeepest), and the deepest point: for a
+      // sphere the one closest to the centre (SphereCollider.triangleDeepest), for a capsule the one closest to its
+      // axis (CapsuleCollider.triangleDeepest)
       let dx = ax - o0, dy = ay - o1, dz = az - o2;
       const sax = <f64><f32>(r0 * dx + r3 * dy + r6 * dz), say = <f64><f32>(r1 * dx + r4 * dy + r7 * dz), saz = <f64><f32>(r2 * dx + r5 * dy + r8 * dz);
       dx = bx - o0; dy = by - o1; dz = bz - o2;
       const sbx = <f64><f32>(r0 * dx + r3 * dy + r6 * dz), sby = <f64><f32>(r1 * dx + r4 * dy + r7 * dz), sbz = <f64><f32>(r2 * dx + r5 * dy + r8 * dz);
       dx = cx0 - o0; dy = cy0 - o1; dz = cz0 - o2;
       const scx = <f64><f32>(r0 * dx + r3 * dy + r6 * dz), scy = <f64><f32>(r1 * dx + r4 * dy + r7 * dz), scz = <f64><f32>(r2 * dx + r5 * dy + r8 * dz);
-      closestPoint(0, 0, 0, sax, say, saz, sbx, sby, sbz, scx, scy, scz);
+      let d: f64, lnx: f64, lny: f64, lnz: f64;
+      if (capsule) {
+        d = capsuleDeepest(s0, s1, sax, say, saz, sbx, sby, sbz, scx, scy, scz);
+        lnx = LNX; lny = LNY; lnz = LNZ;
+      } else {
+        closestPoint(0, 0, 0, sax, say, saz, sbx, sby, sbz, scx, scy, scz);
+        const qx = U0 * sax + U1 * sbx + U2 * scx, qy = U0 * say + U1 * sby + U2 * scy, qz = U0 * saz + U1 * sbz + U2 * scz;
+        const qd = Math.sqrt(qx * qx + qy * qy + qz * qz);
+        lnx = 0; lny = 1; lnz = 0;
+        if (qd > 1e-12) { lnx = qx / qd; lny = qy / qd; lnz = qz / qd; }
+        d = qd - s0;
+      }
       const u0 = U0, u1 = U1, u2 = U2;
-      const qx = u0 * sax + u1 * sbx + u2 * scx, qy = u0 * say + u1 * sby + u2 * scy, qz = u0 * saz + u1 * sbz + u2 * scz;
-      const qd = Math.sqrt(qx * qx + qy * qy + qz * qz);
-      let lnx: f64 = 0, lny: f64 = 1, lnz: f64 = 0;
-      if (qd > 1e-12) { lnx = qx / qd; lny = qy / qd; lnz = qz / qd; }
-      const d = qd - radius;
       if (d >= th) continue;
       const nx = r0 * lnx + r1 * lny + r2 * lnz, ny = r3 * lnx + r4 * lny + r5 * lnz, nz = r6 * lnx + r7 * lny + r8 * lnz;
       const wa = <f64>load<f32>(W + (<usize>a << 2)) * u0, wb = <f64>load<f32>(W + (<usize>b << 2)) * u1;

@@ -117,10 +117,10 @@ describe('xpbd wasm kernel', () => {
     const names = log.names();
     expect(names).toContain('contact');
     expect(names).not.toContain('contact (reference)');
-    // triangle contact, where the shape needs it at this mesh size, is its own phase: the sphere's in the kernel
-    // (triangle-contact.as.ts), the others' in TypeScript
-    expect(names.includes('contactTriangles (reference)')).toBe(['box', 'capsule', 'cylinder'].includes(name));
-    expect(names.includes('contactTriangles')).toBe(name === 'sphere');
+    // triangle contact, where the shape needs it at this mesh size, is its own phase: the sphere's and the
+    // capsule's in the kernel (triangle-contact.as.ts), the others' in TypeScript
+    expect(names.includes('contactTriangles (reference)')).toBe(['box', 'cylinder'].includes(name));
+    expect(names.includes('contactTriangles')).toBe(['sphere', 'capsule'].includes(name));
     // measured ≤ 3.2e-5 m (the cylinder moving; still shapes ≤ 2e-6): f32 constraint passes and lanes against
     // f64, where a contact's inside/outside or stick/slip decision amplifies rounding; a wrong normal, frame or
     // surface motion is off by the collider's motion over a frame (≥ 5 mm moving) or the push-out (mm)
@@ -237,6 +237,36 @@ describe('xpbd wasm kernel', () => {
     const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
     // the phase did act (the sag between vertices pushed out), and as the reference, x_prev too
     expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
+    expect([...st.positions]).toEqual([...copy.positions]);
+    expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
+  });
+
+  // a cloth lying across two capsules (one turned, one moving, one through the cloth where its axis crosses
+  // triangles): the kernel's triangle contact against the reference's on a copy, one substep
+  it.each(['still', 'moving', 'through'] as const)('triangle contact with capsules, %s: the kernel\'s phase moves every particle as the reference does, bit for bit', (how) => {
+    const motion = { keyframes: [{ time: 0, translation: [0, 0, 0] as Vec3, rotation: [0, 0, 0] as Vec3 }, { time: 2, translation: [0.2, 0.1, 0] as Vec3, rotation: [0, 30, 10] as Vec3 }], loop: false };
+    const colliders = [
+      { type: 'capsule' as const, a: [-0.4, 0.5, -0.1] as Vec3, b: [0.4, 0.5, 0.1] as Vec3, radius: 0.015, ...(how === 'moving' ? { motion } : {}) },
+      { type: 'capsule' as const, a: [-0.1, 0.45, -0.4] as Vec3, b: [0.15, 0.4, 0.4] as Vec3, radius: 0.04 },
+      ...(how === 'through' ? [{ type: 'capsule' as const, a: [0.2, 0.2, 0.2] as Vec3, b: [0.2, 0.9, 0.22] as Vec3, radius: 0.03 }] : []),
+    ];
+    const sc = validateScene({
+      name: 'capsules', cloth: { resolution: 12, width: 1, height: 1, position: [0, 0.62, 0] }, solver: { type: 'xpbd', selfContact: false },
+      colliders: [...colliders, { type: 'floor', height: 0 }],
+    });
+    const sim = new Simulation(sc, { kernel: 'wasm' });
+    sim.advance(how === 'through' ? 1 : 20);
+    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
+    expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
+    expect([...st.positions]).toEqual([...copy.positions]);
+    expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
+  });
+
+  it('triangle contact with the mannequin in the skirt (capsules and a sphere, turning): the kernel\'s phase moves every particle as the reference does, bit for bit', () => {
+    const sim = new Simulation(builtinScene('skirt'), { kernel: 'wasm' });
+    sim.advance(50);
+    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
+    expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-6);
     expect([...st.positions]).toEqual([...copy.positions]);
     expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
   });

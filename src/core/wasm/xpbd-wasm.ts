@@ -36,8 +36,7 @@ const KERNEL_TYPES: readonly number[] = [COLLIDER_SPHERE, COLLIDER_FLOOR, COLLID
 /**
  * Why the kernel cannot do particle contact against these colliders, or null: it knows every analytic shape
  * (PosedCollider.typeId, the COLLIDER_* ids), moving or not, up to MAX_COLLIDERS of them; a mesh's contact runs in
- * TypeScript. (Triangle contact is the next phase, contactTriangles, which the kernel does not implement: it runs in
- * TypeScript.)
+ * TypeScript. (Triangle contact, the next phase, contactTriangles, it takes for spheres and capsules: triangleRefusal.)
  */
 function contactRefusal(params: SimParams): string | null {
   const shapes = params.colliders;
@@ -49,14 +48,14 @@ function contactRefusal(params: SimParams): string | null {
 }
 
 /**
- * Why the kernel cannot take this scene's triangle contact, or null: it has the sphere's (triangle-contact.as.ts);
- * a scene whose other shapes need triangle contact (capsules, boxes, cylinders, meshes whose surface can poke
- * between the vertices) leaves the phase to the TypeScript reference on the kernel's memory.
+ * Why the kernel cannot take this scene's triangle contact, or null: it has the sphere's and the capsule's
+ * (triangle-contact.as.ts); a scene whose other shapes need triangle contact (boxes, cylinders, meshes whose surface
+ * can poke between the vertices) leaves the phase to the TypeScript reference on the kernel's memory.
  */
 function triangleRefusal(model: ClothModel, params: SimParams): string | null {
   const refused = contactRefusal(params);
   if (refused) return refused;
-  const other = params.colliders.find((s) => s.typeId !== COLLIDER_SPHERE && needsTriangleContact(model, s, params.thickness));
+  const other = params.colliders.find((s) => s.typeId !== COLLIDER_SPHERE && s.typeId !== COLLIDER_CAPSULE && needsTriangleContact(model, s, params.thickness));
   return other ? `triangle contact with a ${other.type} has no kernel code` : null;
 }
 
