@@ -68,9 +68,11 @@ describe('the npm package', () => {
 
   // measured: 295 kB, of which the three.js addon is about 24 kB (its files gzipped together), 2026-12-05; then 301
   // kB the same day, when the WebAssembly kernel took a sphere's triangle contact (its two builds, base64, 4 kB
-  // more gzipped; the default scene's frame a fifth faster): the budget keeps 10 kB above what ships
-  it('packs into at most 310 kB', () => {
-    expect(packed.size).toBeLessThanOrEqual(310_000);
+  // more gzipped; the default scene's frame a fifth faster); then 308 kB, when the kernel took the self-contact
+  // candidates' updates and a capsule's triangle contact (6 kB more: the mannequin scenes a quarter faster, the fold's
+  // fall a sixth): the budget keeps about 10 kB above what ships
+  it('packs into at most 320 kB', () => {
+    expect(packed.size).toBeLessThanOrEqual(320_000);
   });
 
   it('declares its doc comments in the types and ships the code without them', () => {
