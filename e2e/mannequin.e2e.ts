@@ -70,6 +70,17 @@ describe('the mannequin in the app', () => {
     const held = (await drawnPoses(page))[chest];
     expect(Math.abs(turnedAboutY(start, held) + 70 * Math.sin((2 * Math.PI * frame0) / 240))).toBeLessThan(0.5);
     expect(held.position.map((v, k) => Math.abs(v - start.position[k])).every((d) => d < 1e-3)).toBe(true);
+
+    // walking: the cape starts clear of the legs (it was once refused: a shin started inside it)
+    await choose(page, 'mannequin.animation', 'walk');
+    await expect.poll(() => hook(page, 'mannequin')).toEqual({ pose: 'stand', animation: 'walk' });
+    await expect.poll(() => page.evaluate(() => location.hash)).toBe('#scene=cape&mannequin=stand,walk');
+    await step(page, 30);
+    expect((await hook<number[][]>(page, 'positions')).flat().every(Number.isFinite)).toBe(true);
+    // the garment's shape is the scene's: the Shape control is off, and says why
+    const shape = byId(page, 'cloth.shape');
+    expect(await shape.locator('select').isDisabled()).toBe(true);
+    expect(await shape.getAttribute('title')).toMatch(/garment fitted to the mannequin/);
     expect(errors).toEqual([]);
     await page.close();
   });

@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { pickParticle } from './pick.js';
 import { presetParticles, resolvePins } from './pins.js';
+import { modelFor } from './cloth-shape.js';
 import { builtinScene } from './scenes.js';
 import { Simulation } from './simulation.js';
 import { grab, setPinned } from './state.js';
@@ -27,6 +28,14 @@ describe('picking, pins and live changes', () => {
     expect(presetParticles(s.model, 'center')).toEqual([16 * 33 + 16]);
     expect(presetParticles(s.model, 'left-edge')).toHaveLength(33);
     expect(resolvePins(s.model, ['top-left', 0, 'top-right'])).toEqual([0, 32]);
+  });
+
+  it('an edge preset on a cloth that is not a rectangle: the message names the entry and what to give instead (the pin tool only for the cloth\'s own pins)', () => {
+    const scene = builtinScene('custom')!;
+    scene.cloth.shape = 'disc';
+    const disc = modelFor(scene);
+    expect(() => resolvePins(disc, ['center', 'top-edge'])).toThrow("pins[1]: pin preset 'top-edge' names a corner or an edge of a rectangle, and this cloth is not one; pin particles by index (in the app: click them with the pin tool)");
+    expect(() => resolvePins(disc, ['top-edge'], 'colliders[2].pins')).toThrow("colliders[2].pins[0]: pin preset 'top-edge' names a corner or an edge of a rectangle, and this cloth is not one; give the collider's pins as particle indices or regions");
   });
 
   // a pointer dragged into the sphere: the grabbed particle is kinematic (contact skips it), so the target itself is

@@ -12,7 +12,7 @@ export function presetParticles(model: ClothModel, preset: PinPreset): number[] 
   const grid = model.grid;
   if (!grid) {
     if (preset === 'center') return [nearestToMiddle(model)];
-    throw new SceneError(`pin preset '${preset}' names a corner or an edge of a rectangle, and this cloth is not one; pin particles by index (in the app: click them with the pin tool)`);
+    throw new SceneError(`pin preset '${preset}' names a corner or an edge of a rectangle, and this cloth is not one`);
   }
   const { nx, ny } = grid;
   const id = (i: number, j: number) => j * nx + i;
@@ -77,7 +77,10 @@ export function resolvePins(model: ClothModel, pins: readonly PinEntry[], field 
     try {
       for (const i of presetParticles(model, p)) set.add(i);
     } catch (e) {
-      if (e instanceof SceneError) throw new SceneError(`${field}[${k}]: ${e.message}`);
+      // what to do instead: a cloth's own pins can be clicked with the app's pin tool, a collider's cannot
+      const instead = field.startsWith('colliders[') ? 'give the collider\'s pins as particle indices or regions'
+        : 'pin particles by index (in the app: click them with the pin tool)';
+      if (e instanceof SceneError) throw new SceneError(`${field}[${k}]: ${e.message}; ${instead}`);
       throw e;
     }
   });

@@ -135,6 +135,9 @@ const RESOLUTIONS = [1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256, 512,
 /** the Shape control's generated shapes ('mesh' shows when the cloth is an imported file) */
 const SHAPE_LABELS: Record<string, string> = { Rectangle: 'rectangle', Disc: 'disc', Tube: 'tube' };
 
+/** what the Shape control does (its tooltip) */
+const SHAPE_TITLE = 'rectangle (the grid; the pin presets need it), disc (diameter: width) or tube (diameter: width, length: height); rebuilds the cloth. A mesh file comes from "import mesh…"';
+
 /** a resolution as the menu shows it for a shape: faces per side, across a disc, along a tube */
 function resolutionLabel(r: number, shape: string): string {
   if (shape === 'disc') return `${r} faces across`;
@@ -245,8 +248,7 @@ export class Panel {
     this.syncers.push(() => { p['cloth.which'] = host.cloth; });
     p['cloth.shape'] = 'rectangle';
     this.shapeCtl = this.tag(cloth.add(p, 'cloth.shape', SHAPE_LABELS).name('shape')
-      .onChange((v: string) => { if (v !== 'mesh') host.setPath(this.clothPath('cloth.shape'), v); }), 'cloth.shape',
-    'rectangle (the grid; the pin presets need it), disc (diameter: width) or tube (diameter: width, length: height); rebuilds the cloth. A mesh file comes from "import mesh…"');
+      .onChange((v: string) => { if (v !== 'mesh') host.setPath(this.clothPath('cloth.shape'), v); }), 'cloth.shape', SHAPE_TITLE);
     this.syncers.push(() => { p['cloth.shape'] = this.entry().cloth.shape; });
     p['cloth.resolution'] = 32;
     const rs = schemaFor('cloth.resolution');
@@ -453,6 +455,14 @@ export class Panel {
     const sweep = !!host.scene.resolutionSweep?.length && cloth.shape === 'rectangle';
     this.sweepFolder.show(sweep);
     this.mannequinFolder.show(host.mannequin !== null);
+    // a garment on the mannequin is fitted to it: the figure carries its pins (the cape's top edge, the skirt's
+    // waist ring), which another shape would not have, and another shape would start inside the figure
+    const garment = host.mannequin !== null;
+    this.shapeCtl.enable(!garment);
+    this.shapeCtl.name(garment ? 'shape: the garment’s' : 'shape');
+    this.shapeCtl.domElement.title = garment
+      ? 'this cloth is a garment fitted to the mannequin, which carries its pins: its shape is the scene’s (choose a scene without a mannequin to change it)'
+      : SHAPE_TITLE;
     this.resolutionCtl.enable(!sweep && cloth.shape !== 'mesh');
     this.resolutionCtl.name(cloth.shape === 'mesh' ? 'resolution: the mesh has its own'
       : !sweep ? 'resolution' : host.sweepLayout === 'sequence' ? 'resolution (the sweep’s, now)' : 'resolution (one per cloth)');
