@@ -86,14 +86,15 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     expect(log.names()).toEqual(['begin (reference)', ...substep, ...substep, ...substep, 'velocities (reference)']);
   });
 
-  // triangle contact with a sphere or a capsule is the kernel's (triangle-contact.as.ts); with any other shape it is
-  // left to the reference, on the kernel's memory
-  it.each([['sphere', ''], ['capsule', ''], ['box', ' (reference)']] as const)('the kernel: triangle contact on a coarse cloth over a %s is its own phase after the kernel\'s particle contact, run%s', (shape, where) => {
+  // triangle contact with a sphere, a capsule or a cylinder is the kernel's (triangle-contact.as.ts); with a box (or
+  // a mesh) it is left to the reference, on the kernel's memory
+  it.each([['sphere', ''], ['capsule', ''], ['cylinder', ''], ['box', ' (reference)']] as const)('the kernel: triangle contact on a coarse cloth over a %s is its own phase after the kernel\'s particle contact, run%s', (shape, where) => {
     const s = builtinScene('resolution'); // one face on the sphere: contact needs triangles
     s.solver.selfContact = false;
     s.colliders = s.colliders.map((c) => c.type !== 'sphere' ? c : shape === 'box'
       ? { type: 'box', center: c.center, halfExtents: [c.radius, c.radius, c.radius], rotation: [0, 0, 0] }
-      : shape === 'capsule' ? { type: 'capsule', a: [c.center[0] - 0.5, c.center[1], c.center[2]], b: [c.center[0] + 0.5, c.center[1], c.center[2]], radius: c.radius } : c);
+      : shape === 'capsule' ? { type: 'capsule', a: [c.center[0] - 0.5, c.center[1], c.center[2]], b: [c.center[0] + 0.5, c.center[1], c.center[2]], radius: c.radius }
+        : shape === 'cylinder' ? { type: 'cylinder', center: c.center, axis: [0, 1, 0], radius: c.radius, height: 2 * c.radius } : c);
     const sim = new Simulation(validateScene(s), { kernel: 'wasm' });
     const own = assignPhases(KERNEL_PHASES, sim.model, sim.params);
     expect(own & (1 << PHASE.contact)).not.toBe(0);

@@ -76,10 +76,11 @@ export class CylinderCollider implements SupportShape {
     if (!Number.isNaN(d)) return d;
     // the triangle's point closest to the axis line (a segment reaching past every vertex's projection)
     const cx = this.center[0], cy = this.center[1], cz = this.center[2];
+    // (square roots of the sums, not Math.hypot, whose compensated sum the WebAssembly kernel could not repeat)
+    const ax = a[ia] - cx, ay = a[ia + 1] - cy, az = a[ia + 2] - cz, bx = b[ib] - cx, by = b[ib + 1] - cy, bz = b[ib + 2] - cz;
+    const ex = c[ic] - cx, ey0 = c[ic + 1] - cy, ez = c[ic + 2] - cz;
     const reach = this.halfHeight + 1 + Math.max(
-      Math.hypot(a[ia] - cx, a[ia + 1] - cy, a[ia + 2] - cz),
-      Math.hypot(b[ib] - cx, b[ib + 1] - cy, b[ib + 2] - cz),
-      Math.hypot(c[ic] - cx, c[ic + 1] - cy, c[ic + 2] - cz),
+      Math.sqrt(ax * ax + ay * ay + az * az), Math.sqrt(bx * bx + by * by + bz * bz), Math.sqrt(ex * ex + ey0 * ey0 + ez * ez),
     );
     const d2 = segmentTriangleClosest(
       cx - reach * this.ux, cy - reach * this.uy, cz - reach * this.uz,

@@ -1,13 +1,14 @@
-// Triangle contact (phases.ts collideTriangles) against the sphere and capsule records that have it (the record's
-// EXACT): the reference's culls, deepest point and push-out, one triangle after another in its order and its
-// arithmetic (f64 on the f32 data, the corners turned into the shape's frame in f32 as a PosedCollider does; a
-// capsule's deepest point by convex.ts segmentTriangleClosest, operation for operation), so that the cloth is the
-// reference's bit for bit. The host asks for the phase only when every shape with triangle contact is one of these
+// Triangle contact (phases.ts collideTriangles) against the sphere, capsule and cylinder records that have it (the
+// record's EXACT): the reference's culls, deepest point and push-out, one triangle after another in its order and
+// its arithmetic (f64 on the f32 data, the corners turned into the shape's frame in f32 as a PosedCollider does; a
+// capsule's deepest point by convex.ts segmentTriangleClosest, a cylinder's by its vertex certificate, the axis and
+// the support points or golden-section searches, operation for operation), so that the cloth is the reference's
+// bit for bit. The host asks for the phase only when every shape with triangle contact is one of these
 // (xpbd-wasm.ts triangleRefusal); it runs on one thread, the triangles in order (Gauss–Seidel).
 import { N, TRIANGLE_COUNT, TRIANGLES, W, X, XP } from './arrays.as';
 import { SMX, SMY, SMZ, field, frictionScale, pressedDepth, surfaceMotion } from './contact.as';
 import {
-  COLLIDER_CAPSULE, COLLIDER_RECORD_EXACT, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
+  COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_RECORD_EXACT, GOLDEN_ITERATIONS, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
   COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_RECORDS, COLLIDERS, THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
 } from './layout.generated.as';
 
@@ -225,6 +226,249 @@ function capsuleDeepest(half: f64, radius: f64, ax: f64, ay: f64, az: f64, bx: f
   return -radius;
 }
 
+// The cylinder (cylinder.ts, convex.ts), in its own frame: centre at the origin, axis along y, radius CR, half
+// height CH. Each function below repeats the reference's operations in its order (f64 on the f32 corners).
+let CR: f64 = 0, CH: f64 = 0;
+// the support point (CylinderCollider.support)
+let SPX: f64 = 0, SPY: f64 = 0, SPZ: f64 = 0;
+
+/** CylinderCollider.signedDistance at (px, py, pz) (no bound: `within` Infinity), the normal to LNX…LNZ. */
+function cylinderDistance(px: f64, py: f64, pz: f64): f64 {
+  const ux: f64 = 0, uy: f64 = 1, uz: f64 = 0;
+  const dx = px - 0, dy = py - 0, dz = pz - 0;
+  const y = dx * ux + dy * uy + dz * uz;
+  const rx = dx - y * ux, ry = dy - y * uy, rz = dz - y * uz;
+  const rho = Math.sqrt(rx * rx + ry * ry + rz * rz);
+  let hx: f64, hy: f64, hz: f64;
+  // the perpendicular for a point on the axis: (0, 0, −1) (CylinderCollider's constructor)
+  if (rho > 1e-12) { hx = rx / rho; hy = ry / rho; hz = rz / rho; } else { hx = 0; hy = 0; hz = -1; }
+  const sy: f64 = y < 0 ? -1 : 1;
+  const er = rho - CR, ey = Math.abs(y) - CH;
+  if (er > 0 || ey > 0) {
+    const or = max(er, 0), oy = max(ey, 0);
+    const d = Math.sqrt(or * or + oy * oy);
+    LNX = (or * hx + oy * sy * ux) / d;
+    LNY = (or * hy + oy * sy * uy) / d;
+    LNZ = (or * hz + oy * sy * uz) / d;
+    return d;
+  }
+  if (er >= ey) { LNX = hx; LNY = hy; LNZ = hz; return er; }
+  LNX = sy * ux; LNY = sy * uy; LNZ = sy * uz;
+  return ey;
+}
+
+/** CylinderCollider.support along (dx, dy, dz), to SPX…SPZ. */
+function cylinderSupport(dx: f64, dy: f64, dz: f64): void {
+  const ux: f64 = 0, uy: f64 = 1, uz: f64 = 0;
+  const y = dx * ux + dy * uy + dz * uz;
+  const rx = dx - y * ux, ry = dy - y * uy, rz = dz - y * uz;
+  const rho = Math.sqrt(rx * rx + ry * ry + rz * rz);
+  const s = y < 0 ? -CH : CH, r = rho > 1e-12 * Math.sqrt(dx * dx + dy * dy + dz * dz) ? CR / rho : 0;
+  SPX = 0 + s * ux + r * rx;
+  SPY = 0 + s * uy + r * ry;
+  SPZ = 0 + s * uz + r * rz;
+}
+
+// the triangle's corners in the shape's frame, for the searches below
+let TAX: f64 = 0, TAY: f64 = 0, TAZ: f64 = 0, TBX: f64 = 0, TBY: f64 = 0, TBZ: f64 = 0, TCX: f64 = 0, TCY: f64 = 0, TCZ: f64 = 0;
+
+/**
+ * convex.ts vertexDeepest: a corner whose tangent plane has the triangle on or above it is the deepest point (its
+ * weights to U0…U2, its normal to LNX…LNZ, its distance returned); a bound ≥ `within` where the tangent planes show
+ * the triangle that far; else NaN (U0…U2 the deepest corner, LNX…LNZ its normal).
+ */
+function vertexDeepest(within: f64): f64 {
+  let best = Infinity, bestK = 0, certified = false, certK = -1, certD = Infinity, bound = -Infinity;
+  let n0: f64 = 0, n1: f64 = 0, n2: f64 = 0, b0: f64 = 0, b1: f64 = 0, b2: f64 = 0;
+  for (let k = 0; k < 3; k++) {
+    const vx = k == 0 ? TAX : k == 1 ? TBX : TCX, vy = k == 0 ? TAY : k == 1 ? TBY : TCY, vz = k == 0 ? TAZ : k == 1 ? TBZ : TCZ;
+    const d = cylinderDistance(vx, vy, vz);
+    const nx = LNX, ny = LNY, nz = LNZ;
+    const nv = nx * vx + ny * vy + nz * vz;
+    const lowest = min(min(nx * TAX + ny * TAY + nz * TAZ, nx * TBX + ny * TBY + nz * TBZ), nx * TCX + ny * TCY + nz * TCZ) - nv;
+    bound = max(bound, d + min(lowest, 0));
+    if (lowest >= -1e-7 && d < certD) { certified = true; certK = k; certD = d; n0 = nx; n1 = ny; n2 = nz; }
+    if (!certified && d < best) { best = d; bestK = k; b0 = nx; b1 = ny; b2 = nz; }
+  }
+  if (certified) {
+    U0 = certK == 0 ? 1 : 0; U1 = certK == 1 ? 1 : 0; U2 = certK == 2 ? 1 : 0;
+    LNX = n0; LNY = n1; LNZ = n2;
+    return certD;
+  }
+  U0 = bestK == 0 ? 1 : 0; U1 = bestK == 1 ? 1 : 0; U2 = bestK == 2 ? 1 : 0;
+  LNX = b0; LNY = b1; LNZ = b2;
+  return bound >= within ? bound : NaN;
+}
+
+/** convex.ts GOLDEN, (√5 − 1)/2 (written out: a computed global would need a start function, which the kernel must not have) */
+const GOLDEN: f64 = 0.6180339887498949;
+// goldenDeepest's edge vectors and its best point so far
+let GUX: f64 = 0, GUY: f64 = 0, GUZ: f64 = 0, GVX: f64 = 0, GVY: f64 = 0, GVZ: f64 = 0;
+let BEST_U: f64 = 0, BEST_V: f64 = 0, BEST_D: f64 = Infinity;
+
+/** convex.ts goldenF: the distance at (u, v), remembered if the best so far. */
+function goldenF(u: f64, v: f64): f64 {
+  const d = cylinderDistance(TAX + u * GUX + v * GVX, TAY + u * GUY + v * GVY, TAZ + u * GUZ + v * GVZ);
+  if (d < BEST_D) { BEST_D = d; BEST_U = u; BEST_V = v; }
+  return d;
+}
+
+/** convex.ts goldenInner: min over v ∈ [0, 1 − u] of goldenF(u, v), the range's ends included. */
+function goldenInner(u: f64): f64 {
+  let lo: f64 = 0, hi: f64 = 1 - u;
+  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
+  let f1 = goldenF(u, x1), f2 = goldenF(u, x2);
+  for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
+    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = goldenF(u, x1); }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = goldenF(u, x2); }
+  }
+  const e0 = goldenF(u, 0), e1 = goldenF(u, 1 - u);
+  return min(min(min(f1, f2), e0), e1);
+}
+
+/** convex.ts goldenDeepest: the nested golden-section search over the triangle (weights to U0…U2, normal LNX…LNZ). */
+function goldenDeepest(): f64 {
+  GUX = TBX - TAX; GUY = TBY - TAY; GUZ = TBZ - TAZ;
+  GVX = TCX - TAX; GVY = TCY - TAY; GVZ = TCZ - TAZ;
+  BEST_U = 0; BEST_V = 0; BEST_D = Infinity;
+  let lo: f64 = 0, hi: f64 = 1;
+  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
+  let f1 = goldenInner(x1), f2 = goldenInner(x2);
+  for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
+    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = goldenInner(x1); }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = goldenInner(x2); }
+  }
+  goldenInner(0); goldenInner(1);
+  const u = BEST_U, v = BEST_V;
+  U0 = 1 - u - v; U1 = u; U2 = v;
+  return cylinderDistance(TAX + u * GUX + v * GVX, TAY + u * GUY + v * GVY, TAZ + u * GUZ + v * GVZ);
+}
+
+// edgeDeepest's best parameter
+let EDGE_T: f64 = 0;
+
+/** convex.ts edgeDeepest: the least distance along a + s·(b − a), s ∈ [0, 1], its parameter to EDGE_T. */
+function edgeDeepest(ax: f64, ay: f64, az: f64, bx: f64, by: f64, bz: f64): f64 {
+  const ux = bx - ax, uy = by - ay, uz = bz - az;
+  let bestT: f64 = 0, best = cylinderDistance(ax + 0 * ux, ay + 0 * uy, az + 0 * uz);
+  const fb = cylinderDistance(ax + 1 * ux, ay + 1 * uy, az + 1 * uz);
+  if (fb < best) { best = fb; bestT = 1; }
+  let lo: f64 = 0, hi: f64 = 1;
+  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
+  let f1 = cylinderDistance(ax + x1 * ux, ay + x1 * uy, az + x1 * uz), f2 = cylinderDistance(ax + x2 * ux, ay + x2 * uy, az + x2 * uz);
+  for (let k = 0; k < EDGE_ITERATIONS; k++) {
+    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = cylinderDistance(ax + x1 * ux, ay + x1 * uy, az + x1 * uz); }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = cylinderDistance(ax + x2 * ux, ay + x2 * uy, az + x2 * uz); }
+  }
+  if (f1 < best) { best = f1; bestT = x1; }
+  if (f2 < best) { best = f2; bestT = x2; }
+  EDGE_T = bestT;
+  return best;
+}
+/** convex.ts EDGE_ITERATIONS */
+const EDGE_ITERATIONS = 20;
+
+/** convex.ts supportDeepest for the cylinder (weights to U0…U2, normal LNX…LNZ). */
+function supportDeepest(): f64 {
+  const ax = TAX, ay = TAY, az = TAZ, bx = TBX, by = TBY, bz = TBZ, cx = TCX, cy = TCY, cz = TCZ;
+  const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;
+  const nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+  const nn = nx * nx + ny * ny + nz * nz;
+  if (!(nn > 1e-30)) return goldenDeepest();
+  cylinderSupport(nx, ny, nz);
+  const hiX = SPX, hiY = SPY, hiZ = SPZ;
+  cylinderSupport(-nx, -ny, -nz);
+  const loX = SPX, loY = SPY, loZ = SPZ;
+  const hHi = nx * (hiX - ax) + ny * (hiY - ay) + nz * (hiZ - az);
+  const hLo = nx * (loX - ax) + ny * (loY - ay) + nz * (loZ - az);
+  let px: f64, py: f64, pz: f64;
+  const cuts = hLo <= 0 && hHi >= 0;
+  if (cuts) {
+    const t = hHi > hLo ? -hLo / (hHi - hLo) : 0;
+    px = loX + t * (hiX - loX); py = loY + t * (hiY - loY); pz = loZ + t * (hiZ - loZ);
+  } else {
+    const qx = hLo > 0 ? loX : hiX, qy = hLo > 0 ? loY : hiY, qz = hLo > 0 ? loZ : hiZ, h = (hLo > 0 ? hLo : hHi) / nn;
+    px = qx - h * nx; py = qy - h * ny; pz = qz - h * nz;
+  }
+  const qx = px - ax, qy = py - ay, qz = pz - az;
+  const w = (nx * (aby * qz - abz * qy) + ny * (abz * qx - abx * qz) + nz * (abx * qy - aby * qx)) / nn;
+  const v = (nx * (qy * acz - qz * acy) + ny * (qz * acx - qx * acz) + nz * (qx * acy - qy * acx)) / nn;
+  if (v >= 0 && w >= 0 && v + w <= 1) {
+    if (cuts) return goldenDeepest();
+    U0 = 1 - v - w; U1 = v; U2 = w;
+    return cylinderDistance(px, py, pz);
+  }
+  // the corners' distances and normals, then the edges
+  const d0 = cylinderDistance(ax, ay, az), m0x = LNX, m0y = LNY, m0z = LNZ;
+  const d1 = cylinderDistance(bx, by, bz), m1x = LNX, m1y = LNY, m1z = LNZ;
+  const d2 = cylinderDistance(cx, cy, cz), m2x = LNX, m2y = LNY, m2z = LNZ;
+  let best = d0, b0: f64 = 1, b1: f64 = 0, b2: f64 = 0;
+  if (d1 < best) { best = d1; b0 = 0; b1 = 1; }
+  if (d2 < best) { best = d2; b0 = 0; b1 = 0; b2 = 1; }
+  for (let e = 0; e < 3; e++) {
+    const i = e, j = (e + 1) % 3;
+    const ex = (j == 0 ? ax : j == 1 ? bx : cx) - (i == 0 ? ax : i == 1 ? bx : cx);
+    const ey = (j == 0 ? ay : j == 1 ? by : cy) - (i == 0 ? ay : i == 1 ? by : cy);
+    const ez = (j == 0 ? az : j == 1 ? bz : cz) - (i == 0 ? az : i == 1 ? bz : cz);
+    const nix = i == 0 ? m0x : i == 1 ? m1x : m2x, niy = i == 0 ? m0y : i == 1 ? m1y : m2y, niz = i == 0 ? m0z : i == 1 ? m1z : m2z;
+    const njx = j == 0 ? m0x : j == 1 ? m1x : m2x, njy = j == 0 ? m0y : j == 1 ? m1y : m2y, njz = j == 0 ? m0z : j == 1 ? m1z : m2z;
+    const si = nix * ex + niy * ey + niz * ez;
+    const sj = -(njx * ex + njy * ey + njz * ez);
+    if (si >= 0 || sj >= 0) continue;
+    if (max((i == 0 ? d0 : i == 1 ? d1 : d2) + si, (j == 0 ? d0 : j == 1 ? d1 : d2) + sj) >= best) continue;
+    const d = e == 0 ? edgeDeepest(ax, ay, az, bx, by, bz) : e == 1 ? edgeDeepest(bx, by, bz, cx, cy, cz) : edgeDeepest(cx, cy, cz, ax, ay, az);
+    if (d < best) {
+      best = d;
+      const t = EDGE_T;
+      b0 = e == 0 ? 1 - t : e == 1 ? 0 : t;
+      b1 = e == 0 ? t : e == 1 ? 1 - t : 0;
+      b2 = e == 0 ? 0 : e == 1 ? t : 1 - t;
+    }
+  }
+  if (best <= 0) return goldenDeepest();
+  U0 = b0; U1 = b1; U2 = b2;
+  return cylinderDistance(b0 * ax + b1 * bx + b2 * cx, b0 * ay + b1 * by + b2 * cy, b0 * az + b1 * bz + b2 * cz);
+}
+
+/** The triangle's point closest to the axis crossing it: convex.ts axisCrossingNormal for axis u (normal LNX…LNZ); −radius. */
+function axisCrossing(ux: f64, uy: f64, uz: f64, radius: f64): f64 {
+  const abx = TBX - TAX, aby = TBY - TAY, abz = TBZ - TAZ, acx = TCX - TAX, acy = TCY - TAY, acz = TCZ - TAZ;
+  let nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
+  const uu = ux * ux + uy * uy + uz * uz;
+  if (uu > 0) {
+    const k = (nx * ux + ny * uy + nz * uz) / uu;
+    const sx = nx - k * ux, sy = ny - k * uy, sz = nz - k * uz;
+    if (sx * sx + sy * sy + sz * sz > 1e-6 * (nx * nx + ny * ny + nz * nz)) { nx = sx; ny = sy; nz = sz; }
+  }
+  let l = Math.sqrt(nx * nx + ny * ny + nz * nz);
+  if (l == 0 || l != l) l = 1;
+  LNX = nx / l; LNY = ny / l; LNZ = nz / l;
+  return -radius;
+}
+
+/**
+ * CylinderCollider.triangleDeepest on the corners TA…TC (the shape's frame): the vertex certificate; else the
+ * triangle's point closest to the axis where it lies against the curved side; else the support-point method.
+ */
+function cylinderDeepest(within: f64): f64 {
+  const dv = vertexDeepest(within);
+  if (dv == dv) return dv;
+  const ax = TAX - 0, ay = TAY - 0, az = TAZ - 0, bx = TBX - 0, by = TBY - 0, bz = TBZ - 0;
+  const ex = TCX - 0, ey0 = TCY - 0, ez = TCZ - 0;
+  const reach = CH + 1 + max(max(Math.sqrt(ax * ax + ay * ay + az * az), Math.sqrt(bx * bx + by * by + bz * bz)), Math.sqrt(ex * ex + ey0 * ey0 + ez * ez));
+  const ux: f64 = 0, uy: f64 = 1, uz: f64 = 0;
+  const d2 = segmentTriangle(0 - reach * ux, 0 - reach * uy, 0 - reach * uz, 0 + reach * ux, 0 + reach * uy, 0 + reach * uz,
+    TAX, TAY, TAZ, TBX, TBY, TBZ, TCX, TCY, TCZ);
+  const qx = U0 * TAX + U1 * TBX + U2 * TCX, qy = U0 * TAY + U1 * TBY + U2 * TCY, qz = U0 * TAZ + U1 * TBZ + U2 * TCZ;
+  const y = (qx - 0) * ux + (qy - 0) * uy + (qz - 0) * uz;
+  const er = Math.sqrt(d2) - CR, ey = Math.abs(y) - CH;
+  if (ey <= 0 && er >= ey) {
+    if (d2 > 1e-24) return cylinderDistance(qx, qy, qz);
+    return axisCrossing(ux, uy, uz, CR);
+  }
+  return supportDeepest();
+}
+
 /** Squared distance [m²] from (cx, cy, cz) to the particle at byte j of X (phases.ts cornerDistance2). */
 @inline function cornerDistance2(j: usize, cx: f64, cy: f64, cz: f64): f64 {
   const dx = xAt(j) - cx, dy = xAt(j + 4) - cy, dz = xAt(j + 8) - cz;
@@ -238,7 +482,7 @@ function nudge(j: usize, w: f64, kx: f64, ky: f64, kz: f64): void {
   store<f32>(j + 8, <f32>(xAt(j + 8) + w * kz));
 }
 
-/** Triangle contact with every sphere and capsule record that has it (phases.ts collideTriangles, for those shapes). */
+/** Triangle contact with every sphere, capsule and cylinder record that has it (phases.ts collideTriangles, for those shapes). */
 export function collideTriangles(): void {
   const th = load<f64>(THICKNESS), reach = load<f64>(TRIANGLE_REACH), recover = load<f64>(TRIANGLE_RECOVER);
   const count = load<i32>(COLLIDERS);
@@ -246,11 +490,16 @@ export function collideTriangles(): void {
   for (let k = 0; k < count; k++) {
     const rec = COLLIDER_RECORDS + <usize>k * COLLIDER_BYTES;
     if (field(rec, COLLIDER_RECORD_EXACT) == 0) continue;
-    // a sphere's radius; a capsule's half length (its axis along y) and radius (PosedCollider.shapeParams)
-    const capsule = <i32>field(rec, COLLIDER_RECORD_TYPE) == COLLIDER_CAPSULE;
+    // a sphere's radius; a capsule's half length (its axis along y) and radius; a cylinder's radius and half height
+    // (PosedCollider.shapeParams)
+    const type = <i32>field(rec, COLLIDER_RECORD_TYPE), capsule = type == COLLIDER_CAPSULE, cylinder = type == COLLIDER_CYLINDER;
     const s0 = field(rec, COLLIDER_RECORD_SHAPE), s1 = field(rec, COLLIDER_RECORD_SHAPE, 1);
-    // PosedCollider.boundingRadius, and its box's half extents in its own frame
-    const bound = capsule ? s0 + s1 : s0, e0 = capsule ? s1 : s0, e1 = capsule ? s0 + s1 : s0, e2 = e0;
+    // PosedCollider.boundingRadius (a cylinder's: the host's Math.hypot, here its square root of the sum; the ball
+    // only culls triangles farther than the reach, so a last bit either way changes nothing), and its box's half
+    // extents in its own frame
+    const bound = capsule ? s0 + s1 : cylinder ? Math.sqrt(s0 * s0 + s1 * s1) : s0;
+    const e0 = capsule ? s1 : s0, e1 = capsule ? s0 + s1 : cylinder ? s1 : s0, e2 = e0;
+    CR = s0; CH = s1;
     const o0 = field(rec, COLLIDER_RECORD_O), o1 = field(rec, COLLIDER_RECORD_O, 1), o2 = field(rec, COLLIDER_RECORD_O, 2);
     const ball = (bound + reach) * (1 + 1e-9), ball2 = ball * ball;
     if (!boxed) { clothBox(); boxed = true; }
@@ -286,6 +535,10 @@ export function collideTriangles(): void {
         const qx = r0 * dx + r3 * dy + r6 * dz, qy = r1 * dx + r4 * dy + r7 * dz, qz = r2 * dx + r5 * dy + r8 * dz;
         if (capsule) {
           if (capsuleDistance(s0, s1, qx, qy, qz, far) >= far) continue;
+        } else if (cylinder) {
+          // (the reference's cylinder first returns `far` itself where the centroid is farther than its bound and
+          // far from the centre; its distance there is at least that too: the same triangles go on)
+          if (cylinderDistance(qx, qy, qz) >= far) continue;
         } else {
           const d2 = qx * qx + qy * qy + qz * qz;
           const farR = s0 + far;
@@ -305,6 +558,10 @@ export function collideTriangles(): void {
       let d: f64, lnx: f64, lny: f64, lnz: f64;
       if (capsule) {
         d = capsuleDeepest(s0, s1, sax, say, saz, sbx, sby, sbz, scx, scy, scz);
+        lnx = LNX; lny = LNY; lnz = LNZ;
+      } else if (cylinder) {
+        TAX = sax; TAY = say; TAZ = saz; TBX = sbx; TBY = sby; TBZ = sbz; TCX = scx; TCY = scy; TCZ = scz;
+        d = cylinderDeepest(th);
         lnx = LNX; lny = LNY; lnz = LNZ;
       } else {
         closestPoint(0, 0, 0, sax, say, saz, sbx, sby, sbz, scx, scy, scz);

@@ -36,7 +36,7 @@ const KERNEL_TYPES: readonly number[] = [COLLIDER_SPHERE, COLLIDER_FLOOR, COLLID
 /**
  * Why the kernel cannot do particle contact against these colliders, or null: it knows every analytic shape
  * (PosedCollider.typeId, the COLLIDER_* ids), moving or not, up to MAX_COLLIDERS of them; a mesh's contact runs in
- * TypeScript. (Triangle contact, the next phase, contactTriangles, it takes for spheres and capsules: triangleRefusal.)
+ * TypeScript. (Triangle contact, the next phase, contactTriangles, it takes for spheres, capsules and cylinders: triangleRefusal.)
  */
 function contactRefusal(params: SimParams): string | null {
   const shapes = params.colliders;
@@ -48,14 +48,14 @@ function contactRefusal(params: SimParams): string | null {
 }
 
 /**
- * Why the kernel cannot take this scene's triangle contact, or null: it has the sphere's and the capsule's
- * (triangle-contact.as.ts); a scene whose other shapes need triangle contact (boxes, cylinders, meshes whose surface
+ * Why the kernel cannot take this scene's triangle contact, or null: it has the sphere's, the capsule's and the
+ * cylinder's (triangle-contact.as.ts); a scene whose other shapes need triangle contact (boxes, meshes whose surface
  * can poke between the vertices) leaves the phase to the TypeScript reference on the kernel's memory.
  */
 function triangleRefusal(model: ClothModel, params: SimParams): string | null {
   const refused = contactRefusal(params);
   if (refused) return refused;
-  const other = params.colliders.find((s) => s.typeId !== COLLIDER_SPHERE && s.typeId !== COLLIDER_CAPSULE && needsTriangleContact(model, s, params.thickness));
+  const other = params.colliders.find((s) => s.typeId !== COLLIDER_SPHERE && s.typeId !== COLLIDER_CAPSULE && s.typeId !== COLLIDER_CYLINDER && needsTriangleContact(model, s, params.thickness));
   return other ? `triangle contact with a ${other.type} has no kernel code` : null;
 }
 
