@@ -64,7 +64,7 @@ export class ClothBuffers {
       // placeholders: a cloth that bends with springs spends nothing on stencils (makeStencils)
       stencilOffsets: 0, stencilVertices: 0, stencilWeights: 0, stencilCompliance: 0, stencilLambdas: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
-      normals: n, grabStart: 1, colliders: 1, carried: 1, meshNodes: 1, meshTriangles: 1,
+      normals: n, grabStart: 2, colliders: 1, carried: 1, meshNodes: 1, meshTriangles: 1,
       // placeholders: a cloth without self-contact spends nothing on its grid (makeSelfContact)
       edges: 0, selfBoxes: 0, selfRanks: 0, selfCounts: 0, selfStarts: 0, selfBlocks: 0, selfEntries: 0, selfPairs: 0, selfArgs: 0,
       selfDelta: 0,

@@ -146,7 +146,25 @@ export class FrameEncoder implements PhaseBackend {
         case PHASE.wind: this.dispatch('wind', model.triangles.length / 3, so, 0); break;
         case PHASE.integrate: this.dispatch('integrate', particles, so, 0); break;
         case PHASE.carry: this.dispatch('carry', params.carried.particles.length, so, 0); break;
-        case PHASE.grab: this.dispatch('grab', 1, so, 0); break;
+        case PHASE.grab: {
+          if (frame.sub === 0) {
+            // where the grab carries its particle by the frame's end, kept out of the colliders as they stand then
+            // (runFrame's grabFrameTarget and keepGrabOutside, on the GPU since the frame-start position is there):
+            // the last substep's record holds the colliders' frame-end poses; over every particle run of colliders
+            // in order, twice (keepGrabOutside's two rounds)
+            const last = (frame.substeps - 1) * RECORD_STRIDE;
+            this.dispatch('grabFrame', 1, last, 0);
+            for (let round = 0; round < 2; round++) {
+              for (const c of u.collidePasses) {
+                if (c.triangles) continue;
+                const kernel = c.kernel === 'collideMeshParticles' ? 'grabOutsideMesh' : 'grabOutside';
+                this.dispatch(kernel, 1, last, c.record * RECORD_STRIDE);
+              }
+            }
+          }
+          this.dispatch('grab', 1, so, 0);
+          break;
+        }
         case PHASE.distance: {
           const passes = phasePasses(PHASE.distance, params);
           for (let it = 0; it < passes; it++) {

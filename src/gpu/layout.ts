@@ -231,7 +231,10 @@ export const BUFFERS = {
   adjacency: { type: 'u32', bytes: 4 },
   /** area-weighted vertex normals, unit length, for renderers */
   normals: { type: 'vec4f', bytes: 16 },
-  /** position of the grabbed particle at the start of the frame (1 element) */
+  /**
+   * the grab's frame (2 elements): [0] the grabbed particle's position at the start of the frame, [1] where the
+   * grab carries it by the frame's end (grabFrame, kept out of the colliders by grabOutside) [m]
+   */
   grabStart: { type: 'vec4f', bytes: 16 },
   /**
    * every collider's pose and surface motion: one record per collider (params.colliders order) while none moves,
@@ -325,6 +328,19 @@ export const KERNELS = {
       ['adjacency', 'read'], ['residuals', 'read_write'], ['previousResiduals', 'read_write'],
     ],
     libs: ['precision'],
+  },
+  /** grabFrameTarget, once per frame: where the grab carries its particle by the frame's end, one thread */
+  grabFrame: { bindings: [['grabStart', 'read_write']] },
+  /** keepGrabOutside on that point, for a run of analytic colliders (twice over the runs: two rounds), one thread */
+  grabOutside: {
+    bindings: [['grabStart', 'read_write'], ['colliders', 'read']],
+    libs: ['pose', 'colliders', 'shapes'],
+  },
+  /** the same for a run of mesh colliders (the mesh's walks in a kernel of their own, as collideMeshParticles) */
+  grabOutsideMesh: {
+    file: 'grabOutside',
+    bindings: [['grabStart', 'read_write'], ['colliders', 'read'], ['meshNodes', 'read'], ['meshTriangles', 'read']],
+    libs: ['pose', 'colliders', 'meshCollider'],
   },
   /** moveGrabbed: the grabbed particle, one thread */
   grab: { bindings: [['positions', 'read_write'], ['grabStart', 'read'], ['residuals', 'read_write']] },
