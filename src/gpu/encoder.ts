@@ -14,7 +14,7 @@ import type { ClothState } from '../core/state.js';
 import type { ClothBuffers } from './buffers.js';
 import { gpuCollider, type ColliderTables } from './colliders.js';
 import { meshRefusal } from './meshes.js';
-import { MAX_WORKGROUPS_X, RECORD_STRIDE, SCAN_BLOCK, WORKGROUP_SIZE, type KernelName } from './layout.js';
+import { MAX_WORKGROUPS_X, RECORD_STRIDE, SCAN_BLOCK, SELF_EDGE_PASSES, WORKGROUP_SIZE, type KernelName } from './layout.js';
 import type { SelfRecords, UniformTables } from './uniforms.js';
 
 /** The shapes the GPU has, for its refusals. */
@@ -197,10 +197,10 @@ export class FrameEncoder implements PhaseBackend {
           if (!r) break;
           this.buildSelfGrid(r, r.triangles, r.triangleCount, so);
           this.dispatch('selfFindPoints', particles, so, 0);
-          this.resolveSelfPairs('selfPoints', so);
+          this.resolveSelfPairs('selfPoints', so, 1);
           this.buildSelfGrid(r, r.edges, r.edgeCount, so);
           this.dispatch('selfFindEdges', r.edgeCount, so, 0);
-          this.resolveSelfPairs('selfEdges', so);
+          this.resolveSelfPairs('selfEdges', so, SELF_EDGE_PASSES);
           break;
         }
         case PHASE.contact:
@@ -233,18 +233,20 @@ export class FrameEncoder implements PhaseBackend {
   }
 
   /**
-   * Dispatches a self-contact pair pass over the candidates just listed: its indirect arguments from their count
-   * (selfPairArgs), `kernel` over them (one pair per thread), then every particle moved by the mean of its
-   * corrections (selfApply).
+   * Dispatches `passes` self-contact pair passes over the candidates just listed: their indirect arguments from
+   * their count (selfPairArgs), then `passes` times `kernel` over them (one pair per thread), every particle moved by
+   * the mean of its corrections (selfApply) — Jacobi iterations over one list (SELF_EDGE_PASSES).
    */
-  private resolveSelfPairs(kernel: 'selfPoints' | 'selfEdges', so: number): void {
+  private resolveSelfPairs(kernel: 'selfPoints' | 'selfEdges', so: number, passes: number): void {
     this.dispatch('selfPairArgs', 1, so, 0);
     const pass = this.pass!;
-    pass.setPipeline(this.pipelines[kernel]);
-    pass.setBindGroup(0, this.uniforms.group, [so, 0]);
-    pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
-    pass.dispatchWorkgroupsIndirect(this.buffers.buffers.selfArgs, 0);
-    this.dispatch('selfApply', this.model.particleCount, so, 0);
+    for (let k = 0; k < passes; k++) {
+      pass.setPipeline(this.pipelines[kernel]);
+      pass.setBindGroup(0, this.uniforms.group, [so, 0]);
+      pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
+      pass.dispatchWorkgroupsIndirect(this.buffers.buffers.selfArgs, 0);
+      this.dispatch('selfApply', this.model.particleCount, so, 0);
+    }
   }
 
   /** Recomputes the vertex normals from the current positions, in a submit of its own. */

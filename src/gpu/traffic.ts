@@ -4,7 +4,7 @@
  */
 import { bendingStencils, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
-import { CARRY, COLLIDER, SCAN_BLOCK } from './layout.js';
+import { CARRY, COLLIDER, SCAN_BLOCK, SELF_EDGE_PASSES } from './layout.js';
 import type { BatchRecords, CollidePass, SelfRecords, StencilBatchRecords } from './uniforms.js';
 
 /** Bytes one substep's kernels read and write, as written (each element access counted once per thread). */
@@ -58,7 +58,7 @@ export function substepTraffic(
     const build = (P: number, k: number) =>
       P * (k * 32 + 32 + 4) + P * (32 + 2 * 8) + B * (4 + 4 + 4 + 4 + 4 + 4) + (B / SCAN_BLOCK) * 12 + P * (32 + 4 + 2 * (4 + 4 + 4));
     add('selfContact', build(self.triangleCount, 3) + n * (16 + 16 + 4 + 8) + n * (16 + 32));
-    add('selfContact', build(self.edgeCount, 2) + self.edgeCount * (32 + 8 + 64 + 8) + n * (16 + 32));
+    add('selfContact', build(self.edgeCount, 2) + self.edgeCount * (32 + 8 + 64 + 8) + SELF_EDGE_PASSES * n * (16 + 32));
   }
   const carried = params.carried.particles.length;
   if (carried > 0) add('carry', carried * (CARRY.size + COLLIDER.size + 16)); // its record, its collider's, the position written
@@ -79,7 +79,7 @@ export function substepTraffic(
  * Dispatches one frame encodes with nothing grabbed (prepare, velocities and normals once; the rest per substep);
  * `stencilRecords` is empty unless params.bending is a stencil model, `self` null unless it has self-contact (then
  * per substep two grid builds of 6 dispatches, each followed by its candidates, their indirect arguments, the pairs
- * and the corrections applied: 20).
+ * and the corrections applied, the edges' SELF_EDGE_PASSES times: 20 + 2 per edge pass past the first).
  */
 export function dispatchesPerFrame(
   params: SimParams, batchRecords: readonly BatchRecords[], stencilRecords: readonly StencilBatchRecords[],
@@ -88,6 +88,6 @@ export function dispatchesPerFrame(
   const stretchBatches = batchRecords.filter((r) => r.stretch).length;
   const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) +
     params.iterations * (batchRecords.length + stencilRecords.length) + stretchBatches + (hasTethers ? 1 : 0) +
-    collidePasses.length + (self ? 20 : 0);
+    collidePasses.length + (self ? 18 + 2 * SELF_EDGE_PASSES : 0);
   return 3 + params.substeps * perSubstep;
 }
