@@ -4,6 +4,7 @@
  * (schedule.ts) onto them and the solvers' own. None of them allocates.
  */
 import type { ColliderShape } from './colliders/shape.js';
+import { TRIANGLE_SPREAD_MOST } from './layout.generated.js';
 import { BEND, type ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
@@ -386,6 +387,10 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       const denom = wa * bary[0] + wb * bary[1] + wc * bary[2];
       // (not > 0: nothing free to move, or weights of a triangle too degenerate to have any)
       if (!(denom > 0)) continue;
+      // corner i moves (wᵢ/denom)·Δ for the point's Δ: a point at or beside a corner that cannot move (pinned,
+      // grabbed) leaves a free corner a small share and would throw it by Δ/share, across the cloth (5.6 cm in one
+      // substep, a corner grabbed along a sphere): no corner moves more than TRIANGLE_SPREAD_MOST × Δ
+      const spread = Math.max(wa, wb, wc) / denom, scale = spread > TRIANGLE_SPREAD_MOST ? TRIANGLE_SPREAD_MOST / spread : 1;
       // motion of the contact point over the substep so far, treated as a particle's above
       let mx = bary[0] * (x[3 * a] - xp[3 * a]) + bary[1] * (x[3 * b] - xp[3 * b]) + bary[2] * (x[3 * c] - xp[3 * c]);
       let my = bary[0] * (x[3 * a + 1] - xp[3 * a + 1]) + bary[1] * (x[3 * b + 1] - xp[3 * b + 1]) + bary[2] * (x[3 * c + 1] - xp[3 * c + 1]);
@@ -407,14 +412,14 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       // desired displacement of the contact point, spread so that Σ bary_i·Δx_i equals it; and what of it
       // moves x_prev likewise
       const made = Math.min(mn + depth, depth);
-      const dx = (depth * normal[0] - fs * tx) / denom;
-      const dy = (depth * normal[1] - fs * ty) / denom;
-      const dz = (depth * normal[2] - fs * tz) / denom;
+      const dx = ((depth * normal[0] - fs * tx) / denom) * scale;
+      const dy = ((depth * normal[1] - fs * ty) / denom) * scale;
+      const dz = ((depth * normal[2] - fs * tz) / denom) * scale;
       x[3 * a] += wa * dx; x[3 * a + 1] += wa * dy; x[3 * a + 2] += wa * dz;
       x[3 * b] += wb * dx; x[3 * b + 1] += wb * dy; x[3 * b + 2] += wb * dz;
       x[3 * c] += wc * dx; x[3 * c + 1] += wc * dy; x[3 * c + 2] += wc * dz;
       if (made > 0) {
-        const px = (made * normal[0]) / denom, py = (made * normal[1]) / denom, pz = (made * normal[2]) / denom;
+        const px = ((made * normal[0]) / denom) * scale, py = ((made * normal[1]) / denom) * scale, pz = ((made * normal[2]) / denom) * scale;
         xp[3 * a] += wa * px; xp[3 * a + 1] += wa * py; xp[3 * a + 2] += wa * pz;
         xp[3 * b] += wb * px; xp[3 * b + 1] += wb * py; xp[3 * b + 2] += wb * pz;
         xp[3 * c] += wc * px; xp[3 * c + 1] += wc * py; xp[3 * c + 2] += wc * pz;

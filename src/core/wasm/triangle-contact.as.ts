@@ -10,6 +10,7 @@ import { SMX, SMY, SMZ, field, frictionScale, pressedDepth, surfaceMotion } from
 import {
   COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_RECORD_EXACT, GOLDEN_ITERATIONS, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
   COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_RECORDS, COLLIDERS, THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
+  TRIANGLE_SPREAD_MOST,
 } from './layout.generated.as';
 
 const COLLIDER_BYTES: usize = <usize>COLLIDER_RECORD_FLOATS * 8;
@@ -578,6 +579,8 @@ export function collideTriangles(): void {
       const wc = <f64>load<f32>(W + (<usize>c << 2)) * u2;
       const denom = wa * u0 + wb * u1 + wc * u2;
       if (!(denom > 0)) continue;
+      // no corner moves more than TRIANGLE_SPREAD_MOST × the point's correction (phases.ts)
+      const spread = max(max(wa, wb), wc) / denom, scale = spread > TRIANGLE_SPREAD_MOST ? TRIANGLE_SPREAD_MOST / spread : 1;
       const pa = XP + <usize>a * 12, pb = XP + <usize>b * 12, pc = XP + <usize>c * 12;
       let mx = u0 * (ax - xAt(pa)) + u1 * (bx - xAt(pb)) + u2 * (cx0 - xAt(pc));
       let my = u0 * (ay - xAt(pa + 4)) + u1 * (by - xAt(pb + 4)) + u2 * (cy0 - xAt(pc + 4));
@@ -592,10 +595,10 @@ export function collideTriangles(): void {
       const tx = mx - mn * nx, ty = my - mn * ny, tz = mz - mn * nz;
       const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), pressedDepth(th - d, movedIn, recover));
       const made = min(mn + depth, depth);
-      const kx = (depth * nx - fs * tx) / denom, ky = (depth * ny - fs * ty) / denom, kz = (depth * nz - fs * tz) / denom;
+      const kx = ((depth * nx - fs * tx) / denom) * scale, ky = ((depth * ny - fs * ty) / denom) * scale, kz = ((depth * nz - fs * tz) / denom) * scale;
       nudge(ja, wa, kx, ky, kz); nudge(jb, wb, kx, ky, kz); nudge(jc, wc, kx, ky, kz);
       if (made > 0) {
-        const px = (made * nx) / denom, py = (made * ny) / denom, pz = (made * nz) / denom;
+        const px = ((made * nx) / denom) * scale, py = ((made * ny) / denom) * scale, pz = ((made * nz) / denom) * scale;
         nudge(pa, wa, px, py, pz); nudge(pb, wb, px, py, pz); nudge(pc, wc, px, py, pz);
       }
     }

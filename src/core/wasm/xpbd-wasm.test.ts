@@ -282,6 +282,32 @@ describe('xpbd wasm kernel', () => {
     expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
   });
 
+  // a 4 mm ball poking up 3 mm through a one-face sheet 2 cm from a pinned corner, on the edge to the free corner: the
+  // deepest point's share of the free corner is 2 %, and the push-out (5 mm: the sheet moving down at 5 mm a
+  // substep) would throw it by 0.25 m; no corner moves more than TRIANGLE_SPREAD_MOST (2) × the point's push
+  it('triangle contact beside a pinned corner: the free corner moves at most twice the push, in the reference and the kernel alike', () => {
+    const sc = validateScene({
+      name: 'pinned corner', cloth: { resolution: 1, width: 1, height: 1, position: [0, 1, 0] }, solver: { type: 'xpbd', selfContact: false },
+      pins: ['top-left', 'bottom-left', 'bottom-right'], colliders: [{ type: 'sphere', center: [-0.48, 0.999, -0.5], radius: 0.004 }],
+    });
+    const sim = new Simulation(sc, { kernel: 'wasm' });
+    // a frame first (the inverse masses), then the sheet back where it started, moving down 5 mm a substep:
+    // corner 0 at (−0.5, 1, −0.5) pinned, corner 1 at (0.5, 1, −0.5) free
+    sim.advance(1);
+    const x = sim.state.positions, xp = sim.state.previousPositions;
+    x.set(sim.model.restPositions);
+    expect([...x.subarray(0, 6)]).toEqual([-0.5, 1, -0.5, 0.5, 1, -0.5]);
+    expect([...sim.state.invMass].map((w) => w > 0)).toEqual([false, true, false, false]);
+    for (let i = 0; i < x.length; i++) xp[i] = x[i] + (i % 3 === 1 ? 0.005 : 0);
+    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
+    const moved = Math.hypot(st.positions[3] - before[3], st.positions[4] - before[4], st.positions[5] - before[5]);
+    // the push: 5 mm moved in, plus the recovery allowance (a fraction of a millimetre)
+    expect(moved).toBeGreaterThan(2 * 0.005);
+    expect(moved).toBeLessThanOrEqual(2 * 0.0052);
+    expect([...st.positions]).toEqual([...copy.positions]);
+    expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
+  });
+
   it('triangle contact with the mannequin in the skirt (capsules and a sphere, turning): the kernel\'s phase moves every particle as the reference does, bit for bit', () => {
     const sim = new Simulation(builtinScene('skirt'), { kernel: 'wasm' });
     sim.advance(50);

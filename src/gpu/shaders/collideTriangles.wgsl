@@ -33,6 +33,10 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   let denom = wa * bary.x + wb * bary.y + wc * bary.z;
   // (not > 0: nothing free to move, or weights too degenerate to have any; NaN included)
   if (!(denom > 0.0)) { return; }
+  // no corner moves more than TRIANGLE_SPREAD_MOST × the point's correction (phases.ts collideTriangles: a point
+  // beside a pinned or grabbed corner would throw a free one across the cloth)
+  let spread = max(max(wa, wb), wc) / denom;
+  let scale = select(1.0, TRIANGLE_SPREAD_MOST / spread, spread > TRIANGLE_SPREAD_MOST);
   // motion of the contact point over the substep so far, relative to the surface, treated as a particle's
   // (collideParticles), the recovery shared among the triangles of a particle
   let pa = previous[a].xyz;
@@ -45,14 +49,14 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   let depth = min(th - d, movedIn + sub.recoverTriangle);
   let tang = m - mn * n;
   let fs = frictionScale(length(tang), pressedDepth(th - d, movedIn, sub.recoverTriangle));
-  let dx = (depth * n - fs * tang) / denom;
+  let dx = ((depth * n - fs * tang) / denom) * scale;
   positions[a] = vec4f(xa + wa * dx, 0.0);
   positions[b] = vec4f(xb + wb * dx, 0.0);
   positions[c] = vec4f(xc + wc * dx, 0.0);
   // the outward motion the push-out made is not velocity: x_prev moves likewise
   let made = min(mn + depth, depth);
   if (made > 0.0) {
-    let dp = (made / denom) * n;
+    let dp = ((made / denom) * scale) * n;
     previous[a] = vec4f(pa + wa * dp, 0.0);
     previous[b] = vec4f(pb + wb * dp, 0.0);
     previous[c] = vec4f(pc + wc * dp, 0.0);
