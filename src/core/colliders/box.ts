@@ -118,10 +118,11 @@ export class BoxCollider implements ColliderShape {
     }
     let best = vertex, found = false;
     const gx = (ax + bx + cx) / 3, gy = (ay + by + cy) / 3, gz = (az + bz + cz) / 3;
+    // (products, not `** 2`: the WebAssembly kernel repeats these operations exactly)
+    const ax1 = ax - gx, ay1 = ay - gy, az1 = az - gz, bx1 = bx - gx, by1 = by - gy, bz1 = bz - gz;
+    const cx1 = cx - gx, cy1 = cy - gy, cz1 = cz - gz;
     const reach = Math.sqrt(Math.max(
-      (ax - gx) ** 2 + (ay - gy) ** 2 + (az - gz) ** 2,
-      (bx - gx) ** 2 + (by - gy) ** 2 + (bz - gz) ** 2,
-      (cx - gx) ** 2 + (cy - gy) ** 2 + (cz - gz) ** 2,
+      ax1 * ax1 + ay1 * ay1 + az1 * az1, bx1 * bx1 + by1 * by1 + bz1 * bz1, cx1 * cx1 + cy1 * cy1 + cz1 * cz1,
     ));
     const E = this.edges;
     for (let e = 0; e < 72; e += 6) {

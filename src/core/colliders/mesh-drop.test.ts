@@ -118,7 +118,7 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
 });
 
 describe('backends', () => {
-  it('the WebAssembly kernel leaves mesh contact to the TypeScript reference', () => {
+  it('the WebAssembly kernel leaves mesh contact, particles and triangles, to the TypeScript reference', () => {
     const sc = validateScene({ cloth: { resolution: 8 }, colliders: [DROPS[0][1]] });
     const sim = new Simulation(sc, { kernel: 'wasm', meshes });
     expect(sim.backend).toBeInstanceOf(WasmBackend);
@@ -126,6 +126,8 @@ describe('backends', () => {
     (sim.backend as WasmBackend).kernel.frame(sim.model, sim.state, sim.params, FRAME_DT, log);
     expect(log.names()).toContain('contact (reference)');
     expect(log.names()).not.toContain('contact');
+    expect(log.names()).toContain('contactTriangles (reference)');
+    expect(log.names()).not.toContain('contactTriangles');
   });
 
   it('a scene with a mesh collider and no way to read files names the field', () => {

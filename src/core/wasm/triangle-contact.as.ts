@@ -8,7 +8,7 @@
 import { N, TRIANGLE_COUNT, TRIANGLES, W, X, XP } from './arrays.as';
 import { SMX, SMY, SMZ, field, frictionScale, pressedDepth, surfaceMotion } from './contact.as';
 import {
-  COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_RECORD_EXACT, GOLDEN_ITERATIONS, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_RECORD_EXACT, GOLDEN_ITERATIONS, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
   COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_RECORDS, COLLIDERS, THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
   TRIANGLE_SPREAD_MOST,
 } from './layout.generated.as';
@@ -228,8 +228,12 @@ function capsuleDeepest(half: f64, radius: f64, ax: f64, ay: f64, az: f64, bx: f
 }
 
 // The cylinder (cylinder.ts, convex.ts), in its own frame: centre at the origin, axis along y, radius CR, half
-// height CH. Each function below repeats the reference's operations in its order (f64 on the f32 corners).
+// height CH; and the box (box.ts), centred at the origin along its own axes, half extents BH0…BH2. Each function
+// below repeats the reference's operations in its order (f64 on the f32 corners).
 let CR: f64 = 0, CH: f64 = 0;
+let BH0: f64 = 0, BH1: f64 = 0, BH2: f64 = 0;
+/** the shape the searches below measure: a box or a cylinder */
+let BOXED = false;
 // the support point (CylinderCollider.support)
 let SPX: f64 = 0, SPY: f64 = 0, SPZ: f64 = 0;
 
@@ -270,6 +274,28 @@ function cylinderSupport(dx: f64, dy: f64, dz: f64): void {
   SPZ = 0 + s * uz + r * rz;
 }
 
+/** BoxCollider.signedDistance at (px, py, pz) (its own frame, not turned; no bound), the normal to LNX…LNZ. */
+function boxDistance(px: f64, py: f64, pz: f64): f64 {
+  const q0 = px - 0, q1 = py - 0, q2 = pz - 0;
+  const e0 = Math.abs(q0) - BH0, e1 = Math.abs(q1) - BH1, e2 = Math.abs(q2) - BH2;
+  if (e0 > 0 || e1 > 0 || e2 > 0) {
+    const o0 = max(e0, 0), o1 = max(e1, 0), o2 = max(e2, 0);
+    const d = Math.sqrt(o0 * o0 + o1 * o1 + o2 * o2);
+    LNX = (Math.sign(q0) * o0) / d; LNY = (Math.sign(q1) * o1) / d; LNZ = (Math.sign(q2) * o2) / d;
+    return d;
+  }
+  LNX = 0; LNY = 0; LNZ = 0;
+  if (e0 >= e1 && e0 >= e2) { LNX = q0 < 0 ? -1 : 1; return e0; }
+  if (e1 >= e2) { LNY = q1 < 0 ? -1 : 1; return e1; }
+  LNZ = q2 < 0 ? -1 : 1;
+  return e2;
+}
+
+/** The distance (and normal, LNX…LNZ) of the shape the searches measure. */
+@inline function shapeDistance(px: f64, py: f64, pz: f64): f64 {
+  return BOXED ? boxDistance(px, py, pz) : cylinderDistance(px, py, pz);
+}
+
 // the triangle's corners in the shape's frame, for the searches below
 let TAX: f64 = 0, TAY: f64 = 0, TAZ: f64 = 0, TBX: f64 = 0, TBY: f64 = 0, TBZ: f64 = 0, TCX: f64 = 0, TCY: f64 = 0, TCZ: f64 = 0;
 
@@ -283,7 +309,7 @@ function vertexDeepest(within: f64): f64 {
   let n0: f64 = 0, n1: f64 = 0, n2: f64 = 0, b0: f64 = 0, b1: f64 = 0, b2: f64 = 0;
   for (let k = 0; k < 3; k++) {
     const vx = k == 0 ? TAX : k == 1 ? TBX : TCX, vy = k == 0 ? TAY : k == 1 ? TBY : TCY, vz = k == 0 ? TAZ : k == 1 ? TBZ : TCZ;
-    const d = cylinderDistance(vx, vy, vz);
+    const d = shapeDistance(vx, vy, vz);
     const nx = LNX, ny = LNY, nz = LNZ;
     const nv = nx * vx + ny * vy + nz * vz;
     const lowest = min(min(nx * TAX + ny * TAY + nz * TAZ, nx * TBX + ny * TBY + nz * TBZ), nx * TCX + ny * TCY + nz * TCZ) - nv;
@@ -309,7 +335,7 @@ let BEST_U: f64 = 0, BEST_V: f64 = 0, BEST_D: f64 = Infinity;
 
 /** convex.ts goldenF: the distance at (u, v), remembered if the best so far. */
 function goldenF(u: f64, v: f64): f64 {
-  const d = cylinderDistance(TAX + u * GUX + v * GVX, TAY + u * GUY + v * GVY, TAZ + u * GUZ + v * GVZ);
+  const d = shapeDistance(TAX + u * GUX + v * GVX, TAY + u * GUY + v * GVY, TAZ + u * GUZ + v * GVZ);
   if (d < BEST_D) { BEST_D = d; BEST_U = u; BEST_V = v; }
   return d;
 }
@@ -342,7 +368,7 @@ function goldenDeepest(): f64 {
   goldenInner(0); goldenInner(1);
   const u = BEST_U, v = BEST_V;
   U0 = 1 - u - v; U1 = u; U2 = v;
-  return cylinderDistance(TAX + u * GUX + v * GVX, TAY + u * GUY + v * GVY, TAZ + u * GUZ + v * GVZ);
+  return shapeDistance(TAX + u * GUX + v * GVX, TAY + u * GUY + v * GVY, TAZ + u * GUZ + v * GVZ);
 }
 
 // edgeDeepest's best parameter
@@ -447,6 +473,76 @@ function axisCrossing(ux: f64, uy: f64, uz: f64, radius: f64): f64 {
   return -radius;
 }
 
+/** BoxCollider.segmentHits in the box's frame: whether segment p–q meets the box (slabs). */
+function segmentHits(px: f64, py: f64, pz: f64, qx: f64, qy: f64, qz: f64): bool {
+  const dx = px - 0, dy = py - 0, dz = pz - 0;
+  const ex = qx - px, ey = qy - py, ez = qz - pz;
+  let lo: f64 = 0, hi: f64 = 1;
+  for (let i = 0; i < 3; i++) {
+    const o = i == 0 ? dx : i == 1 ? dy : dz, v = i == 0 ? ex : i == 1 ? ey : ez, h = i == 0 ? BH0 : i == 1 ? BH1 : BH2;
+    if (Math.abs(v) < 1e-300) {
+      if (Math.abs(o) > h) return false;
+      continue;
+    }
+    let t0 = (-h - o) / v, t1 = (h - o) / v;
+    if (t0 > t1) { const t = t0; t0 = t1; t1 = t; }
+    lo = max(lo, t0); hi = min(hi, t1);
+    if (lo > hi) return false;
+  }
+  return true;
+}
+
+/**
+ * BoxCollider.triangleDeepest on the corners TA…TC (the box's frame): the vertex certificate; a triangle crossing
+ * the box to the golden-section search; else the deepest corner or the triangle's point nearest one of the box's 12
+ * edges (each from corner k to corner k | bit, in the reference's order).
+ */
+function boxDeepest(within: f64): f64 {
+  const dv = vertexDeepest(within);
+  if (dv == dv) return dv;
+  const ax = TAX, ay = TAY, az = TAZ, bx = TBX, by = TBY, bz = TBZ, cx = TCX, cy = TCY, cz = TCZ;
+  const k = U0 == 1 ? 0 : U1 == 1 ? 1 : 2;
+  const v0 = U0, v1 = U1, v2 = U2;
+  const vertex = k == 0 ? boxDistance(ax, ay, az) : k == 1 ? boxDistance(bx, by, bz) : boxDistance(cx, cy, cz);
+  const vnx = LNX, vny = LNY, vnz = LNZ;
+  if (vertex <= 0 || segmentHits(ax, ay, az, bx, by, bz) || segmentHits(bx, by, bz, cx, cy, cz) || segmentHits(cx, cy, cz, ax, ay, az)) {
+    return goldenDeepest();
+  }
+  let best = vertex, found = false, e0: f64 = 0, e1: f64 = 0, e2: f64 = 0;
+  const gx = (ax + bx + cx) / 3, gy = (ay + by + cy) / 3, gz = (az + bz + cz) / 3;
+  const ax1 = ax - gx, ay1 = ay - gy, az1 = az - gz, bx1 = bx - gx, by1 = by - gy, bz1 = bz - gz;
+  const cx1 = cx - gx, cy1 = cy - gy, cz1 = cz - gz;
+  const reach = Math.sqrt(max(max(ax1 * ax1 + ay1 * ay1 + az1 * az1, bx1 * bx1 + by1 * by1 + bz1 * bz1), cx1 * cx1 + cy1 * cy1 + cz1 * cz1));
+  for (let c = 0; c < 8; c++) {
+    for (let m = 0; m < 3; m++) {
+      const bit = 1 << m;
+      if ((c & bit) != 0) continue;
+      const f = c | bit;
+      // the corners (±h along each axis, the box's centre at the origin)
+      const E0 = (c & 1) != 0 ? BH0 : -BH0, E1 = (c & 2) != 0 ? BH1 : -BH1, E2 = (c & 4) != 0 ? BH2 : -BH2;
+      const E3 = (f & 1) != 0 ? BH0 : -BH0, E4 = (f & 2) != 0 ? BH1 : -BH1, E5 = (f & 4) != 0 ? BH2 : -BH2;
+      // an edge farther from the triangle's centre than its reach plus the best so far cannot be nearer
+      const ux = E3 - E0, uy = E4 - E1, uz = E5 - E2;
+      const uu = ux * ux + uy * uy + uz * uz;
+      const t = uu > 0 ? min(max(((gx - E0) * ux + (gy - E1) * uy + (gz - E2) * uz) / uu, 0), 1) : 0;
+      const qx = E0 + t * ux - gx, qy = E1 + t * uy - gy, qz = E2 + t * uz - gz;
+      if (Math.sqrt(qx * qx + qy * qy + qz * qz) - reach >= best) continue;
+      const d2 = segmentTriangle(E0, E1, E2, E3, E4, E5, ax, ay, az, bx, by, bz, cx, cy, cz);
+      if (d2 <= 1e-24) return goldenDeepest();
+      if (d2 < best * best) {
+        best = Math.sqrt(d2); found = true;
+        e0 = U0; e1 = U1; e2 = U2;
+      }
+    }
+  }
+  if (!found) {
+    U0 = v0; U1 = v1; U2 = v2; LNX = vnx; LNY = vny; LNZ = vnz;
+    return vertex;
+  }
+  U0 = e0; U1 = e1; U2 = e2;
+  return boxDistance(e0 * ax + e1 * bx + e2 * cx, e0 * ay + e1 * by + e2 * cy, e0 * az + e1 * bz + e2 * cz);
+}
+
 /**
  * CylinderCollider.triangleDeepest on the corners TA…TC (the shape's frame): the vertex certificate; else the
  * triangle's point closest to the axis where it lies against the curved side; else the support-point method.
@@ -494,13 +590,14 @@ export function collideTriangles(): void {
     // a sphere's radius; a capsule's half length (its axis along y) and radius; a cylinder's radius and half height
     // (PosedCollider.shapeParams)
     const type = <i32>field(rec, COLLIDER_RECORD_TYPE), capsule = type == COLLIDER_CAPSULE, cylinder = type == COLLIDER_CYLINDER;
-    const s0 = field(rec, COLLIDER_RECORD_SHAPE), s1 = field(rec, COLLIDER_RECORD_SHAPE, 1);
+    const box = type == COLLIDER_BOX;
+    const s0 = field(rec, COLLIDER_RECORD_SHAPE), s1 = field(rec, COLLIDER_RECORD_SHAPE, 1), s2 = field(rec, COLLIDER_RECORD_SHAPE, 2);
     // PosedCollider.boundingRadius (a cylinder's: the host's Math.hypot, here its square root of the sum; the ball
     // only culls triangles farther than the reach, so a last bit either way changes nothing), and its box's half
     // extents in its own frame
-    const bound = capsule ? s0 + s1 : cylinder ? Math.sqrt(s0 * s0 + s1 * s1) : s0;
-    const e0 = capsule ? s1 : s0, e1 = capsule ? s0 + s1 : cylinder ? s1 : s0, e2 = e0;
-    CR = s0; CH = s1;
+    const bound = capsule ? s0 + s1 : cylinder ? Math.sqrt(s0 * s0 + s1 * s1) : box ? Math.sqrt(s0 * s0 + s1 * s1 + s2 * s2) : s0;
+    const e0 = capsule ? s1 : s0, e1 = capsule ? s0 + s1 : cylinder || box ? s1 : s0, e2 = box ? s2 : e0;
+    CR = s0; CH = s1; BH0 = s0; BH1 = s1; BH2 = s2; BOXED = box;
     const o0 = field(rec, COLLIDER_RECORD_O), o1 = field(rec, COLLIDER_RECORD_O, 1), o2 = field(rec, COLLIDER_RECORD_O, 2);
     const ball = (bound + reach) * (1 + 1e-9), ball2 = ball * ball;
     if (!boxed) { clothBox(); boxed = true; }
@@ -536,10 +633,10 @@ export function collideTriangles(): void {
         const qx = r0 * dx + r3 * dy + r6 * dz, qy = r1 * dx + r4 * dy + r7 * dz, qz = r2 * dx + r5 * dy + r8 * dz;
         if (capsule) {
           if (capsuleDistance(s0, s1, qx, qy, qz, far) >= far) continue;
-        } else if (cylinder) {
-          // (the reference's cylinder first returns `far` itself where the centroid is farther than its bound and
-          // far from the centre; its distance there is at least that too: the same triangles go on)
-          if (cylinderDistance(qx, qy, qz) >= far) continue;
+        } else if (cylinder || box) {
+          // (the reference's cylinder and box first return `far` itself where the centroid is farther than their
+          // bound and far from the centre; their distance there is at least that too: the same triangles go on)
+          if (shapeDistance(qx, qy, qz) >= far) continue;
         } else {
           const d2 = qx * qx + qy * qy + qz * qz;
           const farR = s0 + far;
@@ -560,9 +657,9 @@ export function collideTriangles(): void {
       if (capsule) {
         d = capsuleDeepest(s0, s1, sax, say, saz, sbx, sby, sbz, scx, scy, scz);
         lnx = LNX; lny = LNY; lnz = LNZ;
-      } else if (cylinder) {
+      } else if (cylinder || box) {
         TAX = sax; TAY = say; TAZ = saz; TBX = sbx; TBY = sby; TBZ = sbz; TCX = scx; TCY = scy; TCZ = scz;
-        d = cylinderDeepest(th);
+        d = box ? boxDeepest(th) : cylinderDeepest(th);
         lnx = LNX; lny = LNY; lnz = LNZ;
       } else {
         closestPoint(0, 0, 0, sax, say, saz, sbx, sby, sbz, scx, scy, scz);

@@ -36,7 +36,8 @@ const KERNEL_TYPES: readonly number[] = [COLLIDER_SPHERE, COLLIDER_FLOOR, COLLID
 /**
  * Why the kernel cannot do particle contact against these colliders, or null: it knows every analytic shape
  * (PosedCollider.typeId, the COLLIDER_* ids), moving or not, up to MAX_COLLIDERS of them; a mesh's contact runs in
- * TypeScript. (Triangle contact, the next phase, contactTriangles, it takes for spheres, capsules and cylinders: triangleRefusal.)
+ * TypeScript. The same holds for triangle contact, the next phase, contactTriangles (triangle-contact.as.ts: every
+ * analytic shape's, on one thread).
  */
 function contactRefusal(params: SimParams): string | null {
   const shapes = params.colliders;
@@ -45,18 +46,6 @@ function contactRefusal(params: SimParams): string | null {
     if (!KERNEL_TYPES.includes(shapes[k].typeId)) return `collider type '${shapes[k].type}' has no kernel code`;
   }
   return null;
-}
-
-/**
- * Why the kernel cannot take this scene's triangle contact, or null: it has the sphere's, the capsule's and the
- * cylinder's (triangle-contact.as.ts); a scene whose other shapes need triangle contact (boxes, meshes whose surface
- * can poke between the vertices) leaves the phase to the TypeScript reference on the kernel's memory.
- */
-function triangleRefusal(model: ClothModel, params: SimParams): string | null {
-  const refused = contactRefusal(params);
-  if (refused) return refused;
-  const other = params.colliders.find((s) => s.typeId !== COLLIDER_SPHERE && s.typeId !== COLLIDER_CAPSULE && s.typeId !== COLLIDER_CYLINDER && needsTriangleContact(model, s, params.thickness));
-  return other ? `triangle contact with a ${other.type} has no kernel code` : null;
 }
 
 /**
@@ -74,7 +63,7 @@ export const KERNEL_PHASES: BackendPhases = {
   // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
   // that read it to the reference (self-contact reads each particle's cloth: it takes any)
   refusal: (id: PhaseId, model: ClothModel, params: SimParams) =>
-    (id === PHASE.contact ? contactRefusal(params) : id === PHASE.contactTriangles ? triangleRefusal(model, params) : null) ??
+    (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null) ??
     perClothRefusal(id, params),
 };
 
