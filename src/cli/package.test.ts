@@ -70,9 +70,10 @@ describe('the npm package', () => {
   // kB the same day, when the WebAssembly kernel took a sphere's triangle contact (its two builds, base64, 4 kB
   // more gzipped; the default scene's frame a fifth faster); then 308 kB, when the kernel took the self-contact
   // candidates' updates and a capsule's triangle contact (6 kB more: the mannequin scenes a quarter faster, the fold's
-  // fall a sixth): the budget keeps about 10 kB above what ships
-  it('packs into at most 320 kB', () => {
-    expect(packed.size).toBeLessThanOrEqual(320_000);
+  // fall a sixth); then 317 kB, when it took the cylinder's and the box's triangle contact too (the Cusick test and
+  // the tablecloth a third and a fifth faster): the budget keeps about 10 kB above what ships
+  it('packs into at most 330 kB', () => {
+    expect(packed.size).toBeLessThanOrEqual(330_000);
   });
 
   it('declares its doc comments in the types and ships the code without them', () => {
