@@ -97,6 +97,8 @@ describe('WebGPU page', () => {
 
     // the standard fabric tests show what they measure
     await loadScene(page, 'Cantilever (ASTM D1388)', 16);
+    // at its start the strip has not bent: no bending length yet (it read "Infinity cm")
+    await expect.poll(() => byId(page, 'hud-test').innerText()).toBe('cantilever: tip 0.0° below the edge, 4.00 cm out → bending length — (the tip has not dropped yet)');
     await step(page, 60);
     await expect.poll(() => byId(page, 'hud-test').innerText()).toMatch(/^cantilever: tip \d+\.\d° below the edge, 4\.00 cm out → bending length \d+\.\d\d cm$/);
     await loadScene(page, 'Cusick Drape (BS 5058)');

@@ -89,7 +89,8 @@ function shapeWords(cloth: ClothSpec): string {
 /** One line for the HUD: what a fabric test measures now. */
 function testLine(t: TestResult): string {
   if (t.type === 'cantilever') {
-    return `cantilever: tip ${t.chordAngle.toFixed(1)}° below the edge, ${(100 * t.overhang).toFixed(2)} cm out → bending length ${(100 * t.bendingLength).toFixed(2)} cm`;
+    const c = t.bendingLength === null ? '— (the tip has not dropped yet)' : `${(100 * t.bendingLength).toFixed(2)} cm`;
+    return `cantilever: tip ${t.chordAngle.toFixed(1)}° below the edge, ${(100 * t.overhang).toFixed(2)} cm out → bending length ${c}`;
   }
   return `Cusick drape: coefficient ${t.drapeCoefficient.toFixed(3)}, ${t.folds} fold${t.folds === 1 ? '' : 's'}`;
 }

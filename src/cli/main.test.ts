@@ -43,6 +43,10 @@ describe('drape CLI', () => {
     expect(c.test.drapeCoefficient).toBeCloseTo(1, 1); // flat at the start
     const text = await run('run', 'cusick', '--set', 'cloth.resolution=12', '--frames', '2');
     expect(text.out).toMatch(/\n  test +type cusick, projectedArea [\d.]+, drapeCoefficient [\d.]+, folds \d+/);
+    // a strip not bent yet: no bending length, alike in the text and the JSON (not "Infinity" beside null)
+    const flat = await run('run', 'cantilever', '--set', 'cloth.resolution=8', '--frames', '0');
+    expect(flat.out).toMatch(/\n  test +type cantilever, overhang 0\.0400, chordAngle 0, bendingLength — \(not yet\)(\n|$)/);
+    expect(JSON.parse((await run('run', 'cantilever', '--set', 'cloth.resolution=8', '--frames', '0', '--json')).out).test.bendingLength).toBeNull();
   });
 
   it('--kernel and --threads choose how the CPU steps XPBD, and the JSON says what ran', async () => {

@@ -21,8 +21,11 @@ export interface CantileverResult {
   overhang: number;
   /** angle of the chord from the clamp's last row to the tip below the horizontal [degrees] */
   chordAngle: number;
-  /** the bending length the chord angle says, c = (B/(ρ_A·g))^(1/3) [m] */
-  bendingLength: number;
+  /**
+   * the bending length the chord angle says, c = (B/(ρ_A·g))^(1/3) [m]; null while the tip has not dropped below the
+   * edge (a chord at 0° or above: a strip that has not bent says nothing of its bending length)
+   */
+  bendingLength: number | null;
 }
 
 /** What a Cusick drape scene reports. */
@@ -71,7 +74,8 @@ function cantilever(model: ClothModel, state: ClothState, edge: readonly number[
   }
   const theta = Math.atan2(drop / count, along / count);
   const overhang = far - clamp;
-  return { type: 'cantilever', overhang, chordAngle: (theta * 180) / Math.PI, bendingLength: overhang / Math.cbrt(elasticaLoad(theta)) };
+  const load = elasticaLoad(theta);
+  return { type: 'cantilever', overhang, chordAngle: (theta * 180) / Math.PI, bendingLength: load > 0 ? overhang / Math.cbrt(load) : null };
 }
 
 /**
