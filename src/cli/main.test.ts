@@ -364,11 +364,21 @@ describe('drape CLI', () => {
     [['--frames', '1e3'], /got '1e3'/],
     [['--frames', ' 5'], /got ' 5'/],
     [['--frames=-1'], /got '-1'/],
+    // a negative number as the next argument is the option's value, not an option (parseArgs: "ambiguous")
+    [['--frames', '-1'], /^drape: --frames: must be an integer in 0…1000000, got '-1'$/],
+    [['--threads', '-3'], /^drape: --threads: must be an integer in 1…\d+, got '-3'$/],
+    [['--frames', '-x'], /^drape: --frames: its value starts with a dash, which reads as an option; write --frames=VALUE$/],
     [['--threads', '2.0'], /--threads: must be an integer/],
   ])('counts are decimal integers: %j exits 2', async (flags, message) => {
     const r = await run('run', 'pins', ...flags);
     expect(r.code).toBe(2);
     expect(r.err).toMatch(message);
+  });
+
+  it('bench: a negative size is the option\'s value, named by its range', async () => {
+    const r = await run('bench', '--sizes', '-8');
+    expect(r.code).toBe(2);
+    expect(r.err).toBe("drape: --sizes: must be an integer in 2…1025, got '-8'");
   });
 
   it('built-in names are scenes only: prototype names are unknown scenes', async () => {

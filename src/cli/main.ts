@@ -259,16 +259,36 @@ export interface CliIo {
 }
 const nodeIo: CliIo = { writeFile: (path, text) => writeFileSync(path, text) };
 
+/**
+ * argv with `--name -1` written `--name=-1` for the options that take a value: parseArgs reads a value that starts
+ * with a dash as an option of its own ("argument is ambiguous"), where the user meant a (negative) number, which
+ * the option's own check then names ("--frames: must be an integer in 0…1000000, got '-1'").
+ */
+function negativeValues(argv: string[], options: Record<string, { type: 'string' | 'boolean' }>): string[] {
+  const out: string[] = [];
+  for (let i = 0; i < argv.length; i++) {
+    const a = argv[i], next = argv[i + 1];
+    if (a.startsWith('--') && !a.includes('=') && options[a.slice(2)]?.type === 'string' && next !== undefined && /^-(\d|\.\d|Infinity$|NaN$)/i.test(next)) {
+      out.push(`${a}=${next}`);
+      i++;
+    } else {
+      out.push(a);
+    }
+  }
+  return out;
+}
+
 async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string) => void, io: CliIo): Promise<number> {
+  const runOptions = {
+    frames: { type: 'string' }, solver: { type: 'string' }, backend: { type: 'string' },
+    kernel: { type: 'string' }, threads: { type: 'string' },
+    set: { type: 'string', multiple: true }, json: { type: 'boolean' }, export: { type: 'string' },
+    bake: { type: 'string' }, 'bake-stride': { type: 'string' }, help: { type: 'boolean', short: 'h' },
+  } as const;
   const { values, positionals } = parseArgs({
-    args: argv,
+    args: negativeValues(argv, runOptions),
     allowPositionals: true,
-    options: {
-      frames: { type: 'string' }, solver: { type: 'string' }, backend: { type: 'string' },
-      kernel: { type: 'string' }, threads: { type: 'string' },
-      set: { type: 'string', multiple: true }, json: { type: 'boolean' }, export: { type: 'string' },
-      bake: { type: 'string' }, 'bake-stride': { type: 'string' }, help: { type: 'boolean', short: 'h' },
-    },
+    options: runOptions,
   });
   if (values.help) { out(HELP.run); return 0; }
   if (positionals.length > 1) throw new UsageError(`run: one scene at a time, got ${positionals.join(', ')}`);
@@ -404,16 +424,17 @@ function cmdScenes(argv: string[], out: (s: string) => void): number {
 }
 
 async function cmdBench(argv: string[], out: (s: string) => void, err: (s: string) => void): Promise<number> {
+  const benchOptions = {
+    sizes: { type: 'string' }, substeps: { type: 'string' }, frames: { type: 'string' }, warmup: { type: 'string' },
+    backend: { type: 'string' }, threads: { type: 'string' }, 'no-peer': { type: 'boolean' }, 'no-contention': { type: 'boolean' },
+    scenes: { type: 'string' }, 'self-contact': { type: 'boolean' },
+    hanging: { type: 'boolean' }, fabrics: { type: 'string' }, seconds: { type: 'string' }, 'jolt-iterations': { type: 'string' },
+    json: { type: 'boolean' },
+    help: { type: 'boolean', short: 'h' },
+  } as const;
   const { values } = parseArgs({
-    args: argv,
-    options: {
-      sizes: { type: 'string' }, substeps: { type: 'string' }, frames: { type: 'string' }, warmup: { type: 'string' },
-      backend: { type: 'string' }, threads: { type: 'string' }, 'no-peer': { type: 'boolean' }, 'no-contention': { type: 'boolean' },
-      scenes: { type: 'string' }, 'self-contact': { type: 'boolean' },
-      hanging: { type: 'boolean' }, fabrics: { type: 'string' }, seconds: { type: 'string' }, 'jolt-iterations': { type: 'string' },
-      json: { type: 'boolean' },
-      help: { type: 'boolean', short: 'h' },
-    },
+    args: negativeValues(argv, benchOptions),
+    options: benchOptions,
   });
   if (values.help) { out(HELP.bench); return 0; }
   const backend = checkBackend(values.backend);
@@ -538,7 +559,10 @@ export async function main(
     if (e instanceof UsageError || error.name === 'SceneError' || error.code?.startsWith('ERR_PARSE_ARGS')) {
       // parseArgs appends advice after the first sentence; the first sentence names the problem. Ours are one
       // line, but may quote what the user gave (a key, a path), which must stay on that line
-      const line = error.code?.startsWith('ERR_PARSE_ARGS') ? error.message.split('\n')[0].split('. ')[0] : error.message;
+      let line = error.code?.startsWith('ERR_PARSE_ARGS') ? error.message.split('\n')[0].split('. ')[0] : error.message;
+      // a value that starts with a dash (not a number: those are joined to their option above) reads as an option
+      const ambiguous = /^Option '(--[\w-]+)' argument is ambiguous/.exec(line);
+      if (ambiguous) line = `${ambiguous[1]}: its value starts with a dash, which reads as an option; write ${ambiguous[1]}=VALUE`;
       err(`drape: ${plainText(line, 1000)}`);
       return EXIT.usage;
     }
