@@ -43,6 +43,7 @@ describe('library arguments', () => {
     const sim = new Simulation(small());
     expect(() => sim.set('material.nope', 1)).toThrow(/^Simulation\.set\('material\.nope'\): unknown key$/);
     expect(() => sim.set('cloth.position[9]', 1)).toThrow(/^Simulation\.set\('cloth\.position\[9\]'\): cloth\.position has 3 items/);
+    expect(() => sim.set('material.damping', NaN)).toThrow(/^Simulation\.set\('material\.damping'\): must be a finite number, got NaN$/);
     expect(() => sim.advance(-1)).toThrow(/^Simulation\.advance: frames must be an integer ≥ 0, got -1$/);
     expect(() => sim.advance(NaN)).toThrow(RangeError);
     expect(() => new Simulation({ cloth: { resolution: 'x' } } as never)).toThrow(/^scene: cloth\.resolution: must be integer$/);

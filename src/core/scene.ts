@@ -209,12 +209,18 @@ const MAX_DEPTH = 32;
 
 /** Refuses absurdly nested documents before anything recursive (structuredClone, the validator) sees them. */
 function checkDepth(input: object, source: string): void {
-  const stack: [unknown, number][] = [[input, 1]];
+  const stack: [unknown, number, string][] = [[input, 1, '']];
   while (stack.length) {
-    const [v, depth] = stack.pop()!;
+    const [v, depth, path] = stack.pop()!;
     if (v === null || typeof v !== 'object') continue;
     if (depth > MAX_DEPTH) throw new SceneError(`${source}: nested more than ${MAX_DEPTH} levels deep; a scene is at most 6`);
-    for (const child of Object.values(v)) if (child !== null && typeof child === 'object') stack.push([child, depth + 1]);
+    for (const [key, child] of Object.entries(v)) {
+      const at = `${path}/${key}`;
+      // NaN and ±Infinity (no JSON has them: a library caller's) fail every range test as it is written, so the
+      // schema would name the wrong one ("must be <= 10"): they are named for what they are
+      if (typeof child === 'number' && !Number.isFinite(child)) throw new SceneError(`${source}: ${fieldName(at)}: must be a finite number, got ${child}`);
+      if (child !== null && typeof child === 'object') stack.push([child, depth + 1, at]);
+    }
   }
 }
 
