@@ -154,6 +154,17 @@ describe('the mannequin (forward kinematics and keys)', () => {
     expect(sceneMannequin(scene, 'cape')).toBeUndefined();
   });
 
+  it('an option a mannequin does not take is named, never a figure of NaN or a silent default', () => {
+    expect(() => mannequinColliders({ pose: 'x' as MannequinOptions['pose'] })).toThrow("mannequinColliders: pose must be one of stand, t-pose, got 'x'");
+    expect(() => mannequinColliders({ animation: 'dance' as MannequinOptions['animation'] })).toThrow("mannequinColliders: animation must be one of none, walk, turn, got 'dance'");
+    expect(() => mannequinColliders({ scale: NaN })).toThrow('mannequinColliders: scale must be a number in 0.1…10, got NaN');
+    expect(() => mannequinColliders({ scale: -1 })).toThrow(RangeError);
+    expect(() => mannequinColliders({ heading: NaN })).toThrow('mannequinColliders: heading must be a finite number of degrees, got NaN');
+    expect(() => mannequinColliders({ position: [0, NaN, 0] })).toThrow(/position must be \[x, y, z\]/);
+    expect(() => mannequinColliders(null as unknown as MannequinOptions)).toThrow('mannequinColliders: options must be an object, got null');
+    expect(mannequinColliders({ scale: 2, heading: 90 })).toHaveLength(MANNEQUIN_PARTS.length);
+  });
+
   // the app's Mannequin folder offers every pose and animation: each must start (the cape once started inside a
   // walking shin: refused, 'cuts through the cloth where it starts')
   it.each(['cape', 'skirt'])('%s: every pose and animation the panel offers starts, and steps a second outside the figure', (name) => {

@@ -37,8 +37,38 @@ export interface MannequinOptions {
   position?: Vec3;
   /** which way it faces: degrees about +y from facing +z (90: facing +x) [degrees] (default 0) */
   heading?: number;
-  /** size as a multiple of the 1.75 m figure [-] (default 1) */
+  /** size as a multiple of the 1.75 m figure [-] (default 1; MANNEQUIN_SCALE_RANGE) */
   scale?: number;
+}
+
+/** The sizes a mannequin can have, as multiples of the 1.75 m figure [-]: a doll to a giant. */
+export const MANNEQUIN_SCALE_RANGE: readonly [number, number] = [0.1, 10];
+
+/**
+ * Throws a TypeError or RangeError naming the option of `options` that is not one a mannequin takes (the library's
+ * callers: a scene file's colliders are checked by the schema).
+ */
+function checkOptions(options: MannequinOptions): void {
+  const fn = 'mannequinColliders';
+  if (options === null || typeof options !== 'object') throw new TypeError(`${fn}: options must be an object, got ${String(options)}`);
+  const { pose, animation, position, heading, scale } = options;
+  const name = (v: unknown) => (typeof v === 'string' ? `'${v.slice(0, 40)}'` : String(v));
+  if (pose !== undefined && !(MANNEQUIN_POSES as readonly unknown[]).includes(pose)) {
+    throw new RangeError(`${fn}: pose must be one of ${MANNEQUIN_POSES.join(', ')}, got ${name(pose)}`);
+  }
+  if (animation !== undefined && !(MANNEQUIN_ANIMATIONS as readonly unknown[]).includes(animation)) {
+    throw new RangeError(`${fn}: animation must be one of ${MANNEQUIN_ANIMATIONS.join(', ')}, got ${name(animation)}`);
+  }
+  if (position !== undefined && !(Array.isArray(position) && position.length === 3 && position.every((v) => typeof v === 'number' && Math.abs(v) <= 1000))) {
+    throw new RangeError(`${fn}: position must be [x, y, z] of finite numbers within ±1000 m`);
+  }
+  if (heading !== undefined && !(typeof heading === 'number' && Number.isFinite(heading))) {
+    throw new RangeError(`${fn}: heading must be a finite number of degrees, got ${name(heading)}`);
+  }
+  const [lo, hi] = MANNEQUIN_SCALE_RANGE;
+  if (scale !== undefined && !(typeof scale === 'number' && scale >= lo && scale <= hi)) {
+    throw new RangeError(`${fn}: scale must be a number in ${lo}…${hi}, got ${name(scale)}`);
+  }
 }
 
 /** Keys per second of an animated part's motion [1/s]. */
@@ -232,6 +262,7 @@ function eulerOf(R: readonly number[], near: readonly number[]): Vec3 {
  * are for the caller to add (a cape on MANNEQUIN_CHEST, a skirt on MANNEQUIN_PELVIS).
  */
 export function mannequinColliders(options: MannequinOptions = {}): ColliderSpec[] {
+  checkOptions(options);
   const pose = options.pose ?? 'stand', animation = options.animation ?? 'none', scale = options.scale ?? 1;
   const period = animationPeriod(animation);
   const keys = period > 0 ? Math.round(period * KEY_RATE) : 0;
