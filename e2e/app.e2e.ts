@@ -490,6 +490,19 @@ describe('WebGPU page', () => {
     await shoot(bad.page, 'bad-link');
     expect(bad.errors).toEqual([]);
     await bad.page.close();
+
+    // view settings the page does not know: the scene is shown, and the line names what was ignored
+    const unknown = await openApp(browser.context, '#scene=silk-drape&view=nope&backend=tpu', CPU);
+    expect(await hook(unknown.page, 'sceneName')).toBe('silk-drape');
+    expect((await hook<any>(unknown.page, 'lastMessage')).text).toBe("link: view: must be one of shaded, wireframe, particles, springs, strain, contacts, got 'nope' (ignored); link: backend: must be one of auto, gpu, cpu, got 'tpu' (ignored)");
+    await expect.poll(() => unknown.page.evaluate(() => location.hash)).toBe('#scene=silk-drape');
+    await unknown.page.close();
+    // a link that names no scene is the schema's defaults, and the hash then says so (an empty one would reload as
+    // the default built-in scene instead)
+    const bare = await openApp(browser.context, '#view=nope', CPU);
+    expect(await hook(bare.page, 'sceneName')).toBe('custom');
+    await expect.poll(() => bare.page.evaluate(() => location.hash)).toBe('#scene=');
+    await bare.page.close();
     // (a link's out-of-range value is refused with the field's name: src/app/url-state.test.ts; the page's part,
     // the message and the default scene for a link refused at load, is the same as here: security.e2e.ts)
   });

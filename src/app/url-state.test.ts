@@ -1,11 +1,14 @@
 import { describe, expect, it } from 'vitest';
-import { builtinMannequin, builtinScene, clothEntries, sceneDocument, setScenePath, validateScene, withMannequin } from '../core/index.js';
+import { builtinMannequin, builtinScene, defaultScene, clothEntries, sceneDocument, setScenePath, validateScene, withMannequin } from '../core/index.js';
 import { decodeHash, encodeHash, linkScene } from './url-state.js';
 
 describe('URL hash state', () => {
   it('is empty for an unchanged default and names the base scene otherwise', () => {
     const scene = builtinScene('silk-drape')!;
     expect(encodeHash({ scene, base: 'silk-drape', view: {} })).toBe('#scene=silk-drape');
+    // the schema's defaults as they are: a hash of their own, which reads back as them (an empty hash is no link)
+    expect(encodeHash({ scene: defaultScene(), base: '', view: {} })).toBe('#scene=');
+    expect(decodeHash('#scene=')!.scene).toEqual(defaultScene());
   });
 
   it('round-trips changed fields, arrays and view keys', () => {

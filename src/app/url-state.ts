@@ -128,6 +128,9 @@ export function encodeHash(state: HashState): string {
     const v = state.view[k];
     if (v !== undefined) parts.push(`${k}=${encodeURIComponent(v)}`);
   }
+  // the schema defaults as they are: a hash of its own (an empty one is no link, and the page then starts from its
+  // default built-in scene, not this one)
+  if (!parts.length && !state.base) return '#scene=';
   return parts.length ? `#${parts.join('&')}` : '';
 }
 

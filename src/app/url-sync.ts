@@ -3,7 +3,7 @@
  * from it, rewrites it (a moment after each change) to what is on screen, follows it when it is edited, and copies
  * it to the clipboard.
  */
-import { SCENE_NAMES, SceneError, type Scene } from '../core/index.js';
+import { SCENE_NAMES, SceneError, plainText, type Scene } from '../core/index.js';
 import { VIEWS, type ViewName } from '../render/cloth-view.js';
 import type { App } from './app.js';
 import { BACKEND_CHOICES, type BackendChoice } from './backend.js';
@@ -12,6 +12,17 @@ import { meshNames } from './meshes.js';
 import { refusal } from './refusal.js';
 import { sweeps } from './sweep.js';
 import { decodeHash, encodeHash, linkScene, type HashState } from './url-state.js';
+
+/** What a link's view setting may be, per key (its other values are ignored, and the page says so). */
+const VIEW_VALUES: Record<keyof HashState['view'], readonly string[]> = {
+  view: VIEWS, sweep: ['side-by-side', 'sequence'], backend: BACKEND_CHOICES,
+};
+
+/** One line naming a link's view settings that the page does not know, or '' when there are none. */
+export function badViewSettings(view: HashState['view']): string {
+  const bad = (Object.keys(VIEW_VALUES) as (keyof HashState['view'])[]).filter((k) => view[k] !== undefined && !VIEW_VALUES[k].includes(view[k]!));
+  return bad.map((k) => `link: ${k}: must be one of ${VIEW_VALUES[k].join(', ')}, got '${plainText(view[k]!, 40)}' (ignored)`).join('; ');
+}
 
 /** The link in the address bar, kept in step with what is on screen. */
 export class UrlSync {
@@ -36,6 +47,8 @@ export class UrlSync {
       app.backend.inLink = true;
     }
     if (!start) return false;
+    const ignored = badViewSettings(start.view);
+    if (ignored) app.overlay.message(ignored, 'error');
     if (start.view.sweep === 'side-by-side' || start.view.sweep === 'sequence') app.sweep.layout = start.view.sweep;
     if (start.view.view && (VIEWS as readonly string[]).includes(start.view.view)) app.view = start.view.view as ViewName;
     const shown = linkScene(start.scene, (p) => app.meshes.has(p));
@@ -111,6 +124,8 @@ export class UrlSync {
     try {
       const s = decodeHash(location.hash);
       if (!s) return;
+      const ignored = badViewSettings(s.view);
+      if (ignored) app.overlay.message(ignored, 'error');
       if (s.view.view && (VIEWS as readonly string[]).includes(s.view.view)) app.view = s.view.view as ViewName;
       app.sweep.layout = s.view.sweep === 'side-by-side' ? 'side-by-side' : 'sequence';
       if ((BACKEND_CHOICES as readonly string[]).includes(s.view.backend ?? '')) {
