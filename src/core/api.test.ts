@@ -46,6 +46,7 @@ describe('library arguments', () => {
     expect(() => sim.set('material.damping', NaN)).toThrow(/^Simulation\.set\('material\.damping'\): must be a finite number, got NaN$/);
     expect(() => sim.advance(-1)).toThrow(/^Simulation\.advance: frames must be an integer ≥ 0, got -1$/);
     expect(() => sim.advance(NaN)).toThrow(RangeError);
+    expect(() => sim.advance('2' as unknown as number)).toThrow('Simulation.advance: frames must be an integer ≥ 0, got "2"');
     expect(() => new Simulation({ cloth: { resolution: 'x' } } as never)).toThrow(/^scene: cloth\.resolution: must be integer$/);
   });
 

@@ -262,7 +262,8 @@ export class Simulation {
    * `unstableFrame` saying at which frame.
    */
   advance(frames = 1): boolean {
-    if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`Simulation.advance: frames must be an integer ≥ 0, got ${frames}`);
+    // (a string is quoted: "got 2" would read as if 2 were refused)
+    if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`Simulation.advance: frames must be an integer ≥ 0, got ${typeof frames === 'string' ? JSON.stringify(String(frames).slice(0, 40)) : String(frames)}`);
     const live = this.backendNow.kind !== 'gpu'; // a GPU state is checked when it is read back (sync)
     for (let f = 0; f < frames && this.unstableFrame === null; f++) {
       this.backendNow.frame(this.model, this.params, FRAME_DT);
