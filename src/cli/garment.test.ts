@@ -152,11 +152,12 @@ describe('the CLI runs a garment scene', () => {
     writeFileSync(join(dir, 'bad.obj'), 'v 0 0 0\nv 1 0 0\nf 1 2 3\n');
     writeFileSync(join(dir, 'fin.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 1 2 4\nf 1 2 5\n');
     for (const [mesh, message] of [
-      ['missing.obj', /missing\.obj: no such file$/],
-      ['zero.obj', /zero\.obj: not a regular file \(a device, pipe or socket\); a mesh file must be a file$/],
-      ['bad.obj', /^drape: bad\.obj:3: face uses vertex 3, but only 2 are defined above it$/],
-      ['fin.obj', /^drape: fin\.obj: not a manifold surface: the edge between vertices 1 and 2 is shared by more than two faces$/],
-      ['shirt.fbx', /^drape: shirt\.fbx: not a mesh file Drape reads/],
+      // each named by its field too, cloth.mesh
+      ['missing.obj', /^drape: cloth\.mesh: .*missing\.obj: no such file$/],
+      ['zero.obj', /^drape: cloth\.mesh: .*zero\.obj: not a regular file \(a device, pipe or socket\); a mesh file must be a file$/],
+      ['bad.obj', /^drape: cloth\.mesh: bad\.obj:3: face uses vertex 3, but only 2 are defined above it$/],
+      ['fin.obj', /^drape: cloth\.mesh: fin\.obj: not a manifold surface: the edge between vertices 1 and 2 is shared by more than two faces$/],
+      ['shirt.fbx', /^drape: cloth\.mesh: shirt\.fbx: not a mesh file Drape reads/],
     ] as const) {
       const r = await run('run', scene(mesh), '--frames', '1');
       expect(r.code, mesh).toBe(2);
@@ -172,7 +173,7 @@ describe('the CLI runs a garment scene', () => {
     writeFileSync(join(dir, 'escape.json'), JSON.stringify({ cloth: { mesh: 'escape.gltf' } }));
     const r = await run('run', join(dir, 'escape.json'), '--frames', '1');
     expect(r.code).toBe(2);
-    expect(r.err).toBe("drape: escape.gltf: buffer '../secret.bin' must be a file in the .gltf's folder or below it (a relative path)");
+    expect(r.err).toBe("drape: cloth.mesh: escape.gltf: buffer '../secret.bin' must be a file in the .gltf's folder or below it (a relative path)");
     const sweep = await run('run', 'resolution', '--set', `cloth.mesh=${fileURLToPath(new URL('../../examples/tshirt.obj', import.meta.url))}`, '--set', 'cloth.rotation=[-90,0,0]', '--frames', '1', '--json');
     expect(sweep.code, sweep.err).toBe(0);
     expect(sweep.err).toMatch(/^drape: note: resolutionSweep skipped: the cloth is the mesh file .*tshirt\.obj, which has its own resolution$/);

@@ -63,7 +63,13 @@ function clothModel(c: ClothSpec, swr: boolean, meshes: MeshResolver | undefined
       if (!meshes) {
         throw new SceneError(`${at}cloth.mesh: '${plainText(path, 200)}' is a file, and nothing here reads files; load the scene with its files (drape run, loadSceneFile from drape/node, or the app's mesh import)`);
       }
-      const mesh = prepareMesh(meshes(path), plainText(path, 200));
+      // a file that cannot be read, is no mesh or no cloth: named by its field, as a mesh collider's is (colliders/mesh.ts)
+      let mesh: ReturnType<typeof prepareMesh>;
+      try {
+        mesh = prepareMesh(meshes(path), plainText(path, 200));
+      } catch (e) {
+        throw new SceneError(`${at}cloth.mesh: ${plainText(e instanceof Error ? e.message : String(e), 500)}`);
+      }
       const scaled = new Float32Array(mesh.positions.length);
       for (let j = 0; j < scaled.length; j++) scaled[j] = mesh.positions[j] * c.scale;
       const model = buildMeshModel({ ...mesh, positions: placeMesh(scaled, c) }, swr);
