@@ -51,13 +51,13 @@ export let SMX: f64 = 0, SMY: f64 = 0, SMZ: f64 = 0;
 }
 
 // the outward normal in the shape's own frame of the last localDistance()
-let LX: f64 = 0, LY: f64 = 0, LZ: f64 = 0;
+export let LX: f64 = 0, LY: f64 = 0, LZ: f64 = 0;
 
 /**
  * Signed distance of point q (in the shape's own frame) from the shape (colliders/*.ts, built at the origin), its
  * outward normal in that frame to LX, LY, LZ: f64, as the TypeScript shapes compute it.
  */
-function localDistance(type: i32, s0: f64, s1: f64, s2: f64, qx: f64, qy: f64, qz: f64): f64 {
+export function localDistance(type: i32, s0: f64, s1: f64, s2: f64, qx: f64, qy: f64, qz: f64): f64 {
   if (type == COLLIDER_SPHERE) {
     const dd = Math.sqrt(qx * qx + qy * qy + qz * qz);
     if (dd > 1e-12) { LX = qx / dd; LY = qy / dd; LZ = qz / dd; } else { LX = 0; LY = 1; LZ = 0; }

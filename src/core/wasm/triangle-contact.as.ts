@@ -6,7 +6,7 @@
 // bit for bit. The host asks for the phase only when every shape with triangle contact is one of these
 // (xpbd-wasm.ts triangleRefusal); it runs on one thread, the triangles in order (Gauss–Seidel).
 import { N, TRIANGLE_COUNT, TRIANGLES, W, X, XP } from './arrays.as';
-import { SMX, SMY, SMZ, field, frictionScale, pressedDepth, surfaceMotion } from './contact.as';
+import { LX, LY, LZ, SMX, SMY, SMZ, field, frictionScale, localDistance, pressedDepth, surfaceMotion } from './contact.as';
 import {
   COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_RECORD_EXACT, GOLDEN_ITERATIONS, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
   COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_RECORDS, COLLIDERS, THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
@@ -211,20 +211,9 @@ function capsuleDeepest(half: f64, radius: f64, ax: f64, ay: f64, az: f64, bx: f
   const d2 = segmentTriangle(0, -half, 0, 0, half, 0, ax, ay, az, bx, by, bz, cx, cy, cz);
   const qx = U0 * ax + U1 * bx + U2 * cx, qy = U0 * ay + U1 * by + U2 * cy, qz = U0 * az + U1 * bz + U2 * cz;
   if (d2 > 1e-24) return capsuleDistance(half, radius, qx, qy, qz, Infinity);
-  // the axis crosses the triangle: off it sideways, along the triangle's normal made perpendicular to the axis u
-  const ux: f64 = 0 - 0, uy = half - -half, uz: f64 = 0 - 0;
-  const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;
-  let nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
-  const uu = ux * ux + uy * uy + uz * uz;
-  if (uu > 0) {
-    const k = (nx * ux + ny * uy + nz * uz) / uu;
-    const sx = nx - k * ux, sy = ny - k * uy, sz = nz - k * uz;
-    if (sx * sx + sy * sy + sz * sz > 1e-6 * (nx * nx + ny * ny + nz * nz)) { nx = sx; ny = sy; nz = sz; }
-  }
-  let l = Math.sqrt(nx * nx + ny * ny + nz * nz);
-  if (l == 0 || l != l) l = 1;
-  LNX = nx / l; LNY = ny / l; LNZ = nz / l;
-  return -radius;
+  // the axis (from (0, −half, 0) to (0, half, 0)) crosses the triangle: off it sideways
+  TAX = ax; TAY = ay; TAZ = az; TBX = bx; TBY = by; TBZ = bz; TCX = cx; TCY = cy; TCZ = cz;
+  return axisCrossing(0 - 0, half - -half, 0 - 0, radius);
 }
 
 // The cylinder (cylinder.ts, convex.ts), in its own frame: centre at the origin, axis along y, radius CR, half
@@ -274,21 +263,14 @@ function cylinderSupport(dx: f64, dy: f64, dz: f64): void {
   SPZ = 0 + s * uz + r * rz;
 }
 
-/** BoxCollider.signedDistance at (px, py, pz) (its own frame, not turned; no bound), the normal to LNX…LNZ. */
+/**
+ * BoxCollider.signedDistance at (px, py, pz) (its own frame, not turned; no bound), the normal to LNX…LNZ: particle
+ * contact's localDistance (contact.as.ts), whose box is the reference's operation for operation.
+ */
 function boxDistance(px: f64, py: f64, pz: f64): f64 {
-  const q0 = px - 0, q1 = py - 0, q2 = pz - 0;
-  const e0 = Math.abs(q0) - BH0, e1 = Math.abs(q1) - BH1, e2 = Math.abs(q2) - BH2;
-  if (e0 > 0 || e1 > 0 || e2 > 0) {
-    const o0 = max(e0, 0), o1 = max(e1, 0), o2 = max(e2, 0);
-    const d = Math.sqrt(o0 * o0 + o1 * o1 + o2 * o2);
-    LNX = (Math.sign(q0) * o0) / d; LNY = (Math.sign(q1) * o1) / d; LNZ = (Math.sign(q2) * o2) / d;
-    return d;
-  }
-  LNX = 0; LNY = 0; LNZ = 0;
-  if (e0 >= e1 && e0 >= e2) { LNX = q0 < 0 ? -1 : 1; return e0; }
-  if (e1 >= e2) { LNY = q1 < 0 ? -1 : 1; return e1; }
-  LNZ = q2 < 0 ? -1 : 1;
-  return e2;
+  const d = localDistance(COLLIDER_BOX, BH0, BH1, BH2, px, py, pz);
+  LNX = LX; LNY = LY; LNZ = LZ;
+  return d;
 }
 
 /** The distance (and normal, LNX…LNZ) of the shape the searches measure. */

@@ -4,7 +4,7 @@
  */
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { FRAME_DT, builtinScene, createState, SCENE_NAMES, Simulation, step, validateScene, type ClothState, type Scene, type Vec3 } from '../index.js';
+import { FRAME_DT, builtinScene, createState, SCENE_NAMES, Simulation, step, validateScene, type ClothState, type ColliderSpec, type Scene, type Vec3 } from '../index.js';
 import { PHASE, PHASES, PhaseLog } from '../schedule.js';
 import { REFERENCE } from '../reference.js';
 import { GENERATED_FILE, generateKernelModule } from './gen-wasm.mjs';
@@ -37,6 +37,18 @@ function kernelAgainstReference(sim: Simulation, id: number): { st: ClothState; 
   REFERENCE[id](sim.model, copy, sim.params, frame);
   expect(log.names()).toEqual([PHASES[id].name]);
   return { st, copy, before };
+}
+
+/**
+ * `sim` after `frames` more frames: one substep of triangle contact by its kernel and by the reference on a copy,
+ * the same positions and previous positions bit for bit, the phase having moved the cloth by more than `moved` [m].
+ */
+function triangleContactAsReference(sim: Simulation, frames: number, moved = 1e-7): void {
+  sim.advance(frames);
+  const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
+  expect(maxDiff(before, st.positions)).toBeGreaterThan(moved);
+  expect([...st.positions]).toEqual([...copy.positions]);
+  expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
 }
 
 function pair(sc: Scene): [Simulation, Simulation] {
@@ -234,13 +246,8 @@ describe('xpbd wasm kernel', () => {
     sc.solver = { ...sc.solver, selfContact: false };
     const motion = { keyframes: [{ time: 0, translation: [0, 0, 0] as Vec3, rotation: [0, 0, 0] as Vec3 }, { time: 2, translation: [0.3, 0.1, 0] as Vec3, rotation: [0, 30, 10] as Vec3 }], loop: false };
     if (how === 'moving') sc.colliders = sc.colliders.map((c) => c.type === 'sphere' ? { ...c, motion } : c);
-    const sim = new Simulation(validateScene(sc), { kernel: 'wasm' });
-    sim.advance(40);
-    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
     // the phase did act (the sag between vertices pushed out), and as the reference, x_prev too
-    expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
-    expect([...st.positions]).toEqual([...copy.positions]);
-    expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
+    triangleContactAsReference(new Simulation(validateScene(sc), { kernel: 'wasm' }), 40);
   });
 
   // a cloth lying across two capsules (one turned, one moving, one through the cloth where its axis crosses
@@ -256,30 +263,7 @@ describe('xpbd wasm kernel', () => {
       name: 'capsules', cloth: { resolution: 12, width: 1, height: 1, position: [0, 0.62, 0] }, solver: { type: 'xpbd', selfContact: false },
       colliders: [...colliders, { type: 'floor', height: 0 }],
     });
-    const sim = new Simulation(sc, { kernel: 'wasm' });
-    sim.advance(how === 'through' ? 1 : 20);
-    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
-    expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
-    expect([...st.positions]).toEqual([...copy.positions]);
-    expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
-  });
-
-  // the Cusick pedestal (a closed cylinder: its cap, its rim, its side) under the disc as it drapes, and a turned
-  // cylinder moving under a sheet: the kernel's triangle contact against the reference's on a copy, one substep
-  // (and a cap 5 mm above a coarse sheet at its start: triangles across the rim, the golden-section search)
-  it.each([['the Cusick pedestal', 40], ['the Cusick pedestal, later', 150], ['a turned cylinder, moving', 20], ['a cap just through a sheet', 1]] as const)('triangle contact with %s (frame %i): the kernel\'s phase moves every particle as the reference does, bit for bit', (what, frames) => {
-    const cylinder = (c: object) => validateScene({
-      name: 'cylinder', cloth: { resolution: 12, width: 1, height: 1, position: [0, 0.62, 0] }, solver: { type: 'xpbd', selfContact: false },
-      colliders: [{ type: 'cylinder', center: [0, 0.4, 0], axis: [1, 0.2, 0.1], radius: 0.15, height: 0.6, ...c }, { type: 'floor', height: 0 }],
-    });
-    const sc = what.startsWith('a turned') ? cylinder({ motion: { keyframes: [{ time: 0 }, { time: 2, translation: [0.2, 0.1, 0], rotation: [0, 30, 10] }] } })
-      : what.startsWith('a cap') ? cylinder({ center: [0.03, 0.415, 0.02], axis: [0, 1, 0], radius: 0.23, height: 0.42 }) : builtinScene('cusick');
-    const sim = new Simulation(sc, { kernel: 'wasm' });
-    sim.advance(frames);
-    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
-    expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
-    expect([...st.positions]).toEqual([...copy.positions]);
-    expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
+    triangleContactAsReference(new Simulation(sc, { kernel: 'wasm' }), how === 'through' ? 1 : 20);
   });
 
   // a 4 mm ball poking up 3 mm through a one-face sheet 2 cm from a pinned corner, on the edge to the free corner: the
@@ -308,30 +292,32 @@ describe('xpbd wasm kernel', () => {
     expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
   });
 
-  // the tablecloth's table (a box: its top, its edges and corners under the falling cloth), a turned box moving
-  // under a sheet, and a box's top just through a sheet (triangles across its edges: the golden-section search)
-  it.each([['the tablecloth\'s table', 30], ['the tablecloth\'s table, later', 120], ['a turned box, moving', 20], ['a box just through a sheet', 1]] as const)('triangle contact with %s (frame %i): the kernel\'s phase moves every particle as the reference does, bit for bit', (what, frames) => {
-    const box = (c: object) => validateScene({
-      name: 'box', cloth: { resolution: 12, width: 1, height: 1, position: [0, 0.62, 0] }, solver: { type: 'xpbd', selfContact: false },
-      colliders: [{ type: 'box', center: [0.02, 0.4, 0.01], halfExtents: [0.2, 0.15, 0.25], rotation: [10, 30, 5], ...c }, { type: 'floor', height: 0 }],
+  // the cylinder and the box: the Cusick pedestal under the disc as it drapes (its cap, rim and side) and the
+  // tablecloth's table (its top, edges and corners), each turned and moving under a sheet, and each just through a
+  // sheet at its start (triangles across a rim or an edge: the golden-section search)
+  const CONVEX = {
+    cylinder: { type: 'cylinder', center: [0, 0.4, 0], axis: [1, 0.2, 0.1], radius: 0.15, height: 0.6 },
+    box: { type: 'box', center: [0.02, 0.4, 0.01], halfExtents: [0.2, 0.15, 0.25], rotation: [10, 30, 5] },
+  } as const;
+  const THROUGH = {
+    cylinder: { center: [0.03, 0.415, 0.02], axis: [0, 1, 0], radius: 0.23, height: 0.42 },
+    box: { center: [0.03, 0.415, 0.02], halfExtents: [0.23, 0.21, 0.19], rotation: [0, 0, 0] },
+  } as const;
+  it.each([
+    ['cylinder', 'the Cusick pedestal', 40], ['cylinder', 'the Cusick pedestal, later', 150], ['cylinder', 'turned, moving', 20], ['cylinder', 'just through a sheet', 1],
+    ['box', 'the tablecloth\'s table', 30], ['box', 'the tablecloth\'s table, later', 120], ['box', 'turned, moving', 20], ['box', 'just through a sheet', 1],
+  ] as const)('triangle contact with a %s, %s (frame %i): the kernel\'s phase moves every particle as the reference does, bit for bit', (shape, what, frames) => {
+    const sheet = (c: object) => validateScene({
+      name: shape, cloth: { resolution: 12, width: 1, height: 1, position: [0, 0.62, 0] }, solver: { type: 'xpbd', selfContact: false },
+      colliders: [{ ...CONVEX[shape], ...c } as ColliderSpec, { type: 'floor', height: 0 }],
     });
-    const sc = what.startsWith('a turned') ? box({ motion: { keyframes: [{ time: 0 }, { time: 2, translation: [0.2, 0.1, 0], rotation: [0, 30, 10] }] } })
-      : what.startsWith('a box') ? box({ center: [0.03, 0.415, 0.02], halfExtents: [0.23, 0.21, 0.19], rotation: [0, 0, 0] }) : builtinScene('tablecloth');
-    const sim = new Simulation(sc, { kernel: 'wasm' });
-    sim.advance(frames);
-    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
-    expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-7);
-    expect([...st.positions]).toEqual([...copy.positions]);
-    expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
+    const sc = what.startsWith('turned') ? sheet({ motion: { keyframes: [{ time: 0 }, { time: 2, translation: [0.2, 0.1, 0], rotation: [0, 30, 10] }] } })
+      : what.startsWith('just') ? sheet(THROUGH[shape]) : builtinScene(shape === 'cylinder' ? 'cusick' : 'tablecloth');
+    triangleContactAsReference(new Simulation(sc, { kernel: 'wasm' }), frames);
   });
 
   it('triangle contact with the mannequin in the skirt (capsules and a sphere, turning): the kernel\'s phase moves every particle as the reference does, bit for bit', () => {
-    const sim = new Simulation(builtinScene('skirt'), { kernel: 'wasm' });
-    sim.advance(50);
-    const { st, copy, before } = kernelAgainstReference(sim, PHASE.contactTriangles);
-    expect(maxDiff(before, st.positions)).toBeGreaterThan(1e-6);
-    expect([...st.positions]).toEqual([...copy.positions]);
-    expect([...st.previousPositions]).toEqual([...copy.previousPositions]);
+    triangleContactAsReference(new Simulation(builtinScene('skirt'), { kernel: 'wasm' }), 50, 1e-6);
   });
 
   it('the kernel keeps nothing of its own in memory (no data segment, no start function): the control block starts at 0', () => {
