@@ -30,7 +30,7 @@ export const CONSTANTS = [
   ['MESH_SIGNED', 1, 'mesh collider triangle flag: the triangle belongs to a closed piece (signed distance by pseudo-normals; else a two-sided open shell)'],
   ['MESH_SHARP_EDGE', 2, 'mesh collider triangle flag: MESH_SHARP_EDGE << e where the triangle owns its edge e (corner e to e + 1) and that edge is sharp (triangle contact)'],
   ['MAX_COLLIDERS', 64, 'most colliders in a scene (schema) and in the kernel\'s control block'],
-  ['TRIANGLE_SPREAD_MOST', 2, 'triangle contact: the most any corner moves, as a multiple of what the contact point is to move (phases.ts collideTriangles; on a grid of free particles the spread is at most 1.62, so only a point at or beside a pinned or grabbed corner is held to it)'],
+  ['TRIANGLE_SPREAD_MOST', 2, 'triangle contact: the most any corner moves, as a multiple of what the contact point is to move (phases.ts collideTriangles; on a grid of free particles the spread is at most 1.82, its inverse masses being 4 : 2 : 1 at a corner, an edge and inside, so only a point at or beside a pinned or grabbed corner is held to it)'],
   ['GOLDEN_ITERATIONS', 12, 'golden-section iterations of each of the two nested searches of triangle contact (colliders/convex.ts goldenDeepest, the GPU\'s triangleContact.wgsl)'],
   ['KERNEL_MAX_THREADS', 16, 'most threads one kernel runs (one run counter each in the control block)'],
   ['KERNEL_FLAG_FORCES', 1, 'kernel substep flag: external forces (wind) to integrate'],

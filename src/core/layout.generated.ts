@@ -26,7 +26,7 @@ export const MESH_SIGNED = 1;
 export const MESH_SHARP_EDGE = 2;
 /** most colliders in a scene (schema) and in the kernel's control block */
 export const MAX_COLLIDERS = 64;
-/** triangle contact: the most any corner moves, as a multiple of what the contact point is to move (phases.ts collideTriangles; on a grid of free particles the spread is at most 1.62, so only a point at or beside a pinned or grabbed corner is held to it) */
+/** triangle contact: the most any corner moves, as a multiple of what the contact point is to move (phases.ts collideTriangles; on a grid of free particles the spread is at most 1.82, its inverse masses being 4 : 2 : 1 at a corner, an edge and inside, so only a point at or beside a pinned or grabbed corner is held to it) */
 export const TRIANGLE_SPREAD_MOST = 2;
 /** golden-section iterations of each of the two nested searches of triangle contact (colliders/convex.ts goldenDeepest, the GPU's triangleContact.wgsl) */
 export const GOLDEN_ITERATIONS = 12;

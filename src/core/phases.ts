@@ -389,7 +389,8 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       if (!(denom > 0)) continue;
       // corner i moves (wᵢ/denom)·Δ for the point's Δ: a point at or beside a corner that cannot move (pinned,
       // grabbed) leaves a free corner a small share and would throw it by Δ/share, across the cloth (5.6 cm in one
-      // substep, a corner grabbed along a sphere): no corner moves more than TRIANGLE_SPREAD_MOST × Δ
+      // substep, a corner grabbed along a sphere): no corner moves more than TRIANGLE_SPREAD_MOST × Δ (a grid of free
+      // particles spreads at most 1.82 Δ)
       const spread = Math.max(wa, wb, wc) / denom, scale = spread > TRIANGLE_SPREAD_MOST ? TRIANGLE_SPREAD_MOST / spread : 1;
       // motion of the contact point over the substep so far, treated as a particle's above
       let mx = bary[0] * (x[3 * a] - xp[3 * a]) + bary[1] * (x[3 * b] - xp[3 * b]) + bary[2] * (x[3 * c] - xp[3 * c]);
