@@ -320,7 +320,7 @@ export const sceneSchema: SceneSchema = {
         {
           type: 'object',
           additionalProperties: false,
-          description: 'ASTM D1388 / Peirce cantilever: a strip clamped (pinned) flat, overhanging an edge; reports test.overhang [m], test.chordAngle [degrees] and test.bendingLength [m], the bending length that angle gives (heavy elastica)',
+          description: 'ASTM D1388 / Peirce cantilever: a strip clamped (pinned) flat, overhanging an edge; reports test.overhang [m], test.chordAngle [degrees] and test.bendingLength [m], the bending length that angle gives (heavy elastica; null while the tip has not dropped below the edge)',
           properties: {
             type: { const: 'cantilever' },
             edge: vec3('a point of the platform\'s edge; the overhang and the chord are measured from the clamp\'s last pinned row at or behind it (the edge itself where a row lies on it) [m]', -1000, 1000, [0, 0, 0]),
