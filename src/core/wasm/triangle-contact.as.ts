@@ -84,10 +84,10 @@ function closestPoint(
   U0 = 1 - v - w; U1 = v; U2 = w;
 }
 
-// segmentSegment's parameters and squared distance; segmentTriangle's segment parameter
-let SS: f64 = 0, ST: f64 = 0;
+// segmentSegment's parameter on the second segment (the first's the reference keeps, no one here reads)
+let ST: f64 = 0;
 
-/** convex.ts segmentSegmentIn: the closest points of p1–q1 and p2–q2 (parameters to SS, ST); the squared distance. */
+/** convex.ts segmentSegmentIn: the closest points of p1–q1 and p2–q2 (the second's parameter to ST); the squared distance. */
 function segmentSegment(
   p1x: f64, p1y: f64, p1z: f64, q1x: f64, q1y: f64, q1z: f64, p2x: f64, p2y: f64, p2z: f64, q2x: f64, q2y: f64, q2z: f64,
 ): f64 {
@@ -116,7 +116,7 @@ function segmentSegment(
       else if (t > 1) { t = 1; s = min(max((b - c) / a, 0), 1); }
     }
   }
-  SS = s; ST = t;
+  ST = t;
   const dx = p1x + d1x * s - (p2x + d2x * t), dy = p1y + d1y * s - (p2y + d2y * t), dz = p1z + d1z * s - (p2z + d2z * t);
   return dx * dx + dy * dy + dz * dz;
 }
