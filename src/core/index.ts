@@ -15,7 +15,7 @@ export {
 export * from './metrics.js';
 export * from './pins.js';
 export * from './pick.js';
-export { plainText, safeJson } from './text.js';
+export { plainText, safeJson, shownValue } from './text.js';
 export { fabricFor, exportCloths, LOOKS, type FabricKind, type LookMaterial } from './looks.js';
 export { windVelocity } from './wind.js';
 export { mulberry32 } from './random.js';

@@ -12,7 +12,7 @@ import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrai
 import { FRAME_DT, resolveParams, type SimParams } from './params.js';
 import { applyPins, scenePins } from './pins.js';
 import { clothEntries, clothName, setScenePath, validateScene, type Scene, type SceneInput } from './scene.js';
-import { plainText } from './text.js';
+import { plainText, shownValue } from './text.js';
 import { checkPlacement } from './placement.js';
 import { copyState, resetState, type ClothState } from './state.js';
 import type { HelperSpawner } from './wasm/xpbd-wasm.js';
@@ -262,8 +262,7 @@ export class Simulation {
    * `unstableFrame` saying at which frame.
    */
   advance(frames = 1): boolean {
-    // (a string is quoted: "got 2" would read as if 2 were refused)
-    if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`Simulation.advance: frames must be an integer ≥ 0, got ${typeof frames === 'string' ? JSON.stringify(String(frames).slice(0, 40)) : String(frames)}`);
+    if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`Simulation.advance: frames must be an integer ≥ 0, got ${shownValue(frames)}`);
     const live = this.backendNow.kind !== 'gpu'; // a GPU state is checked when it is read back (sync)
     for (let f = 0; f < frames && this.unstableFrame === null; f++) {
       this.backendNow.frame(this.model, this.params, FRAME_DT);

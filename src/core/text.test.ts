@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { plainText, safeJson } from './text.js';
+import { plainText, safeJson, shownValue } from './text.js';
 
 describe('plainText', () => {
   it('keeps ordinary text, including non-Latin scripts and emoji', () => {
@@ -22,5 +22,16 @@ describe('safeJson', () => {
     expect(text).not.toMatch(/[\u0000-\u001f\u007f-\u009f\u2028\u2029\u202a-\u202e\u2066-\u2069]/);
     expect(JSON.parse(text)).toEqual(value);
     expect(safeJson({ a: 1 }, 2)).toBe('{\n  "a": 1\n}');
+  });
+});
+
+describe('shownValue', () => {
+  it('quotes a string, cuts it and makes it safe; shows anything else as String does', () => {
+    expect(shownValue('2')).toBe('"2"');
+    expect(shownValue(2.5)).toBe('2.5');
+    expect(shownValue(NaN)).toBe('NaN');
+    expect(shownValue(undefined)).toBe('undefined');
+    expect(shownValue('a\u001b[2Jb')).toBe('"a\ufffd[2Jb"');
+    expect(shownValue('x'.repeat(100))).toBe(`"${'x'.repeat(39)}…"`);
   });
 });

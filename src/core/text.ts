@@ -21,3 +21,11 @@ const UNSAFE_IN_JSON = /[\u007f-\u009f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g;
 export function safeJson(value: unknown, space?: number): string {
   return JSON.stringify(value, null, space).replace(UNSAFE_IN_JSON, (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`);
 }
+
+/**
+ * A value a caller passed, as an error message shows it after "got": a string quoted (so that "got 2" cannot read as
+ * if the number 2 were refused) and cut to 40 characters, anything else as String() gives it; both made safe to print.
+ */
+export function shownValue(value: unknown): string {
+  return typeof value === 'string' ? safeJson(plainText(value, 40)) : plainText(String(value), 40);
+}

@@ -5,7 +5,7 @@ import { DrapeWorld } from './world.js';
 
 // (what Node can check: the options, the cloths and colliders a world is made of; it simulates in a browser: e2e/three.e2e.ts)
 describe('DrapeWorld: options and what it is made of', () => {
-  it('refuses a bad option with one line naming it', () => {
+  it('refuses a bad option with one line naming it', async () => {
     expect(() => new DrapeWorld({ backend: 'fast' as never })).toThrow("DrapeWorld: options.backend must be 'auto', 'gpu', 'cpu', got \"fast\"");
     expect(() => new DrapeWorld({ gravity: [0, -9.81] as never })).toThrow(/^DrapeWorld: gravity: /);
     expect(() => new DrapeWorld({ solver: { substeps: 0 } })).toThrow(/^DrapeWorld: solver\.substeps: must be >= 1/);
@@ -20,6 +20,9 @@ describe('DrapeWorld: options and what it is made of', () => {
     expect(() => world.addCollider({} as Mesh)).toThrow(/must be a THREE\.Mesh/);
     expect(() => world.addCollider(new Mesh(new BoxGeometry()), { shape: 'cone' as never })).toThrow(/options\.shape must be 'auto', 'sphere'/);
     expect(() => world.update(-1)).toThrow(/dt must be a finite number of seconds/);
+    // a string is quoted, so that "got 2" cannot read as if the number were refused
+    expect(() => world.update('1' as unknown as number)).toThrow(/dt must be a finite number of seconds ≥ 0, got "1"$/);
+    await expect(world.step('2' as unknown as number)).rejects.toThrow(/step: frames must be an integer ≥ 0, got "2"$/);
     // nothing refused was kept
     expect(world.cloths).toEqual([]);
   });

@@ -8,7 +8,7 @@
  */
 import { Vector3, type Mesh, type Object3D, type Raycaster } from 'three';
 import {
-  FRAME_DT, Simulation, copyCarried, modelFor, pickParticle, resolvePins, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
+  FRAME_DT, Simulation, copyCarried, modelFor, pickParticle, resolvePins, shownValue, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
   type ParticleRange, type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { isSoftwareAdapter, type AdapterInfoLike } from '../gpu/adapter.js';
@@ -75,7 +75,7 @@ export class DrapeWorld {
     checkObject(WHERE, 'options.wind', options.wind);
     checkObject(WHERE, 'options.solver', options.solver);
     if (options.floor !== undefined && options.floor !== null && !Number.isFinite(options.floor)) {
-      throw new TypeError(`${WHERE}: options.floor must be a height in metres or null, got ${String(options.floor)}`);
+      throw new TypeError(`${WHERE}: options.floor must be a height in metres or null, got ${shownValue(options.floor)}`);
     }
     if (options.onError !== undefined && typeof options.onError !== 'function') throw new TypeError(`${WHERE}: options.onError must be a function`);
     this.options = options;
@@ -297,7 +297,7 @@ export class DrapeWorld {
    */
   update(dt?: number): void {
     if (this.disposed) return;
-    if (dt !== undefined && !(Number.isFinite(dt) && dt >= 0)) throw new RangeError(`${WHERE}.update: dt must be a finite number of seconds ≥ 0, got ${String(dt)}`);
+    if (dt !== undefined && !(Number.isFinite(dt) && dt >= 0)) throw new RangeError(`${WHERE}.update: dt must be a finite number of seconds ≥ 0, got ${shownValue(dt)}`);
     const now = performance.now();
     const dtMs = dt !== undefined ? 1000 * dt : this.lastNow ? now - this.lastNow : 0;
     this.lastNow = now;
@@ -315,7 +315,7 @@ export class DrapeWorld {
    * meshes are now, as having moved there over those frames.
    */
   async step(frames = 1): Promise<void> {
-    if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`${WHERE}.step: frames must be an integer ≥ 0, got ${String(frames)}`);
+    if (!Number.isInteger(frames) || frames < 0) throw new RangeError(`${WHERE}.step: frames must be an integer ≥ 0, got ${shownValue(frames)}`);
     await this.start();
     const d = this.driver;
     if (!d) return;
@@ -356,7 +356,7 @@ export class DrapeWorld {
     const d = this.driver;
     if (!d || !this.cloths.includes(hit.cloth)) return;
     if (!(Number.isInteger(hit.particle) && hit.particle >= 0 && hit.particle < hit.cloth.particleCount)) {
-      throw new RangeError(`${WHERE}.grab: particle must be an integer 0…${hit.cloth.particleCount - 1}, got ${String(hit.particle)}`);
+      throw new RangeError(`${WHERE}.grab: particle must be an integer 0…${hit.cloth.particleCount - 1}, got ${shownValue(hit.particle)}`);
     }
     this.grabbed = { cloth: hit.cloth, particle: hit.particle };
     const to = target ?? hit.point ?? new Vector3().fromArray(hit.cloth.positions, 3 * hit.particle);
