@@ -16,12 +16,15 @@
 //   pins      x_t + h·v + h²·g·s, one s for the cloth: the share of its weight its pins did not carry last substep
 //             (1 − the pull of the springs on the pins along ĝ over m·|g|, clamped to [0, 1]).
 // Then the same passes on the built-in cantilever scene (hinges) and on cotton held by one corner, swinging down,
-// beside XPBD (the library); --clamp F limits each particle's step to F × its shortest spring (0: no limit).
+// beside XPBD (the library). What was tried against their instability: --clamp F limits each particle's step to
+// F × its shortest spring (0: no limit); --compressed abs gives a compressed spring the magnitude of its transverse
+// stiffness instead of zero; --line-search yes halves a step until the particle's own energy does not rise.
 //
 //   npx tsc -p tsconfig.build.json && node scripts/vbd-study.mjs      (~5 min)
 //   options: --fabrics rubber,cotton  --faces 16,32,64  --starts y,inertia,adaptive,pins  --settings 20x1
 //            --budget 15 (seconds per hanging case)  --bending springs|hinges|laplacian  --clamp 0
-//            --cantilever cotton,silk,leather,rubber,denim  --swing yes|no
+//            --compressed clamp|abs  --line-search no|yes
+//            --cantilever cotton,silk,leather,rubber,denim  --swing yes|no  --swing-bending hinges|springs|laplacian
 import { FABRICS as NAMED, Simulation, builtinScene, measureTest, modelFor, resolveParams, scenePins, setScenePath, validateScene } from '../dist/core/index.js';
 import { FABRICS, arg, hangingScene, hangingTheory, measureHanging } from './solver-study-common.mjs';
 
@@ -32,6 +35,8 @@ const settings = arg('settings', '20x1').split(',').map((s) => s.split('x').map(
 const budget = Number(arg('budget', '15')) * 1000;
 const bending = arg('bending', 'springs');
 const CLAMP = Number(arg('clamp', '0'));
+const COMPRESSED = arg('compressed', 'clamp');
+const LINE_SEARCH = arg('line-search', 'no') === 'yes';
 
 class VBD {
   constructor(scene, start) {
@@ -141,7 +146,8 @@ class VBD {
         const rate = nx * (xi - xt[a] - x[b] + xt[b]) + ny * (yi - xt[a + 1] - x[b + 1] + xt[b + 1]) + nz * (zi - xt[a + 2] - x[b + 2] + xt[b + 2]);
         const along = -ks * (l - L) - bh * rate;
         fx += along * nx; fy += along * ny; fz += along * nz;
-        const t = l > L ? ks * (1 - L / l) : 0, nn = ks + bh - t;
+        // the transverse stiffness k(1 − L/l): clamped at 0 when compressed (the paper's), or its magnitude (--compressed abs)
+        const t = l > L ? ks * (1 - L / l) : COMPRESSED === 'abs' ? ks * (L / l - 1) : 0, nn = ks + bh - t;
         h00 += t + nn * nx * nx; h11 += t + nn * ny * ny; h22 += t + nn * nz * nz;
         h01 += nn * nx * ny; h02 += nn * nx * nz; h12 += nn * ny * nz;
       }
@@ -161,6 +167,12 @@ class VBD {
         const len = Math.sqrt(ddx * ddx + ddy * ddy + ddz * ddz), most = CLAMP * this.shortest[i];
         if (len > most) { const r = most / len; ddx *= r; ddy *= r; ddz *= r; }
       }
+      if (LINE_SEARCH) {
+        // backtracking on the particle's own energy (inertia, springs, stencils): halve the step until it does not rise
+        const e0 = this.localEnergy(i, 0, 0, 0, h);
+        let tries = 0;
+        while (this.localEnergy(i, ddx, ddy, ddz, h) > e0 && tries++ < 20) { ddx *= 0.5; ddy *= 0.5; ddz *= 0.5; }
+      }
       if (st) {
         for (let q = this.entryStart[i]; q < this.entryStart[i + 1]; q++) {
           const e = this.entryStencil[q], kk = this.entryWeight[q];
@@ -169,6 +181,25 @@ class VBD {
       }
       x[a] = xi + ddx; x[a + 1] = yi + ddy; x[a + 2] = zi + ddz;
     }
+  }
+
+  /** Particle i's own part of the substep's energy with it moved by (dx, dy, dz) (--line-search). */
+  localEnergy(i, dx, dy, dz, h) {
+    const { x, y, mass, model, params, st } = this, a = 3 * i;
+    const px = x[a] + dx, py = x[a + 1] + dy, pz = x[a + 2] + dz;
+    let e = 0.5 * mass[i] / (h * h) * ((px - y[a]) ** 2 + (py - y[a + 1]) ** 2 + (pz - y[a + 2]) ** 2);
+    for (let q = this.springStart[i]; q < this.springStart[i + 1]; q++) {
+      const s = this.springOf[q], o = model.springs[2 * s] === i ? model.springs[2 * s + 1] : model.springs[2 * s], b = 3 * o;
+      const l = Math.sqrt((px - x[b]) ** 2 + (py - x[b + 1]) ** 2 + (pz - x[b + 2]) ** 2);
+      e += 0.5 * params.stiffness[s] * (l - model.restLengths[s]) ** 2;
+    }
+    if (st) {
+      for (let q = this.entryStart[i]; q < this.entryStart[i + 1]; q++) {
+        const en = this.entryStencil[q], kk = this.entryWeight[q];
+        e += 0.5 * ((this.c[3 * en] + kk * dx) ** 2 + (this.c[3 * en + 1] + kk * dy) ** 2 + (this.c[3 * en + 2] + kk * dz) ** 2) / params.stencilCompliance[en];
+      }
+    }
+    return e;
   }
 
   kinetic() {
@@ -241,7 +272,7 @@ for (const fabric of arg('cantilever', 'cotton,silk,leather,rubber,denim').split
 if (arg('swing', 'yes') === 'yes') {
   const scene = validateScene({
     cloth: { resolution: 32, width: 1, height: 1, position: [0, 1.5, 0] },
-    material: { fabric: 'cotton' }, solver: { bending: 'hinges', selfContact: false }, colliders: [], pins: ['top-left'],
+    material: { fabric: 'cotton' }, solver: { bending: arg('swing-bending', 'hinges'), selfContact: false }, colliders: [], pins: ['top-left'],
   });
   const centroidY = (x) => { let s = 0; for (let i = 1; i < x.length; i += 3) s += x[i]; return s / (x.length / 3); };
   const rows = [];
