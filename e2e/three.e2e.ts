@@ -212,6 +212,55 @@ async function pullThenRemove(page: Page, tag: string): Promise<Awaited<ReturnTy
   return r;
 }
 
+/**
+ * Refusals leave a world that works: a second world (of the page's classes) whose first start is refused (a ball
+ * cutting through its cloth) starts once the ball is taken out; running, a collider cutting through the cloth and a
+ * cloth on a hook cutting through a ball are refused and leave no trace, so that moving their meshes afterwards
+ * steps as before.
+ */
+async function refusals(page: Page): Promise<{
+  firstStart: { backend: string | null; errors: number }; restarted: { backend: string | null; fell: number };
+  addColliderThrew: boolean; addClothThrew: boolean; stepAfter: string; errors: string[]; clothsAfter: number; finite: boolean;
+}> {
+  return page.evaluate(async () => {
+    const { world, ball } = (window as any).drapeExample;
+    const World = world.constructor, Mesh = ball.constructor, Sphere = ball.geometry.constructor, Object3D = Object.getPrototypeOf(Mesh.prototype).constructor;
+    const errors: string[] = [];
+    const w = new World({ backend: 'cpu', onError: (m: string) => errors.push(m) });
+    const cloth = w.addCloth({ resolution: 8, width: 0.5, height: 0.5, position: [0, 1, 0] });
+    const cutting = () => { const b = new Mesh(new Sphere(0.2, 16, 8)); b.position.set(0, 1, 0); b.updateMatrixWorld(); return b; };
+    const b = cutting();
+    w.addCollider(b); // taken: the world has not started
+    await w.step(5); // its start is refused, and said so
+    const firstStart = { backend: w.backend, errors: errors.length };
+    w.removeCollider(b);
+    const y0 = cloth.positions[1];
+    await w.step(5);
+    const restarted = { backend: w.backend, fell: y0 - cloth.positions[1] };
+    // running now: a ball well below the cloth is taken; a collider and a cloth that cut through are refused at the call
+    const low = new Mesh(new Sphere(0.2, 16, 8));
+    low.position.set(0, 0.3, 0);
+    low.updateMatrixWorld();
+    w.addCollider(low);
+    const b2 = cutting();
+    b2.position.y = cloth.positions[1];
+    b2.updateMatrixWorld();
+    let addColliderThrew = false, addClothThrew = false;
+    try { w.addCollider(b2); } catch { addColliderThrew = true; }
+    const hook = new Object3D();
+    hook.position.set(0, 1.5, 0);
+    try { w.addCloth({ resolution: 4, width: 0.3, height: 0.3, position: [0, 0.3, 0], orientation: 'hanging', pins: [{ at: 'top-left', to: hook }] }); } catch { addClothThrew = true; }
+    // their meshes move: nothing of them is left in the world to follow them
+    b2.position.y += 0.3; b2.updateMatrixWorld();
+    hook.position.y += 0.3; hook.updateMatrixWorld();
+    let stepAfter = 'ok';
+    try { await w.step(3); w.update(1 / 60); } catch (e) { stepAfter = (e as Error).message; }
+    const result = { firstStart, restarted, addColliderThrew, addClothThrew, stepAfter, errors, clothsAfter: w.cloths.length, finite: Array.from(cloth.positions as Float32Array).every(Number.isFinite) };
+    w.dispose();
+    return result;
+  });
+}
+
 /** The cloth lies on the ball (its middle on the top, none of it inside) and hangs down around it. */
 function expectDraped(d: Drop): void {
   expect(d.error).toBe('');
@@ -253,6 +302,13 @@ describe('drape/three example page', () => {
     expect(d.backendNote).toContain('no WebGPU device');
     expectDraped(d);
     await pullThenRemove(page, 'three-webgl');
+    const r = await refusals(page);
+    writeJson('three-webgl-refusals', r);
+    expect(r.firstStart).toEqual({ backend: null, errors: 1 });
+    expect(r.errors[0]).toMatch(/colliders\[0\] \(sphere\) cuts through the cloth/);
+    expect(r.restarted.backend).toBe('cpu');
+    expect(r.restarted.fell).toBeGreaterThan(0.005);
+    expect([r.addColliderThrew, r.addClothThrew, r.stepAfter, r.errors.length, r.clothsAfter, r.finite]).toEqual([true, true, 'ok', 1, 1, true]);
     expect(errors).toEqual([]);
     await browser.close();
     browser = undefined;

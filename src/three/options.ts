@@ -4,19 +4,22 @@
  * path, which `optionError` turns into the option's name).
  */
 import type { Object3D } from 'three';
-import { SceneError, type FabricName, type PinEntry, type SolverType, type BendingModel, type Vec3 } from '../core/index.js';
+import { SceneError, type FabricName, type PinEntry, type SolverType, type BendingModel, type StretchSolve, type Vec3 } from '../core/index.js';
 import type { ColliderShapeOption } from './colliders.js';
 
 /** Where a world simulates: 'auto' (default), 'gpu' (the renderer's WebGPU device) or 'cpu' (a Web Worker). */
 export type DrapeBackend = 'auto' | 'gpu' | 'cpu';
 export const DRAPE_BACKENDS: readonly DrapeBackend[] = ['auto', 'gpu', 'cpu'];
 
-/** A renderer as the world takes it: three.js `WebGPURenderer`, `WebGLRenderer` or any other. */
-export interface RendererLike {
+/**
+ * A renderer as the world takes it: three.js `WebGPURenderer`, `WebGLRenderer` or any other. (`object &`: a type
+ * whose members are all optional would refuse a `WebGLRenderer`, which has none of them.)
+ */
+export type RendererLike = object & {
   readonly isWebGPURenderer?: boolean;
   readonly backend?: object;
   init?(): Promise<unknown>;
-}
+};
 
 export interface DrapeWorldOptions {
   /**
@@ -55,6 +58,16 @@ export interface DrapeWorldOptions {
      * true when the world has two cloths or more, false for one (it costs a frame several times over on the GPU)
      */
     selfContact?: boolean;
+    /**
+     * with self-contact, the speed of cloth against cloth it is made to catch [m/s], 0 … 100: the substeps are raised
+     * until cloth this fast moves at most the contact distance in one substep, and a grab drags no faster; 0 keeps
+     * `substeps`. Default 6
+     */
+    selfContactSpeed?: number;
+    /** fastest a cloth is pushed out of a collider it did not move into [m/s], 0.01 … 100. Default 0.25 */
+    depenetrationSpeed?: number;
+    /** how the xpbd solver solves its springs: 'gauss-seidel' (default, one at a time) or 'global' (together; CPU only, docs/physics.md) */
+    stretch?: StretchSolve;
   };
   /** a floor plane at this height [m] besides the colliders. Default: none */
   floor?: number | null;

@@ -1,6 +1,7 @@
-import { BoxGeometry, Mesh, Object3D, PlaneGeometry, SphereGeometry } from 'three';
+import { BoxGeometry, Mesh, Object3D, PlaneGeometry, SphereGeometry, type WebGLRenderer } from 'three';
 import { describe, expect, it } from 'vitest';
 import { SceneError, type Scene } from '../core/index.js';
+import type { DrapeWorldOptions } from './options.js';
 import { DrapeWorld } from './world.js';
 
 // (what Node can check: the options, the cloths and colliders a world is made of; it simulates in a browser: e2e/three.e2e.ts)
@@ -25,6 +26,17 @@ describe('DrapeWorld: options and what it is made of', () => {
     await expect(world.step('2' as unknown as number)).rejects.toThrow(/step: frames must be an integer ≥ 0, got "2"$/);
     // nothing refused was kept
     expect(world.cloths).toEqual([]);
+  });
+
+  it('takes the options docs/three.md lists, a WebGLRenderer and the solver\'s speeds and stretch among them', () => {
+    // (type-checked: a renderer type whose members are all optional refused a WebGLRenderer, which has none of them)
+    const webgl = null as unknown as WebGLRenderer;
+    const options: DrapeWorldOptions = { renderer: webgl, solver: { selfContactSpeed: 0, depenetrationSpeed: 1, stretch: 'global' } };
+    expect(() => new DrapeWorld({ solver: options.solver })).not.toThrow();
+    // and the scene schema checks them, naming them
+    expect(() => new DrapeWorld({ solver: { selfContactSpeed: -1 } })).toThrow(/^DrapeWorld: solver\.selfContactSpeed: must be >= 0/);
+    expect(() => new DrapeWorld({ solver: { depenetrationSpeed: 0 } })).toThrow(/^DrapeWorld: solver\.depenetrationSpeed: must be >= 0\.01/);
+    expect(() => new DrapeWorld({ solver: { stretch: 'vbd' as never } })).toThrow(/^DrapeWorld: solver\.stretch: /);
   });
 
   it('a cloth from a generator or a geometry is a mesh of its particles, drawn from its own attributes on the CPU path', () => {

@@ -57,6 +57,11 @@ export class DrapeWorld {
   private readonly meshes = new MeshStore();
   private driver: SimDriver | null = null;
   private starting: Promise<void> | null = null;
+  /**
+   * the last start made no simulation (no cloth yet, or a scene the core refused): the next change to the cloths or
+   * colliders lets the next `update`, `step` or `start` try again
+   */
+  private startFailed = false;
   /** the world's model the cloths' geometries were made for */
   private model: ClothModel | null = null;
   /** the cloths drawn from the model's positions (CPU) or the GPU solver's buffers: made for `model` */
@@ -177,9 +182,13 @@ export class DrapeWorld {
       throw optionError(e);
     }
     const cloth = new DrapeCloth({ entry, model }, options.material, name);
+    const newAnchors: Object3D[] = [];
     for (const p of attachedPins) {
       this.attached.push({ ...p, cloth });
-      if (!this.anchors.has(p.to) && !this.colliders.some((c) => c.object === p.to)) this.anchors.set(p.to, anchorOf(p.to));
+      if (!this.anchors.has(p.to) && !this.colliders.some((c) => c.object === p.to)) {
+        this.anchors.set(p.to, anchorOf(p.to));
+        newAnchors.push(p.to);
+      }
     }
     // the cloths simulated so far go on where they are: the new one's particles come after theirs
     const carry: ParticleRange[] = this.model ? [{ from: 0, to: 0, count: this.model.particleCount }] : [];
@@ -187,9 +196,13 @@ export class DrapeWorld {
     try {
       this.structureChanged(carry);
     } catch (e) {
+      // refused by the simulation: nothing changes (the scene's colliders are the world's again: they follow meshes)
       this.cloths.pop();
       this.attached.splice(this.attached.length - attachedPins.length);
+      for (const object of newAnchors) this.anchors.delete(object);
       if (meshName) this.meshes.delete(meshName);
+      this.scene();
+      cloth.disposeCloth();
       throw e;
     }
     return cloth;
@@ -216,8 +229,10 @@ export class DrapeWorld {
     try {
       this.structureChanged();
     } catch (e) {
+      // refused by the simulation: nothing changes (the scene's colliders are the world's again: they follow meshes)
       this.colliders.pop();
       this.meshes.delete(meshName);
+      this.scene();
       throw e;
     }
   }
@@ -328,7 +343,11 @@ export class DrapeWorld {
     this.draw();
   }
 
-  /** Starts the simulation (the first `update` or `step` does): resolves once the backend is chosen and the cloths loaded. */
+  /**
+   * Starts the simulation (the first `update` or `step` does): resolves once the backend is chosen and the cloths
+   * loaded. A start that makes no simulation (no cloth yet, a scene refused and reported) is tried again once a cloth
+   * or collider is added or taken out.
+   */
   start(): Promise<void> {
     this.starting ??= this.begin();
     return this.starting;
@@ -414,7 +433,13 @@ export class DrapeWorld {
   private structureChanged(carry: readonly ParticleRange[] = []): void {
     const scene = this.scene();
     const d = this.driver;
-    if (!d) return;
+    if (!d) {
+      if (this.startFailed) {
+        this.startFailed = false;
+        this.starting = null;
+      }
+      return;
+    }
     // a scene the GPU does not take (cloths of different fabrics) goes on on the CPU: checked before the driver sees it
     const refusal = d.kind === 'gpu' ? GpuSim.supports(scene) : null;
     if (refusal) {
@@ -449,17 +474,19 @@ export class DrapeWorld {
     } catch {
       // a renderer that cannot start draws nothing; the simulation still runs on the CPU
     }
-    if (this.disposed || !this.cloths.length) { this.starting = null; return; }
+    if (this.disposed) return;
+    if (!this.cloths.length) { this.startFailed = true; return; }
     let scene: Scene;
     try {
       scene = this.scene();
     } catch (e) {
+      this.startFailed = true;
       this.report((e as Error).message);
       return;
     }
     const { kind, note } = this.choose(scene);
     this.backendNote = note;
-    this.load(kind, scene);
+    if (!this.load(kind, scene)) this.startFailed = true;
   }
 
   /** The backend the choice, the renderer and the scene allow, and why it is not the GPU. */
