@@ -36,7 +36,7 @@ export interface DrapeWorldOptions {
   wind?: {
     /** wind speed [m/s], 0 … 30. Default 0 (still air: the drag alone) */
     strength?: number;
-    /** direction it blows towards (any length but zero) [-]. Default [1, 0, 0] */
+    /** direction it blows towards (any length; zero: still air) [-]. Default [1, 0, 0] */
     direction?: Vec3;
     /** random gusts on top of it. Default false */
     gusts?: boolean;
@@ -82,7 +82,7 @@ export interface DrapeWorldOptions {
 
 /** A pin: fixed in the world, or attached to an object it then follows. */
 export type DrapePin =
-  /** a particle of the cloth (counted from its first), a preset ('corners', 'top-edge'…) or a region {min, max} of start positions [m] */
+  /** a particle of the cloth (counted from its first), a preset ('top-left', 'top-edge'…) or a region {min, max} of start positions [m] */
   | PinEntry
   /** those particles, carried by `to` (any Object3D, a collider's mesh or not): they keep their offset from it */
   | { at: PinEntry; to: Object3D };
@@ -100,7 +100,7 @@ export interface DrapeClothOptions {
   width?: number;
   /** a rectangle's other extent (z when horizontal, y when hanging); a tube's length [m]. Default 1 */
   height?: number;
-  /** faces per side of a rectangle; across a disc; along a tube's longer side [-], 1 … 1024 (CPU ≤ 256). Default 32 */
+  /** faces per side of a rectangle; across a disc; along a tube's longer side [-], 1 … 1024. Default 32 */
   resolution?: number;
   /** a generated shape lies in the xz plane ('horizontal', default) or hangs in the xy plane ('hanging') */
   orientation?: 'horizontal' | 'hanging';
@@ -129,7 +129,7 @@ export interface DrapeClothOptions {
   pins?: DrapePin[];
   /** the three.js material it is drawn with. Default: a double-sided MeshStandardMaterial (disposed with the world) */
   material?: import('three').Material;
-  /** the mesh's name (and the cloth's in errors). Default 'cloth k' */
+  /** the mesh's name (and the cloth's in errors). Default 'cloth k', k counting the cloths added before it */
   name?: string;
 }
 

@@ -1,4 +1,4 @@
-import { BoxGeometry, Mesh, Object3D, PlaneGeometry, SphereGeometry, type WebGLRenderer } from 'three';
+import { BoxGeometry, BufferGeometry, Float32BufferAttribute, Mesh, Object3D, PlaneGeometry, SphereGeometry, Vector3, type WebGLRenderer } from 'three';
 import { describe, expect, it } from 'vitest';
 import { SceneError, type Scene } from '../core/index.js';
 import type { DrapeWorldOptions } from './options.js';
@@ -26,6 +26,32 @@ describe('DrapeWorld: options and what it is made of', () => {
     await expect(world.step('2' as unknown as number)).rejects.toThrow(/step: frames must be an integer ≥ 0, got "2"$/);
     // nothing refused was kept
     expect(world.cloths).toEqual([]);
+  });
+
+  it('names the argument that is wrong: a cloth\'s name, geometry, its faces and pins, a ray, a grab or drag target', () => {
+    const world = new DrapeWorld();
+    expect(() => world.addCloth({ name: 5 as never })).toThrow(/^DrapeWorld\.addCloth: name must be a string, got 5$/);
+    expect(() => world.addCloth({ geometry: {} as never })).toThrow(/^DrapeWorld\.addCloth: geometry must be a THREE\.BufferGeometry/);
+    expect(() => world.addCloth({ geometry: new Mesh(new PlaneGeometry()) as never })).toThrow(/geometry must be a THREE\.BufferGeometry \(a mesh's is its \.geometry\)/);
+    // the geometry's faces, and pins that miss, named as the option, after the call (not by the world's own mesh names)
+    const flat = new BufferGeometry();
+    flat.setAttribute('position', new Float32BufferAttribute([0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0], 3));
+    flat.setIndex([0, 1, 2, 0, 1, 3]);
+    expect(() => world.addCloth({ name: 'sheet', geometry: flat })).toThrow(/^DrapeWorld\.addCloth\('sheet'\): geometry: face 2 is degenerate/);
+    expect(() => world.addCloth({ geometry: new PlaneGeometry(0.001, 0.001) }))
+      .toThrow(/^DrapeWorld\.addCloth\('cloth 0'\): scale: the geometry is 0\.00100 m across .*metres per unit of the geometry/);
+    expect(() => world.addCloth({ pins: [{ min: [5, 5, 5], max: [6, 6, 6] }] })).toThrow(/^DrapeWorld\.addCloth\('cloth 0'\): pins\[0\]: no particle starts in the region/);
+    expect(() => world.pick(undefined as never)).toThrow(/^DrapeWorld\.pick: the ray must be a THREE\.Raycaster or \{ origin, direction \}/);
+    expect(() => world.pick({ origin: [0, 5, 0], direction: [0, -1, 0] } as never)).toThrow(/^DrapeWorld\.pick: the ray must be/);
+    expect(world.pick({ origin: new Vector3(0, 5, 0), direction: new Vector3(0, -1, 0) })).toBeNull(); // not started
+    expect(() => world.grab(undefined as never)).toThrow(/^DrapeWorld\.grab: hit must be a pick result/);
+    expect(() => world.drag(undefined as never)).toThrow(/^DrapeWorld\.drag: target must be a THREE\.Vector3$/);
+    expect(() => world.drag(new Vector3(NaN, 1, 0))).toThrow(/^DrapeWorld\.drag: target must have finite coordinates \[m\], got \(NaN, 1, 0\)$/);
+    // default names count the cloths added, so that they do not repeat after one is taken out
+    const [a, b] = [world.addCloth({ position: [0, 1, 0] }), world.addCloth({ position: [0, 3, 0] })];
+    world.removeCloth(a);
+    expect([b.name, world.addCloth({ position: [0, 5, 0] }).name]).toEqual(['cloth 1', 'cloth 2']);
+    world.dispose();
   });
 
   it('takes the options docs/three.md lists, a WebGLRenderer and the solver\'s speeds and stretch among them', () => {

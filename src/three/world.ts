@@ -8,7 +8,7 @@
  */
 import { Vector3, type Mesh, type Object3D, type Raycaster } from 'three';
 import {
-  FRAME_DT, Simulation, copyCarried, modelFor, pickParticle, resolvePins, shownValue, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
+  FRAME_DT, SceneError, Simulation, copyCarried, modelFor, pickParticle, resolvePins, shownValue, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
   type ParticleRange, type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { isSoftwareAdapter, type AdapterInfoLike } from '../gpu/adapter.js';
@@ -40,6 +40,34 @@ export interface DrapeHit {
 
 const WHERE = 'DrapeWorld';
 const vec3 = (v: Vector3): Vec3 => [v.x, v.y, v.z];
+
+/**
+ * A core error about the cloth addCloth builds (its mesh, its pins) as the option's: prefixed with the call (the
+ * scene checks already are), and its geometry named as such, not by the name the world gave its mesh.
+ */
+function clothError(e: unknown, where: string, meshName: string | undefined): unknown {
+  if (!(e instanceof SceneError) || e.message.startsWith(where)) return e;
+  let message = e.message;
+  if (meshName) {
+    message = message.replace(`cloth.mesh: ${meshName}: `, 'geometry: ').split(meshName).join('the geometry')
+      .replace('metres per unit of the file', 'metres per unit of the geometry');
+  }
+  return new SceneError(`${where}: ${message}`);
+}
+
+/** Whether `v` reads as a THREE.Vector3 (by its shape: a page may hold another copy of three.js). */
+function isVector(v: unknown): v is Vector3 {
+  return v !== null && typeof v === 'object' && typeof (v as Vector3).clone === 'function' &&
+    typeof (v as Vector3).x === 'number' && typeof (v as Vector3).y === 'number' && typeof (v as Vector3).z === 'number';
+}
+
+/** Throws, naming `method`, unless `target` is a THREE.Vector3 of finite coordinates [m]. */
+function checkTarget(method: string, target: unknown): void {
+  if (!isVector(target)) throw new TypeError(`${WHERE}.${method}: target must be a THREE.Vector3`);
+  if (![target.x, target.y, target.z].every(Number.isFinite)) {
+    throw new RangeError(`${WHERE}.${method}: target must have finite coordinates [m], got (${target.x}, ${target.y}, ${target.z})`);
+  }
+}
 
 export class DrapeWorld {
   /** the cloths, in the order they were added */
@@ -73,6 +101,8 @@ export class DrapeWorld {
   private grabbed: { cloth: DrapeCloth; particle: number } | null = null;
   private disposed = false;
   private names = 0;
+  /** the cloths added so far (the default name of the next is 'cloth ' and this) */
+  private clothsAdded = 0;
 
   constructor(options: DrapeWorldOptions = {}) {
     checkObject(WHERE, 'options', options);
@@ -146,8 +176,11 @@ export class DrapeWorld {
     checkOneOf(`${WHERE}.addCloth`, 'shape', options.shape, ['rectangle', 'disc', 'tube']);
     if (options.geometry !== undefined && options.shape !== undefined) throw new TypeError(`${WHERE}.addCloth: give geometry or shape, not both`);
     if (options.pins !== undefined && !Array.isArray(options.pins)) throw new TypeError(`${WHERE}.addCloth: pins must be an array`);
-    const k = this.cloths.length;
-    const name = options.name ?? `cloth ${k}`;
+    if (options.name !== undefined && typeof options.name !== 'string') throw new TypeError(`${WHERE}.addCloth: name must be a string, got ${shownValue(options.name)}`);
+    if (options.geometry !== undefined && typeof (options.geometry as { getAttribute?: unknown } | null)?.getAttribute !== 'function') {
+      throw new TypeError(`${WHERE}.addCloth: geometry must be a THREE.BufferGeometry (a mesh's is its .geometry)`);
+    }
+    const name = options.name ?? `cloth ${this.clothsAdded}`;
     const where = `${WHERE}.addCloth('${name.slice(0, 60)}')`;
     const meshName = options.geometry ? `drape-three:cloth-${this.names++}` : undefined;
     if (options.geometry && meshName) this.meshes.add({ name: meshName, mesh: meshOfGeometry(options.geometry, where) });
@@ -179,7 +212,7 @@ export class DrapeWorld {
       });
     } catch (e) {
       if (meshName) this.meshes.delete(meshName);
-      throw optionError(e);
+      throw optionError(clothError(e, where, meshName));
     }
     const cloth = new DrapeCloth({ entry, model }, options.material, name);
     const newAnchors: Object3D[] = [];
@@ -193,11 +226,13 @@ export class DrapeWorld {
     // the cloths simulated so far go on where they are: the new one's particles come after theirs
     const carry: ParticleRange[] = this.model ? [{ from: 0, to: 0, count: this.model.particleCount }] : [];
     this.cloths.push(cloth);
+    this.clothsAdded++;
     try {
       this.structureChanged(carry);
     } catch (e) {
       // refused by the simulation: nothing changes (the scene's colliders are the world's again: they follow meshes)
       this.cloths.pop();
+      this.clothsAdded--;
       this.attached.splice(this.attached.length - attachedPins.length);
       for (const object of newAnchors) this.anchors.delete(object);
       if (meshName) this.meshes.delete(meshName);
@@ -358,10 +393,13 @@ export class DrapeWorld {
    * origin and a direction [m]. Null when it meets none, or before the world has started.
    */
   pick(ray: Raycaster | { origin: Vector3; direction: Vector3 }): DrapeHit | null {
+    // (a Raycaster by its shape: a page may hold another copy of three.js)
+    const r = ray !== null && typeof ray === 'object' ? ('ray' in ray ? ray.ray : ray) : null;
+    if (!isVector(r?.origin) || !isVector(r?.direction)) {
+      throw new TypeError(`${WHERE}.pick: the ray must be a THREE.Raycaster or { origin, direction } of THREE.Vector3`);
+    }
     const m = this.driver?.mirrors[0];
     if (!m || !this.model) return null;
-    // (a Raycaster by its shape: a page may hold another copy of three.js)
-    const r = 'ray' in ray ? ray.ray : ray;
     const dir = r.direction.clone().normalize();
     const hit = pickParticle(m.sim.model, m.sim.state, vec3(r.origin), vec3(dir));
     if (!hit) return null;
@@ -372,6 +410,8 @@ export class DrapeWorld {
 
   /** Grabs a particle (a `pick` hit's), pulling it towards `target` [m] (default: the hit point) until `release`. */
   grab(hit: Pick<DrapeHit, 'cloth' | 'particle'> & { point?: Vector3 }, target?: Vector3): void {
+    if (hit === null || typeof hit !== 'object') throw new TypeError(`${WHERE}.grab: hit must be a pick result, { cloth, particle }`);
+    if (target !== undefined) checkTarget('grab', target);
     const d = this.driver;
     if (!d || !this.cloths.includes(hit.cloth)) return;
     if (!(Number.isInteger(hit.particle) && hit.particle >= 0 && hit.particle < hit.cloth.particleCount)) {
@@ -384,6 +424,7 @@ export class DrapeWorld {
 
   /** Moves the grabbed particle's target [m]; nothing when none is grabbed. */
   drag(target: Vector3): void {
+    checkTarget('drag', target);
     if (this.grabbed && this.driver) this.driver.grab(0, this.grabbed.cloth.start + this.grabbed.particle, vec3(target));
   }
 
