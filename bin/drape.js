@@ -7,5 +7,10 @@ if (!existsSync(entry)) {
   console.error('drape: not built yet; run `npm run build` in the package directory');
   process.exit(2);
 }
+// a reader that stops early (`drape run … | head`) closes the pipe: stop quietly, as other command-line tools do
+process.stdout.on('error', (e) => {
+  if (e.code !== 'EPIPE') throw e;
+  process.exit(0);
+});
 const { main } = await import(entry.href);
 process.exitCode = await main(process.argv.slice(2));

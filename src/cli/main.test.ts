@@ -327,6 +327,9 @@ describe('drape CLI', () => {
     expect(bad.status).toBe(2);
     expect(bad.stderr.trim().split('\n')).toHaveLength(1);
     expect(bad.stderr).not.toMatch(/at .*\.js:\d+/); // no stack trace
+    // a reader that stops after one line (the sweep prints a line per run as it goes): quiet, exit 0, no stack trace
+    const piped = spawnSync('bash', ['-c', `set -o pipefail; "${process.execPath}" "${bin}" run resolution --frames 1 | head -1`], { encoding: 'utf8' });
+    expect([piped.status, piped.stderr, piped.stdout.split('\n').length]).toEqual([0, '', 2]);
   });
 
   it.each([
