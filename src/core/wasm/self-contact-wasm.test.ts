@@ -209,6 +209,16 @@ describe('self-contact in the WebAssembly kernel', () => {
     a.dispose(); b.dispose();
   });
 
+  it('a kernel too big for one WebAssembly memory (4 GiB) with self-contact\'s is made without it (the reference then runs the phase)', () => {
+    // (a window of 2²⁹ pairs stands for a cloth of about a million particles: its self-contact memory alone is over 4 GiB)
+    const model = new Simulation(builtinScene('fold'), { kernel: 'ts' }).model;
+    const big = XpbdKernel.create(model, 1, 2 ** 29)!;
+    const fits = XpbdKernel.create(model, 1, 4096)!;
+    expect([big.hasSelfContact, fits.hasSelfContact]).toEqual([false, true]);
+    expect(big.bytes).toBeLessThan(fits.bytes);
+    big.dispose(); fits.dispose();
+  });
+
   it('a kernel made without self-contact\'s memory, asked for the phase, runs it in the reference: the same cloth bit for bit', () => {
     const sim = new Simulation(builtinScene('fold'), { kernel: 'ts' });
     sim.advance(20);

@@ -19,6 +19,7 @@ import type { ClothModel } from '../model.js';
 import { perClothRefusal, type SimParams } from '../params.js';
 import { needsTriangleContact } from '../phases.js';
 import { PHASE, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../schedule.js';
+import { SceneError } from '../scene.js';
 import { collideSelf } from '../self-contact.js';
 import { createState, type ClothState } from '../state.js';
 import {
@@ -130,6 +131,17 @@ export function wasmKernelAvailable(threads = false): boolean {
  * thread that must wait sleeps instead of spinning). Where a thread may not block (a browser's main thread),
  * wait returns at once and the kernel polls again.
  */
+/** The most 64 KiB pages one WebAssembly memory can have (4 GiB: wasm32's address space). */
+const MAX_PAGES = 65536;
+
+/** A cloth whose kernel memory would be more than one WebAssembly memory can hold (MAX_PAGES). */
+class KernelMemoryError extends SceneError {
+  constructor(particles: number, bytes: number, readonly withSelfContact: boolean) {
+    super(`the WebAssembly kernel would need ${(bytes / 2 ** 30).toFixed(1)} GiB of memory for ${particles} particles${withSelfContact ? ' with self-contact' : ''}, ` +
+      'more than the 4 GiB a WebAssembly memory holds; use the TypeScript kernel (drape run --kernel ts, Simulation option kernel: \'ts\') or a smaller cloth');
+  }
+}
+
 export function kernelImports(memory: WebAssembly.Memory): WebAssembly.Imports {
   // only a shared memory has waiters; pages that are not cross-origin isolated have no SharedArrayBuffer at all
   const words = typeof SharedArrayBuffer !== 'undefined' && memory.buffer instanceof SharedArrayBuffer ? new Int32Array(memory.buffer) : null;
@@ -196,6 +208,7 @@ export class XpbdKernel implements PhaseBackend {
     const nt = model.triangles.length / 3, TRIANGLES = take(12 * nt);
     const self = withSelfContact ? layoutSelfContact(model, take, selfWindow) : null;
     const pages = Math.ceil(at / 65536);
+    if (pages > MAX_PAGES) throw new KernelMemoryError(n, at, withSelfContact);
     this.memory = threads > 1
       ? new WebAssembly.Memory({ initial: pages, maximum: pages, shared: true })
       : new WebAssembly.Memory({ initial: pages });
@@ -246,12 +259,20 @@ export class XpbdKernel implements PhaseBackend {
    * self-contact's pair windows (tests: a small one; by default they grow with the cloth, self-contact-wasm.ts).
    * `selfContact` false: no memory for self-contact's passes (about 3.8 kB a particle: a 256² cloth's kernel takes
    * 13.5 MB instead of 264 MB); the phase, if asked for, then runs in the TypeScript reference (the same cloth, bit
-   * for bit).
+   * for bit). A cloth whose kernel with that memory would pass the 4 GiB one WebAssembly memory holds (about a million
+   * particles) gets one without it; one too big even so is refused (a SceneError naming the TypeScript kernel).
    */
   static create(model: ClothModel, threads = 1, selfWindow?: number, selfContact = true): XpbdKernel | null {
     const t = Math.min(KERNEL_MAX_THREADS, Math.max(1, Math.floor(threads)));
     const module = kernelModule(t > 1);
-    return module ? new XpbdKernel(model, t, module, selfContact, selfWindow) : null;
+    if (!module) return null;
+    try {
+      return new XpbdKernel(model, t, module, selfContact, selfWindow);
+    } catch (e) {
+      // too big for one WebAssembly memory with self-contact's: without it (the phase then runs in the reference)
+      if (e instanceof KernelMemoryError && e.withSelfContact) return new XpbdKernel(model, t, module, false, selfWindow);
+      throw e;
+    }
   }
 
   /** whether self-contact's passes run in the kernel (it was made with their memory) */
