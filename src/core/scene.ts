@@ -374,6 +374,10 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
       checkPinIndices(pins, (scene.cloth.resolution + 1) ** 2, `colliders[${k}].pins`, source);
     }
   });
+  // the cantilever's strip overhangs along the horizontal part of test.direction: it must have one
+  if (scene.test?.type === 'cantilever' && !(Math.hypot(scene.test.direction[0], scene.test.direction[2]) > 1e-9)) {
+    throw new SceneError(`${source}: test.direction: must have a horizontal part (the strip overhangs along it), got [${scene.test.direction.join(', ')}]`);
+  }
   return scene;
 }
 

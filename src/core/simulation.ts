@@ -18,7 +18,7 @@ import { copyState, resetState, type ClothState } from './state.js';
 import type { HelperSpawner } from './wasm/xpbd-wasm.js';
 import { TsBackend, WasmBackend, type Backend } from './backend.js';
 import type { ColliderPose } from './colliders/pose.js';
-import { measureTest, type TestResult } from './textile-tests.js';
+import { checkTest, measureTest, type TestResult } from './textile-tests.js';
 
 /** Where a Simulation runs the XPBD substeps on the CPU. */
 export type CpuKernel = 'wasm' | 'ts';
@@ -170,6 +170,7 @@ export class Simulation {
     this.params = resolveParams(this.model, this.scene, FRAME_DT, this.options.meshes);
     const pins = scenePins(this.model, this.scene);
     checkPlacement(this.model, this.params.colliders, pins, this.scene.material.stretchFactor, sceneLabel(this.scene));
+    checkTest(this.model, this.scene, sceneLabel(this.scene));
     this.backendNow = this.newBackend();
     applyPins(this.state, pins);
   }
@@ -311,6 +312,7 @@ export class Simulation {
         prev.material.stretchFactor !== next.material.stretchFactor) {
       checkPlacement(model, params.colliders, pins, next.material.stretchFactor, sceneLabel(next));
     }
+    checkTest(model, next, sceneLabel(next));
     // (a carry outside either cloth is refused here too, before anything changes)
     const kept = rebuild && carry.length ? carried(this.state, carry, model.particleCount) : null;
     this.scene = next;

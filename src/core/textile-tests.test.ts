@@ -91,6 +91,19 @@ describe('what the tests measure', () => {
     expect(Math.abs(hanging.drapeCoefficient)).toBeLessThan(0.01);
   });
 
+  it('a cloth spread wider than 4 m is measured on coarser cells, not reported as NaN; a pedestal as large as the cloth, or a strip with no horizontal direction, is refused', () => {
+    const wide = new Simulation({ cloth: { width: 5, height: 5, resolution: 4 }, colliders: [], test: { type: 'cusick' } }, { kernel: 'ts' });
+    const t = wide.report().test as CusickResult;
+    expect(t.projectedArea / 25).toBeCloseTo(1, 3);
+    expect(t.drapeCoefficient).toBeCloseTo(1, 3);
+    wide.dispose();
+    const r = Math.sqrt(1.5 * 1.5 / Math.PI);
+    expect(() => new Simulation({ cloth: { width: 1.5, height: 1.5, resolution: 4 }, colliders: [], test: { type: 'cusick', pedestalRadius: r } }, { kernel: 'ts' }))
+      .toThrow(/test\.pedestalRadius: the pedestal's top \(2\.25 m²\) must be smaller than the cloth \(2\.25 m²\)/);
+    expect(() => validateScene({ test: { type: 'cantilever', direction: [0, 1, 0] } })).toThrow(/test\.direction: must have a horizontal part/);
+    expect(() => validateScene({ test: { type: 'cantilever', direction: [0, 0, 0] } })).toThrow(/test\.direction: must have a horizontal part/);
+  });
+
   it('folds are the peaks of the silhouette\'s radius round the rim', () => {
     const profile = (k: number, amplitude: number, noise = 0) => Float64Array.from({ length: 360 }, (_, d) =>
       0.12 + amplitude * Math.cos((k * d * Math.PI) / 180) + noise * Math.sin(d * 1.7) * Math.cos(d * 2.9));

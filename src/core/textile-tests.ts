@@ -11,7 +11,7 @@
  *   seen from above, and `folds` the number of folds round its rim.
  */
 import type { ClothModel } from './model.js';
-import type { Scene } from './scene.js';
+import { SceneError, type Scene } from './scene.js';
 import type { ClothState } from './state.js';
 
 /** What a cantilever scene reports. */
@@ -40,6 +40,19 @@ export interface CusickResult {
 }
 
 export type TestResult = CantileverResult | CusickResult;
+
+/**
+ * Refuses a scene's `test` that cannot be measured on `model`: a Cusick pedestal whose top is not smaller than the
+ * specimen (the drape coefficient divides by their difference). `source` names the scene in the message.
+ */
+export function checkTest(model: ClothModel, scene: Scene, source: string): void {
+  const t = scene.test;
+  if (t?.type !== 'cusick') return;
+  const pedestal = Math.PI * t.pedestalRadius * t.pedestalRadius;
+  if (!(pedestal < model.area)) {
+    throw new SceneError(`${source}: test.pedestalRadius: the pedestal's top (${pedestal.toPrecision(3)} m²) must be smaller than the cloth (${model.area.toPrecision(3)} m²), which drapes over it`);
+  }
+}
 
 /** The measurement a scene's `test` asks for, on the cloth as it is now (NaN where the cloth is not finite). */
 export function measureTest(model: ClothModel, state: ClothState, scene: Scene): TestResult | undefined {
@@ -146,8 +159,12 @@ export function elasticaLoad(theta: number): number {
   return Math.exp(c);
 }
 
-/** Side of the cells the projected area is counted on [m]: 0.5 mm, a 30 cm specimen in 600 × 600 cells. */
-const CELL = 5e-4;
+/**
+ * Side of the cells the projected area is counted on [m]: 0.5 mm, a 30 cm specimen in 600 × 600 cells; for a cloth
+ * spread over more than 1 m × 1 m, as much more as keeps the count to about CELLS_MOST (a 5 m cloth: 2.5 mm cells).
+ */
+const CELL_SIDE = 5e-4;
+const CELLS_MOST = 4e6;
 
 function cusick(model: ClothModel, state: ClothState, center: readonly number[], pedestalRadius: number): CusickResult {
   const x = state.positions, t = model.triangles;
@@ -158,8 +175,8 @@ function cusick(model: ClothModel, state: ClothState, center: readonly number[],
   }
   const nan: CusickResult = { type: 'cusick', projectedArea: NaN, drapeCoefficient: NaN, folds: NaN };
   if (![x0, x1, z0, z1].every(Number.isFinite)) return nan;
+  const CELL = Math.max(CELL_SIDE, Math.sqrt(((x1 - x0 + CELL_SIDE) * (z1 - z0 + CELL_SIDE)) / CELLS_MOST));
   const nx = Math.ceil((x1 - x0) / CELL) + 1, nz = Math.ceil((z1 - z0) / CELL) + 1;
-  if (nx * nz > 64e6) return nan;
   const covered = new Uint8Array(nx * nz);
   // every cell whose centre lies in a triangle seen from above
   for (let k = 0; k < t.length; k += 3) {
