@@ -176,6 +176,18 @@ describe('drape CLI', () => {
     expect(j.sweep[0].centroid[1]).toBeGreaterThan(0.6); // the 1-face cloth rests on the sphere
   });
 
+  it('the sweep\'s runs report their own clamps: each run\'s in --json, and each new one once as a note', async () => {
+    // (mass-spring softens more springs the finer the mesh; the first run, at 1 face, softens none)
+    const args = ['run', 'resolution', '--frames', '1', '--solver', 'mass-spring', '--set', 'solver.selfContact=false'];
+    const j = JSON.parse((await run(...args, '--json')).out);
+    expect(j.clamps).toEqual([]);
+    expect(j.sweep.map((s: { clamps: string[] }) => s.clamps.length)).toEqual([0, 1, 1, 2, 2, 2, 2]);
+    const text = await run(...args);
+    const notes = text.err.split('\n').filter((l) => l.startsWith('drape: note: '));
+    expect(notes.length).toBe(new Set(j.sweep.flatMap((s: { clamps: string[] }) => s.clamps)).size);
+    expect(notes[0]).toMatch(/^drape: note: at cloth\.resolution 2: mass-spring at 20 substeps: 26 of 26 springs are too stiff/);
+  });
+
   it('reads scene files and exports OBJ', async () => {
     const dir = mkdtempSync(join(tmpdir(), 'drape-cli-'));
     const file = join(dir, 'scene.json'), obj = join(dir, 'cloth.obj');

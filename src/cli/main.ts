@@ -375,7 +375,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   if (values.json) {
     out(safeJson({
       scene: scene.name, solver: scene.solver.type, backend, frames, ...fields, clamps,
-      ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, clamps: _c, ...r }) => ({ faces: r.triangles / 2, ...r })) } : {}),
+      ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, ...r }) => ({ faces: r.triangles / 2, ...r })) } : {}),
       ...(exported ? { exported: values.export } : {}),
       ...(baked ? { baked: values.bake, bakedFrames: bake!.frameNumbers.length + 1 } : {}),
       ...(exportError ? { exportError } : {}),
@@ -383,6 +383,11 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     }));
   } else {
     for (const c of clamps) err(`drape: note: ${c}`);
+    // the sweep's runs clamp what their own resolution needs (a finer mesh softens more springs): said once each
+    const said = new Set(clamps);
+    for (const r of sweepRuns) {
+      for (const c of r.clamps) if (!said.has(c)) { said.add(c); err(`drape: note: at cloth.resolution ${r.resolution}: ${c}`); }
+    }
     const f = (v: number) => (Math.abs(v) < 1e-3 && v !== 0 ? v.toExponential(2) : v.toFixed(4));
     const where = backend === 'gpu' ? 'gpu' : `cpu (${main.kernel === 'wasm' ? `wasm SIMD, ${main.threads} thread${main.threads === 1 ? '' : 's'}` : 'TypeScript'})`;
     out(`scene ${plainText(scene.name, 100)}: ${scene.solver.type} on ${where}, ${main.substeps} substeps, ${frames} frames (${(frames / 60).toFixed(2)} s)`);
