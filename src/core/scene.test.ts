@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { defaultScene, parseScene, parseSetValue, SceneError, setScenePath, validateScene } from './scene.js';
+import { COLLIDER_TYPES, defaultScene, parseScene, parseSetValue, SceneError, setScenePath, TEST_TYPES, validateScene } from './scene.js';
 import { sceneSchema } from './scene-schema.js';
 import { builtinScene, isBuiltinScene, SCENE_NAMES } from './scenes.js';
 
@@ -78,11 +78,22 @@ describe('scenes', () => {
     rejects({ solver: { type: 'euler' } }, /solver\.type: must be one of "xpbd", "mass-spring"/);
     rejects({ gravity: [0, -9.81] }, /gravity: must NOT have fewer than 3 items/);
     rejects({ colliders: [{ type: 'sphere', radius: -1 }] }, /colliders\[0\]\.radius: must be >= 0\.001/);
-    rejects({ colliders: [{ type: 'cube' }] }, /colliders\[0\]\.type: must be one of/);
+    rejects({ colliders: [{ type: 'cube' }] }, /colliders\[0\]\.type: must be one of "sphere", .*, "mesh", got "cube"$/);
+    rejects({ colliders: [{ type: true }] }, /colliders\[0\]\.type: must be one of "sphere", .*, got true$/);
+    // the fabric test's type lists the tests, not the colliders
+    rejects({ test: { type: 'pendulum' } }, /^scene: test\.type: must be one of "cantilever", "cusick", got "pendulum"$/);
+    rejects({ test: { type: 5 } }, /^scene: test\.type: must be one of "cantilever", "cusick", got 5$/);
     rejects({ pins: ['middle'] }, /pins\[0\]: must be one of top-left/);
     rejects({ pins: [5000] }, /pins\[0\]: particle 5000 does not exist/);
     rejects({ wat: 1 }, /wat: unknown key/);
     rejects([1, 2], /must be a JSON object/);
+  });
+
+  it('the types its errors list are the schema\'s: the colliders\' and the fabric tests\'', () => {
+    const types = (node: unknown) => (node as { oneOf: { properties: { type: { const: string } } }[] }).oneOf.map((o) => o.properties.type.const);
+    const props = (sceneSchema as unknown as { properties: { test: unknown; colliders: { items: unknown } } }).properties;
+    expect(types(props.test)).toEqual([...TEST_TYPES]);
+    expect(types(props.colliders.items)).toEqual([...COLLIDER_TYPES]);
   });
 
   it('malformed JSON is a one-line error, not a stack trace', () => {

@@ -3,6 +3,7 @@ import { eulerXYZ } from './mesh/generators.js';
 import { BEND_SPRING_PER_RIGIDITY, FABRICS, FABRIC_FIELDS, type FabricName, type FabricValues } from './fabrics.js';
 import { PIN_PRESETS, sceneSchema } from './scene-schema.js';
 import type { StencilModel } from './model.js';
+import { shownValue } from './text.js';
 
 export type Vec3 = [number, number, number];
 /** `cloth.shape` (the list: CLOTH_SHAPES in cloth-shape.ts) */
@@ -142,6 +143,8 @@ export type SceneInput = DeepPartial<Omit<Scene, 'colliders' | 'cloths'>> & {
 
 /** The collider `type`s a scene may name, in the schema's order. */
 export const COLLIDER_TYPES = ['sphere', 'floor', 'plane', 'box', 'capsule', 'cylinder', 'mesh'] as const;
+/** The standard fabric tests a scene's `test.type` names (textile-tests.ts). */
+export const TEST_TYPES = ['cantilever', 'cusick'] as const;
 
 /** Bad scene input: the message is one line and names the field. */
 export class SceneError extends Error {
@@ -181,10 +184,12 @@ function describe(e: ErrorObject): string {
       return `${field}: must be ${p.comparison} ${p.limit}`;
     case 'minItems': case 'maxItems':
       return `${field}: ${e.message}`;
-    case 'discriminator':
-      return p.error === 'mapping'
-        ? `${field}.type: must be one of ${COLLIDER_TYPES.map((t) => JSON.stringify(t)).join(', ')}`
-        : `${field}.type: required`;
+    case 'discriminator': {
+      // a collider's or the fabric test's type (the two objects chosen by their type)
+      const types: readonly string[] = field === 'test' ? TEST_TYPES : COLLIDER_TYPES;
+      const allowed = types.map((t) => JSON.stringify(t)).join(', ');
+      return p.tagValue === undefined ? `${field}.type: required (one of ${allowed})` : `${field}.type: must be one of ${allowed}, got ${shownValue(p.tagValue)}`;
+    }
     default:
       return `${field}: ${e.message ?? 'invalid'}`;
   }
