@@ -165,5 +165,10 @@ describe('the .glb writer', () => {
     expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress, shapes.slice(1)), bake })).toThrow(/has 1 baked frames for 2 times/);
     expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress), bake })).toThrow(/has 0 baked frames for 2 times/);
     expect(() => modelCloths(sim.model, first, [])).toThrow(/0 cloths given for a model of 1/);
+    // a material a library caller made, with a colour or roughness that is no number: refused, not written as null
+    const [c] = modelCloths(sim.model, first, dress);
+    for (const material of [{ ...c.material, roughness: NaN }, { ...c.material, color: [NaN, 0, 0] as [number, number, number] }]) {
+      expect(() => toGLB({ name: 'x', cloths: [{ ...c, material }] })).toThrow(/^glb: material '.*' has a colour or roughness that is not a finite number$/);
+    }
   });
 });

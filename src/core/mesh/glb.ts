@@ -135,8 +135,16 @@ class Builder {
   }
 }
 
-function checkFinite(x: Float32Array, what: string): void {
-  for (let i = 0; i < x.length; i++) if (!Number.isFinite(x[i])) throw new RangeError(`glb: ${what} has positions that are not finite (vertex ${Math.floor(i / 3)})`);
+/** Throws RangeError, `format` first, unless every position of `x` (stride 3) is finite. */
+export function checkFinite(x: Float32Array, what: string, format = 'glb'): void {
+  for (let i = 0; i < x.length; i++) if (!Number.isFinite(x[i])) throw new RangeError(`${format}: ${what} has positions that are not finite (vertex ${Math.floor(i / 3)})`);
+}
+
+/** Throws RangeError, `format` first, unless the material's colour and roughness are finite numbers (a file never holds a NaN). */
+export function checkMaterial(m: GlbMaterial, format: string): void {
+  if (![...m.color, m.roughness].every(Number.isFinite)) {
+    throw new RangeError(`${format}: material '${plainText(m.name, 40)}' has a colour or roughness that is not a finite number`);
+  }
 }
 
 /** Throws RangeError naming what is wrong with `input`: non-finite positions, arrays of the wrong size, a bad bake. */
@@ -154,6 +162,7 @@ function check(input: GlbInput): void {
     if (c.uvs.length !== 2 * n) throw new RangeError(`glb: ${what} has ${c.uvs.length / 2} texture coordinates for ${n} vertices`);
     for (let i = 0; i < c.triangles.length; i++) if (c.triangles[i] >= n) throw new RangeError(`glb: ${what} has a triangle on vertex ${c.triangles[i]} of ${n}`);
     checkFinite(c.positions, what);
+    checkMaterial(c.material, 'glb');
     if ((c.frames?.length ?? 0) !== targets) throw new RangeError(`glb: ${what} has ${c.frames?.length ?? 0} baked frames for ${targets} times`);
     c.frames?.forEach((f, k) => {
       if (f.length !== c.positions.length) throw new RangeError(`glb: ${what}'s baked frame ${bake!.frameNumbers[k]} has ${f.length / 3} vertices for ${n}`);

@@ -40,6 +40,18 @@ describe('the OBJ and MTL writers', () => {
     expect(Math.max(...used)).toBe(starts[2] - 1);
   });
 
+  it('refuses what is not a finite number: positions (OBJ), a colour or roughness (MTL)', () => {
+    const sim = new Simulation(validateScene({ cloth: { resolution: 2 } }), { kernel: 'ts' });
+    const x = sim.state.positions.slice();
+    x[4] = Infinity;
+    const cloths = modelCloths(sim.model, x, exportCloths(sim.scene));
+    expect(() => toOBJ({ name: 'x', cloths })).toThrow(/^obj: cloth '.*' has positions that are not finite \(vertex 1\)$/);
+    const [c] = modelCloths(sim.model, sim.state.positions, exportCloths(sim.scene));
+    expect(() => toMTL({ name: 'x', cloths: [{ ...c, material: { ...c.material, roughness: NaN } }] })).toThrow(/^mtl: material '.*' has a colour or roughness that is not a finite number$/);
+    expect(toOBJ({ name: 'x', cloths: [c] })).not.toMatch(/NaN|Infinity/);
+    sim.dispose();
+  });
+
   it('the MTL: one material per look, its colour and roughness', () => {
     const mtl = toMTL({ name: scene.name, cloths });
     expect(mtl.match(/^newmtl .*$/gm)).toEqual(['newmtl leather_fabric', 'newmtl cotton_fabric']);

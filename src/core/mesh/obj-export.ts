@@ -6,7 +6,7 @@
  * from the scene are written on one line each, without control characters: a name cannot add lines to the file.
  */
 import { plainText } from '../text.js';
-import type { ExportCloth, GlbMaterial } from './glb.js';
+import { checkFinite, checkMaterial, type ExportCloth, type GlbMaterial } from './glb.js';
 import { vertexNormals } from './normals.js';
 
 /** What the OBJ writer takes: the scene's name, its cloths as the glb writer's; `mtllib` names the MTL file beside it. */
@@ -32,9 +32,10 @@ function materialNames(input: ObjInput): Map<GlbMaterial, string> {
   return names;
 }
 
-/** The OBJ text (see the module's comment). */
+/** The OBJ text (see the module's comment). Throws RangeError on non-finite positions (a file never holds a NaN). */
 export function toOBJ(input: ObjInput): string {
   const safe = plainText(input.name, 100), cloths = input.cloths;
+  for (const c of cloths) checkFinite(c.positions, `cloth '${plainText(c.name, 40)}'`, 'obj');
   const materials = materialNames(input);
   const vertices = cloths.reduce((v, c) => v + c.positions.length / 3, 0), triangles = cloths.reduce((t, c) => t + c.triangles.length / 3, 0);
   const lines = [`# Drape cloth '${safe}': ${vertices} vertices, ${triangles} triangles${cloths.length > 1 ? `, ${cloths.length} cloths` : ''}`];
@@ -64,11 +65,13 @@ const channel = (v: number) => Math.min(1, Math.max(0, v)).toFixed(4);
 
 /**
  * The MTL text of the cloths' materials: the colour as Kd (sRGB), the roughness as Pr (the PBR extension Blender
- * reads) and as the Phong exponent Ns = 1000·(1 − roughness)² for readers without it; not metallic, opaque.
+ * reads) and as the Phong exponent Ns = 1000·(1 − roughness)² for readers without it; not metallic, opaque. Throws
+ * RangeError on a colour or roughness that is not finite.
  */
 export function toMTL(input: ObjInput): string {
   const lines = [`# Drape materials of '${plainText(input.name, 100)}'`];
   for (const [m, name] of materialNames(input)) {
+    checkMaterial(m, 'mtl');
     const r = Math.min(1, Math.max(0, m.roughness));
     lines.push('', `newmtl ${name}`, `Kd ${m.color.map(channel).join(' ')}`, 'Ka 0 0 0', 'Ks 0.04 0.04 0.04',
       `Ns ${(1000 * (1 - r) ** 2).toFixed(1)}`, `Pr ${r}`, 'Pm 0', 'd 1', 'illum 2');
