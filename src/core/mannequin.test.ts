@@ -155,14 +155,19 @@ describe('the mannequin (forward kinematics and keys)', () => {
   });
 
   it('an option a mannequin does not take is named, never a figure of NaN or a silent default', () => {
-    expect(() => mannequinColliders({ pose: 'x' as MannequinOptions['pose'] })).toThrow("mannequinColliders: pose must be one of stand, t-pose, got 'x'");
-    expect(() => mannequinColliders({ animation: 'dance' as MannequinOptions['animation'] })).toThrow("mannequinColliders: animation must be one of none, walk, turn, got 'dance'");
+    expect(() => mannequinColliders({ pose: 'x' as MannequinOptions['pose'] })).toThrow('mannequinColliders: pose must be one of stand, t-pose, got "x"');
+    expect(() => mannequinColliders({ animation: 'dance' as MannequinOptions['animation'] })).toThrow('mannequinColliders: animation must be one of none, walk, turn, got "dance"');
+    // a string from outside is printed safely: no escape reaches a terminal
+    expect(() => mannequinColliders({ pose: '\u001b[2J' as MannequinOptions['pose'] })).toThrow('mannequinColliders: pose must be one of stand, t-pose, got "\ufffd[2J"');
     expect(() => mannequinColliders({ scale: NaN })).toThrow('mannequinColliders: scale must be a number in 0.1…10, got NaN');
     expect(() => mannequinColliders({ scale: -1 })).toThrow(RangeError);
     expect(() => mannequinColliders({ heading: NaN })).toThrow('mannequinColliders: heading must be a finite number of degrees, got NaN');
     expect(() => mannequinColliders({ position: [0, NaN, 0] })).toThrow(/position must be \[x, y, z\]/);
     expect(() => mannequinColliders(null as unknown as MannequinOptions)).toThrow('mannequinColliders: options must be an object, got null');
     expect(mannequinColliders({ scale: 2, heading: 90 })).toHaveLength(MANNEQUIN_PARTS.length);
+    // a heading is a direction: any finite number of degrees is one, modulo 360 (1e308 overflowed to NaN centres)
+    expect(mannequinColliders({ heading: 1e308 })).toEqual(mannequinColliders({ heading: 1e308 % 360 }));
+    expect(JSON.stringify(mannequinColliders({ heading: -1e308 }))).not.toMatch(/null|NaN/);
   });
 
   // the app's Mannequin folder offers every pose and animation: each must start (the cape once started inside a

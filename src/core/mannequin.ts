@@ -19,6 +19,7 @@
  */
 import { eulerXYZ } from './mesh/generators.js';
 import type { ColliderSpec, Vec3 } from './scene.js';
+import { shownValue } from './text.js';
 
 /** The mannequin's named poses. */
 export const MANNEQUIN_POSES = ['stand', 't-pose'] as const;
@@ -50,9 +51,9 @@ export const MANNEQUIN_SCALE_RANGE: readonly [number, number] = [0.1, 10];
  */
 function checkOptions(options: MannequinOptions): void {
   const fn = 'mannequinColliders';
-  if (options === null || typeof options !== 'object') throw new TypeError(`${fn}: options must be an object, got ${String(options)}`);
+  if (options === null || typeof options !== 'object') throw new TypeError(`${fn}: options must be an object, got ${shownValue(options)}`);
   const { pose, animation, position, heading, scale } = options;
-  const name = (v: unknown) => (typeof v === 'string' ? `'${v.slice(0, 40)}'` : String(v));
+  const name = shownValue;
   if (pose !== undefined && !(MANNEQUIN_POSES as readonly unknown[]).includes(pose)) {
     throw new RangeError(`${fn}: pose must be one of ${MANNEQUIN_POSES.join(', ')}, got ${name(pose)}`);
   }
@@ -219,7 +220,8 @@ export function forwardKinematics(angles: JointAngles, options: MannequinOptions
     const local = eulerXYZ(angles[j.name] ?? [0, 0, 0]);
     const off = j.offset.map((v) => v * s);
     if (j.parent === null) {
-      const face = eulerXYZ([0, options.heading ?? 0, 0]);
+      // (turns are modulo 360°: a heading of 1e308° is a direction, not an overflow)
+      const face = eulerXYZ([0, ((options.heading ?? 0) % 360 + 360) % 360, 0]);
       out[j.name] = { R: mul(face, local), o: apply({ R: face, o: [...pos] }, off) };
     } else {
       const p = out[j.parent];
