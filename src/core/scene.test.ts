@@ -96,6 +96,16 @@ describe('scenes', () => {
     expect(types(props.colliders.items)).toEqual([...COLLIDER_TYPES]);
   });
 
+  it('what an error quotes of the input is safe to print, and a path or value that is no scene\'s is named', () => {
+    // a key with a line break or a terminal escape: one line, the characters replaced
+    rejects({ 'a\nb': 1 }, /^scene: a\ufffdb: unknown key$/);
+    rejects({ '\u001b[2J': 1 }, /^scene: \ufffd\[2J: unknown key$/);
+    expect(() => builtinScene('x\ny')).toThrow(/^unknown scene 'x\ufffdy'/);
+    expect(() => setScenePath(defaultScene(), 5 as unknown as string, 1)).toThrow(/^setScenePath: the path must be a string such as 'cloth\.resolution', got 5$/);
+    expect(() => setScenePath(defaultScene(), 'name', Symbol('x'))).toThrow(/^--set name: must be a JSON value .*, got a symbol$/);
+    expect(() => setScenePath(defaultScene(), 'cloth', { f: () => 1 })).toThrow(SceneError);
+  });
+
   it('malformed JSON is a one-line error, not a stack trace', () => {
     expect(() => parseScene('{"cloth": {', 'my.json')).toThrow(/^my\.json: malformed JSON/);
     const e = (() => { try { parseScene('{ nope }'); } catch (err) { return err as Error; } })()!;

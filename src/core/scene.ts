@@ -3,7 +3,7 @@ import { eulerXYZ } from './mesh/generators.js';
 import { BEND_SPRING_PER_RIGIDITY, FABRICS, FABRIC_FIELDS, type FabricName, type FabricValues } from './fabrics.js';
 import { PIN_PRESETS, sceneSchema } from './scene-schema.js';
 import type { StencilModel } from './model.js';
-import { shownValue } from './text.js';
+import { plainText, shownValue } from './text.js';
 
 export type Vec3 = [number, number, number];
 /** `cloth.shape` (the list: CLOTH_SHAPES in cloth-shape.ts) */
@@ -146,10 +146,13 @@ export const COLLIDER_TYPES = ['sphere', 'floor', 'plane', 'box', 'capsule', 'cy
 /** The standard fabric tests a scene's `test.type` names (textile-tests.ts). */
 export const TEST_TYPES = ['cantilever', 'cusick'] as const;
 
-/** Bad scene input: the message is one line and names the field. */
+/**
+ * Bad scene input: the message is one line and names the field. What it quotes of the input (a key, a path, a name)
+ * is made safe to print: a control character, line break or bidirectional override in it is replaced (text.ts).
+ */
 export class SceneError extends Error {
   constructor(message: string) {
-    super(message);
+    super(plainText(message, 4000));
     this.name = 'SceneError';
   }
 }
@@ -485,6 +488,13 @@ export function parseSetValue(raw: string): unknown {
  * (what the user wrote: `--set PATH` in the CLI).
  */
 export function setScenePath(scene: Scene | Record<string, unknown>, path: string, value: unknown, source = `--set ${path}`): Scene {
+  if (typeof path !== 'string') throw new SceneError(`setScenePath: the path must be a string such as 'cloth.resolution', got ${shownValue(path)}`);
+  // a value is JSON (what a scene file holds): a symbol or a function is refused here, not as a failed copy later
+  try {
+    value = structuredClone(value);
+  } catch {
+    throw new SceneError(`${source}: must be a JSON value (a number, string, boolean, null, list or object), got ${typeof value === 'object' ? 'an object holding something else' : `a ${typeof value}`}`);
+  }
   const keys = path.replace(/\[(\d+)\]/g, '.$1').split('.').filter(Boolean);
   if (keys.length === 0 || keys.some((k) => k === '__proto__' || k === 'constructor' || k === 'prototype')) {
     throw new SceneError(`${source}: not a scene path`);
