@@ -176,6 +176,15 @@ describe('drape CLI', () => {
     expect(j.sweep[0].centroid[1]).toBeGreaterThan(0.6); // the 1-face cloth rests on the sphere
   });
 
+  it('a flag the run does not use says so once: threads on the TypeScript kernel, the kernel on the mass-spring solver; a --set of the resolution in any spelling skips the sweep', async () => {
+    const notes = async (...args: string[]) => (await run('run', 'custom', '--frames', '1', '--set', 'cloth.resolution=4', ...args)).err.split('\n').filter((l) => l.startsWith('drape: note: --'));
+    expect(await notes('--kernel', 'ts', '--threads', '8')).toEqual(['drape: note: --threads 8: not used: the TypeScript kernel runs on one thread']);
+    expect(await notes('--solver', 'mass-spring', '--kernel', 'wasm', '--threads', '1')).toEqual(['drape: note: --kernel wasm and --threads 1: not used: the mass-spring solver runs in TypeScript, on one thread']);
+    expect(await notes('--kernel', 'wasm', '--threads', '1')).toEqual([]);
+    const j = JSON.parse((await run('run', 'resolution', '--frames', '1', '--set', 'cloth..resolution=2', '--json')).out);
+    expect([j.sweep, j.particles]).toEqual([undefined, 9]);
+  });
+
   it('the sweep\'s runs report their own clamps: each run\'s in --json, and each new one once as a note', async () => {
     // (mass-spring softens more springs the finer the mesh; the first run, at 1 face, softens none)
     const args = ['run', 'resolution', '--frames', '1', '--solver', 'mass-spring', '--set', 'solver.selfContact=false'];

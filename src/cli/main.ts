@@ -100,6 +100,19 @@ function threadsArg(raw: string | undefined, err: (s: string) => void): number |
   return Math.min(t, max);
 }
 
+/**
+ * The flags a run takes but does not use, as notes: a CPU kernel's on the GPU, the kernel's on the mass-spring solver
+ * (it runs in TypeScript, on one thread), a thread count on the TypeScript kernel.
+ */
+function ignoredFlags(values: { kernel?: string; threads?: string }, scene: Scene, backend: 'cpu' | 'gpu'): string[] {
+  const given = [values.kernel !== undefined ? `--kernel ${values.kernel}` : '', values.threads !== undefined ? `--threads ${values.threads}` : ''].filter(Boolean);
+  if (!given.length) return [];
+  if (backend === 'gpu') return [`${given.join(' and ')}: not used: --backend gpu runs the GPU solver`];
+  if (scene.solver.type === 'mass-spring') return [`${given.join(' and ')}: not used: the mass-spring solver runs in TypeScript, on one thread`];
+  if (values.kernel === 'ts' && values.threads !== undefined) return [`--threads ${values.threads}: not used: the TypeScript kernel runs on one thread`];
+  return [];
+}
+
 function checkKernel(raw: string | undefined): 'wasm' | 'ts' | 'auto' {
   if (raw === undefined) return 'auto';
   if (raw === 'wasm' || raw === 'ts') return raw;
@@ -295,9 +308,11 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   // checked before anything is loaded; without --frames the scene's duration decides (below)
   const framesAsked = values.frames === undefined ? undefined : intArg('frames', values.frames, 180, 0, 1_000_000);
   const backend = checkBackend(values.backend);
+  const kernelAsked = checkKernel(values.kernel);
   const options: SimulationOptions = {
-    ...cpuOptions(threadsArg(values.threads, err)),
-    kernel: checkKernel(values.kernel),
+    // (on the TypeScript kernel the thread count is not used: ignoredFlags says so once, without the cores' note)
+    ...cpuOptions(threadsArg(values.threads, kernelAsked === 'ts' ? () => {} : err)),
+    kernel: kernelAsked,
   };
   // every destination is checked before simulating: a bad one costs nothing
   if (values.export !== undefined) {
@@ -319,9 +334,12 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   const sets = values.set ?? [];
   if (values.solver !== undefined) sets.unshift(`solver.type=${values.solver}`);
   scene = applySets(scene, sets);
+  for (const note of ignoredFlags(values, scene, backend)) err(`drape: note: ${note}`);
   const frames = framesAsked ?? Math.max(1, Math.round(scene.duration / FRAME_DT));
 
-  const sweepAsked = scene.resolutionSweep && !sets.some((s) => s.startsWith('cloth.resolution=') || s.startsWith('cloth=')) ? scene.resolutionSweep : undefined;
+  // a --set of the cloth's resolution (or of the whole cloth) runs that resolution, not the sweep
+  const setPaths = sets.map((s) => s.slice(0, Math.max(0, s.indexOf('='))).replace(/\[(\d+)\]/g, '.$1').split('.').filter(Boolean).join('.'));
+  const sweepAsked = scene.resolutionSweep && !setPaths.some((p) => p === 'cloth.resolution' || p === 'cloth') ? scene.resolutionSweep : undefined;
   // a mesh file has its own resolution: the sweep would run the same cloth again and again
   const sweep = scene.cloth.shape === 'mesh' || scene.cloths ? undefined : sweepAsked;
   if (sweepAsked && !sweep) {
