@@ -39,7 +39,7 @@ import type { MeshResolver } from '../cloth-shape.js';
 // distance); SHARP_EDGE << e, the triangle owns edge e (corner e → e + 1) and it is sharp
 import { MESH_SHARP_EDGE as SHARP_EDGE, MESH_SIGNED as SIGNED } from '../layout.generated.js';
 import { edgeTable } from '../mesh/edges.js';
-import { weldMap, weldTolerance, type TriangleMesh } from '../mesh/triangle-mesh.js';
+import { NOT_A_MESH, isTriangleMesh, weldMap, weldTolerance, type TriangleMesh } from '../mesh/triangle-mesh.js';
 import { SceneError } from '../scene.js';
 import { plainText } from '../text.js';
 import { TriangleBvh } from './bvh.js';
@@ -485,6 +485,7 @@ export function loadMeshCollider(path: string, scale: number, field: string, mes
   } catch (e) {
     throw new SceneError(`${field}: ${oneLine(e)}`);
   }
+  if (!isTriangleMesh(mesh)) throw new SceneError(`${field}: ${shown}: ${NOT_A_MESH}`);
   try {
     return meshCollider(mesh, scale, shown);
   } catch (e) {

@@ -4,6 +4,7 @@
  * scene's cloth.position and cloth.rotation say. The rectangle is the seed's grid (model.ts buildGridModel).
  */
 import type { TriangleMesh } from './triangle-mesh.js';
+import { shownValue } from '../text.js';
 
 /** How a generated or loaded mesh is laid out at the start (the scene's cloth fields; units as in the schema). */
 export interface Placement {
@@ -90,11 +91,24 @@ export interface ShapeSpec extends Placement {
   orientation: 'horizontal' | 'hanging';
 }
 
+/** Throws RangeError naming the field of `spec` that no shape can be made of (the library's callers: scenes are checked by the schema). */
+function checkSpec(spec: ShapeSpec, fn: string): void {
+  if (spec === null || typeof spec !== 'object') throw new TypeError(`${fn}: the spec must be an object`);
+  const vec = (v: unknown) => Array.isArray(v) && v.length === 3 && v.every(Number.isFinite);
+  if (!(Number.isInteger(spec.resolution) && spec.resolution >= 1)) throw new RangeError(`${fn}: resolution must be an integer ≥ 1, got ${shownValue(spec.resolution)}`);
+  if (!(spec.width > 0 && Number.isFinite(spec.width))) throw new RangeError(`${fn}: width must be a length > 0 [m], got ${shownValue(spec.width)}`);
+  if (fn === 'tubeMesh' && !(spec.height > 0 && Number.isFinite(spec.height))) throw new RangeError(`${fn}: height must be a length > 0 [m], got ${shownValue(spec.height)}`);
+  if (spec.orientation !== 'horizontal' && spec.orientation !== 'hanging') throw new RangeError(`${fn}: orientation must be 'horizontal' or 'hanging', got ${shownValue(spec.orientation)}`);
+  if (!vec(spec.position)) throw new RangeError(`${fn}: position must be [x, y, z] of finite numbers [m]`);
+  if (!vec(spec.rotation)) throw new RangeError(`${fn}: rotation must be [x, y, z] of finite numbers [degrees]`);
+}
+
 /**
  * A flat disc of diameter `width`: a centre vertex and ⌈resolution/2⌉ rings, ring k at radius k·r/K with 6k
  * vertices, neighbouring rings stitched by walking both in angle order. Faces point up (+y) when horizontal.
  */
 export function discMesh(spec: ShapeSpec): TriangleMesh {
+  checkSpec(spec, 'discMesh');
   const K = Math.max(1, Math.ceil(spec.resolution / 2));
   const R = spec.width / 2;
   const n = 1 + 3 * K * (K + 1);
@@ -140,6 +154,7 @@ export function discMesh(spec: ShapeSpec): TriangleMesh {
  * `resolution` faces along the longer of circumference and length. Faces point outwards.
  */
 export function tubeMesh(spec: ShapeSpec): TriangleMesh {
+  checkSpec(spec, 'tubeMesh');
   const circumference = Math.PI * spec.width;
   const cell = Math.max(circumference, spec.height) / spec.resolution;
   const M = Math.max(3, Math.round(circumference / cell));

@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { buildMeshModel, defaultScene, modelFor, parseMeshFile, prepareMesh, SceneError, setScenePath, validateScene, type TriangleMesh } from '../index.js';
+import { buildMeshModel, defaultScene, modelFor, parseMeshFile, prepareMesh, SceneError, setScenePath, Simulation, validateScene, type TriangleMesh } from '../index.js';
 import { discMesh, tubeMesh } from './generators.js';
 import { edgeTable } from './edges.js';
 import { parseGltf } from './gltf.js';
@@ -99,6 +99,15 @@ describe('prepareMesh', () => {
 });
 
 describe('generators', () => {
+  it('refuse a spec no shape can be made of, naming the field (a library caller\'s: scenes are checked by the schema)', () => {
+    const spec = { resolution: 4, width: 1, height: 1, orientation: 'horizontal' as const, position: [0, 0, 0] as const, rotation: [0, 0, 0] as const };
+    expect(() => discMesh({ ...spec, resolution: 0 })).toThrow(/^discMesh: resolution must be an integer ≥ 1, got 0$/);
+    expect(() => tubeMesh({ ...spec, height: 0 })).toThrow(/^tubeMesh: height must be a length > 0 \[m\], got 0$/);
+    expect(() => discMesh({ ...spec, position: undefined as never })).toThrow(/^discMesh: position must be \[x, y, z\]/);
+    expect(() => discMesh({ resolution: 4, width: 1 } as never)).toThrow(RangeError);
+    expect(discMesh(spec).triangles.length).toBeGreaterThan(0);
+  });
+
   it('a disc: 1 + 3K(K+1) vertices on K rings, round, flat, facing up, one boundary loop', () => {
     for (const resolution of [1, 8, 32]) {
       const m = prepareMesh(discMesh({ ...spec, resolution }), 'disc');
@@ -153,6 +162,14 @@ describe('generators', () => {
 });
 
 describe('a model from any mesh', () => {
+  it('a mesh resolver that gives no { positions, triangles } is named by the field, for the cloth and a collider', () => {
+    for (const bad of [{}, null, { positions: [0, 0, 0] }]) {
+      const meshes = () => bad as unknown as TriangleMesh;
+      expect(() => modelFor(validateScene({ cloth: { mesh: 'a.obj' } }), meshes)).toThrow(/^cloth\.mesh: a\.obj: not a mesh: expected \{ positions, triangles \}/);
+      expect(() => new Simulation({ colliders: [{ type: 'mesh', mesh: 'b.obj' }] }, { meshes })).toThrow(/^colliders\[0\]\.mesh: b\.obj: not a mesh: expected \{ positions, triangles \}/);
+    }
+  });
+
   it('edges, bending pairs and pieces come from the triangles; springs: edges and bending pairs, no shear', () => {
     // two separate quads
     const two = mesh([0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1, 3, 0, 0, 4, 0, 0, 4, 0, 1, 3, 0, 1], [0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7]);

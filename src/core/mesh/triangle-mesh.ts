@@ -106,17 +106,28 @@ export function weldMap(p: Float32Array, tol: number): Uint32Array {
   return rep;
 }
 
+/** What a mesh resolver's result that is no TriangleMesh is told. */
+export const NOT_A_MESH = 'not a mesh: expected { positions, triangles } (flat arrays: xyz per vertex, three vertex indices per face)';
+
+/** Whether `v` has a TriangleMesh's shape: positions and triangles that are arrays or typed arrays. */
+export function isTriangleMesh(v: unknown): v is TriangleMesh {
+  const list = (a: unknown) => ArrayBuffer.isView(a) || Array.isArray(a);
+  return v !== null && typeof v === 'object' && list((v as TriangleMesh).positions) && list((v as TriangleMesh).triangles);
+}
+
 /**
  * Checks and cleans a mesh for simulation; `source` names it in errors (a file name, or 'cloth.shape disc').
  * Returns a new mesh: vertices closer than the weld distance welded (WELD_TOLERANCE of the size, at most
  * WELD_EDGE_FRACTION of the median edge; the first one's UV kept), vertices no
  * triangle uses dropped, the triangles of each connected piece turned to agree with the piece's first triangle.
- * Throws SceneError for: no triangles, an index out of range, a non-finite position, a degenerate triangle (two
+ * Throws SceneError for: no { positions, triangles }, no triangles, an index out of range, a non-finite position, a degenerate triangle (two
  * corners the same vertex, or no area), a triangle given twice, an edge shared by more than two triangles, a piece
  * that cannot be oriented (a Möbius strip), more than MAX_VERTEX_EDGES edges at a vertex, or more than
  * MAX_MESH_PARTICLES vertices.
  */
 export function prepareMesh(mesh: TriangleMesh, source: string): TriangleMesh {
+  // (what a library's mesh resolver returns is checked: a plain object of the wrong shape is named, not dereferenced)
+  if (!isTriangleMesh(mesh)) fail(source, NOT_A_MESH);
   const { positions: p, triangles: inTri } = mesh;
   const n0 = p.length / 3;
   if (!Number.isInteger(n0) || p.length === 0) fail(source, 'no vertices');
