@@ -72,12 +72,23 @@ function clothModel(c: ClothSpec, swr: boolean, meshes: MeshResolver | undefined
       }
       const scaled = new Float32Array(mesh.positions.length);
       for (let j = 0; j < scaled.length; j++) scaled[j] = mesh.positions[j] * c.scale;
-      const model = buildMeshModel({ ...mesh, positions: placeMesh(scaled, c) }, swr);
-      // a cloth smaller than its own contact thickness is a unit mistake, not a garment
-      if (model.size < 2 * c.thickness) {
-        throw new SceneError(`${at}cloth.scale: ${plainText(path, 200)} is ${model.size.toPrecision(3)} m across at scale ${c.scale}, less than twice ${at}cloth.thickness (${c.thickness} m); ${at}cloth.scale is metres per unit of the file (0.01 for centimetres)`);
+      // its size at this scale, measured before anything is built on it (a model's size is floored at 1 mm)
+      let size = 0;
+      for (let d = 0; d < 3; d++) {
+        let lo = Infinity, hi = -Infinity;
+        for (let j = d; j < scaled.length; j += 3) { lo = Math.min(lo, scaled[j]); hi = Math.max(hi, scaled[j]); }
+        size = Math.max(size, hi - lo);
       }
-      return model;
+      const unit = `${at}cloth.scale is metres per unit of the file (0.01 for centimetres)`;
+      // as large as a generated cloth may be (cloth.width's most, 100 m), or a unit mistake too
+      if (!(size <= 100)) {
+        throw new SceneError(`${at}cloth.scale: ${plainText(path, 200)} is ${Number.isFinite(size) ? `${size.toPrecision(3)} m` : 'beyond float32\'s range'} across at scale ${c.scale}, more than 100 m (the most cloth.width allows); ${unit}`);
+      }
+      // a cloth smaller than its own contact thickness is a unit mistake, not a garment
+      if (size < 2 * c.thickness) {
+        throw new SceneError(`${at}cloth.scale: ${plainText(path, 200)} is ${size.toPrecision(3)} m across at scale ${c.scale}, less than twice ${at}cloth.thickness (${c.thickness} m); ${unit}`);
+      }
+      return buildMeshModel({ ...mesh, positions: placeMesh(scaled, c) }, swr);
     }
   }
 }

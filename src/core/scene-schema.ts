@@ -98,7 +98,7 @@ const clothSchema = {
   properties: {
     shape: { enum: ['rectangle', 'disc', 'tube', 'mesh'], default: 'rectangle', description: "'rectangle': the seed's grid; 'disc': a round sheet of concentric rings; 'tube': an open cylinder (a skirt, a sleeve); 'mesh': the triangle mesh in the file cloth.mesh (set when cloth.mesh is given)" },
     mesh: { type: 'string', minLength: 1, maxLength: 1000, description: 'OBJ or glTF (.obj, .gltf, .glb) file of the cloth, relative to the scene file; any manifold triangle mesh with boundary, several pieces allowed. The app imports it from a file; a link cannot carry it' },
-    scale: { type: 'number', minimum: 1e-6, maximum: 1e6, default: 1, description: 'metres per unit of the mesh file: 0.01 for centimetres, 0.001 for millimetres, 0.0254 for inches (mesh only) [m]' },
+    scale: { type: 'number', minimum: 1e-6, maximum: 1e6, default: 1, description: 'metres per unit of the mesh file: 0.01 for centimetres, 0.001 for millimetres, 0.0254 for inches (mesh only; the cloth must come out at least twice cloth.thickness and at most 100 m across) [m]' },
     resolution: { type: 'integer', minimum: 1, maximum: 1024, default: 32, description: 'density [-]: faces per side of a rectangle (1 is one quad of 4 particles, 64 is 4096 faces: 65² particles); faces across a disc\'s diameter; faces along the longer of a tube\'s circumference and length (a mesh file has its own)' },
     width: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along x of a rectangle; diameter of a disc or tube [m]' },
     height: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent of a rectangle along its second axis (z when horizontal, y when hanging); length of a tube [m]' },

@@ -421,5 +421,11 @@ describe('what a review found', () => {
   it('a mesh smaller than twice its contact thickness asks whether cloth.scale is right', () => {
     const cm = mesh([0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1], [0, 1, 2, 0, 2, 3]);
     expect(error(() => modelFor(validateScene({ cloth: { mesh: 'q.obj', scale: 0.001 } }), () => cm))).toMatch(/^cloth\.scale: q\.obj is 0\.00100 m across at scale 0\.001, less than twice cloth\.thickness/);
+    // its true size, not the model's 1 mm floor
+    expect(error(() => modelFor(validateScene({ cloth: { mesh: 'q.obj', scale: 1e-6 } }), () => cm))).toMatch(/^cloth\.scale: q\.obj is 0\.00000100 m across at scale 0\.000001,/);
+    // one larger than a generated cloth may be, or beyond float32 (it was run, and reported as unstable at frame 1)
+    const huge = mesh([0, 0, 0, 1e38, 0, 0, 1e38, 0, 1e38, 0, 0, 1e38], [0, 1, 2, 0, 2, 3]);
+    expect(error(() => modelFor(validateScene({ cloth: { mesh: 'q.obj', scale: 1e6 } }), () => huge))).toMatch(/^cloth\.scale: q\.obj is beyond float32's range across at scale 1000000, more than 100 m/);
+    expect(error(() => modelFor(validateScene({ cloth: { mesh: 'q.obj', scale: 200 } }), () => cm))).toMatch(/^cloth\.scale: q\.obj is 200 m across at scale 200, more than 100 m/);
   });
 });
