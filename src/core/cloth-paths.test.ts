@@ -44,6 +44,9 @@ describe('one cloth of a scene, addressed', () => {
       const { cloth, index } = clothParticle(model, i);
       expect(sceneParticle(model, cloth, index)).toBe(i);
     }
+    // no cloth 3, and no particle past a cloth's last (it gave NaN, or another cloth's particle)
+    expect(() => sceneParticle(model, 3, 0)).toThrow(/^no cloth 3 \(the model has 3\)$/);
+    expect(() => sceneParticle(model, 0, n)).toThrow(/^cloth 0 has no particle \d+/);
     // a cloth's own model numbers its particles from 0: its own pins resolve there
     expect(clothModelOf(model, 2).particleCount).toBe(n);
     expect(resolvePins(clothModelOf(model, 2), ['top-left'])).toEqual([0]);
@@ -57,6 +60,7 @@ describe('one cloth of a scene, addressed', () => {
     expect(alone.material.fabric).toBe('cotton');
     expect(alone.cloth.position).toEqual([0, 1, 0]);
     expect(clothScene(cotton, 0)).toBe(cotton);
+    expect(() => clothScene(cotton, 99)).toThrow(/has no cloth 99 \(it has one, 0\)/);
 
     const next = editCloth(layers, 1, (one) => setScenePath({ ...one, pins: ['top-left'] }, 'cloth.resolution', 8));
     const entries = clothEntries(next);

@@ -6,6 +6,7 @@
  */
 import { clothOf, type ClothModel } from './model.js';
 import { clothEntries, sceneDocument, validateScene, type ClothEntry, type ColliderSpec, type Scene } from './scene.js';
+import { plainText } from './text.js';
 
 /** The first keys of the paths inside one cloth: its shape and pose, its material, its pins. */
 const CLOTH_KEYS: readonly string[] = ['cloth', 'material', 'pins'];
@@ -51,6 +52,10 @@ export function clothParticle(model: ClothModel, i: number): { cloth: number; in
 
 /** Cloth k's particle `index` in the scene's numbering (clothParticle's inverse). */
 export function sceneParticle(model: ClothModel, cloth: number, index: number): number {
+  const cloths = model.clothStarts.length - 1;
+  if (!(Number.isInteger(cloth) && cloth >= 0 && cloth < cloths)) throw new RangeError(`no cloth ${cloth} (the model has ${cloths})`);
+  const count = model.clothStarts[cloth + 1] - model.clothStarts[cloth];
+  if (!(Number.isInteger(index) && index >= 0 && index < count)) throw new RangeError(`cloth ${cloth} has no particle ${index} (it has ${count})`);
   return model.clothStarts[cloth] + index;
 }
 
@@ -65,9 +70,12 @@ export function clothModelOf(model: ClothModel, k: number): ClothModel {
  * one cloth.
  */
 export function clothScene(scene: Scene, k: number): Scene {
-  if (!scene.cloths) return scene;
+  if (!scene.cloths) {
+    if (k !== 0) throw new RangeError(`scene '${plainText(scene.name, 100)}' has no cloth ${k} (it has one, 0)`);
+    return scene;
+  }
   const e = clothEntries(scene)[k];
-  if (!e) throw new RangeError(`scene '${scene.name}' has no cloth ${k}`);
+  if (!e) throw new RangeError(`scene '${plainText(scene.name, 100)}' has no cloth ${k}`);
   const { cloths: _list, ...rest } = scene;
   const colliders = scene.colliders.map((c): ColliderSpec => {
     const { pins: _pins, ...shape } = c;

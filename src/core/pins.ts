@@ -59,11 +59,14 @@ export function resolvePins(model: ClothModel, pins: readonly PinEntry[], field 
   const n = model.particleCount;
   pins.forEach((p, k) => {
     if (typeof p === 'number') {
-      if (p >= n) throw new SceneError(`${field}[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
+      if (!(Number.isInteger(p) && p >= 0 && p < n)) throw new SceneError(`${field}[${k}]: particle ${p} does not exist (cloth has ${n} particles, 0…${n - 1})`);
       set.add(p);
       return;
     }
     if (typeof p === 'object') {
+      // (a library caller's region is checked here: a scene's by the schema)
+      const corner = (v: unknown) => Array.isArray(v) && v.length === 3 && v.every(Number.isFinite);
+      if (p === null || !corner(p.min) || !corner(p.max)) throw new SceneError(`${field}[${k}]: a region is { min: [x, y, z], max: [x, y, z] } of finite numbers [m]`);
       const x = model.restPositions;
       let found = 0;
       for (let i = 0; i < n; i++) {

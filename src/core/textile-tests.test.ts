@@ -139,5 +139,8 @@ describe('pins by region', () => {
     expect(() => new Simulation(validateScene({ colliders: [], pins: ['center', { min: [5, 5, 5], max: [6, 6, 6] }] }), { kernel: 'ts' }))
       .toThrow('pins[1]: no particle starts in the region from [5, 5, 5] to [6, 6, 6] m');
     expect(() => validateScene({ pins: [{ min: [0, 0, 0] }] })).toThrow(/pins\[0\]/);
+    // a library caller's pins, which no schema checked: a particle that is not one, a region that is not one
+    for (const p of [-1, 2.5, NaN]) expect(() => resolvePins(disc.model, [p])).toThrow(/^pins\[0\]: particle .* does not exist/);
+    expect(() => resolvePins(disc.model, [{ min: [0, 0, 0] } as never])).toThrow(/^pins\[0\]: a region is \{ min: \[x, y, z\], max: \[x, y, z\] \}/);
   });
 });
