@@ -226,9 +226,10 @@ async function refusals(page: Page): Promise<{
     const { world, ball } = (window as any).drapeExample;
     const World = world.constructor, Mesh = ball.constructor, Sphere = ball.geometry.constructor, Object3D = Object.getPrototypeOf(Mesh.prototype).constructor;
     const errors: string[] = [];
-    const w = new World({ backend: 'cpu', onError: (m: string) => errors.push(m) });
+    // (a floor far below: the scene counts it as its first collider, the world's errors do not)
+    const w = new World({ backend: 'cpu', floor: -5, onError: (m: string) => errors.push(m) });
     const cloth = w.addCloth({ resolution: 8, width: 0.5, height: 0.5, position: [0, 1, 0] });
-    const cutting = () => { const b = new Mesh(new Sphere(0.2, 16, 8)); b.position.set(0, 1, 0); b.updateMatrixWorld(); return b; };
+    const cutting = () => { const b = new Mesh(new Sphere(0.2, 16, 8)); b.name = 'ball'; b.position.set(0, 1, 0); b.updateMatrixWorld(); return b; };
     const b = cutting();
     w.addCollider(b); // taken: the world has not started
     await w.step(5); // its start is refused, and said so
@@ -305,7 +306,7 @@ describe('drape/three example page', () => {
     const r = await refusals(page);
     writeJson('three-webgl-refusals', r);
     expect(r.firstStart).toEqual({ backend: null, errors: 1 });
-    expect(r.errors[0]).toMatch(/colliders\[0\] \(sphere\) cuts through the cloth/);
+    expect(r.errors[0]).toMatch(/colliders\[0\] \(sphere 'ball'\) cuts through the cloth/);
     expect(r.restarted.backend).toBe('cpu');
     expect(r.restarted.fell).toBeGreaterThan(0.005);
     expect([r.addColliderThrew, r.addClothThrew, r.stepAfter, r.errors.length, r.clothsAfter, r.finite]).toEqual([true, true, 'ok', 1, 1, true]);

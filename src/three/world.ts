@@ -8,7 +8,7 @@
  */
 import { Vector3, type Mesh, type Object3D, type Raycaster } from 'three';
 import {
-  FRAME_DT, SceneError, Simulation, copyCarried, modelFor, pickParticle, resolvePins, shownValue, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
+  FRAME_DT, SceneError, Simulation, copyCarried, modelFor, pickParticle, plainText, resolvePins, shownValue, validateScene, type ClothEntry, type ClothModel, type DeepPartial,
   type ParticleRange, type PinEntry, type Scene, type Vec3,
 } from '../core/index.js';
 import { isSoftwareAdapter, type AdapterInfoLike } from '../gpu/adapter.js';
@@ -491,10 +491,28 @@ export class DrapeWorld {
     try {
       d.setScene(0, scene, carry);
     } catch (e) {
-      throw optionError(e);
+      throw this.worldError(e);
     }
     for (const c of this.sceneColliders) c?.follower?.resend();
     this.draw();
+  }
+
+  /**
+   * A core error about the world's scene as the world's: the option's name (optionError), and a collider by the
+   * number you gave it (the scene counts the floor first and the objects pins follow last): `colliders[j]` of the
+   * colliders added, with the mesh's name where it has one, 'the floor', or 'the object pins follow'.
+   */
+  private worldError(e: unknown): unknown {
+    const error = optionError(e);
+    if (!(error instanceof SceneError)) return error;
+    return new SceneError(error.message.replace(/colliders\[(\d+)\](?: \((\w+)\))?/g, (whole, k: string, type: string | undefined) => {
+      const c = this.sceneColliders[Number(k)];
+      if (c === undefined) return whole;
+      if (c === null) return 'the floor';
+      const named = c.object.name ? ` '${plainText(c.object.name, 40)}'` : '';
+      const j = this.colliders.findIndex((u) => u.object === c.object);
+      return j >= 0 ? `colliders[${j}] (${type ?? c.spec.type}${named})` : `the object${named} pins follow`;
+    }));
   }
 
   /** The world's scene (a world without cloths yet: with a stand-in one, to check the rest). */
@@ -565,7 +583,7 @@ export class DrapeWorld {
       d.load([scene]);
     } catch (e) {
       d.dispose();
-      this.report((optionError(e) as Error).message);
+      this.report((this.worldError(e) as Error).message);
       return null;
     }
     this.driver = d;
@@ -585,7 +603,7 @@ export class DrapeWorld {
     const next = scene ?? m.sim.scene;
     if (scene) {
       // refused here, nothing changes: the GPU goes on with the scene it has
-      try { new Simulation(next, { kernel: 'ts', meshes: this.meshes.resolve }).dispose(); } catch (e) { throw optionError(e); }
+      try { new Simulation(next, { kernel: 'ts', meshes: this.meshes.resolve }).dispose(); } catch (e) { throw this.worldError(e); }
     }
     old.dispose();
     this.driver = null;
