@@ -47,6 +47,7 @@ describe('library arguments', () => {
     expect(() => sim.advance(-1)).toThrow(/^Simulation\.advance: frames must be an integer ≥ 0, got -1$/);
     expect(() => sim.advance(NaN)).toThrow(RangeError);
     expect(() => sim.advance('2' as unknown as number)).toThrow('Simulation.advance: frames must be an integer ≥ 0, got "2"');
+    expect(() => sim.setScene(sim.scene, null as never)).toThrow(/^Simulation\.setScene: carry must be an array of \{ from, to, count \}, got null$/);
     expect(() => new Simulation({ cloth: { resolution: 'x' } } as never)).toThrow(/^scene: cloth\.resolution: must be integer$/);
   });
 

@@ -300,6 +300,7 @@ export class Simulation {
    * as any later one, without the half step a start takes: ½·g·h² more fall, ~4 mm/s at 20 substeps).
    */
   setScene(input: SceneInput, carry: readonly ParticleRange[] = []): boolean {
+    if (!Array.isArray(carry)) throw new TypeError(`Simulation.setScene: carry must be an array of { from, to, count }, got ${shownValue(carry)}`);
     const next = validateScene(input);
     const prev = this.scene;
     const rebuild = needsRebuild(prev, next);

@@ -164,6 +164,8 @@ export function optionError(e: unknown): unknown {
     .replace(/cloths\[\d+\]\.cloth\.|(?<![\w.])cloth\./g, '')
     .replace(/cloths\[\d+\]\.material\.|(?<![\w.])material\./g, 'fabricValues.')
     .replace(/cloths\[\d+\]\.pins/g, 'pins')
-    .replace(/fabricValues\.fabric\b/g, 'fabric');
+    .replace(/fabricValues\.fabric\b/g, 'fabric')
+    // the world's wind options are flat: its gusts' seed and switch are wind.seed and wind.gusts
+    .replace(/\bwind\.gusts\.seed\b/g, 'wind.seed').replace(/\bwind\.gusts\.enabled\b/g, 'wind.gusts');
   return new SceneError(message);
 }

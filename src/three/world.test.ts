@@ -11,6 +11,9 @@ describe('DrapeWorld: options and what it is made of', () => {
     expect(() => new DrapeWorld({ gravity: [0, -9.81] as never })).toThrow(/^DrapeWorld: gravity: /);
     expect(() => new DrapeWorld({ solver: { substeps: 0 } })).toThrow(/^DrapeWorld: solver\.substeps: must be >= 1/);
     expect(() => new DrapeWorld({ floor: NaN })).toThrow(/options\.floor/);
+    // the wind's options are flat: named as given, not as the scene's wind.gusts.seed
+    expect(() => new DrapeWorld({ wind: { seed: -1 } })).toThrow(/^DrapeWorld: wind\.seed: must be >= 0$/);
+    expect(() => new DrapeWorld({ wind: { gusts: 'yes' as never } })).toThrow(/^DrapeWorld: wind\.gusts: must be boolean$/);
     const world = new DrapeWorld();
     expect(() => world.addCloth({ resolution: 2.5 })).toThrow(SceneError);
     expect(() => world.addCloth({ resolution: 2.5 })).toThrow(/^DrapeWorld\.addCloth\('cloth 0'\): resolution: must be integer/);
