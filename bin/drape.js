@@ -8,9 +8,10 @@ if (!existsSync(entry)) {
   process.exit(2);
 }
 // a reader that stops early (`drape run … | head`) closes the pipe: stop quietly, as other command-line tools do
+// (with the exit code the run has set by then: an export that failed still says so)
 process.stdout.on('error', (e) => {
   if (e.code !== 'EPIPE') throw e;
-  process.exit(0);
+  process.exit(process.exitCode ?? 0);
 });
 const { main } = await import(entry.href);
 process.exitCode = await main(process.argv.slice(2));

@@ -181,6 +181,8 @@ describe('drape CLI', () => {
     expect(await notes('--kernel', 'ts', '--threads', '8')).toEqual(['drape: note: --threads 8: not used: the TypeScript kernel runs on one thread']);
     expect(await notes('--solver', 'mass-spring', '--kernel', 'wasm', '--threads', '1')).toEqual(['drape: note: --kernel wasm and --threads 1: not used: the mass-spring solver runs in TypeScript, on one thread']);
     expect(await notes('--kernel', 'wasm', '--threads', '1')).toEqual([]);
+    // more threads than cores on a solver that takes none: one note, not a clamp to the cores beside it
+    expect(await notes('--solver', 'mass-spring', '--threads', '64')).toEqual(['drape: note: --threads 64: not used: the mass-spring solver runs in TypeScript, on one thread']);
     const j = JSON.parse((await run('run', 'resolution', '--frames', '1', '--set', 'cloth..resolution=2', '--json')).out);
     expect([j.sweep, j.particles]).toEqual([undefined, 9]);
   });

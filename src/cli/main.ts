@@ -92,12 +92,11 @@ function intArg(name: string, raw: string | undefined, fallback: number, min: nu
  * --threads: an integer ≥ 1, more than the cores available clamped with a note; absent, 'auto' (the cores, or one
  * thread for a small cloth).
  */
-function threadsArg(raw: string | undefined, err: (s: string) => void): number | 'auto' {
-  if (raw === undefined) return 'auto';
+function threadsArg(raw: string | undefined): { threads: number | 'auto'; note?: string } {
+  if (raw === undefined) return { threads: 'auto' };
   const max = maxThreads();
   const t = intArg('threads', raw, max, 1, 1024);
-  if (t > max) err(`drape: note: --threads ${t}: using ${max}, the cores available`);
-  return Math.min(t, max);
+  return { threads: Math.min(t, max), ...(t > max ? { note: `--threads ${t}: using ${max}, the cores available` } : {}) };
 }
 
 /**
@@ -308,12 +307,8 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   // checked before anything is loaded; without --frames the scene's duration decides (below)
   const framesAsked = values.frames === undefined ? undefined : intArg('frames', values.frames, 180, 0, 1_000_000);
   const backend = checkBackend(values.backend);
-  const kernelAsked = checkKernel(values.kernel);
-  const options: SimulationOptions = {
-    // (on the TypeScript kernel the thread count is not used: ignoredFlags says so once, without the cores' note)
-    ...cpuOptions(threadsArg(values.threads, kernelAsked === 'ts' ? () => {} : err)),
-    kernel: kernelAsked,
-  };
+  const threads = threadsArg(values.threads);
+  const options: SimulationOptions = { ...cpuOptions(threads.threads), kernel: checkKernel(values.kernel) };
   // every destination is checked before simulating: a bad one costs nothing
   if (values.export !== undefined) {
     if (!/\.(obj|glb)$/i.test(values.export)) throw new UsageError(`--export: .obj or .glb files only, got '${values.export}'`);
@@ -334,7 +329,9 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   const sets = values.set ?? [];
   if (values.solver !== undefined) sets.unshift(`solver.type=${values.solver}`);
   scene = applySets(scene, sets);
-  for (const note of ignoredFlags(values, scene, backend)) err(`drape: note: ${note}`);
+  // the flags the run does not use, or else the threads' clamp to the cores (not both: they would contradict)
+  const ignored = ignoredFlags(values, scene, backend);
+  for (const note of ignored.length ? ignored : threads.note ? [threads.note] : []) err(`drape: note: ${note}`);
   const frames = framesAsked ?? Math.max(1, Math.round(scene.duration / FRAME_DT));
 
   // a --set of the cloth's resolution (or of the whole cloth) runs that resolution, not the sweep
@@ -461,7 +458,8 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
   });
   if (values.help) { out(HELP.bench); return 0; }
   const backend = checkBackend(values.backend);
-  const threads = threadsArg(values.threads, err);
+  const { threads, note: threadsNote } = threadsArg(values.threads);
+  if (threadsNote) err(`drape: note: ${threadsNote}`);
   const selfContact = values['self-contact'] ?? false;
   const hanging = values.hanging ?? false;
   if (selfContact && hanging) throw new UsageError('--hanging and --self-contact are two different benchmarks: give one');

@@ -60,7 +60,7 @@ describe('one cloth of a scene, addressed', () => {
     expect(alone.material.fabric).toBe('cotton');
     expect(alone.cloth.position).toEqual([0, 1, 0]);
     expect(clothScene(cotton, 0)).toBe(cotton);
-    expect(() => clothScene(cotton, 99)).toThrow(/has no cloth 99 \(it has one, 0\)/);
+    expect(() => clothScene(cotton, 99)).toThrow(/has no cloth 99 \(it has one cloth, 0\)/);
 
     const next = editCloth(layers, 1, (one) => setScenePath({ ...one, pins: ['top-left'] }, 'cloth.resolution', 8));
     const entries = clothEntries(next);

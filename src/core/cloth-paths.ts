@@ -71,7 +71,7 @@ export function clothModelOf(model: ClothModel, k: number): ClothModel {
  */
 export function clothScene(scene: Scene, k: number): Scene {
   if (!scene.cloths) {
-    if (k !== 0) throw new RangeError(`scene '${plainText(scene.name, 100)}' has no cloth ${k} (it has one, 0)`);
+    if (k !== 0) throw new RangeError(`scene '${plainText(scene.name, 100)}' has no cloth ${k} (it has one cloth, 0)`);
     return scene;
   }
   const e = clothEntries(scene)[k];
@@ -90,10 +90,7 @@ export function clothScene(scene: Scene, k: number): Scene {
  * again. In a one-cloth scene, `edit`'s scene is the result. Throws SceneError when the scene refuses the change.
  */
 export function editCloth(scene: Scene, k: number, edit: (one: Scene) => Scene): Scene {
-  if (!scene.cloths) {
-    if (k !== 0) throw new RangeError(`scene '${scene.name}' has no cloth ${k}`);
-    return edit(scene);
-  }
+  if (!scene.cloths) return edit(clothScene(scene, k));
   const one = edit(clothScene(scene, k));
   const doc = sceneDocument(scene);
   const cloths = (doc.cloths as ClothEntry[]).slice();

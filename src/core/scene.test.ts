@@ -104,6 +104,10 @@ describe('scenes', () => {
     expect(() => setScenePath(defaultScene(), 5 as unknown as string, 1)).toThrow(/^setScenePath: the path must be a string such as 'cloth\.resolution', got 5$/);
     expect(() => setScenePath(defaultScene(), 'name', Symbol('x'))).toThrow(/^--set name: must be a JSON value .*, got a symbol$/);
     expect(() => setScenePath(defaultScene(), 'cloth', { f: () => 1 })).toThrow(SceneError);
+    // a value nested absurdly deep is named for its depth, as a scene is (not as a value that is no JSON)
+    let deep: unknown = 1;
+    for (let d = 0; d < 20000; d++) deep = [deep];
+    expect(() => setScenePath(defaultScene(), 'name', deep)).toThrow(/^--set name: nested more than \d+ levels deep/);
   });
 
   it('malformed JSON is a one-line error, not a stack trace', () => {

@@ -383,8 +383,9 @@ export function validateScene(input: unknown, source = 'scene'): Scene {
     }
   });
   // the cantilever's strip overhangs along the horizontal part of test.direction: it must have one
-  if (scene.test?.type === 'cantilever' && !(Math.hypot(scene.test.direction[0], scene.test.direction[2]) > 1e-9)) {
-    throw new SceneError(`${source}: test.direction: must have a horizontal part (the strip overhangs along it), got [${scene.test.direction.join(', ')}]`);
+  const dir = scene.test?.type === 'cantilever' ? scene.test.direction : null;
+  if (dir && !(Math.hypot(dir[0], dir[2]) > 1e-9 * Math.hypot(dir[0], dir[1], dir[2]))) {
+    throw new SceneError(`${source}: test.direction: must have a horizontal part (the strip overhangs along it), got [${dir.join(', ')}]`);
   }
   return scene;
 }
@@ -490,6 +491,8 @@ export function parseSetValue(raw: string): unknown {
 export function setScenePath(scene: Scene | Record<string, unknown>, path: string, value: unknown, source = `--set ${path}`): Scene {
   if (typeof path !== 'string') throw new SceneError(`setScenePath: the path must be a string such as 'cloth.resolution', got ${shownValue(path)}`);
   // a value is JSON (what a scene file holds): a symbol or a function is refused here, not as a failed copy later
+  // (its depth first: a value nested absurdly deep is named for that, as a scene is)
+  if (value !== null && typeof value === 'object') checkDepth(value, source);
   try {
     value = structuredClone(value);
   } catch {

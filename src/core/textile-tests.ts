@@ -177,6 +177,8 @@ function cusick(model: ClothModel, state: ClothState, center: readonly number[],
   if (![x0, x1, z0, z1].every(Number.isFinite)) return nan;
   const CELL = Math.max(CELL_SIDE, Math.sqrt(((x1 - x0 + CELL_SIDE) * (z1 - z0 + CELL_SIDE)) / CELLS_MOST));
   const nx = Math.ceil((x1 - x0) / CELL) + 1, nz = Math.ceil((z1 - z0) / CELL) + 1;
+  // (a cloth flung kilometres long and thin, which no cell size fits: nothing to measure)
+  if (nx * nz > 16 * CELLS_MOST) return nan;
   const covered = new Uint8Array(nx * nz);
   // every cell whose centre lies in a triangle seen from above
   for (let k = 0; k < t.length; k += 3) {

@@ -34,6 +34,8 @@ describe('DrapeWorld: options and what it is made of', () => {
   it('names the argument that is wrong: a cloth\'s name, geometry, its faces and pins, a ray, a grab or drag target', () => {
     const world = new DrapeWorld();
     expect(() => world.addCloth({ name: 5 as never })).toThrow(/^DrapeWorld\.addCloth: name must be a string, got 5$/);
+    // a name with a control character is shown safely, and the call is named once
+    expect(() => world.addCloth({ name: 'a\tb', resolution: 2.5 })).toThrow(/^DrapeWorld\.addCloth\('a\ufffdb'\): resolution: must be integer$/);
     expect(() => world.addCloth({ geometry: {} as never })).toThrow(/^DrapeWorld\.addCloth: geometry must be a THREE\.BufferGeometry/);
     expect(() => world.addCloth({ geometry: new Mesh(new PlaneGeometry()) as never })).toThrow(/geometry must be a THREE\.BufferGeometry \(a mesh's is its \.geometry\)/);
     // the geometry's faces, and pins that miss, named as the option, after the call (not by the world's own mesh names)

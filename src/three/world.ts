@@ -181,7 +181,7 @@ export class DrapeWorld {
       throw new TypeError(`${WHERE}.addCloth: geometry must be a THREE.BufferGeometry (a mesh's is its .geometry)`);
     }
     const name = options.name ?? `cloth ${this.clothsAdded}`;
-    const where = `${WHERE}.addCloth('${name.slice(0, 60)}')`;
+    const where = `${WHERE}.addCloth('${plainText(name, 60)}')`;
     const meshName = options.geometry ? `drape-three:cloth-${this.names++}` : undefined;
     if (options.geometry && meshName) this.meshes.add({ name: meshName, mesh: meshOfGeometry(options.geometry, where) });
     const pins = options.pins ?? [];
@@ -505,13 +505,14 @@ export class DrapeWorld {
   private worldError(e: unknown): unknown {
     const error = optionError(e);
     if (!(error instanceof SceneError)) return error;
-    return new SceneError(error.message.replace(/colliders\[(\d+)\](?: \((\w+)\))?/g, (whole, k: string, type: string | undefined) => {
+    // (a collider named as the subject, 'colliders[k] (sphere) …'; a path into one, 'colliders[k].pins', is left as it is)
+    return new SceneError(error.message.replace(/colliders\[(\d+)\] \((\w+)\)/g, (whole, k: string, type: string) => {
       const c = this.sceneColliders[Number(k)];
       if (c === undefined) return whole;
       if (c === null) return 'the floor';
       const named = c.object.name ? ` '${plainText(c.object.name, 40)}'` : '';
       const j = this.colliders.findIndex((u) => u.object === c.object);
-      return j >= 0 ? `colliders[${j}] (${type ?? c.spec.type}${named})` : `the object${named} pins follow`;
+      return j >= 0 ? `colliders[${j}] (${type}${named})` : `the object${named} that pins follow`;
     }));
   }
 
@@ -609,6 +610,8 @@ export class DrapeWorld {
     this.driver = null;
     this.backendNote = `GPU unavailable: ${reason}`;
     const d = this.load('cpu', next);
+    // (refused there too: the next change to the cloths or colliders lets a start try again)
+    if (!d) this.startFailed = true;
     const now = d?.mirrors[0];
     if (d && now && carry.length && m && m.unstableAt < 0) {
       // a cloth added or taken out as the world moved to the CPU: the cloths kept go on from the last readback

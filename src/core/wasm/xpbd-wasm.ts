@@ -126,11 +126,6 @@ export function wasmKernelAvailable(threads = false): boolean {
   return kernelModule(threads) !== null;
 }
 
-/**
- * What the kernel imports: its memory, and for threads the host's wait and notify on a word of it (Atomics: a
- * thread that must wait sleeps instead of spinning). Where a thread may not block (a browser's main thread),
- * wait returns at once and the kernel polls again.
- */
 /** The most 64 KiB pages one WebAssembly memory can have (4 GiB: wasm32's address space). */
 const MAX_PAGES = 65536;
 
@@ -138,10 +133,15 @@ const MAX_PAGES = 65536;
 class KernelMemoryError extends SceneError {
   constructor(particles: number, bytes: number, readonly withSelfContact: boolean) {
     super(`the WebAssembly kernel would need ${(bytes / 2 ** 30).toFixed(1)} GiB of memory for ${particles} particles${withSelfContact ? ' with self-contact' : ''}, ` +
-      'more than the 4 GiB a WebAssembly memory holds; use the TypeScript kernel (drape run --kernel ts, Simulation option kernel: \'ts\') or a smaller cloth');
+      'more than the 4 GiB a WebAssembly memory holds: a smaller cloth, or the TypeScript kernel');
   }
 }
 
+/**
+ * What the kernel imports: its memory, and for threads the host's wait and notify on a word of it (Atomics: a
+ * thread that must wait sleeps instead of spinning). Where a thread may not block (a browser's main thread),
+ * wait returns at once and the kernel polls again.
+ */
 export function kernelImports(memory: WebAssembly.Memory): WebAssembly.Imports {
   // only a shared memory has waiters; pages that are not cross-origin isolated have no SharedArrayBuffer at all
   const words = typeof SharedArrayBuffer !== 'undefined' && memory.buffer instanceof SharedArrayBuffer ? new Int32Array(memory.buffer) : null;
