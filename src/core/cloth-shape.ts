@@ -8,7 +8,7 @@ import { buildGridModel, buildMeshModel, mergeModels, type ClothModel } from './
 import { discMesh, placeMesh, tubeMesh } from './mesh/generators.js';
 import { parseGltf, type ExternalReader } from './mesh/gltf.js';
 import { parseObj } from './mesh/obj.js';
-import { prepareMesh, type TriangleMesh } from './mesh/triangle-mesh.js';
+import { extent, prepareMesh, type TriangleMesh } from './mesh/triangle-mesh.js';
 import { SceneError, clothEntries, type ClothSpec, type Scene } from './scene.js';
 import { plainText } from './text.js';
 
@@ -73,12 +73,7 @@ function clothModel(c: ClothSpec, swr: boolean, meshes: MeshResolver | undefined
       const scaled = new Float32Array(mesh.positions.length);
       for (let j = 0; j < scaled.length; j++) scaled[j] = mesh.positions[j] * c.scale;
       // its size at this scale, measured before anything is built on it (a model's size is floored at 1 mm)
-      let size = 0;
-      for (let d = 0; d < 3; d++) {
-        let lo = Infinity, hi = -Infinity;
-        for (let j = d; j < scaled.length; j += 3) { lo = Math.min(lo, scaled[j]); hi = Math.max(hi, scaled[j]); }
-        size = Math.max(size, hi - lo);
-      }
+      const { size } = extent(scaled);
       const unit = `${at}cloth.scale is metres per unit of the file (0.01 for centimetres)`;
       // as large as a generated cloth may be (cloth.width's most, 100 m), or a unit mistake too
       if (!(size <= 100)) {

@@ -55,7 +55,7 @@ const fail = (source: string, why: string): never => {
 };
 
 /** Largest extent of a point set along any axis [the mesh's units]. */
-function extent(p: Float32Array): { size: number } {
+export function extent(p: Float32Array): { size: number } {
   const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < p.length; i += 3) {
     for (let k = 0; k < 3; k++) {
