@@ -39,6 +39,15 @@ describe('library arguments', () => {
     sim.dispose();
   });
 
+  it('a spawner that returns no { terminate() } is refused in one line, and the helpers it did start are stopped', () => {
+    let stopped = 0, calls = 0;
+    const spawner = Object.assign(() => (++calls === 1 ? { terminate() { stopped++; } } : {}), { cores: 4 });
+    const s = builtinScene('custom'); s.cloth.resolution = 64;
+    expect(() => new Simulation(s, { kernel: 'wasm', threads: 3, spawnHelper: spawner as never })).toThrow(
+      /^the helper spawner \(options\.spawnHelper\) must return \{ terminate\(\) \} for each thread it starts, got \[object Object\]$/);
+    expect(stopped).toBe(1);
+  });
+
   it('set() speaks of itself, not of --set, and advance() wants a frame count', () => {
     const sim = new Simulation(small());
     expect(() => sim.set('material.nope', 1)).toThrow(/^Simulation\.set\('material\.nope'\): unknown key$/);

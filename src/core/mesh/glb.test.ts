@@ -140,6 +140,13 @@ describe('the .glb writer', () => {
     expect(added - predicted).toBeLessThan(3 * frames * 500);
   });
 
+  it('bakeBytes refuses what is not a count', () => {
+    expect(bakeBytes(2, 3)).toBe(3 * 2 * 24 + 4 * 4 * 3 + 4 * 4);
+    expect(() => bakeBytes(NaN, 3)).toThrow(/^bakeBytes: vertices must be an integer ≥ 0, got NaN$/);
+    expect(() => bakeBytes(2, -1)).toThrow(/^bakeBytes: frames must be an integer ≥ 0, got -1$/);
+    expect(() => bakeBytes(2, 1.5)).toThrow(RangeError);
+  });
+
   it('a texture: the PNG embedded, repeated by KHR_texture_transform, the colour factor white', async () => {
     const { sim } = run(one, 1);
     // a 1 × 1 PNG

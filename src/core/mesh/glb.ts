@@ -9,7 +9,7 @@
  */
 import type { LookMaterial } from '../looks.js';
 import type { ClothModel } from '../model.js';
-import { plainText } from '../text.js';
+import { plainText, shownValue } from '../text.js';
 import { vertexNormals } from './normals.js';
 
 /** A colour texture: a PNG (sRGB), repeated `repeat` times across the cloth's texture coordinates 0…1. */
@@ -82,6 +82,8 @@ export const BAKE_BYTES_PER_VERTEX = 24;
  * targets, the weights (one per target per key) and the keys' times; the JSON adds about 0.5 kB per frame and cloth.
  */
 export function bakeBytes(vertices: number, frames: number): number {
+  if (!(Number.isSafeInteger(vertices) && vertices >= 0)) throw new RangeError(`bakeBytes: vertices must be an integer ≥ 0, got ${shownValue(vertices)}`);
+  if (!(Number.isSafeInteger(frames) && frames >= 0)) throw new RangeError(`bakeBytes: frames must be an integer ≥ 0, got ${shownValue(frames)}`);
   return frames * vertices * BAKE_BYTES_PER_VERTEX + 4 * (frames + 1) * frames + 4 * (frames + 1);
 }
 

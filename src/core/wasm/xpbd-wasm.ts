@@ -28,6 +28,7 @@ import {
   COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
 } from '../layout.generated.js';
 import { KernelSelfContact, layoutSelfContact, type ListedPairs, type SelfContactExports } from './self-contact-wasm.js';
+import { shownValue } from '../text.js';
 import { ThreadModeChooser } from './thread-mode.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
@@ -295,7 +296,12 @@ export class XpbdKernel implements PhaseBackend {
     if (this.disposed) throw new Error('XpbdKernel.startHelpers: the kernel was disposed');
     const onError = (e: Error) => { this.helperError ??= e; };
     for (let t = this.helpers.length + 1; t < this.threads; t++) {
-      this.helpers.push(spawn({ module: this.module, memory: this.memory, layout: this.layout, thread: t }, onError));
+      const helper: unknown = spawn({ module: this.module, memory: this.memory, layout: this.layout, thread: t }, onError);
+      if (typeof (helper as { terminate?: unknown } | null)?.terminate !== 'function') {
+        this.dispose(); // stops the helpers started so far
+        throw new TypeError(`the helper spawner (options.spawnHelper) must return { terminate() } for each thread it starts, got ${shownValue(helper)}`);
+      }
+      this.helpers.push(helper as { terminate(): void });
     }
   }
 
