@@ -15,7 +15,7 @@
  *   A·x = M/h²·y + Σ k_s·S_sᵀ·d_s,   A = M/h² + Σ k_s·S_sᵀS_s,
  *
  * one scalar matrix for the three coordinates, constant while the mesh, h, the stiffnesses and the pins are: it is
- * ordered once per model (reverse Cuthill–McKee) and factored once (envelope Cholesky, sparse.ts); a pinned particle's
+ * ordered once per model (nested dissection) and factored once (sparse Cholesky, sparse.ts); a pinned particle's
  * row is the identity (its position stays), and the factor is redone only when the pins change. The grabbed particle
  * is held without a refactor: with z = A⁻¹·e_g (one solve when the grab starts), the solution u of the unconstrained
  * system becomes x = u + z·(p_g − u_g)/z_g, which is exactly the solve with x_g = p_g.
@@ -32,7 +32,7 @@
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
-import { EnvelopeCholesky, reverseCuthillMcKee } from './sparse.js';
+import { SparseCholesky, nestedDissection } from './sparse.js';
 
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
 class GlobalSystem {
@@ -49,7 +49,7 @@ class GlobalSystem {
   readonly previous: Float64Array;
   /** row of each particle in the factored order */
   readonly row: Int32Array;
-  readonly chol: EnvelopeCholesky;
+  readonly chol: SparseCholesky;
   /** the pins (state.pinned) the factor was made for, and its substep length [s] */
   readonly pinned: Uint8Array;
   h = NaN;
@@ -86,7 +86,7 @@ class GlobalSystem {
     this.previous = new Float64Array(3 * n);
     this.mass = new Float64Array(n);
     this.mass.set(params.particleMass);
-    // the graph of the springs, in compressed rows, for the ordering and the envelope
+    // the graph of the springs, in compressed rows, for the ordering and the factor's pattern
     const degree = new Int32Array(n + 1);
     for (let s = 0; s < m; s++) { degree[this.springs[2 * s]]++; degree[this.springs[2 * s + 1]]++; }
     const rowStart = new Int32Array(n + 1);
@@ -98,17 +98,18 @@ class GlobalSystem {
       cols[fill[a]++] = b;
       cols[fill[b]++] = a;
     }
-    const order = reverseCuthillMcKee(rowStart, cols);
+    const order = nestedDissection(rowStart, cols);
     this.row = new Int32Array(n);
     for (let r = 0; r < n; r++) this.row[order[r]] = r;
-    const first = new Int32Array(n);
+    // the same graph in the factored order
+    const orderedStart = new Int32Array(n + 1);
+    for (let r = 0; r < n; r++) orderedStart[r + 1] = orderedStart[r] + degree[order[r]];
+    const orderedCols = new Int32Array(orderedStart[n]);
     for (let r = 0; r < n; r++) {
       const i = order[r];
-      let f = r;
-      for (let k = rowStart[i]; k < rowStart[i + 1]; k++) { const c = this.row[cols[k]]; if (c < f) f = c; }
-      first[r] = f;
+      for (let k = rowStart[i]; k < rowStart[i + 1]; k++) orderedCols[orderedStart[r] + k - rowStart[i]] = this.row[cols[k]];
     }
-    this.chol = new EnvelopeCholesky(first);
+    this.chol = new SparseCholesky(orderedStart, orderedCols);
     this.pinned = new Uint8Array(n);
     this.y = new Float64Array(3 * n);
     this.x = new Float64Array(3 * n);
