@@ -292,23 +292,27 @@ export class SparseCholesky {
     this.n = n;
     // A's lower triangle: the neighbours below each row, sorted, each once, then the diagonal
     const aStart = new Int32Array(n + 1);
-    const lists: Int32Array[] = [];
+    const aCols = new Int32Array(rowStart[n] + n);
+    let at = 0;
     for (let i = 0; i < n; i++) {
-      const below: number[] = [];
+      const from = at;
       for (let k = rowStart[i]; k < rowStart[i + 1]; k++) {
         const j = cols[k];
         if (!(Number.isInteger(j) && j >= 0 && j < n && j !== i)) throw new RangeError(`SparseCholesky: row ${i} lists ${j}, not another row in 0…${n - 1}`);
-        if (j < i) below.push(j);
+        if (j > i) continue;
+        // insertion into the row's sorted run, each column once (a row has a few neighbours)
+        let p = at - 1;
+        while (p >= from && aCols[p] > j) p--;
+        if (p >= from && aCols[p] === j) continue;
+        aCols.copyWithin(p + 2, p + 1, at);
+        aCols[p + 1] = j;
+        at++;
       }
-      below.sort((a, b) => a - b);
-      const unique = below.filter((j, k) => k === 0 || below[k - 1] !== j);
-      unique.push(i);
-      lists.push(Int32Array.from(unique));
-      aStart[i + 1] = aStart[i] + unique.length;
+      aCols[at++] = i;
+      aStart[i + 1] = at;
     }
     this.aStart = aStart;
-    this.aCols = new Int32Array(aStart[n]);
-    for (let i = 0; i < n; i++) this.aCols.set(lists[i], aStart[i]);
+    this.aCols = aCols.slice(0, at);
     this.aValues = new Float64Array(aStart[n]);
 
     // the elimination tree (Liu's algorithm, with path compression through `ancestor`)
