@@ -15,7 +15,7 @@ import type { BackendChoice } from './backend.js';
 import type { InteractionHost } from './interaction.js';
 import { MAX_RESOLUTION } from './limits.js';
 import { refusal } from './refusal.js';
-import { withShape, type PanelShape } from './shape-change.js';
+import { resolutionPins, withShape, type PanelShape } from './shape-change.js';
 import { sweeps } from './sweep.js';
 
 /** The app's commands: the panel's host (PanelHost) and the pointer's (InteractionHost). */
@@ -112,8 +112,8 @@ export class Commands implements PanelHost, InteractionHost {
     let note = '';
     try {
       let base = app.scene;
-      // particle-index pins belong to one resolution: a new resolution keeps only the presets
-      if (at?.field === 'cloth.resolution') base = editCloth(base, at.cloth, (one) => ({ ...one, pins: one.pins.filter((p) => typeof p === 'string') }));
+      // particle-index pins belong to one resolution: a new resolution keeps the presets and regions
+      if (at?.field === 'cloth.resolution') base = editCloth(base, at.cloth, (one) => ({ ...one, pins: resolutionPins(one.pins) }));
       if (at?.field === 'cloth.shape') {
         next = editCloth(base, at.cloth, (one) => {
           const change = withShape(one, value as PanelShape, app.meshes.resolve);

@@ -86,11 +86,12 @@ function shapeWords(cloth: ClothSpec): string {
   return mesh !== null ? `mesh ${plainText(mesh, 80)}` : cloth.shape === 'rectangle' ? '' : cloth.shape;
 }
 
-/** One line for the HUD: what a fabric test measures now. */
-function testLine(t: TestResult): string {
+/** One line for the HUD: what a fabric test measures now ('—' for a value that is not finite: an unstable cloth). */
+export function testLine(t: TestResult): string {
+  const fixed = (v: number, digits: number) => (Number.isFinite(v) ? v.toFixed(digits) : '—');
   if (t.type === 'cantilever') {
-    const c = t.bendingLength === null ? '— (the tip has not dropped yet)' : `${(100 * t.bendingLength).toFixed(2)} cm`;
-    return `cantilever: tip ${t.chordAngle.toFixed(1)}° below the edge, ${(100 * t.overhang).toFixed(2)} cm out → bending length ${c}`;
+    const c = t.bendingLength === null ? '— (the tip has not dropped yet)' : `${fixed(100 * t.bendingLength, 2)} cm`;
+    return `cantilever: tip ${fixed(t.chordAngle, 1)}° below the edge, ${fixed(100 * t.overhang, 2)} cm out → bending length ${c}`;
   }
-  return `Cusick drape: coefficient ${t.drapeCoefficient.toFixed(3)}, ${t.folds} fold${t.folds === 1 ? '' : 's'}`;
+  return `Cusick drape: coefficient ${fixed(t.drapeCoefficient, 3)}, ${fixed(t.folds, 0)} fold${t.folds === 1 ? '' : 's'}`;
 }

@@ -112,5 +112,13 @@ export function withMesh(scene: Scene, name: string, meshes: MeshResolver): Scen
  * rectangle cloth instead (its pins: the presets), so that what can be shown is.
  */
 export function withoutMesh(scene: Scene): Scene {
-  return { ...scene, cloth: defaultScene().cloth, pins: scene.pins.filter((p) => typeof p === 'string') };
+  return { ...scene, cloth: defaultScene().cloth, pins: resolutionPins(scene.pins) };
+}
+
+/**
+ * The pins that mean the same on a cloth of another resolution or mesh: the presets and the regions (a box in space),
+ * not the particle indices, which name particles of one mesh.
+ */
+export function resolutionPins(pins: readonly PinEntry[]): PinEntry[] {
+  return pins.filter((p) => typeof p !== 'number');
 }

@@ -34,4 +34,12 @@ describe('the resolution sweep side by side', () => {
     sweep.layout = 'side-by-side';
     expect(sweep.scenes()).toEqual([scene]);
   });
+
+  it('keeps the pins that hold at every resolution: presets and regions (the cantilever\'s clamp), not particle indices', () => {
+    const cantilever = builtinScene('cantilever');
+    const scene = setScenePath(setScenePath(cantilever, 'pins', [...cantilever.pins, 'top-left', 7]), 'resolutionSweep', [8, 16]);
+    const sweep = new Sweep({ scene, sim: { kind: 'cpu' } } as unknown as App);
+    for (const s of sweep.scenes()) expect(s.pins).toEqual([...cantilever.pins, 'top-left']);
+    expect(cantilever.pins.some((p) => typeof p === 'object')).toBe(true);
+  });
 });

@@ -8,6 +8,7 @@ import type { SweepLayout } from '../ui/panel.js';
 import type { App } from './app.js';
 import { fitSideBySide } from './limits.js';
 import { refusal } from './refusal.js';
+import { resolutionPins } from './shape-change.js';
 
 /** frames each resolution runs for in the Mesh Resolution sequence (3 s) */
 export const SWEEP_STAGE_FRAMES = 180;
@@ -68,7 +69,7 @@ export class Sweep {
       next.cloth.resolution = res;
       next.cloth.position = [s.cloth.position[0] + dx, s.cloth.position[1], s.cloth.position[2]];
       next.colliders = s.colliders.map((c) => shifted(c, dx));
-      next.pins = s.pins.filter((p) => typeof p === 'string');
+      next.pins = resolutionPins(s.pins);
       return next;
     };
     if (this.layout === 'sequence') return [at(sweep[this.index % sweep.length], 0)];

@@ -124,6 +124,17 @@ describe('the scenes run to their duration and report their test', () => {
   });
 });
 
+describe('a cantilever held everywhere', () => {
+  it('measures no overhang and no drop (not NaN), whose bending length is unknown', () => {
+    const scene = builtinScene('cantilever');
+    scene.cloth.resolution = 1;
+    scene.pins = [{ min: [-9, -9, -9], max: [9, 9, 9] }];
+    const sim = new Simulation(validateScene(scene), { kernel: 'ts' });
+    sim.advance(2);
+    expect(sim.report().test).toEqual({ type: 'cantilever', overhang: 0, chordAngle: 0, bendingLength: null });
+  });
+});
+
 describe('pins by region', () => {
   it('hold the particles that start in the box, at any resolution and on any shape; an empty box is an error naming it', () => {
     const clamp = { min: [-1, 0, -1] as [number, number, number], max: [1, 2, 0] as [number, number, number] };

@@ -85,6 +85,8 @@ function cantilever(model: ClothModel, state: ClothState, edge: readonly number[
     drop += edge[1] - x[3 * i + 1];
     count++;
   }
+  // every particle held: nothing overhangs, and no tip has dropped
+  if (count === 0) return { type: 'cantilever', overhang: 0, chordAngle: 0, bendingLength: null };
   const theta = Math.atan2(drop / count, along / count);
   const overhang = far - clamp;
   const load = elasticaLoad(theta);
