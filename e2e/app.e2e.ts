@@ -503,6 +503,16 @@ describe('WebGPU page', () => {
     expect(await hook(bare.page, 'sceneName')).toBe('custom');
     await expect.poll(() => bare.page.evaluate(() => location.hash)).toBe('#scene=');
     await bare.page.close();
+    // an edited link that leaves the view out means the default view (the wireframe stayed, and the hash was
+    // rewritten with it), and the hash stays as pasted
+    await page.evaluate(() => { location.hash = '#scene=silk-drape'; });
+    await expect.poll(() => hook(page, 'view')).toBe('shaded');
+    // without a clipboard (a page served over plain http from another machine) the link is shown instead; copying
+    // writes the hash at once, as the page is
+    await page.evaluate(() => Object.defineProperty(navigator, 'clipboard', { value: undefined, configurable: true }));
+    await press(page, 'copyLink');
+    expect(await page.evaluate(() => location.hash)).toBe('#scene=silk-drape');
+    await expect.poll(async () => (await hook<any>(page, 'lastMessage'))?.text).toMatch(/^Link: http.*#scene=silk-drape$/);
     // (a link's out-of-range value is refused with the field's name: src/app/url-state.test.ts; the page's part,
     // the message and the default scene for a link refused at load, is the same as here: security.e2e.ts)
   });

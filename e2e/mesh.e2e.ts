@@ -165,6 +165,20 @@ describe('a mesh cloth in the app', () => {
     expect(await hook(page, 'particleCount')).toBe(TSHIRT_PARTICLES);
     expect((await hook<any>(page, 'scene')).cloth.mesh).toBe('tshirt.obj');
 
+    // a file that cannot be read when its bytes are asked for (moved since it was picked) is a message, no
+    // unhandled rejection, and changes nothing
+    await page.evaluate(() => {
+      const read = File.prototype.arrayBuffer;
+      File.prototype.arrayBuffer = function () {
+        File.prototype.arrayBuffer = read;
+        return Promise.reject(new DOMException('The requested file could not be read', 'NotReadableError'));
+      };
+    });
+    await importScene(page, 'gone.json', Buffer.from('{}'));
+    await expect.poll(async () => (await message(page)).text)
+      .toBe('Import refused — gone.json: the file could not be read (The requested file could not be read)');
+    expect((await hook<any>(page, 'scene')).cloth.mesh).toBe('tshirt.obj');
+
     // the example scene names tshirt.obj: the imported file is used, laid flat and dropped on the sphere
     await importScene(page, 'tshirt.json', TSHIRT_SCENE);
     await expect.poll(() => hook(page, 'sceneName')).toBe('tshirt');

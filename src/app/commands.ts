@@ -13,9 +13,9 @@ import type { PanelHost, SweepLayout } from '../ui/panel.js';
 import type { App } from './app.js';
 import type { BackendChoice } from './backend.js';
 import type { InteractionHost } from './interaction.js';
-import { MAX_RESOLUTION } from './limits.js';
+import { MAX_RESOLUTION, resolutionPins } from './limits.js';
 import { refusal } from './refusal.js';
-import { resolutionPins, withShape, type PanelShape } from './shape-change.js';
+import { withShape, type PanelShape } from './shape-change.js';
 import { sweeps } from './sweep.js';
 
 /** The app's commands: the panel's host (PanelHost) and the pointer's (InteractionHost). */

@@ -20,7 +20,7 @@ export class FileImport {
     this.picker = new FilePicker(app.overlay, root, {
       accept: '.json,application/json', testid: 'import-file', what: 'scene file', refused: 'Import refused',
       // the file's name is shown in messages: as text, with no control or direction-changing characters
-      onFile: async (file) => { this.importText(await file.text(), plainText(file.name, 80)); },
+      onFile: (file, bytes) => { this.importText(new TextDecoder().decode(bytes), plainText(file.name, 80)); },
     });
   }
 

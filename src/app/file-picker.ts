@@ -15,8 +15,8 @@ export interface FilePickerSpec {
   what: string;
   /** how a refusal starts, e.g. 'Import refused' */
   refused: string;
-  /** gets a file within the size cap */
-  onFile: (file: File) => void | Promise<void>;
+  /** gets a file within the size cap, and its bytes */
+  onFile: (file: File, bytes: ArrayBuffer) => void | Promise<void>;
 }
 
 /** A hidden file input in `root` with the size check; `open()` shows the picker. */
@@ -45,6 +45,15 @@ export class FilePicker {
     const tooBig = importSizeProblem(file.size, this.spec.what);
     // the file's name is shown in messages: as text, with no control or direction-changing characters
     if (tooBig) { this.overlay.message(`${this.spec.refused} — ${plainText(file.name, 80)}: ${tooBig}`); return; }
-    await this.spec.onFile(file);
+    let bytes: ArrayBuffer;
+    try {
+      // read here, so that a file that cannot be read (moved or deleted since it was picked, a cloud file not
+      // downloaded) is a message, not an unhandled rejection
+      bytes = await file.arrayBuffer();
+    } catch (e) {
+      this.overlay.message(`${this.spec.refused} — ${plainText(file.name, 80)}: the file could not be read (${plainText(e instanceof Error ? e.message : String(e), 120)})`);
+      return;
+    }
+    await this.spec.onFile(file, bytes);
   }
 }

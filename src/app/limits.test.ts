@@ -24,6 +24,14 @@ describe('backend size caps', () => {
     expect(capResolution(small, 'cpu')).toEqual({ scene: small, note: '' });
   });
 
+  it('a clamped cloth keeps its presets and regions, not its pins on particle numbers (which name other particles now)', () => {
+    const region = { min: [-1, 0, -1] as [number, number, number], max: [1, 2, 0] as [number, number, number] };
+    const big = setScenePath(setScenePath(builtinScene('cotton-basic'), 'cloth.resolution', 512), 'pins', ['top-left', 70000, region]);
+    const cpu = capResolution(big, 'cpu');
+    expect(cpu.scene.pins).toEqual(['top-left', region]);
+    expect(cpu.note).toBe('resolution 512 faces per side: more than the CPU backend takes, clamped to 256; the pins on particle numbers are dropped; the GPU backend goes to 1024');
+  });
+
   it('sweep resolutions over the cap are clamped too (once each)', () => {
     const s = setScenePath(builtinScene('resolution'), 'resolutionSweep', [64, 512, 1024, 128]);
     const cpu = capResolution(s, 'cpu');

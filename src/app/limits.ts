@@ -8,7 +8,7 @@
  * cloths of a scene of several share the cap: when together over it, each generated cloth over its share is lowered.
  * No DOM here: unit-tested in limits.test.ts.
  */
-import { MAX_INPUT_BYTES, SceneError, clothEntries, clothName, editCloth, plainText, type ClothSpec, type Scene } from '../core/index.js';
+import { MAX_INPUT_BYTES, SceneError, clothEntries, clothName, editCloth, plainText, type ClothSpec, type PinEntry, type Scene } from '../core/index.js';
 
 export type BackendKind = 'cpu' | 'gpu';
 
@@ -39,7 +39,8 @@ export function capResolution(scene: Scene, kind: BackendKind): Capped {
   let next = scene;
   if (scene.cloth.resolution > max) {
     over.push(`resolution ${scene.cloth.resolution}`);
-    next = { ...next, cloth: { ...next.cloth, resolution: max } };
+    // (a particle index names a particle of the old resolution: dropped, as a new resolution from the panel drops it)
+    next = { ...next, cloth: { ...next.cloth, resolution: max }, pins: resolutionPins(next.pins) };
   }
   const sweep = scene.resolutionSweep;
   if (sweep?.some((r) => r > max)) {
@@ -50,10 +51,19 @@ export function capResolution(scene: Scene, kind: BackendKind): Capped {
   }
   if (!over.length) return { scene, note: '' };
   const more = kind === 'cpu' ? `; the GPU backend goes to ${MAX_RESOLUTION.gpu}` : '';
+  const dropped = next.pins.length < scene.pins.length ? '; the pins on particle numbers are dropped' : '';
   return {
     scene: next,
-    note: `${over.join(' and ')} faces per side: more than the ${NAMES[kind]} backend takes, clamped to ${max}${more}`,
+    note: `${over.join(' and ')} faces per side: more than the ${NAMES[kind]} backend takes, clamped to ${max}${dropped}${more}`,
   };
+}
+
+/**
+ * The pins that mean the same on a cloth of another resolution or mesh: the presets and the regions (a box in space),
+ * not the particle indices, which name particles of one mesh.
+ */
+export function resolutionPins(pins: readonly PinEntry[]): PinEntry[] {
+  return pins.filter((p) => typeof p !== 'number');
 }
 
 /** particles of a cloth of `resolution` faces per side */
@@ -145,7 +155,7 @@ function capCloths(scene: Scene, kind: BackendKind, meshParticles: (path: string
   entries.forEach((e, k) => {
     if (e.cloth.shape === 'mesh' || counts[k] <= share) return;
     const r = largestFitting(e.cloth, share);
-    next = editCloth(next, k, (one) => ({ ...one, cloth: { ...one.cloth, resolution: r }, pins: one.pins.filter((p) => typeof p !== 'number') }));
+    next = editCloth(next, k, (one) => ({ ...one, cloth: { ...one.cloth, resolution: r }, pins: resolutionPins(one.pins) }));
     lowered.push(`cloths[${k}] (${plainText(clothName(e, k), 40)}) resolution ${e.cloth.resolution} → ${r}`);
   });
   return {

@@ -47,7 +47,7 @@ export class MeshImport {
   constructor(private readonly app: App, root: HTMLElement) {
     this.picker = new FilePicker(app.overlay, root, {
       accept: MESH_EXTENSIONS.join(','), testid: 'import-mesh-file', what: 'mesh file', refused: 'Mesh import refused',
-      onFile: async (file) => { this.importBytes(new Uint8Array(await file.arrayBuffer()), file.name); },
+      onFile: (file, bytes) => { this.importBytes(new Uint8Array(bytes), file.name); },
     });
   }
 

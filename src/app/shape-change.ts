@@ -13,6 +13,7 @@ import {
   SceneError, defaultScene, discMesh, modelFor, placeMesh, plainText, setScenePath, tubeMesh,
   type MeshResolver, type PinEntry, type Scene,
 } from '../core/index.js';
+import { resolutionPins } from './limits.js';
 
 /** shapes the panel offers ('mesh' comes from an import) */
 export const PANEL_SHAPES = ['rectangle', 'disc', 'tube'] as const;
@@ -113,12 +114,4 @@ export function withMesh(scene: Scene, name: string, meshes: MeshResolver): Scen
  */
 export function withoutMesh(scene: Scene): Scene {
   return { ...scene, cloth: defaultScene().cloth, pins: resolutionPins(scene.pins) };
-}
-
-/**
- * The pins that mean the same on a cloth of another resolution or mesh: the presets and the regions (a box in space),
- * not the particle indices, which name particles of one mesh.
- */
-export function resolutionPins(pins: readonly PinEntry[]): PinEntry[] {
-  return pins.filter((p) => typeof p !== 'number');
 }

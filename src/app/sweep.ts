@@ -6,9 +6,8 @@
 import { builtinScene, type ColliderSpec, type Scene, type Vec3 } from '../core/index.js';
 import type { SweepLayout } from '../ui/panel.js';
 import type { App } from './app.js';
-import { fitSideBySide } from './limits.js';
+import { fitSideBySide, resolutionPins } from './limits.js';
 import { refusal } from './refusal.js';
-import { resolutionPins } from './shape-change.js';
 
 /** frames each resolution runs for in the Mesh Resolution sequence (3 s) */
 export const SWEEP_STAGE_FRAMES = 180;

@@ -78,7 +78,12 @@ export class UrlSync {
     // the link names an imported mesh file but cannot carry it: say so rather than pretend it reproduces the scene
     const meshes = meshNames(this.app.scene);
     const but = meshes.length ? ` — but ${linkCannotCarry(meshes)}` : '';
-    navigator.clipboard?.writeText(url).then(
+    // (no clipboard API outside a secure context, e.g. a page served over plain http from a LAN address)
+    if (!navigator.clipboard) {
+      this.app.overlay.message(`Link: ${url}${but}`, 'notice');
+      return;
+    }
+    navigator.clipboard.writeText(url).then(
       () => this.app.overlay.message(`Link copied to the clipboard${but}`, 'notice'),
       () => this.app.overlay.message(`Link: ${url}${but}`, 'notice'),
     );
@@ -126,11 +131,15 @@ export class UrlSync {
       if (!s) return;
       const ignored = badViewSettings(s.view);
       if (ignored) app.overlay.message(ignored, 'error');
-      if (s.view.view && (VIEWS as readonly string[]).includes(s.view.view)) app.view = s.view.view as ViewName;
+      // a setting the link leaves out is the default, as on a page opened with it
+      app.view = s.view.view && (VIEWS as readonly string[]).includes(s.view.view) ? s.view.view as ViewName : 'shaded';
       app.sweep.layout = s.view.sweep === 'side-by-side' ? 'side-by-side' : 'sequence';
       if ((BACKEND_CHOICES as readonly string[]).includes(s.view.backend ?? '')) {
         app.backend.choice = s.view.backend as BackendChoice;
         app.backend.inLink = true;
+      } else if (s.view.backend === undefined) {
+        app.backend.choice = 'auto';
+        app.backend.inLink = false;
       }
       const shown = linkScene(s.scene, (p) => app.meshes.has(p));
       const key = SCENE_NAMES.includes(s.base) ? s.base : '';
