@@ -2,10 +2,11 @@
  * Page overlays: the view-name toast, the '?' shortcut sheet, the message banner (errors and notices) and the
  * labels that float above cloths in the Mesh Resolution scene.
  */
+import { VIEWS } from '../render/cloth-view.js';
 import { append, h } from './dom.js';
 
 export const SHORTCUTS: [string, string][] = [
-  ['V', 'cycle views: shaded → wireframe → particles → springs → strain'],
+  ['V', `cycle views: ${VIEWS.join(' → ')}`],
   ['1 / 2 / 3 / 4', 'camera: front / side / top / reset'],
   ['Space', 'pause / play'],
   ['S', 'step one frame (while paused)'],
