@@ -18,6 +18,8 @@ export class Readback {
   private staging: GPUBuffer | undefined;
   private reading: Promise<void> = Promise.resolve();
   private destroyed = false;
+  /** counts the times the cloth was put anew (upload): a copy made before the last of them is of a cloth gone */
+  private generation = 0;
   /** the most self-contact candidate pairs any pass found, over the reads since the cloth was last uploaded (0 without self-contact) */
   selfPairsMost = 0;
 
@@ -51,6 +53,7 @@ export class Readback {
     }
     const staging = this.staging;
     const b = this.buffers.buffers;
+    const generation = this.generation;
     const encoder = this.device.createCommandEncoder({ label: 'drape read' });
     encoder.copyBufferToBuffer(b.positions, 0, staging, 0, vecBytes);
     encoder.copyBufferToBuffer(b.previous, 0, staging, vecBytes, vecBytes);
@@ -61,6 +64,12 @@ export class Readback {
     // the count starts again after what was just copied (the queue keeps the order)
     if (self) this.device.queue.writeBuffer(b.selfArgs, 16, ZERO);
     await staging.mapAsync(GPUMapMode.READ, 0, size);
+    if (generation !== this.generation) {
+      // the cloth was put anew while this copy was on its way (a reset, a state copied in): it would write the old
+      // cloth over the new one, so it is read again, after the upload
+      staging.unmap();
+      return this.readNow(state);
+    }
     try {
       const all = new Float32Array(staging.getMappedRange(0, size));
       fromVec4(all.subarray(0, 4 * n), state.positions);
@@ -77,8 +86,12 @@ export class Readback {
     }
   }
 
-  /** Starts the self-contact pair count again (selfPairsMost 0, and the GPU's since the last read too). */
-  forgetSelfPairs(): void {
+  /**
+   * The cloth was put anew (an upload): a read whose copy was made before reads again; the self-contact pair count
+   * starts again (selfPairsMost 0, and the GPU's since the last read too).
+   */
+  uploaded(): void {
+    this.generation++;
     this.selfPairsMost = 0;
     if (this.buffers.hasSelfContact) this.device.queue.writeBuffer(this.buffers.buffers.selfArgs, 16, ZERO);
   }

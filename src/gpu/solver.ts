@@ -156,8 +156,9 @@ export class GpuClothSolver {
     this.buffers.writeParticles(state);
     this.buffers.writePins(state);
     this.refreshNormals();
-    // a cloth put anew (a reset, a state copied in): what self-contact dropped before is no longer the cloth's
-    this.readback.forgetSelfPairs();
+    // a cloth put anew (a reset, a state copied in): a read on its way reads again, and what self-contact dropped
+    // before is no longer the cloth's
+    this.readback.uploaded();
     this.overflow = undefined;
   }
 

@@ -243,6 +243,8 @@ export class GpuSim implements SimDriver {
       await Promise.all(this.mirrors.map(async (m, k) => {
         if (!this.solverOf(k) || m.unstableAt >= 0) return;
         await m.sim.sync();
+        // a load, reset or rebuild since the read began: its cloths are not these (stopUnstable and lastGood are theirs)
+        if (gen !== this.readGen) return;
         // (synchronously after the read: nothing is drawn in between)
         const slot = this.slots[k];
         if (!isFinite3(m.sim.state)) {
