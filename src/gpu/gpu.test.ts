@@ -466,6 +466,28 @@ describe.skipIf(!gpu)('GPU physics', () => {
     }
   });
 
+  test('two solvers made at once each get their own errors: the one with an invalid buffer is refused, the other made', async () => {
+    const device = gpu!.device;
+    const model = modelFor(scene('pins', (s) => { s.cloth.resolution = 6; }));
+    await GpuClothSolver.create(device, model).then((s) => s.destroy()); // the kernels compiled
+    const create = device.createBuffer.bind(device);
+    let broken = false;
+    // the first buffer made after this is invalid (usage 0): a validation error on the device, the first solver's
+    const spy = vi.spyOn(device, 'createBuffer').mockImplementation((d: GPUBufferDescriptor) => {
+      if (!broken) { broken = true; return create({ ...d, usage: 0 }); }
+      return create(d);
+    });
+    try {
+      const [a, b] = await Promise.allSettled([GpuClothSolver.create(device, model), GpuClothSolver.create(device, model)]);
+      expect(a.status).toBe('rejected');
+      expect(String((a as PromiseRejectedResult).reason)).toMatch(/^Error: GPU solver: /);
+      expect(b.status).toBe('fulfilled');
+      (b as PromiseFulfilledResult<GpuClothSolver>).value.destroy();
+    } finally {
+      spy.mockRestore();
+    }
+  });
+
   test('rejects what it cannot run, with a message', async () => {
     const sc = scene('cotton-basic', (s) => { s.solver.type = 'mass-spring'; });
     const p = await pair(scene('cotton-basic'));

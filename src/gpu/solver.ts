@@ -58,17 +58,20 @@ export class GpuClothSolver {
    * the model); the cloth starts at its rest pose, unpinned.
    */
   static async create(device: GPUDevice, model: ClothModel, options: GpuSolverOptions = {}): Promise<GpuClothSolver> {
+    const kernels = await kernelsFor(device);
+    // the scopes are pushed and popped with nothing awaited in between: a device's error scopes are one stack, and
+    // two solvers made at once (the app's side-by-side sweep) would otherwise take each other's errors
     device.pushErrorScope('validation');
     device.pushErrorScope('out-of-memory');
     let solver: GpuClothSolver | undefined;
     let failure: unknown;
     try {
-      solver = new GpuClothSolver(device, model, await kernelsFor(device), options.selfPairsPerPrimitive ?? SELF_PAIRS_PER_PRIMITIVE);
+      solver = new GpuClothSolver(device, model, kernels, options.selfPairsPerPrimitive ?? SELF_PAIRS_PER_PRIMITIVE);
     } catch (e) {
       failure = e;
     }
-    const oom = await device.popErrorScope();
-    const invalid = await device.popErrorScope();
+    const popped = [device.popErrorScope(), device.popErrorScope()];
+    const [oom, invalid] = await Promise.all(popped);
     if (failure) throw failure;
     if (oom) { solver?.destroy(); throw new Error(`GPU solver: out of GPU memory for ${model.particleCount} particles: ${oom.message}`); }
     if (invalid) { solver?.destroy(); throw new Error(`GPU solver: ${invalid.message.split('\n')[0]}`); }
