@@ -54,6 +54,14 @@ describe('several cloths in the app', () => {
     expect(await hook(page, 'simBackend')).toBe('cpu');
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('cloths that differ in their contact or spring values run on the CPU only (cloths[1].material.damping)');
     expect(await byId(page, 'hud-cloths').innerText()).toBe('3 cloths: leather 81 · cotton 81 · silk 81 particles');
+    // a resolution sweep in a scene of several cloths does not run: the panel keeps each cloth's resolution its own
+    const swept = await openApp(browser.context, `#scene=layers&${SMALL}&resolutionSweep=[8,16]`);
+    await expect.poll(() => byId(swept.page, 'hud').innerText()).toContain("this scene's 3 cloths run as they are");
+    expect(await byId(swept.page, 'cloth.resolution').locator('select').isDisabled()).toBe(false);
+    expect(await byId(swept.page, 'cloth.resolution').innerText()).not.toContain('sweep');
+    expect(await byId(swept.page, 'sweep').isVisible()).toBe(false);
+    expect(swept.errors).toEqual([]);
+    await swept.page.close();
 
     // the panel's cloth control: cloth 1 (cotton), its fabric made silk; the others keep theirs
     const which = byId(page, 'cloth.which');

@@ -28,6 +28,7 @@ export class Commands implements PanelHost, InteractionHost {
   get view() { return this.app.view; }
   get pinTool() { return this.app.pinTool; }
   get sweepLayout() { return this.app.sweep.layout; }
+  get sweeping() { return sweeps(this.app.scene); }
   get backendChoice() { return this.app.backend.choice; }
 
   /** the cloth the panel's Cloth & material and Pins folders edit (a scene of several cloths; else 0) */

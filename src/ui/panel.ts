@@ -41,6 +41,8 @@ export interface PanelHost {
   readonly view: ViewName;
   readonly pinTool: boolean;
   readonly sweepLayout: SweepLayout;
+  /** whether the scene's resolution sweep runs (one rectangle's; a scene of several cloths runs as it is) */
+  readonly sweeping: boolean;
   /** simulation backend asked for: auto, gpu, cpu */
   readonly backendChoice: 'auto' | 'gpu' | 'cpu';
   /** the scene's mannequin's pose and animation; null when the scene has no mannequin (the controls hide) */
@@ -451,8 +453,9 @@ export class Panel {
     const shown = host.shownResolution;
     if (this.resolutionFor !== `${host.maxResolution} ${cloth.shape} ${shown}`) this.resolutionCtl.options(this.resolutionOptions());
     for (const f of this.syncers) f();
-    // a sweep is of a rectangle's resolutions (another shape runs as it is); a mesh file has its own resolution
-    const sweep = !!host.scene.resolutionSweep?.length && cloth.shape === 'rectangle';
+    // a sweep is of one rectangle's resolutions (another shape, or several cloths, run as they are); a mesh file has
+    // its own resolution
+    const sweep = host.sweeping;
     this.sweepFolder.show(sweep);
     this.mannequinFolder.show(host.mannequin !== null);
     // a garment on the mannequin is fitted to it: the figure carries its pins (the cape's top edge, the skirt's
