@@ -43,7 +43,8 @@ export const MESH_STACK = 64;
 /**
  * Self-contact (the selfContact phase; docs/gpu.md, "Self-contact"). Corrections are summed per particle with integer
  * atomics in fixed point: SELF_FIXED units per metre (2^26: 1.5e-8 m resolution, ±32 m per particle and pass), each
- * pair's share clamped to ±SELF_CLAMP m first so that no sum can wrap. Integer sums do not depend on the order the
+ * pair's share clamped to ±SELF_CLAMP m first, so that a sum wraps only past 128 shares at that clamp in one pass (a
+ * particle's corrections there are a contact distance, millimetres). Integer sums do not depend on the order the
  * threads add in, so a pass gives the same result every run.
  */
 export const SELF_FIXED = 2 ** 26;
@@ -533,6 +534,12 @@ export const GLOBALS = structLayout(GLOBALS_FIELDS);
 export const SUBSTEP = structLayout(SUBSTEP_FIELDS);
 export const PASS = structLayout(PASS_FIELDS);
 
+/** A number as a WGSL f32 literal (an integer gets its '.0': `2` alone would be an integer). */
+export function wgslFloat(v: number): string {
+  if (!Number.isFinite(v)) throw new Error(`wgslFloat: ${v} is not a finite number`);
+  return Number.isInteger(v) && Math.abs(v) < 1e21 ? `${v}.0` : String(v);
+}
+
 /** WGSL text of the shared declarations, prepended to every kernel. */
 export function wgslPreamble(): string {
   return `// ---- generated from src/gpu/layout.ts ----
@@ -549,11 +556,11 @@ const MESH_SIGNED: u32 = ${MESH_SIGNED}u;
 const MESH_SHARP_EDGE: u32 = ${MESH_SHARP_EDGE}u;
 const MESH_STACK: u32 = ${MESH_STACK}u;
 const GOLDEN_ITERATIONS: u32 = ${GOLDEN_ITERATIONS}u;
-const TRIANGLE_SPREAD_MOST: f32 = ${TRIANGLE_SPREAD_MOST}.0;
+const TRIANGLE_SPREAD_MOST: f32 = ${wgslFloat(TRIANGLE_SPREAD_MOST)};
 const PASS_CAP: u32 = ${PASS_CAP}u;
 const PASS_READ_LAMBDA: u32 = ${PASS_READ_LAMBDA}u;
-const SELF_FIXED: f32 = ${SELF_FIXED}.0;
-const SELF_CLAMP: f32 = ${SELF_CLAMP};
+const SELF_FIXED: f32 = ${wgslFloat(SELF_FIXED)};
+const SELF_CLAMP: f32 = ${wgslFloat(SELF_CLAMP)};
 const SCAN_BLOCK: u32 = ${SCAN_BLOCK}u;
 const SELF_TRIANGLES: u32 = ${SELF_TRIANGLES}u;
 const SELF_EDGES: u32 = ${SELF_EDGES}u;

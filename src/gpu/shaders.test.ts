@@ -3,12 +3,20 @@ import { readFileSync } from 'node:fs';
 import { describe, expect, test } from 'vitest';
 import { buildGridModel, builtinScene, modelFor } from '../core/index.js';
 import { GENERATED_FILE, generateShaderModule } from './gen-shaders.mjs';
-import { BUFFERS, CARRY, COLLIDER, GLOBALS, KERNELS, PASS, RECORD_STRIDE, SUBSTEP, type KernelName, type KernelSpec } from './layout.js';
+import { BUFFERS, CARRY, COLLIDER, GLOBALS, KERNELS, PASS, RECORD_STRIDE, SUBSTEP, wgslFloat, type KernelName, type KernelSpec } from './layout.js';
 import { kernelSource } from './shaders.js';
 import { WGSL_SOURCES } from './shaders.generated.js';
 import { triangleAdjacency } from './topology.js';
 
 describe('shaders', () => {
+  test("the table's f32 constants are WGSL float literals, whole or not", () => {
+    expect(wgslFloat(2)).toBe('2.0');
+    expect(wgslFloat(2 ** 26)).toBe('67108864.0');
+    expect(wgslFloat(1.82)).toBe('1.82');
+    expect(wgslFloat(1e-7)).toBe('1e-7');
+    expect(() => wgslFloat(NaN)).toThrow(/not a finite number/);
+  });
+
   test('shaders.generated.ts matches src/gpu/shaders/*.wgsl (else run: node src/gpu/gen-shaders.mjs)', () => {
     expect(readFileSync(GENERATED_FILE, 'utf8')).toBe(generateShaderModule());
   });
