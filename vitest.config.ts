@@ -14,6 +14,8 @@ const GPU_FILES = [
   'src/cli/main.test.ts',
   'src/cli/colliders.test.ts',
   'src/cli/garment.test.ts',
+  // the page's GPU driver on the test device
+  'src/three/sim/gpu-sim.test.ts',
 ];
 
 // the limits only stop a test that hangs (a sweep of nine cloths takes 2 s on an idle machine here and can take

@@ -215,9 +215,16 @@ export class GpuSim implements SimDriver {
     if (!this.paused && this.ready) {
       const n = this.clock.tick(dtMs, now, this.inFlight, this.stats.stepMs);
       if (n > 0) {
-        this.inFlight = true;
         const t0 = performance.now();
-        this.encode(n);
+        try {
+          this.encode(n);
+        } catch (e) {
+          // a change the GPU refuses only when it meets it (self-contact switched on for a cloth whose lists this
+          // device cannot bind, a mesh collider's tables over its limit): the cloths go on on the CPU, saying why
+          this.onError?.((e as Error).message ?? String(e));
+          return;
+        }
+        this.inFlight = true;
         this.device.queue.onSubmittedWorkDone().then(() => {
           this.inFlight = false;
           this.clock.account(this.stats, n, (performance.now() - t0) / n, this.paused);
