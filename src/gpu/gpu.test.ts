@@ -488,6 +488,29 @@ describe.skipIf(!gpu)('GPU physics', () => {
     }
   });
 
+  test('a buffer that new parameters need and the device cannot make: the next step says so, not a cloth standing still', async () => {
+    const device = gpu!.device;
+    const sc = scene('pins', (s) => { s.cloth.resolution = 6; s.solver.selfContact = true; });
+    const model = modelFor(sc);
+    const solver = await GpuClothSolver.create(device, model);
+    const state = createState(model);
+    solver.upload(state);
+    const create = device.createBuffer.bind(device);
+    // self-contact's buffers, made by the first params that have it, come out invalid (as out of memory would)
+    const spy = vi.spyOn(device, 'createBuffer').mockImplementation((d: GPUBufferDescriptor) => create({ ...d, usage: 0 }));
+    try {
+      solver.setParams(resolveParams(model, sc));
+    } finally {
+      spy.mockRestore();
+    }
+    await device.queue.onSubmittedWorkDone();
+    await new Promise((r) => setTimeout(r, 0));
+    expect(() => solver.step(state, resolveParams(model, sc), FRAME_DT))
+      .toThrow(/^GPU solver: a buffer could not be made for the new parameters \(self-contact's lists, the bending stencils, mesh colliders\) \(49 particles\): /);
+    expect(() => solver.read(state)).toThrow(/^GPU solver: a buffer could not be made/);
+    solver.destroy();
+  });
+
   test('rejects what it cannot run, with a message', async () => {
     const sc = scene('cotton-basic', (s) => { s.solver.type = 'mass-spring'; });
     const p = await pair(scene('cotton-basic'));

@@ -142,13 +142,38 @@ export class GpuClothSolver {
   setParams(params: SimParams): void {
     this.checkAlive();
     assignPhases(GPU_PHASES, this.model, params);
-    // first: it may refuse mesh colliders too big for this device
-    this.colliders.setParams(params);
-    // it may refuse self-contact too big for this device, before writing anything
-    this.buffers.writeParams(params);
-    this.uniforms.setParams(params);
+    this.watched("the new parameters (self-contact's lists, the bending stencils, mesh colliders)", () => {
+      // first: it may refuse mesh colliders too big for this device
+      this.colliders.setParams(params);
+      // it may refuse self-contact too big for this device, before writing anything
+      this.buffers.writeParams(params);
+      this.uniforms.setParams(params);
+    });
     this.params = params;
   }
+
+  /**
+   * Runs `make`, which may make buffers, inside error scopes pushed and popped around it with nothing awaited in
+   * between (a device's scopes are one stack): a buffer the device could not make (out of memory, over a limit) is
+   * known a moment later, and the next `step` or `read` throws saying so, instead of a cloth left standing still on
+   * buffers that do not exist.
+   */
+  private watched(what: string, make: () => void): void {
+    this.device.pushErrorScope('validation');
+    this.device.pushErrorScope('out-of-memory');
+    try {
+      make();
+    } finally {
+      const popped = [this.device.popErrorScope(), this.device.popErrorScope()];
+      void Promise.all(popped).then(([oom, invalid]) => {
+        const e = oom ?? invalid;
+        if (e && !this.failure) this.failure = `GPU solver: ${oom ? 'out of GPU memory' : 'a buffer could not be made'} for ${what} (${this.model.particleCount} particles): ${e.message.split('\n')[0]}`;
+      }, () => undefined);
+    }
+  }
+
+  /** what a watched allocation could not make ('' while all could) */
+  private failure = '';
 
   /**
    * Copies the cloth from a CPU state: positions, previous positions, velocities, pins and tethers (recomputed
@@ -173,8 +198,10 @@ export class GpuClothSolver {
     const found = this.readback.selfPairsMost, held = this.buffers.selfPairCapacity;
     if (!this.buffers.hasSelfContact || found <= held) return;
     if (!this.overflow || found - held > this.overflow.found - this.overflow.held) this.overflow = { found, held };
-    const room = this.buffers.growSelfPairs(Math.ceil(GROWTH * found));
-    if (room > held) this.uniforms.setSelfPairCapacity(room);
+    this.watched('a longer self-contact list', () => {
+      const room = this.buffers.growSelfPairs(Math.ceil(GROWTH * found));
+      if (room > held) this.uniforms.setSelfPairCapacity(room);
+    });
   }
 
   /** Copies only the pins (and tethers, recomputed first when `state.tethersStale`) from a CPU state. */
@@ -238,5 +265,6 @@ export class GpuClothSolver {
 
   private checkAlive(): void {
     if (this.destroyed) throw new Error('GPU solver: used after destroy()');
+    if (this.failure) throw new Error(this.failure);
   }
 }
