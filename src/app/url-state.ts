@@ -65,6 +65,8 @@ export function sceneDiff(scene: Scene, base: Scene): [string, Json][] {
       return;
     }
     if (isPlainObject(a)) {
+      // where the base has no object (an imported scene's `test` against a built-in without one): the whole value
+      if (path && !isPlainObject(b)) { out.push([path, a as Json]); return; }
       for (const k of Object.keys(a)) {
         if (k === '$schema') continue;
         walk(a[k], isPlainObject(b) ? b[k] : undefined, path ? `${path}.${k}` : k);
@@ -82,6 +84,9 @@ export function sceneDiff(scene: Scene, base: Scene): [string, Json][] {
     else out.push(['cloths', cloths]);
   }
   walk(rest, was, '');
+  // a list the base has and the scene dropped (an imported mesh drops the Mesh Resolution scene's resolutionSweep):
+  // an empty one, which means the same
+  for (const [k, v] of Object.entries(was)) if (Array.isArray(v) && v.length && k !== 'cloths' && !(k in doc)) out.push([k, []]);
   return out;
 }
 
