@@ -291,7 +291,11 @@ export class ClothView {
     let k = 0;
     for (let i = 0; i < pinned.length; i++) {
       if (!pinned[i]) continue;
-      m.set([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x[3 * i], x[3 * i + 1], x[3 * i + 2], 1], 16 * k);
+      // a translation (no array made per pinned particle per frame: the cantilever pins hundreds)
+      const o = 16 * k;
+      m.fill(0, o, o + 16);
+      m[o] = 1; m[o + 5] = 1; m[o + 10] = 1; m[o + 15] = 1;
+      m[o + 12] = x[3 * i]; m[o + 13] = x[3 * i + 1]; m[o + 14] = x[3 * i + 2];
       k++;
     }
     this.pins.count = count;
