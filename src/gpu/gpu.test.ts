@@ -438,6 +438,15 @@ describe.skipIf(!gpu)('GPU physics', () => {
     expect(p.gpu.velocities.every(Number.isFinite)).toBe(true);
   });
 
+  test('vertex normals of a cloth uploaded before any params (GpuBackend): computed, not zero', async () => {
+    const model = modelFor(scene('cotton-basic'));
+    const solver = await GpuClothSolver.create(gpu!.device, model);
+    solver.upload(createState(model));
+    const n = await readBuffer(solver.normalBuffer, model.particleCount * 16);
+    for (let i = 0; i < model.particleCount; i++) expect(n[4 * i + 1]).toBeGreaterThan(0.999);
+    solver.destroy();
+  });
+
   test('vertex normals: unit length, +y for a flat horizontal cloth', async () => {
     const p = await pair(scene('cotton-basic'));
     await p.advance(1);

@@ -110,6 +110,9 @@ export class UniformTables {
     g.setUint32(GLOBALS.selfBlockCount, grid.blocks, true);
     g.setUint32(GLOBALS.selfPairCapacity, grid.pairs, true);
     g.setInt32(GLOBALS.grabbed, -1, true);
+    // on the GPU at once: a cloth uploaded before its first params (GpuBackend) has its normals computed for its
+    // particles, not for none
+    device.queue.writeBuffer(this.globalsBuffer, 0, this.globals);
   }
 
   /** The candidate pairs the self-contact list holds now (after ClothBuffers.growSelfPairs): for the next frame. */
