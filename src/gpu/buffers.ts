@@ -170,17 +170,8 @@ export class ClothBuffers {
    */
   private makeSelfContact(): void {
     if (this.selfMade) return;
-    const { primitives, buckets, blocks, entries, pairs } = selfGridSize(this.model, this.pairsPerPrimitive);
-    const sizes: Record<(typeof SELF_BUFFERS)[number], number> = {
-      edges: this.model.edges.length / 2, selfBoxes: 2 * primitives, selfRanks: 8 * primitives, selfCounts: 1 + buckets,
-      selfStarts: 2 + buckets, selfBlocks: blocks, selfEntries: entries, selfPairs: 1 + 2 * pairs, selfArgs: 5,
-      selfDelta: 4 * this.model.particleCount,
-    };
-    const limit = this.device.limits.maxStorageBufferBindingSize;
-    const over = SELF_BUFFERS.find((name) => sizes[name] * BUFFERS[name].bytes > limit);
-    if (over) {
-      throw new Error(`GPU solver: self-contact needs ${Math.ceil((sizes[over] * BUFFERS[over].bytes) / 2 ** 20)} MiB in one buffer (${over}) for ${this.model.particleCount} particles; this device binds at most ${Math.floor(limit / 2 ** 20)} MiB`);
-    }
+    this.checkParams({ selfContact: true });
+    const { sizes, pairs } = this.selfSizes();
     this.selfMade = true;
     this.selfPairRoom = pairs;
     for (const name of SELF_BUFFERS) {
@@ -223,6 +214,33 @@ export class ClothBuffers {
    * model, per-stencil compliance (−1 for both: no constraint); the stencil buffers made first if they do not hold
    * that model's, and the self-contact buffers on the first params with self-contact.
    */
+  /** The self-contact buffers' sizes [elements] for the model, and the candidate pairs the list holds. */
+  private selfSizes(): { sizes: Record<(typeof SELF_BUFFERS)[number], number>; pairs: number } {
+    const { primitives, buckets, blocks, entries, pairs } = selfGridSize(this.model, this.pairsPerPrimitive);
+    return {
+      sizes: {
+        edges: this.model.edges.length / 2, selfBoxes: 2 * primitives, selfRanks: 8 * primitives, selfCounts: 1 + buckets,
+        selfStarts: 2 + buckets, selfBlocks: blocks, selfEntries: entries, selfPairs: 1 + 2 * pairs, selfArgs: 5,
+        selfDelta: 4 * this.model.particleCount,
+      },
+      pairs,
+    };
+  }
+
+  /**
+   * Throws, changing nothing, where `params` need what this device cannot hold: self-contact's buffers past what it
+   * binds in one (GpuClothSolver.setParams asks before it changes anything).
+   */
+  checkParams(params: Pick<SimParams, 'selfContact'>): void {
+    if (!params.selfContact || this.selfMade) return;
+    const { sizes } = this.selfSizes();
+    const limit = this.device.limits.maxStorageBufferBindingSize;
+    const over = SELF_BUFFERS.find((name) => sizes[name] * BUFFERS[name].bytes > limit);
+    if (over) {
+      throw new Error(`GPU solver: self-contact needs ${Math.ceil((sizes[over] * BUFFERS[over].bytes) / 2 ** 20)} MiB in one buffer (${over}) for ${this.model.particleCount} particles; this device binds at most ${Math.floor(limit / 2 ** 20)} MiB`);
+    }
+  }
+
   writeParams(params: SimParams): void {
     const model = this.model;
     if (params.selfContact) this.makeSelfContact();

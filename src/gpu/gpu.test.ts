@@ -438,6 +438,34 @@ describe.skipIf(!gpu)('GPU physics', () => {
     expect(p.gpu.velocities.every(Number.isFinite)).toBe(true);
   });
 
+  test('params refused for self-contact past what the device binds change nothing: the old ones step on', async () => {
+    const device = gpu!.device;
+    const plain = scene('pins', (s) => { s.cloth.resolution = 6; });
+    const model = modelFor(plain);
+    const solver = await GpuClothSolver.create(device, model);
+    const state = createState(model);
+    solver.upload(state);
+    const before = resolveParams(model, plain);
+    solver.setParams(before);
+    // the same cloth with self-contact and two more colliders, on a device that binds 1 kB
+    const more = scene('pins', (s) => {
+      s.cloth.resolution = 6; s.solver.selfContact = true;
+      s.colliders = [...s.colliders, { type: 'sphere', center: [0, 0.3, 0], radius: 0.1 }, { type: 'floor', height: 0 }];
+    });
+    const limits = device.limits;
+    const spy = vi.spyOn(device, 'limits', 'get').mockReturnValue({ ...limits, maxStorageBufferBindingSize: 1024 } as GPUSupportedLimits);
+    try {
+      expect(() => solver.setParams(resolveParams(model, more))).toThrow(/^GPU solver: self-contact needs .* this device binds at most 0 MiB$/);
+    } finally {
+      spy.mockRestore();
+    }
+    // (the same params object: nothing is set again)
+    for (let f = 0; f < 3; f++) solver.step(state, before, FRAME_DT);
+    await solver.read(state);
+    expect(isFinite3(state)).toBe(true);
+    solver.destroy();
+  });
+
   test('vertex normals of a cloth uploaded before any params (GpuBackend): computed, not zero', async () => {
     const model = modelFor(scene('cotton-basic'));
     const solver = await GpuClothSolver.create(gpu!.device, model);

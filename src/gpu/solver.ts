@@ -142,6 +142,8 @@ export class GpuClothSolver {
   setParams(params: SimParams): void {
     this.checkAlive();
     assignPhases(GPU_PHASES, this.model, params);
+    // what this device cannot hold is refused before anything changes (the colliders' tables are set first below)
+    this.buffers.checkParams(params);
     this.watched("the new parameters (self-contact's lists, the bending stencils, mesh colliders)", () => {
       // first: it may refuse mesh colliders too big for this device
       this.colliders.setParams(params);
