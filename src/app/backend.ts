@@ -32,8 +32,10 @@ export class Backend {
 
   /** `?backend=`: the choice when the link names none (not written into the link); anything else is ignored. */
   setDefault(choice: string | null | undefined): void {
-    if (choice && (BACKEND_CHOICES as readonly string[]).includes(choice)) this.choice = choice as BackendChoice;
+    if (choice && (BACKEND_CHOICES as readonly string[]).includes(choice)) this.choice = this.defaultChoice = choice as BackendChoice;
   }
+  /** the choice when the link names none: `?backend=`'s, else auto */
+  defaultChoice: BackendChoice = 'auto';
 
   /** The renderer lost its WebGPU device and went on with WebGL2: the GPU backend is gone for this page. */
   deviceLost(): void {

@@ -32,6 +32,13 @@ describe('backend size caps', () => {
     expect(cpu.note).toBe('resolution 512 faces per side: more than the CPU backend takes, clamped to 256; the pins on particle numbers are dropped; the GPU backend goes to 1024');
   });
 
+  it('a disc clamped to the CPU drops its pins on particle numbers too', () => {
+    const disc = setScenePath(setScenePath(setScenePath(builtinScene('cotton-basic'), 'cloth.shape', 'disc'), 'cloth.resolution', 1024), 'pins', ['center', 70000]);
+    const cpu = capCloth(disc, 'cpu', () => 0);
+    expect(cpu.scene.pins).toEqual(['center']);
+    expect(cpu.note).toMatch(/^disc of resolution 1024: .* clamped to resolution \d+ \(.* particles\); the pins on particle numbers are dropped; the GPU backend takes/);
+  });
+
   it('sweep resolutions over the cap are clamped too (once each)', () => {
     const s = setScenePath(builtinScene('resolution'), 'resolutionSweep', [64, 512, 1024, 128]);
     const cpu = capResolution(s, 'cpu');

@@ -115,10 +115,12 @@ export function capCloth(scene: Scene, kind: BackendKind, meshParticles: (path: 
   const n = shapeParticles(c);
   if (n <= max) return { scene, note: '' };
   const r = largestFitting(c, max);
+  const pins = resolutionPins(scene.pins);
+  const dropped = pins.length < scene.pins.length ? '; the pins on particle numbers are dropped' : '';
   return {
-    scene: { ...scene, cloth: { ...c, resolution: r } },
+    scene: { ...scene, cloth: { ...c, resolution: r }, pins },
     note: `${c.shape} of resolution ${c.resolution}: ${count(n)} particles, more than the ${NAMES[kind]} backend takes (${count(max)}), ` +
-      `clamped to resolution ${r} (${count(shapeParticles(c, r))} particles)${more}`,
+      `clamped to resolution ${r} (${count(shapeParticles(c, r))} particles)${dropped}${more}`,
   };
 }
 

@@ -110,7 +110,7 @@ export function withMesh(scene: Scene, name: string, meshes: MeshResolver): Scen
 
 /**
  * A scene whose mesh file the page does not have (a link cannot carry one): the same scene with the default
- * rectangle cloth instead (its pins: the presets), so that what can be shown is.
+ * rectangle cloth instead (its pins: the presets and regions), so that what can be shown is.
  */
 export function withoutMesh(scene: Scene): Scene {
   return { ...scene, cloth: defaultScene().cloth, pins: resolutionPins(scene.pins) };

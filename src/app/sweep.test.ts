@@ -42,4 +42,17 @@ describe('the resolution sweep side by side', () => {
     for (const s of sweep.scenes()) expect(s.pins).toEqual([...cantilever.pins, 'top-left']);
     expect(cantilever.pins.some((p) => typeof p === 'object')).toBe(true);
   });
+
+  it('side by side, a pin region moves with its cloth, as the colliders do', () => {
+    const cantilever = builtinScene('cantilever');
+    const scene = setScenePath(cantilever, 'resolutionSweep', [8, 16]);
+    const sweep = new Sweep({ scene, sim: { kind: 'cpu' } } as unknown as App);
+    sweep.layout = 'side-by-side';
+    const region = cantilever.pins.find((p) => typeof p === 'object') as { min: number[]; max: number[] };
+    for (const s of sweep.scenes()) {
+      const dx = s.cloth.position[0] - scene.cloth.position[0];
+      expect(dx).not.toBe(0);
+      expect(s.pins.find((p) => typeof p === 'object')).toEqual({ min: [region.min[0] + dx, region.min[1], region.min[2]], max: [region.max[0] + dx, region.max[1], region.max[2]] });
+    }
+  });
 });

@@ -68,7 +68,8 @@ export class Sweep {
       next.cloth.resolution = res;
       next.cloth.position = [s.cloth.position[0] + dx, s.cloth.position[1], s.cloth.position[2]];
       next.colliders = s.colliders.map((c) => shifted(c, dx));
-      next.pins = resolutionPins(s.pins);
+      // a region is a box in space: it moves with its cloth, as the colliders do
+      next.pins = resolutionPins(s.pins).map((p) => (typeof p === 'object' ? shiftedRegion(p, dx) : p));
       return next;
     };
     if (this.layout === 'sequence') return [at(sweep[this.index % sweep.length], 0)];
@@ -121,6 +122,11 @@ export class Sweep {
 }
 
 /** A collider moved dx along x with its cloth (side-by-side sweeps); a floor is the same everywhere. */
+/** A pin region moved dx [m] along x with its cloth. */
+function shiftedRegion(r: { min: Vec3; max: Vec3 }, dx: number): { min: Vec3; max: Vec3 } {
+  return { min: [r.min[0] + dx, r.min[1], r.min[2]], max: [r.max[0] + dx, r.max[1], r.max[2]] };
+}
+
 function shifted(c: ColliderSpec, dx: number): ColliderSpec {
   const x = (p: Vec3): Vec3 => [p[0] + dx, p[1], p[2]];
   switch (c.type) {

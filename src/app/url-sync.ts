@@ -138,7 +138,7 @@ export class UrlSync {
         app.backend.choice = s.view.backend as BackendChoice;
         app.backend.inLink = true;
       } else if (s.view.backend === undefined) {
-        app.backend.choice = 'auto';
+        app.backend.choice = app.backend.defaultChoice;
         app.backend.inLink = false;
       }
       const shown = linkScene(s.scene, (p) => app.meshes.has(p));

@@ -2,7 +2,7 @@
  * The GPU as a core Backend: a Simulation steps on it like on the CPU, and what the CPU changes (pins, a reset, a
  * cloth moved over) reaches the GPU without bringing back an older cloth. Same adapter rule as gpu.test.ts.
  */
-import { describe, expect, it } from 'vitest';
+import { describe, expect, it, vi } from 'vitest';
 import type {} from 'webgpu';
 import { Simulation, TsBackend, validateScene } from '../core/index.js';
 import { GpuBackend } from './backend.js';
@@ -49,9 +49,14 @@ describe.skipIf(!device)('GpuBackend', () => {
     const sim = new Simulation(scene(), { kernel: 'ts' });
     sim.useBackend(await GpuBackend.create(device!, sim.model));
     sim.advance(20);
+    // the reset comes once the read's copy of frame 20 is submitted (its mapping waits for the device)
+    const queue = device!.queue, submit = queue.submit.bind(queue);
+    let copied!: () => void;
+    const submitted = new Promise<void>((r) => { copied = r; });
+    const spy = vi.spyOn(queue, 'submit').mockImplementation((buffers: Iterable<GPUCommandBuffer>) => { submit(buffers); copied(); });
     const reading = sim.sync();
-    // a few microtasks: the read's copy of frame 20 is submitted (its mapping waits for the device: a task, not these)
-    for (let k = 0; k < 5; k++) await null;
+    await submitted;
+    spy.mockRestore();
     sim.reset();
     await reading;
     expect(sim.frame).toBe(0);

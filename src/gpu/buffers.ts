@@ -209,11 +209,6 @@ export class ClothBuffers {
     return this.selfPairRoom;
   }
 
-  /**
-   * The params' per-particle inverse masses, per-spring rest length and compliance, and, with a stencil bending
-   * model, per-stencil compliance (−1 for both: no constraint); the stencil buffers made first if they do not hold
-   * that model's, and the self-contact buffers on the first params with self-contact.
-   */
   /** The self-contact buffers' sizes [elements] for the model, and the candidate pairs the list holds. */
   private selfSizes(): { sizes: Record<(typeof SELF_BUFFERS)[number], number>; pairs: number } {
     const { primitives, buckets, blocks, entries, pairs } = selfGridSize(this.model, this.pairsPerPrimitive);
@@ -241,6 +236,11 @@ export class ClothBuffers {
     }
   }
 
+  /**
+   * The params' per-particle inverse masses, per-spring rest length and compliance, and, with a stencil bending
+   * model, per-stencil compliance (−1 for both: no constraint); the stencil buffers made first if they do not hold
+   * that model's, and the self-contact buffers on the first params with self-contact.
+   */
   writeParams(params: SimParams): void {
     const model = this.model;
     if (params.selfContact) this.makeSelfContact();

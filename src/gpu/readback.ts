@@ -37,7 +37,7 @@ export class Readback {
     return next;
   }
 
-  private async readNow(state: ClothState): Promise<void> {
+  private async readNow(state: ClothState, again = false): Promise<void> {
     // a read asked for before the cloth's buffers were freed runs after the reads ahead of it: by then there may be
     // nothing to copy, and a copy submitted from freed buffers is a validation error on the device, which an error
     // scope open elsewhere (a new solver being made: solver.ts create) would take for its own
@@ -66,9 +66,11 @@ export class Readback {
     await staging.mapAsync(GPUMapMode.READ, 0, size);
     if (generation !== this.generation) {
       // the cloth was put anew while this copy was on its way (a reset, a state copied in): it would write the old
-      // cloth over the new one, so it is read again, after the upload
+      // cloth over the new one, so it is read again, after the upload — once: if it is put anew during that read
+      // too, the state keeps what was put (the uploaded cloth)
       staging.unmap();
-      return this.readNow(state);
+      if (!again) return this.readNow(state, true);
+      return;
     }
     try {
       const all = new Float32Array(staging.getMappedRange(0, size));

@@ -147,7 +147,6 @@ export class GpuClothSolver {
     this.watched("the new parameters (self-contact's lists, the bending stencils, mesh colliders)", () => {
       // first: it may refuse mesh colliders too big for this device
       this.colliders.setParams(params);
-      // it may refuse self-contact too big for this device, before writing anything
       this.buffers.writeParams(params);
       this.uniforms.setParams(params);
     });
@@ -169,7 +168,7 @@ export class GpuClothSolver {
       const popped = [this.device.popErrorScope(), this.device.popErrorScope()];
       void Promise.all(popped).then(([oom, invalid]) => {
         const e = oom ?? invalid;
-        if (e && !this.failure) this.failure = `GPU solver: ${oom ? 'out of GPU memory' : 'a buffer could not be made'} for ${what} (${this.model.particleCount} particles): ${e.message.split('\n')[0]}`;
+        if (e && !this.failure) this.failure = `GPU solver: ${oom ? 'out of GPU memory' : 'the device refused a buffer or a write'} for ${what} (${this.model.particleCount} particles): ${e.message.split('\n')[0]}`;
       }, () => undefined);
     }
   }

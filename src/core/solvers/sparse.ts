@@ -222,7 +222,7 @@ export function nestedDissection(rowStart: Int32Array, cols: Int32Array): Int32A
       size = levels(root, stamp++);
       const depth = level[queue[size - 1]];
       if (size <= ND_LEAF || depth < 2) {
-        // numbered whole, the root's far end first (highest numbers to the last levels)
+        // numbered whole, in the search's order from the top down (the root gets the piece's highest number)
         for (let k = 0; k < size; k++) { order[--next] = queue[k]; numbered[queue[k]] = 1; }
         continue;
       }

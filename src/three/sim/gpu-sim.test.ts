@@ -23,6 +23,9 @@ describe.skipIf(!device)('GpuSim', () => {
     sim.onError = (m) => errors.push(m);
     sim.tick(1000 / 60, performance.now());
     expect(errors).toEqual(['GPU solver: refused here']);
+    // the same from a single step (the page's S key, paused)
+    await sim.step(1);
+    expect(errors).toEqual(['GPU solver: refused here', 'GPU solver: refused here']);
     step.mockRestore();
     sim.dispose();
   });

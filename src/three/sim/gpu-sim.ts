@@ -189,7 +189,13 @@ export class GpuSim implements SimDriver {
     await this.whenReady();
     if (this.lost || this.disposed) return;
     const t0 = performance.now();
-    this.encode(frames);
+    try {
+      this.encode(frames);
+    } catch (e) {
+      // as in tick: a frame the GPU refuses when it meets it goes to onError (the page moves to the CPU)
+      this.onError?.((e as Error).message ?? String(e));
+      return;
+    }
     await this.device.queue.onSubmittedWorkDone();
     this.clock.account(this.stats, frames, (performance.now() - t0) / frames, this.paused);
     await this.readback(true);
