@@ -9,7 +9,7 @@
 //   npx tsc -p tsconfig.build.json && node scripts/sparse-bench.mjs
 //   options: --faces 32,64,128,256  --repeats 5
 import { Simulation } from '../dist/core/index.js';
-import { EnvelopeCholesky, SparseCholesky, nestedDissection, reverseCuthillMcKee } from '../dist/core/solvers/sparse.js';
+import { EnvelopeCholesky, SparseCholesky, nestedDissection, orderedGraph, reverseCuthillMcKee } from '../dist/core/solvers/sparse.js';
 import { arg, hangingScene } from './solver-study-common.mjs';
 
 const facesList = arg('faces', '32,64,128,256').split(',').map(Number);
@@ -38,7 +38,6 @@ for (const faces of facesList) {
   const rowStart = new Int32Array(n + 1);
   for (let i = 0; i < n; i++) rowStart[i + 1] = rowStart[i] + lists[i].length;
   const cols = Int32Array.from(lists.flat());
-  const rowOf = (order) => { const row = new Int32Array(n); order.forEach((v, r) => { row[v] = r; }); return row; };
   const assemble = (chol, row) => {
     chol.clear();
     for (let i = 0; i < n; i++) chol.add(row[i], row[i], params.particleMass[i] / (h * h));
@@ -47,16 +46,12 @@ for (const faces of facesList) {
   const rhs = Float64Array.from({ length: 3 * n }, (_, j) => Math.sin(j));
   const ways = {
     'nested dissection, sparse': () => {
-      const order = nestedDissection(rowStart, cols), row = rowOf(order);
-      const start = new Int32Array(n + 1);
-      for (let r = 0; r < n; r++) start[r + 1] = start[r] + lists[order[r]].length;
-      const list = new Int32Array(start[n]);
-      for (let r = 0; r < n; r++) lists[order[r]].forEach((v, j) => { list[start[r] + j] = row[v]; });
-      const chol = new SparseCholesky(start, list);
+      const g = orderedGraph(rowStart, cols, nestedDissection(rowStart, cols)), row = g.row;
+      const chol = new SparseCholesky(g.rowStart, g.cols);
       return { chol, row, entries: chol.entries };
     },
     'reverse Cuthill–McKee, envelope': () => {
-      const row = rowOf(reverseCuthillMcKee(rowStart, cols));
+      const row = orderedGraph(rowStart, cols, reverseCuthillMcKee(rowStart, cols)).row;
       const first = new Int32Array(n).map((_, r) => r);
       for (const [a, b] of edges) { const hi = Math.max(row[a], row[b]); first[hi] = Math.min(first[hi], row[a], row[b]); }
       const chol = new EnvelopeCholesky(first);

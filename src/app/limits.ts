@@ -51,7 +51,7 @@ export function capResolution(scene: Scene, kind: BackendKind): Capped {
   }
   if (!over.length) return { scene, note: '' };
   const more = kind === 'cpu' ? `; the GPU backend goes to ${MAX_RESOLUTION.gpu}` : '';
-  const dropped = next.pins.length < scene.pins.length ? '; the pins on particle numbers are dropped' : '';
+  const dropped = droppedNote(next.pins, scene.pins);
   return {
     scene: next,
     note: `${over.join(' and ')} faces per side: more than the ${NAMES[kind]} backend takes, clamped to ${max}${dropped}${more}`,
@@ -64,6 +64,11 @@ export function capResolution(scene: Scene, kind: BackendKind): Capped {
  */
 export function resolutionPins(pins: readonly PinEntry[]): PinEntry[] {
   return pins.filter((p) => typeof p !== 'number');
+}
+
+/** The clamp note's words for the pins resolutionPins left out ('' when it kept them all). */
+function droppedNote(kept: readonly PinEntry[], pins: readonly PinEntry[]): string {
+  return kept.length < pins.length ? '; the pins on particle numbers are dropped' : '';
 }
 
 /** particles of a cloth of `resolution` faces per side */
@@ -116,7 +121,7 @@ export function capCloth(scene: Scene, kind: BackendKind, meshParticles: (path: 
   if (n <= max) return { scene, note: '' };
   const r = largestFitting(c, max);
   const pins = resolutionPins(scene.pins);
-  const dropped = pins.length < scene.pins.length ? '; the pins on particle numbers are dropped' : '';
+  const dropped = droppedNote(pins, scene.pins);
   return {
     scene: { ...scene, cloth: { ...c, resolution: r }, pins },
     note: `${c.shape} of resolution ${c.resolution}: ${count(n)} particles, more than the ${NAMES[kind]} backend takes (${count(max)}), ` +

@@ -8,7 +8,7 @@ import { validateScene, type Scene } from '../scene.js';
 import { builtinScene } from '../scenes.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
 import { grab, release, setPinned } from '../state.js';
-import { EnvelopeCholesky, SparseCholesky, nestedDissection, reverseCuthillMcKee } from './sparse.js';
+import { EnvelopeCholesky, SparseCholesky, nestedDissection, orderedGraph, reverseCuthillMcKee } from './sparse.js';
 
 /** an m × m grid graph with diagonals, numbered in a shuffled order; compressed rows */
 function grid(m: number, seed: number) {
@@ -87,14 +87,8 @@ describe('the envelope Cholesky solver in reverse Cuthill–McKee order', () => 
 
 describe('the sparse Cholesky solver in nested dissection order (what the global stretch step uses)', () => {
   /** the graph of `g` in the order `order` (order[k]: the vertex placed k-th), and each vertex's row */
-  function ordered(g: { n: number; rowStart: Int32Array; cols: Int32Array }, order: Int32Array) {
-    const { n, rowStart, cols } = g;
-    const row = new Int32Array(n);
-    order.forEach((v, r) => { row[v] = r; });
-    const start = new Int32Array(n + 1);
-    for (let r = 0; r < n; r++) start[r + 1] = start[r] + rowStart[order[r] + 1] - rowStart[order[r]];
-    const list = new Int32Array(start[n]);
-    for (let r = 0; r < n; r++) for (let k = rowStart[order[r]]; k < rowStart[order[r] + 1]; k++) list[start[r] + k - rowStart[order[r]]] = row[cols[k]];
+  function ordered(g: { rowStart: Int32Array; cols: Int32Array }, order: Int32Array) {
+    const { row, rowStart: start, cols: list } = orderedGraph(g.rowStart, g.cols, order);
     return { row, start, list };
   }
   /** D + Σ k·SᵀS over `edges` (D: 0.3 on the diagonal, k = 1000) into the solver, by row */

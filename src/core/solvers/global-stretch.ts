@@ -32,7 +32,7 @@
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
-import { SparseCholesky, nestedDissection } from './sparse.js';
+import { SparseCholesky, nestedDissection, orderedGraph } from './sparse.js';
 
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
 class GlobalSystem {
@@ -98,18 +98,10 @@ class GlobalSystem {
       cols[fill[a]++] = b;
       cols[fill[b]++] = a;
     }
-    const order = nestedDissection(rowStart, cols);
-    this.row = new Int32Array(n);
-    for (let r = 0; r < n; r++) this.row[order[r]] = r;
     // the same graph in the factored order
-    const orderedStart = new Int32Array(n + 1);
-    for (let r = 0; r < n; r++) orderedStart[r + 1] = orderedStart[r] + degree[order[r]];
-    const orderedCols = new Int32Array(orderedStart[n]);
-    for (let r = 0; r < n; r++) {
-      const i = order[r];
-      for (let k = rowStart[i]; k < rowStart[i + 1]; k++) orderedCols[orderedStart[r] + k - rowStart[i]] = this.row[cols[k]];
-    }
-    this.chol = new SparseCholesky(orderedStart, orderedCols);
+    const ordered = orderedGraph(rowStart, cols, nestedDissection(rowStart, cols));
+    this.row = ordered.row;
+    this.chol = new SparseCholesky(ordered.rowStart, ordered.cols);
     this.pinned = new Uint8Array(n);
     this.y = new Float64Array(3 * n);
     this.x = new Float64Array(3 * n);

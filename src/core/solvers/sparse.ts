@@ -259,6 +259,25 @@ export function nestedDissection(rowStart: Int32Array, cols: Int32Array): Int32A
   return order;
 }
 
+/**
+ * A graph in compressed rows renumbered by `order` (order[k]: the vertex placed k-th, as nestedDissection gives it):
+ * each vertex's row (`row[v]`), and the graph with its rows and their neighbours in the new numbers (what
+ * SparseCholesky takes).
+ */
+export function orderedGraph(rowStart: Int32Array, cols: Int32Array, order: Int32Array): { row: Int32Array; rowStart: Int32Array; cols: Int32Array } {
+  const n = order.length;
+  const row = new Int32Array(n);
+  for (let r = 0; r < n; r++) row[order[r]] = r;
+  const start = new Int32Array(n + 1);
+  for (let r = 0; r < n; r++) start[r + 1] = start[r] + rowStart[order[r] + 1] - rowStart[order[r]];
+  const list = new Int32Array(start[n]);
+  for (let r = 0; r < n; r++) {
+    const v = order[r];
+    for (let k = rowStart[v]; k < rowStart[v + 1]; k++) list[start[r] + k - rowStart[v]] = row[cols[k]];
+  }
+  return { row, rowStart: start, cols: list };
+}
+
 /** Pieces of at most this many vertices are not dissected further (nestedDissection). */
 const ND_LEAF = 16;
 

@@ -189,13 +189,7 @@ export class GpuSim implements SimDriver {
     await this.whenReady();
     if (this.lost || this.disposed) return;
     const t0 = performance.now();
-    try {
-      this.encode(frames);
-    } catch (e) {
-      // as in tick: a frame the GPU refuses when it meets it goes to onError (the page moves to the CPU)
-      this.onError?.((e as Error).message ?? String(e));
-      return;
-    }
+    if (!this.encode(frames)) return;
     await this.device.queue.onSubmittedWorkDone();
     this.clock.account(this.stats, frames, (performance.now() - t0) / frames, this.paused);
     await this.readback(true);
@@ -205,15 +199,26 @@ export class GpuSim implements SimDriver {
     for (let k = 0; !this.ready && !this.lost && !this.disposed && k < 600; k++) await new Promise((r) => setTimeout(r, 50));
   }
 
-  private encode(frames: number): void {
-    for (let f = 0; f < frames; f++) {
-      this.mirrors.forEach((m, k) => {
-        if (!this.solverOf(k) || m.unstableAt >= 0) return;
-        m.sim.advance(1);
-        m.frame = m.sim.frame;
-      });
+  /**
+   * Encodes `frames` frames of every slot; false, said through onError, where the GPU refuses one when it meets it
+   * (self-contact switched on for a cloth whose lists this device cannot bind, a mesh collider's tables over its
+   * limit): the page then moves the cloths to the CPU, saying why.
+   */
+  private encode(frames: number): boolean {
+    try {
+      for (let f = 0; f < frames; f++) {
+        this.mirrors.forEach((m, k) => {
+          if (!this.solverOf(k) || m.unstableAt >= 0) return;
+          m.sim.advance(1);
+          m.frame = m.sim.frame;
+        });
+      }
+    } catch (e) {
+      this.onError?.((e as Error).message ?? String(e));
+      return false;
     }
     this.onFrame?.();
+    return true;
   }
 
   tick(dtMs: number, now: number): void {
@@ -222,14 +227,7 @@ export class GpuSim implements SimDriver {
       const n = this.clock.tick(dtMs, now, this.inFlight, this.stats.stepMs);
       if (n > 0) {
         const t0 = performance.now();
-        try {
-          this.encode(n);
-        } catch (e) {
-          // a change the GPU refuses only when it meets it (self-contact switched on for a cloth whose lists this
-          // device cannot bind, a mesh collider's tables over its limit): the cloths go on on the CPU, saying why
-          this.onError?.((e as Error).message ?? String(e));
-          return;
-        }
+        if (!this.encode(n)) return;
         this.inFlight = true;
         this.device.queue.onSubmittedWorkDone().then(() => {
           this.inFlight = false;
