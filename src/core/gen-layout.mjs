@@ -69,7 +69,7 @@ const BOTH = ['xpbd', 'mass-spring'];
  * The phase schedule of one frame, in order: [name, scope, solvers, when, repeat, what it does]. A phase's id is its
  * row (0, 1, …), so ascending ids are the order and a set of phases is a bit mask. `scope`: 'frame-start' (once,
  * before the substeps), 'substep' (every substep), 'frame-end' (once, after them). `solvers`: the solver types whose
- * frame has it. `when`: 'always', 'wind' (the wind blows), 'grab' (a particle is grabbed), 'carried' (a collider carries pins), 'triangles' (a collider needs triangle contact at this mesh size: phases.ts needsTriangleContact) 'stencils' (a stencil bending model: solver.bending is 'hinges' or 'laplacian'), 'global' or 'local' (solver.stretch is 'global' or 'gauss-seidel'). `repeat`: the solvers
+ * frame has it. `when`: 'always', 'wind' (the wind blows), 'grab' (a particle is grabbed), 'carried' (a collider carries pins), 'triangles' (a collider needs triangle contact at this mesh size: phases.ts needsTriangleContact), 'global' or 'local' (solver.stretch is 'global' or 'gauss-seidel'), 'stencils' and 'stencils-global' (a stencil bending model, solver.bendingSolve 'gauss-seidel' or 'global'), 'self' (solver.selfContact). `repeat`: the solvers
  * for which it runs solver.iterations passes per substep (else one). Every backend walks this list (core/frame.ts
  * runFrame); docs/architecture.md says where a new phase goes in each.
  */
@@ -83,6 +83,7 @@ export const PHASES = [
   ['globalStretch', 'substep', ['xpbd'], 'global', ['xpbd'], 'the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system'],
   ['distance', 'substep', ['xpbd'], 'local', ['xpbd'], 'XPBD distance constraints, colour batch by colour batch'],
   ['bending', 'substep', ['xpbd'], 'stencils', ['xpbd'], 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch'],
+  ['globalBending', 'substep', ['xpbd'], 'stencils-global', [], 'the bending stencils solved together: their backward-Euler step, one solve of the prefactored system'],
   ['tethers', 'substep', BOTH, 'local', [], 'long-range attachments to the nearest pin'],
   ['stretchLimit', 'substep', BOTH, 'local', ['mass-spring'], 'stretch limiting of structural and shear springs'],
   ['selfContact', 'substep', BOTH, 'self', [], 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)'],

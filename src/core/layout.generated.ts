@@ -79,21 +79,23 @@ export const PHASE = {
   distance: 7,
   /** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
   bending: 8,
+  /** substep: the bending stencils solved together: their backward-Euler step, one solve of the prefactored system */
+  globalBending: 9,
   /** substep: long-range attachments to the nearest pin */
-  tethers: 9,
+  tethers: 10,
   /** substep: stretch limiting of structural and shear springs */
-  stretchLimit: 10,
+  stretchLimit: 11,
   /** substep: the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts) */
-  selfContact: 11,
+  selfContact: 12,
   /** substep: particle contact with friction against every collider, in order */
-  contact: 12,
+  contact: 13,
   /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-  contactTriangles: 13,
+  contactTriangles: 14,
   /** frame-end: v = (x − x_prev)/h of the last substep */
-  velocities: 14,
+  velocities: 15,
 } as const;
 /** Phases in the schedule. */
-export const PHASE_COUNT = 15;
+export const PHASE_COUNT = 16;
 /** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */
 export const SCHEDULE = [
   { id: 0, name: 'begin', scope: 'frame-start', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v' },
@@ -105,12 +107,13 @@ export const SCHEDULE = [
   { id: 6, name: 'globalStretch', scope: 'substep', solvers: ['xpbd'], when: 'global', repeat: ['xpbd'], doc: 'the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system' },
   { id: 7, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'local', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
   { id: 8, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'stencils', repeat: ['xpbd'], doc: 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch' },
-  { id: 9, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
-  { id: 10, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
-  { id: 11, name: 'selfContact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'self', repeat: [], doc: 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)' },
-  { id: 12, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
-  { id: 13, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
-  { id: 14, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
+  { id: 9, name: 'globalBending', scope: 'substep', solvers: ['xpbd'], when: 'stencils-global', repeat: [], doc: 'the bending stencils solved together: their backward-Euler step, one solve of the prefactored system' },
+  { id: 10, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
+  { id: 11, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
+  { id: 12, name: 'selfContact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'self', repeat: [], doc: 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)' },
+  { id: 13, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
+  { id: 14, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
+  { id: 15, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
 ] as const;
 /** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */
 export const KERNEL_MAX_ITERATIONS = 255;
@@ -145,34 +148,34 @@ export const CTRL = {
   DESC: 48,
   /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
   TRACE_COUNT: 56,
-  /** i32 × 15: the ids of those phases, in the order thread 0 ran them */
+  /** i32 × 16: the ids of those phases, in the order thread 0 ran them */
   TRACE: 60,
   /** f64: substep length [s] */
-  H: 120,
+  H: 128,
   /** f64: ½ on the very first substep (Taylor start), else 1 */
-  TAYLOR: 128,
+  TAYLOR: 136,
   /** f64 × 3: gravitational acceleration [m/s²] */
-  GRAVITY: 136,
+  GRAVITY: 144,
   /** f64 × 3: where the grabbed particle is this substep [m] */
-  GRAB_AT: 160,
+  GRAB_AT: 168,
   /** f64: stretchFactor [-] */
-  STRETCH: 184,
+  STRETCH: 192,
   /** f64: damping β [N·s/m] */
-  DAMPING: 192,
+  DAMPING: 200,
   /** f64: contact thickness [m] */
-  THICKNESS: 200,
+  THICKNESS: 208,
   /** f64: kinetic friction coefficient [-] */
-  FRICTION: 208,
+  FRICTION: 216,
   /** f64: static friction coefficient [-] */
-  STATIC_FRICTION: 216,
+  STATIC_FRICTION: 224,
   /** f64: depenetrationSpeed [m/s] */
-  DEPENETRATION: 224,
+  DEPENETRATION: 232,
   /** f64: triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m] */
-  TRIANGLE_REACH: 232,
+  TRIANGLE_REACH: 240,
   /** f64: triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m] */
-  TRIANGLE_RECOVER: 240,
+  TRIANGLE_RECOVER: 248,
   /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-  COLLIDER_RECORDS: 248,
+  COLLIDER_RECORDS: 256,
   /** i32: sequence number of the open phase (grows by one per phase, wraps) */
   PHASE: 15616,
   /** i32: chunks of the open phase completed and reported */

@@ -6,7 +6,7 @@ import { resolvePins } from './pins.js';
 import { PHASE } from './layout.generated.js';
 import { MAX_SUBSTEPS } from './scene-schema.js';
 import { contactDistanceFor, selfContactSubsteps } from './self-contact.js';
-import { SceneError, clothEntries, type BendingModel, type Scene, type SolverType, type StretchSolve } from './scene.js';
+import { SceneError, clothEntries, type BendingModel, type Scene, type SolverType, type StretchSolve, type BendingSolve } from './scene.js';
 
 /** Particles carried by colliders: particle i = particles[k] sits at local[3k..3k+2] in collider[k]'s own frame. */
 export interface Carried {
@@ -88,6 +88,8 @@ export interface SimParams {
   bending: BendingModel;
   /** how the xpbd solver solves its springs (solver.stretch; 'gauss-seidel' for the mass-spring solver, unused there) */
   stretch: StretchSolve;
+  /** how the xpbd solver solves a stencil bending model (solver.bendingSolve; 'gauss-seidel' where there are no stencils) */
+  bendingSolve: BendingSolve;
   /** whether the cloth is kept from passing through itself (solver.selfContact; self-contact.ts) */
   selfContact: boolean;
   /**
@@ -332,6 +334,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     compliance,
     bending,
     stretch: scene.solver.type === 'xpbd' ? scene.solver.stretch : 'gauss-seidel',
+    bendingSolve: bending !== 'springs' ? scene.solver.bendingSolve : 'gauss-seidel',
     selfContact: scene.solver.selfContact,
     grabSpeed: scene.solver.selfContact && speed > 0 ? speed : Infinity,
     bendingRigidity,

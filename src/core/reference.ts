@@ -11,6 +11,7 @@ import { accumulateWind, beginStep, carryPinned, collideParticles, collideTriang
 import { PHASE, PHASES, phasePasses, type PhaseName } from './schedule.js';
 import { accumulateSpringForces } from './solvers/mass-spring.js';
 import { collideSelf } from './self-contact.js';
+import { solveGlobalBending } from './solvers/global-bending.js';
 import { solveGlobalStretch } from './solvers/global-stretch.js';
 import { solveBending, solveDistanceConstraints } from './solvers/xpbd.js';
 import type { ClothState } from './state.js';
@@ -53,6 +54,7 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
     if (accumulate) state.bendingLambdas.fill(0);
     for (let it = 0; it < passes; it++) solveBending(model, state, params, frame.h, accumulate);
   },
+  globalBending: (model, state, params, frame) => solveGlobalBending(model, state, params, frame.h),
   tethers: (_model, state, params) => solveTethers(state, params),
   stretchLimit(model, state, params) {
     const passes = phasePasses(PHASE.stretchLimit, params);

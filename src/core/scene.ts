@@ -31,7 +31,7 @@ export interface Scene {
    * top-level parts is not read
    */
   cloths?: ClothEntry[];
-  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; selfContact: boolean; selfContactSpeed: number; depenetrationSpeed: number };
+  solver: { type: SolverType; substeps: number; iterations: number; bending: BendingModel; stretch: StretchSolve; bendingSolve: BendingSolve; selfContact: boolean; selfContactSpeed: number; depenetrationSpeed: number };
   gravity: Vec3;
   wind: Wind;
   colliders: ColliderSpec[];
@@ -80,6 +80,8 @@ export type SolverType = 'xpbd' | 'mass-spring';
 export type BendingModel = 'springs' | StencilModel;
 /** `solver.stretch`: how the xpbd solver solves its springs (one at a time, or together: solvers/global-stretch.ts) */
 export type StretchSolve = 'gauss-seidel' | 'global';
+/** `solver.bendingSolve`: how the xpbd solver solves a stencil bending model (one stencil at a time, or together: solvers/global-bending.ts) */
+export type BendingSolve = 'gauss-seidel' | 'global';
 
 /**
  * A validated material: a fabric's measured quantities and the tuning values (scene-schema.ts). Exactly one of

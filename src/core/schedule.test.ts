@@ -158,12 +158,12 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     // self-contact (solver.selfContact false)
     expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
-        ~(1 << PHASE.bending) & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.selfContact));
+        ~(1 << PHASE.bending) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.selfContact));
     // with the springs solved together, the global step instead of the sweep, the tethers and the stretch limit
     const together = new Simulation(windyScene('xpbd', (s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
     expect(assignPhases({ ...remote, phases: all }, together.model, together.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
-        ~(1 << PHASE.bending) & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit) &
+        ~(1 << PHASE.bending) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit) &
         ~(1 << PHASE.selfContact));
     // with self-contact, its phase too: a backend without it that keeps the cloth elsewhere is refused by name
     const selfy = new Simulation(windyScene('xpbd', (s) => { s.solver.selfContact = true; }), { kernel: 'ts' });
@@ -175,6 +175,14 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     for (const bending of ['hinges', 'laplacian'] as const) {
       const bent = new Simulation(windyScene('xpbd', (s) => { s.solver.bending = bending; }), { kernel: 'ts' });
       expect(() => assignPhases(noStencils, bent.model, bent.params)).toThrow(/remote: it does not implement phase 'bending'/);
+      // solved together, the global bending step instead of the sweep
+      const together = new Simulation(windyScene('xpbd', (s) => { s.solver.bending = bending; s.solver.bendingSolve = 'global'; }), { kernel: 'ts' });
+      expect(() => assignPhases(noStencils, together.model, together.params)).not.toThrow();
+      expect(() => assignPhases({ ...remote, phases: all & ~(1 << PHASE.globalBending) }, together.model, together.params)).toThrow(/remote: it does not implement phase 'globalBending'/);
+      expect(assignPhases({ ...remote, phases: all }, together.model, together.params) & ((1 << PHASE.bending) | (1 << PHASE.globalBending))).toBe(1 << PHASE.globalBending);
     }
+    // with the skip-one springs there are no stencils: solver.bendingSolve changes nothing
+    const springs = new Simulation(windyScene('xpbd', (s) => { s.solver.bendingSolve = 'global'; }), { kernel: 'ts' });
+    expect(assignPhases({ ...remote, phases: all }, springs.model, springs.params)).toBe(assignPhases({ ...remote, phases: all }, sim.model, sim.params));
   });
 });

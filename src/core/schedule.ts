@@ -23,10 +23,11 @@ export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
 /**
  * What a phase needs to be part of a frame: nothing, the air acting (wind.enabled: a wind, or still air), a
  * grabbed particle, pins a collider carries, a collider whose surface can poke between the cloth's vertices
- * (phases.ts needsTriangleContact), a stencil bending model (solver.bending 'hinges' or 'laplacian'), the springs solved together (solver.stretch 'global') or
- * one at a time ('gauss-seidel'), self-contact (solver.selfContact).
+ * (phases.ts needsTriangleContact), a stencil bending model (solver.bending 'hinges' or 'laplacian') solved one stencil at
+ * a time (solver.bendingSolve 'gauss-seidel') or together ('global'), the springs solved together (solver.stretch
+ * 'global') or one at a time ('gauss-seidel'), self-contact (solver.selfContact).
  */
-export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'global' | 'local' | 'self';
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'stencils-global' | 'global' | 'local' | 'self';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -63,6 +64,7 @@ const GRAB_PHASES = maskOf((p) => p.when === 'grab');
 const CARRY_PHASES = maskOf((p) => p.when === 'carried');
 const TRIANGLE_PHASES = maskOf((p) => p.when === 'triangles');
 const STENCIL_PHASES = maskOf((p) => p.when === 'stencils');
+const GLOBAL_STENCIL_PHASES = maskOf((p) => p.when === 'stencils-global');
 const GLOBAL_PHASES = maskOf((p) => p.when === 'global');
 const LOCAL_PHASES = maskOf((p) => p.when === 'local');
 const SELF_PHASES = maskOf((p) => p.when === 'self');
@@ -70,6 +72,12 @@ const SELF_PHASES = maskOf((p) => p.when === 'self');
 /** The phases the params' stretch solve leaves out: the Gauss–Seidel distance pass or the global step. */
 function stretchExcluded(params: SimParams): number {
   return params.stretch === 'global' ? LOCAL_PHASES : GLOBAL_PHASES;
+}
+
+/** The phases the params' bending leaves out: both stencil phases for the springs, else the solve not chosen. */
+function bendingExcluded(params: SimParams): number {
+  if (params.bending === 'springs') return STENCIL_PHASES | GLOBAL_STENCIL_PHASES;
+  return params.bendingSolve === 'global' ? STENCIL_PHASES : GLOBAL_STENCIL_PHASES;
 }
 
 /** The mask of the phases a frame of `solver` has. */
@@ -89,7 +97,7 @@ export function framePhases(model: ClothModel, state: ClothState, params: SimPar
   if (state.grabbed < 0) mask &= ~GRAB_PHASES;
   if (params.carried.particles.length === 0) mask &= ~CARRY_PHASES;
   if (!anyTriangleContact(model, params)) mask &= ~TRIANGLE_PHASES;
-  if (params.bending === 'springs') mask &= ~STENCIL_PHASES;
+  mask &= ~bendingExcluded(params);
   mask &= ~stretchExcluded(params);
   if (!params.selfContact) mask &= ~SELF_PHASES;
   return mask;
@@ -142,10 +150,10 @@ export function assignPhases(backend: BackendPhases, model: ClothModel, params: 
     throw new Error(`${backend.name}: only the ${backend.solvers.join(' and ')} solver runs ${backend.where} (params.solver is '${params.solver}')`);
   }
   // the phases these params can make a frame run (the wind and a grab come and go; carried pins are the scene's,
-  // triangle contact the scene's and the mesh's, stencil bending the scene's solver.bending, the stretch solve its
+  // triangle contact the scene's and the mesh's, stencil bending the scene's solver.bending and bendingSolve, the stretch solve its
   // solver.stretch, self-contact its solver.selfContact)
   const wanted = solverPhases(params.solver) & ~(params.carried.particles.length === 0 ? CARRY_PHASES : 0) &
-    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES) & ~(params.bending === 'springs' ? STENCIL_PHASES : 0) &
+    ~(anyTriangleContact(model, params) ? 0 : TRIANGLE_PHASES) & ~bendingExcluded(params) &
     ~stretchExcluded(params) & ~(params.selfContact ? 0 : SELF_PHASES);
   let own = 0;
   for (let id = 0; id < PHASE_COUNT; id++) {

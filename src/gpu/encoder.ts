@@ -42,6 +42,7 @@ function contactRefusal(params: SimParams): string | null {
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
   if (scene.solver.stretch === 'global') return 'the global stretch step (solver.stretch \'global\') runs on the CPU only';
+  if (scene.solver.bendingSolve === 'global' && scene.solver.bending !== 'springs') return 'the global bending step (solver.bendingSolve \'global\') runs on the CPU only';
   const differs = differingClothField(scene);
   if (differs) return `cloths that differ in their contact or spring values run on the CPU only (${differs})`;
   return colliderRefusal(scene);

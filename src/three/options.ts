@@ -4,7 +4,7 @@
  * path, which `optionError` turns into the option's name).
  */
 import type { Object3D } from 'three';
-import { SceneError, type FabricName, type PinEntry, type SolverType, type BendingModel, type StretchSolve, type Vec3 } from '../core/index.js';
+import { SceneError, type FabricName, type PinEntry, type SolverType, type BendingModel, type StretchSolve, type BendingSolve, type Vec3 } from '../core/index.js';
 import type { ColliderShapeOption } from './colliders.js';
 
 /** Where a world simulates: 'auto' (default), 'gpu' (the renderer's WebGPU device) or 'cpu' (a Web Worker). */
@@ -68,6 +68,8 @@ export interface DrapeWorldOptions {
     depenetrationSpeed?: number;
     /** how the xpbd solver solves its springs: 'gauss-seidel' (default, one at a time) or 'global' (together; CPU only, docs/physics.md) */
     stretch?: StretchSolve;
+    /** how the xpbd solver solves the hinges' or the Laplacian's bending: 'gauss-seidel' (default, one stencil at a time) or 'global' (together, exactly; CPU only, docs/physics.md) */
+    bendingSolve?: BendingSolve;
   };
   /** a floor plane at this height [m] besides the colliders. Default: none */
   floor?: number | null;

@@ -274,6 +274,7 @@ export class Panel {
     this.addParam(solver, 'solver.iterations', 'iterations');
     this.addParam(solver, 'solver.bending', 'bending');
     this.addParam(solver, 'solver.stretch', 'stretch');
+    this.addParam(solver, 'solver.bendingSolve', 'bending solve');
     this.addParam(solver, 'solver.selfContact', 'self-contact');
     this.addParam(solver, 'solver.selfContactSpeed', 'self-contact speed', { unit: 'm/s' });
     p.backend = host.backendChoice;

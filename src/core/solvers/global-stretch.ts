@@ -32,11 +32,10 @@
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
-import { SparseCholesky, nestedDissection, orderedGraph } from './sparse.js';
+import { PrefactoredSystem } from './prefactored.js';
 
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
-class GlobalSystem {
-  readonly model: ClothModel;
+class GlobalSystem extends PrefactoredSystem {
   /** springs with stiffness, their ends and constants */
   readonly springs: Int32Array;
   readonly k: Float64Array;
@@ -47,75 +46,58 @@ class GlobalSystem {
   readonly damping: Float64Array;
   /** positions at the start of the substep [m], by particle (for the damping term) */
   readonly previous: Float64Array;
-  /** row of each particle in the factored order */
-  readonly row: Int32Array;
-  readonly chol: SparseCholesky;
-  /** the pins (state.pinned) the factor was made for, and its substep length [s] */
-  readonly pinned: Uint8Array;
-  h = NaN;
   /** predicted positions y at the start of the substep's passes [m], by particle */
   readonly y: Float64Array;
   /** the current positions of the passes [m], by particle (y before the first) */
   readonly x: Float64Array;
-  /** the right-hand sides, by row; then the solution */
-  readonly b: Float64Array;
-  /** z = A⁻¹·e_g for the grabbed particle `zFor` (-1: none yet), by row */
-  readonly z: Float64Array;
-  zFor = -1;
 
   constructor(model: ClothModel, params: SimParams) {
-    this.model = model;
     const n = model.particleCount;
     const springCount = model.restLengths.length;
     let m = 0;
     for (let s = 0; s < springCount; s++) if (params.stiffness[s] > 0) m++;
-    this.springs = new Int32Array(2 * m);
+    const springs = new Int32Array(2 * m);
+    m = 0;
+    for (let s = 0; s < springCount; s++) {
+      if (!(params.stiffness[s] > 0)) continue;
+      springs[2 * m] = model.springs[2 * s];
+      springs[2 * m + 1] = model.springs[2 * s + 1];
+      m++;
+    }
+    // the graph of the springs, in compressed rows, for the ordering and the factor's pattern
+    const rowStart = new Int32Array(n + 1);
+    for (let s = 0; s < 2 * m; s++) rowStart[springs[s] + 1]++;
+    for (let i = 0; i < n; i++) rowStart[i + 1] += rowStart[i];
+    const cols = new Int32Array(rowStart[n]);
+    const fill = rowStart.slice(0, n);
+    for (let s = 0; s < m; s++) {
+      const a = springs[2 * s], b = springs[2 * s + 1];
+      cols[fill[a]++] = b;
+      cols[fill[b]++] = a;
+    }
+    super(model, rowStart, cols);
+    this.springs = springs;
     this.k = new Float64Array(m);
     this.rest = new Float64Array(m);
     this.damping = new Float64Array(m);
     m = 0;
     for (let s = 0; s < springCount; s++) {
       if (!(params.stiffness[s] > 0)) continue;
-      this.springs[2 * m] = model.springs[2 * s];
-      this.springs[2 * m + 1] = model.springs[2 * s + 1];
       this.k[m] = params.stiffness[s];
       this.rest[m] = model.restLengths[s];
       this.damping[m] = params.springDamping[s];
       m++;
     }
     this.previous = new Float64Array(3 * n);
-    this.mass = new Float64Array(n);
-    this.mass.set(params.particleMass);
-    // the graph of the springs, in compressed rows, for the ordering and the factor's pattern
-    const degree = new Int32Array(n + 1);
-    for (let s = 0; s < m; s++) { degree[this.springs[2 * s]]++; degree[this.springs[2 * s + 1]]++; }
-    const rowStart = new Int32Array(n + 1);
-    for (let i = 0; i < n; i++) rowStart[i + 1] = rowStart[i] + degree[i];
-    const cols = new Int32Array(rowStart[n]);
-    const fill = rowStart.slice(0, n);
-    for (let s = 0; s < m; s++) {
-      const a = this.springs[2 * s], b = this.springs[2 * s + 1];
-      cols[fill[a]++] = b;
-      cols[fill[b]++] = a;
-    }
-    // the same graph in the factored order
-    const ordered = orderedGraph(rowStart, cols, nestedDissection(rowStart, cols));
-    this.row = ordered.row;
-    this.chol = new SparseCholesky(ordered.rowStart, ordered.cols);
-    this.pinned = new Uint8Array(n);
+    this.mass = Float64Array.from(params.particleMass);
     this.y = new Float64Array(3 * n);
     this.x = new Float64Array(3 * n);
-    this.b = new Float64Array(3 * n);
-    this.z = new Float64Array(n);
   }
 
   /** Assembles and factors A for substep h and the pins of `pinned`. */
   factor(pinned: Uint8Array, h: number): void {
     const { chol, row, springs, k, mass, damping } = this;
-    this.pinned.set(pinned);
-    this.h = h;
-    this.zFor = -1;
-    chol.clear();
+    this.beginFactor(pinned, h);
     const inertia = 1 / (h * h);
     for (let i = 0; i < mass.length; i++) chol.add(row[i], row[i], pinned[i] ? 1 : mass[i] * inertia);
     for (let s = 0; s < k.length; s++) {
@@ -125,14 +107,6 @@ class GlobalSystem {
       if (!pinned[a] && !pinned[b]) chol.add(row[a], row[b], -w);
     }
     chol.factor();
-  }
-
-  /** Whether the factor is for these pins and this h. */
-  current(pinned: Uint8Array, h: number): boolean {
-    if (h !== this.h) return false;
-    const mine = this.pinned;
-    for (let i = 0; i < mine.length; i++) if (mine[i] !== pinned[i]) return false;
-    return true;
   }
 }
 
@@ -157,7 +131,7 @@ export function solveGlobalStretch(model: ClothModel, state: ClothState, params:
   const system = systemFor(model, params);
   const pinned = state.pinned;
   if (!system.current(pinned, h)) system.factor(pinned, h);
-  const { y, x: cur, b, row, springs, k, rest, mass, chol, z, previous } = system;
+  const { y, x: cur, b, row, springs, k, rest, mass, chol, previous } = system;
   const x = state.positions, r = state.residuals, xp = state.previousPositions, rp = state.previousResiduals;
   const n = mass.length;
   for (let j = 0; j < 3 * n; j++) {
@@ -165,13 +139,7 @@ export function solveGlobalStretch(model: ClothModel, state: ClothState, params:
     previous[j] = xp[j] + rp[j];
   }
   const damping = system.damping;
-  const g = state.grabbed >= 0 && !pinned[state.grabbed] ? state.grabbed : -1;
-  if (g >= 0 && system.zFor !== g) {
-    z.fill(0);
-    z[row[g]] = 1;
-    chol.solve(z);
-    system.zFor = g;
-  }
+  const g = system.grabbed(state);
   const inertia = 1 / (h * h);
   for (let pass = 0; pass < passes; pass++) {
     // right-hand side: inertia, pinned rows, then each spring's projection d_s (local step) and pinned neighbours
@@ -208,15 +176,8 @@ export function solveGlobalStretch(model: ClothModel, state: ClothState, params:
       }
     }
     chol.solve3(b);
-    if (g >= 0) {
-      // hold the grabbed particle where the grab put it (the unconstrained solution corrected along z)
-      const q = 3 * row[g], zg = z[row[g]], jg = 3 * g;
-      const m0 = (y[jg] - b[q]) / zg, m1 = (y[jg + 1] - b[q + 1]) / zg, m2 = (y[jg + 2] - b[q + 2]) / zg;
-      for (let i = 0; i < n; i++) {
-        const zi = z[i], p = 3 * i;
-        b[p] += zi * m0; b[p + 1] += zi * m1; b[p + 2] += zi * m2;
-      }
-    }
+    // hold the grabbed particle where the grab put it (the unconstrained solution corrected along z)
+    if (g >= 0) system.hold(g, y[3 * g], y[3 * g + 1], y[3 * g + 2]);
     for (let i = 0; i < n; i++) {
       if (pinned[i] || i === g) continue;
       const q = 3 * row[i], j = 3 * i;

@@ -78,20 +78,22 @@ export const PHASE_GLOBAL_STRETCH: i32 = 6;
 export const PHASE_DISTANCE: i32 = 7;
 /** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
 export const PHASE_BENDING: i32 = 8;
+/** substep: the bending stencils solved together: their backward-Euler step, one solve of the prefactored system */
+export const PHASE_GLOBAL_BENDING: i32 = 9;
 /** substep: long-range attachments to the nearest pin */
-export const PHASE_TETHERS: i32 = 9;
+export const PHASE_TETHERS: i32 = 10;
 /** substep: stretch limiting of structural and shear springs */
-export const PHASE_STRETCH_LIMIT: i32 = 10;
+export const PHASE_STRETCH_LIMIT: i32 = 11;
 /** substep: the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts) */
-export const PHASE_SELF_CONTACT: i32 = 11;
+export const PHASE_SELF_CONTACT: i32 = 12;
 /** substep: particle contact with friction against every collider, in order */
-export const PHASE_CONTACT: i32 = 12;
+export const PHASE_CONTACT: i32 = 13;
 /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-export const PHASE_CONTACT_TRIANGLES: i32 = 13;
+export const PHASE_CONTACT_TRIANGLES: i32 = 14;
 /** frame-end: v = (x − x_prev)/h of the last substep */
-export const PHASE_VELOCITIES: i32 = 14;
+export const PHASE_VELOCITIES: i32 = 15;
 /** Phases in the schedule. */
-export const PHASE_COUNT: i32 = 15;
+export const PHASE_COUNT: i32 = 16;
 
 // The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.
 /** sequence number of the substep's first phase: first bit */
@@ -140,34 +142,34 @@ export const SPIN_LIMIT: usize = 44;
 export const DESC: usize = 48;
 /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
 export const TRACE_COUNT: usize = 56;
-/** i32 × 15: the ids of those phases, in the order thread 0 ran them */
+/** i32 × 16: the ids of those phases, in the order thread 0 ran them */
 export const TRACE: usize = 60;
 /** f64: substep length [s] */
-export const H: usize = 120;
+export const H: usize = 128;
 /** f64: ½ on the very first substep (Taylor start), else 1 */
-export const TAYLOR: usize = 128;
+export const TAYLOR: usize = 136;
 /** f64 × 3: gravitational acceleration [m/s²] */
-export const GRAVITY: usize = 136;
+export const GRAVITY: usize = 144;
 /** f64 × 3: where the grabbed particle is this substep [m] */
-export const GRAB_AT: usize = 160;
+export const GRAB_AT: usize = 168;
 /** f64: stretchFactor [-] */
-export const STRETCH: usize = 184;
+export const STRETCH: usize = 192;
 /** f64: damping β [N·s/m] */
-export const DAMPING: usize = 192;
+export const DAMPING: usize = 200;
 /** f64: contact thickness [m] */
-export const THICKNESS: usize = 200;
+export const THICKNESS: usize = 208;
 /** f64: kinetic friction coefficient [-] */
-export const FRICTION: usize = 208;
+export const FRICTION: usize = 216;
 /** f64: static friction coefficient [-] */
-export const STATIC_FRICTION: usize = 216;
+export const STATIC_FRICTION: usize = 224;
 /** f64: depenetrationSpeed [m/s] */
-export const DEPENETRATION: usize = 224;
+export const DEPENETRATION: usize = 232;
 /** f64: triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m] */
-export const TRIANGLE_REACH: usize = 232;
+export const TRIANGLE_REACH: usize = 240;
 /** f64: triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m] */
-export const TRIANGLE_RECOVER: usize = 240;
+export const TRIANGLE_RECOVER: usize = 248;
 /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-export const COLLIDER_RECORDS: usize = 248;
+export const COLLIDER_RECORDS: usize = 256;
 /** i32: sequence number of the open phase (grows by one per phase, wraps) */
 export const PHASE: usize = 15616;
 /** i32: chunks of the open phase completed and reported */

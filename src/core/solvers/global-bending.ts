@@ -1,0 +1,148 @@
+/**
+ * The global bending step (solver.bendingSolve 'global', xpbd, with a stencil bending model): the bending stencils of
+ * a substep solved together, exactly, instead of one XPBD pass over them.
+ *
+ * A stencil's constraint C_e = Σ_k K_k·x_k (the hinges of Bergou et al. 2006, the cotangent Laplacian of Wardetzky et
+ * al. 2007; model.ts) is linear in the positions, so the bending energy Σ ½·|C_e|²/α_e (α_e = A_e/B, solvers/xpbd.ts
+ * solveBending) is quadratic with a constant Hessian, the same for the three coordinates: Bergou et al. 2006 (§4)
+ * point out that this makes its implicit integration one prefactored linear solve. Here, after the stretch solve has
+ * left the positions x*, the substep's backward-Euler step of the bending energy alone,
+ *
+ *   min_x (1/2h²)·|M^½(x − x*)|² + Σ_e ½·|K_e·x|²/α_e,   i.e.   (M/h² + Σ_e K_e·K_eᵀ/α_e)·x = M/h²·x*,
+ *
+ * is solved exactly: the matrix is ordered once per model (nested dissection) and factored once per substep length,
+ * stiffnesses and pins (sparse Cholesky, sparse.ts); a pinned particle's row is the identity. The grabbed particle is
+ * held as in the global stretch step (z = A⁻¹·e_g, prefactored.ts). One XPBD pass carries a stiff
+ * stencil's correction a stencil or two per substep, so a light strip held at one end bends several times too easily
+ * (docs/physics.md, "Bending solved together"); this step has no such lag. Being backward Euler, it damps the
+ * bending's fast modes (no material damping is added). It runs after the springs (solver.stretch either way): the
+ * operator splitting of the two energies, stretch then bending, each substep.
+ */
+import { bendingStencils, type BendingStencils, type ClothModel } from '../model.js';
+import type { SimParams } from '../params.js';
+import type { ClothState } from '../state.js';
+import { PrefactoredSystem } from './prefactored.js';
+
+/** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
+class BendingSystem extends PrefactoredSystem {
+  readonly stencils: BendingStencils;
+  /** particle masses [kg] */
+  readonly mass: Float64Array;
+
+  constructor(model: ClothModel, params: SimParams, stencils: BendingStencils) {
+    const n = model.particleCount;
+    // the graph: two particles are joined where some stencil holds both (compressed rows, each neighbour once)
+    const { offsets, vertices } = stencils;
+    const byParticle = incidence(offsets, vertices, n);
+    const stamp = new Int32Array(n);
+    const rowStart = new Int32Array(n + 1);
+    const pass = (write: Int32Array | null) => {
+      stamp.fill(-1);
+      let at = 0;
+      for (let i = 0; i < n; i++) {
+        rowStart[i] = at;
+        stamp[i] = i;
+        for (let q = byParticle.start[i]; q < byParticle.start[i + 1]; q++) {
+          const e = byParticle.stencil[q];
+          for (let k = offsets[e]; k < offsets[e + 1]; k++) {
+            const j = vertices[k];
+            if (stamp[j] === i) continue;
+            stamp[j] = i;
+            if (write) write[at] = j;
+            at++;
+          }
+        }
+      }
+      rowStart[n] = at;
+      return at;
+    };
+    const cols = new Int32Array(pass(null));
+    pass(cols);
+    super(model, rowStart, cols);
+    this.stencils = stencils;
+    this.mass = Float64Array.from(params.particleMass);
+  }
+
+  /** Assembles and factors A = M/h² + Σ K·Kᵀ/α for substep h and the pins of `pinned`. */
+  factor(params: SimParams, pinned: Uint8Array, h: number): void {
+    const { chol, row, mass, stencils: { offsets, vertices, weights } } = this;
+    const compliance = params.stencilCompliance;
+    this.beginFactor(pinned, h);
+    const inertia = 1 / (h * h);
+    for (let i = 0; i < mass.length; i++) chol.add(row[i], row[i], pinned[i] ? 1 : mass[i] * inertia);
+    for (let e = 0; e + 1 < offsets.length; e++) {
+      const alpha = compliance[e];
+      if (!(alpha < Infinity)) continue;
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) {
+        const a = vertices[k];
+        if (pinned[a]) continue;
+        const s = weights[k] / alpha;
+        chol.add(row[a], row[a], s * weights[k]);
+        for (let l = k + 1; l < offsets[e + 1]; l++) if (!pinned[vertices[l]]) chol.add(row[a], row[vertices[l]], s * weights[l]);
+      }
+    }
+    chol.factor();
+  }
+}
+
+/** The stencils each particle is in (compressed rows). */
+function incidence(offsets: Uint32Array, vertices: Uint32Array, n: number): { start: Int32Array; stencil: Int32Array } {
+  const start = new Int32Array(n + 1);
+  for (let k = 0; k < vertices.length; k++) start[vertices[k] + 1]++;
+  for (let i = 0; i < n; i++) start[i + 1] += start[i];
+  const stencil = new Int32Array(vertices.length), fill = start.slice(0, n);
+  for (let e = 0; e + 1 < offsets.length; e++) for (let k = offsets[e]; k < offsets[e + 1]; k++) stencil[fill[vertices[k]]++] = e;
+  return { start, stencil };
+}
+
+/** One system per params object (params are rebuilt whenever a parameter changes, so a stale one is never reused). */
+const systems = new WeakMap<SimParams, BendingSystem>();
+
+/**
+ * The backward-Euler step of the bending stencils over substep h, from the positions in state.positions (+
+ * residuals). Pinned particles stay; the grabbed one stays where the grab phase put it. Allocates only when the
+ * system is first built or refactored (pins changed).
+ */
+export function solveGlobalBending(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
+  const stencils = bendingStencils(model, params.bending);
+  if (!stencils) return;
+  let system = systems.get(params);
+  if (system === undefined || system.model !== model) {
+    system = new BendingSystem(model, params, stencils);
+    systems.set(params, system);
+  }
+  const pinned = state.pinned;
+  if (!system.current(pinned, h)) system.factor(params, pinned, h);
+  const { b, row, mass, chol, stencils: { offsets, vertices, weights } } = system;
+  const compliance = params.stencilCompliance;
+  const x = state.positions, r = state.residuals, n = mass.length;
+  const inertia = 1 / (h * h);
+  for (let i = 0; i < n; i++) {
+    const q = 3 * row[i], j = 3 * i, w = pinned[i] ? 1 : mass[i] * inertia;
+    b[q] = w * (x[j] + r[j]); b[q + 1] = w * (x[j + 1] + r[j + 1]); b[q + 2] = w * (x[j + 2] + r[j + 2]);
+  }
+  // a pinned particle's terms move to the right-hand side of its stencils' free particles
+  for (let e = 0; e + 1 < offsets.length; e++) {
+    const alpha = compliance[e];
+    if (!(alpha < Infinity)) continue;
+    for (let l = offsets[e]; l < offsets[e + 1]; l++) {
+      const c = vertices[l];
+      if (!pinned[c]) continue;
+      const jc = 3 * c, px = x[jc] + r[jc], py = x[jc + 1] + r[jc + 1], pz = x[jc + 2] + r[jc + 2];
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) {
+        const a = vertices[k];
+        if (pinned[a]) continue;
+        const v = (weights[k] * weights[l]) / alpha, q = 3 * row[a];
+        b[q] -= v * px; b[q + 1] -= v * py; b[q + 2] -= v * pz;
+      }
+    }
+  }
+  const g = system.grabbed(state);
+  chol.solve3(b);
+  if (g >= 0) system.hold(g, x[3 * g] + r[3 * g], x[3 * g + 1] + r[3 * g + 1], x[3 * g + 2] + r[3 * g + 2]);
+  for (let i = 0; i < n; i++) {
+    if (pinned[i] || i === g) continue;
+    const q = 3 * row[i], j = 3 * i;
+    x[j] = Math.fround(b[q] - r[j]); x[j + 1] = Math.fround(b[q + 1] - r[j + 1]); x[j + 2] = Math.fround(b[q + 2] - r[j + 2]);
+  }
+}
