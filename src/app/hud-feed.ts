@@ -1,6 +1,7 @@
 /** What the HUD shows: the app's and the simulation's state, gathered into the HUD's fields and notes. */
 import { clothEntries, clothName, measureTest, plainText, type ClothSpec, type TestResult } from '../core/index.js';
 import type { HudCloth, HudInfo } from '../ui/hud.js';
+import { finite } from '../ui/dom.js';
 import { SCENE_LABELS } from '../ui/menu-labels.js';
 import type { App } from './app.js';
 import { contactDistance } from './contact-meter.js';
@@ -88,10 +89,9 @@ function shapeWords(cloth: ClothSpec): string {
 
 /** One line for the HUD: what a fabric test measures now ('—' for a value that is not finite: an unstable cloth). */
 export function testLine(t: TestResult): string {
-  const fixed = (v: number, digits: number) => (Number.isFinite(v) ? v.toFixed(digits) : '—');
   if (t.type === 'cantilever') {
-    const c = t.bendingLength === null ? '— (the tip has not dropped yet)' : `${fixed(100 * t.bendingLength, 2)} cm`;
-    return `cantilever: tip ${fixed(t.chordAngle, 1)}° below the edge, ${fixed(100 * t.overhang, 2)} cm out → bending length ${c}`;
+    const c = t.bendingLength === null ? '— (the tip has not dropped yet)' : `${finite(100 * t.bendingLength, 2)} cm`;
+    return `cantilever: tip ${finite(t.chordAngle, 1)}° below the edge, ${finite(100 * t.overhang, 2)} cm out → bending length ${c}`;
   }
-  return `Cusick drape: coefficient ${fixed(t.drapeCoefficient, 3)}, ${fixed(t.folds, 0)} fold${t.folds === 1 ? '' : 's'}`;
+  return `Cusick drape: coefficient ${finite(t.drapeCoefficient, 3)}, ${finite(t.folds, 0)} fold${t.folds === 1 ? '' : 's'}`;
 }

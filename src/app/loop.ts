@@ -3,7 +3,7 @@
  * only when something changed, and measures the frame rate; the energy plot and the HUD text are refreshed a few
  * times a second.
  */
-import { FRAME_DT } from '../core/index.js';
+import { FRAME_DT, type PosedCollider } from '../core/index.js';
 import { captionFor } from '../ui/captions.js';
 import type { App } from './app.js';
 import { GpuSim } from '../three/sim/gpu-sim.js';
@@ -22,6 +22,9 @@ export class FrameLoop {
   idle = false;
   private hudTime = 0;
   private plotTime = 0;
+  /** every cloth's colliders and each one's cloth's time [s], refilled when the view is redrawn (no allocation) */
+  private readonly posed: PosedCollider[] = [];
+  private readonly posedTimes: number[] = [];
   /** performance.now() when the first frame was drawn */
   firstFrameAt = 0;
 
@@ -52,10 +55,16 @@ export class FrameLoop {
     if (app.dirty) {
       app.sim.mirrors.forEach((m, k) => app.views[k]?.update(m.sim.state, m.grabbed));
       // colliders that move are drawn where they are at their cloth's time (the mirrors hold the same keyframes)
-      app.stage.poseColliders(
-        app.sim.mirrors.flatMap((m) => m.sim.params.colliders),
-        app.sim.mirrors.flatMap((m) => m.sim.params.colliders.map(() => m.frame * FRAME_DT)),
-      );
+      const posed = this.posed, times = this.posedTimes;
+      posed.length = 0;
+      times.length = 0;
+      for (const m of app.sim.mirrors) {
+        for (const c of m.sim.params.colliders) {
+          posed.push(c);
+          times.push(m.frame * FRAME_DT);
+        }
+      }
+      app.stage.poseColliders(posed, times);
       app.dirty = false;
     }
     const moved = app.stage.updateControls();

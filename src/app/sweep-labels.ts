@@ -10,6 +10,8 @@ import { sweeps } from './sweep.js';
 /** The labels over a sweep's cloths (text only). */
 export class SweepLabels {
   private labels: HTMLElement[] = [];
+  /** a label's anchor, projected (reused: placing allocates nothing) */
+  private readonly anchor = new Vector3();
 
   constructor(private readonly app: App) {}
 
@@ -60,7 +62,7 @@ export class SweepLabels {
       l.style.transform = `translate(-50%, ${top ? '0' : '-100%'}) translate(${x}px, ${top ? 12 : bottom}px)`;
       return;
     }
-    const v = new Vector3();
+    const v = this.anchor;
     app.sim.mirrors.forEach((m, k) => {
       const l = this.labels[k];
       if (!l) return;

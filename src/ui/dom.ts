@@ -5,6 +5,11 @@
 
 export type Child = Node | string | number | null | undefined | false;
 
+/** A number for the screen with `digits` decimals: never 'NaN' or 'Infinity' ('—' for a value that is not finite). */
+export function finite(v: number, digits: number): string {
+  return Number.isFinite(v) ? v.toFixed(digits) : '—';
+}
+
 export interface Props {
   className?: string;
   /** data-testid */

@@ -8,7 +8,7 @@ import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import type { Energy } from '../core/index.js';
 import { CONTACT_COLOR, SPRING_COLORS, STRAIN_RANGE, type ViewName } from '../render/cloth-view.js';
-import { append, h, setLines, type Child } from './dom.js';
+import { append, finite, h, setLines, type Child } from './dom.js';
 
 /** One cloth of a scene of several, in the HUD (its name and shape as text). */
 export interface HudCloth {
@@ -172,9 +172,4 @@ export class Hud {
       append(this.legend, [h('span', 'strain-bar'), ` −${STRAIN_RANGE * 100}% … 0 … +${STRAIN_RANGE * 100}% · max ${finite(100 * i.maxStrain, 1)}%`]);
     }
   }
-}
-
-/** a number for the HUD: never 'NaN' or 'Infinity' on screen */
-function finite(v: number, digits: number): string {
-  return Number.isFinite(v) ? v.toFixed(digits) : '–';
 }
