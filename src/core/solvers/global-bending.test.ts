@@ -13,11 +13,10 @@ import { grab, setPinned } from '../state.js';
 import { solveGlobalBending } from './global-bending.js';
 
 describe.each<CpuKernel>(['ts', 'wasm'])('solver.bendingSolve "global" (xpbd), %s kernel', (kernel) => {
-  it.each([
-    // measured: cotton 0.915, leather 0.959; the model's own static answer at these 32 faces 0.950 and 0.959
-    // (docs/physics.md); one Gauss–Seidel pass a substep gives 0.65 and 0.19
-    ['cotton', 'hinges'], ['leather', 'hinges'],
-  ])('the cantilever (ASTM D1388) at the scene\'s own settings: %s\'s bending length within 10 % of (B/(ρ_A·g))^⅓', (fabric) => {
+  // measured: leather 0.959 on both kernels, cotton 0.915; the model's own static answer at these 32 faces 0.959 and
+  // 0.950 (docs/physics.md); one Gauss–Seidel pass a substep gives 0.19 and 0.65. Cotton on one kernel: the two read
+  // the same to three digits, and each run is 360 frames of the strip.
+  it.each(kernel === 'wasm' ? ['leather', 'cotton'] : ['leather'])('the cantilever (ASTM D1388) at the scene\'s own settings: %s\'s bending length within 10 % of (B/(ρ_A·g))^⅓', (fabric) => {
     let scene = setScenePath(builtinScene('cantilever'), 'material.fabric', fabric);
     scene = setScenePath(scene, 'solver.bending', 'hinges');
     scene = setScenePath(scene, 'solver.bendingSolve', 'global');
