@@ -102,13 +102,15 @@ describe('WebGPU page', () => {
     await step(page, 60);
     await expect.poll(() => byId(page, 'hud-test').innerText()).toMatch(/^cantilever: tip \d+\.\d° below the edge, 4\.00 cm out → bending length \d+\.\d\d cm$/);
     // the hinges solved together hold a stiff strip as its bending rigidity says: leather's bending length is 5.39 cm,
-    // and the strip reads it within 10 % (0.92 of it at 16 faces, docs/physics.md "Bending solved together"; one
-    // sweep a substep lets it droop to about a fifth)
+    // and a fresh strip reads it within 10 % at the scene's 6 s (0.92 of it at 16 faces, docs/physics.md "Bending
+    // solved together"; one sweep a substep lets it droop to about a fifth)
+    await loadScene(page, 'Cantilever (ASTM D1388)', 16);
     await choose(page, 'material.fabric', 'leather');
     await choose(page, 'solver.bending', 'hinges');
     await choose(page, 'solver.bendingSolve', 'global');
     expect((await hook<any>(page, 'scene')).solver).toMatchObject({ bending: 'hinges', bendingSolve: 'global' });
-    await step(page, 300);
+    await page.waitForFunction(() => (window as any).drape.frame() === 0);
+    await step(page, 360);
     const reading = async () => Number(/bending length (\d+\.\d\d) cm$/.exec(await byId(page, 'hud-test').innerText())?.[1]);
     await expect.poll(reading).toBeGreaterThan(0.9 * 5.39);
     expect(await reading()).toBeLessThan(1.1 * 5.39);

@@ -78,7 +78,11 @@ class BendingSystem extends PrefactoredSystem {
         if (pinned[a]) continue;
         const s = weights[k] / alpha;
         chol.add(row[a], row[a], s * weights[k]);
-        for (let l = k + 1; l < offsets[e + 1]; l++) if (!pinned[vertices[l]]) chol.add(row[a], row[vertices[l]], s * weights[l]);
+        // a pair k < l adds K_k·K_l/α at (a, c) and (c, a): twice to the diagonal if a stencil named a particle twice
+        for (let l = k + 1; l < offsets[e + 1]; l++) {
+          const c = vertices[l];
+          if (!pinned[c]) chol.add(row[a], row[c], (a === c ? 2 : 1) * s * weights[l]);
+        }
       }
     }
     chol.factor();
@@ -101,7 +105,7 @@ const systems = new WeakMap<SimParams, BendingSystem>();
 /**
  * The backward-Euler step of the bending stencils over substep h, from the positions in state.positions (+
  * residuals). Pinned particles stay; the grabbed one stays where the grab phase put it. Allocates only when the
- * system is first built or refactored (pins changed).
+ * system is first built (a new model or params); a refactor (pins or h changed) allocates nothing.
  */
 export function solveGlobalBending(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
   const stencils = bendingStencils(model, params.bending);
