@@ -28,6 +28,13 @@ class BendingSystem extends PrefactoredSystem {
   readonly stencils: BendingStencils;
   /** particle masses [kg] */
   readonly mass: Float64Array;
+  /**
+   * each hinge's share of its compliance on either side: its two rest triangles' areas over their sum (x0 x1 x2, then
+   * x0 x1 x3; hinges only, else empty)
+   */
+  readonly sides: Float64Array;
+  /** each stencil's compliance α [m/N] for the pins of the factor (params.stencilCompliance; a held hinge's less) */
+  readonly compliance: Float64Array;
 
   constructor(model: ClothModel, params: SimParams, stencils: BendingStencils) {
     const n = model.particleCount;
@@ -61,13 +68,39 @@ class BendingSystem extends PrefactoredSystem {
     super(model, rowStart, cols);
     this.stencils = stencils;
     this.mass = Float64Array.from(params.particleMass);
+    const m = offsets.length - 1;
+    this.compliance = new Float64Array(m);
+    this.sides = new Float64Array(params.bending === 'hinges' ? 2 * m : 0);
+    const p = model.restPositions;
+    const area = (a: number, b: number, c: number) => {
+      const ux = p[3 * b] - p[3 * a], uy = p[3 * b + 1] - p[3 * a + 1], uz = p[3 * b + 2] - p[3 * a + 2];
+      const vx = p[3 * c] - p[3 * a], vy = p[3 * c + 1] - p[3 * a + 1], vz = p[3 * c + 2] - p[3 * a + 2];
+      return 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+    };
+    for (let e = 0; e < this.sides.length / 2; e++) {
+      const [x0, x1, x2, x3] = vertices.subarray(offsets[e], offsets[e] + 4);
+      const a2 = area(x0, x1, x2), a3 = area(x0, x1, x3);
+      this.sides[2 * e] = a2 / (a2 + a3);
+      this.sides[2 * e + 1] = a3 / (a2 + a3);
+    }
   }
 
   /** Assembles and factors A = M/h² + Σ K·Kᵀ/α for substep h and the pins of `pinned`. */
   factor(params: SimParams, pinned: Uint8Array, h: number): void {
-    const { chol, row, mass, stencils: { offsets, vertices, weights } } = this;
-    const compliance = params.stencilCompliance;
+    const { chol, row, mass, sides, compliance, stencils: { offsets, vertices, weights } } = this;
     this.beginFactor(pinned, h);
+    // a hinge beside a held triangle (its three corners pinned) bends on its free side only: the continuous strip
+    // stores its curvature there, over the free triangle's area, so the hinge's area is that triangle's (a clamped
+    // strip's first hinge was half as stiff as the strip beside the clamp; docs/physics.md "Bending solved together")
+    for (let e = 0; e < compliance.length; e++) {
+      let alpha = params.stencilCompliance[e];
+      if (sides.length && alpha < Infinity) {
+        const at = offsets[e], edge = pinned[vertices[at]] && pinned[vertices[at + 1]];
+        const free = (edge && pinned[vertices[at + 2]] ? 0 : sides[2 * e]) + (edge && pinned[vertices[at + 3]] ? 0 : sides[2 * e + 1]);
+        if (free > 0) alpha *= free;
+      }
+      compliance[e] = alpha;
+    }
     const inertia = 1 / (h * h);
     for (let i = 0; i < mass.length; i++) chol.add(row[i], row[i], pinned[i] ? 1 : mass[i] * inertia);
     for (let e = 0; e + 1 < offsets.length; e++) {
@@ -117,8 +150,7 @@ export function solveGlobalBending(model: ClothModel, state: ClothState, params:
   }
   const pinned = state.pinned;
   if (!system.current(pinned, h)) system.factor(params, pinned, h);
-  const { b, row, mass, chol, stencils: { offsets, vertices, weights } } = system;
-  const compliance = params.stencilCompliance;
+  const { b, row, mass, chol, compliance, stencils: { offsets, vertices, weights } } = system;
   const x = state.positions, r = state.residuals, n = mass.length;
   const inertia = 1 / (h * h);
   for (let i = 0; i < n; i++) {
