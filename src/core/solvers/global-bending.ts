@@ -26,8 +26,6 @@ import { PrefactoredSystem } from './prefactored.js';
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
 class BendingSystem extends PrefactoredSystem {
   readonly stencils: BendingStencils;
-  /** particle masses [kg] */
-  readonly mass: Float64Array;
   /**
    * each hinge's share of its compliance on either side: its two rest triangles' areas over their sum (x0 x1 x2, then
    * x0 x1 x3; hinges only, else empty)
@@ -65,9 +63,8 @@ class BendingSystem extends PrefactoredSystem {
     };
     const cols = new Int32Array(pass(null));
     pass(cols);
-    super(model, rowStart, cols);
+    super(model, params.particleMass, rowStart, cols);
     this.stencils = stencils;
-    this.mass = Float64Array.from(params.particleMass);
     const m = offsets.length - 1;
     this.compliance = new Float64Array(m);
     this.sides = new Float64Array(params.bending === 'hinges' ? 2 * m : 0);
@@ -87,7 +84,7 @@ class BendingSystem extends PrefactoredSystem {
 
   /** Assembles and factors A = M/h² + Σ K·Kᵀ/α for substep h and the pins of `pinned`. */
   factor(params: SimParams, pinned: Uint8Array, h: number): void {
-    const { chol, row, mass, sides, compliance, stencils: { offsets, vertices, weights } } = this;
+    const { chol, row, sides, compliance, stencils: { offsets, vertices, weights } } = this;
     this.beginFactor(pinned, h);
     // a hinge beside a held triangle (its three corners pinned) bends on its free side only: the continuous strip
     // stores its curvature there, over the free triangle's area, so the hinge's area is that triangle's (a clamped
@@ -101,8 +98,6 @@ class BendingSystem extends PrefactoredSystem {
       }
       compliance[e] = alpha;
     }
-    const inertia = 1 / (h * h);
-    for (let i = 0; i < mass.length; i++) chol.add(row[i], row[i], pinned[i] ? 1 : mass[i] * inertia);
     for (let e = 0; e + 1 < offsets.length; e++) {
       const alpha = compliance[e];
       if (!(alpha < Infinity)) continue;

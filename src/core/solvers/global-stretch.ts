@@ -40,8 +40,6 @@ class GlobalSystem extends PrefactoredSystem {
   readonly springs: Int32Array;
   readonly k: Float64Array;
   readonly rest: Float64Array;
-  /** particle masses [kg] */
-  readonly mass: Float64Array;
   /** each spring's damping β [N·s/m] (params.springDamping: its cloth's material.damping) */
   readonly damping: Float64Array;
   /** positions at the start of the substep [m], by particle (for the damping term) */
@@ -75,7 +73,7 @@ class GlobalSystem extends PrefactoredSystem {
       cols[fill[a]++] = b;
       cols[fill[b]++] = a;
     }
-    super(model, rowStart, cols);
+    super(model, params.particleMass, rowStart, cols);
     this.springs = springs;
     this.k = new Float64Array(m);
     this.rest = new Float64Array(m);
@@ -89,17 +87,14 @@ class GlobalSystem extends PrefactoredSystem {
       m++;
     }
     this.previous = new Float64Array(3 * n);
-    this.mass = Float64Array.from(params.particleMass);
     this.y = new Float64Array(3 * n);
     this.x = new Float64Array(3 * n);
   }
 
   /** Assembles and factors A for substep h and the pins of `pinned`. */
   factor(pinned: Uint8Array, h: number): void {
-    const { chol, row, springs, k, mass, damping } = this;
+    const { chol, row, springs, k, damping } = this;
     this.beginFactor(pinned, h);
-    const inertia = 1 / (h * h);
-    for (let i = 0; i < mass.length; i++) chol.add(row[i], row[i], pinned[i] ? 1 : mass[i] * inertia);
     for (let s = 0; s < k.length; s++) {
       const a = springs[2 * s], b = springs[2 * s + 1], w = k[s] + damping[s] / h;
       if (!pinned[a]) chol.add(row[a], row[a], w);

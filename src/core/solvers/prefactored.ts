@@ -9,6 +9,8 @@ import { SparseCholesky, nestedDissection, orderedGraph } from './sparse.js';
 
 export class PrefactoredSystem {
   readonly model: ClothModel;
+  /** particle masses [kg] */
+  readonly mass: Float64Array;
   /** row of each particle in the factored order */
   readonly row: Int32Array;
   readonly chol: SparseCholesky;
@@ -21,9 +23,13 @@ export class PrefactoredSystem {
   readonly z: Float64Array;
   zFor = -1;
 
-  /** The system over the model's particles whose matrix joins the particles of the graph (compressed rows). */
-  constructor(model: ClothModel, rowStart: Int32Array, cols: Int32Array) {
+  /**
+   * The system over the model's particles of these masses [kg], whose matrix joins the particles of the graph
+   * (compressed rows).
+   */
+  constructor(model: ClothModel, mass: ArrayLike<number>, rowStart: Int32Array, cols: Int32Array) {
     this.model = model;
+    this.mass = Float64Array.from(mass);
     const n = model.particleCount;
     const ordered = orderedGraph(rowStart, cols, nestedDissection(rowStart, cols));
     this.row = ordered.row;
@@ -33,12 +39,18 @@ export class PrefactoredSystem {
     this.z = new Float64Array(n);
   }
 
-  /** Starts assembling the matrix for substep h and the pins of `pinned` (then chol.add …, chol.factor()). */
+  /**
+   * Starts assembling the matrix for substep h and the pins of `pinned` with its inertia, M/h² (a pinned particle's
+   * row: the identity); then chol.add …, chol.factor().
+   */
   beginFactor(pinned: Uint8Array, h: number): void {
+    const { chol, row, mass } = this;
     this.pinned.set(pinned);
     this.h = h;
     this.zFor = -1;
-    this.chol.clear();
+    chol.clear();
+    const inertia = 1 / (h * h);
+    for (let i = 0; i < mass.length; i++) chol.add(row[i], row[i], pinned[i] ? 1 : mass[i] * inertia);
   }
 
   /** Whether the factor is for these pins and this h. */
