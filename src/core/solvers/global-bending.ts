@@ -22,6 +22,7 @@ import { bendingStencils, type BendingStencils, type ClothModel } from '../model
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
 import { PrefactoredSystem } from './prefactored.js';
+import { REFERENCE_SOLVER, type FactorSolver } from './sparse.js';
 
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
 class BendingSystem extends PrefactoredSystem {
@@ -33,6 +34,9 @@ class BendingSystem extends PrefactoredSystem {
   readonly sides: Float64Array;
   /** each stencil's compliance α [m/N] for the pins of the factor (params.stencilCompliance; a held hinge's less) */
   readonly compliance: Float64Array;
+  /** the stencils with stiffness that hold a pinned particle and a free one, for the pins of the factor: the first `pinnedCount` */
+  readonly pinnedStencils: Int32Array;
+  pinnedCount = 0;
 
   constructor(model: ClothModel, params: SimParams, stencils: BendingStencils) {
     const n = model.particleCount;
@@ -67,6 +71,7 @@ class BendingSystem extends PrefactoredSystem {
     this.stencils = stencils;
     const m = offsets.length - 1;
     this.compliance = new Float64Array(m);
+    this.pinnedStencils = new Int32Array(m);
     this.sides = new Float64Array(params.bending === 'hinges' ? 2 * m : 0);
     const p = model.restPositions;
     const area = (a: number, b: number, c: number) => {
@@ -97,6 +102,13 @@ class BendingSystem extends PrefactoredSystem {
         if (free > 0) alpha *= free;
       }
       compliance[e] = alpha;
+    }
+    this.pinnedCount = 0;
+    for (let e = 0; e < compliance.length; e++) {
+      if (!(compliance[e] < Infinity)) continue;
+      let held = 0, free = 0;
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) if (pinned[vertices[k]]) held++; else free++;
+      if (held > 0 && free > 0) this.pinnedStencils[this.pinnedCount++] = e;
     }
     for (let e = 0; e + 1 < offsets.length; e++) {
       const alpha = compliance[e];
@@ -133,9 +145,12 @@ const systems = new WeakMap<SimParams, BendingSystem>();
 /**
  * The backward-Euler step of the bending stencils over substep h, from the positions in state.positions (+
  * residuals). Pinned particles stay; the grabbed one stays where the grab phase put it. Allocates only when the
- * system is first built (a new model or params); a refactor (pins or h changed) allocates nothing.
+ * system is first built (a new model or params); a refactor (pins or h changed) allocates nothing. `solver` solves
+ * with the factor (the WebAssembly kernel passes its own: the same solution).
  */
-export function solveGlobalBending(model: ClothModel, state: ClothState, params: SimParams, h: number): void {
+export function solveGlobalBending(
+  model: ClothModel, state: ClothState, params: SimParams, h: number, solver: FactorSolver = REFERENCE_SOLVER,
+): void {
   const stencils = bendingStencils(model, params.bending);
   if (!stencils) return;
   let system = systems.get(params);
@@ -145,7 +160,7 @@ export function solveGlobalBending(model: ClothModel, state: ClothState, params:
   }
   const pinned = state.pinned;
   if (!system.current(pinned, h)) system.factor(params, pinned, h);
-  const { b, row, mass, chol, compliance, stencils: { offsets, vertices, weights } } = system;
+  const { b, row, mass, chol, compliance, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = system;
   const x = state.positions, r = state.residuals, n = mass.length;
   const inertia = 1 / (h * h);
   for (let i = 0; i < n; i++) {
@@ -153,9 +168,8 @@ export function solveGlobalBending(model: ClothModel, state: ClothState, params:
     b[q] = w * (x[j] + r[j]); b[q + 1] = w * (x[j + 1] + r[j + 1]); b[q + 2] = w * (x[j + 2] + r[j + 2]);
   }
   // a pinned particle's terms move to the right-hand side of its stencils' free particles
-  for (let e = 0; e + 1 < offsets.length; e++) {
-    const alpha = compliance[e];
-    if (!(alpha < Infinity)) continue;
+  for (let s = 0; s < pinnedCount; s++) {
+    const e = pinnedStencils[s], alpha = compliance[e];
     for (let l = offsets[e]; l < offsets[e + 1]; l++) {
       const c = vertices[l];
       if (!pinned[c]) continue;
@@ -169,7 +183,7 @@ export function solveGlobalBending(model: ClothModel, state: ClothState, params:
     }
   }
   const g = system.grabbed(state);
-  chol.solve3(b);
+  solver.solve3(chol, b);
   if (g >= 0) system.hold(g, x[3 * g] + r[3 * g], x[3 * g + 1] + r[3 * g + 1], x[3 * g + 2] + r[3 * g + 2]);
   for (let i = 0; i < n; i++) {
     if (pinned[i] || i === g) continue;

@@ -33,6 +33,7 @@ import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
 import { PrefactoredSystem } from './prefactored.js';
+import { REFERENCE_SOLVER, type FactorSolver } from './sparse.js';
 
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
 class GlobalSystem extends PrefactoredSystem {
@@ -120,9 +121,12 @@ function systemFor(model: ClothModel, params: SimParams): GlobalSystem {
 /**
  * `passes` local/global iterations of the springs over substep h, from the predicted positions in state.positions
  * (+ residuals). Pinned particles stay; the grabbed one stays where the grab phase put it. Allocates only when the
- * system is first built or refactored (pins changed).
+ * system is first built or refactored (pins changed). `solver` solves with the factor (the WebAssembly kernel passes its
+ * own: the same solution).
  */
-export function solveGlobalStretch(model: ClothModel, state: ClothState, params: SimParams, h: number, passes: number): void {
+export function solveGlobalStretch(
+  model: ClothModel, state: ClothState, params: SimParams, h: number, passes: number, solver: FactorSolver = REFERENCE_SOLVER,
+): void {
   const system = systemFor(model, params);
   const pinned = state.pinned;
   if (!system.current(pinned, h)) system.factor(pinned, h);
@@ -170,7 +174,7 @@ export function solveGlobalStretch(model: ClothModel, state: ClothState, params:
         if (pa) { b[q] += w * y[ja]; b[q + 1] += w * y[ja + 1]; b[q + 2] += w * y[ja + 2]; }
       }
     }
-    chol.solve3(b);
+    solver.solve3(chol, b);
     // hold the grabbed particle where the grab put it (the unconstrained solution corrected along z)
     if (g >= 0) system.hold(g, y[3 * g], y[3 * g + 1], y[3 * g + 2]);
     for (let i = 0; i < n; i++) {

@@ -295,10 +295,15 @@ export class SparseCholesky {
   private readonly aStart: Int32Array;
   private readonly aCols: Int32Array;
   private readonly aValues: Float64Array;
-  /** L by columns: column j's rows from colStart[j] (the diagonal first, then ascending) and their values */
-  private readonly colStart: Int32Array;
-  private readonly rows: Int32Array;
-  private readonly values: Float64Array;
+  /**
+   * L by columns: column j's rows from colStart[j] (the diagonal first, then ascending) and their values (read by
+   * the WebAssembly kernel's solves, wasm/factored-wasm.ts; written only by factor())
+   */
+  readonly colStart: Int32Array;
+  readonly rows: Int32Array;
+  readonly values: Float64Array;
+  /** factor() calls so far: the values of L change with each */
+  factors = 0;
   /** each row's off-diagonal entries in L, each after the entries below it in the elimination tree */
   private readonly patternStart: Int32Array;
   private readonly pattern: Int32Array;
@@ -409,6 +414,7 @@ export class SparseCholesky {
   /** Factors (row by row). Throws where a pivot is not positive (not positive definite). */
   factor(): void {
     const { n, aStart, aCols, aValues, colStart, rows, values, pattern, patternStart, work: x, cursor } = this;
+    this.factors++;
     for (let j = 0; j < n; j++) cursor[j] = colStart[j] + 1;
     for (let k = 0; k < n; k++) {
       for (let p = aStart[k]; p < aStart[k + 1]; p++) x[aCols[p]] = aValues[p];
@@ -464,3 +470,15 @@ export class SparseCholesky {
     }
   }
 }
+
+/**
+ * Who solves with a factor, each substep: the reference (the factor's own solve3) or the WebAssembly kernel's
+ * (wasm/factored-wasm.ts), which gives the same solution bit for bit.
+ */
+export interface FactorSolver {
+  /** Solves A·x = b with chol's factor, b holding three interleaved right-hand sides (overwritten by x), as chol.solve3(b). */
+  solve3(chol: SparseCholesky, b: Float64Array): void;
+}
+
+/** The reference's solves: SparseCholesky.solve3. */
+export const REFERENCE_SOLVER: FactorSolver = { solve3: (chol, b) => chol.solve3(b) };

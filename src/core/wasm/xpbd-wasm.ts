@@ -3,10 +3,11 @@
  * kernel's memory, so the TypeScript reference (reference.ts) and the kernel work on the same arrays with no copy.
  * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
  * (KERNEL_PHASES: integration, the grab, the distance constraints, the bending stencils, tethers, stretch limiting, self-contact — its
- * candidate search and passes, self-contact-wasm.ts — particle contact against every analytic collider, moving or
- * not, and triangle contact with spheres) and runs each substep's run of them in one call (two, around self-contact);
- * the phases it lacks (the start and end of a frame, wind, carried pins, triangle contact with other shapes, the
- * global stretch step) run in TypeScript in their place in the schedule.
+ * candidate search and passes, self-contact-wasm.ts — the global stretch and bending steps — their triangular solves,
+ * factored-wasm.ts — particle contact against every analytic collider, moving or not, and triangle contact with
+ * spheres) and runs each substep's run of them in one call (more, around self-contact and the global steps, which
+ * the host drives); the phases it lacks (the start and end of a frame, wind, carried pins, triangle contact with
+ * other shapes) run in TypeScript in their place in the schedule.
  *
  * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
  * (a Web Worker or a Node worker thread each) with helperInit(); until every helper has checked in, substeps run
@@ -21,12 +22,15 @@ import { needsTriangleContact } from '../phases.js';
 import { PHASE, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../schedule.js';
 import { SceneError } from '../scene.js';
 import { collideSelf } from '../self-contact.js';
+import { solveGlobalBending } from '../solvers/global-bending.js';
+import { solveGlobalStretch } from '../solvers/global-stretch.js';
 import { createState, type ClothState } from '../state.js';
 import {
   CTRL, CTRL_BYTES, KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE,
   KERNEL_MAX_ITERATIONS, KERNEL_MAX_THREADS, MAX_COLLIDERS, COLLIDER_RECORD_FLOATS, COLLIDER_BOX, COLLIDER_CAPSULE,
   COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
 } from '../layout.generated.js';
+import { WasmFactorSolver } from './factored-wasm.js';
 import { KernelSelfContact, layoutSelfContact, type ListedPairs, type SelfContactExports } from './self-contact-wasm.js';
 import { shownValue } from '../text.js';
 import { ThreadModeChooser } from './thread-mode.js';
@@ -53,21 +57,29 @@ function contactRefusal(params: SimParams): string | null {
 /**
  * The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter; the bending
  * stencils as well, bit for bit as the reference: bending.as.ts; self-contact's candidate search and narrow phase, with the TypeScript search as the fallback where
- * a window overflows: self-contact-wasm.ts).
+ * a window overflows: self-contact-wasm.ts; the global steps, the reference's assembly around the kernel's
+ * triangular solves, bit for bit as the reference: factored-wasm.ts).
  */
 export const KERNEL_PHASES: BackendPhases = {
   name: 'WebAssembly kernel',
   where: 'in the WebAssembly kernel',
   sharesMemory: true,
   solvers: ['xpbd'],
-  phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.tethers) |
-    (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles),
+  phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.globalStretch) | (1 << PHASE.distance) | (1 << PHASE.bending) |
+    (1 << PHASE.globalBending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact) |
+    (1 << PHASE.contactTriangles),
   // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
   // that read it to the reference (self-contact reads each particle's cloth: it takes any)
   refusal: (id: PhaseId, model: ClothModel, params: SimParams) =>
     (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null) ??
     perClothRefusal(id, params),
 };
+
+/**
+ * The kernel's phases the host drives on the calling thread between two substep() calls: self-contact, and the
+ * global steps (their assembly in TypeScript, their triangular solves in the kernel's code).
+ */
+const HOSTED = (1 << PHASE.selfContact) | (1 << PHASE.globalStretch) | (1 << PHASE.globalBending);
 
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
 const SPIN_LIMIT = 1 << 15;
@@ -182,6 +194,9 @@ export class XpbdKernel implements PhaseBackend {
   private readonly stencilAlpha: Float32Array;
   /** self-contact's memory and passes in the kernel; null for a kernel made without (its phase then runs in the reference) */
   private readonly selfContact: KernelSelfContact | null;
+  /** the global steps' triangular solves (made when a step first runs), one each: each keeps its factor in its memory */
+  private stretchSolver: WasmFactorSolver | undefined;
+  private bendingSolver: WasmFactorSolver | undefined;
   private readonly helpers: { terminate(): void }[] = [];
   private paramsSeen: SimParams | undefined;
   /** with helpers: whether a frame runs with them (thread-mode.ts) */
@@ -391,22 +406,45 @@ export class XpbdKernel implements PhaseBackend {
   }
 
   /**
-   * The kernel's phases of `mask` (of one substep: frame.sub, starting at state.time): those before self-contact in
-   * one substep() call, self-contact on this thread (self-contact-wasm.ts: its search and passes in the kernel, called
-   * from here), those after it in another substep() call; it lists what it ran for `log`.
+   * The kernel's phases of `mask` (of one substep: frame.sub, starting at state.time): each run of them between the
+   * phases the host drives in one substep() call, and those on this thread in their place — self-contact
+   * (self-contact-wasm.ts: its search and passes in the kernel, called from here) and the global steps (the
+   * reference's code with the kernel's triangular solves, factored-wasm.ts); it lists what it ran for `log`.
    */
   run(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
-    const self = 1 << PHASE.selfContact;
-    if ((mask & self) === 0) {
-      this.substep(mask, model, state, params, frame, log);
-      return;
+    let rest = mask;
+    while (rest !== 0) {
+      const hosted = rest & HOSTED;
+      if (hosted === 0) {
+        this.substep(rest, model, state, params, frame, log);
+        return;
+      }
+      const bit = hosted & -hosted;
+      if ((rest & (bit - 1)) !== 0) this.substep(rest & (bit - 1), model, state, params, frame, log);
+      this.hosted(bit, model, state, params, frame, log);
+      rest &= ~(2 * bit - 1);
     }
-    if ((mask & (self - 1)) !== 0) this.substep(mask & (self - 1), model, state, params, frame, log);
-    if (this.selfContact) this.selfContact.run(model, state, params, frame.h, frame.substeps - frame.sub);
-    else collideSelf(model, state, params, frame.h, frame.substeps - frame.sub);
-    log?.push(PHASE.selfContact, this.selfContact === null);
-    if ((mask & ~(2 * self - 1)) !== 0) this.substep(mask & ~(2 * self - 1), model, state, params, frame, log);
   }
+
+  /** One of the phases the host drives on this thread (HOSTED): `bit` is its mask bit. */
+  private hosted(bit: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
+    if (bit === 1 << PHASE.selfContact) {
+      if (this.selfContact) this.selfContact.run(model, state, params, frame.h, frame.substeps - frame.sub);
+      else collideSelf(model, state, params, frame.h, frame.substeps - frame.sub);
+      log?.push(PHASE.selfContact, this.selfContact === null);
+    } else if (bit === 1 << PHASE.globalStretch) {
+      this.stretchSolver ??= new WasmFactorSolver(this.instantiateSingle);
+      solveGlobalStretch(model, state, params, frame.h, phasePasses(PHASE.globalStretch, params), this.stretchSolver);
+      log?.push(PHASE.globalStretch, false);
+    } else {
+      this.bendingSolver ??= new WasmFactorSolver(this.instantiateSingle);
+      solveGlobalBending(model, state, params, frame.h, this.bendingSolver);
+      log?.push(PHASE.globalBending, false);
+    }
+  }
+
+  /** The kernel's single-thread module over another memory (the global steps' solves, factored-wasm.ts). */
+  private readonly instantiateSingle = (memory: WebAssembly.Memory) => new WebAssembly.Instance(kernelModule(false)!, kernelImports(memory));
 
   /**
    * The kernel's phases of `mask` (self-contact's aside) in one substep() call, with the colliders' records of this

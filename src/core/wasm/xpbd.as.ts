@@ -13,6 +13,8 @@
 //   self-contact.as.ts self-contact's passes over the candidate pairs (the host calls them between two substep()
 //                      calls, on thread 0: the selfContact phase is never part of a substep() here)
 //   self-search.as.ts  self-contact's search for those pairs (likewise called by the host, on thread 0)
+//   factored.as.ts     the global steps' triangular solves (the host runs them over a memory of their own,
+//                      factored-wasm.ts, between two substep() calls)
 //   simd.as.ts         the f32x4 lane helpers they share
 //   arrays.as.ts       the arrays' byte offsets (configure())
 //   threads.as.ts      the protocol under which threads share a substep
@@ -44,6 +46,7 @@ import {
 export { configure } from './arrays.as';
 export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfParticles, selfTriangleBoxes } from './self-contact.as';
 export { configureSearch, foundEdgePairs, foundPairs, selfSearch, selfUpdate } from './self-search.as';
+export { solveFactored3 } from './factored.as';
 
 /**
  * Helper thread t's loop: wait for a dispatch, take part in that substep, repeat until told to exit. It reads the

@@ -1,0 +1,118 @@
+/**
+ * The global steps on the WebAssembly kernel (factored-wasm.ts): the reference's assembly around the kernel's
+ * triangular solves (factored.as.ts), which must give the reference's solution bit for bit.
+ */
+import { describe, expect, it } from 'vitest';
+import { FRAME_DT, Simulation, createState, setPinned, validateScene, type ClothState } from '../index.js';
+import { PHASE, PhaseLog } from '../schedule.js';
+import { REFERENCE } from '../reference.js';
+import { WasmBackend } from '../backend.js';
+import { SparseCholesky } from '../solvers/sparse.js';
+import { WasmFactorSolver } from './factored-wasm.js';
+import { kernelImports, wasmKernelAvailable } from './xpbd-wasm.js';
+import { XPBD_WASM_SINGLE } from './xpbd-kernel.generated.js';
+
+/** A copy of what the global steps read and write. */
+function copyOf(sim: Simulation): ClothState {
+  const st = sim.state, copy = createState(sim.model);
+  copy.positions.set(st.positions);
+  copy.residuals.set(st.residuals);
+  copy.previousPositions.set(st.previousPositions);
+  copy.previousResiduals.set(st.previousResiduals);
+  copy.invMass.set(st.invMass);
+  copy.pinned.set(st.pinned);
+  copy.grabbed = st.grabbed;
+  copy.time = st.time;
+  return copy;
+}
+
+/**
+ * One substep of phase `id` by the kernel on sim's state and by the reference on a copy, from positions disturbed by
+ * a few millimetres: the same positions, moved by the step.
+ */
+function sameAsReference(sim: Simulation, id: number, name: string): void {
+  const frame = { h: FRAME_DT / sim.params.substeps, substeps: sim.params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
+  // a substep's predicted positions: the cloth moved off its solved shape by up to 2 mm
+  const x = sim.state.positions;
+  for (let i = 0; i < x.length; i++) x[i] += 2e-3 * Math.sin(1.3 * i);
+  const copy = copyOf(sim), before = Float32Array.from(x);
+  const log = new PhaseLog();
+  (sim.backend as WasmBackend).kernel.run(1 << id, sim.model, sim.state, sim.params, frame, log);
+  REFERENCE[id](sim.model, copy, sim.params, frame);
+  expect(log.names()).toEqual([name]); // run by the kernel, not left to the reference
+  let moved = 0;
+  for (let i = 0; i < before.length; i++) moved = Math.max(moved, Math.abs(before[i] - sim.state.positions[i]));
+  expect(moved).toBeGreaterThan(2e-6); // some 30 f32 steps at 1 m
+  expect([...sim.state.positions]).toEqual([...copy.positions]);
+  expect([...sim.state.residuals]).toEqual([...copy.residuals]);
+}
+
+describe('the global steps on the WebAssembly kernel', () => {
+  it('the springs and the stencils solved together give the reference\'s positions bit for bit, and again after a pin changes the factor', () => {
+    expect(wasmKernelAvailable()).toBe(true);
+    // a stiff sheet (B = 10⁻³ N·m), so that one bending step moves the disturbed cloth by more than rounding
+    const sim = new Simulation(validateScene({
+      cloth: { resolution: 10 }, material: { bendingRigidity: 1e-3 }, solver: { stretch: 'global', bending: 'hinges', bendingSolve: 'global' },
+    }), { kernel: 'wasm' });
+    sim.advance(15); // falling onto the sphere
+    for (let round = 0; round < 2; round++) {
+      sameAsReference(sim, PHASE.globalStretch, 'globalStretch');
+      sameAsReference(sim, PHASE.globalBending, 'globalBending');
+      sameAsReference(sim, PHASE.globalStretch, 'globalStretch');
+      // a new pin: each step refactors its matrix, and the kernel's solves must take the new factor
+      setPinned(sim.state, 60, true);
+    }
+  });
+
+  it('a frame with both global steps runs them in the kernel', () => {
+    const sim = new Simulation(validateScene({
+      cloth: { resolution: 6 }, solver: { stretch: 'global', bending: 'hinges', bendingSolve: 'global' },
+    }), { kernel: 'wasm' });
+    const log = new PhaseLog();
+    (sim.backend as WasmBackend).kernel.frame(sim.model, sim.state, sim.params, FRAME_DT, log);
+    const names = log.names();
+    expect(names.filter((n) => n === 'globalStretch')).toHaveLength(sim.params.substeps);
+    expect(names.filter((n) => n === 'globalBending')).toHaveLength(sim.params.substeps);
+    expect(names.some((n) => n.startsWith('global') && n.endsWith('(reference)'))).toBe(false);
+  });
+
+  it('solves as SparseCholesky.solve3 does, bit for bit, for two factors in turn and after a refactor', () => {
+    // two 5 × 5 grid Laplacians plus different diagonals, each factored; one solver taking both in turn
+    const side = 5, n = side * side;
+    const rowStart = new Int32Array(n + 1), cols: number[] = [];
+    for (let i = 0; i < n; i++) {
+      const x = i % side, y = Math.floor(i / side);
+      if (x > 0) cols.push(i - 1);
+      if (x < side - 1) cols.push(i + 1);
+      if (y > 0) cols.push(i - side);
+      if (y < side - 1) cols.push(i + side);
+      rowStart[i + 1] = cols.length;
+    }
+    const build = (shift: number) => {
+      const chol = new SparseCholesky(rowStart, Int32Array.from(cols));
+      for (let i = 0; i < n; i++) {
+        chol.add(i, i, 4 + shift + Math.sin(i));
+        for (let k = rowStart[i]; k < rowStart[i + 1]; k++) if (cols[k] < i) chol.add(i, cols[k], -1 - 0.1 * Math.cos(i * cols[k]));
+      }
+      chol.factor();
+      return chol;
+    };
+    const a = build(0.3), b = build(7);
+    const module = new WebAssembly.Module(Uint8Array.from(atob(XPBD_WASM_SINGLE), (c) => c.charCodeAt(0)));
+    const solver = new WasmFactorSolver((memory) => new WebAssembly.Instance(module, kernelImports(memory)));
+    const rhs = Float64Array.from({ length: 3 * n }, (_, k) => Math.cos(k * 1.7) / 3);
+    const check = (chol: SparseCholesky) => {
+      const mine = rhs.slice(), theirs = rhs.slice();
+      solver.solve3(chol, mine);
+      chol.solve3(theirs);
+      expect([...mine]).toEqual([...theirs]);
+      expect(mine).not.toEqual(rhs);
+    };
+    check(a); check(b); check(a);
+    // the same factor object refactored with other values: the solver must not keep the old ones
+    a.clear();
+    for (let i = 0; i < n; i++) a.add(i, i, 2 + i);
+    a.factor();
+    check(a);
+  });
+});
