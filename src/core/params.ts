@@ -104,6 +104,12 @@ export interface SimParams {
    * vertices), A/B [m²/(N·m)]; Infinity where B = 0 or the stencil's weights are all zero; empty for the springs
    */
   stencilCompliance: Float32Array;
+  /**
+   * damping time τ of each bending stencil [s], for the bending solved together (solver.bendingSolve 'global'): its
+   * cloth's material.damping over its bend spring's stiffness, β/(BEND_SPRING_PER_RIGIDITY·B), the time a skip-one
+   * bend spring's damping has; 0 where B = 0 (empty for the springs)
+   */
+  stencilDamping: Float32Array;
   /** spring damping on relative velocity [N·s/m] (material.damping; the xpbd solver's β) */
   damping: number;
   /** the mass-spring solver's damping of each spring [N·s/m]: `damping`, lowered where the stability limit needs it */
@@ -309,12 +315,14 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
   const bendingRigidity = m.bendingRigidity;
   const stencils = bendingStencils(model, bending);
   const stencilCompliance = new Float32Array(stencils ? stencils.areas.length : 0);
+  const stencilDamping = new Float32Array(stencilCompliance.length);
   for (let e = 0; e < stencilCompliance.length; e++) {
     const { offsets, vertices, weights, areas } = stencils!;
     let any = false;
     for (let k = offsets[e]; k < offsets[e + 1]; k++) if (weights[k] !== 0) any = true;
-    const B = entries[owner[vertices[offsets[e]]]].material.bendingRigidity;
+    const { bendingRigidity: B, damping: beta } = entries[owner[vertices[offsets[e]]]].material;
     stencilCompliance[e] = B > 0 && any ? areas[e] / B : Infinity;
+    stencilDamping[e] = B > 0 ? beta / (BEND_SPRING_PER_RIGIDITY * B) : 0;
   }
 
   const d = scene.wind.direction;
@@ -338,6 +346,7 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     selfContact: scene.solver.selfContact,
     grabSpeed: scene.solver.selfContact && speed > 0 ? speed : Infinity,
     bendingRigidity,
+    stencilDamping,
     stencilCompliance,
     damping,
     springDamping,

@@ -14,9 +14,17 @@
  * stiffnesses and pins (sparse Cholesky, sparse.ts); a pinned particle's row is the identity. The grabbed particle is
  * held as in the global stretch step (z = A⁻¹·e_g, prefactored.ts). One XPBD pass carries a stiff
  * stencil's correction a stencil or two per substep, so a light strip held at one end bends several times too easily
- * (docs/physics.md, "Bending solved together"); this step has no such lag. Being backward Euler, it damps the
- * bending's fast modes (no material damping is added). It runs after the springs (solver.stretch either way): the
- * operator splitting of the two energies, stretch then bending, each substep.
+ * (docs/physics.md, "Bending solved together"); this step has no such lag. It runs after the springs (solver.stretch
+ * either way): the operator splitting of the two energies, stretch then bending, each substep.
+ *
+ * Damping: each stencil carries stiffness-proportional (Rayleigh) damping with the damping time τ_e of a bend
+ * spring of its cloth (params.stencilDamping, β/k_b), the dissipation potential Σ_e (τ_e/2h)·|K_e·(x − x_prev)|²/α_e
+ * with x_prev the positions at the substep's start, so the step solves
+ *
+ *   (M/h² + Σ_e (1 + τ_e/h)·K_e·K_eᵀ/α_e)·x = M/h²·x* + Σ_e (τ_e/h)·K_e·K_eᵀ·x_prev/α_e,
+ *
+ * whose matrix is as constant as before. Without it the flaps of a draped cloth swing on as pendulums: backward
+ * Euler's own damping reaches only the bending's fast modes.
  */
 import { bendingStencils, type BendingStencils, type ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
@@ -32,8 +40,25 @@ class BendingSystem extends PrefactoredSystem {
    * x0 x1 x3; hinges only, else empty)
    */
   readonly sides: Float64Array;
-  /** each stencil's compliance α [m/N] for the pins of the factor (params.stencilCompliance; a held hinge's less) */
-  readonly compliance: Float64Array;
+  /**
+   * each stencil's stiffness in the matrix, (1 + τ/h)/α [N/m], for the pins and h of the factor (α:
+   * params.stencilCompliance, a held hinge's less; τ: params.stencilDamping); 0 for a stencil without stiffness
+   */
+  readonly stiffness: Float64Array;
+  /** each stencil's pull towards its shape at the substep's start, (τ/h)/α [N/m] (damping; 0 without) */
+  readonly pull: Float64Array;
+  /**
+   * the damping's pull as a matrix over the particles, P = Σ_e (τ_e/h)·K_e·K_eᵀ/α_e [N/m], on the free particles'
+   * rows for the pins of the factor: its diagonal, and its other entries on the graph's (graphStart, graphCols:
+   * compressed rows, by particle); `damped`: whether any stencil has damping
+   */
+  readonly pullDiagonal: Float64Array;
+  readonly pullValues: Float64Array;
+  readonly graphStart: Int32Array;
+  readonly graphCols: Int32Array;
+  damped = false;
+  /** the positions at the substep's start (+ residuals), xyz per particle [m] */
+  readonly start: Float64Array;
   /** the stencils with stiffness that hold a pinned particle and a free one, for the pins of the factor: the first `pinnedCount` */
   readonly pinnedStencils: Int32Array;
   pinnedCount = 0;
@@ -70,7 +95,13 @@ class BendingSystem extends PrefactoredSystem {
     super(model, params.particleMass, rowStart, cols);
     this.stencils = stencils;
     const m = offsets.length - 1;
-    this.compliance = new Float64Array(m);
+    this.stiffness = new Float64Array(m);
+    this.pull = new Float64Array(m);
+    this.graphStart = rowStart;
+    this.graphCols = cols;
+    this.pullDiagonal = new Float64Array(n);
+    this.pullValues = new Float64Array(cols.length);
+    this.start = new Float64Array(3 * n);
     this.pinnedStencils = new Int32Array(m);
     this.sides = new Float64Array(params.bending === 'hinges' ? 2 * m : 0);
     const p = model.restPositions;
@@ -89,34 +120,62 @@ class BendingSystem extends PrefactoredSystem {
 
   /** Assembles and factors A = M/h² + Σ K·Kᵀ/α for substep h and the pins of `pinned`. */
   factor(params: SimParams, pinned: Uint8Array, h: number): void {
-    const { chol, row, sides, compliance, stencils: { offsets, vertices, weights } } = this;
+    const { chol, row, sides, stiffness, pull, stencils: { offsets, vertices, weights } } = this;
     this.beginFactor(pinned, h);
     // a hinge beside a held triangle (its three corners pinned) bends on its free side only: the continuous strip
     // stores its curvature there, over the free triangle's area, so the hinge's area is that triangle's (a clamped
     // strip's first hinge was half as stiff as the strip beside the clamp; docs/physics.md "Bending solved together")
-    for (let e = 0; e < compliance.length; e++) {
+    for (let e = 0; e < stiffness.length; e++) {
       let alpha = params.stencilCompliance[e];
-      if (sides.length && alpha < Infinity) {
+      if (!(alpha < Infinity)) {
+        stiffness[e] = pull[e] = 0;
+        continue;
+      }
+      if (sides.length) {
         const at = offsets[e], edge = pinned[vertices[at]] && pinned[vertices[at + 1]];
         const free = (edge && pinned[vertices[at + 2]] ? 0 : sides[2 * e]) + (edge && pinned[vertices[at + 3]] ? 0 : sides[2 * e + 1]);
         if (free > 0) alpha *= free;
       }
-      compliance[e] = alpha;
+      const s = params.stencilDamping[e] / h;
+      stiffness[e] = (1 + s) / alpha;
+      pull[e] = s / alpha;
+    }
+    // the damping's pull P (a stencil naming a particle twice adds to its diagonal twice, as in the matrix)
+    const { pullDiagonal, pullValues, graphStart, graphCols } = this;
+    pullDiagonal.fill(0);
+    pullValues.fill(0);
+    this.damped = false;
+    for (let e = 0; e + 1 < offsets.length; e++) {
+      if (!(pull[e] > 0)) continue;
+      this.damped = true;
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) {
+        const a = vertices[k];
+        if (pinned[a]) continue;
+        for (let l = offsets[e]; l < offsets[e + 1]; l++) {
+          const c = vertices[l], v = pull[e] * weights[k] * weights[l];
+          if (c === a) {
+            pullDiagonal[a] += v;
+            continue;
+          }
+          let p = graphStart[a];
+          while (graphCols[p] !== c) p++;
+          pullValues[p] += v;
+        }
+      }
     }
     this.pinnedCount = 0;
-    for (let e = 0; e < compliance.length; e++) {
-      if (!(compliance[e] < Infinity)) continue;
+    for (let e = 0; e < stiffness.length; e++) {
+      if (stiffness[e] === 0) continue;
       let held = 0, free = 0;
       for (let k = offsets[e]; k < offsets[e + 1]; k++) if (pinned[vertices[k]]) held++; else free++;
       if (held > 0 && free > 0) this.pinnedStencils[this.pinnedCount++] = e;
     }
     for (let e = 0; e + 1 < offsets.length; e++) {
-      const alpha = compliance[e];
-      if (!(alpha < Infinity)) continue;
+      if (stiffness[e] === 0) continue;
       for (let k = offsets[e]; k < offsets[e + 1]; k++) {
         const a = vertices[k];
         if (pinned[a]) continue;
-        const s = weights[k] / alpha;
+        const s = weights[k] * stiffness[e];
         chol.add(row[a], row[a], s * weights[k]);
         // a pair k < l adds K_k·K_l/α at (a, c) and (c, a): twice to the diagonal if a stencil named a particle twice
         for (let l = k + 1; l < offsets[e + 1]; l++) {
@@ -160,7 +219,7 @@ export function solveGlobalBending(
   }
   const pinned = state.pinned;
   if (!system.current(pinned, h)) system.factor(params, pinned, h);
-  const { b, row, mass, chol, compliance, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = system;
+  const { b, row, mass, chol, stiffness, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = system;
   const x = state.positions, r = state.residuals, n = mass.length;
   const inertia = 1 / (h * h);
   for (let i = 0; i < n; i++) {
@@ -169,7 +228,7 @@ export function solveGlobalBending(
   }
   // a pinned particle's terms move to the right-hand side of its stencils' free particles
   for (let s = 0; s < pinnedCount; s++) {
-    const e = pinnedStencils[s], alpha = compliance[e];
+    const e = pinnedStencils[s], ke = stiffness[e];
     for (let l = offsets[e]; l < offsets[e + 1]; l++) {
       const c = vertices[l];
       if (!pinned[c]) continue;
@@ -177,9 +236,26 @@ export function solveGlobalBending(
       for (let k = offsets[e]; k < offsets[e + 1]; k++) {
         const a = vertices[k];
         if (pinned[a]) continue;
-        const v = (weights[k] * weights[l]) / alpha, q = 3 * row[a];
+        const v = weights[k] * weights[l] * ke, q = 3 * row[a];
         b[q] -= v * px; b[q + 1] -= v * py; b[q + 2] -= v * pz;
       }
+    }
+  }
+  // damping: the free particles pulled towards the stencils' shapes at the substep's start, P·x_prev
+  if (system.damped) {
+    const { start, pullDiagonal, pullValues, graphStart, graphCols } = system;
+    const xp = state.previousPositions, rp = state.previousResiduals;
+    for (let j = 0; j < 3 * n; j++) start[j] = xp[j] + rp[j];
+    for (let i = 0; i < n; i++) {
+      if (pinned[i]) continue;
+      const d = pullDiagonal[i], j = 3 * i;
+      let sx = d * start[j], sy = d * start[j + 1], sz = d * start[j + 2];
+      for (let p = graphStart[i]; p < graphStart[i + 1]; p++) {
+        const v = pullValues[p], c = 3 * graphCols[p];
+        sx += v * start[c]; sy += v * start[c + 1]; sz += v * start[c + 2];
+      }
+      const q = 3 * row[i];
+      b[q] += sx; b[q + 1] += sy; b[q + 2] += sz;
     }
   }
   const g = system.grabbed(state);
