@@ -118,7 +118,10 @@ class BendingSystem extends PrefactoredSystem {
     }
   }
 
-  /** Assembles and factors A = M/h² + Σ K·Kᵀ/α for substep h and the pins of `pinned`. */
+  /**
+   * Assembles and factors A = M/h² + Σ (1 + τ/h)·K·Kᵀ/α for substep h and the pins of `pinned`, and the damping's
+   * pull P.
+   */
   factor(params: SimParams, pinned: Uint8Array, h: number): void {
     const { chol, row, sides, stiffness, pull, stencils: { offsets, vertices, weights } } = this;
     this.beginFactor(pinned, h);
@@ -157,9 +160,13 @@ class BendingSystem extends PrefactoredSystem {
             pullDiagonal[a] += v;
             continue;
           }
-          let p = graphStart[a];
-          while (graphCols[p] !== c) p++;
-          pullValues[p] += v;
+          // (the graph joins every two particles of a stencil: c is in a's row)
+          for (let p = graphStart[a]; p < graphStart[a + 1]; p++) {
+            if (graphCols[p] === c) {
+              pullValues[p] += v;
+              break;
+            }
+          }
         }
       }
     }
