@@ -31,13 +31,11 @@ describe.each<CpuKernel>(['ts', 'wasm'])('solver.bendingSolve "global" (xpbd), %
     return (test as { bendingLength: number }).bendingLength / Math.cbrt(f.bendingRigidity / (f.arealDensity * 9.81));
   };
 
-  // measured at 32 faces: leather 1.00, cotton 1.00 (0.96 and 0.92 before the held hinges, below, were made stiffer);
-  // one Gauss–Seidel pass a substep gives 0.19 and 0.65. Cotton on one kernel: the two read the same to three digits,
-  // and each run is 360 frames of the strip.
-  it.each(kernel === 'wasm' ? ['leather', 'cotton'] : ['leather'])('the cantilever (ASTM D1388) at the scene\'s own settings: %s\'s bending length within 10 % of (B/(ρ_A·g))^⅓', (fabric) => {
-    const ratio = cantilever(fabric, 32);
-    expect(ratio).toBeGreaterThan(0.9);
-    expect(ratio).toBeLessThan(1.1);
+  // measured at 32 faces, damped and at rest when read: leather 1.00, cotton 0.99 (0.96 and 0.92 before the held
+  // hinges, below, were made stiffer); one Gauss–Seidel pass a substep gives 0.19 and 0.65. The issue asks for 10 %.
+  // Cotton on one kernel: the two read the same to three digits, and each run is 360 frames of the strip.
+  it.each(kernel === 'wasm' ? ['leather', 'cotton'] : ['leather'])('the cantilever (ASTM D1388) at the scene\'s own settings: %s\'s bending length within 3 % of (B/(ρ_A·g))^⅓', (fabric) => {
+    expect(Math.abs(cantilever(fabric, 32) - 1)).toBeLessThan(0.03);
   });
 
   it('the cantilever at 16 faces: leather within 3 % of its bending length (the hinges beside the clamp bend on their free side only; counted whole, 0.92)', () => {
