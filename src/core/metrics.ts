@@ -2,6 +2,7 @@
 import { BEND, STRUCTURAL, bendingStencils, type ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
+import { heldHingeShare } from './solvers/global-bending.js';
 
 export interface Energy {
   /** Σ ½·m·|v|² [J] */
@@ -11,7 +12,8 @@ export interface Energy {
   /**
    * elastic energy stored in the cloth's shape [J], from the positions for every solver: Σ ½·k·(|d| − L)² over the
    * springs with the stiffness they act with (params.stiffness) and, with a stencil bending model (hinges,
-   * Laplacian), Σ ½·|C|²/α over its stencils (solvers/xpbd.ts solveBending). A constraint the solver leaves unconverged shows as energy: a cloth
+   * Laplacian), Σ ½·|C|²/α over its stencils (solvers/xpbd.ts solveBending; with the hinges solved together, a hinge
+   * beside a held triangle with the global step's compliance, solvers/global-bending.ts heldHingeShare). A constraint the solver leaves unconverged shows as energy: a cloth
    * stretched beyond what its load explains is visibly overstretched here
    */
   elastic: number;
@@ -42,16 +44,18 @@ export function energy(model: ClothModel, state: ClothState, params: SimParams):
   const stencils = bendingStencils(model, params.bending);
   if (stencils) {
     const { offsets, vertices, weights: K } = stencils, compliance = params.stencilCompliance;
+    const held = params.bending === 'hinges' && params.bendingSolve === 'global';
     let bent = 0;
     for (let e = 0; e < compliance.length; e++) {
       if (compliance[e] === Infinity) continue;
+      const alpha = held ? compliance[e] * heldHingeShare(model.restPositions, vertices, offsets[e], state.pinned) : compliance[e];
       let c2 = 0;
       for (let d = 0; d < 3; d++) {
         let c = 0;
         for (let q = offsets[e]; q < offsets[e + 1]; q++) c += K[q] * x[3 * vertices[q] + d];
         c2 += c * c;
       }
-      bent += (0.5 * c2) / compliance[e];
+      bent += (0.5 * c2) / alpha;
     }
     bending += bent;
     elastic += bent;

@@ -13,7 +13,7 @@ import { setScenePath, validateScene } from '../scene.js';
 import { builtinScene } from '../scenes.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
 import { grab, release, setPinned } from '../state.js';
-import { solveGlobalBending } from './global-bending.js';
+import { heldHingeShare, solveGlobalBending } from './global-bending.js';
 
 describe.each<CpuKernel>(['ts', 'wasm'])('solver.bendingSolve "global" (xpbd), %s kernel', (kernel) => {
   /** the cantilever scene's bending length ÷ (B/(ρ_A·g))^⅓ with the hinges solved together, read at its duration */
@@ -172,5 +172,28 @@ describe.each<CpuKernel>(['ts', 'wasm'])('solver.bendingSolve "global" (xpbd), %
     expect(names.some((name) => name.startsWith('bending'))).toBe(false);
     expect(names.filter((name) => /^(distance|globalBending|tethers)\b/.test(name)).slice(0, 3))
       .toEqual(kernel === 'wasm' ? ['distance', 'globalBending', 'tethers'] : ['distance (reference)', 'globalBending (reference)', 'tethers (reference)']);
+  });
+});
+
+describe('held hinges', () => {
+  it('the energy report counts a hinge beside a held triangle as the global step solves it: on its free side, twice the energy of the whole hinge on a square', () => {
+    // one 10 cm quad, its hinge's edge and one wing pinned (that triangle held), the free corner lifted 1 mm
+    const bent = (bendingSolve: 'global' | 'gauss-seidel'): number => {
+      const sim = new Simulation(validateScene({
+        cloth: { resolution: 1, width: 0.1, height: 0.1, position: [0, 0, 0] }, colliders: [], gravity: [0, 0, 0],
+        solver: { bending: 'hinges', bendingSolve },
+      }));
+      const { offsets, vertices } = bendingStencils(sim.model, 'hinges')!;
+      expect(offsets.length).toBe(2);
+      for (const p of [vertices[0], vertices[1], vertices[2]]) setPinned(sim.state, p, true);
+      sim.state.positions[3 * vertices[3] + 1] += 1e-3;
+      expect(heldHingeShare(sim.model.restPositions, vertices, 0, sim.state.pinned)).toBeCloseTo(0.5, 6);
+      const e = sim.report().energy.bending;
+      sim.dispose();
+      return e;
+    };
+    const whole = bent('gauss-seidel');
+    expect(whole).toBeGreaterThan(0);
+    expect(bent('global') / whole).toBeCloseTo(2, 5);
   });
 });

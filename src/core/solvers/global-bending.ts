@@ -36,11 +36,6 @@ import { REFERENCE_SOLVER, type FactorSolver } from './sparse.js';
 class BendingSystem extends PrefactoredSystem {
   readonly stencils: BendingStencils;
   /**
-   * each hinge's share of its compliance on either side: its two rest triangles' areas over their sum (x0 x1 x2, then
-   * x0 x1 x3; hinges only, else empty)
-   */
-  readonly sides: Float64Array;
-  /**
    * each stencil's stiffness in the matrix, (1 + τ/h)/α [N/m], for the pins and h of the factor (α:
    * params.stencilCompliance, a held hinge's less; τ: params.stencilDamping); 0 for a stencil without stiffness
    */
@@ -103,19 +98,6 @@ class BendingSystem extends PrefactoredSystem {
     this.pullValues = new Float64Array(cols.length);
     this.start = new Float64Array(3 * n);
     this.pinnedStencils = new Int32Array(m);
-    this.sides = new Float64Array(params.bending === 'hinges' ? 2 * m : 0);
-    const p = model.restPositions;
-    const area = (a: number, b: number, c: number) => {
-      const ux = p[3 * b] - p[3 * a], uy = p[3 * b + 1] - p[3 * a + 1], uz = p[3 * b + 2] - p[3 * a + 2];
-      const vx = p[3 * c] - p[3 * a], vy = p[3 * c + 1] - p[3 * a + 1], vz = p[3 * c + 2] - p[3 * a + 2];
-      return 0.5 * Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
-    };
-    for (let e = 0; e < this.sides.length / 2; e++) {
-      const [x0, x1, x2, x3] = vertices.subarray(offsets[e], offsets[e] + 4);
-      const a2 = area(x0, x1, x2), a3 = area(x0, x1, x3);
-      this.sides[2 * e] = a2 / (a2 + a3);
-      this.sides[2 * e + 1] = a3 / (a2 + a3);
-    }
   }
 
   /**
@@ -123,22 +105,17 @@ class BendingSystem extends PrefactoredSystem {
    * pull P.
    */
   factor(params: SimParams, pinned: Uint8Array, h: number): void {
-    const { chol, row, sides, stiffness, pull, stencils: { offsets, vertices, weights } } = this;
+    const { chol, row, stiffness, pull, stencils: { offsets, vertices, weights } } = this;
+    const hinges = params.bending === 'hinges', rest = this.model.restPositions;
     this.beginFactor(pinned, h);
-    // a hinge beside a held triangle (its three corners pinned) bends on its free side only: the continuous strip
-    // stores its curvature there, over the free triangle's area, so the hinge's area is that triangle's (a clamped
-    // strip's first hinge was half as stiff as the strip beside the clamp; docs/physics.md "Bending solved together")
+    // a hinge beside a held triangle bends on its free side only (heldHingeShare)
     for (let e = 0; e < stiffness.length; e++) {
       let alpha = params.stencilCompliance[e];
       if (!(alpha < Infinity)) {
         stiffness[e] = pull[e] = 0;
         continue;
       }
-      if (sides.length) {
-        const at = offsets[e], edge = pinned[vertices[at]] && pinned[vertices[at + 1]];
-        const free = (edge && pinned[vertices[at + 2]] ? 0 : sides[2 * e]) + (edge && pinned[vertices[at + 3]] ? 0 : sides[2 * e + 1]);
-        if (free > 0) alpha *= free;
-      }
+      if (hinges) alpha *= heldHingeShare(rest, vertices, offsets[e], pinned);
       const s = params.stencilDamping[e] / h;
       stiffness[e] = (1 + s) / alpha;
       pull[e] = s / alpha;
@@ -193,6 +170,26 @@ class BendingSystem extends PrefactoredSystem {
     }
     chol.factor();
   }
+}
+
+/**
+ * The share of a hinge's compliance (the hinge x0 x1 x2 x3 from vertices[at]: edge x0 x1, wings x2 and x3) left for
+ * the pins of `pinned`: where its edge and one wing are pinned, that triangle is held rigid (the cantilever's clamp, a
+ * region pinned to a collider) and the continuous strip stores its curvature in the free triangle only, over that
+ * triangle's area, so the hinge's area is that triangle's and its compliance scales by the free triangle's share of
+ * the pair's rest area (a half on the grid; counted whole, a clamped strip's first hinge was half as stiff as the
+ * strip beside the clamp: docs/physics.md "Bending solved together"). 1 where no triangle is held, or both.
+ */
+export function heldHingeShare(rest: Float32Array, vertices: Uint32Array, at: number, pinned: Uint8Array): number {
+  const [x0, x1, x2, x3] = [vertices[at], vertices[at + 1], vertices[at + 2], vertices[at + 3]];
+  if (!(pinned[x0] && pinned[x1]) || !pinned[x2] === !pinned[x3]) return 1;
+  const area = (c: number) => {
+    const ux = rest[3 * x1] - rest[3 * x0], uy = rest[3 * x1 + 1] - rest[3 * x0 + 1], uz = rest[3 * x1 + 2] - rest[3 * x0 + 2];
+    const vx = rest[3 * c] - rest[3 * x0], vy = rest[3 * c + 1] - rest[3 * x0 + 1], vz = rest[3 * c + 2] - rest[3 * x0 + 2];
+    return Math.hypot(uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx);
+  };
+  const a2 = area(x2), a3 = area(x3);
+  return (pinned[x2] ? a3 : a2) / (a2 + a3);
 }
 
 /** The stencils each particle is in (compressed rows). */
