@@ -23,6 +23,11 @@ export interface BenchOptions {
   contention: boolean;
   /** threads of the WebAssembly XPBD kernel in the main Drape column (a 1-thread column is always printed) */
   threads: number | 'auto';
+  /**
+   * the fabric-model rows' scene with these changes (the CLI's --set, applied to modelScene's document: e.g. another
+   * bending model or solve); the like-for-like rows never take them
+   */
+  model?: (scene: Scene) => Scene;
   json: boolean;
 }
 
@@ -64,7 +69,9 @@ interface Row {
    * the same cloth with Drape's default fabric model (modelScene): its bending, stretch and substeps, on the default
    * threads, one thread and in TypeScript; `ratio1` its 1-thread ms over the like-for-like 1-thread ms
    */
-  model: { bending: string; stretch: string; substeps: number; xpbd: Timing & { threads: number }; xpbd1: Timing; xpbdTs: Timing; ratio1: number };
+  model: {
+    bending: string; bendingSolve: string; stretch: string; substeps: number; xpbd: Timing & { threads: number }; xpbd1: Timing; xpbdTs: Timing; ratio1: number;
+  };
 }
 
 function benchScene(side: number, substeps: number, solver: 'xpbd' | 'mass-spring'): Scene {
@@ -217,7 +224,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
     const xpbd1 = await timeDrape(scene, opts.frames, opts.warmup, cpuOptions(1));
     const xpbdTs = await timeDrape(scene, opts.frames, opts.warmup, { kernel: 'ts' });
     const ms = await timeDrape(benchScene(side, opts.substeps, 'mass-spring'), opts.frames, opts.warmup, { kernel: 'ts' });
-    const model = modelScene(side);
+    const model = opts.model ? opts.model(modelScene(side)) : modelScene(side);
     const [mx, mx1, mts] = [
       await timeDrape(model, opts.frames, opts.warmup, cpuOptions(opts.threads)),
       await timeDrape(model, opts.frames, opts.warmup, cpuOptions(1)),
@@ -232,7 +239,7 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
       xpbdTs: timing(xpbdTs),
       massSpring: timing(ms),
       model: {
-        bending: mx.sim.params.bending, stretch: mx.sim.params.stretch, substeps: mx.sim.params.substeps,
+        bending: mx.sim.params.bending, bendingSolve: mx.sim.params.bendingSolve, stretch: mx.sim.params.stretch, substeps: mx.sim.params.substeps,
         xpbd: { ...timing(mx), threads: mx.threads }, xpbd1: timing(mx1), xpbdTs: timing(mts), ratio1: mx1.msPerFrame / xpbd1.msPerFrame,
       },
     };
@@ -298,13 +305,15 @@ export async function runBench(opts: BenchOptions, out: (s: string) => void): Pr
   const errs = [...new Set(rows.map((r) => r.peerError).filter(Boolean))];
   for (const e of errs) out(`peer: ${e}`);
   out('');
-  out("Drape's default fabric model on the same cloth (not like for like: the scenes' default bending, stretch and substeps, self-contact off):");
+  out(opts.model
+    ? "Drape's fabric model with --set on the same cloth (not like for like: the scenes' default bending, stretch and substeps as set, self-contact off unless set):"
+    : "Drape's default fabric model on the same cloth (not like for like: the scenes' default bending, stretch and substeps, self-contact off):");
   out('');
-  out('| particles | bending | stretch | substeps | XPBD ms/frame | threads | 1 thread ms/frame | TypeScript ms/frame | 1 thread / like-for-like 1 thread | stable |');
-  out('|---|---|---|---|---|---|---|---|---|---|');
+  out('| particles | bending | bending solve | stretch | substeps | XPBD ms/frame | threads | 1 thread ms/frame | TypeScript ms/frame | 1 thread / like-for-like 1 thread | stable |');
+  out('|---|---|---|---|---|---|---|---|---|---|---|');
   for (const r of rows) {
     const m = r.model;
-    out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${m.bending} | ${m.stretch} | ${m.substeps} | ${fmt(m.xpbd.msPerFrame)} | ${m.xpbd.threads} | ` +
+    out(`| ${r.particlesPerSide}×${r.particlesPerSide} | ${m.bending} | ${m.bendingSolve} | ${m.stretch} | ${m.substeps} | ${fmt(m.xpbd.msPerFrame)} | ${m.xpbd.threads} | ` +
       `${fmt(m.xpbd1.msPerFrame)} | ${fmt(m.xpbdTs.msPerFrame)} | ${fmt(m.ratio1)} | ${stability(m.xpbd)} |`);
   }
   if (opts.contention) {

@@ -82,9 +82,20 @@ describe('drape CLI', () => {
     expect(row.xpbd1).toMatchObject({ kernel: 'wasm', finite: true });
     for (const t of [row.xpbd, row.xpbd1, row.xpbdTs, row.massSpring]) expect(t.msPerFrame).toBeGreaterThan(0);
     // beside the like-for-like rows, the same cloth with the default fabric model: its bending and stretch at 20 substeps
-    expect(row.model).toMatchObject({ bending: 'springs', stretch: 'gauss-seidel', substeps: 20 });
+    expect(row.model).toMatchObject({ bending: 'springs', bendingSolve: 'gauss-seidel', stretch: 'gauss-seidel', substeps: 20 });
     for (const t of [row.model.xpbd, row.model.xpbd1, row.model.xpbdTs]) expect(t).toMatchObject({ finite: true, stable: true });
     expect(row.model.ratio1).toBeCloseTo(row.model.xpbd1.msPerFrame / row.xpbd1.msPerFrame, 10);
+  });
+
+  it('bench --set changes the fabric-model rows only: the hinges solved together beside the like-for-like rows', async () => {
+    const r = await run('bench', '--sizes', '9', '--frames', '2', '--warmup', '1', '--no-peer', '--no-contention', '--json',
+      '--set', 'solver.bending=hinges', '--set', 'solver.bendingSolve=global');
+    expect(r.code).toBe(0);
+    const row = JSON.parse(r.out).rows[0];
+    expect(row.model).toMatchObject({ bending: 'hinges', bendingSolve: 'global', stretch: 'gauss-seidel', substeps: 20 });
+    expect(row.model.xpbd).toMatchObject({ finite: true, stable: true });
+    const table = await run('bench', '--sizes', '5', '--frames', '1', '--warmup', '0', '--no-peer', '--no-contention', '--set', 'solver.bending=laplacian');
+    expect(table.out).toMatch(/with --set[^\n]*\n\n\| particles \| bending \| bending solve \|[^\n]*\n[^\n]*\n\| 5×5 \| laplacian \| gauss-seidel \| gauss-seidel \| 20 \|/);
   });
 
   it('bench --scenes times built-in scenes as they are on each CPU solver and says what the GPU makes of them', async () => {
@@ -147,7 +158,7 @@ describe('drape CLI', () => {
     expect(r.code).toBe(0);
     expect(r.out).toMatch(/Busy machine: \d+ other processes keep every core busy/);
     expect(r.out).toMatch(/^\| 51×51 \| [\d.]+ \| \d \| \d+ % \| [\d.]+ \| [\d.]+ \|$/m);
-    expect(r.out).toMatch(/^\| 51×51 \| springs \| gauss-seidel \| 20 \| [\d.]+ \| \d \| [\d.]+ \| [\d.]+ \| [\d.]+ \| yes \|$/m);
+    expect(r.out).toMatch(/^\| 51×51 \| springs \| gauss-seidel \| gauss-seidel \| 20 \| [\d.]+ \| \d \| [\d.]+ \| [\d.]+ \| [\d.]+ \| yes \|$/m);
   });
 
   it('--frames 0 reports the start state; --solver and --set change the scene', async () => {
@@ -283,6 +294,8 @@ describe('drape CLI', () => {
     [['bench', '--scenes', 'cape', '--backend', 'gpu'], /--scenes: times the CPU solvers/],
     [['bench', '--hanging', '--fabrics', 'tweed'], /^drape: --fabrics: unknown fabric 'tweed' \(named fabrics: cotton, silk, leather, rubber, denim\)$/],
     [['bench', '--hanging', '--sizes', '32,64'], /^drape: --hanging: one size/],
+    [['bench', '--set', 'solver.bending=folds'], /^drape: .*solver\.bending/],
+    [['bench', '--hanging', '--set', 'solver.bending=hinges'], /^drape: --set: changes the fabric-model rows of the CPU bench/],
     [['bench', '--hanging', '--self-contact'], /^drape: --hanging and --self-contact are two different benchmarks/],
     [['bench', '--hanging', '--seconds', '1'], /^drape: --seconds: must be an integer in 2…600, got '1'$/],
     [['bench', '--hanging', '--sizes', '1'], /^drape: --sizes: must be an integer in 2…256, got '1'$/],

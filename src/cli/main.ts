@@ -76,6 +76,8 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
   --no-peer             skip JoltPhysics.js
   --no-contention       skip the busy-machine table (the default threads against one thread while other
                         processes, started and stopped by the bench, keep every core busy)
+  --set PATH=VALUE      change a scene path of the fabric-model rows only (the like-for-like rows stay), e.g.
+                        --set solver.bending=hinges --set solver.bendingSolve=global
   --json                print exactly one JSON object`,
   schema: `drape schema\n\nPrints the JSON schema every scene file is validated against (also published as scene.schema.json).`,
 };
@@ -449,6 +451,7 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
     backend: { type: 'string' }, threads: { type: 'string' }, 'no-peer': { type: 'boolean' }, 'no-contention': { type: 'boolean' },
     scenes: { type: 'string' }, 'self-contact': { type: 'boolean' },
     hanging: { type: 'boolean' }, fabrics: { type: 'string' }, seconds: { type: 'string' }, 'jolt-iterations': { type: 'string' },
+    set: { type: 'string', multiple: true },
     json: { type: 'boolean' },
     help: { type: 'boolean', short: 'h' },
   } as const;
@@ -465,6 +468,10 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
   if (selfContact && hanging) throw new UsageError('--hanging and --self-contact are two different benchmarks: give one');
   // flags that belong to one benchmark are refused by the others rather than passed over
   const given = (names: string[]) => names.filter((name) => (values as Record<string, unknown>)[name] !== undefined);
+  const sets = values.set ?? [];
+  if (sets.length && (hanging || selfContact || values.scenes !== undefined || backend === 'gpu')) {
+    throw new UsageError('--set: changes the fabric-model rows of the CPU bench (drape bench [--sizes …] --set PATH=VALUE); the other benchmarks take their scenes as they are');
+  }
   if (hanging) {
     const stray = given(['scenes', 'frames', 'warmup', 'substeps', 'no-contention']);
     if (stray.length) throw new UsageError(`--hanging: runs each sheet until it settles or --seconds pass; --${stray[0]} is for the other benchmarks`);
@@ -540,9 +547,17 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
     peer: !values['no-peer'],
     contention: !values['no-contention'],
     threads,
+    // checked now, on the document the rows will use, so that a bad path is a usage error before anything is timed
+    model: sets.length ? checkedModel(sets) : undefined,
     json: values.json ?? false,
   }, out);
   return 0;
+}
+
+/** The bench's fabric-model scene changed by the --set values, each checked once on a scene of the same shape. */
+function checkedModel(sets: string[]): (scene: Scene) => Scene {
+  applySets(builtinScene('cotton-basic'), sets);
+  return (scene) => applySets(scene, sets);
 }
 
 /**

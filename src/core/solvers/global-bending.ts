@@ -30,7 +30,7 @@ import { bendingStencils, type BendingStencils, type ClothModel } from '../model
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
 import { PrefactoredSystem } from './prefactored.js';
-import { REFERENCE_SOLVER, type FactorSolver } from './sparse.js';
+import { REFERENCE_SOLVER, type FactorSolver, type SparseProduct } from './sparse.js';
 
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
 class BendingSystem extends PrefactoredSystem {
@@ -44,13 +44,10 @@ class BendingSystem extends PrefactoredSystem {
   readonly pull: Float64Array;
   /**
    * the damping's pull as a matrix over the particles, P = Σ_e (τ_e/h)·K_e·K_eᵀ/α_e [N/m], on the free particles'
-   * rows for the pins of the factor: its diagonal, and its other entries on the graph's (graphStart, graphCols:
-   * compressed rows, by particle); `damped`: whether any stencil has damping
+   * rows for the pins of the factor (a pinned particle's row is zero): its diagonal, and its other entries on the
+   * graph's (two particles joined where a stencil holds both); `damped`: whether any stencil has damping
    */
-  readonly pullDiagonal: Float64Array;
-  readonly pullValues: Float64Array;
-  readonly graphStart: Int32Array;
-  readonly graphCols: Int32Array;
+  readonly pullMatrix: SparseProduct;
   damped = false;
   /** the positions at the substep's start (+ residuals), xyz per particle [m] */
   readonly start: Float64Array;
@@ -92,10 +89,9 @@ class BendingSystem extends PrefactoredSystem {
     const m = offsets.length - 1;
     this.stiffness = new Float64Array(m);
     this.pull = new Float64Array(m);
-    this.graphStart = rowStart;
-    this.graphCols = cols;
-    this.pullDiagonal = new Float64Array(n);
-    this.pullValues = new Float64Array(cols.length);
+    this.pullMatrix = {
+      diagonal: new Float64Array(n), start: rowStart, cols, values: new Float64Array(cols.length), row: this.row, version: 0,
+    };
     this.start = new Float64Array(3 * n);
     this.pinnedStencils = new Int32Array(m);
   }
@@ -121,9 +117,10 @@ class BendingSystem extends PrefactoredSystem {
       pull[e] = s / alpha;
     }
     // the damping's pull P (a stencil naming a particle twice adds to its diagonal twice, as in the matrix)
-    const { pullDiagonal, pullValues, graphStart, graphCols } = this;
+    const { diagonal: pullDiagonal, values: pullValues, start: graphStart, cols: graphCols } = this.pullMatrix;
     pullDiagonal.fill(0);
     pullValues.fill(0);
+    this.pullMatrix.version++;
     this.damped = false;
     for (let e = 0; e + 1 < offsets.length; e++) {
       if (!(pull[e] > 0)) continue;
@@ -245,25 +242,15 @@ export function solveGlobalBending(
       }
     }
   }
-  // damping: the free particles pulled towards the stencils' shapes at the substep's start, P·x_prev
+  // damping: the free particles pulled towards the stencils' shapes at the substep's start, + P·x_prev (in the solve)
+  const { start } = system;
   if (system.damped) {
-    const { start, pullDiagonal, pullValues, graphStart, graphCols } = system;
     const xp = state.previousPositions, rp = state.previousResiduals;
     for (let j = 0; j < 3 * n; j++) start[j] = xp[j] + rp[j];
-    for (let i = 0; i < n; i++) {
-      if (pinned[i]) continue;
-      const d = pullDiagonal[i], j = 3 * i;
-      let sx = d * start[j], sy = d * start[j + 1], sz = d * start[j + 2];
-      for (let p = graphStart[i]; p < graphStart[i + 1]; p++) {
-        const v = pullValues[p], c = 3 * graphCols[p];
-        sx += v * start[c]; sy += v * start[c + 1]; sz += v * start[c + 2];
-      }
-      const q = 3 * row[i];
-      b[q] += sx; b[q + 1] += sy; b[q + 2] += sz;
-    }
   }
   const g = system.grabbed(state);
-  solver.solve3(chol, b);
+  if (system.damped) solver.solve3(chol, b, system.pullMatrix, start);
+  else solver.solve3(chol, b);
   if (g >= 0) system.hold(g, x[3 * g] + r[3 * g], x[3 * g + 1] + r[3 * g + 1], x[3 * g + 2] + r[3 * g + 2]);
   for (let i = 0; i < n; i++) {
     if (pinned[i] || i === g) continue;

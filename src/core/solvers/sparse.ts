@@ -472,13 +472,53 @@ export class SparseCholesky {
 }
 
 /**
- * Who solves with a factor, each substep: the reference (the factor's own solve3) or the WebAssembly kernel's
- * (wasm/factored-wasm.ts), which gives the same solution bit for bit.
+ * A sparse matrix P over a system's particles that a solve adds to its right-hand side as P·v (the global bending
+ * step's damping): particle i's row has the diagonal entry diagonal[i] and the entries values[p] at the particles
+ * cols[p], p from start[i] to start[i + 1]; it adds to the system's row row[i]. `version` changes with the values.
  */
-export interface FactorSolver {
-  /** Solves A·x = b with chol's factor, b holding three interleaved right-hand sides (overwritten by x), as chol.solve3(b). */
-  solve3(chol: SparseCholesky, b: Float64Array): void;
+export interface SparseProduct {
+  readonly diagonal: Float64Array;
+  readonly start: Int32Array;
+  readonly cols: Int32Array;
+  readonly values: Float64Array;
+  readonly row: Int32Array;
+  version: number;
 }
 
-/** The reference's solves: SparseCholesky.solve3. */
-export const REFERENCE_SOLVER: FactorSolver = { solve3: (chol, b) => chol.solve3(b) };
+/**
+ * b += P·v, three coordinates interleaved (v by particle, b by the system's rows): for each particle, its diagonal
+ * term and then its entries in order, summed, then added (the order the kernel's productAdd3 keeps).
+ */
+export function multiplyAdd3(m: SparseProduct, v: Float64Array, b: Float64Array): void {
+  const { diagonal, start, cols, values, row } = m;
+  for (let i = 0; i < diagonal.length; i++) {
+    const d = diagonal[i], j = 3 * i;
+    let sx = d * v[j], sy = d * v[j + 1], sz = d * v[j + 2];
+    for (let p = start[i]; p < start[i + 1]; p++) {
+      const w = values[p], c = 3 * cols[p];
+      sx += w * v[c]; sy += w * v[c + 1]; sz += w * v[c + 2];
+    }
+    const q = 3 * row[i];
+    b[q] += sx; b[q + 1] += sy; b[q + 2] += sz;
+  }
+}
+
+/**
+ * Who solves with a factor, each substep: the reference (multiplyAdd3 and the factor's own solve3) or the
+ * WebAssembly kernel's (wasm/factored-wasm.ts), which gives the same solution bit for bit.
+ */
+export interface FactorSolver {
+  /**
+   * Solves A·x = b (+ P·v where `product` P and `v` are given) with chol's factor, b holding three interleaved
+   * right-hand sides (overwritten by x).
+   */
+  solve3(chol: SparseCholesky, b: Float64Array, product?: SparseProduct, v?: Float64Array): void;
+}
+
+/** The reference's solves: multiplyAdd3, then SparseCholesky.solve3. */
+export const REFERENCE_SOLVER: FactorSolver = {
+  solve3: (chol, b, product, v) => {
+    if (product && v) multiplyAdd3(product, v, b);
+    chol.solve3(b);
+  },
+};

@@ -7,7 +7,7 @@ import { FRAME_DT, Simulation, createState, setPinned, validateScene, type Cloth
 import { PHASE, PhaseLog } from '../schedule.js';
 import { REFERENCE } from '../reference.js';
 import { WasmBackend } from '../backend.js';
-import { SparseCholesky } from '../solvers/sparse.js';
+import { REFERENCE_SOLVER, SparseCholesky, type SparseProduct } from '../solvers/sparse.js';
 import { WasmFactorSolver } from './factored-wasm.js';
 import { kernelImports, wasmKernelAvailable } from './xpbd-wasm.js';
 import { XPBD_WASM_SINGLE } from './xpbd-kernel.generated.js';
@@ -32,9 +32,13 @@ function copyOf(sim: Simulation): ClothState {
  */
 function sameAsReference(sim: Simulation, id: number, name: string): void {
   const frame = { h: FRAME_DT / sim.params.substeps, substeps: sim.params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
-  // a substep's predicted positions: the cloth moved off its solved shape by up to 2 mm
-  const x = sim.state.positions;
-  for (let i = 0; i < x.length; i++) x[i] += 2e-3 * Math.sin(1.3 * i);
+  // a substep's predicted positions: the cloth moved off its solved shape by up to 2 mm, from a start that is bent
+  // too (else the bending step's damping, which pulls towards the start's shape, would pull towards a flat one: 0)
+  const x = sim.state.positions, xp = sim.state.previousPositions;
+  for (let i = 0; i < x.length; i++) {
+    x[i] += 2e-3 * Math.sin(1.3 * i);
+    xp[i] += 1e-3 * Math.cos(0.7 * i);
+  }
   const copy = copyOf(sim), before = Float32Array.from(x);
   const log = new PhaseLog();
   (sim.backend as WasmBackend).kernel.run(1 << id, sim.model, sim.state, sim.params, frame, log);
@@ -76,7 +80,7 @@ describe('the global steps on the WebAssembly kernel', () => {
     expect(names.some((n) => n.startsWith('global') && n.endsWith('(reference)'))).toBe(false);
   });
 
-  it('solves as SparseCholesky.solve3 does, bit for bit, for two factors in turn and after a refactor', () => {
+  it('solves as SparseCholesky.solve3 does, bit for bit, for two factors in turn and after a refactor, and with a product added as multiplyAdd3 adds it', () => {
     // two 5 × 5 grid Laplacians plus different diagonals, each factored; one solver taking both in turn
     const side = 5, n = side * side;
     const rowStart = new Int32Array(n + 1), cols: number[] = [];
@@ -114,5 +118,26 @@ describe('the global steps on the WebAssembly kernel', () => {
     for (let i = 0; i < n; i++) a.add(i, i, 2 + i);
     a.factor();
     check(a);
+
+    // with a product added to the right-hand side (the bending step's damping): P on the grid's graph, its rows
+    // permuted, as multiplyAdd3 and solve3 give it; again after its values change (a new version)
+    const product: SparseProduct = {
+      diagonal: Float64Array.from({ length: n }, (_, i) => 1 + 0.1 * i), start: rowStart, cols: Int32Array.from(cols),
+      values: Float64Array.from(cols, (c, k) => 0.3 * Math.sin(c + k)), row: Int32Array.from({ length: n }, (_, i) => (7 * i) % n), version: 0,
+    };
+    const v = Float64Array.from({ length: 3 * n }, (_, k) => Math.sin(k * 0.9) / 5);
+    const withProduct = () => {
+      const mine = rhs.slice(), theirs = rhs.slice(), without = rhs.slice();
+      solver.solve3(b, mine, product, v);
+      REFERENCE_SOLVER.solve3(b, theirs, product, v);
+      b.solve3(without);
+      expect([...mine]).toEqual([...theirs]);
+      expect(mine).not.toEqual(without);
+    };
+    withProduct();
+    product.values.forEach((w, k) => { product.values[k] = -2 * w; });
+    product.version++;
+    withProduct();
+    check(b); // and without it again
   });
 });

@@ -38,3 +38,24 @@ export function solveFactored3(n: i32, colStart: usize, rows: usize, values: usi
     store<f64>(at, sz * d, 16);
   }
 }
+
+/**
+ * b += P·v (solvers/sparse.ts multiplyAdd3, the reference): for each particle i, its diagonal term diagonal[i]·v_i
+ * and then its entries values[p]·v_cols[p], p from start[i] to start[i + 1], summed in that order, added to b's row
+ * row[i]. diagonal, values: f64; start (n + 1), cols, row: i32; v and b: f64 × 3 per particle / row.
+ */
+export function productAdd3(n: i32, diagonal: usize, start: usize, cols: usize, values: usize, row: usize, v: usize, b: usize): void {
+  for (let i = 0; i < n; i++) {
+    const d = load<f64>(diagonal + (<usize>i << 3)), vi = v + <usize>i * 24;
+    let s = f64x2.mul(f64x2.splat(d), v128.load(vi)), sz = d * load<f64>(vi, 16);
+    const p1 = <usize>load<i32>(start + (<usize>(i + 1) << 2));
+    for (let p = <usize>load<i32>(start + (<usize>i << 2)); p < p1; p++) {
+      const w = load<f64>(values + (p << 3)), c = v + <usize>load<i32>(cols + (p << 2)) * 24;
+      s = f64x2.add(s, f64x2.mul(f64x2.splat(w), v128.load(c)));
+      sz += w * load<f64>(c, 16);
+    }
+    const q = b + <usize>load<i32>(row + (<usize>i << 2)) * 24;
+    v128.store(q, f64x2.add(v128.load(q), s));
+    store<f64>(q, load<f64>(q, 16) + sz, 16);
+  }
+}

@@ -46,7 +46,7 @@ import {
 export { configure } from './arrays.as';
 export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfParticles, selfTriangleBoxes } from './self-contact.as';
 export { configureSearch, foundEdgePairs, foundPairs, selfSearch, selfUpdate } from './self-search.as';
-export { solveFactored3 } from './factored.as';
+export { productAdd3, solveFactored3 } from './factored.as';
 
 /**
  * Helper thread t's loop: wait for a dispatch, take part in that substep, repeat until told to exit. It reads the
