@@ -3,7 +3,7 @@
  * triangular solves (factored.as.ts), which must give the reference's solution bit for bit.
  */
 import { describe, expect, it } from 'vitest';
-import { FRAME_DT, Simulation, createState, setPinned, validateScene, type ClothState } from '../index.js';
+import { FRAME_DT, Simulation, copyState, createState, setPinned, validateScene, type ClothState } from '../index.js';
 import { PHASE, PhaseLog } from '../schedule.js';
 import { REFERENCE } from '../reference.js';
 import { WasmBackend } from '../backend.js';
@@ -14,15 +14,9 @@ import { XPBD_WASM_SINGLE } from './xpbd-kernel.generated.js';
 
 /** A copy of what the global steps read and write. */
 function copyOf(sim: Simulation): ClothState {
-  const st = sim.state, copy = createState(sim.model);
-  copy.positions.set(st.positions);
-  copy.residuals.set(st.residuals);
-  copy.previousPositions.set(st.previousPositions);
-  copy.previousResiduals.set(st.previousResiduals);
-  copy.invMass.set(st.invMass);
-  copy.pinned.set(st.pinned);
-  copy.grabbed = st.grabbed;
-  copy.time = st.time;
+  const copy = createState(sim.model);
+  copyState(sim.state, copy);
+  copy.invMass.set(sim.state.invMass);
   return copy;
 }
 

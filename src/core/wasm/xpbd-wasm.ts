@@ -447,7 +447,7 @@ export class XpbdKernel implements PhaseBackend {
   private readonly instantiateSingle = (memory: WebAssembly.Memory) => new WebAssembly.Instance(kernelModule(false)!, kernelImports(memory));
 
   /**
-   * The kernel's phases of `mask` (self-contact's aside) in one substep() call, with the colliders' records of this
+   * The kernel's phases of `mask` (none of HOSTED) in one substep() call, with the colliders' records of this
    * substep when it has contact; it lists what it ran for `log`.
    */
   private substep(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
