@@ -104,6 +104,16 @@ describe.skipIf(availableParallelism() < 2)('kernel threads', () => {
     });
   });
 
+  it('the springs and the hinges solved together (the global steps on the calling thread between two substeps of both threads): 2 threads give the same cloth as 1, bit for bit', async () => {
+    const sc = builtinScene('cotton-basic')!;
+    sc.cloth.resolution = 40;
+    sc.solver = { ...sc.solver, stretch: 'global', bending: 'hinges', bendingSolve: 'global', selfContact: false };
+    await sideBySide(sc, 20, (one, many) => {
+      expect([...many.state.positions]).toEqual([...one.state.positions]);
+      expect([...many.state.velocities]).toEqual([...one.state.velocities]);
+    });
+  });
+
   it('triangle contact with the sphere (one chunk: one thread takes it, in order): 2 threads give the same cloth as 1, bit for bit', async () => {
     // 33² particles on the sphere, whose surface pokes between them: the kernel's triangle pass every substep
     const sc = builtinScene('cotton-basic')!;
