@@ -249,8 +249,7 @@ export function solveGlobalBending(
     for (let j = 0; j < 3 * n; j++) start[j] = xp[j] + rp[j];
   }
   const g = system.grabbed(state);
-  if (system.damped) solver.solve3(chol, b, system.pullMatrix, start);
-  else solver.solve3(chol, b);
+  solver.solve3(chol, b, system.damped ? system.pullMatrix : undefined, start);
   if (g >= 0) system.hold(g, x[3 * g] + r[3 * g], x[3 * g + 1] + r[3 * g + 1], x[3 * g + 2] + r[3 * g + 2]);
   for (let i = 0; i < n; i++) {
     if (pinned[i] || i === g) continue;

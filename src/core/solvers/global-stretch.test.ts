@@ -1,6 +1,7 @@
 /**
  * The global stretch step (solver.stretch 'global', solvers/global-stretch.ts) and its direct solver (sparse.ts), on
- * both CPU kernels (the WebAssembly kernel leaves the phase to the TypeScript reference on its own memory).
+ * both CPU kernels (the WebAssembly kernel runs the reference's assembly with its own triangular solves,
+ * wasm/factored-wasm.ts).
  */
 import { describe, expect, it } from 'vitest';
 import { FRAME_DT } from '../params.js';
@@ -9,30 +10,8 @@ import { builtinScene } from '../scenes.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
 import { grab, release, setPinned } from '../state.js';
 import { EnvelopeCholesky, SparseCholesky, nestedDissection, orderedGraph, reverseCuthillMcKee } from './sparse.js';
+import { grid } from './test-graphs.js';
 
-/** an m × m grid graph with diagonals, numbered in a shuffled order; compressed rows */
-function grid(m: number, seed: number) {
-  const n = m * m;
-  const shuffled = Array.from({ length: n }, (_, i) => i);
-  let s = seed;
-  for (let i = n - 1; i > 0; i--) {
-    s = (Math.imul(s, 1664525) + 1013904223) >>> 0;
-    const j = s % (i + 1);
-    [shuffled[i], shuffled[j]] = [shuffled[j], shuffled[i]];
-  }
-  const edges: [number, number][] = [];
-  for (let j = 0; j < m; j++) for (let i = 0; i < m; i++) {
-    const id = (a: number, b: number) => shuffled[b * m + a];
-    if (i + 1 < m) edges.push([id(i, j), id(i + 1, j)]);
-    if (j + 1 < m) edges.push([id(i, j), id(i, j + 1)]);
-    if (i + 1 < m && j + 1 < m) edges.push([id(i, j), id(i + 1, j + 1)]);
-  }
-  const lists = Array.from({ length: n }, () => [] as number[]);
-  for (const [a, b] of edges) { lists[a].push(b); lists[b].push(a); }
-  const rowStart = new Int32Array(n + 1);
-  for (let i = 0; i < n; i++) rowStart[i + 1] = rowStart[i] + lists[i].length;
-  return { n, edges, rowStart, cols: Int32Array.from(lists.flat()) };
-}
 describe('the envelope Cholesky solver in reverse Cuthill–McKee order', () => {
   const envelopeOf = (first: Int32Array) => first.reduce((sum, f, i) => sum + i - f + 1, 0);
 

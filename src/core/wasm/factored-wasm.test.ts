@@ -8,6 +8,7 @@ import { PHASE, PhaseLog } from '../schedule.js';
 import { REFERENCE } from '../reference.js';
 import { WasmBackend } from '../backend.js';
 import { REFERENCE_SOLVER, SparseCholesky, type SparseProduct } from '../solvers/sparse.js';
+import { grid } from '../solvers/test-graphs.js';
 import { WasmFactorSolver } from './factored-wasm.js';
 import { kernelImports, wasmKernelAvailable } from './xpbd-wasm.js';
 import { XPBD_WASM_SINGLE } from './xpbd-kernel.generated.js';
@@ -75,21 +76,13 @@ describe('the global steps on the WebAssembly kernel', () => {
   });
 
   it('solves as SparseCholesky.solve3 does, bit for bit, for two factors in turn and after a refactor, and with a product added as multiplyAdd3 adds it', () => {
-    // two 5 × 5 grid Laplacians plus different diagonals, each factored; one solver taking both in turn
-    const side = 5, n = side * side;
-    const rowStart = new Int32Array(n + 1), cols: number[] = [];
-    for (let i = 0; i < n; i++) {
-      const x = i % side, y = Math.floor(i / side);
-      if (x > 0) cols.push(i - 1);
-      if (x < side - 1) cols.push(i + 1);
-      if (y > 0) cols.push(i - side);
-      if (y < side - 1) cols.push(i + side);
-      rowStart[i + 1] = cols.length;
-    }
+    // two matrices on a 5 × 5 grid graph (diagonally dominant: at most six neighbours of −1.1), each factored; one
+    // solver taking both in turn
+    const { n, rowStart, cols } = grid(5, 3);
     const build = (shift: number) => {
-      const chol = new SparseCholesky(rowStart, Int32Array.from(cols));
+      const chol = new SparseCholesky(rowStart, cols);
       for (let i = 0; i < n; i++) {
-        chol.add(i, i, 4 + shift + Math.sin(i));
+        chol.add(i, i, 8 + shift + Math.sin(i));
         for (let k = rowStart[i]; k < rowStart[i + 1]; k++) if (cols[k] < i) chol.add(i, cols[k], -1 - 0.1 * Math.cos(i * cols[k]));
       }
       chol.factor();
@@ -116,7 +109,7 @@ describe('the global steps on the WebAssembly kernel', () => {
     // with a product added to the right-hand side (the bending step's damping): P on the grid's graph, its rows
     // permuted, as multiplyAdd3 and solve3 give it; again after its values change (a new version)
     const product: SparseProduct = {
-      diagonal: Float64Array.from({ length: n }, (_, i) => 1 + 0.1 * i), start: rowStart, cols: Int32Array.from(cols),
+      diagonal: Float64Array.from({ length: n }, (_, i) => 1 + 0.1 * i), start: rowStart, cols,
       values: Float64Array.from(cols, (c, k) => 0.3 * Math.sin(c + k)), row: Int32Array.from({ length: n }, (_, i) => (7 * i) % n), version: 0,
     };
     const v = Float64Array.from({ length: 3 * n }, (_, k) => Math.sin(k * 0.9) / 5);
@@ -128,6 +121,7 @@ describe('the global steps on the WebAssembly kernel', () => {
       expect([...mine]).toEqual([...theirs]);
       expect(mine).not.toEqual(without);
     };
+    check(b); // the solver laid out for b alone: the product must make it lay out again
     withProduct();
     product.values.forEach((w, k) => { product.values[k] = -2 * w; });
     product.version++;
