@@ -141,6 +141,27 @@ describe('GPU simulation backend', () => {
     expect(errors).toEqual([]);
   });
 
+  it('the bending stencils solved together on the GPU: a leather strip reads its bending length as on the CPU', async () => {
+    // the app test's cantilever (app.e2e.ts: 16 faces, leather, the hinges solved together, within 3 % of 5.39 cm at
+    // the scene's 6 s) on the GPU backend: the CPU's factor, the GPU's four kernels a substep (docs/gpu.md, "The
+    // bending stencils solved together"); before 2026-12-06 the GPU refused the scene and the page fell back to the CPU
+    await onGpu(page);
+    await loadScene(page, 'Cantilever (ASTM D1388)', 16);
+    await choose(page, 'material.fabric', 'leather');
+    await choose(page, 'solver.bending', 'hinges');
+    await choose(page, 'solver.bendingSolve', 'global');
+    expect((await hook<any>(page, 'scene')).solver).toMatchObject({ bending: 'hinges', bendingSolve: 'global' });
+    await gpuReady(page);
+    await page.waitForFunction(() => (window as any).drape.frame() === 0);
+    await step(page, 360);
+    expect(await hook(page, 'simBackend')).toBe('gpu');
+    const reading = async () => Number(/bending length (\d+\.\d\d) cm$/.exec(await byId(page, 'hud-test').innerText())?.[1]);
+    await expect.poll(reading, { timeout: 60_000 }).toBeGreaterThan(0.97 * 5.39);
+    expect(await reading()).toBeLessThan(1.03 * 5.39);
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('GPU');
+    expect(errors).toEqual([]);
+  });
+
   it('a GPU cloth that stops being finite is stopped at its last finite shape, with Reset; exports refuse', async () => {
     await onGpu(page);
     await gpuScene(page, 'Silk Drape', 8);

@@ -3,7 +3,7 @@
  * JoltPhysics.js on the very same cloth (same particles, masses, constraints and compliances) in the same run.
  */
 import { availableParallelism, cpus } from 'node:os';
-import { builtinScene, centroid, countIntersections, FRAME_DT, isFinite3, sceneDocument, Simulation, validateScene, WasmBackend, type Scene, type SimulationOptions } from '../core/index.js';
+import { builtinScene, centroid, countIntersections, FRAME_DT, isFinite3, plainText, sceneDocument, Simulation, validateScene, WasmBackend, type Scene, type SimulationOptions } from '../core/index.js';
 import type { Gpu } from './gpu.js';
 import type { PeerClothSpec } from './peers/jolt.js';
 import { whileBusy } from './busy.js';
@@ -407,6 +407,9 @@ export interface GpuBenchOptions {
   frames: number;
   /** threads of the CPU XPBD solver timed beside the GPU */
   threads: number | 'auto';
+  /** the scene's changes (the CLI's --set), on the GPU and on the CPU beside it alike; `sets`: their text, for the header */
+  model?: (scene: Scene) => Scene;
+  sets?: readonly string[];
   json: boolean;
 }
 
@@ -418,19 +421,21 @@ const CPU_PEER_MAX_SIDE = 256;
  * bytes a substep moves against the device's measured copy bandwidth), with the CPU XPBD solver in the same run.
  */
 export async function runGpuBench(gpu: Gpu, opts: GpuBenchOptions, out: (s: string) => void): Promise<void> {
-  const results = await gpu.bench(opts.sizes, opts.substeps, opts.frames);
+  const results = await gpu.bench(opts.sizes, opts.substeps, opts.frames, opts.model);
   const cpu: (number | undefined)[] = [];
   for (const r of results) {
+    const scene = benchScene(r.size, opts.substeps, 'xpbd');
     cpu.push(r.size <= CPU_PEER_MAX_SIDE
-      ? (await timeDrape(benchScene(r.size, opts.substeps, 'xpbd'), Math.max(5, Math.min(opts.frames, 30)), 5, cpuOptions(opts.threads))).msPerFrame
+      ? (await timeDrape(opts.model ? opts.model(scene) : scene, Math.max(5, Math.min(opts.frames, 30)), 5, cpuOptions(opts.threads))).msPerFrame
       : undefined);
   }
   const machine = `${gpu.adapter}; host ${machineLine()}`;
   if (opts.json) {
-    out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, rows: results.map((r, k) => ({ ...r, cpuMsPerFrame: cpu[k] ?? null })) }));
+    out(JSON.stringify({ machine, substeps: opts.substeps, frames: opts.frames, sets: opts.sets ?? [], rows: results.map((r, k) => ({ ...r, cpuMsPerFrame: cpu[k] ?? null })) }));
     return;
   }
-  out(`drape bench --backend gpu — cotton on sphere + floor, XPBD ${opts.substeps} substeps, ${opts.frames} timed frames; ${machine}`);
+  const changed = opts.sets?.length ? `, with ${opts.sets.map((s) => plainText(s, 200)).join(' ')}` : '';
+  out(`drape bench --backend gpu — cotton on sphere + floor, XPBD ${opts.substeps} substeps${changed}, ${opts.frames} timed frames; ${machine}`);
   out(`CPU column: XPBD in the WebAssembly kernel on ${opts.threads === 'auto' ? 'its automatic thread count' : `up to ${opts.threads} thread${opts.threads === 1 ? '' : 's'}`}`);
   out('');
   out('| particles | springs | dispatches/frame | GPU ms/frame (wall) | GPU ms/frame (timestamps) | particle-substeps/s | MB/substep | copy GB/s | bandwidth floor ms | of floor | CPU XPBD ms/frame | GPU speed-up |');

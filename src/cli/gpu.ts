@@ -15,7 +15,8 @@ export interface Gpu {
    * frame (and may throw to refuse the run). The Simulation is disposed, its state read back.
    */
   simulate(scene: Scene, frames: number, meshes?: MeshResolver, kept?: readonly number[], before?: (sim: Simulation) => void): Promise<{ sim: Simulation; msPerFrame: number; shapes: Float32Array[] }>;
-  bench(sizes: number[], substeps: number, frames: number): Promise<GpuBenchResult[]>;
+  /** benchGpu on this device (`configure`: the scene's --set changes) */
+  bench(sizes: number[], substeps: number, frames: number, configure?: (scene: Scene) => Scene): Promise<GpuBenchResult[]>;
 }
 
 /**
@@ -96,7 +97,7 @@ async function openDevice(): Promise<Gpu & { lost: boolean }> {
         sim.dispose();
       }
     },
-    bench: (sizes, substeps, frames) => gpuModule.benchGpu(device, sizes, substeps, frames),
+    bench: (sizes, substeps, frames, configure) => gpuModule.benchGpu(device, sizes, substeps, frames, configure),
   };
   device.lost.then(() => { gpu.lost = true; }, () => undefined);
   return gpu;

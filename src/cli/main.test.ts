@@ -98,6 +98,29 @@ describe('drape CLI', () => {
     expect(table.out).toMatch(/with --set[^\n]*\n\n\| particles \| bending \| bending solve \|[^\n]*\n[^\n]*\n\| 5×5 \| laplacian \| gauss-seidel \| gauss-seidel \| 20 \|/);
   });
 
+  it('bench --backend gpu --set: the GPU runs the changed scene (the hinges solved together: 4 dispatches a substep more)', async () => {
+    const args = ['bench', '--backend', 'gpu', '--sizes', '9', '--frames', '2', '--substeps', '10', '--json'];
+    const plain = await run(...args);
+    const together = await run(...args, '--set', 'solver.bending=hinges', '--set', 'solver.bendingSolve=global');
+    expect(together.code, together.err).toBe(0);
+    const [p, t] = [JSON.parse(plain.out), JSON.parse(together.out)];
+    expect(t.sets).toEqual(['solver.bending=hinges', 'solver.bendingSolve=global']);
+    expect(t.rows[0].dispatchesPerFrame - p.rows[0].dispatchesPerFrame).toBe(4 * 10);
+    expect(t.rows[0].cpuMsPerFrame).toBeGreaterThan(0);
+    const table = await run('bench', '--backend', 'gpu', '--sizes', '5', '--frames', '1', '--set', 'solver.bending=laplacian');
+    expect(table.out).toMatch(/^drape bench --backend gpu — cotton on sphere \+ floor, XPBD 10 substeps, with solver\.bending=laplacian, 1 timed frames;/);
+  });
+
+  it('run --backend gpu with the hinges solved together: the cantilever strip as on the CPU', async () => {
+    const args = ['run', 'cantilever', '--frames', '30', '--set', 'cloth.resolution=8', '--set', 'solver.bending=hinges', '--set', 'solver.bendingSolve=global', '--json'];
+    const gpu = await run(...args, '--backend', 'gpu');
+    expect(gpu.code, gpu.err).toBe(0);
+    const [g, c] = [JSON.parse(gpu.out), JSON.parse((await run(...args)).out)];
+    expect(g.backend).toBe('gpu');
+    // seen 1.7e-6 apart (relative)
+    expect(Math.abs(g.test.bendingLength / c.test.bendingLength - 1)).toBeLessThan(1e-3);
+  });
+
   it('bench --scenes times built-in scenes as they are on each CPU solver and says what the GPU makes of them', async () => {
     const r = await run('bench', '--scenes', 'skirt,pins', '--frames', '2', '--warmup', '0', '--json');
     expect(r.code).toBe(0);

@@ -77,7 +77,8 @@ Times the CPU solvers on a cloth dropped on a sphere and a floor, with JoltPhysi
   --no-contention       skip the busy-machine table (the default threads against one thread while other
                         processes, started and stopped by the bench, keep every core busy)
   --set PATH=VALUE      change a scene path of the fabric-model rows only (the like-for-like rows stay), e.g.
-                        --set solver.bending=hinges --set solver.bendingSolve=global
+                        --set solver.bending=hinges --set solver.bendingSolve=global; with --backend gpu, of the
+                        GPU's scene and of the CPU solver timed beside it
   --json                print exactly one JSON object`,
   schema: `drape schema\n\nPrints the JSON schema every scene file is validated against (also published as scene.schema.json).`,
 };
@@ -469,8 +470,8 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
   // flags that belong to one benchmark are refused by the others rather than passed over
   const given = (names: string[]) => names.filter((name) => (values as Record<string, unknown>)[name] !== undefined);
   const sets = values.set ?? [];
-  if (sets.length && (hanging || selfContact || values.scenes !== undefined || backend === 'gpu')) {
-    throw new UsageError('--set: changes the fabric-model rows of the CPU bench (drape bench [--sizes …] --set PATH=VALUE); the other benchmarks take their scenes as they are');
+  if (sets.length && (hanging || selfContact || values.scenes !== undefined)) {
+    throw new UsageError('--set: changes the fabric-model rows of the CPU bench and the GPU bench\'s scene (drape bench [--backend gpu] [--sizes …] --set PATH=VALUE); the other benchmarks take their scenes as they are');
   }
   if (hanging) {
     const stray = given(['scenes', 'frames', 'warmup', 'substeps', 'no-contention']);
@@ -535,6 +536,8 @@ async function cmdBench(argv: string[], out: (s: string) => void, err: (s: strin
       substeps: intArg('substeps', values.substeps, 10, 1, 200),
       frames: intArg('frames', values.frames, 60, 1, 100_000),
       threads,
+      model: sets.length ? checkedModel(sets) : undefined,
+      sets,
       json: values.json ?? false,
     }, out);
     return 0;

@@ -73,10 +73,11 @@ describe('the npm package', () => {
   // fall a sixth); then 317 kB, when it took the cylinder's and the box's triangle contact too (the Cusick test and
   // the tablecloth a third and a fifth faster); then 330 kB, with the sparse factor in nested dissection order
   // (sparse.ts: a pin change at 128² 76 ms instead of 335) and the bending stencils solved together
-  // (global-bending.ts, prefactored.ts: the cantilever within 2 % of every fabric's bending length): the budget keeps
-  // about 10 kB above what ships
-  it('packs into at most 340 kB', () => {
-    expect(packed.size).toBeLessThanOrEqual(340_000);
+  // (global-bending.ts, prefactored.ts: the cantilever within 2 % of every fabric's bending length); then 341 kB, when
+  // the WebGPU solver took the bending stencils solved together (gpu/global-bending.ts and its four kernels: the
+  // cantilever on the GPU as on the CPU): the budget keeps about 10 kB above what ships
+  it('packs into at most 350 kB', () => {
+    expect(packed.size).toBeLessThanOrEqual(350_000);
   });
 
   it('declares its doc comments in the types and ships the code without them', () => {

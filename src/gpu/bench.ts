@@ -4,7 +4,7 @@
  */
 import type {} from 'webgpu';
 import { FRAME_DT, resolveParams } from '../core/params.js';
-import { defaultScene } from '../core/scene.js';
+import { defaultScene, type Scene } from '../core/scene.js';
 import { modelFor } from '../core/cloth-shape.js';
 import { createState } from '../core/state.js';
 import { GpuClothSolver } from './solver.js';
@@ -69,18 +69,22 @@ export async function measureCopyBandwidth(device: GPUDevice): Promise<number> {
 
 /**
  * Runs the default scene at each size (particles per side) for `frames` frames of `substeps` substeps after a
- * short warm-up, and reports time per frame, throughput, traffic and the fraction of the bandwidth floor.
- * Numbers from SwiftShader (a CPU driver) only prove that it runs.
+ * short warm-up, and reports time per frame, throughput, traffic and the fraction of the bandwidth floor;
+ * `configure` changes the scene after that (the CLI's --set: another bending model or solve). Numbers from
+ * SwiftShader (a CPU driver) only prove that it runs.
  */
-export async function benchGpu(device: GPUDevice, sizes: number[], substeps: number, frames: number): Promise<GpuBenchResult[]> {
+export async function benchGpu(
+  device: GPUDevice, sizes: number[], substeps: number, frames: number, configure?: (scene: Scene) => Scene,
+): Promise<GpuBenchResult[]> {
   const bandwidth = await measureCopyBandwidth(device);
   const timestamps = device.features.has('timestamp-query');
   const results: GpuBenchResult[] = [];
   for (const size of sizes) {
     if (!Number.isInteger(size) || size < 2 || size > 1025) throw new Error(`benchGpu: size must be 2…1025 particles per side, got ${size}`);
-    const scene = defaultScene();
+    let scene = defaultScene();
     scene.cloth.resolution = size - 1;
     scene.solver.substeps = substeps;
+    if (configure) scene = configure(scene);
     const model = modelFor(scene);
     const params = resolveParams(model, scene);
     const state = createState(model);
@@ -101,17 +105,17 @@ export async function benchGpu(device: GPUDevice, sizes: number[], substeps: num
       if (timestamps) gpuMs = await timeWithQueries(device, solver, state, params, Math.min(frames, 32));
 
       const bytes = solver.substepTraffic().total;
-      const floorMs = ((bytes * substeps) / bandwidth) * 1000;
+      const floorMs = ((bytes * params.substeps) / bandwidth) * 1000;
       results.push({
         size,
         particles: model.particleCount,
         springs: model.restLengths.length,
-        substeps,
+        substeps: params.substeps,
         frames,
         dispatchesPerFrame: solver.dispatchesPerFrame(params),
         msPerFrame: ms,
         gpuMsPerFrame: gpuMs,
-        particleSubstepsPerSecond: (model.particleCount * substeps) / (ms / 1000),
+        particleSubstepsPerSecond: (model.particleCount * params.substeps) / (ms / 1000),
         bytesPerSubstep: bytes,
         copyBandwidthGBs: bandwidth / 1e9,
         bandwidthFloorMs: floorMs,

@@ -5,11 +5,8 @@
  */
 import { afterAll, describe, expect, test } from 'vitest';
 import type {} from 'webgpu';
-import {
-  BEND_SPRING_PER_RIGIDITY, FRAME_DT, applyPins, builtinScene, centroid, copyState, createState, modelFor, resolveParams, scenePins, step,
-  validateScene, type ClothModel, type Scene, type StencilModel,
-} from '../core/index.js';
-import { maxDistance, testDevice } from './test-device.js';
+import { BEND_SPRING_PER_RIGIDITY, FRAME_DT, builtinScene, centroid, resolveParams, step, validateScene, type Scene, type StencilModel } from '../core/index.js';
+import { bentness, gpuPair, maxDistance, testDevice, type Pair } from './test-device.js';
 import { GpuClothSolver } from './solver.js';
 
 const gpu = await testDevice('src/gpu/bending.test.ts');
@@ -18,24 +15,6 @@ const solvers: GpuClothSolver[] = [];
 afterAll(() => {
   for (const s of solvers) s.destroy();
 });
-
-/** Largest distance between corresponding particles [m]. */
-/**
- * How bent the cloth is: Σ ½·|C|²/A over the stencils of `kind`, C = Σ K_k x_k (model.ts BendingStencils), i.e. the
- * model's bending energy per unit rigidity B, ≈ ½∫κ² dA for a sheet bent without stretching [-].
- */
-function bentness(model: ClothModel, x: Float32Array, kind: StencilModel): number {
-  const { offsets, vertices, weights: K, areas } = model.stencils[kind];
-  let sum = 0;
-  for (let e = 0; e < areas.length; e++) {
-    for (let c = 0; c < 3; c++) {
-      let C = 0;
-      for (let k = offsets[e]; k < offsets[e + 1]; k++) C += K[k] * x[3 * vertices[k] + c];
-      sum += (0.5 * C * C) / areas[e];
-    }
-  }
-  return sum;
-}
 
 /** the stiff cloth's bending rigidity: a bend spring of 1000 N/m at 1/32 m [N·m] */
 const STIFF = 1000 / BEND_SPRING_PER_RIGIDITY;
@@ -53,24 +32,11 @@ function hinged(B: number, iterations: number, kind: StencilModel = 'hinges'): S
   return validateScene(s);
 }
 
-/** `frames` frames of one scene on the CPU (the TypeScript reference) and on the GPU from the same start. */
-async function run(sc: Scene, frames: number) {
-  const model = modelFor(sc);
-  const params = resolveParams(model, sc);
-  const cpu = createState(model);
-  applyPins(cpu, scenePins(model, sc));
-  const g = createState(model);
-  copyState(cpu, g);
-  const solver = await GpuClothSolver.create(gpu!.device, model);
-  solvers.push(solver);
-  solver.setParams(params);
-  solver.upload(g);
-  for (let f = 0; f < frames; f++) {
-    step(model, cpu, params, FRAME_DT);
-    solver.step(g, params, FRAME_DT);
-  }
-  await solver.read(g);
-  return { model, params, cpu, gpu: g, solver };
+/** `frames` frames of one scene on the CPU and on the GPU from the same start (test-device.ts gpuPair). */
+async function run(sc: Scene, frames: number): Promise<Pair> {
+  const p = await gpuPair(gpu!.device, sc, solvers);
+  await p.advance(frames);
+  return p;
 }
 
 describe.skipIf(!gpu)('stencil bending on the GPU', () => {

@@ -63,6 +63,8 @@ export class ClothBuffers {
       springs: springCount, springData: springCount, lambdas: springCount, tethers: n,
       // placeholders: a cloth that bends with springs spends nothing on stencils (makeStencils)
       stencilOffsets: 0, stencilVertices: 0, stencilWeights: 0, stencilCompliance: 0, stencilLambdas: 0,
+      // placeholders until params solve the stencils together (global-bending.ts)
+      bendingCoefficients: 0, stencilForce: 0, stencilIncidence: 0, factorIndex: 0, factorValues: 0, globalX: 0, globalT: 0, grabColumn: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
       normals: n, grabStart: 2, colliders: 1, carried: 1, meshNodes: 1, meshTriangles: 1,
       // placeholders: a cloth without self-contact spends nothing on its grid (makeSelfContact)
@@ -125,6 +127,20 @@ export class ClothBuffers {
     this.buffers[name].destroy();
     this.buffers[name] = this.createBuffer(name, count, 0);
     this.regroup([name]);
+  }
+
+  /**
+   * Buffers made anew at these sizes [elements], their contents lost, and the bind groups of the kernels that read
+   * them (the global bending step's tables, global-bending.ts). Like `reserve`, before the kernels that read them are
+   * encoded.
+   */
+  remake(sizes: Partial<Record<BufferName, number>>): void {
+    const names = Object.keys(sizes) as BufferName[];
+    for (const name of names) {
+      this.buffers[name].destroy();
+      this.buffers[name] = this.createBuffer(name, sizes[name]!, 0);
+    }
+    this.regroup(names);
   }
 
   /** Makes anew the bind groups of the kernels that read any of `names` (after those buffers were replaced). */

@@ -27,8 +27,8 @@ describe('sceneRefusal', () => {
     }
     expect(sceneRefusal(validateScene({ solver: { type: 'mass-spring' } }))).toBe('the mass-spring solver runs on the CPU only');
     expect(sceneRefusal(validateScene({ solver: { stretch: 'global' } }))).toBe("the global stretch step (solver.stretch 'global') runs on the CPU only");
-    expect(sceneRefusal(validateScene({ solver: { bending: 'hinges', bendingSolve: 'global' } }))).toBe("the global bending step (solver.bendingSolve 'global') runs on the CPU only");
-    // without stencils (the skip-one springs) there is nothing for it to solve
+    // the bending stencils solved together run on the GPU (global-bending.ts), as does the global step without stencils (nothing)
+    expect(sceneRefusal(validateScene({ solver: { bending: 'hinges', bendingSolve: 'global' } }))).toBeNull();
     expect(sceneRefusal(validateScene({ solver: { bendingSolve: 'global' } }))).toBeNull();
     // self-contact runs on the GPU too
     expect(sceneRefusal(validateScene({ solver: { selfContact: true } }))).toBeNull();

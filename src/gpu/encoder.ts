@@ -9,10 +9,11 @@ import { createColliders } from '../core/colliders/index.js';
 import type { ClothModel } from '../core/model.js';
 import { differingClothField, type Scene } from '../core/scene.js';
 import { perClothRefusal, type SimParams } from '../core/params.js';
-import { PHASE, PHASE_COUNT, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../core/schedule.js';
+import { PHASE, PHASE_COUNT, framePhases, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../core/schedule.js';
 import type { ClothState } from '../core/state.js';
 import type { ClothBuffers } from './buffers.js';
 import { gpuCollider, type ColliderTables } from './colliders.js';
+import { GlobalBendingTables } from './global-bending.js';
 import { meshRefusal } from './meshes.js';
 import { MAX_WORKGROUPS_X, RECORD_STRIDE, SCAN_BLOCK, SELF_EDGE_PASSES, WORKGROUP_SIZE, type KernelName } from './layout.js';
 import type { SelfRecords, UniformTables } from './uniforms.js';
@@ -42,7 +43,6 @@ function contactRefusal(params: SimParams): string | null {
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
   if (scene.solver.stretch === 'global') return 'the global stretch step (solver.stretch \'global\') runs on the CPU only';
-  if (scene.solver.bendingSolve === 'global' && scene.solver.bending !== 'springs') return 'the global bending step (solver.bendingSolve \'global\') runs on the CPU only';
   const differs = differingClothField(scene);
   if (differs) return `cloths that differ in their contact or spring values run on the CPU only (${differs})`;
   return colliderRefusal(scene);
@@ -62,9 +62,9 @@ export function colliderRefusal(scene: Scene): string | null {
 
 /**
  * The phases of the schedule the GPU implements: every phase of XPBD, stencil bending (solver.bending 'hinges' or
- * 'laplacian') and self-contact included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript
- * reference: a frame that needs one is refused (the mass-spring solver, the global stretch step, a collider shape it
- * does not know). Self-contact reads one thickness and friction for the whole model, as contact does: cloths that
+ * 'laplacian', one stencil at a time or together) and self-contact included. Its cloth lives in GPU buffers, so it
+ * cannot leave a phase to the TypeScript reference: a frame that needs one is refused (the mass-spring solver, the
+ * global stretch step, a collider shape it does not know). Self-contact reads one thickness and friction for the whole model, as contact does: cloths that
  * differ in them are refused by the contact phase already.
  */
 export const GPU_PHASES: BackendPhases = {
@@ -73,7 +73,7 @@ export const GPU_PHASES: BackendPhases = {
   sharesMemory: false,
   solvers: ['xpbd'],
   phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.carry) | (1 << PHASE.grab) |
-    (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) |
+    (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.globalBending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) |
     (1 << PHASE.selfContact) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
   refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
     (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null) ?? perClothRefusal(id, params),
@@ -91,6 +91,8 @@ export class FrameEncoder implements PhaseBackend {
   private readonly buffers: ClothBuffers;
   private readonly uniforms: UniformTables;
   private readonly colliders: ColliderTables;
+  /** the global bending step's tables (the CPU's factor on the GPU) */
+  readonly globalBending: GlobalBendingTables;
   /** the compute pass of the frame being encoded */
   private pass: GPUComputePassEncoder | undefined;
 
@@ -105,6 +107,7 @@ export class FrameEncoder implements PhaseBackend {
     this.buffers = buffers;
     this.uniforms = uniforms;
     this.colliders = colliders;
+    this.globalBending = new GlobalBendingTables(device, model, buffers);
   }
 
   /**
@@ -115,6 +118,8 @@ export class FrameEncoder implements PhaseBackend {
    */
   frame(state: ClothState, params: SimParams, dt: number, timestampWrites: GPUComputePassTimestampWrites | undefined, log: PhaseLog | undefined): void {
     this.uniforms.writeFrame(state, params, dt, this.colliders.beginFrame(params));
+    // the factor for this frame's pins and substep, before anything is encoded (its tables may be made anew)
+    if ((framePhases(this.model, state, params) & (1 << PHASE.globalBending)) !== 0) this.globalBending.prepare(state, params, dt / params.substeps);
     const encoder = this.device.createCommandEncoder({ label: 'drape step' });
     const grabbed = state.grabbed;
     if (grabbed >= 0 && grabbed < this.model.particleCount) {
@@ -181,6 +186,14 @@ export class FrameEncoder implements PhaseBackend {
               this.dispatch('bending', r.count, so, (it === 0 ? r.first : r.later) * RECORD_STRIDE);
             }
           }
+          break;
+        }
+        case PHASE.globalBending: {
+          // the stencils' force terms, the right-hand side by row, both triangular solves (one workgroup), Δx applied
+          this.dispatch('bendingForces', this.globalBending.stencilCount, so, 0);
+          this.dispatch('bendingGather', particles, so, 0);
+          this.dispatch('factorSolve', 1, so, 0);
+          this.dispatch('bendingApply', particles, so, 0);
           break;
         }
         case PHASE.tethers: if (this.buffers.hasTethers) this.dispatch('tethers', particles, so, 0); break;

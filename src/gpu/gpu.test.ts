@@ -9,10 +9,10 @@ import { afterAll, describe, expect, test, vi } from 'vitest';
 import type {} from 'webgpu';
 import {
   FRAME_DT, SCENE_NAMES, Simulation, applyPins, builtinScene, centroid, copyState, createState, energy, grab, isFinite3,
-  maxPenetration, measureTest, modelFor, release, resolveParams, scenePins, step, validateScene,
-  type ClothModel, type ClothState, type Scene, type SimParams,
+  maxPenetration, measureTest, modelFor, release, resolveParams, step, validateScene,
+  type Scene,
 } from '../core/index.js';
-import { centroidDistance, maxDistance, testDevice } from './test-device.js';
+import { centroidDistance, gpuPair, maxDistance, testDevice, type Pair } from './test-device.js';
 import { benchGpu } from './bench.js';
 import { GpuClothSolver } from './solver.js';
 import { sceneRefusal } from './encoder.js';
@@ -33,48 +33,13 @@ function scene(name: string, change?: (s: Scene) => void): Scene {
   return validateScene(s);
 }
 
-interface Pair {
-  model: ClothModel;
-  params: SimParams;
-  cpu: ClothState;
-  gpu: ClothState;
-  solver: GpuClothSolver;
-  /** steps both `frames` frames, then reads the GPU state back */
-  advance(frames: number): Promise<void>;
-}
-
 const solvers: GpuClothSolver[] = [];
 afterAll(() => {
   for (const s of solvers) s.destroy();
 });
 
-/**
- * A CPU and a GPU cloth of one scene, in the same start state. The model lists triangles in colour order, so CPU
- * and GPU triangle contact visit them in the same order (see docs/gpu.md, "Parity").
- */
-async function pair(sc: Scene): Promise<Pair> {
-  const model = modelFor(sc);
-  const params = resolveParams(model, sc);
-  const cpu = createState(model);
-  applyPins(cpu, scenePins(model, sc));
-  const g = createState(model);
-  copyState(cpu, g);
-  const solver = await GpuClothSolver.create(gpu!.device, model);
-  solvers.push(solver);
-  solver.setParams(params);
-  solver.upload(g);
-  const p: Pair = {
-    model, params, cpu, gpu: g, solver,
-    async advance(frames: number) {
-      for (let f = 0; f < frames; f++) {
-        step(model, cpu, p.params, FRAME_DT);
-        solver.step(g, p.params, FRAME_DT);
-      }
-      await solver.read(g);
-    },
-  };
-  return p;
-}
+/** A CPU and a GPU cloth of one scene, in the same start state (test-device.ts gpuPair). */
+const pair = (sc: Scene): Promise<Pair> => gpuPair(gpu!.device, sc, solvers);
 
 async function readBuffer(buffer: GPUBuffer, bytes: number): Promise<Float32Array> {
   const device = gpu!.device;

@@ -23,8 +23,24 @@ export {
   GOLDEN_ITERATIONS, MESH_SHARP_EDGE, MESH_SIGNED,
 };
 
-/** Threads per workgroup of every kernel (1-D). */
+/** Threads per workgroup of every kernel (1-D) but factorSolve. */
 export const WORKGROUP_SIZE = 64;
+/**
+ * Threads of factorSolve's one workgroup (the most WebGPU's default limits allow): the rows of a level of a
+ * triangular solve are shared among them, a barrier between levels.
+ */
+export const FACTOR_WORKGROUP = 256;
+/**
+ * factorIndex's header (global-bending.ts FactorLayout): the levels of the forward and backward solves, then where
+ * each of its tables starts (in u32 elements of factorIndex; `upperValues`: where the entries by columns start in
+ * factorValues).
+ */
+export const FACTOR_SLOTS = {
+  forwardLevels: 0, backwardLevels: 1, rowOf: 2, lowerStart: 3, lowerCols: 4, upperStart: 5, upperRows: 6,
+  forwardLevelStart: 7, forwardRows: 8, backwardLevelStart: 9, backwardRows: 10, rowBlock: 11, upperValues: 12,
+} as const;
+/** u32 elements of factorIndex's header */
+export const FACTOR_HEADER = 16;
 /** Most workgroups along x in one dispatch; bigger dispatches spill into y (see `flatIndex` in the preamble). */
 export const MAX_WORKGROUPS_X = 65535;
 /** Floats per vec3 element on the GPU. */
@@ -233,6 +249,37 @@ export const BUFFERS = {
    * (ClothState.bendingLambdas), accumulated over the iterations of a substep
    */
   stencilLambdas: { type: 'f32', bytes: 4 },
+  /**
+   * the global bending step (solver.bendingSolve 'global'; global-bending.ts). Per stencil: its stiffness in the
+   * step's matrix (1 + τ/h)/α and its damping's pull (τ/h)/α [N/m] (core BendingSystem stiffness, pull). This and
+   * the next five are placeholders until params first solve the stencils together, made anew for another system
+   */
+  bendingCoefficients: { type: 'vec2f', bytes: 8 },
+  /** per stencil: its force term d = (1 + τ/h)/α·C(x) − (τ/h)/α·C(x_prev), x, y, z, 0 [N] (bendingForces) */
+  stencilForce: { type: 'vec4f', bytes: 16 },
+  /**
+   * particle → its stencil entries: n + 1 starts (already offset by n + 1, in pairs), then per entry the entry's
+   * index k (into stencilVertices, stencilWeights) and its stencil e
+   */
+  stencilIncidence: { type: 'u32', bytes: 4 },
+  /**
+   * the structure of the factor L of the step's matrix (core SparseCholesky, in its nested-dissection order; global-
+   * bending.ts FactorLayout): FACTOR_SLOTS first (where each table starts), then each particle's row, L's entries
+   * outside its blocks by rows and by columns, the rows of each level of the two triangular solves, and each row's
+   * block (first row, one past its last, where the row's row of the block's inverse starts in factorValues)
+   */
+  factorIndex: { type: 'u32', bytes: 4 },
+  /** L's values for factorIndex's tables: the entries outside the blocks by rows, then by columns, then the blocks' inverses */
+  factorValues: { type: 'f32', bytes: 4 },
+  /**
+   * by row: the step's right-hand side (bendingGather), then the forward solve's y, then the solution Δx = x − x*
+   * (factorSolve) [m]
+   */
+  globalX: { type: 'vec4f', bytes: 16 },
+  /** by row: what a block's rows gather from outside it, before its inverse is applied (factorSolve) [m] */
+  globalT: { type: 'vec4f', bytes: 16 },
+  /** z = A⁻¹·e_g by row for the grabbed particle g (core PrefactoredSystem.z): the grab held without a refactor [m²/N] */
+  grabColumn: { type: 'f32', bytes: 4 },
   /** per particle: nearest pin (−1: none) and the rest distance to it [m] */
   tethers: { type: 'Tether', bytes: 8 },
   /** triangle vertex indices, 3 per triangle (flat: `array<vec3u>` would have stride 16) */
@@ -368,6 +415,31 @@ export const KERNELS = {
     bindings: [
       ['positions', 'read_write'], ['invMass', 'read'], ['stencilOffsets', 'read'], ['stencilVertices', 'read'],
       ['stencilWeights', 'read'], ['stencilCompliance', 'read'], ['stencilLambdas', 'read_write'],
+    ],
+  },
+  /**
+   * the global bending step (core solveGlobalBending), 1 of 4: each stencil's force term from its curvature now and
+   * at the substep's start
+   */
+  bendingForces: {
+    bindings: [
+      ['positions', 'read'], ['previous', 'read'], ['stencilOffsets', 'read'], ['stencilVertices', 'read'],
+      ['stencilWeights', 'read'], ['bendingCoefficients', 'read'], ['stencilForce', 'read_write'],
+    ],
+  },
+  /** 2 of 4: each particle's right-hand side, −Σ K·d over its stencil entries (0 where pinned), into its row */
+  bendingGather: {
+    bindings: [
+      ['stencilIncidence', 'read'], ['stencilWeights', 'read'], ['stencilForce', 'read'], ['pinned', 'read'],
+      ['factorIndex', 'read'], ['globalX', 'read_write'],
+    ],
+  },
+  /** 3 of 4: L·Lᵀ·Δx = b, both triangular solves block level by block level in one workgroup of FACTOR_WORKGROUP threads */
+  factorSolve: { bindings: [['factorIndex', 'read'], ['factorValues', 'read'], ['globalX', 'read_write'], ['globalT', 'read_write']] },
+  /** 4 of 4: x += Δx for the free particles, the grabbed one held where the grab put it */
+  bendingApply: {
+    bindings: [
+      ['positions', 'read_write'], ['pinned', 'read'], ['factorIndex', 'read'], ['globalX', 'read'], ['grabColumn', 'read'],
     ],
   },
   /** limitStretch (phases.ts), which XPBD runs after the tethers, for one structural or shear batch */
@@ -564,6 +636,8 @@ const SELF_CLAMP: f32 = ${wgslFloat(SELF_CLAMP)};
 const SCAN_BLOCK: u32 = ${SCAN_BLOCK}u;
 const SELF_TRIANGLES: u32 = ${SELF_TRIANGLES}u;
 const SELF_EDGES: u32 = ${SELF_EDGES}u;
+const FACTOR_WORKGROUP: u32 = ${FACTOR_WORKGROUP}u;
+${Object.entries(FACTOR_SLOTS).map(([name, slot]) => `const FACTOR_${name.replace(/[A-Z]/g, (c) => `_${c}`).toUpperCase()}: u32 = ${slot}u;`).join('\n')}
 
 ${wgslStruct('Collider', COLLIDER_FIELDS)}
 

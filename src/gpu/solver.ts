@@ -246,7 +246,9 @@ export class GpuClothSolver {
   /** Bytes one substep's kernels move with the current params (see docs/gpu.md, "Benchmark"). */
   substepTraffic(): SubstepTraffic {
     if (!this.params) throw new Error('GPU solver: setParams first');
-    return substepTraffic(this.model, this.params, this.uniforms.collidePasses, this.uniforms.selfRecords, this.buffers.hasTethers);
+    return substepTraffic(
+      this.model, this.params, this.uniforms.collidePasses, this.uniforms.selfRecords, this.buffers.hasTethers, this.encoder.globalBending.entries,
+    );
   }
 
   /** Dispatches one frame encodes (for reports). */

@@ -4,9 +4,12 @@
  * are skipped with the reason printed. A GPU test never passes without running.
  */
 import type {} from 'webgpu';
-import { centroid } from '../core/metrics.js';
-import type { ClothState } from '../core/state.js';
+import {
+  FRAME_DT, applyPins, centroid, copyState, createState, modelFor, resolveParams, scenePins, step,
+  type ClothModel, type ClothState, type Scene, type SimParams, type StencilModel,
+} from '../core/index.js';
 import { createNodeDevice } from './node.js';
+import { GpuClothSolver } from './solver.js';
 
 /** the device every GPU test file of this process shares (vitest.config.ts runs them in one, not isolated) */
 let shared: Promise<{ device: GPUDevice; adapter: string }> | null = null;
@@ -45,4 +48,62 @@ export function maxDistance(a: Float32Array, b: Float32Array): number {
 export function centroidDistance(a: ClothState, b: ClothState): number {
   const p = centroid(a), q = centroid(b);
   return Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
+}
+
+/** One scene on the CPU (the TypeScript reference) and on the GPU, from the same start. */
+export interface Pair {
+  model: ClothModel;
+  /** the params both step with (a test may put others here: a live change) */
+  params: SimParams;
+  cpu: ClothState;
+  gpu: ClothState;
+  solver: GpuClothSolver;
+  /** steps both `frames` frames, then reads the GPU state back */
+  advance(frames: number): Promise<void>;
+}
+
+/**
+ * A CPU and a GPU cloth of `sc` on `device`, in the same start state (its pins applied); the solver is added to
+ * `made`, for the file to destroy. The model lists triangles in colour order, so CPU and GPU triangle contact visit
+ * them in the same order (see docs/gpu.md, "Parity").
+ */
+export async function gpuPair(device: GPUDevice, sc: Scene, made: GpuClothSolver[]): Promise<Pair> {
+  const model = modelFor(sc);
+  const params = resolveParams(model, sc);
+  const cpu = createState(model);
+  applyPins(cpu, scenePins(model, sc));
+  const g = createState(model);
+  copyState(cpu, g);
+  const solver = await GpuClothSolver.create(device, model);
+  made.push(solver);
+  solver.setParams(params);
+  solver.upload(g);
+  const p: Pair = {
+    model, params, cpu, gpu: g, solver,
+    async advance(frames: number) {
+      for (let f = 0; f < frames; f++) {
+        step(model, cpu, p.params, FRAME_DT);
+        solver.step(g, p.params, FRAME_DT);
+      }
+      await solver.read(g);
+    },
+  };
+  return p;
+}
+
+/**
+ * How bent a cloth is: Σ ½·|C|²/A over the stencils of `kind`, C = Σ K_k x_k (model.ts BendingStencils), i.e. the
+ * model's bending energy per unit rigidity B, ≈ ½∫κ² dA for a sheet bent without stretching [-].
+ */
+export function bentness(model: ClothModel, x: Float32Array, kind: StencilModel): number {
+  const { offsets, vertices, weights: K, areas } = model.stencils[kind];
+  let sum = 0;
+  for (let e = 0; e < areas.length; e++) {
+    for (let c = 0; c < 3; c++) {
+      let C = 0;
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) C += K[k] * x[3 * vertices[k] + c];
+      sum += (0.5 * C * C) / areas[e];
+    }
+  }
+  return sum;
 }

@@ -15,10 +15,12 @@ export interface SubstepTraffic {
 
 /**
  * Bytes one substep moves, by kernel; `self`: the self-contact grid's records (null: none), `hasTethers`: whether the
- * tethers kernel has work.
+ * tethers kernel has work, `factorEntries`: the entries of the global bending step's factor, its diagonal included
+ * (global-bending.ts; 0 without the step).
  */
 export function substepTraffic(
   model: ClothModel, params: SimParams, collidePasses: readonly CollidePass[], self: SelfRecords | null, hasTethers: boolean,
+  factorEntries = 0,
 ): SubstepTraffic {
   const n = model.particleCount, T = model.triangles.length / 3, S = model.restLengths.length;
   const by: Record<string, number> = {};
@@ -35,7 +37,18 @@ export function substepTraffic(
   solve += S * 4 * (params.iterations - 1); // λ read after the first pass
   add('solve', solve);
   const stencils = bendingStencils(model, params.bending);
-  if (stencils) {
+  if (stencils && params.bendingSolve === 'global') {
+    const H = stencils.areas.length, E = stencils.vertices.length, strict = factorEntries - n;
+    // per stencil: its offsets and coefficients, its force written; per entry: particle, K, x and x_prev
+    add('globalBending', H * (8 + 8 + 16) + E * (4 + 4 + 16 + 16));
+    // the right-hand side: per particle its row, pin and incidence offsets, the row written; per entry (k, e), K, d
+    add('globalBending', n * (4 + 4 + 8 + 16) + E * (8 + 4 + 16));
+    // both triangular solves: per strict entry of L its index, value and the solved row read; per row and solve its
+    // level's entry, offsets, 1/L_jj, the row read and written
+    add('globalBending', 2 * strict * (4 + 4 + 16) + 2 * n * (4 + 8 + 4 + 16 + 16));
+    // Δx applied: per particle its pin, row, Δx, the position read and written
+    add('globalBending', n * (4 + 4 + 16 + 16 + 16));
+  } else if (stencils) {
     const H = stencils.areas.length, E = stencils.vertices.length;
     // per stencil: its two offsets, compliance, λ written; per entry: particle, K, w, x read to make C, then
     // particle, K, w, x read and written to move it
@@ -77,7 +90,8 @@ export function substepTraffic(
 
 /**
  * Dispatches one frame encodes with nothing grabbed (prepare, velocities and normals once; the rest per substep);
- * `stencilRecords` is empty unless params.bending is a stencil model, `self` null unless it has self-contact (then
+ * `stencilRecords` is empty unless params.bending is a stencil model (solved together: 4 dispatches per substep
+ * instead of its batches), `self` null unless it has self-contact (then
  * per substep two grid builds of 6 dispatches, each followed by its candidates, their indirect arguments, the pairs
  * and the corrections applied, the edges' SELF_EDGE_PASSES times: 20 + 2 per edge pass past the first).
  */
@@ -87,7 +101,8 @@ export function dispatchesPerFrame(
 ): number {
   const stretchBatches = batchRecords.filter((r) => r.stretch).length;
   const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) +
-    params.iterations * (batchRecords.length + stencilRecords.length) + stretchBatches + (hasTethers ? 1 : 0) +
+    params.iterations * batchRecords.length +
+    (stencilRecords.length === 0 ? 0 : params.bendingSolve === 'global' ? 4 : params.iterations * stencilRecords.length) + stretchBatches + (hasTethers ? 1 : 0) +
     collidePasses.length + (self ? 18 + 2 * SELF_EDGE_PASSES : 0);
   return 3 + params.substeps * perSubstep;
 }

@@ -32,8 +32,11 @@ import type { ClothState } from '../state.js';
 import { PrefactoredSystem } from './prefactored.js';
 import { REFERENCE_SOLVER, type FactorSolver, type SparseProduct } from './sparse.js';
 
-/** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
-class BendingSystem extends PrefactoredSystem {
+/**
+ * The ordered, factored system of one model and params (built on first use; refactored when h or the pins change).
+ * The WebGPU solver solves with the same factor (src/gpu/global-bending.ts: globalBendingSystem).
+ */
+export class BendingSystem extends PrefactoredSystem {
   readonly stencils: BendingStencils;
   /**
    * each stencil's stiffness in the matrix, (1 + τ/h)/α [N/m], for the pins and h of the factor (α:
@@ -203,6 +206,23 @@ function incidence(offsets: Uint32Array, vertices: Uint32Array, n: number): { st
 const systems = new WeakMap<SimParams, BendingSystem>();
 
 /**
+ * The global bending step's system for `model` and `params`, factored for the pins of `pinned` and substep h (made on
+ * first use, refactored where the pins or h changed since), or null where params bend with no stencil model. The one
+ * system per params that solveGlobalBending solves with; the WebGPU solver reads its factor.
+ */
+export function globalBendingSystem(model: ClothModel, params: SimParams, pinned: Uint8Array, h: number): BendingSystem | null {
+  const stencils = bendingStencils(model, params.bending);
+  if (!stencils) return null;
+  let system = systems.get(params);
+  if (system === undefined || system.model !== model) {
+    system = new BendingSystem(model, params, stencils);
+    systems.set(params, system);
+  }
+  if (!system.current(pinned, h)) system.factor(params, pinned, h);
+  return system;
+}
+
+/**
  * The backward-Euler step of the bending stencils over substep h, from the positions in state.positions (+
  * residuals). Pinned particles stay; the grabbed one stays where the grab phase put it. Allocates only when the
  * system is first built (a new model or params); a refactor (pins or h changed) allocates nothing. `solver` solves
@@ -211,15 +231,9 @@ const systems = new WeakMap<SimParams, BendingSystem>();
 export function solveGlobalBending(
   model: ClothModel, state: ClothState, params: SimParams, h: number, solver: FactorSolver = REFERENCE_SOLVER,
 ): void {
-  const stencils = bendingStencils(model, params.bending);
-  if (!stencils) return;
-  let system = systems.get(params);
-  if (system === undefined || system.model !== model) {
-    system = new BendingSystem(model, params, stencils);
-    systems.set(params, system);
-  }
+  const system = globalBendingSystem(model, params, state.pinned, h);
+  if (!system) return;
   const pinned = state.pinned;
-  if (!system.current(pinned, h)) system.factor(params, pinned, h);
   const { b, row, mass, chol, stiffness, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = system;
   const x = state.positions, r = state.residuals, n = mass.length;
   const inertia = 1 / (h * h);
