@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { buildGridModel } from './model.js';
-import { axisSpringStiffness, resolveParams } from './params.js';
+import { GLOBAL_SOLVE_MOST_PARTICLES, axisSpringStiffness, resolveParams } from './params.js';
 import { validateScene } from './scene.js';
 import { modelFor } from './cloth-shape.js';
 import { STRUCTURAL, SHEAR } from './layout.generated.js';
@@ -65,5 +65,24 @@ describe('substeps for self-contact (solver.selfContactSpeed)', () => {
   it('between two cloths the thinner one sets it', () => {
     const scene = validateScene({ solver: { selfContact: true }, cloths: [{ cloth: { resolution: 8 } }, { cloth: { resolution: 8, thickness: 0.002, position: [0, 1, 0] } }] });
     expect(resolveParams(modelFor(scene), scene).substeps).toBe(50);
+  });
+});
+
+describe('the solves together have a size limit (GLOBAL_SOLVE_MOST_PARTICLES)', () => {
+  const params = (res: number) => {
+    const scene = validateScene({ cloth: { resolution: res }, solver: { bending: 'hinges', bendingSolve: 'global', stretch: 'global' } });
+    return resolveParams(modelFor(scene), scene);
+  };
+
+  it('up to 257 × 257 particles both are solved together; past it one constraint at a time, each saying so', () => {
+    expect(GLOBAL_SOLVE_MOST_PARTICLES).toBe(257 * 257);
+    expect(params(256)).toMatchObject({ stretch: 'global', bendingSolve: 'global', clamps: [] });
+    const p = params(257);
+    expect(p).toMatchObject({ stretch: 'gauss-seidel', bendingSolve: 'gauss-seidel' });
+    expect(p.clamps).toHaveLength(2);
+    expect(p.clamps[0]).toBe("solver.stretch 'global' at 66,564 particles: a cloth solved together has at most 66,049 (257 × 257), " +
+      'whose factor takes seconds to make on the CPU whenever a parameter or a pin changes, and a larger one far more time and memory — ' +
+      "so this one is solved one constraint at a time ('gauss-seidel'); for the solve together, a coarser mesh (cloth.resolution)");
+    expect(p.clamps[1]).toMatch(/^solver\.bendingSolve 'global' at 66,564 particles: /);
   });
 });

@@ -160,6 +160,15 @@ export interface SimParams {
  * step's own stability condition (its trace and determinant: det = 1 − hγ, and 1 + det ≥ |trace| =
  * |2 − h²ω² − hγ|), so the two limits do not add up to an unstable pair.
  */
+/**
+ * The most particles a cloth solved together (solver.stretch or solver.bendingSolve 'global') may have: its factor is
+ * made on the CPU, whichever backend steps it, every time the params or the pins change. On a grid (cotton-basic,
+ * hinges) at 128 faces a side (16 641 particles) the factor has 1.3 million entries and takes 0.45 s to order and
+ * factor on this machine, at 256 (66 049) 6.6 million and 2.6 s, at 512 (263 169) 32 million, 21 s and 1.7 GB:
+ * past 256 a slider's change would stop the app for many seconds, and 1024 would not fit in memory.
+ */
+export const GLOBAL_SOLVE_MOST_PARTICLES = 66_049;
+
 const MASS_SPRING_STIFFNESS_MARGIN = 1;
 const MASS_SPRING_DAMPING_MARGIN = 0.5;
 
@@ -309,6 +318,20 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
 
   // the xpbd solver bends with springs or with a stencil model (hinges, Laplacian), not both
   const bending: BendingModel = scene.solver.type === 'xpbd' ? scene.solver.bending : 'springs';
+  // the solves together up to GLOBAL_SOLVE_MOST_PARTICLES; past it, one constraint at a time, saying so
+  const large = n > GLOBAL_SOLVE_MOST_PARTICLES;
+  let stretch = scene.solver.type === 'xpbd' ? scene.solver.stretch : 'gauss-seidel';
+  let bendingSolve = bending !== 'springs' ? scene.solver.bendingSolve : 'gauss-seidel';
+  for (const [path, asked] of [['solver.stretch', stretch], ['solver.bendingSolve', bendingSolve]] as const) {
+    if (asked !== 'global' || !large) continue;
+    clamps.push(
+      `${path} 'global' at ${n.toLocaleString('en')} particles: a cloth solved together has at most ` +
+      `${GLOBAL_SOLVE_MOST_PARTICLES.toLocaleString('en')} (257 × 257), whose factor takes seconds to make on the CPU ` +
+      'whenever a parameter or a pin changes, and a larger one far more time and memory — so this one is solved one ' +
+      'constraint at a time (\'gauss-seidel\'); for the solve together, a coarser mesh (cloth.resolution)',
+    );
+  }
+  if (large) { stretch = 'gauss-seidel'; bendingSolve = 'gauss-seidel'; }
   if (bending !== 'springs') for (let s = 0; s < springCount; s++) if (model.springKinds[s] === BEND) stiffness[s] = 0;
   const compliance = new Float32Array(springCount);
   for (let s = 0; s < springCount; s++) compliance[s] = stiffness[s] > 0 ? 1 / stiffness[s] : Infinity;
@@ -341,8 +364,8 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
     stiffness,
     compliance,
     bending,
-    stretch: scene.solver.type === 'xpbd' ? scene.solver.stretch : 'gauss-seidel',
-    bendingSolve: bending !== 'springs' ? scene.solver.bendingSolve : 'gauss-seidel',
+    stretch,
+    bendingSolve,
     selfContact: scene.solver.selfContact,
     grabSpeed: scene.solver.selfContact && speed > 0 ? speed : Infinity,
     bendingRigidity,
