@@ -9,7 +9,7 @@ import { createColliders } from '../core/colliders/index.js';
 import type { ClothModel } from '../core/model.js';
 import { differingClothField, type Scene } from '../core/scene.js';
 import { perClothRefusal, type SimParams } from '../core/params.js';
-import { PHASE, PHASE_COUNT, framePhases, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../core/schedule.js';
+import { PHASE, PHASE_COUNT, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../core/schedule.js';
 import type { ClothState } from '../core/state.js';
 import type { ClothBuffers } from './buffers.js';
 import { gpuCollider, type ColliderTables } from './colliders.js';
@@ -91,7 +91,7 @@ export class FrameEncoder implements PhaseBackend {
   private readonly buffers: ClothBuffers;
   private readonly uniforms: UniformTables;
   private readonly colliders: ColliderTables;
-  /** the global bending step's tables (the CPU's factor on the GPU) */
+  /** the global bending step's tables (the CPU's factor on the GPU; GpuClothSolver.step makes them current) */
   readonly globalBending: GlobalBendingTables;
   /** the compute pass of the frame being encoded */
   private pass: GPUComputePassEncoder | undefined;
@@ -118,8 +118,6 @@ export class FrameEncoder implements PhaseBackend {
    */
   frame(state: ClothState, params: SimParams, dt: number, timestampWrites: GPUComputePassTimestampWrites | undefined, log: PhaseLog | undefined): void {
     this.uniforms.writeFrame(state, params, dt, this.colliders.beginFrame(params));
-    // the factor for this frame's pins and substep, before anything is encoded (its tables may be made anew)
-    if ((framePhases(this.model, state, params) & (1 << PHASE.globalBending)) !== 0) this.globalBending.prepare(state, params, dt / params.substeps);
     const encoder = this.device.createCommandEncoder({ label: 'drape step' });
     const grabbed = state.grabbed;
     if (grabbed >= 0 && grabbed < this.model.particleCount) {

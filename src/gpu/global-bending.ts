@@ -248,11 +248,6 @@ export class GlobalBendingTables {
     this.buffers = buffers;
   }
 
-  /** the levels of the forward and backward solves of the factor the GPU holds (0, 0 before the first) */
-  get levels(): { forward: number; backward: number } {
-    return { forward: this.layout?.forwardLevels ?? 0, backward: this.layout?.backwardLevels ?? 0 };
-  }
-
   /** entries of the factor the GPU holds, its diagonal included (0 before the first) */
   get entries(): number {
     return this.system?.chol.entries ?? 0;

@@ -11,7 +11,7 @@ import type {} from 'webgpu'; // WebGPU types (@webgpu/types through the webgpu 
 import type { ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
 import { keepGrabOutside } from '../core/phases.js';
-import { assignPhases, type PhaseLog } from '../core/schedule.js';
+import { PHASE, assignPhases, framePhases, type PhaseLog } from '../core/schedule.js';
 import type { ClothState } from '../core/state.js';
 import { ClothBuffers } from './buffers.js';
 import { ColliderTables } from './colliders.js';
@@ -228,6 +228,11 @@ export class GpuClothSolver {
     if (params !== this.params) this.setParams(params);
     // the grab target out of the colliders, as runFrame does for the CPU backends (the frame writes it to the uniforms)
     keepGrabOutside(state, params, state.time, state.time + dt);
+    // the global bending step's factor for this frame's pins and substep, before the frame is encoded (its tables may
+    // be made anew; a buffer the device cannot make is said by the next step or read, as the params' are)
+    if ((framePhases(this.model, state, params) & (1 << PHASE.globalBending)) !== 0) {
+      this.watched("the global bending step's factor", () => this.encoder.globalBending.prepare(state, params, dt / params.substeps));
+    }
     this.encoder.frame(state, params, dt, timestampWrites, log);
   }
 

@@ -68,7 +68,7 @@ export interface DrapeWorldOptions {
     depenetrationSpeed?: number;
     /** how the xpbd solver solves its springs: 'gauss-seidel' (default, one at a time) or 'global' (together; CPU only, docs/physics.md) */
     stretch?: StretchSolve;
-    /** how the xpbd solver solves the hinges' or the Laplacian's bending: 'gauss-seidel' (default, one stencil at a time) or 'global' (together, exactly; CPU only, docs/physics.md) */
+    /** how the xpbd solver solves the hinges' or the Laplacian's bending: 'gauss-seidel' (default, one stencil at a time) or 'global' (together, exactly; on the CPU and on WebGPU, with the CPU's factor: docs/physics.md) */
     bendingSolve?: BendingSolve;
   };
   /** a floor plane at this height [m] besides the colliders. Default: none */
