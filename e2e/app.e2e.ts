@@ -101,22 +101,21 @@ describe('WebGPU page', () => {
     await expect.poll(() => byId(page, 'hud-test').innerText()).toBe('cantilever: tip 0.0° below the edge, 4.00 cm out → bending length — (the tip has not dropped yet)');
     await step(page, 60);
     await expect.poll(() => byId(page, 'hud-test').innerText()).toMatch(/^cantilever: tip \d+\.\d° below the edge, 4\.00 cm out → bending length \d+\.\d\d cm$/);
-    // the hinges solved together hold a stiff strip as its bending rigidity says: leather's bending length is 5.39 cm,
-    // and a fresh strip reads it within 3 % at the scene's 6 s (0.99 of it at 16 faces, docs/physics.md "Bending
-    // solved together"; one sweep a substep lets it droop to about a fifth), in the worker's WebAssembly kernel,
-    // whose triangular solves run over a memory of their own (wasm/factored-wasm.ts)
+    // the scene's hinges solved together hold a stiff strip as its bending rigidity says: leather's bending length is
+    // 5.39 cm, and a fresh strip reads it within 3 % at the scene's 6 s (0.99 of it at 16 faces, docs/physics.md
+    // "Bending solved together"; one sweep a substep lets it droop to about a fifth), in the worker's WebAssembly
+    // kernel, whose triangular solves run over a memory of their own (wasm/factored-wasm.ts)
     await loadScene(page, 'Cantilever (ASTM D1388)', 16);
     await choose(page, 'material.fabric', 'leather');
-    await choose(page, 'solver.bending', 'hinges');
-    await choose(page, 'solver.bendingSolve', 'global');
     expect((await hook<any>(page, 'scene')).solver).toMatchObject({ bending: 'hinges', bendingSolve: 'global' });
+    expect(await byId(page, 'solver.bendingSolve').locator('select').evaluate((e: HTMLSelectElement) => e.value)).toBe('global');
     await page.waitForFunction(() => (window as any).drape.frame() === 0);
     await step(page, 360);
     const reading = async () => Number(/bending length (\d+\.\d\d) cm$/.exec(await byId(page, 'hud-test').innerText())?.[1]);
     await expect.poll(reading).toBeGreaterThan(0.97 * 5.39);
     expect(await reading()).toBeLessThan(1.03 * 5.39);
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('CPU (worker, WebAssembly SIMD)');
-    await expect.poll(() => page.evaluate(() => location.hash)).toContain('solver.bendingSolve=global');
+    await expect.poll(() => page.evaluate(() => location.hash)).toContain('material.fabric=leather');
     await loadScene(page, 'Cusick Drape (BS 5058)');
     await choose(page, 'cloth.resolution', '24 faces across');
     await page.waitForFunction(() => (window as any).drape.frame() === 0);

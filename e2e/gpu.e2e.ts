@@ -142,14 +142,13 @@ describe('GPU simulation backend', () => {
   });
 
   it('the bending stencils solved together on the GPU: a leather strip reads its bending length as on the CPU', async () => {
-    // the app test's cantilever (app.e2e.ts: 16 faces, leather, the hinges solved together, within 3 % of 5.39 cm at
-    // the scene's 6 s) on the GPU backend: the CPU's factor, the GPU's four kernels a substep (docs/gpu.md, "The
-    // bending stencils solved together"); before 2026-12-06 the GPU refused the scene and the page fell back to the CPU
+    // the app test's cantilever (app.e2e.ts: 16 faces, leather, the scene's hinges solved together, within 3 % of
+    // 5.39 cm at the scene's 6 s) on the GPU backend: the CPU's factor, the GPU's four kernels a substep (docs/gpu.md,
+    // "The bending stencils solved together"); before 2026-12-06 the GPU refused the solve together, and the page fell
+    // back to the CPU
     await onGpu(page);
     await loadScene(page, 'Cantilever (ASTM D1388)', 16);
     await choose(page, 'material.fabric', 'leather');
-    await choose(page, 'solver.bending', 'hinges');
-    await choose(page, 'solver.bendingSolve', 'global');
     expect((await hook<any>(page, 'scene')).solver).toMatchObject({ bending: 'hinges', bendingSolve: 'global' });
     await gpuReady(page);
     await page.waitForFunction(() => (window as any).drape.frame() === 0);
