@@ -124,6 +124,21 @@ describe('the scenes run to their duration and report their test', () => {
   });
 });
 
+describe('the standard fabric tests as the scenes set them up', () => {
+  // the scenes' own bending, the hinges solved together: cotton's strip as `drape run cantilever` runs it (32 faces,
+  // 6 s) reads 0.99 of its bending length; with the default skip-one springs it hangs straight down, 0.21, and with
+  // the hinges swept one at a time 0.65 (docs/physics.md "The standard fabric tests"). The issue asks for 10 %.
+  it('the cantilever scene, run as it is, reads cotton\'s bending length within 3 %', () => {
+    const scene = builtinScene('cantilever');
+    expect(scene.solver).toMatchObject({ bending: 'hinges', bendingSolve: 'global' });
+    const sim = new Simulation(scene);
+    sim.advance(Math.round(scene.duration * 60));
+    const t = sim.report().test as CantileverResult;
+    sim.dispose();
+    expect(Math.abs(t.bendingLength! / Math.cbrt(7.85e-6 / (0.12 * 9.81)) - 1)).toBeLessThan(0.03);
+  });
+});
+
 describe('a cantilever held everywhere', () => {
   it('measures no overhang and no drop (not NaN), whose bending length is unknown', () => {
     const scene = builtinScene('cantilever');
