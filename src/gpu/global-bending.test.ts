@@ -192,8 +192,9 @@ describe.skipIf(!gpu)('the bending stencils solved together on the GPU', () => {
   });
 
   // The Peirce cantilever (ASTM D1388) at 16 faces, as the CPU kernels' test (core global-bending.test.ts) has it:
-  // leather's bending length within 3 % of (B/(ρ_A·g))^⅓, read at the scene's duration. Seen 0.99 (the CPU's to four
-  // digits); with one Gauss–Seidel pass a substep it is far off.
+  // leather's bending length within 3 % of (B/(ρ_A·g))^⅓. Its light, stiff strip is at rest within half a second:
+  // read after 60 frames it is 0.994 on the CPU (0.994 at 30 and 120 too) and on the GPU; with one Gauss–Seidel pass
+  // a substep 0.46 then.
   test('the cantilever at 16 faces: leather within 3 % of its bending length, as on the CPU', async () => {
     let scene = setScenePath(builtinScene('cantilever'), 'material.fabric', 'leather');
     scene = setScenePath(scene, 'solver.bending', 'hinges');
@@ -201,7 +202,7 @@ describe.skipIf(!gpu)('the bending stencils solved together on the GPU', () => {
     scene = setScenePath(scene, 'cloth.resolution', 16);
     const sim = new Simulation(scene, { kernel: 'ts' });
     sim.useBackend(await GpuBackend.create(gpu!.device, sim.model));
-    sim.advance(Math.round(scene.duration / FRAME_DT));
+    sim.advance(60);
     await sim.sync();
     const t = sim.report().test;
     sim.dispose();
