@@ -45,6 +45,9 @@ export class FactorLayout {
   readonly index: Uint32Array<ArrayBuffer>;
   /** elements of the factorValues buffer: the entries outside the blocks twice, then the blocks' inverses */
   readonly valueCount: number;
+  /** L's entries outside the blocks (off the diagonal), and the values of the blocks' inverses (packed) */
+  readonly outside: number;
+  readonly inverseValues: number;
   /** the levels of the forward and of the backward solve (each two steps of the workgroup) */
   readonly forwardLevels: number;
   readonly backwardLevels: number;
@@ -158,6 +161,8 @@ export class FactorLayout {
     }
     this.index = index;
     this.valueCount = this.inverseAt[blocks];
+    this.outside = outside;
+    this.inverseValues = this.valueCount - 2 * outside;
     let most = 0;
     for (let b = 0; b < blocks; b++) most = Math.max(most, blockStart[b + 1] - blockStart[b]);
     this.work = new Float64Array(most * most);
@@ -248,9 +253,12 @@ export class GlobalBendingTables {
     this.buffers = buffers;
   }
 
-  /** entries of the factor the GPU holds, its diagonal included (0 before the first) */
-  get entries(): number {
-    return this.system?.chol.entries ?? 0;
+  /**
+   * The factor the GPU holds as its solves read it: L's entries outside the blocks and the values of the blocks'
+   * inverses (0 and 0 before the first)
+   */
+  get factorSize(): { outside: number; inverse: number } {
+    return { outside: this.layout?.outside ?? 0, inverse: this.layout?.inverseValues ?? 0 };
   }
 
   /**

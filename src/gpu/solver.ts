@@ -252,7 +252,7 @@ export class GpuClothSolver {
   substepTraffic(): SubstepTraffic {
     if (!this.params) throw new Error('GPU solver: setParams first');
     return substepTraffic(
-      this.model, this.params, this.uniforms.collidePasses, this.uniforms.selfRecords, this.buffers.hasTethers, this.encoder.globalBending.entries,
+      this.model, this.params, this.uniforms.collidePasses, this.uniforms.selfRecords, this.buffers.hasTethers, this.encoder.globalBending.factorSize,
     );
   }
 

@@ -15,12 +15,12 @@ export interface SubstepTraffic {
 
 /**
  * Bytes one substep moves, by kernel; `self`: the self-contact grid's records (null: none), `hasTethers`: whether the
- * tethers kernel has work, `factorEntries`: the entries of the global bending step's factor, its diagonal included
- * (global-bending.ts; 0 without the step).
+ * tethers kernel has work, `factor`: the global bending step's factor as its solves read it, L's entries outside the
+ * blocks and the values of the blocks' inverses (global-bending.ts FactorLayout; 0 without the step).
  */
 export function substepTraffic(
   model: ClothModel, params: SimParams, collidePasses: readonly CollidePass[], self: SelfRecords | null, hasTethers: boolean,
-  factorEntries = 0,
+  factor = { outside: 0, inverse: 0 },
 ): SubstepTraffic {
   const n = model.particleCount, T = model.triangles.length / 3, S = model.restLengths.length;
   const by: Record<string, number> = {};
@@ -38,14 +38,15 @@ export function substepTraffic(
   add('solve', solve);
   const stencils = bendingStencils(model, params.bending);
   if (stencils && params.bendingSolve === 'global') {
-    const H = stencils.areas.length, E = stencils.vertices.length, strict = factorEntries - n;
+    const H = stencils.areas.length, E = stencils.vertices.length;
     // per stencil: its offsets and coefficients, its force written; per entry: particle, K, x and x_prev
     add('globalBending', H * (8 + 8 + 16) + E * (4 + 4 + 16 + 16));
     // the right-hand side: per particle its row, pin and incidence offsets, the row written; per entry (k, e), K, d
     add('globalBending', n * (4 + 4 + 8 + 16) + E * (8 + 4 + 16));
-    // both triangular solves: per strict entry of L its index, value and the solved row read; per row and solve its
-    // level's entry, offsets, 1/L_jj, the row read and written
-    add('globalBending', 2 * strict * (4 + 4 + 16) + 2 * n * (4 + 8 + 4 + 16 + 16));
+    // both triangular solves: per entry of L outside the blocks its index, value and the solved row it names; per
+    // value of a block's inverse, it and a row of t; per row and solve its level's entry, its block (12 B), its
+    // offsets, the row read, t written, the row written
+    add('globalBending', 2 * factor.outside * (4 + 4 + 16) + 2 * factor.inverse * (4 + 16) + 2 * n * (4 + 12 + 8 + 16 + 16 + 16));
     // Δx applied: per particle its pin, row, Δx, the position read and written
     add('globalBending', n * (4 + 4 + 16 + 16 + 16));
   } else if (stencils) {
