@@ -153,14 +153,6 @@ export interface SimParams {
 }
 
 /**
- * Safety margins of the explicit mass-spring step (see limitPerSpring): every particle keeps w_i·Σk ≤ this / h²
- * (so h²·λ_max(M⁻¹K) ≤ 2, where Verlet is stable below 4) and w_i·Σc ≤ this / h for the spring damping (so
- * h·λ_max(M⁻¹C) ≤ 1, stable below 2). For a mode of both K and C (eigenvalues ω², γ; they share their modes where
- * c/k is the same on every spring) that gives h²ω² + 2hγ ≤ 4 even with both at their bounds, the damped Verlet
- * step's own stability condition (its trace and determinant: det = 1 − hγ, and 1 + det ≥ |trace| =
- * |2 − h²ω² − hγ|), so the two limits do not add up to an unstable pair.
- */
-/**
  * The most particles a cloth solved together (solver.stretch or solver.bendingSolve 'global') may have: its factor is
  * made on the CPU, whichever backend steps it, every time the params or the pins change. On a grid (cotton-basic,
  * hinges) at 128 faces a side (16 641 particles) the factor has 1.3 million entries and takes 0.45 s to order and
@@ -169,6 +161,14 @@ export interface SimParams {
  */
 export const GLOBAL_SOLVE_MOST_PARTICLES = 66_049;
 
+/**
+ * Safety margins of the explicit mass-spring step (see limitPerSpring): every particle keeps w_i·Σk ≤ this / h²
+ * (so h²·λ_max(M⁻¹K) ≤ 2, where Verlet is stable below 4) and w_i·Σc ≤ this / h for the spring damping (so
+ * h·λ_max(M⁻¹C) ≤ 1, stable below 2). For a mode of both K and C (eigenvalues ω², γ; they share their modes where
+ * c/k is the same on every spring) that gives h²ω² + 2hγ ≤ 4 even with both at their bounds, the damped Verlet
+ * step's own stability condition (its trace and determinant: det = 1 − hγ, and 1 + det ≥ |trace| =
+ * |2 − h²ω² − hγ|), so the two limits do not add up to an unstable pair.
+ */
 const MASS_SPRING_STIFFNESS_MARGIN = 1;
 const MASS_SPRING_DAMPING_MARGIN = 0.5;
 
