@@ -78,6 +78,14 @@ describe('caps by particles: discs, tubes and mesh files', () => {
       expect(shapeParticles(s.cloth), `${shape} ${r} ${w}×${h}`).toBe(modelFor(s).particleCount);
     }
     expect(shapeParticles(shaped('disc', 32).cloth)).toBe(817); // 1 + 3K(K + 1), K = 16
+    for (const r of [1, 4, 33, 48]) {
+      const woven = setScenePath(shaped('disc', r, 0.3, 1), 'cloth.lattice', 'weave');
+      expect(shapeParticles(woven.cloth), `woven disc ${r}`).toBe(modelFor(woven).particleCount);
+    }
+    // a woven disc clamped as a disc of rings is, by its own count
+    const woven = capCloth(setScenePath(shaped('disc', 1024), 'cloth.lattice', 'weave'), 'cpu', noMesh);
+    expect(shapeParticles(woven.scene.cloth)).toBeLessThanOrEqual(MAX_PARTICLES.cpu);
+    expect(shapeParticles(woven.scene.cloth, woven.scene.cloth.resolution + 1)).toBeGreaterThan(MAX_PARTICLES.cpu);
   });
 
   it('a disc or tube over the backend\'s particles is clamped to the largest resolution that fits, with a note', () => {

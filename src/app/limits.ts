@@ -8,7 +8,7 @@
  * cloths of a scene of several share the cap: when together over it, each generated cloth over its share is lowered.
  * No DOM here: unit-tested in limits.test.ts.
  */
-import { MAX_INPUT_BYTES, SceneError, clothEntries, clothName, editCloth, plainText, type ClothSpec, type PinEntry, type Scene } from '../core/index.js';
+import { MAX_INPUT_BYTES, SceneError, wovenDiscParticles, clothEntries, clothName, editCloth, plainText, type ClothSpec, type PinEntry, type Scene } from '../core/index.js';
 
 export type BackendKind = 'cpu' | 'gpu';
 
@@ -81,6 +81,7 @@ export const particlesOf = (resolution: number): number => (resolution + 1) ** 2
 export function shapeParticles(cloth: Scene['cloth'], resolution = cloth.resolution): number {
   switch (cloth.shape) {
     case 'disc': {
+      if (cloth.lattice === 'weave') return wovenDiscParticles(resolution);
       // a centre vertex and K rings of 6k vertices
       const K = Math.max(1, Math.ceil(resolution / 2));
       return 1 + 3 * K * (K + 1);

@@ -3,7 +3,7 @@
  * shows on the backend in use, the slot scenes it makes — one after another (sequence) or side by side — and
  * moving the sequence on.
  */
-import { builtinScene, type ColliderSpec, type Scene, type Vec3 } from '../core/index.js';
+import { builtinScene, type ColliderSpec, type PinBall, type PinRegion, type Scene, type Vec3 } from '../core/index.js';
 import type { SweepLayout } from '../ui/panel.js';
 import type { App } from './app.js';
 import { fitSideBySide, resolutionPins } from './limits.js';
@@ -123,7 +123,8 @@ export class Sweep {
 
 /** A collider moved dx along x with its cloth (side-by-side sweeps); a floor is the same everywhere. */
 /** A pin region moved dx [m] along x with its cloth. */
-function shiftedRegion(r: { min: Vec3; max: Vec3 }, dx: number): { min: Vec3; max: Vec3 } {
+function shiftedRegion(r: PinRegion | PinBall, dx: number): PinRegion | PinBall {
+  if ('center' in r) return { center: [r.center[0] + dx, r.center[1], r.center[2]], radius: r.radius };
   return { min: [r.min[0] + dx, r.min[1], r.min[2]], max: [r.max[0] + dx, r.max[1], r.max[2]] };
 }
 

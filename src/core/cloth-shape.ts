@@ -5,7 +5,7 @@
  * to the scene file; the app from an imported file.
  */
 import { buildGridModel, buildMeshModel, mergeModels, type ClothModel } from './model.js';
-import { discMesh, placeMesh, tubeMesh } from './mesh/generators.js';
+import { discMesh, placeMesh, tubeMesh, wovenDiscCells, wovenDiscMesh } from './mesh/generators.js';
 import { parseGltf, type ExternalReader } from './mesh/gltf.js';
 import { parseObj } from './mesh/obj.js';
 import { extent, prepareMesh, type TriangleMesh } from './mesh/triangle-mesh.js';
@@ -55,7 +55,9 @@ function clothModel(c: ClothSpec, swr: boolean, meshes: MeshResolver | undefined
     case 'rectangle':
       return buildGridModel({ ...c, scaleWithResolution: swr });
     case 'disc':
-      return buildMeshModel(prepareMesh(discMesh(c), `${at}cloth.shape disc`), swr);
+      return c.lattice === 'weave'
+        ? buildMeshModel(prepareMesh(wovenDiscMesh(c), `${at}cloth.shape disc`), swr, { cellSize: c.width / wovenDiscCells(c.resolution) })
+        : buildMeshModel(prepareMesh(discMesh(c), `${at}cloth.shape disc`), swr);
     case 'tube':
       return buildMeshModel(prepareMesh(tubeMesh(c), `${at}cloth.shape tube`), swr);
     case 'mesh': {

@@ -28,7 +28,7 @@ export { TsBackend, WasmBackend, type Backend, type BackendKind } from './backen
 export { wasmKernelAvailable, XpbdKernel, type HelperSpawner, type KernelHelperInit } from './wasm/xpbd-wasm.js';
 export { modelFor, parseMeshFile, meshFormat, CLOTH_SHAPES, MESH_EXTENSIONS, type ClothShape, type MeshResolver } from './cloth-shape.js';
 export { prepareMesh, MAX_MESH_PARTICLES, MAX_VERTEX_EDGES, WELD_TOLERANCE, type TriangleMesh } from './mesh/triangle-mesh.js';
-export { discMesh, tubeMesh, placeMesh, type ShapeSpec, type Placement } from './mesh/generators.js';
+export { discMesh, tubeMesh, wovenDiscMesh, wovenDiscParticles, placeMesh, type ShapeSpec, type Placement } from './mesh/generators.js';
 export type { ExternalReader } from './mesh/gltf.js';
 export { toGLB, modelCloths, bakeBytes, BAKE_BYTES_PER_VERTEX, type GlbInput, type ExportCloth, type GlbMaterial, type GlbTexture, type GlbBake } from './mesh/glb.js';
 export { toOBJ, toMTL, type ObjInput } from './mesh/obj-export.js';

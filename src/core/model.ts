@@ -763,7 +763,7 @@ export function buildGridModel(spec: GridClothSpec): ClothModel {
  * opposite each edge two triangles share; their factor follows the grid's skip-one springs, (s₀/ℓ)⁴·(|e|/ℓ) with
  * ℓ half the pair's unfolded width (the mean of the two triangles' heights over the edge) and s₀ = REFERENCE_SPACING. With `scaleWithResolution` off every factor is 1.
  */
-export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean): ClothModel {
+export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean, weave?: Weave): ClothModel {
   const p = mesh.positions, tri = mesh.triangles, n = p.length / 3;
   const table = edgeTable(tri, n);
   const topology = meshTopology(tri, n, table);
@@ -776,12 +776,63 @@ export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean)
     return 0.5 * Math.sqrt(cx * cx + cy * cy + cz * cz);
   };
   const m = edges.length / 2;
-  const sScale = new Float32Array(m);
-  for (let e = 0; e < m; e++) {
-    const l = distance(p, edges[2 * e], edges[2 * e + 1]);
-    const t0 = table.faces[2 * e], t1 = table.faces[2 * e + 1];
-    sScale[e] = (triArea(t0) + (t1 >= 0 ? triArea(t1) : 0)) / (l * l);
+  const edgeArea = (e: number) => triArea(table.faces[2 * e]) + (table.faces[2 * e + 1] >= 0 ? triArea(table.faces[2 * e + 1]) : 0);
+  if (!weave) {
+    const sScale = new Float32Array(m);
+    for (let e = 0; e < m; e++) {
+      const l = distance(p, edges[2 * e], edges[2 * e + 1]);
+      sScale[e] = edgeArea(e) / (l * l);
+    }
+    return meshModel(mesh, topology, edges, sScale, new Uint32Array(0), new Float32Array(0), scaleWithResolution);
   }
+  // woven: an edge along a thread (within 3° of u or v) is structural, any other a shear spring of the cell area it
+  // spans; a whole cell (two triangles making a rectangle of thread edges) gets its other diagonal as well. An edge
+  // the cut tilted off its thread is a shear spring: as structural it would stiffen the rim's shear (1.8 × G over a
+  // disc of 24 cells at 22.5°), as a shear spring the rim is a little soft, as a cut fabric's edge is (0.94 × G)
+  const uv = mesh.uvs;
+  if (!uv) throw new Error('buildMeshModel: a woven mesh needs uvs (the threads run along u and v)');
+  const along = new Uint8Array(m);
+  const edgeOf = new Map<number, number>();
+  let threads = 0;
+  for (let e = 0; e < m; e++) {
+    const a = edges[2 * e], b = edges[2 * e + 1];
+    const du = Math.abs(uv[2 * b] - uv[2 * a]), dv = Math.abs(uv[2 * b + 1] - uv[2 * a + 1]);
+    along[e] = Math.min(du, dv) <= Math.tan((3 * Math.PI) / 180) * Math.max(du, dv) ? 1 : 0;
+    threads += along[e];
+    edgeOf.set(Math.min(a, b) * n + Math.max(a, b), e);
+  }
+  const isThread = (a: number, b: number) => along[edgeOf.get(Math.min(a, b) * n + Math.max(a, b)) ?? -1] === 1;
+  const cell = weave.cellSize * weave.cellSize;
+  const structural = new Uint32Array(2 * threads), sScale = new Float32Array(threads);
+  const shear: number[] = [], dScale: number[] = [];
+  let s = 0;
+  for (let e = 0; e < m; e++) {
+    const a = edges[2 * e], b = edges[2 * e + 1];
+    if (along[e]) {
+      const l = distance(p, a, b);
+      structural[2 * s] = a; structural[2 * s + 1] = b; sScale[s++] = edgeArea(e) / (l * l);
+    } else {
+      shear.push(a, b); dScale.push(edgeArea(e) / cell);
+    }
+  }
+  for (let k = 0; k < bendingPairs.length; k += 4) {
+    const a = bendingPairs[k], b = bendingPairs[k + 1], c = bendingPairs[k + 2], d = bendingPairs[k + 3];
+    if (isThread(a, b) || !isThread(a, c) || !isThread(c, b) || !isThread(b, d) || !isThread(d, a)) continue;
+    const e = edgeOf.get(Math.min(a, b) * n + Math.max(a, b))!;
+    shear.push(c, d); dScale.push(edgeArea(e) / cell);
+  }
+  return meshModel(mesh, topology, structural, sScale, Uint32Array.from(shear), Float32Array.from(dScale), scaleWithResolution);
+}
+
+/** A woven mesh's lattice (buildMeshModel): its threads run along the uvs' u and v, `cellSize` [m] apart. */
+export interface Weave {
+  cellSize: number;
+}
+
+/** The springs of a mesh model: structural and shear as given, bend springs across each interior edge. */
+function meshModel(mesh: TriangleMesh, topology: MeshTopology, structural: Uint32Array, sScale: Float32Array, shear: Uint32Array, dScale: Float32Array, scaleWithResolution: boolean): ClothModel {
+  const p = mesh.positions;
+  const { bendingPairs } = topology;
   const nb = bendingPairs.length / 4;
   const bend = new Uint32Array(2 * nb);
   const bScale = new Float32Array(nb);
@@ -798,9 +849,9 @@ export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean)
   return buildModel({
     restPositions: p,
     uvs: mesh.uvs,
-    triangles: tri,
-    springs: [edges, new Uint32Array(0), bend],
-    stiffnessScales: scaleWithResolution ? [sScale, new Float32Array(0), bScale] : undefined,
+    triangles: mesh.triangles,
+    springs: [structural, shear, bend],
+    stiffnessScales: scaleWithResolution ? [sScale, dScale, bScale] : undefined,
     topology,
   });
 }

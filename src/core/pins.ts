@@ -66,9 +66,18 @@ export function resolvePins(model: ClothModel, pins: readonly PinEntry[], field 
     if (typeof p === 'object') {
       // (a library caller's region is checked here: a scene's by the schema)
       const corner = (v: unknown) => Array.isArray(v) && v.length === 3 && v.every(Number.isFinite);
-      if (p === null || !corner(p.min) || !corner(p.max)) throw new SceneError(`${field}[${k}]: a region is { min: [x, y, z], max: [x, y, z] } of finite numbers [m]`);
       const x = model.restPositions;
       let found = 0;
+      if (p !== null && 'center' in p) {
+        if (!corner(p.center) || !(Number.isFinite(p.radius) && p.radius >= 0)) throw new SceneError(`${field}[${k}]: a round region is { center: [x, y, z], radius: r } of finite numbers, r ≥ 0 [m]`);
+        const [cx, cy, cz] = p.center;
+        for (let i = 0; i < n; i++) {
+          if (Math.hypot(x[3 * i] - cx, x[3 * i + 1] - cy, x[3 * i + 2] - cz) <= p.radius) { set.add(i); found++; }
+        }
+        if (found === 0) throw new SceneError(`${field}[${k}]: no particle starts within ${p.radius} m of [${p.center.join(', ')}] m`);
+        return;
+      }
+      if (p === null || !corner(p.min) || !corner(p.max)) throw new SceneError(`${field}[${k}]: a region is { min: [x, y, z], max: [x, y, z] } or { center: [x, y, z], radius: r } of finite numbers [m]`);
       for (let i = 0; i < n; i++) {
         let inside = true;
         for (let d = 0; d < 3; d++) if (!(x[3 * i + d] >= p.min[d] && x[3 * i + d] <= p.max[d])) inside = false;

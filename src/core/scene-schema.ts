@@ -48,6 +48,16 @@ const pinList = (description: string) => ({
           max: vec3('the box\'s highest corner [m]', -1000, 1000, [0, 0, 0]),
         },
       },
+      {
+        type: 'object',
+        additionalProperties: false,
+        required: ['center', 'radius'],
+        description: 'a round region: every particle whose start position lies within radius of center (a clamp\'s disc, any shape, any resolution)',
+        properties: {
+          center: vec3('the ball\'s centre [m]', -1000, 1000, [0, 0, 0]),
+          radius: { type: 'number', minimum: 0, maximum: 1000, description: 'the ball\'s radius [m]' },
+        },
+      },
     ],
   },
 });
@@ -100,6 +110,7 @@ const clothSchema = {
     mesh: { type: 'string', minLength: 1, maxLength: 1000, description: 'OBJ or glTF (.obj, .gltf, .glb) file of the cloth, relative to the scene file; any manifold triangle mesh with boundary, several pieces allowed. The app imports it from a file; a link cannot carry it' },
     scale: { type: 'number', minimum: 1e-6, maximum: 1e6, default: 1, description: 'metres per unit of the mesh file: 0.01 for centimetres, 0.001 for millimetres, 0.0254 for inches (mesh only; the cloth must come out at least twice cloth.thickness and at most 100 m across) [m]' },
     resolution: { type: 'integer', minimum: 1, maximum: 1024, default: 32, description: 'density [-]: faces per side of a rectangle (1 is one quad of 4 particles, 64 is 4096 faces: 65² particles); faces across a disc\'s diameter; faces along the longer of a tube\'s circumference and length (a mesh file has its own)' },
+    lattice: { enum: ['rings', 'weave'], default: 'rings', description: "how a disc is meshed: 'rings' (concentric rings of 6k vertices, a lattice of triangles alike in every direction; every edge is a structural spring, so the disc resists in-plane shear as stiffly as stretch) or 'weave' (the rectangle's square cells cut round, threads along x and z: structural springs along them, shear springs across the cells, so the disc shears as softly as its material.shearStiffness says, like a woven fabric; at least 4 cells across). Not for other shapes" },
     width: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent along x of a rectangle; diameter of a disc or tube [m]' },
     height: { type: 'number', minimum: 0.01, maximum: 100, default: 1, description: 'extent of a rectangle along its second axis (z when horizontal, y when hanging); length of a tube [m]' },
     orientation: { enum: ['horizontal', 'hanging'], default: 'horizontal', description: "start pose of a rectangle, disc or tube: 'horizontal' lies in the xz plane (row 0 at -z; a tube's axis along z); 'hanging' in the xy plane (row 0 at the top; a tube's axis vertical). A mesh keeps the file's pose" },
@@ -132,7 +143,7 @@ const materialSchema = {
 } as const;
 
 /** `pins`: a cloth's pinned particles (one of `cloths` has the same). */
-const clothPins = pinList(`pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding) or regions ({ min, max }: the particles that start in that box)`);
+const clothPins = pinList(`pinned particles: presets (${PIN_PRESETS.join(', ')}; all but center need a rectangle) particle indices (a rectangle's row-major, row 0 first; a mesh file's vertex order after welding) or regions ({ min, max }: the particles that start in that box; { center, radius }: those that start within radius of center)`);
 
 /**
  * A JSON Schema document, as the code reads it: the scene schema's own literal type would only repeat the

@@ -11,8 +11,10 @@ export type ClothShape = 'rectangle' | 'disc' | 'tube' | 'mesh';
 export type PinPreset = (typeof PIN_PRESETS)[number];
 /** A pin region: every particle whose start position lies in the box from `min` to `max` [m]. */
 export interface PinRegion { min: Vec3; max: Vec3 }
+/** A round pin region: every particle whose start position lies within `radius` [m] of `center` [m]. */
+export interface PinBall { center: Vec3; radius: number }
 /** One entry of a pin list: a preset, a particle index or a region. */
-export type PinEntry = PinPreset | number | PinRegion;
+export type PinEntry = PinPreset | number | PinRegion | PinBall;
 
 /** Field meanings, units and defaults: see scene-schema.ts (the one source). */
 export interface Scene {
@@ -51,6 +53,8 @@ export interface ClothSpec {
   mesh?: string;
   scale: number;
   resolution: number;
+  /** how a disc is meshed: concentric rings, or the rectangle's lattice cut round (its threads along x and z) */
+  lattice: 'rings' | 'weave';
   width: number;
   height: number;
   orientation: 'horizontal' | 'hanging';

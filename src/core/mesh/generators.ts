@@ -188,3 +188,115 @@ export function tubeMesh(spec: ShapeSpec): TriangleMesh {
   mesh.positions = placeMesh(mesh.positions, spec);
   return mesh;
 }
+
+/**
+ * A flat disc of diameter `width` cut from the rectangle's lattice, its threads along the sheet's u and v (the warp
+ * and the weft): `resolution` square cells across (at least 4), cell size h = width/resolution. A lattice vertex
+ * within 0.3·h of the circle is moved onto it; one further out is dropped, and a lattice line from a vertex inside to
+ * one dropped ends where it crosses the circle; each cell keeps the part of it inside (a whole cell is split into two
+ * triangles, a cut one into a fan chosen for its widest smallest angle; a part with every corner on the circle, a
+ * sliver, is left out). UVs as on the ring disc: u = ½ + x/width, v = ½ − y/width, so the threads run along u and v.
+ */
+export function wovenDiscMesh(spec: ShapeSpec): TriangleMesh {
+  checkSpec(spec, 'wovenDiscMesh');
+  const N = wovenDiscCells(spec.resolution), R = spec.width / 2, h = spec.width / N, snap = 0.3 * h;
+  const side = N + 1, at = (i: number, j: number) => j * side + i;
+  // each lattice vertex: its position, and whether it is inside (0), on the circle (1) or dropped (2)
+  const gx = new Float64Array(side * side), gy = new Float64Array(side * side), kind = new Uint8Array(side * side);
+  for (let j = 0; j < side; j++) {
+    for (let i = 0; i < side; i++) {
+      const v = at(i, j), x = (i - N / 2) * h, y = (j - N / 2) * h, r = Math.hypot(x, y);
+      if (r <= R - snap) { gx[v] = x; gy[v] = y; kind[v] = 0; }
+      else if (r < R + snap) { gx[v] = (x * R) / r; gy[v] = (y * R) / r; kind[v] = 1; }
+      else { gx[v] = x; gy[v] = y; kind[v] = 2; }
+    }
+  }
+  // the polygon each cell keeps, as points: a lattice vertex v (≥ 0) or the crossing of a lattice line −1 − c
+  const cx: number[] = [], cy: number[] = [];
+  const crossings = new Map<number, number>();
+  const crossing = (u: number, w: number) => {
+    const key = Math.min(u, w) * side * side + Math.max(u, w);
+    let c = crossings.get(key);
+    if (c === undefined) {
+      const [a, b] = kind[u] === 0 ? [u, w] : [w, u];
+      const ax = gx[a], ay = gy[a], dx = gx[b] - ax, dy = gy[b] - ay;
+      // |a + t·d| = R for t in (0, 1): a·a + 2t·a·d + t²·d·d = R²
+      const A = dx * dx + dy * dy, B = ax * dx + ay * dy, C = ax * ax + ay * ay - R * R;
+      const t = (-B + Math.sqrt(B * B - A * C)) / A;
+      c = cx.length;
+      cx.push(ax + t * dx); cy.push(ay + t * dy);
+      crossings.set(key, c);
+    }
+    return -1 - c;
+  };
+  const px: number[] = [], py: number[] = [];
+  const index = new Int32Array(side * side).fill(-1), crossingIndex: number[] = [];
+  const vertex = (point: number) => {
+    if (point >= 0) {
+      if (index[point] < 0) { index[point] = px.length; px.push(gx[point]); py.push(gy[point]); }
+      return index[point];
+    }
+    const c = -1 - point;
+    if (crossingIndex[c] === undefined) { crossingIndex[c] = px.length; px.push(cx[c]); py.push(cy[c]); }
+    return crossingIndex[c];
+  };
+  const tri: number[] = [];
+  const poly: number[] = [];
+  for (let j = 0; j < N; j++) {
+    for (let i = 0; i < N; i++) {
+      const corners = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
+      if (corners.every((v) => kind[v] === 0)) {
+        const [a, b, c, d] = corners.map(vertex);
+        tri.push(a, b, c, a, c, d);
+        continue;
+      }
+      poly.length = 0;
+      for (let k = 0; k < 4; k++) {
+        const u = corners[k], w = corners[(k + 1) % 4];
+        if (kind[u] !== 2) poly.push(u);
+        if ((kind[u] === 0 && kind[w] === 2) || (kind[u] === 2 && kind[w] === 0)) poly.push(crossing(u, w));
+      }
+      if (poly.length < 3 || poly.every((v) => v < 0 || kind[v] === 1)) continue;
+      const at2 = poly.map(vertex);
+      fanWidest(at2, px, py, tri);
+    }
+  }
+  const n = px.length, local = new Float32Array(3 * n), uvs = new Float32Array(2 * n);
+  for (let v = 0; v < n; v++) {
+    local[3 * v] = px[v]; local[3 * v + 1] = py[v];
+    uvs[2 * v] = 0.5 + px[v] / spec.width; uvs[2 * v + 1] = 0.5 - py[v] / spec.width;
+  }
+  const mesh: TriangleMesh = { positions: sheetToWorld(local, spec.orientation), triangles: Uint32Array.from(tri), uvs };
+  orientLike(mesh, spec.orientation === 'horizontal' ? [0, 1, 0] : [0, 0, -1]);
+  mesh.positions = placeMesh(mesh.positions, spec);
+  return mesh;
+}
+
+/** The particles of a woven disc of a resolution (any diameter: the cut scales with the cells). */
+export function wovenDiscParticles(resolution: number): number {
+  return wovenDiscMesh({ resolution, width: 1, height: 1, orientation: 'horizontal', position: [0, 0, 0], rotation: [0, 0, 0] }).positions.length / 3;
+}
+
+/** Cells across a woven disc for a scene's cloth.resolution (at least 4: fewer leave no cell whole). */
+export function wovenDiscCells(resolution: number): number {
+  return Math.max(4, resolution);
+}
+
+/** Appends the fan over the convex polygon `poly` (counter-clockwise) whose smallest angle is the largest. */
+function fanWidest(poly: readonly number[], px: readonly number[], py: readonly number[], out: number[]): void {
+  const m = poly.length;
+  const angle = (o: number, a: number, b: number) => {
+    const ux = px[a] - px[o], uy = py[a] - py[o], vx = px[b] - px[o], vy = py[b] - py[o];
+    return Math.atan2(Math.abs(ux * vy - uy * vx), ux * vx + uy * vy);
+  };
+  let best = -1, bestMin = -1;
+  for (let s = 0; s < m; s++) {
+    let least = Infinity;
+    for (let k = 1; k + 1 < m; k++) {
+      const a = poly[s], b = poly[(s + k) % m], c = poly[(s + k + 1) % m];
+      least = Math.min(least, angle(a, b, c), angle(b, c, a), angle(c, a, b));
+    }
+    if (least > bestMin) { bestMin = least; best = s; }
+  }
+  for (let k = 1; k + 1 < m; k++) out.push(poly[best], poly[(best + k) % m], poly[(best + k + 1) % m]);
+}
