@@ -65,6 +65,9 @@ export class ClothBuffers {
       stencilOffsets: 0, stencilVertices: 0, stencilWeights: 0, stencilCompliance: 0, stencilLambdas: 0,
       // placeholders until params solve the stencils together (global-bending.ts)
       bendingCoefficients: 0, stencilForce: 0, stencilIncidence: 0, factorIndex: 0, factorValues: 0, globalX: 0, globalT: 0, grabColumn: 0,
+      // placeholders until params solve the springs together (global-stretch.ts)
+      stretchCoefficients: 0, springForce: 0, springIncidence: 0, globalY: 0, stretchFactorIndex: 0, stretchFactorValues: 0,
+      stretchGrabColumn: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
       normals: n, grabStart: 2, colliders: 1, carried: 1, meshNodes: 1, meshTriangles: 1,
       // placeholders: a cloth without self-contact spends nothing on its grid (makeSelfContact)
@@ -114,7 +117,7 @@ export class ClothBuffers {
     return this.device.createBindGroup({
       label: `drape ${kernel}`,
       layout: this.storageLayouts[kernel],
-      entries: spec.bindings.map(([name], i) => ({ binding: i, resource: { buffer: this.buffers[name] } })),
+      entries: spec.bindings.map((b, i) => ({ binding: i, resource: { buffer: this.buffers[b[2] ?? b[0]] } })),
     });
   }
 
@@ -147,7 +150,7 @@ export class ClothBuffers {
   private regroup(names: readonly BufferName[]): void {
     for (const kernel of Object.keys(KERNELS) as KernelName[]) {
       const spec: KernelSpec = KERNELS[kernel];
-      if (spec.bindings.some(([b]) => names.includes(b))) this.storageGroups[kernel] = this.makeGroup(kernel);
+      if (spec.bindings.some((b) => names.includes(b[2] ?? b[0]))) this.storageGroups[kernel] = this.makeGroup(kernel);
     }
   }
 

@@ -14,6 +14,7 @@ import type { ClothState } from '../core/state.js';
 import type { ClothBuffers } from './buffers.js';
 import { gpuCollider, type ColliderTables } from './colliders.js';
 import { GlobalBendingTables } from './global-bending.js';
+import { GlobalStretchTables } from './global-stretch.js';
 import { meshRefusal } from './meshes.js';
 import { MAX_WORKGROUPS_X, RECORD_STRIDE, SCAN_BLOCK, SELF_EDGE_PASSES, WORKGROUP_SIZE, type KernelName } from './layout.js';
 import type { SelfRecords, UniformTables } from './uniforms.js';
@@ -42,7 +43,6 @@ function contactRefusal(params: SimParams): string | null {
  */
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
-  if (scene.solver.stretch === 'global') return 'the global stretch step (solver.stretch \'global\') runs on the CPU only';
   const differs = differingClothField(scene);
   if (differs) return `cloths that differ in their contact or spring values run on the CPU only (${differs})`;
   return colliderRefusal(scene);
@@ -61,11 +61,11 @@ export function colliderRefusal(scene: Scene): string | null {
 }
 
 /**
- * The phases of the schedule the GPU implements: every phase of XPBD, stencil bending (solver.bending 'hinges' or
- * 'laplacian', one stencil at a time or together) and self-contact included. Its cloth lives in GPU buffers, so it
- * cannot leave a phase to the TypeScript reference: a frame that needs one is refused (the mass-spring solver, the
- * global stretch step, a collider shape it does not know). Self-contact reads one thickness and friction for the whole model, as contact does: cloths that
- * differ in them are refused by the contact phase already.
+ * The phases of the schedule the GPU implements: every phase of XPBD, the springs solved one at a time or together,
+ * stencil bending (solver.bending 'hinges' or 'laplacian', one stencil at a time or together) and self-contact
+ * included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript reference: a frame that needs
+ * one is refused (the mass-spring solver, a collider shape it does not know). Self-contact reads one thickness and
+ * friction for the whole model, as contact does: cloths that differ in them are refused by the contact phase already.
  */
 export const GPU_PHASES: BackendPhases = {
   name: 'GPU solver',
@@ -73,7 +73,8 @@ export const GPU_PHASES: BackendPhases = {
   sharesMemory: false,
   solvers: ['xpbd'],
   phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.carry) | (1 << PHASE.grab) |
-    (1 << PHASE.distance) | (1 << PHASE.bending) | (1 << PHASE.globalBending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) |
+    (1 << PHASE.distance) | (1 << PHASE.globalStretch) | (1 << PHASE.bending) | (1 << PHASE.globalBending) | (1 << PHASE.tethers) |
+    (1 << PHASE.stretchLimit) |
     (1 << PHASE.selfContact) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
   refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
     (id === PHASE.contact || id === PHASE.contactTriangles ? contactRefusal(params) : null) ?? perClothRefusal(id, params),
@@ -93,6 +94,8 @@ export class FrameEncoder implements PhaseBackend {
   private readonly colliders: ColliderTables;
   /** the global bending step's tables (the CPU's factor on the GPU; GpuClothSolver.step makes them current) */
   readonly globalBending: GlobalBendingTables;
+  /** the global stretch step's tables (the CPU's factor on the GPU; GpuClothSolver.step makes them current) */
+  readonly globalStretch: GlobalStretchTables;
   /** the compute pass of the frame being encoded */
   private pass: GPUComputePassEncoder | undefined;
 
@@ -108,6 +111,7 @@ export class FrameEncoder implements PhaseBackend {
     this.uniforms = uniforms;
     this.colliders = colliders;
     this.globalBending = new GlobalBendingTables(device, model, buffers);
+    this.globalStretch = new GlobalStretchTables(device, model, buffers);
   }
 
   /**
@@ -173,6 +177,19 @@ export class FrameEncoder implements PhaseBackend {
           const passes = phasePasses(PHASE.distance, params);
           for (let it = 0; it < passes; it++) {
             for (const r of u.batchRecords) this.dispatch('solve', r.count, so, (it === 0 ? r.first : r.later) * RECORD_STRIDE);
+          }
+          break;
+        }
+        case PHASE.globalStretch: {
+          // y kept, then per pass: the springs' force terms, the right-hand side by row, both triangular solves (one
+          // workgroup), x = y + Δx
+          this.dispatch('stretchStart', particles, so, 0);
+          const passes = phasePasses(PHASE.globalStretch, params);
+          for (let it = 0; it < passes; it++) {
+            this.dispatch('stretchForces', model.restLengths.length, so, 0);
+            this.dispatch('stretchGather', particles, so, 0);
+            this.dispatch('stretchSolve', 1, so, 0);
+            this.dispatch('stretchApply', particles, so, 0);
           }
           break;
         }

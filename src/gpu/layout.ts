@@ -280,6 +280,27 @@ export const BUFFERS = {
   globalT: { type: 'vec4f', bytes: 16 },
   /** z = A⁻¹·e_g by row for the grabbed particle g (core PrefactoredSystem.z): the grab held without a refactor [m²/N] */
   grabColumn: { type: 'f32', bytes: 4 },
+  /**
+   * the global stretch step (solver.stretch 'global'; core global-stretch.ts). Per spring (model.springs): its
+   * stiffness k [N/m] (0: not in the step), rest length L [m], damping weight β/h and the step's weight k + β/h [N/m].
+   * This and the next six are placeholders until params first solve the springs together
+   */
+  stretchCoefficients: { type: 'vec4f', bytes: 16 },
+  /**
+   * per spring: its part of the right-hand side of A·Δx = Σ S_sᵀ·f_s, f_s = k·L·n + (β/h)·q − (k + β/h)·(y_a − y_b),
+   * x, y, z, 0 [N] (stretchForces)
+   */
+  springForce: { type: 'vec4f', bytes: 16 },
+  /** particle → its springs: n + 1 starts (already offset by n + 1), then per spring 2s (its first end) or 2s + 1 */
+  springIncidence: { type: 'u32', bytes: 4 },
+  /** per particle: the predicted positions y the passes start from (stretchStart) [m] */
+  globalY: { type: 'vec4f', bytes: 16 },
+  /** the stretch step's factor as factorIndex holds the bending step's (FactorLayout) */
+  stretchFactorIndex: { type: 'u32', bytes: 4 },
+  /** its values, as factorValues */
+  stretchFactorValues: { type: 'f32', bytes: 4 },
+  /** its z = A⁻¹·e_g, as grabColumn [m²/N] */
+  stretchGrabColumn: { type: 'f32', bytes: 4 },
   /** per particle: nearest pin (−1: none) and the rest distance to it [m] */
   tethers: { type: 'Tether', bytes: 8 },
   /** triangle vertex indices, 3 per triangle (flat: `array<vec3u>` would have stride 16) */
@@ -355,8 +376,11 @@ type Access = 'read' | 'read_write';
  * the same loop over another `localDistance` and `triangleDeepest`).
  */
 export interface KernelSpec {
-  /** group(1) bindings in binding order */
-  readonly bindings: readonly (readonly [BufferName, Access])[];
+  /**
+   * group(1) bindings in binding order: the WGSL variable (named as the buffer whose type it has), its access, and
+   * the buffer bound to it where that is another of the same type (a kernel file run on two sets of buffers)
+   */
+  readonly bindings: readonly (readonly [BufferName, Access] | readonly [BufferName, Access, BufferName])[];
   /** other .wgsl files (function libraries) placed before the kernel */
   readonly libs?: readonly string[];
   /** the .wgsl file of its entry point, where that is not the kernel's name */
@@ -440,6 +464,39 @@ export const KERNELS = {
   bendingApply: {
     bindings: [
       ['positions', 'read_write'], ['pinned', 'read'], ['factorIndex', 'read'], ['globalX', 'read'], ['grabColumn', 'read'],
+    ],
+  },
+  /**
+   * the global stretch step (core solveGlobalStretch), its start: y ← x (the positions the passes start from)
+   */
+  stretchStart: { bindings: [['positions', 'read'], ['globalY', 'read_write']] },
+  /** each pass, 1 of 4: each spring's local step, its direction at its rest length, as its force term */
+  stretchForces: {
+    bindings: [
+      ['positions', 'read'], ['previous', 'read'], ['globalY', 'read'], ['springs', 'read'], ['stretchCoefficients', 'read'],
+      ['springForce', 'read_write'],
+    ],
+  },
+  /** 2 of 4: each particle's right-hand side, Σ ±f_s over its springs (0 where pinned), into its row */
+  stretchGather: {
+    bindings: [
+      ['springIncidence', 'read'], ['springForce', 'read'], ['pinned', 'read'], ['factorIndex', 'read', 'stretchFactorIndex'],
+      ['globalX', 'read_write'],
+    ],
+  },
+  /** 3 of 4: factorSolve with the stretch step's factor */
+  stretchSolve: {
+    file: 'factorSolve',
+    bindings: [
+      ['factorIndex', 'read', 'stretchFactorIndex'], ['factorValues', 'read', 'stretchFactorValues'], ['globalX', 'read_write'],
+      ['globalT', 'read_write'],
+    ],
+  },
+  /** 4 of 4: x = y + Δx for the free particles, the grabbed one held where the grab put it */
+  stretchApply: {
+    bindings: [
+      ['positions', 'read_write'], ['globalY', 'read'], ['pinned', 'read'], ['factorIndex', 'read', 'stretchFactorIndex'],
+      ['globalX', 'read'], ['grabColumn', 'read', 'stretchGrabColumn'],
     ],
   },
   /** limitStretch (phases.ts), which XPBD runs after the tethers, for one structural or shear batch */

@@ -228,9 +228,13 @@ export class GpuClothSolver {
     if (params !== this.params) this.setParams(params);
     // the grab target out of the colliders, as runFrame does for the CPU backends (the frame writes it to the uniforms)
     keepGrabOutside(state, params, state.time, state.time + dt);
-    // the global bending step's factor for this frame's pins and substep, before the frame is encoded (its tables may
-    // be made anew; a buffer the device cannot make is said by the next step or read, as the params' are)
-    if ((framePhases(this.model, state, params) & (1 << PHASE.globalBending)) !== 0) {
+    // the global steps' factors for this frame's pins and substep, before the frame is encoded (their tables may be
+    // made anew; a buffer the device cannot make is said by the next step or read, as the params' are)
+    const phases = framePhases(this.model, state, params);
+    if ((phases & (1 << PHASE.globalStretch)) !== 0) {
+      this.watched("the global stretch step's factor", () => this.encoder.globalStretch.prepare(state, params, dt / params.substeps));
+    }
+    if ((phases & (1 << PHASE.globalBending)) !== 0) {
       this.watched("the global bending step's factor", () => this.encoder.globalBending.prepare(state, params, dt / params.substeps));
     }
     this.encoder.frame(state, params, dt, timestampWrites, log);
@@ -253,6 +257,7 @@ export class GpuClothSolver {
     if (!this.params) throw new Error('GPU solver: setParams first');
     return substepTraffic(
       this.model, this.params, this.uniforms.collidePasses, this.uniforms.selfRecords, this.buffers.hasTethers, this.encoder.globalBending.factorSize,
+      this.encoder.globalStretch.factorSize,
     );
   }
 

@@ -15,12 +15,13 @@ export interface SubstepTraffic {
 
 /**
  * Bytes one substep moves, by kernel; `self`: the self-contact grid's records (null: none), `hasTethers`: whether the
- * tethers kernel has work, `factor`: the global bending step's factor as its solves read it, L's entries outside the
- * blocks and the values of the blocks' inverses (global-bending.ts FactorLayout; 0 without the step).
+ * tethers kernel has work, `factor` and `stretchFactor`: the global bending and stretch steps' factors as their solves
+ * read them, L's entries outside the blocks and the values of the blocks' inverses (global-bending.ts FactorLayout; 0
+ * without the step).
  */
 export function substepTraffic(
   model: ClothModel, params: SimParams, collidePasses: readonly CollidePass[], self: SelfRecords | null, hasTethers: boolean,
-  factor = { outside: 0, inverse: 0 },
+  factor = { outside: 0, inverse: 0 }, stretchFactor = { outside: 0, inverse: 0 },
 ): SubstepTraffic {
   const n = model.particleCount, T = model.triangles.length / 3, S = model.restLengths.length;
   const by: Record<string, number> = {};
@@ -30,12 +31,26 @@ export function substepTraffic(
     add('integrate', n * 8 + 3 * T * 20); // adjacency offsets, then index + force per incident triangle
   }
   add('integrate', n * (16 + 16 + 4 + 16 + 16)); // x, x_prev, w in; x_prev, x out
-  let solve = S * (8 + 8 + 8 + 32 + 32); // springData, springs, w×2, x×2 in and out
-  if (params.damping > 0) solve += S * 32; // previous×2
-  solve += S * 4; // λ written
-  solve *= params.iterations;
-  solve += S * 4 * (params.iterations - 1); // λ read after the first pass
-  add('solve', solve);
+  const together = params.stretch === 'global';
+  // both triangular solves of a factor: per entry of L outside the blocks its index, value and the solved row it
+  // names; per value of a block's inverse, it and a row of t; per row and solve its level's entry, its block (12 B),
+  // its offsets, the row read, t written, the row written
+  const solves = (f: { outside: number; inverse: number }) => 2 * f.outside * (4 + 4 + 16) + 2 * f.inverse * (4 + 16) + 2 * n * (4 + 12 + 8 + 16 + 16 + 16);
+  if (together) {
+    // y kept (x in, y out); per pass: per spring its ends, coefficients, x, y and x_prev of both, its force written;
+    // per particle its pin, row, incidence offsets, per spring end its entry and force, the row written; the solves;
+    // per particle its pin, row, Δx, y read and x written
+    let pass = S * (8 + 16 + 3 * 32 + 16) + n * (4 + 4 + 8 + 16) + 2 * S * (4 + 16) + solves(stretchFactor) + n * (4 + 4 + 16 + 16 + 16);
+    pass *= params.iterations;
+    add('globalStretch', n * 32 + pass);
+  } else {
+    let solve = S * (8 + 8 + 8 + 32 + 32); // springData, springs, w×2, x×2 in and out
+    if (params.damping > 0) solve += S * 32; // previous×2
+    solve += S * 4; // λ written
+    solve *= params.iterations;
+    solve += S * 4 * (params.iterations - 1); // λ read after the first pass
+    add('solve', solve);
+  }
   const stencils = bendingStencils(model, params.bending);
   if (stencils && params.bendingSolve === 'global') {
     const H = stencils.areas.length, E = stencils.vertices.length;
@@ -43,10 +58,8 @@ export function substepTraffic(
     add('globalBending', H * (8 + 8 + 16) + E * (4 + 4 + 16 + 16));
     // the right-hand side: per particle its row, pin and incidence offsets, the row written; per entry (k, e), K, d
     add('globalBending', n * (4 + 4 + 8 + 16) + E * (8 + 4 + 16));
-    // both triangular solves: per entry of L outside the blocks its index, value and the solved row it names; per
-    // value of a block's inverse, it and a row of t; per row and solve its level's entry, its block (12 B), its
-    // offsets, the row read, t written, the row written
-    add('globalBending', 2 * factor.outside * (4 + 4 + 16) + 2 * factor.inverse * (4 + 16) + 2 * n * (4 + 12 + 8 + 16 + 16 + 16));
+    // both triangular solves
+    add('globalBending', solves(factor));
     // Δx applied: per particle its pin, row, Δx, the position read and written
     add('globalBending', n * (4 + 4 + 16 + 16 + 16));
   } else if (stencils) {
@@ -58,9 +71,12 @@ export function substepTraffic(
     bending += H * 12 * (params.iterations - 1); // λ read after the first pass
     add('bending', bending);
   }
-  if (hasTethers) add('tethers', n * (8 + 4 + 16 + 16 + 16));
-  const stretchSprings = model.springCounts[0] + model.springCounts[1];
-  add('limitStretch', stretchSprings * (8 + 8 + 8 + 32)); // springs, rest, w×2, x×2 in (written only when over)
+  if (!together) {
+    // (the global stretch step converges: it runs neither)
+    if (hasTethers) add('tethers', n * (8 + 4 + 16 + 16 + 16));
+    const stretchSprings = model.springCounts[0] + model.springCounts[1];
+    add('limitStretch', stretchSprings * (8 + 8 + 8 + 32)); // springs, rest, w×2, x×2 in (written only when over)
+  }
   if (self) {
     // per build of P primitives of k corners: boxes (corners now and then in, box out, the extent's atomic), counts
     // (box in, its cells' counts and ranks: 8 at most, counted as 2), the prefix sum over the B buckets (count in,
@@ -101,9 +117,12 @@ export function dispatchesPerFrame(
   collidePasses: readonly CollidePass[], self: SelfRecords | null, hasTethers: boolean,
 ): number {
   const stretchBatches = batchRecords.filter((r) => r.stretch).length;
-  const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) +
-    params.iterations * batchRecords.length +
-    (stencilRecords.length === 0 ? 0 : params.bendingSolve === 'global' ? 4 : params.iterations * stencilRecords.length) + stretchBatches + (hasTethers ? 1 : 0) +
+  // the springs one colour batch at a time, then the tethers and the stretch limit; or solved together: y kept, then
+  // 4 dispatches a pass
+  const springs = params.stretch === 'global' ? 1 + 4 * params.iterations
+    : params.iterations * batchRecords.length + stretchBatches + (hasTethers ? 1 : 0);
+  const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) + springs +
+    (stencilRecords.length === 0 ? 0 : params.bendingSolve === 'global' ? 4 : params.iterations * stencilRecords.length) +
     collidePasses.length + (self ? 18 + 2 * SELF_EDGE_PASSES : 0);
   return 3 + params.substeps * perSubstep;
 }

@@ -36,7 +36,7 @@ import { PrefactoredSystem } from './prefactored.js';
 import { REFERENCE_SOLVER, type FactorSolver } from './sparse.js';
 
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
-class GlobalSystem extends PrefactoredSystem {
+export class StretchSystem extends PrefactoredSystem {
   /** springs with stiffness, their ends and constants */
   readonly springs: Int32Array;
   readonly k: Float64Array;
@@ -107,14 +107,20 @@ class GlobalSystem extends PrefactoredSystem {
 }
 
 /** One system per params object (params are rebuilt whenever a parameter changes, so a stale one is never reused). */
-const systems = new WeakMap<SimParams, GlobalSystem>();
+const systems = new WeakMap<SimParams, StretchSystem>();
 
-function systemFor(model: ClothModel, params: SimParams): GlobalSystem {
+/**
+ * The global stretch step's system for `model` and `params`, factored for the pins of `pinned` and substep h (made on
+ * first use, refactored where the pins or h changed since). The one system per params that solveGlobalStretch solves
+ * with; the WebGPU solver reads its factor.
+ */
+export function globalStretchSystem(model: ClothModel, params: SimParams, pinned: Uint8Array, h: number): StretchSystem {
   let system = systems.get(params);
   if (system === undefined || system.model !== model) {
-    system = new GlobalSystem(model, params);
+    system = new StretchSystem(model, params);
     systems.set(params, system);
   }
+  if (!system.current(pinned, h)) system.factor(pinned, h);
   return system;
 }
 
@@ -127,9 +133,8 @@ function systemFor(model: ClothModel, params: SimParams): GlobalSystem {
 export function solveGlobalStretch(
   model: ClothModel, state: ClothState, params: SimParams, h: number, passes: number, solver: FactorSolver = REFERENCE_SOLVER,
 ): void {
-  const system = systemFor(model, params);
   const pinned = state.pinned;
-  if (!system.current(pinned, h)) system.factor(pinned, h);
+  const system = globalStretchSystem(model, params, pinned, h);
   const { y, x: cur, b, row, springs, k, rest, mass, chol, previous } = system;
   const x = state.positions, r = state.residuals, xp = state.previousPositions, rp = state.previousResiduals;
   const n = mass.length;
