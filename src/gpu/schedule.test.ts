@@ -57,8 +57,7 @@ describe('what the GPU implements of the schedule', () => {
     // but carry, which a frame runs only for pins a collider carries (none here), triangle contact, only for a
     // collider that needs it at this mesh size (none here), and stencil bending, only for solver.bending 'hinges' or
     // 'laplacian' (one at a time or, with solver.bendingSolve 'global', together), self-contact, only for
-    // solver.selfContact (below), and the global stretch step, which solver.stretch 'global' asks for and the GPU
-    // refuses: below)
+    // solver.selfContact (below), and the global stretch step, which solver.stretch 'global' asks for: below)
     const xpbd = solverPhases('xpbd') & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.selfContact);
     const rare = (1 << PHASE.carry) | (1 << PHASE.contactTriangles) | (1 << PHASE.bending);
     expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(xpbd & ~rare);
@@ -70,9 +69,10 @@ describe('what the GPU implements of the schedule', () => {
       expect(assignPhases(GPU_PHASES, bent.model, bent.params))
         .toBe(xpbd & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles));
     }
-    // the springs solved together: refused by name (the cloth lives in GPU buffers; the reference cannot step in)
+    // the springs solved together: by the GPU, in place of the springs one at a time, the tethers and the stretch limit
     const global = new Simulation(windyScene((s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
-    expect(() => assignPhases(GPU_PHASES, global.model, global.params)).toThrow(/does not implement phase 'globalStretch'/);
+    expect(assignPhases(GPU_PHASES, global.model, global.params))
+      .toBe((xpbd | (1 << PHASE.globalStretch)) & ~rare & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit));
     // the stencils solved together: by the GPU, in place of the stencils one at a time
     const together = new Simulation(windyScene((s) => { s.solver.bending = 'hinges'; s.solver.bendingSolve = 'global'; }), { kernel: 'ts' });
     expect(assignPhases(GPU_PHASES, together.model, together.params))

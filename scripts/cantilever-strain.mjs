@@ -1,0 +1,37 @@
+#!/usr/bin/env node
+// The cantilever scene (docs/physics.md, "The standard fabric tests") at rest after its 6 s, with the springs swept one
+// at a time (the scene's) and solved together: the bending length it reads over the theory's c, the strain of its
+// free structural and shear springs (mean, largest, least) and where the largest is, and the energies.
+//   npx tsc -p tsconfig.build.json && node scripts/cantilever-strain.mjs [--fabric F] [--resolution R]
+import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
+
+const arg = (name, fallback) => {
+  const i = process.argv.indexOf(`--${name}`);
+  return i >= 0 && i + 1 < process.argv.length ? process.argv[i + 1] : fallback;
+};
+const fabric = arg('fabric', 'cotton'), f = FABRICS[fabric];
+const c = Math.cbrt(f.bendingRigidity / (f.arealDensity * 9.81));
+for (const stretch of ['gauss-seidel', 'global']) {
+  let scene = setScenePath(builtinScene('cantilever'), 'solver.stretch', stretch);
+  scene = setScenePath(setScenePath(scene, 'material.fabric', fabric), 'cloth.resolution', Number(arg('resolution', '32')));
+  const sim = new Simulation(validateScene(scene));
+  sim.advance(Math.round(scene.duration * 60));
+  const m = sim.model, x = sim.state.positions, pinned = sim.state.pinned;
+  const kinds = [0, 1].map(() => ({ sum: 0, count: 0, most: -Infinity, least: Infinity }));
+  let worst = 0, at = -1;
+  for (let s = 0; s < m.restLengths.length; s++) {
+    const k = m.springKinds[s], a = m.springs[2 * s], b = m.springs[2 * s + 1];
+    if (k > 1 || (pinned[a] && pinned[b])) continue;
+    const e = Math.hypot(x[3 * a] - x[3 * b], x[3 * a + 1] - x[3 * b + 1], x[3 * a + 2] - x[3 * b + 2]) / m.restLengths[s] - 1;
+    const r = kinds[k];
+    r.sum += e; r.count++; r.most = Math.max(r.most, e); r.least = Math.min(r.least, e);
+    if (Math.abs(e) > Math.abs(worst)) { worst = e; at = a; }
+  }
+  const { test, energy } = sim.report();
+  const pct = (v) => `${(100 * v).toFixed(2)} %`;
+  console.log(`${stretch}: c / c_theory ${(test.bendingLength / c).toFixed(3)}; ` +
+    ['structural', 'shear'].map((name, k) => `${name} strain mean ${pct(kinds[k].sum / kinds[k].count)}, largest ${pct(kinds[k].most)}, least ${pct(kinds[k].least)}`).join('; ') +
+    `; the largest at ${(100 * m.restPositions[3 * at + 2]).toFixed(2)} cm along the strip from its centre; energy [J] elastic ${energy.elastic.toExponential(2)}, ` +
+    `bending ${energy.bending.toExponential(2)}, gravitational ${energy.gravitational.toExponential(5)}, kinetic ${energy.kinetic.toExponential(1)}`);
+  sim.dispose();
+}
