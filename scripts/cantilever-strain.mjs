@@ -1,9 +1,15 @@
 #!/usr/bin/env node
 // The cantilever scene (docs/physics.md, "The standard fabric tests") at rest after its 6 s, with the springs swept one
 // at a time (the scene's) and solved together: the bending length it reads over the theory's c, the strain of its
-// free structural and shear springs (mean, largest, least) and where the largest is, and the energies.
+// free structural and shear springs (mean, largest, least) and where the largest is, and the energies; then the same
+// discrete energy's static equilibrium (Newton from the flat strip: scripts/pd-solver.mjs newtonStatic, whose hinges
+// beside the clamp count whole), with its energies as the library counts them (`elastic` includes the bending).
 //   npx tsc -p tsconfig.build.json && node scripts/cantilever-strain.mjs [--fabric F] [--resolution R]
-import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
+import {
+  applyPins, builtinScene, createState, energy as energyOf, FABRICS, measureTest, modelFor, resolveParams, scenePins, setScenePath, Simulation,
+  validateScene,
+} from '../dist/core/index.js';
+import { PDSolver, newtonStatic } from './pd-solver.mjs';
 
 const arg = (name, fallback) => {
   const i = process.argv.indexOf(`--${name}`);
@@ -11,6 +17,8 @@ const arg = (name, fallback) => {
 };
 const fabric = arg('fabric', 'cotton'), f = FABRICS[fabric];
 const c = Math.cbrt(f.bendingRigidity / (f.arealDensity * 9.81));
+const shown = (e) => `energy [J] elastic ${e.elastic.toExponential(2)}, bending ${e.bending.toExponential(2)}, gravitational ${e.gravitational.toExponential(5)}, ` +
+  `kinetic ${e.kinetic.toExponential(1)}`;
 for (const stretch of ['gauss-seidel', 'global']) {
   let scene = setScenePath(builtinScene('cantilever'), 'solver.stretch', stretch);
   scene = setScenePath(setScenePath(scene, 'material.fabric', fabric), 'cloth.resolution', Number(arg('resolution', '32')));
@@ -31,7 +39,21 @@ for (const stretch of ['gauss-seidel', 'global']) {
   const pct = (v) => `${(100 * v).toFixed(2)} %`;
   console.log(`${stretch}: c / c_theory ${(test.bendingLength / c).toFixed(3)}; ` +
     ['structural', 'shear'].map((name, k) => `${name} strain mean ${pct(kinds[k].sum / kinds[k].count)}, largest ${pct(kinds[k].most)}, least ${pct(kinds[k].least)}`).join('; ') +
-    `; the largest at ${(100 * m.restPositions[3 * at + 2]).toFixed(2)} cm along the strip from its centre; energy [J] elastic ${energy.elastic.toExponential(2)}, ` +
-    `bending ${energy.bending.toExponential(2)}, gravitational ${energy.gravitational.toExponential(5)}, kinetic ${energy.kinetic.toExponential(1)}`);
+    `; the largest at ${(100 * m.restPositions[3 * at + 2]).toFixed(2)} cm along the strip from its centre; ${shown(energy)}`);
   sim.dispose();
+}
+{
+  let scene = setScenePath(builtinScene('cantilever'), 'material.fabric', fabric);
+  scene = validateScene(setScenePath(scene, 'cloth.resolution', Number(arg('resolution', '32'))));
+  const model = modelFor(scene), params = resolveParams(model, scene), pins = scenePins(model, scene);
+  const pinned = new Uint8Array(model.particleCount);
+  for (const i of pins) pinned[i] = 1;
+  const pd = new PDSolver(model, params, pinned, model.restPositions, { substeps: 1, iterations: 1 });
+  const r = newtonStatic(pd, 300);
+  const state = createState(model);
+  applyPins(state, pins);
+  state.positions.set(Float32Array.from(pd.x));
+  state.previousPositions.set(state.positions);
+  const test = measureTest(model, { positions: pd.x, pinned }, scene);
+  console.log(`static Newton (${r.iterations} iterations): c / c_theory ${(test.bendingLength / c).toFixed(3)}; ${shown(energyOf(model, state, params))}`);
 }
