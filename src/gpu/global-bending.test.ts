@@ -13,7 +13,7 @@ import {
 import { globalBendingSystem } from '../core/solvers/global-bending.js';
 import type { SparseCholesky } from '../core/solvers/sparse.js';
 import { GpuBackend } from './backend.js';
-import { BLOCK_MOST, FactorLayout } from './global-bending.js';
+import { BLOCK_MOST, FactorLayout } from './factor-tables.js';
 import { FACTOR_HEADER, FACTOR_SLOTS } from './layout.js';
 import { GpuClothSolver } from './solver.js';
 import { bentness, gpuPair, maxDistance, testDevice, type Pair } from './test-device.js';

@@ -465,6 +465,7 @@ export const KERNELS = {
     bindings: [
       ['positions', 'read_write'], ['pinned', 'read'], ['factorIndex', 'read'], ['globalX', 'read'], ['grabColumn', 'read'],
     ],
+    libs: ['heldCorrection'],
   },
   /**
    * the global stretch step (core solveGlobalStretch), its start: y ← x (the positions the passes start from)
@@ -498,6 +499,7 @@ export const KERNELS = {
       ['positions', 'read_write'], ['globalY', 'read'], ['pinned', 'read'], ['factorIndex', 'read', 'stretchFactorIndex'],
       ['globalX', 'read'], ['grabColumn', 'read', 'stretchGrabColumn'],
     ],
+    libs: ['heldCorrection'],
   },
   /** limitStretch (phases.ts), which XPBD runs after the tethers, for one structural or shear batch */
   limitStretch: {
