@@ -759,9 +759,13 @@ export function buildGridModel(spec: GridClothSpec): ClothModel {
  * triangles. Structural springs are the mesh's edges, with the per-edge factor Σ A_t / |e|² over the edge's
  * triangles (Van Gelder 1998, "Approximate simulation of elastic membranes by triangulated spring meshes"), which
  * gives a lattice of equilateral triangles (and the axis springs of the grid) the sheet's tensile stiffness. There
- * are no separate shear springs: a triangle lattice resists shear with its edges. Bend springs join the two corners
- * opposite each edge two triangles share; their factor follows the grid's skip-one springs, (s₀/ℓ)⁴·(|e|/ℓ) with
- * ℓ half the pair's unfolded width (the mean of the two triangles' heights over the edge) and s₀ = REFERENCE_SPACING. With `scaleWithResolution` off every factor is 1.
+ * are no separate shear springs: a triangle lattice resists shear with its edges. With `weave` the mesh is a woven
+ * lattice whose threads run along its uvs' u and v, `weave.cellSize` apart (mesh/generators.ts wovenDiscMesh): only
+ * the edges along a thread are structural, the others shear springs, and a whole cell gets both diagonals, as the
+ * rectangle has (docs/physics.md, "The woven disc"). Bend springs join the two corners opposite each edge two
+ * triangles share; their factor follows the grid's skip-one springs, (s₀/ℓ)⁴·(|e|/ℓ) with ℓ half the pair's unfolded
+ * width (the mean of the two triangles' heights over the edge) and s₀ = REFERENCE_SPACING. With `scaleWithResolution`
+ * off every factor is 1.
  */
 export function buildMeshModel(mesh: TriangleMesh, scaleWithResolution: boolean, weave?: Weave): ClothModel {
   const p = mesh.positions, tri = mesh.triangles, n = p.length / 3;

@@ -150,7 +150,7 @@ const BUILTIN: Record<string, object | (() => object)> = {
   },
   cusick: {
     name: 'cusick',
-    description: 'BS 5058 / ISO 9073-9 Cusick drape: a 30 cm cotton disc on an 18 cm pedestal; reports the drape coefficient and the folds',
+    description: 'BS 5058 / ISO 9073-9 Cusick drape: a 30 cm woven cotton disc clamped on an 18 cm pedestal; reports the drape coefficient and the folds',
     // the specimen cut from a woven lattice (threads along x and z, so that it shears as softly as the fabric does),
     // clamped between two discs of the pedestal's size as the standard has it: every particle within its radius
     cloth: { shape: 'disc', lattice: 'weave', width: 0.3, resolution: 48, position: [0, 0.506, 0] },

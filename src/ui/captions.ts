@@ -29,8 +29,9 @@ export const SCENE_CAPTIONS: Record<string, string> = {
   skirt: 'A silk skirt, a tube of cloth held at the waist of a walking mannequin: the cloth swings with the legs.',
   cantilever: 'The Peirce cantilever test (ASTM D1388): a strip pushed over an edge bends under its own weight. The ' +
     'tip’s angle gives the bending length, shown in the HUD; try other fabrics.',
-  cusick: 'The Cusick drape test (BS 5058): a disc of fabric on a pedestal. The drape coefficient (how much of it ' +
-    'hangs down) and the folds are in the HUD: silk drapes most, leather least.',
+  cusick: 'The Cusick drape test (BS 5058): a woven disc of fabric clamped on a pedestal. The drape coefficient (the ' +
+    'share of the overhang its shadow still covers: 1 flat, 0 hanging straight down) and the folds are in the HUD: ' +
+    'rubber and silk drape most, leather least.',
   resolution: 'The same cloth with 1 to 4096 faces, one after another (or side by side): the finer the mesh, the ' +
     'finer the folds it can make. Untick “scale with resolution” to see the seed’s raw spring constants.',
   fold: 'A cotton sheet dropped corner first onto the floor lands on itself in layers; self-contact keeps them ' +

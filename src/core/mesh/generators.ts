@@ -1,6 +1,6 @@
 /**
  * Cloth shapes made from a few numbers: a disc (concentric rings, six more vertices per ring, so no 4-fold grid
- * bias) and a tube (an open cylinder, for skirts and sleeves); and `placeMesh`, which puts any mesh where the
+ * bias; or the rectangle's lattice cut round, its threads along two directions as a woven fabric's) and a tube (an open cylinder, for skirts and sleeves); and `placeMesh`, which puts any mesh where the
  * scene's cloth.position and cloth.rotation say. The rectangle is the seed's grid (model.ts buildGridModel).
  */
 import type { TriangleMesh } from './triangle-mesh.js';
@@ -257,8 +257,7 @@ export function wovenDiscMesh(spec: ShapeSpec): TriangleMesh {
         if ((kind[u] === 0 && kind[w] === 2) || (kind[u] === 2 && kind[w] === 0)) poly.push(crossing(u, w));
       }
       if (poly.length < 3 || poly.every((v) => v < 0 || kind[v] === 1)) continue;
-      const at2 = poly.map(vertex);
-      fanWidest(at2, px, py, tri);
+      fanWidest(poly.map(vertex), px, py, tri);
     }
   }
   const n = px.length, local = new Float32Array(3 * n), uvs = new Float32Array(2 * n);
