@@ -7,8 +7,8 @@
 import { afterAll, describe, expect, test } from 'vitest';
 import type {} from 'webgpu';
 import {
-  FABRICS, FRAME_DT, Simulation, applyPins, builtinScene, centroid, copyState, createState, grab, modelFor, release, resolveParams,
-  scenePins, setPinned, setScenePath, validateScene, type Scene, type StencilModel,
+  FABRICS, FRAME_DT, Simulation, applyPins, builtinScene, centroid, createState, modelFor, resolveParams,
+  scenePins, setScenePath, validateScene, type Scene, type StencilModel,
 } from '../core/index.js';
 import { globalBendingSystem } from '../core/solvers/global-bending.js';
 import type { SparseCholesky } from '../core/solvers/sparse.js';
@@ -16,7 +16,7 @@ import { GpuBackend } from './backend.js';
 import { BLOCK_MOST, FactorLayout } from './factor-tables.js';
 import { FACTOR_HEADER, FACTOR_SLOTS } from './layout.js';
 import { GpuClothSolver } from './solver.js';
-import { bentness, gpuPair, maxDistance, testDevice, type Pair } from './test-device.js';
+import { bentness, gpuPair, maxDistance, pinAndGrabChanges, testDevice, type Pair } from './test-device.js';
 
 /**
  * L·Lᵀ·x = b solved as factorSolve.wgsl does, from a FactorLayout's tables and values (one coordinate), level by
@@ -156,25 +156,9 @@ describe.skipIf(!gpu)('the bending stencils solved together on the GPU', () => {
   // N·m) makes the solve pull hard on the grabbed particle. Seen 1.1e-5, 2.1e-5 and 1.1e-5 m; with the factor of the
   // old pins kept 0.68 m; without the grab held in the solve (z) 2.9e-4 m after the grab.
   test('pins that change and a grab: as on the CPU', async () => {
-    const p = await pair(hinged(0.01));
-    const resync = () => { copyState(p.cpu, p.gpu); p.solver.upload(p.gpu); };
-    const mid = 8 * 17 + 8, x = p.cpu.positions;
-    const changes: [string, () => void][] = [
-      ['a corner let go', () => { for (const s of [p.cpu, p.gpu]) setPinned(s, 0, false); p.solver.uploadPins(p.gpu); }],
-      ['the middle grabbed', () => { const t: [number, number, number] = [x[3 * mid], x[3 * mid + 1] + 0.05, x[3 * mid + 2]]; for (const s of [p.cpu, p.gpu]) grab(s, mid, t); }],
-      ['released', () => { for (const s of [p.cpu, p.gpu]) release(s); }],
-    ];
-    await p.advance(10);
-    for (const [what, change] of changes) {
-      resync();
-      change();
-      await p.advance(5);
-      expect(maxDistance(p.gpu.positions, p.cpu.positions), what).toBeLessThan(1e-4);
-      if (what === 'the middle grabbed') {
-        const at = p.gpu.positions.slice(3 * mid, 3 * mid + 3), c = p.cpu.positions.slice(3 * mid, 3 * mid + 3);
-        expect(Math.hypot(at[0] - c[0], at[1] - c[1], at[2] - c[2])).toBeLessThan(1e-6);
-      }
-    }
+    const { apart, grabbed } = await pinAndGrabChanges(await pair(hinged(0.01)), [0, 0.05, 0]);
+    for (const [what, d] of apart) expect(d, what).toBeLessThan(1e-4);
+    expect(grabbed).toBeLessThan(1e-6);
   });
 
   test('its traffic and dispatches are counted: four dispatches a substep in place of the stencil batches', async () => {

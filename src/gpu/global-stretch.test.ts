@@ -6,9 +6,9 @@
  */
 import { afterAll, describe, expect, test } from 'vitest';
 import type {} from 'webgpu';
-import { builtinScene, centroid, copyState, grab, release, resolveParams, setPinned, validateScene, type Scene } from '../core/index.js';
+import { builtinScene, resolveParams, validateScene, type Scene } from '../core/index.js';
 import { GpuClothSolver } from './solver.js';
-import { gpuPair, maxDistance, testDevice, type Pair } from './test-device.js';
+import { centroidDistance, gpuPair, maxDistance, pinAndGrabChanges, testDevice, type Pair } from './test-device.js';
 
 const gpu = await testDevice('src/gpu/global-stretch.test.ts');
 
@@ -53,26 +53,10 @@ describe.skipIf(!gpu)('the springs solved together on the GPU', () => {
   // 8.0e-6 and 1.3e-5 m.
   test('pins that change and a grab: as on the CPU', async () => {
     const p = await pair(hanging('rubber'));
-    const resync = () => { copyState(p.cpu, p.gpu); p.solver.upload(p.gpu); };
-    const mid = 8 * 17 + 8, x = p.cpu.positions;
-    const changes: [string, () => void][] = [
-      ['a corner let go', () => { for (const s of [p.cpu, p.gpu]) setPinned(s, 0, false); p.solver.uploadPins(p.gpu); }],
-      ['the middle grabbed', () => { const t: [number, number, number] = [x[3 * mid], x[3 * mid + 1], x[3 * mid + 2] + 0.1]; for (const s of [p.cpu, p.gpu]) grab(s, mid, t); }],
-      ['released', () => { for (const s of [p.cpu, p.gpu]) release(s); }],
-    ];
-    await p.advance(10);
-    for (const [what, change] of changes) {
-      resync();
-      change();
-      await p.advance(5);
-      expect(maxDistance(p.gpu.positions, p.cpu.positions), what).toBeLessThan(1e-4);
-      if (what === 'the middle grabbed') {
-        const at = p.gpu.positions.slice(3 * mid, 3 * mid + 3), c = p.cpu.positions.slice(3 * mid, 3 * mid + 3);
-        expect(Math.hypot(at[0] - c[0], at[1] - c[1], at[2] - c[2])).toBeLessThan(1e-6);
-      }
-    }
-    const a = centroid(p.cpu), b = centroid(p.gpu);
-    expect(Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2])).toBeLessThan(1e-5);
+    const { apart, grabbed } = await pinAndGrabChanges(p, [0, 0, 0.1]);
+    for (const [what, d] of apart) expect(d, what).toBeLessThan(1e-4);
+    expect(grabbed).toBeLessThan(1e-6);
+    expect(centroidDistance(p.cpu, p.gpu)).toBeLessThan(1e-5);
   });
 
   test('its traffic and dispatches are counted: y kept and four dispatches a pass, in place of the batches, tethers and stretch limit', async () => {

@@ -5,8 +5,8 @@
  */
 import type {} from 'webgpu';
 import {
-  FRAME_DT, applyPins, centroid, copyState, createState, modelFor, resolveParams, scenePins, step,
-  type ClothModel, type ClothState, type Scene, type SimParams, type StencilModel,
+  FRAME_DT, applyPins, centroid, copyState, createState, grab, modelFor, release, resolveParams, scenePins, setPinned, step,
+  type ClothModel, type ClothState, type Scene, type SimParams, type StencilModel, type Vec3,
 } from '../core/index.js';
 import { createNodeDevice } from './node.js';
 import { GpuClothSolver } from './solver.js';
@@ -106,4 +106,33 @@ export function bentness(model: ClothModel, x: Float32Array, kind: StencilModel)
     }
   }
   return sum;
+}
+
+/**
+ * How far the GPU's cloth of a 16² pair (`p`, 10 frames in) is from the CPU's 5 frames after each change to the pins
+ * and the grab, each made to the CPU's cloth copied to the GPU: particle 0 let go, the middle particle grabbed and
+ * carried by `pull` [m], then released [m]; and, 5 frames after the grab, how far apart the grabbed particle is [m].
+ */
+export async function pinAndGrabChanges(p: Pair, pull: Vec3): Promise<{ apart: [string, number][]; grabbed: number }> {
+  const mid = 8 * 17 + 8, x = p.cpu.positions, both = [p.cpu, p.gpu];
+  const changes: [string, () => void][] = [
+    ['a corner let go', () => { for (const s of both) setPinned(s, 0, false); p.solver.uploadPins(p.gpu); }],
+    ['the middle grabbed', () => {
+      const t: Vec3 = [x[3 * mid] + pull[0], x[3 * mid + 1] + pull[1], x[3 * mid + 2] + pull[2]];
+      for (const s of both) grab(s, mid, t);
+    }],
+    ['released', () => { for (const s of both) release(s); }],
+  ];
+  const apart: [string, number][] = [];
+  let grabbed = NaN;
+  await p.advance(10);
+  for (const [what, change] of changes) {
+    copyState(p.cpu, p.gpu);
+    p.solver.upload(p.gpu);
+    change();
+    await p.advance(5);
+    apart.push([what, maxDistance(p.gpu.positions, p.cpu.positions)]);
+    if (what === 'the middle grabbed') grabbed = maxDistance(p.gpu.positions.subarray(3 * mid, 3 * mid + 3), p.cpu.positions.subarray(3 * mid, 3 * mid + 3));
+  }
+  return { apart, grabbed };
 }
