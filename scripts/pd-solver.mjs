@@ -18,6 +18,18 @@
 // by Chebyshev's semi-iterative method (Wang 2015, "A Chebyshev Semi-Iterative Approach for Accelerating Projective
 // and Position-Based Dynamics"): the GPU-friendly path.
 // Material damping is not modelled: implicit Euler's own damping is all there is.
+import { heldHingeShare } from '../dist/core/solvers/global-bending.js';
+
+/**
+ * `params` with the hinges beside a held triangle (edge and one wing pinned in `pinned`) counted on their free side,
+ * as the global bending step counts them (heldHingeShare); params itself where the bending is not the hinges.
+ */
+export function withHeldHinges(model, params, pinned) {
+  if (params.bending !== 'hinges') return params;
+  const { vertices, offsets } = model.stencils.hinges;
+  const compliance = Float64Array.from(params.stencilCompliance, (a, e) => a * heldHingeShare(model.restPositions, vertices, offsets[e], pinned));
+  return { ...params, stencilCompliance: compliance };
+}
 
 /** Reverse Cuthill–McKee order of a graph given as adjacency lists (arrays of neighbour indices). */
 export function rcm(adj) {

@@ -21,20 +21,23 @@
 //   npx tsc -p tsconfig.build.json && node scripts/pd-study.mjs [--part hanging] [--faces 16,32,64,128]
 //       [--settings 1x3,1x10] [--fabrics rubber,cotton] [--bending springs|hinges|laplacian (the hanging sheet's bending model)]
 //       [--stencils hinges|laplacian (the cantilever's bending model in the newton part)]
+//       [--clamp-hinges held|whole (fabrics: the hinges beside the clamp as the global bending step counts them, the
+//       default, or whole as the sweep does)]
 import { FABRICS, FABRIC_NAMES, builtinScene, measureTest, modelFor, resolveParams, scenePins, setScenePath, validateScene } from '../dist/core/index.js';
 import { GNSolver } from './gn-solver.mjs';
-import { PDSolver, newtonStatic } from './pd-solver.mjs';
+import { PDSolver, newtonStatic, withHeldHinges } from './pd-solver.mjs';
 import {
   arg, cantileverScene, hangingScene, hangingTheory, kinetic, measureCantilever, measureHanging, pct, CANTILEVER,
 } from './solver-study-common.mjs';
 
 const part = arg('part', 'all');
 
-function solverFor(scene, opts) {
+function solverFor(scene, opts, held = false) {
   const model = modelFor(scene);
-  const params = resolveParams(model, scene);
+  let params = resolveParams(model, scene);
   const pinned = new Uint8Array(model.particleCount);
   for (const i of scenePins(model, scene)) pinned[i] = 1;
+  if (held) params = withHeldHinges(model, params, pinned);
   return new PDSolver(model, params, pinned, model.restPositions, opts);
 }
 
@@ -130,8 +133,8 @@ function newtonCantilever() {
  */
 function fabricCantilevers() {
   const facesList = arg('faces', '16,32,64').split(',').map(Number);
-  const stencils = arg('stencils', 'hinges');
-  console.log(`\nThe cantilever scene (${stencils}), converged static equilibrium of the discrete model (Newton from the flat strip): c / c_theory`);
+  const stencils = arg('stencils', 'hinges'), held = arg('clamp-hinges', 'held') === 'held';
+  console.log(`\nThe cantilever scene (${stencils}${stencils === 'hinges' ? `, the clamp's hinges counted ${held ? 'on their free side (heldHingeShare)' : 'whole'}` : ''}), converged static equilibrium of the discrete model (Newton from the flat strip): c / c_theory`);
   console.log(`| fabric | c theory [cm] | ${facesList.map((f) => `${f} faces: chord → c / c_theory (Newton iterations)`).join(' | ')} |`);
   console.log(`|---|---|${facesList.map(() => '---|').join('')}`);
   for (const fabric of arg('fabrics', FABRIC_NAMES.join(',')).split(',')) {
@@ -141,7 +144,7 @@ function fabricCantilevers() {
     for (const faces of facesList) {
       let scene = setScenePath(builtinScene('cantilever'), 'material.fabric', fabric);
       scene = validateScene({ ...scene, cloth: { ...scene.cloth, resolution: faces }, solver: { ...scene.solver, bending: stencils } });
-      const pd = solverFor(scene, { substeps: 1, iterations: 1 });
+      const pd = solverFor(scene, { substeps: 1, iterations: 1 }, held);
       const r = newtonStatic(pd, 300);
       const t = measureTest(pd.model, { positions: pd.x, pinned: pd.pinned }, scene);
       cells.push(`${t.chordAngle.toFixed(1)}° → ${(t.bendingLength / c).toFixed(3)} (${r.iterations})`);

@@ -1,0 +1,312 @@
+#!/usr/bin/env node
+// Issue 10: the global stretch step and the global bending step solved together instead of split (docs/physics.md,
+// "The standard fabric tests", "Solving both together: three prototypes"). Prototypes outside the core: the TypeScript
+// kernel runs the scene with its two global phases replaced by one of
+//   split      the library's own split (stretch pass, then bending step): the baseline
+//   sweep      the scene as it is (springs swept one at a time, the hinges solved together)
+//   admm       ADMM (Boyd et al. 2011): a stretch copy x and a bending copy z of the positions, each step with the
+//              share a (stretch) or 1 − a (bending) of the inertia M/h² and the penalty c·M/h² on x = z, the scaled
+//              dual u carried from substep to substep (at rest the fixed point is the coupled equilibrium exactly)
+//              [--a 0.5] [--c 10] [--iterations N] [--relax ω (u += ω·(x − z))] [--reset (u = 0 each substep)]
+//   balanced   balanced splitting (Speth, Green, MacNamara & Strang 2013): the stretch step with the bending force at
+//              the substep's start, −Q·x_n, then the bending step with only its increment, ½(x − x_n)ᵀQ(x − x_n)
+//              [--dir y|xi|prev (where the local step takes the springs' directions: the prediction, the prediction
+//              without gravity, the substep's start)] [--passes P (stretch passes)]
+//   corrected  the split, then P passes of the springs and the stencils in one matrix (a third factor) from the
+//              prediction, the springs' directions from the split's result [--passes P] [--carry ω (directions from
+//              the split's result less b, b += ω·(the split's result − the corrected one − b) each substep; 0)]
+// and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds), the elastic
+// and kinetic energy, and ms per frame; then the reading every 0.5 s over the last 3 s.
+//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick]
+//     [--fabric F] [--resolution R] [--substeps S] [options of the mode]
+import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
+import { bendingStencils } from '../dist/core/model.js';
+import { REFERENCE } from '../dist/core/reference.js';
+import { PHASE } from '../dist/core/schedule.js';
+import { BendingSystem, solveGlobalBending } from '../dist/core/solvers/global-bending.js';
+import { StretchSystem, solveGlobalStretch } from '../dist/core/solvers/global-stretch.js';
+import { PrefactoredSystem } from '../dist/core/solvers/prefactored.js';
+import { REFERENCE_SOLVER } from '../dist/core/solvers/sparse.js';
+
+const arg = (name, fallback) => {
+  const i = process.argv.indexOf(`--${name}`);
+  return i >= 0 && i + 1 < process.argv.length ? process.argv[i + 1] : fallback;
+};
+const flag = (name) => process.argv.includes(`--${name}`);
+const mode = arg('mode', 'admm');
+if (!['split', 'sweep', 'admm', 'balanced', 'corrected'].includes(mode)) throw new Error(`--mode: split, sweep, admm, balanced or corrected, got ${mode}`);
+const SHARE = Number(arg('a', '0.5')), PENALTY = Number(arg('c', '10')), ITERATIONS = Number(arg('iterations', '3'));
+const RELAX = Number(arg('relax', '1')), CARRY = Number(arg('carry', '0')), PASSES = Number(arg('passes', '1')), DIR = arg('dir', 'y');
+
+/** The springs and the stencils in one matrix: M/h² + Σ (k + β/h)·SᵀS + Σ (1 + τ/h)·K·Kᵀ/α, over both graphs. */
+class CombinedSystem extends PrefactoredSystem {
+  constructor(model, params, stretch, bending) {
+    const n = model.particleCount, near = Array.from({ length: n }, () => new Set());
+    const join = (a, b) => { if (a !== b) { near[a].add(b); near[b].add(a); } };
+    for (let s = 0; s < stretch.k.length; s++) join(stretch.springs[2 * s], stretch.springs[2 * s + 1]);
+    const { start, cols } = bending.pullMatrix;
+    for (let i = 0; i < n; i++) for (let p = start[i]; p < start[i + 1]; p++) join(i, cols[p]);
+    const rowStart = new Int32Array(n + 1), all = [];
+    for (let i = 0; i < n; i++) { all.push(...near[i]); rowStart[i + 1] = all.length; }
+    super(model, params.particleMass, rowStart, Int32Array.from(all));
+    this.stretch = stretch;
+    this.bending = bending;
+    this.product = { ...bending.pullMatrix, row: this.row };
+  }
+
+  factor(pinned, h) {
+    const { chol, row } = this, { springs, k, damping } = this.stretch;
+    this.beginFactor(pinned, h);
+    for (let s = 0; s < k.length; s++) {
+      const a = springs[2 * s], b = springs[2 * s + 1], w = k[s] + damping[s] / h;
+      if (!pinned[a]) chol.add(row[a], row[a], w);
+      if (!pinned[b]) chol.add(row[b], row[b], w);
+      if (!pinned[a] && !pinned[b]) chol.add(row[a], row[b], -w);
+    }
+    const { stiffness, stencils: { offsets, vertices, weights } } = this.bending;
+    for (let e = 0; e + 1 < offsets.length; e++) {
+      if (stiffness[e] === 0) continue;
+      for (let p = offsets[e]; p < offsets[e + 1]; p++) {
+        const a = vertices[p];
+        if (pinned[a]) continue;
+        const s = weights[p] * stiffness[e];
+        chol.add(row[a], row[a], s * weights[p]);
+        for (let q = p + 1; q < offsets[e + 1]; q++) {
+          const c = vertices[q];
+          if (!pinned[c]) chol.add(row[a], row[c], (a === c ? 2 : 1) * s * weights[q]);
+        }
+      }
+    }
+    chol.factor();
+  }
+}
+
+// --- the right-hand sides' parts, by the system's rows; t: the target positions (pinned: where they are) --------
+
+/** b ← (M/h²)·t on the free rows, t on the pinned ones (masses: the system's own, scaled by its inertia share). */
+function inertiaTerms(system, pinned, t, h) {
+  const { b, row, mass } = system, inertia = 1 / (h * h);
+  for (let i = 0; i < mass.length; i++) {
+    const q = 3 * row[i], j = 3 * i, w = pinned[i] ? 1 : mass[i] * inertia;
+    b[q] = w * t[j]; b[q + 1] = w * t[j + 1]; b[q + 2] = w * t[j + 2];
+  }
+}
+
+/** b += each spring's projection at `cur` (the local step), its damping and its pinned ends (global-stretch.ts). */
+function springTerms(b, row, stretch, pinned, t, prev, cur, h) {
+  const { springs, k, rest, damping } = stretch;
+  for (let s = 0; s < k.length; s++) {
+    const a = springs[2 * s], c = springs[2 * s + 1], ja = 3 * a, jc = 3 * c;
+    const dx = cur[ja] - cur[jc], dy = cur[ja + 1] - cur[jc + 1], dz = cur[ja + 2] - cur[jc + 2];
+    const len = Math.sqrt(dx * dx + dy * dy + dz * dz), f = len > 1e-12 ? (k[s] * rest[s]) / len : 0;
+    let px = 0, py = 0, pz = 0;
+    const ds = damping[s] / h;
+    if (ds > 0) {
+      const ux = dx - (prev[ja] - prev[jc]), uy = dy - (prev[ja + 1] - prev[jc + 1]), uz = dz - (prev[ja + 2] - prev[jc + 2]);
+      const along = len > 1e-12 ? (ux * dx + uy * dy + uz * dz) / (len * len) : 0;
+      px = ds * (dx - along * dx); py = ds * (dy - along * dy); pz = ds * (dz - along * dz);
+    }
+    const pa = pinned[a], pc = pinned[c], w = k[s] + ds;
+    if (!pa) {
+      const q = 3 * row[a];
+      b[q] += f * dx + px; b[q + 1] += f * dy + py; b[q + 2] += f * dz + pz;
+      if (pc) { b[q] += w * t[jc]; b[q + 1] += w * t[jc + 1]; b[q + 2] += w * t[jc + 2]; }
+    }
+    if (!pc) {
+      const q = 3 * row[c];
+      b[q] -= f * dx + px; b[q + 1] -= f * dy + py; b[q + 2] -= f * dz + pz;
+      if (pa) { b[q] += w * t[ja]; b[q + 1] += w * t[ja + 1]; b[q + 2] += w * t[ja + 2]; }
+    }
+  }
+}
+
+/** b −= the stencils' terms of their pinned particles, on their free ones (global-bending.ts). */
+function pinnedStencilTerms(b, row, bending, pinned, t) {
+  const { stiffness, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = bending;
+  for (let s = 0; s < pinnedCount; s++) {
+    const e = pinnedStencils[s], ke = stiffness[e];
+    for (let l = offsets[e]; l < offsets[e + 1]; l++) {
+      const c = vertices[l];
+      if (!pinned[c]) continue;
+      const jc = 3 * c;
+      for (let p = offsets[e]; p < offsets[e + 1]; p++) {
+        const a = vertices[p];
+        if (pinned[a]) continue;
+        const v = weights[p] * weights[l] * ke, q = 3 * row[a];
+        b[q] -= v * t[jc]; b[q + 1] -= v * t[jc + 1]; b[q + 2] -= v * t[jc + 2];
+      }
+    }
+  }
+}
+
+/** Solves (+ the stencils' damping P·prev where given) and writes the solution by particle (pinned: t). */
+function solveInto(system, pinned, t, out, product, prev) {
+  const { b, row, chol } = system;
+  REFERENCE_SOLVER.solve3(chol, b, product, prev);
+  for (let i = 0; i < row.length; i++) {
+    const q = 3 * row[i], j = 3 * i;
+    if (pinned[i]) { out[j] = t[j]; out[j + 1] = t[j + 1]; out[j + 2] = t[j + 2]; continue; }
+    out[j] = b[q]; out[j + 1] = b[q + 1]; out[j + 2] = b[q + 2];
+  }
+}
+
+/** One Projective Dynamics pass of the springs towards t, the local step at `cur`. */
+function stretchStep(stretch, pinned, t, prev, cur, out, h) {
+  inertiaTerms(stretch, pinned, t, h);
+  springTerms(stretch.b, stretch.row, stretch, pinned, t, prev, cur, h);
+  solveInto(stretch, pinned, t, out);
+}
+
+/** The backward-Euler step of the stencils towards t. */
+function bendingStep(bending, pinned, t, prev, out, h) {
+  inertiaTerms(bending, pinned, t, h);
+  pinnedStencilTerms(bending.b, bending.row, bending, pinned, t);
+  solveInto(bending, pinned, t, out, bending.damped ? bending.pullMatrix : undefined, prev);
+}
+
+/** One pass of the springs and the stencils in one matrix towards t, the local step at `cur`. */
+function bothStep(both, pinned, t, prev, cur, out, h) {
+  inertiaTerms(both, pinned, t, h);
+  springTerms(both.b, both.row, both.stretch, pinned, t, prev, cur, h);
+  pinnedStencilTerms(both.b, both.row, both.bending, pinned, t);
+  solveInto(both, pinned, t, out, both.bending.damped ? both.product : undefined, prev);
+}
+
+/** f ← Q·x, the stencils' elastic forces' negative (their elastic part 1/α_e·K·Kᵀ, as the factor holds it). */
+function stencilForce(bending, x, f) {
+  const { stiffness, pull, stencils: { offsets, vertices, weights } } = bending;
+  f.fill(0);
+  for (let e = 0; e + 1 < offsets.length; e++) {
+    const q = stiffness[e] - pull[e];
+    if (!(q > 0)) continue;
+    let cx = 0, cy = 0, cz = 0;
+    for (let p = offsets[e]; p < offsets[e + 1]; p++) {
+      const j = 3 * vertices[p], w = weights[p];
+      cx += w * x[j]; cy += w * x[j + 1]; cz += w * x[j + 2];
+    }
+    for (let p = offsets[e]; p < offsets[e + 1]; p++) {
+      const j = 3 * vertices[p], w = q * weights[p];
+      f[j] += w * cx; f[j + 1] += w * cy; f[j + 2] += w * cz;
+    }
+  }
+}
+
+// --- the substep: the state's positions hold the prediction y; the result goes back as float32 + residual ------------
+
+let work = null;
+/** The systems (masses scaled by the mode's inertia shares) and scratch arrays, for these params and pins. */
+function workFor(model, params, pinned, h) {
+  if (!work || work.params !== params) {
+    const n3 = 3 * model.particleCount;
+    const scaled = (share) => (share === 1 ? params : { ...params, particleMass: Float64Array.from(params.particleMass, (m) => m * share) });
+    const [stretchShare, bendingShare] = mode === 'admm' ? [SHARE + PENALTY, 1 - SHARE + PENALTY] : [1, 1];
+    const bendingParams = scaled(bendingShare);
+    work = {
+      params, bendingParams,
+      stretch: new StretchSystem(model, scaled(stretchShare)),
+      bending: new BendingSystem(model, bendingParams, bendingStencils(model, params.bending)),
+      both: null,
+      ...Object.fromEntries(['y', 'prev', 'xi', 'x', 'z', 't', 'u', 'f', 'split', 'bias'].map((name) => [name, new Float64Array(n3)])),
+    };
+  }
+  if (!work.stretch.current(pinned, h)) {
+    work.stretch.factor(pinned, h);
+    work.u.fill(0);
+    work.bias.fill(0);
+  }
+  if (!work.bending.current(pinned, h)) work.bending.factor(work.bendingParams, pinned, h);
+  if (mode === 'corrected') {
+    work.both ??= new CombinedSystem(model, params, work.stretch, work.bending);
+    if (!work.both.current(pinned, h)) work.both.factor(pinned, h);
+  }
+  return work;
+}
+
+function coupledStep(model, state, params, frame) {
+  const h = frame.h, pinned = state.pinned, n3 = 3 * model.particleCount;
+  const p = state.positions, r = state.residuals, pp = state.previousPositions, rp = state.previousResiduals;
+  const w = workFor(model, params, pinned, h);
+  const { y, prev, xi, x, z, t, u, f } = w;
+  const free = (j) => !pinned[(j / 3) | 0];
+  // the prediction, the substep's start, and the prediction without gravity
+  const c = state.substeps === 0 ? 0.5 : 1;
+  for (let j = 0; j < n3; j++) {
+    y[j] = p[j] + r[j];
+    prev[j] = pp[j] + rp[j];
+    xi[j] = free(j) ? y[j] - c * h * h * params.gravity[j % 3] : y[j];
+  }
+  let result = x;
+  if (mode === 'admm') {
+    if (flag('reset')) u.fill(0);
+    const a = SHARE, pen = PENALTY;
+    for (let it = 0; it < ITERATIONS; it++) {
+      const from = it === 0 ? xi : x;
+      for (let j = 0; j < n3; j++) t[j] = free(j) ? ((1 - a) * y[j] + pen * (from[j] + u[j])) / (1 - a + pen) : y[j];
+      bendingStep(w.bending, pinned, t, prev, z, h);
+      for (let j = 0; j < n3; j++) t[j] = free(j) ? (a * y[j] + pen * (z[j] - u[j])) / (a + pen) : y[j];
+      stretchStep(w.stretch, pinned, t, prev, z, x, h);
+      for (let j = 0; j < n3; j++) u[j] += RELAX * (x[j] - z[j]);
+    }
+  } else if (mode === 'balanced') {
+    stencilForce(w.bending, prev, f);
+    const inertia = 1 / (h * h);
+    for (let j = 0; j < n3; j++) t[j] = free(j) ? y[j] - f[j] / (w.stretch.mass[(j / 3) | 0] * inertia) : y[j];
+    stretchStep(w.stretch, pinned, t, prev, DIR === 'prev' ? prev : DIR === 'xi' ? xi : y, x, h);
+    for (let pass = 1; pass < PASSES; pass++) {
+      z.set(x);
+      stretchStep(w.stretch, pinned, t, prev, z, x, h);
+    }
+    for (let j = 0; j < n3; j++) t[j] = free(j) ? x[j] + f[j] / (w.bending.mass[(j / 3) | 0] * inertia) : x[j];
+    bendingStep(w.bending, pinned, t, prev, z, h);
+    result = z;
+  } else {
+    // corrected: the library's split, then the passes of both from the prediction, the directions from its result
+    const { split, bias } = w;
+    solveGlobalStretch(model, state, params, h, 1);
+    solveGlobalBending(model, state, params, h);
+    for (let j = 0; j < n3; j++) {
+      split[j] = p[j] + r[j];
+      z[j] = split[j] - bias[j];
+    }
+    for (let pass = 0; pass < PASSES; pass++) {
+      bothStep(w.both, pinned, y, prev, z, x, h);
+      z.set(x);
+    }
+    for (let j = 0; j < n3; j++) bias[j] += CARRY * (split[j] - x[j] - bias[j]);
+  }
+  for (let j = 0; j < n3; j++) {
+    if (!free(j)) continue;
+    p[j] = Math.fround(result[j]);
+    r[j] = result[j] - p[j];
+  }
+}
+
+if (mode === 'admm' || mode === 'balanced' || mode === 'corrected') {
+  REFERENCE[PHASE.globalStretch] = coupledStep;
+  REFERENCE[PHASE.globalBending] = () => {};
+}
+
+const sceneName = arg('scene', 'cantilever'), cusick = sceneName === 'cusick';
+const fabric = arg('fabric', 'cotton'), spec = FABRICS[fabric];
+const cTheory = Math.cbrt(spec.bendingRigidity / (spec.arealDensity * 9.81));
+let scene = setScenePath(builtinScene(sceneName), 'solver.stretch', mode === 'sweep' ? 'gauss-seidel' : 'global');
+scene = setScenePath(scene, 'material.fabric', fabric);
+if (arg('resolution')) scene = setScenePath(scene, 'cloth.resolution', Number(arg('resolution')));
+if (arg('substeps')) scene = setScenePath(scene, 'solver.substeps', Number(arg('substeps')));
+scene = validateScene(scene);
+const sim = new Simulation(scene, { kernel: 'ts' });
+const reading = (test) => (cusick ? `DC ${test.drapeCoefficient.toFixed(3)} folds ${test.folds}` : `c/c_theory ${(test.bendingLength / cTheory).toFixed(3)}`);
+const frames = Math.round(scene.duration * 60), trace = [];
+const t0 = performance.now();
+for (let done = 0; done < frames; done += 30) {
+  sim.advance(Math.min(30, frames - done));
+  const { test, energy } = sim.report();
+  trace.push(`${((done + 30) / 60).toFixed(1)} s ${reading(test)} KE ${energy.kinetic.toExponential(1)}`);
+}
+const ms = (performance.now() - t0) / frames;
+const { test, energy } = sim.report();
+const options = { admm: `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX}${flag('reset') ? ' reset' : ''}`, balanced: `dir ${DIR} passes ${PASSES}`, corrected: `passes ${PASSES} carry ${CARRY}` }[mode] ?? '';
+console.log(`${mode} ${options} | ${sceneName} ${fabric} ${scene.cloth.resolution} faces, ${scene.solver.substeps} substeps: ${reading(test)}, ` +
+  `elastic ${energy.elastic.toExponential(3)} J, kinetic ${energy.kinetic.toExponential(1)} J, ${ms.toFixed(1)} ms/frame`);
+console.log(trace.slice(-6).join(' | '));
+sim.dispose();
