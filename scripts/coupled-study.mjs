@@ -7,7 +7,9 @@
 //   admm       ADMM (Boyd et al. 2011): a stretch copy x and a bending copy z of the positions, each step with the
 //              share a (stretch) or 1 − a (bending) of the inertia M/h² and the penalty c·M/h² on x = z, the scaled
 //              dual u carried from substep to substep (at rest the fixed point is the coupled equilibrium exactly)
-//              [--a 0.5] [--c 10] [--iterations N] [--relax ω (u += ω·(x − z))] [--reset (u = 0 each substep)]
+//              [--a 0.5] [--c 10] [--iterations 3] [--relax ω (u += ω·(x − z))] [--reset (u = 0 each substep)]
+//   admm-q     the same with the penalty c·(M/h² + Q) (Q: the stencils' elastic Hessian on the free particles), so the
+//              stretch copy's matrix holds c·Q and the bending copy's (1 + c)·Q (same options)
 //   balanced   balanced splitting (Speth, Green, MacNamara & Strang 2013): the stretch step with the bending force at
 //              the substep's start, −Q·x_n, then the bending step with only its increment, ½(x − x_n)ᵀQ(x − x_n)
 //              [--dir y|xi|prev (where the local step takes the springs' directions: the prediction, the prediction
@@ -34,13 +36,16 @@ const arg = (name, fallback) => {
 };
 const flag = (name) => process.argv.includes(`--${name}`);
 const mode = arg('mode', 'admm');
-if (!['split', 'sweep', 'admm', 'balanced', 'corrected'].includes(mode)) throw new Error(`--mode: split, sweep, admm, balanced or corrected, got ${mode}`);
+if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced or corrected, got ${mode}`);
 const SHARE = Number(arg('a', '0.5')), PENALTY = Number(arg('c', '10')), ITERATIONS = Number(arg('iterations', '3'));
 const RELAX = Number(arg('relax', '1')), CARRY = Number(arg('carry', '0')), PASSES = Number(arg('passes', '1')), DIR = arg('dir', 'y');
 
-/** The springs and the stencils in one matrix: M/h² + Σ (k + β/h)·SᵀS + Σ (1 + τ/h)·K·Kᵀ/α, over both graphs. */
+/**
+ * The springs and the stencils in one matrix: s·M/h² + σ·Σ (k + β/h)·SᵀS + Σ (ε/α + δ·τ/(hα))·K·Kᵀ, over both graphs
+ * (weights { mass: s, springs: σ, elastic: ε, damping: δ }; by default 1, 1, 1, 1: Projective Dynamics with both).
+ */
 class CombinedSystem extends PrefactoredSystem {
-  constructor(model, params, stretch, bending) {
+  constructor(model, params, stretch, bending, weights = {}) {
     const n = model.particleCount, near = Array.from({ length: n }, () => new Set());
     const join = (a, b) => { if (a !== b) { near[a].add(b); near[b].add(a); } };
     for (let s = 0; s < stretch.k.length; s++) join(stretch.springs[2 * s], stretch.springs[2 * s + 1]);
@@ -48,32 +53,35 @@ class CombinedSystem extends PrefactoredSystem {
     for (let i = 0; i < n; i++) for (let p = start[i]; p < start[i + 1]; p++) join(i, cols[p]);
     const rowStart = new Int32Array(n + 1), all = [];
     for (let i = 0; i < n; i++) { all.push(...near[i]); rowStart[i + 1] = all.length; }
-    super(model, params.particleMass, rowStart, Int32Array.from(all));
+    const w = { mass: 1, springs: 1, elastic: 1, damping: 1, ...weights };
+    super(model, Float64Array.from(params.particleMass, (m) => m * w.mass), rowStart, Int32Array.from(all));
     this.stretch = stretch;
     this.bending = bending;
+    this.weights = w;
     this.product = { ...bending.pullMatrix, row: this.row };
   }
 
   factor(pinned, h) {
-    const { chol, row } = this, { springs, k, damping } = this.stretch;
+    const { chol, row, weights } = this, { springs, k, damping } = this.stretch;
     this.beginFactor(pinned, h);
-    for (let s = 0; s < k.length; s++) {
-      const a = springs[2 * s], b = springs[2 * s + 1], w = k[s] + damping[s] / h;
+    for (let s = 0; s < k.length && weights.springs > 0; s++) {
+      const a = springs[2 * s], b = springs[2 * s + 1], w = weights.springs * (k[s] + damping[s] / h);
       if (!pinned[a]) chol.add(row[a], row[a], w);
       if (!pinned[b]) chol.add(row[b], row[b], w);
       if (!pinned[a] && !pinned[b]) chol.add(row[a], row[b], -w);
     }
-    const { stiffness, stencils: { offsets, vertices, weights } } = this.bending;
+    const { stiffness, pull, stencils: { offsets, vertices, weights: K } } = this.bending;
     for (let e = 0; e + 1 < offsets.length; e++) {
-      if (stiffness[e] === 0) continue;
+      const we = weights.elastic * (stiffness[e] - pull[e]) + weights.damping * pull[e];
+      if (!(we > 0)) continue;
       for (let p = offsets[e]; p < offsets[e + 1]; p++) {
         const a = vertices[p];
         if (pinned[a]) continue;
-        const s = weights[p] * stiffness[e];
-        chol.add(row[a], row[a], s * weights[p]);
+        const s = K[p] * we;
+        chol.add(row[a], row[a], s * K[p]);
         for (let q = p + 1; q < offsets[e + 1]; q++) {
           const c = vertices[q];
-          if (!pinned[c]) chol.add(row[a], row[c], (a === c ? 2 : 1) * s * weights[q]);
+          if (!pinned[c]) chol.add(row[a], row[c], (a === c ? 2 : 1) * s * K[q]);
         }
       }
     }
@@ -200,6 +208,7 @@ function workFor(model, params, pinned, h) {
     const n3 = 3 * model.particleCount;
     const scaled = (share) => (share === 1 ? params : { ...params, particleMass: Float64Array.from(params.particleMass, (m) => m * share) });
     const [stretchShare, bendingShare] = mode === 'admm' ? [SHARE + PENALTY, 1 - SHARE + PENALTY] : [1, 1];
+    // (admm-q: these two only lend their springs and stencils to its own systems)
     const bendingParams = scaled(bendingShare);
     work = {
       params, bendingParams,
@@ -218,6 +227,13 @@ function workFor(model, params, pinned, h) {
   if (mode === 'corrected') {
     work.both ??= new CombinedSystem(model, params, work.stretch, work.bending);
     if (!work.both.current(pinned, h)) work.both.factor(pinned, h);
+  }
+  if (mode === 'admm-q') {
+    // the penalty c·(M/h² + Q): the stretch copy's matrix gains c·Q, the bending copy's (1 + c)·Q
+    work.xSystem ??= new CombinedSystem(model, params, work.stretch, work.bending, { mass: SHARE + PENALTY, elastic: PENALTY, damping: 0 });
+    work.zSystem ??= new CombinedSystem(model, params, work.stretch, work.bending, { mass: 1 - SHARE + PENALTY, springs: 0, elastic: 1 + PENALTY });
+    if (!work.xSystem.current(pinned, h)) work.xSystem.factor(pinned, h);
+    if (!work.zSystem.current(pinned, h)) work.zSystem.factor(pinned, h);
   }
   return work;
 }
@@ -245,6 +261,34 @@ function coupledStep(model, state, params, frame) {
       bendingStep(w.bending, pinned, t, prev, z, h);
       for (let j = 0; j < n3; j++) t[j] = free(j) ? (a * y[j] + pen * (z[j] - u[j])) / (a + pen) : y[j];
       stretchStep(w.stretch, pinned, t, prev, z, x, h);
+      for (let j = 0; j < n3; j++) u[j] += RELAX * (x[j] - z[j]);
+    }
+  } else if (mode === 'admm-q') {
+    if (flag('reset')) u.fill(0);
+    const a = SHARE, pen = PENALTY, { xSystem, zSystem } = w, v = w.split;
+    // c·Q_ff·v on the free rows (pinned entries of v zeroed: the penalty is on the free particles only)
+    const penaltyTerms = (system, from, sign) => {
+      for (let j = 0; j < n3; j++) v[j] = free(j) ? from[j] + sign * u[j] : 0;
+      stencilForce(w.bending, v, f);
+      const { b, row } = system;
+      for (let i = 0; i < row.length; i++) {
+        if (pinned[i]) continue;
+        const q = 3 * row[i], j = 3 * i;
+        b[q] += pen * f[j]; b[q + 1] += pen * f[j + 1]; b[q + 2] += pen * f[j + 2];
+      }
+    };
+    for (let it = 0; it < ITERATIONS; it++) {
+      const from = it === 0 ? xi : x;
+      for (let j = 0; j < n3; j++) t[j] = free(j) ? ((1 - a) * y[j] + pen * (from[j] + u[j])) / (1 - a + pen) : y[j];
+      inertiaTerms(zSystem, pinned, t, h);
+      pinnedStencilTerms(zSystem.b, zSystem.row, w.bending, pinned, t);
+      penaltyTerms(zSystem, from, 1);
+      solveInto(zSystem, pinned, t, z, w.bending.damped ? zSystem.product : undefined, prev);
+      for (let j = 0; j < n3; j++) t[j] = free(j) ? (a * y[j] + pen * (z[j] - u[j])) / (a + pen) : y[j];
+      inertiaTerms(xSystem, pinned, t, h);
+      springTerms(xSystem.b, xSystem.row, w.stretch, pinned, t, prev, z, h);
+      penaltyTerms(xSystem, z, -1);
+      solveInto(xSystem, pinned, t, x);
       for (let j = 0; j < n3; j++) u[j] += RELAX * (x[j] - z[j]);
     }
   } else if (mode === 'balanced') {
@@ -281,7 +325,7 @@ function coupledStep(model, state, params, frame) {
   }
 }
 
-if (mode === 'admm' || mode === 'balanced' || mode === 'corrected') {
+if (mode !== 'split' && mode !== 'sweep') {
   REFERENCE[PHASE.globalStretch] = coupledStep;
   REFERENCE[PHASE.globalBending] = () => {};
 }
@@ -298,15 +342,16 @@ const sim = new Simulation(scene, { kernel: 'ts' });
 const reading = (test) => (cusick ? `DC ${test.drapeCoefficient.toFixed(3)} folds ${test.folds}` : `c/c_theory ${(test.bendingLength / cTheory).toFixed(3)}`);
 const frames = Math.round(scene.duration * 60), trace = [];
 const t0 = performance.now();
-for (let done = 0; done < frames; done += 30) {
-  sim.advance(Math.min(30, frames - done));
+const chunk = flag("trace") ? 3 : 30;
+for (let done = 0; done < frames; done += chunk) {
+  sim.advance(Math.min(chunk, frames - done));
   const { test, energy } = sim.report();
-  trace.push(`${((done + 30) / 60).toFixed(1)} s ${reading(test)} KE ${energy.kinetic.toExponential(1)}`);
+  trace.push(`${((done + chunk) / 60).toFixed(1)} s ${reading(test)} KE ${energy.kinetic.toExponential(1)}`);
 }
 const ms = (performance.now() - t0) / frames;
 const { test, energy } = sim.report();
-const options = { admm: `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX}${flag('reset') ? ' reset' : ''}`, balanced: `dir ${DIR} passes ${PASSES}`, corrected: `passes ${PASSES} carry ${CARRY}` }[mode] ?? '';
+const options = { 'admm-q': `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX}${flag('reset') ? ' reset' : ''}`, admm: `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX}${flag('reset') ? ' reset' : ''}`, balanced: `dir ${DIR} passes ${PASSES}`, corrected: `passes ${PASSES} carry ${CARRY}` }[mode] ?? '';
 console.log(`${mode} ${options} | ${sceneName} ${fabric} ${scene.cloth.resolution} faces, ${scene.solver.substeps} substeps: ${reading(test)}, ` +
   `elastic ${energy.elastic.toExponential(3)} J, kinetic ${energy.kinetic.toExponential(1)} J, ${ms.toFixed(1)} ms/frame`);
-console.log(trace.slice(-6).join(' | '));
+console.log((flag("trace") ? trace : trace.slice(-6)).join(" | "));
 sim.dispose();
