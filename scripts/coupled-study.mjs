@@ -8,6 +8,8 @@
 //              share a (stretch) or 1 − a (bending) of the inertia M/h² and the penalty c·M/h² on x = z, the scaled
 //              dual u carried from substep to substep (at rest the fixed point is the coupled equilibrium exactly)
 //              [--a 0.5] [--c 10] [--iterations 3] [--relax ω (u += ω·(x − z))] [--reset (u = 0 each substep)]
+//              [--contact-inside (the colliders' contact on x inside each iteration, before the dual's update)]
+//              [--contact-dual (u gains what the contact after the substep moved, as if its last update had seen it)]
 //   admm-q     the same with the penalty c·(M/h² + Q) (Q: the stencils' elastic Hessian on the free particles), so the
 //              stretch copy's matrix holds c·Q and the bending copy's (1 + c)·Q (same options)
 //   balanced   balanced splitting (Speth, Green, MacNamara & Strang 2013): the stretch step with the bending force at
@@ -20,7 +22,8 @@
 // and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds), the elastic
 // and kinetic energy, and ms per frame; then the reading every 0.5 s over the last 3 s.
 //   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick]
-//     [--fabric F] [--resolution R] [--substeps S] [options of the mode]
+//     [--fabric F] [--resolution R] [--substeps S] [--no-pedestal (cusick without its pedestal collider: the clamp
+//     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [options of the mode]
 import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
 import { bendingStencils } from '../dist/core/model.js';
 import { REFERENCE } from '../dist/core/reference.js';
@@ -255,14 +258,26 @@ function coupledStep(model, state, params, frame) {
   if (mode === 'admm') {
     if (flag('reset')) u.fill(0);
     const a = SHARE, pen = PENALTY;
+    if (flag('contact-dual') && w.last) {
+      // what the contact after the last substep moved, as if the dual's last update had seen it
+      for (let j = 0; j < n3; j++) if (free(j)) u[j] += RELAX * (prev[j] - w.last[j]);
+    }
     for (let it = 0; it < ITERATIONS; it++) {
       const from = it === 0 ? xi : x;
       for (let j = 0; j < n3; j++) t[j] = free(j) ? ((1 - a) * y[j] + pen * (from[j] + u[j])) / (1 - a + pen) : y[j];
       bendingStep(w.bending, pinned, t, prev, z, h);
       for (let j = 0; j < n3; j++) t[j] = free(j) ? (a * y[j] + pen * (z[j] - u[j])) / (a + pen) : y[j];
       stretchStep(w.stretch, pinned, t, prev, z, x, h);
+      if (flag('contact-inside')) {
+        // the colliders' contact on the stretch copy inside the iteration, so that the dual sees it
+        for (let j = 0; j < n3; j++) if (free(j)) { p[j] = Math.fround(x[j]); r[j] = x[j] - p[j]; }
+        REFERENCE[PHASE.contact](model, state, params, frame);
+        REFERENCE[PHASE.contactTriangles](model, state, params, frame);
+        for (let j = 0; j < n3; j++) x[j] = p[j] + r[j];
+      }
       for (let j = 0; j < n3; j++) u[j] += RELAX * (x[j] - z[j]);
     }
+    (w.last ??= new Float64Array(n3)).set(x);
   } else if (mode === 'admm-q') {
     if (flag('reset')) u.fill(0);
     const a = SHARE, pen = PENALTY, { xSystem, zSystem } = w, v = w.split;
@@ -337,6 +352,7 @@ let scene = setScenePath(builtinScene(sceneName), 'solver.stretch', mode === 'sw
 scene = setScenePath(scene, 'material.fabric', fabric);
 if (arg('resolution')) scene = setScenePath(scene, 'cloth.resolution', Number(arg('resolution')));
 if (arg('substeps')) scene = setScenePath(scene, 'solver.substeps', Number(arg('substeps')));
+if (flag('no-pedestal')) scene = { ...scene, colliders: scene.colliders.filter((c) => c.type !== 'cylinder') };
 scene = validateScene(scene);
 const sim = new Simulation(scene, { kernel: 'ts' });
 const reading = (test) => (cusick ? `DC ${test.drapeCoefficient.toFixed(3)} folds ${test.folds}` : `c/c_theory ${(test.bendingLength / cTheory).toFixed(3)}`);
@@ -354,4 +370,11 @@ const options = { 'admm-q': `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} re
 console.log(`${mode} ${options} | ${sceneName} ${fabric} ${scene.cloth.resolution} faces, ${scene.solver.substeps} substeps: ${reading(test)}, ` +
   `elastic ${energy.elastic.toExponential(3)} J, kinetic ${energy.kinetic.toExponential(1)} J, ${ms.toFixed(1)} ms/frame`);
 console.log((flag("trace") ? trace : trace.slice(-6)).join(" | "));
+if (flag('where')) {
+  // the fastest particles at the end: radius from the axis, height, speed
+  const v = sim.state.velocities, x = sim.state.positions, speeds = [];
+  for (let i = 0; i < sim.model.particleCount; i++) speeds.push([Math.hypot(v[3 * i], v[3 * i + 1], v[3 * i + 2]), i]);
+  speeds.sort((a, b) => b[0] - a[0]);
+  console.log(speeds.slice(0, 8).map(([speed, i]) => `r ${(100 * Math.hypot(x[3 * i], x[3 * i + 2])).toFixed(2)} cm, y ${(100 * x[3 * i + 1]).toFixed(2)} cm: ${(1000 * speed).toFixed(2)} mm/s`).join('; '));
+}
 sim.dispose();
