@@ -22,7 +22,7 @@
 // and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds), the elastic
 // and kinetic energy, and ms per frame; then the reading every 0.5 s over the last 3 s.
 //   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick]
-//     [--fabric F] [--resolution R] [--substeps S] [--no-pedestal (cusick without its pedestal collider: the clamp
+//     [--fabric F] [--resolution R] [--substeps S] [--set path=value ...] [--no-pedestal (cusick without its pedestal collider: the clamp
 //     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [options of the mode]
 import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
 import { bendingStencils } from '../dist/core/model.js';
@@ -352,6 +352,10 @@ let scene = setScenePath(builtinScene(sceneName), 'solver.stretch', mode === 'sw
 scene = setScenePath(scene, 'material.fabric', fabric);
 if (arg('resolution')) scene = setScenePath(scene, 'cloth.resolution', Number(arg('resolution')));
 if (arg('substeps')) scene = setScenePath(scene, 'solver.substeps', Number(arg('substeps')));
+for (let i = process.argv.indexOf('--set'); i >= 0; i = process.argv.indexOf('--set', i + 1)) {
+  const [path, value] = process.argv[i + 1].split('=');
+  scene = setScenePath(scene, path, value === 'true' ? true : value === 'false' ? false : Number.isNaN(Number(value)) ? value : Number(value));
+}
 if (flag('no-pedestal')) scene = { ...scene, colliders: scene.colliders.filter((c) => c.type !== 'cylinder') };
 scene = validateScene(scene);
 const sim = new Simulation(scene, { kernel: 'ts' });
