@@ -204,7 +204,6 @@ describe('WebGPU page', () => {
     await step(page, 60);
     const c = await centroid(page);
     expect(Number.isFinite(c[1])).toBe(true);
-    await page.waitForTimeout(400);
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('mass-spring, 30 substeps');
     await choose(page, 'solver.type', 'xpbd');
     // the worker steps the cloth in the WebAssembly SIMD kernel, and the HUD says so

@@ -177,8 +177,8 @@ describe.skipIf(!gpu)('the bending stencils solved together on the GPU', () => {
 
   // The Peirce cantilever (ASTM D1388) at 16 faces, as the CPU kernels' test (core global-bending.test.ts) has it:
   // leather's bending length within 3 % of (B/(ρ_A·g))^⅓. Its light, stiff strip is at rest within half a second:
-  // read after 60 frames it is 0.994 on the CPU (0.994 at 30 and 120 too) and on the GPU; with one Gauss–Seidel pass
-  // a substep 0.46 then.
+  // read after 30 frames it is 0.994 on the CPU (0.994 at 20, 60 and 120 too) and on the GPU; with one Gauss–Seidel
+  // pass a substep 0.55 then (0.65 at 20, 0.46 at 60: still sinking, far out of the 3 % from frame 10 on, 0.87).
   test('the cantilever at 16 faces: leather within 3 % of its bending length, as on the CPU', async () => {
     let scene = setScenePath(builtinScene('cantilever'), 'material.fabric', 'leather');
     scene = setScenePath(scene, 'solver.bending', 'hinges');
@@ -186,7 +186,7 @@ describe.skipIf(!gpu)('the bending stencils solved together on the GPU', () => {
     scene = setScenePath(scene, 'cloth.resolution', 16);
     const sim = new Simulation(scene, { kernel: 'ts' });
     sim.useBackend(await GpuBackend.create(gpu!.device, sim.model));
-    sim.advance(60);
+    sim.advance(30);
     await sim.sync();
     const t = sim.report().test;
     sim.dispose();

@@ -94,12 +94,13 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
   it.each(DROPS)('a cloth dropped on a %s comes to rest outside it', (_name, shape, exact) => {
     const colliders: ColliderSpec[] = [shape, { type: 'floor', height: 0 }];
     // 12 faces per side (8 cm triangles: triangle contact runs at every edge of the mesh), 3 s: landed and settled;
-    // mass-spring 4 s (on the cube, since its stability limit became local and left the springs up to 3× stiffer, it
-    // was still sliding over an edge at 3 s: RMS speed where it touches 0.14 m/s at 2 s, 0.051 at 3 s, 0.0013 at 4 s)
+    // mass-spring on the cube 4 s (since its stability limit became local and left the springs up to 3× stiffer, it
+    // was still sliding over an edge at 3 s: RMS speed where it touches 0.14 m/s at 2 s, 0.051 at 3 s, 0.0013 at 4 s;
+    // on the icosphere and the terrain it has stopped by 3 s: 0.0020 and 0.0016 m/s, as at 4 s)
     const sc = validateScene({ cloth: { resolution: 12, position: [0, 0.9, 0] }, material: cotton, solver: { type: solver }, colliders });
     const sim = new Simulation(sc, { kernel, meshes });
     expect(sim.kernel).toBe(kernel);
-    sim.advance(solver === 'mass-spring' ? 240 : 180);
+    sim.advance(solver === 'mass-spring' && shape.type === 'mesh' && shape.mesh === 'cube.obj' ? 240 : 180);
     expect(sim.state.positions.every(Number.isFinite)).toBe(true);
     const { depth, nearest } = penetration(sim, exact);
     expect(depth).toBeLessThanOrEqual(sc.cloth.thickness);
