@@ -4,7 +4,7 @@
 // hinges with the clamp's held hinges on their free side, gravity; the clamp fixed; no contact:
 // scripts/pd-solver.mjs newtonStatic) from where the run left the cloth: the nearest equilibrium. Prints the drape
 // coefficient and folds before and after, how far Newton moved the particles, the energies, and the particles that
-// end up inside the pedestal (where contact, left out, would have acted).
+// end up inside the pedestal or within the cloth's thickness of it (where contact, left out, would have acted).
 //   npx tsc -p tsconfig.build.json && node scripts/drape-equilibrium.mjs [--stretch gauss-seidel|global]
 //     [--fabric F] [--resolution R] [--newton N (the most Newton iterations, 400)]
 import { builtinScene, measureTest, resolveParams, scenePins, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
@@ -29,7 +29,7 @@ const pd = new PDSolver(model, withHeldHinges(model, params, pinned), pinned, si
 const start = Float64Array.from(pd.x);
 const r = newtonStatic(pd, Number(arg('newton', '400')));
 const after = measureTest(model, { positions: pd.x, pinned }, scene);
-let moved = 0, inside = 0;
+let moved = 0, inside = 0, near = 0;
 const pedestal = scene.colliders.find((c) => c.type === 'cylinder');
 for (let i = 0; i < n; i++) {
   const j = 3 * i;
@@ -37,11 +37,14 @@ for (let i = 0; i < n; i++) {
   if (pedestal) {
     const [cx, cy, cz] = pedestal.center, radial = Math.hypot(pd.x[j] - cx, pd.x[j + 2] - cz);
     if (radial < pedestal.radius - 1e-3 && Math.abs(pd.x[j + 1] - cy) < pedestal.height / 2 - 1e-3) inside++;
+    // within the cloth's thickness of the pedestal (its side, its top or the rim between), where contact would push
+    const out = Math.max(radial - pedestal.radius, 0), above = Math.max(Math.abs(pd.x[j + 1] - cy) - pedestal.height / 2, 0);
+    if (!pinned[i] && Math.hypot(out, above) < scene.cloth.thickness) near++;
   }
 }
 const shown = (t) => `drape coefficient ${t.drapeCoefficient.toFixed(3)}, folds ${t.folds}`;
 console.log(`${arg('fabric', 'cotton')}, ${scene.cloth.resolution} cells, stretch ${scene.solver.stretch}: ` +
   `after the run ${shown(before.test)} (elastic ${before.energy.elastic.toExponential(3)} J, gravitational ${before.energy.gravitational.toExponential(5)} J); ` +
   `Newton (${r.iterations} iterations, energy ${r.energy.toExponential(5)} J, gradient ${r.gnorm.toExponential(1)}): ${shown(after)}, ` +
-  `the particles moved by up to ${(1000 * moved).toFixed(1)} mm, ${inside} inside the pedestal`);
+  `the particles moved by up to ${(1000 * moved).toFixed(1)} mm, ${inside} inside the pedestal, ${near} free ones within the cloth's thickness (${(1000 * scene.cloth.thickness).toFixed(1)} mm) of it`);
 sim.dispose();
