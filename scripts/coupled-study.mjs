@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // Issue 10: the global stretch step and the global bending step solved together instead of split (docs/physics.md,
-// "The standard fabric tests", "Solving both together: three prototypes"). Prototypes outside the core: the TypeScript
+// "The standard fabric tests", "Solving both together: the prototypes"). Prototypes outside the core: the TypeScript
 // kernel runs the scene with its two global phases replaced by one of
 //   split      the library's own split (stretch pass, then bending step): the baseline
 //   sweep      the scene as it is (springs swept one at a time, the hinges solved together)
@@ -8,6 +8,8 @@
 //              share a (stretch) or 1 − a (bending) of the inertia M/h² and the penalty c·M/h² on x = z, the scaled
 //              dual u carried from substep to substep (at rest the fixed point is the coupled equilibrium exactly)
 //              [--a 0.5] [--c 10] [--iterations 3] [--relax ω (u += ω·(x − z))] [--reset (u = 0 each substep)]
+//              [--from xi|prev (what the first iteration's bending step is pulled to, with u: the prediction without
+//              gravity, x + h·v, or the positions at the substep's start; both the fixed point at rest)]
 //              [--contact-inside (the colliders' contact on x inside each iteration, before the dual's update)]
 //              [--contact-dual (u gains what the contact after the substep moved, as if its last update had seen it)]
 //   admm-q     the same with the penalty c·(M/h² + Q) (Q: the stencils' elastic Hessian on the free particles), so the
@@ -263,7 +265,7 @@ function coupledStep(model, state, params, frame) {
       for (let j = 0; j < n3; j++) if (free(j)) u[j] += RELAX * (prev[j] - w.last[j]);
     }
     for (let it = 0; it < ITERATIONS; it++) {
-      const from = it === 0 ? xi : x;
+      const from = it === 0 ? (arg('from', 'xi') === 'prev' ? prev : xi) : x;
       for (let j = 0; j < n3; j++) t[j] = free(j) ? ((1 - a) * y[j] + pen * (from[j] + u[j])) / (1 - a + pen) : y[j];
       bendingStep(w.bending, pinned, t, prev, z, h);
       for (let j = 0; j < n3; j++) t[j] = free(j) ? (a * y[j] + pen * (z[j] - u[j])) / (a + pen) : y[j];
@@ -293,7 +295,7 @@ function coupledStep(model, state, params, frame) {
       }
     };
     for (let it = 0; it < ITERATIONS; it++) {
-      const from = it === 0 ? xi : x;
+      const from = it === 0 ? (arg('from', 'xi') === 'prev' ? prev : xi) : x;
       for (let j = 0; j < n3; j++) t[j] = free(j) ? ((1 - a) * y[j] + pen * (from[j] + u[j])) / (1 - a + pen) : y[j];
       inertiaTerms(zSystem, pinned, t, h);
       pinnedStencilTerms(zSystem.b, zSystem.row, w.bending, pinned, t);
@@ -370,7 +372,7 @@ for (let done = 0; done < frames; done += chunk) {
 }
 const ms = (performance.now() - t0) / frames;
 const { test, energy } = sim.report();
-const options = { 'admm-q': `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX}${flag('reset') ? ' reset' : ''}`, admm: `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX}${flag('reset') ? ' reset' : ''}`, balanced: `dir ${DIR} passes ${PASSES}`, corrected: `passes ${PASSES} carry ${CARRY}` }[mode] ?? '';
+const options = { 'admm-q': `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX}${flag('reset') ? ' reset' : ''}`, admm: `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX} from ${arg('from', 'xi')}${flag('reset') ? ' reset' : ''}`, balanced: `dir ${DIR} passes ${PASSES}`, corrected: `passes ${PASSES} carry ${CARRY}` }[mode] ?? '';
 console.log(`${mode} ${options} | ${sceneName} ${fabric} ${scene.cloth.resolution} faces, ${scene.solver.substeps} substeps: ${reading(test)}, ` +
   `elastic ${energy.elastic.toExponential(3)} J, kinetic ${energy.kinetic.toExponential(1)} J, ${ms.toFixed(1)} ms/frame`);
 console.log((flag("trace") ? trace : trace.slice(-6)).join(" | "));
