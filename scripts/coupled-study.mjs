@@ -21,9 +21,10 @@
 //   corrected  the split, then P passes of the springs and the stencils in one matrix (a third factor) from the
 //              prediction, the springs' directions from the split's result [--passes P] [--carry ω (directions from
 //              the split's result less b, b += ω·(the split's result − the corrected one − b) each substep; 0)]
-// and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds), the elastic
+// and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds, the hanging
+// 1 m sheet's elongation and middle strain over theory, rubber or cotton, 32 faces), the elastic
 // and kinetic energy, and ms per frame; then the reading every 0.5 s over the last 3 s.
-//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick]
+//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick|hanging]
 //     [--fabric F] [--resolution R] [--substeps S] [--set path=value ...] [--no-pedestal (cusick without its pedestal collider: the clamp
 //     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [options of the mode]
 import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
@@ -34,6 +35,7 @@ import { BendingSystem, solveGlobalBending } from '../dist/core/solvers/global-b
 import { StretchSystem, solveGlobalStretch } from '../dist/core/solvers/global-stretch.js';
 import { PrefactoredSystem } from '../dist/core/solvers/prefactored.js';
 import { REFERENCE_SOLVER } from '../dist/core/solvers/sparse.js';
+import { hangingScene, hangingTheory, measureHanging } from './solver-study-common.mjs';
 
 const arg = (name, fallback) => {
   const i = process.argv.indexOf(`--${name}`);
@@ -347,11 +349,14 @@ if (mode !== 'split' && mode !== 'sweep') {
   REFERENCE[PHASE.globalBending] = () => {};
 }
 
-const sceneName = arg('scene', 'cantilever'), cusick = sceneName === 'cusick';
+const sceneName = arg('scene', 'cantilever'), cusick = sceneName === 'cusick', hanging = sceneName === 'hanging';
 const fabric = arg('fabric', 'cotton'), spec = FABRICS[fabric];
 const cTheory = Math.cbrt(spec.bendingRigidity / (spec.arealDensity * 9.81));
-let scene = setScenePath(builtinScene(sceneName), 'solver.stretch', mode === 'sweep' ? 'gauss-seidel' : 'global');
-scene = setScenePath(scene, 'material.fabric', fabric);
+// hanging: the 1 m sheet of scripts/hanging-strain.mjs (solver-study-common.mjs), its bending the hinges solved together
+let scene = hanging
+  ? setScenePath(hangingScene(fabric, 32, 20, 1, 'hinges', 'global'), 'solver.bendingSolve', 'global')
+  : setScenePath(builtinScene(sceneName), 'material.fabric', fabric);
+scene = setScenePath(scene, 'solver.stretch', mode === 'sweep' ? 'gauss-seidel' : 'global');
 if (arg('resolution')) scene = setScenePath(scene, 'cloth.resolution', Number(arg('resolution')));
 if (arg('substeps')) scene = setScenePath(scene, 'solver.substeps', Number(arg('substeps')));
 for (let i = process.argv.indexOf('--set'); i >= 0; i = process.argv.indexOf('--set', i + 1)) {
@@ -361,8 +366,14 @@ for (let i = process.argv.indexOf('--set'); i >= 0; i = process.argv.indexOf('--
 if (flag('no-pedestal')) scene = { ...scene, colliders: scene.colliders.filter((c) => c.type !== 'cylinder') };
 scene = validateScene(scene);
 const sim = new Simulation(scene, { kernel: 'ts' });
-const reading = (test) => (cusick ? `DC ${test.drapeCoefficient.toFixed(3)} folds ${test.folds}` : `c/c_theory ${(test.bendingLength / cTheory).toFixed(3)}`);
-const frames = Math.round(scene.duration * 60), trace = [];
+const reading = (test) => {
+  if (hanging) {
+    const m = measureHanging(sim.state.positions, scene.cloth.resolution), th = hangingTheory(fabric);
+    return `elongation / theory ${(m.elongation / th.elongation).toFixed(3)}, middle strain / theory ${(m.strainMid / th.strainMid).toFixed(3)}`;
+  }
+  return cusick ? `DC ${test.drapeCoefficient.toFixed(3)} folds ${test.folds}` : `c/c_theory ${(test.bendingLength / cTheory).toFixed(3)}`;
+};
+const frames = Math.round((scene.duration ?? 6) * 60), trace = [];
 const t0 = performance.now();
 const chunk = flag("trace") ? 3 : 30;
 for (let done = 0; done < frames; done += chunk) {
