@@ -32,7 +32,7 @@ import { bendingStencils } from '../dist/core/model.js';
 import { REFERENCE } from '../dist/core/reference.js';
 import { PHASE } from '../dist/core/schedule.js';
 import { BendingSystem, solveGlobalBending } from '../dist/core/solvers/global-bending.js';
-import { StretchSystem, solveGlobalStretch } from '../dist/core/solvers/global-stretch.js';
+import { addSpringTerms, StretchSystem, solveGlobalStretch } from '../dist/core/solvers/global-stretch.js';
 import { PrefactoredSystem } from '../dist/core/solvers/prefactored.js';
 import { REFERENCE_SOLVER } from '../dist/core/solvers/sparse.js';
 import { hangingScene, hangingTheory, measureHanging } from './solver-study-common.mjs';
@@ -107,34 +107,6 @@ function inertiaTerms(system, pinned, t, h) {
   }
 }
 
-/** b += each spring's projection at `cur` (the local step), its damping and its pinned ends (global-stretch.ts). */
-function springTerms(b, row, stretch, pinned, t, prev, cur, h) {
-  const { springs, k, rest, damping } = stretch;
-  for (let s = 0; s < k.length; s++) {
-    const a = springs[2 * s], c = springs[2 * s + 1], ja = 3 * a, jc = 3 * c;
-    const dx = cur[ja] - cur[jc], dy = cur[ja + 1] - cur[jc + 1], dz = cur[ja + 2] - cur[jc + 2];
-    const len = Math.sqrt(dx * dx + dy * dy + dz * dz), f = len > 1e-12 ? (k[s] * rest[s]) / len : 0;
-    let px = 0, py = 0, pz = 0;
-    const ds = damping[s] / h;
-    if (ds > 0) {
-      const ux = dx - (prev[ja] - prev[jc]), uy = dy - (prev[ja + 1] - prev[jc + 1]), uz = dz - (prev[ja + 2] - prev[jc + 2]);
-      const along = len > 1e-12 ? (ux * dx + uy * dy + uz * dz) / (len * len) : 0;
-      px = ds * (dx - along * dx); py = ds * (dy - along * dy); pz = ds * (dz - along * dz);
-    }
-    const pa = pinned[a], pc = pinned[c], w = k[s] + ds;
-    if (!pa) {
-      const q = 3 * row[a];
-      b[q] += f * dx + px; b[q + 1] += f * dy + py; b[q + 2] += f * dz + pz;
-      if (pc) { b[q] += w * t[jc]; b[q + 1] += w * t[jc + 1]; b[q + 2] += w * t[jc + 2]; }
-    }
-    if (!pc) {
-      const q = 3 * row[c];
-      b[q] -= f * dx + px; b[q + 1] -= f * dy + py; b[q + 2] -= f * dz + pz;
-      if (pa) { b[q] += w * t[ja]; b[q + 1] += w * t[ja + 1]; b[q + 2] += w * t[ja + 2]; }
-    }
-  }
-}
-
 /** b −= the stencils' terms of their pinned particles, on their free ones (global-bending.ts). */
 function pinnedStencilTerms(b, row, bending, pinned, t) {
   const { stiffness, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = bending;
@@ -168,7 +140,7 @@ function solveInto(system, pinned, t, out, product, prev) {
 /** One Projective Dynamics pass of the springs towards t, the local step at `cur`. */
 function stretchStep(stretch, pinned, t, prev, cur, out, h) {
   inertiaTerms(stretch, pinned, t, h);
-  springTerms(stretch.b, stretch.row, stretch, pinned, t, prev, cur, h);
+  addSpringTerms(stretch.b, stretch.row, stretch, pinned, t, prev, cur, h);
   solveInto(stretch, pinned, t, out);
 }
 
@@ -182,7 +154,7 @@ function bendingStep(bending, pinned, t, prev, out, h) {
 /** One pass of the springs and the stencils in one matrix towards t, the local step at `cur`. */
 function bothStep(both, pinned, t, prev, cur, out, h) {
   inertiaTerms(both, pinned, t, h);
-  springTerms(both.b, both.row, both.stretch, pinned, t, prev, cur, h);
+  addSpringTerms(both.b, both.row, both.stretch, pinned, t, prev, cur, h);
   pinnedStencilTerms(both.b, both.row, both.bending, pinned, t);
   solveInto(both, pinned, t, out, both.bending.damped ? both.product : undefined, prev);
 }
@@ -305,7 +277,7 @@ function coupledStep(model, state, params, frame) {
       solveInto(zSystem, pinned, t, z, w.bending.damped ? zSystem.product : undefined, prev);
       for (let j = 0; j < n3; j++) t[j] = free(j) ? (a * y[j] + pen * (z[j] - u[j])) / (a + pen) : y[j];
       inertiaTerms(xSystem, pinned, t, h);
-      springTerms(xSystem.b, xSystem.row, w.stretch, pinned, t, prev, z, h);
+      addSpringTerms(xSystem.b, xSystem.row, w.stretch, pinned, t, prev, z, h);
       penaltyTerms(xSystem, z, -1);
       solveInto(xSystem, pinned, t, x);
       for (let j = 0; j < n3; j++) u[j] += RELAX * (x[j] - z[j]);

@@ -135,14 +135,13 @@ export function solveGlobalStretch(
 ): void {
   const pinned = state.pinned;
   const system = globalStretchSystem(model, params, pinned, h);
-  const { y, x: cur, b, row, springs, k, rest, mass, chol, previous } = system;
+  const { y, x: cur, b, row, mass, chol, previous } = system;
   const x = state.positions, r = state.residuals, xp = state.previousPositions, rp = state.previousResiduals;
   const n = mass.length;
   for (let j = 0; j < 3 * n; j++) {
     cur[j] = y[j] = x[j] + r[j];
     previous[j] = xp[j] + rp[j];
   }
-  const damping = system.damping;
   const g = system.grabbed(state);
   const inertia = 1 / (h * h);
   for (let pass = 0; pass < passes; pass++) {
@@ -152,33 +151,7 @@ export function solveGlobalStretch(
       const w = pinned[i] ? 1 : mass[i] * inertia;
       b[q] = w * y[j]; b[q + 1] = w * y[j + 1]; b[q + 2] = w * y[j + 2];
     }
-    for (let s = 0; s < k.length; s++) {
-      const a = springs[2 * s], c = springs[2 * s + 1];
-      const ja = 3 * a, jc = 3 * c;
-      const dx = cur[ja] - cur[jc], dy = cur[ja + 1] - cur[jc + 1], dz = cur[ja + 2] - cur[jc + 2];
-      const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
-      const f = len > 1e-12 ? (k[s] * rest[s]) / len : 0;
-      // damping, a second projective term on the same pair: its target is the current relative position less its
-      // motion along the spring since the substep's start (u: that motion), so only the stretching rate is damped
-      let px = 0, py = 0, pz = 0;
-      const ds = damping[s] / h;
-      if (ds > 0) {
-        const ux = dx - (previous[ja] - previous[jc]), uy = dy - (previous[ja + 1] - previous[jc + 1]), uz = dz - (previous[ja + 2] - previous[jc + 2]);
-        const along = len > 1e-12 ? (ux * dx + uy * dy + uz * dz) / (len * len) : 0;
-        px = ds * (dx - along * dx); py = ds * (dy - along * dy); pz = ds * (dz - along * dz);
-      }
-      const pa = pinned[a], pc = pinned[c], w = k[s] + ds;
-      if (!pa) {
-        const q = 3 * row[a];
-        b[q] += f * dx + px; b[q + 1] += f * dy + py; b[q + 2] += f * dz + pz;
-        if (pc) { b[q] += w * y[jc]; b[q + 1] += w * y[jc + 1]; b[q + 2] += w * y[jc + 2]; }
-      }
-      if (!pc) {
-        const q = 3 * row[c];
-        b[q] -= f * dx + px; b[q + 1] -= f * dy + py; b[q + 2] -= f * dz + pz;
-        if (pa) { b[q] += w * y[ja]; b[q + 1] += w * y[ja + 1]; b[q + 2] += w * y[ja + 2]; }
-      }
-    }
+    addSpringTerms(b, row, system, pinned, y, previous, cur, h);
     solver.solve3(chol, b);
     // hold the grabbed particle where the grab put it (the unconstrained solution corrected along z)
     if (g >= 0) system.hold(g, y[3 * g], y[3 * g + 1], y[3 * g + 2]);
@@ -192,5 +165,45 @@ export function solveGlobalStretch(
     if (pinned[i] || i === g) continue;
     const j = 3 * i;
     x[j] = Math.fround(cur[j] - r[j]); x[j + 1] = Math.fround(cur[j + 1] - r[j + 1]); x[j + 2] = Math.fround(cur[j + 2] - r[j + 2]);
+  }
+}
+
+/**
+ * The springs' part of the global step's right-hand side, added to b (three coordinates interleaved, by the system's
+ * rows): each spring's projection d_s at the positions `cur` (the local step), its damping term, and the terms of a
+ * pinned end at `target` (where the pinned particles are) on its free end; `previous`: the positions at the substep's
+ * start (the damping's reference). By particle, xyz [m].
+ */
+export function addSpringTerms(
+  b: Float64Array, row: Int32Array, system: StretchSystem, pinned: Uint8Array,
+  target: Float64Array, previous: Float64Array, cur: Float64Array, h: number,
+): void {
+  const { springs, k, rest, damping } = system;
+  for (let s = 0; s < k.length; s++) {
+    const a = springs[2 * s], c = springs[2 * s + 1];
+    const ja = 3 * a, jc = 3 * c;
+    const dx = cur[ja] - cur[jc], dy = cur[ja + 1] - cur[jc + 1], dz = cur[ja + 2] - cur[jc + 2];
+    const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
+    const f = len > 1e-12 ? (k[s] * rest[s]) / len : 0;
+    // damping, a second projective term on the same pair: its target is the current relative position less its
+    // motion along the spring since the substep's start (u: that motion), so only the stretching rate is damped
+    let px = 0, py = 0, pz = 0;
+    const ds = damping[s] / h;
+    if (ds > 0) {
+      const ux = dx - (previous[ja] - previous[jc]), uy = dy - (previous[ja + 1] - previous[jc + 1]), uz = dz - (previous[ja + 2] - previous[jc + 2]);
+      const along = len > 1e-12 ? (ux * dx + uy * dy + uz * dz) / (len * len) : 0;
+      px = ds * (dx - along * dx); py = ds * (dy - along * dy); pz = ds * (dz - along * dz);
+    }
+    const pa = pinned[a], pc = pinned[c], w = k[s] + ds;
+    if (!pa) {
+      const q = 3 * row[a];
+      b[q] += f * dx + px; b[q + 1] += f * dy + py; b[q + 2] += f * dz + pz;
+      if (pc) { b[q] += w * target[jc]; b[q + 1] += w * target[jc + 1]; b[q + 2] += w * target[jc + 2]; }
+    }
+    if (!pc) {
+      const q = 3 * row[c];
+      b[q] -= f * dx + px; b[q + 1] -= f * dy + py; b[q + 2] -= f * dz + pz;
+      if (pa) { b[q] += w * target[ja]; b[q + 1] += w * target[ja + 1]; b[q + 2] += w * target[ja + 2]; }
+    }
   }
 }
