@@ -8,10 +8,13 @@
 //              share a (stretch) or 1 − a (bending) of the inertia M/h² and the penalty c·M/h² on x = z, the scaled
 //              dual u carried from substep to substep (at rest the fixed point is the coupled equilibrium exactly)
 //              [--a 0.5] [--c 10] [--iterations 3] [--relax ω (u += ω·(x − z))] [--reset (u = 0 each substep)]
-//              [--from xi|prev (what the first iteration's bending step is pulled to, with u: the prediction without
-//              gravity, x + h·v, or the positions at the substep's start; both the fixed point at rest)]
+//              [--from xi|prev|y (what the first iteration's bending step is pulled to, with u: the prediction without
+//              gravity, x + h·v, the positions at the substep's start, or the prediction; xi and prev damp free motion:
+//              --scene fall)]
 //              [--contact-inside (the colliders' contact on x inside each iteration, before the dual's update)]
 //              [--contact-dual (u gains what the contact after the substep moved, as if its last update had seen it)]
+//              [--contact-carry (the particles' contact push carried into the next substep's prediction as a force,
+//              friction bounded by it: carriedContact below)]
 //   admm-q     the same with the penalty c·(M/h² + Q) (Q: the stencils' elastic Hessian on the free particles), so the
 //              stretch copy's matrix holds c·Q and the bending copy's (1 + c)·Q (same options)
 //   balanced   balanced splitting (Speth, Green, MacNamara & Strang 2013): the stretch step with the bending force at
@@ -22,9 +25,10 @@
 //              prediction, the springs' directions from the split's result [--passes P] [--carry ω (directions from
 //              the split's result less b, b += ω·(the split's result − the corrected one − b) each substep; 0)]
 // and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds, the hanging
-// 1 m sheet's elongation and middle strain over theory, rubber or cotton, 32 faces), the elastic
+// 1 m sheet's elongation and middle strain over theory, rubber or cotton, 32 faces; for `fall`, a free cloth's fall
+// over 0.5 s as a share of ½gt², 1 where the step keeps free motion), the elastic
 // and kinetic energy, and ms per frame; then the reading every 0.5 s over the last 3 s.
-//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick|hanging]
+//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick|hanging|fall]
 //     [--fabric F] [--resolution R] [--substeps S] [--set path=value ...] [--no-pedestal (cusick without its pedestal collider: the clamp
 //     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [options of the mode]
 import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
@@ -43,6 +47,7 @@ const arg = (name, fallback) => {
 };
 const flag = (name) => process.argv.includes(`--${name}`);
 const mode = arg('mode', 'admm');
+if (!['prev', 'y', 'xi'].includes(arg('from', 'xi'))) throw new Error(`--from: prev, y or xi, got ${arg('from')}`);
 if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced or corrected, got ${mode}`);
 const SHARE = Number(arg('a', '0.5')), PENALTY = Number(arg('c', '10')), ITERATIONS = Number(arg('iterations', '3'));
 const RELAX = Number(arg('relax', '1')), CARRY = Number(arg('carry', '0')), PASSES = Number(arg('passes', '1')), DIR = arg('dir', 'y');
@@ -98,34 +103,6 @@ class CombinedSystem extends PrefactoredSystem {
 
 // --- the right-hand sides' parts, by the system's rows; t: the target positions (pinned: where they are) --------
 
-/** b ← (M/h²)·t on the free rows, t on the pinned ones (masses: the system's own, scaled by its inertia share). */
-function inertiaTerms(system, pinned, t, h) {
-  const { b, row, mass } = system, inertia = 1 / (h * h);
-  for (let i = 0; i < mass.length; i++) {
-    const q = 3 * row[i], j = 3 * i, w = pinned[i] ? 1 : mass[i] * inertia;
-    b[q] = w * t[j]; b[q + 1] = w * t[j + 1]; b[q + 2] = w * t[j + 2];
-  }
-}
-
-/** b −= the stencils' terms of their pinned particles, on their free ones (global-bending.ts). */
-function pinnedStencilTerms(b, row, bending, pinned, t) {
-  const { stiffness, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = bending;
-  for (let s = 0; s < pinnedCount; s++) {
-    const e = pinnedStencils[s], ke = stiffness[e];
-    for (let l = offsets[e]; l < offsets[e + 1]; l++) {
-      const c = vertices[l];
-      if (!pinned[c]) continue;
-      const jc = 3 * c;
-      for (let p = offsets[e]; p < offsets[e + 1]; p++) {
-        const a = vertices[p];
-        if (pinned[a]) continue;
-        const v = weights[p] * weights[l] * ke, q = 3 * row[a];
-        b[q] -= v * t[jc]; b[q + 1] -= v * t[jc + 1]; b[q + 2] -= v * t[jc + 2];
-      }
-    }
-  }
-}
-
 /** Solves (+ the stencils' damping P·prev where given) and writes the solution by particle (pinned: t). */
 function solveInto(system, pinned, t, out, product, prev) {
   const { b, row, chol } = system;
@@ -139,23 +116,23 @@ function solveInto(system, pinned, t, out, product, prev) {
 
 /** One Projective Dynamics pass of the springs towards t, the local step at `cur`. */
 function stretchStep(stretch, pinned, t, prev, cur, out, h) {
-  inertiaTerms(stretch, pinned, t, h);
+  stretch.inertiaTerms(pinned, t, h);
   addSpringTerms(stretch.b, stretch.row, stretch, pinned, t, prev, cur, h);
   solveInto(stretch, pinned, t, out);
 }
 
 /** The backward-Euler step of the stencils towards t. */
 function bendingStep(bending, pinned, t, prev, out, h) {
-  inertiaTerms(bending, pinned, t, h);
-  pinnedStencilTerms(bending.b, bending.row, bending, pinned, t);
+  bending.inertiaTerms(pinned, t, h);
+  bending.pinnedStencilTerms(pinned, t);
   solveInto(bending, pinned, t, out, bending.damped ? bending.pullMatrix : undefined, prev);
 }
 
 /** One pass of the springs and the stencils in one matrix towards t, the local step at `cur`. */
 function bothStep(both, pinned, t, prev, cur, out, h) {
-  inertiaTerms(both, pinned, t, h);
+  both.inertiaTerms(pinned, t, h);
   addSpringTerms(both.b, both.row, both.stretch, pinned, t, prev, cur, h);
-  pinnedStencilTerms(both.b, both.row, both.bending, pinned, t);
+  both.bending.pinnedStencilTerms(pinned, t, both.b, both.row);
   solveInto(both, pinned, t, out, both.bending.damped ? both.product : undefined, prev);
 }
 
@@ -226,7 +203,7 @@ function coupledStep(model, state, params, frame) {
   // the prediction, the substep's start, and the prediction without gravity
   const c = state.substeps === 0 ? 0.5 : 1;
   for (let j = 0; j < n3; j++) {
-    y[j] = p[j] + r[j];
+    y[j] = p[j] + r[j] + (carry && free(j) ? carry[j] : 0);
     prev[j] = pp[j] + rp[j];
     xi[j] = free(j) ? y[j] - c * h * h * params.gravity[j % 3] : y[j];
   }
@@ -239,7 +216,7 @@ function coupledStep(model, state, params, frame) {
       for (let j = 0; j < n3; j++) if (free(j)) u[j] += RELAX * (prev[j] - w.last[j]);
     }
     for (let it = 0; it < ITERATIONS; it++) {
-      const from = it === 0 ? (arg('from', 'xi') === 'prev' ? prev : xi) : x;
+      const from = it === 0 ? { prev, y, xi }[arg('from', 'xi')] : x;
       for (let j = 0; j < n3; j++) t[j] = free(j) ? ((1 - a) * y[j] + pen * (from[j] + u[j])) / (1 - a + pen) : y[j];
       bendingStep(w.bending, pinned, t, prev, z, h);
       for (let j = 0; j < n3; j++) t[j] = free(j) ? (a * y[j] + pen * (z[j] - u[j])) / (a + pen) : y[j];
@@ -269,14 +246,14 @@ function coupledStep(model, state, params, frame) {
       }
     };
     for (let it = 0; it < ITERATIONS; it++) {
-      const from = it === 0 ? (arg('from', 'xi') === 'prev' ? prev : xi) : x;
+      const from = it === 0 ? { prev, y, xi }[arg('from', 'xi')] : x;
       for (let j = 0; j < n3; j++) t[j] = free(j) ? ((1 - a) * y[j] + pen * (from[j] + u[j])) / (1 - a + pen) : y[j];
-      inertiaTerms(zSystem, pinned, t, h);
-      pinnedStencilTerms(zSystem.b, zSystem.row, w.bending, pinned, t);
+      zSystem.inertiaTerms(pinned, t, h);
+      w.bending.pinnedStencilTerms(pinned, t, zSystem.b, zSystem.row);
       penaltyTerms(zSystem, from, 1);
       solveInto(zSystem, pinned, t, z, w.bending.damped ? zSystem.product : undefined, prev);
       for (let j = 0; j < n3; j++) t[j] = free(j) ? (a * y[j] + pen * (z[j] - u[j])) / (a + pen) : y[j];
-      inertiaTerms(xSystem, pinned, t, h);
+      xSystem.inertiaTerms(pinned, t, h);
       addSpringTerms(xSystem.b, xSystem.row, w.stretch, pinned, t, prev, z, h);
       penaltyTerms(xSystem, z, -1);
       solveInto(xSystem, pinned, t, x);
@@ -316,6 +293,46 @@ function coupledStep(model, state, params, frame) {
   }
 }
 
+// --contact-carry: the normal push of the particles' contact carried into the next substep's prediction, as a force
+// (an accumulated normal impulse, warm-started), and friction bounded by it (a prototype of collideParticles for
+// static shapes; C per particle, displacement units: the force is m·C/h²)
+let carry = null;
+function carriedContact(model, state, params, frame) {
+  const h = frame.h, x = state.positions, xp = state.previousPositions, w = state.invMass, n = model.particleCount;
+  const recover = params.depenetrationSpeed * h, th = params.perCloth.thickness[0];
+  const mu = params.perCloth.friction[0], muS = params.perCloth.staticFriction[0];
+  carry ??= new Float64Array(3 * n);
+  const normal = new Float64Array(3);
+  for (let i = 0; i < n; i++) {
+    if (w[i] === 0) continue;
+    const j = 3 * i;
+    let kept = 0, nx = 0, ny = 0, nz = 0;
+    for (const shape of params.colliders) {
+      const d = shape.signedDistance(x[j], x[j + 1], x[j + 2], normal, th + 1);
+      const cn = Math.max(0, carry[j] * normal[0] + carry[j + 1] * normal[1] + carry[j + 2] * normal[2]);
+      if (d >= th + cn) continue;
+      const mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
+      const mn = mx * normal[0] + my * normal[1] + mz * normal[2];
+      let depth = 0, press = cn - (d - th);
+      if (d < th) {
+        const movedIn = Math.max(-mn, 0), overlap = th - d;
+        depth = Math.min(overlap, movedIn + recover);
+        const over = overlap - movedIn;
+        press = cn + (over <= 0 ? overlap : movedIn + Math.max(0, Math.min(over, 2 * recover - over)));
+      }
+      const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2], tl = Math.hypot(tx, ty, tz);
+      const s = tl < 1e-12 ? 0 : tl < muS * press ? 1 : Math.min((mu * press) / tl, 1);
+      x[j] += depth * normal[0] - s * tx; x[j + 1] += depth * normal[1] - s * ty; x[j + 2] += depth * normal[2] - s * tz;
+      const made = Math.min(mn + depth, depth);
+      if (made > 0) { xp[j] += made * normal[0]; xp[j + 1] += made * normal[1]; xp[j + 2] += made * normal[2]; }
+      kept = Math.max(0, cn + depth - Math.max(0, d - th));
+      nx = normal[0]; ny = normal[1]; nz = normal[2];
+    }
+    carry[j] = kept * nx; carry[j + 1] = kept * ny; carry[j + 2] = kept * nz;
+  }
+}
+if (flag('contact-carry')) REFERENCE[PHASE.contact] = carriedContact;
+
 if (mode !== 'split' && mode !== 'sweep') {
   REFERENCE[PHASE.globalStretch] = coupledStep;
   REFERENCE[PHASE.globalBending] = () => {};
@@ -325,9 +342,13 @@ const sceneName = arg('scene', 'cantilever'), cusick = sceneName === 'cusick', h
 const fabric = arg('fabric', 'cotton'), spec = FABRICS[fabric];
 const cTheory = Math.cbrt(spec.bendingRigidity / (spec.arealDensity * 9.81));
 // hanging: the 1 m sheet of scripts/hanging-strain.mjs (solver-study-common.mjs), its bending the hinges solved together
+// fall: a free 1 m cloth (8 faces) falling for 0.5 s, nothing to strain it: the reading is how far it fell over ½gt²
+const fall = sceneName === 'fall';
 let scene = hanging
   ? setScenePath(hangingScene(fabric, 32, 20, 1, 'hinges', 'global'), 'solver.bendingSolve', 'global')
-  : setScenePath(builtinScene(sceneName), 'material.fabric', fabric);
+  : fall
+    ? { cloth: { resolution: 8, position: [0, 1.2, 0] }, colliders: [], pins: [], material: { fabric }, solver: { bending: 'hinges', bendingSolve: 'global' }, duration: 0.5 }
+    : setScenePath(builtinScene(sceneName), 'material.fabric', fabric);
 scene = setScenePath(scene, 'solver.stretch', mode === 'sweep' ? 'gauss-seidel' : 'global');
 if (arg('resolution')) scene = setScenePath(scene, 'cloth.resolution', Number(arg('resolution')));
 if (arg('substeps')) scene = setScenePath(scene, 'solver.substeps', Number(arg('substeps')));
@@ -338,7 +359,9 @@ for (let i = process.argv.indexOf('--set'); i >= 0; i = process.argv.indexOf('--
 if (flag('no-pedestal')) scene = { ...scene, colliders: scene.colliders.filter((c) => c.type !== 'cylinder') };
 scene = validateScene(scene);
 const sim = new Simulation(scene, { kernel: 'ts' });
+const startHeight = sim.state.positions[1] + sim.state.residuals[1];
 const reading = (test) => {
+  if (fall) return `fallen / ½gt² ${((startHeight - sim.state.positions[1] - sim.state.residuals[1]) / (0.5 * 9.81 * sim.state.time ** 2)).toFixed(4)}`;
   if (hanging) {
     const m = measureHanging(sim.state.positions, scene.cloth.resolution), th = hangingTheory(fabric);
     return `elongation / theory ${(m.elongation / th.elongation).toFixed(3)}, middle strain / theory ${(m.strainMid / th.strainMid).toFixed(3)}`;

@@ -54,6 +54,8 @@ export class BendingSystem extends PrefactoredSystem {
   damped = false;
   /** the positions at the substep's start (+ residuals), xyz per particle [m] */
   readonly start: Float64Array;
+  /** the positions the step starts from (+ residuals), xyz per particle [m] */
+  readonly target: Float64Array;
   /** the stencils with stiffness that hold a pinned particle and a free one, for the pins of the factor: the first `pinnedCount` */
   readonly pinnedStencils: Int32Array;
   pinnedCount = 0;
@@ -96,6 +98,7 @@ export class BendingSystem extends PrefactoredSystem {
       diagonal: new Float64Array(n), start: rowStart, cols, values: new Float64Array(cols.length), row: this.row, version: 0,
     };
     this.start = new Float64Array(3 * n);
+    this.target = new Float64Array(3 * n);
     this.pinnedStencils = new Int32Array(m);
   }
 
@@ -170,6 +173,29 @@ export class BendingSystem extends PrefactoredSystem {
     }
     chol.factor();
   }
+
+  /**
+   * Subtracts from b (after inertiaTerms) the terms of the stencils' pinned particles, at t (by particle, xyz [m]), on
+   * their free particles: a pinned particle's part of K·Kᵀ/α moves to the right-hand side. By default into this
+   * system's b by its rows; `into` and `rows`: another system's over the same particles.
+   */
+  pinnedStencilTerms(pinned: Uint8Array, t: ArrayLike<number>, into: Float64Array = this.b, rows: Int32Array = this.row): void {
+    const { stiffness, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = this, b = into, row = rows;
+    for (let s = 0; s < pinnedCount; s++) {
+      const e = pinnedStencils[s], ke = stiffness[e];
+      for (let l = offsets[e]; l < offsets[e + 1]; l++) {
+        const c = vertices[l];
+        if (!pinned[c]) continue;
+        const jc = 3 * c, px = t[jc], py = t[jc + 1], pz = t[jc + 2];
+        for (let k = offsets[e]; k < offsets[e + 1]; k++) {
+          const a = vertices[k];
+          if (pinned[a]) continue;
+          const v = weights[k] * weights[l] * ke, q = 3 * row[a];
+          b[q] -= v * px; b[q + 1] -= v * py; b[q + 2] -= v * pz;
+        }
+      }
+    }
+  }
 }
 
 /**
@@ -234,28 +260,11 @@ export function solveGlobalBending(
   const system = globalBendingSystem(model, params, state.pinned, h);
   if (!system) return;
   const pinned = state.pinned;
-  const { b, row, mass, chol, stiffness, pinnedStencils, pinnedCount, stencils: { offsets, vertices, weights } } = system;
+  const { b, row, mass, chol, target } = system;
   const x = state.positions, r = state.residuals, n = mass.length;
-  const inertia = 1 / (h * h);
-  for (let i = 0; i < n; i++) {
-    const q = 3 * row[i], j = 3 * i, w = pinned[i] ? 1 : mass[i] * inertia;
-    b[q] = w * (x[j] + r[j]); b[q + 1] = w * (x[j + 1] + r[j + 1]); b[q + 2] = w * (x[j + 2] + r[j + 2]);
-  }
-  // a pinned particle's terms move to the right-hand side of its stencils' free particles
-  for (let s = 0; s < pinnedCount; s++) {
-    const e = pinnedStencils[s], ke = stiffness[e];
-    for (let l = offsets[e]; l < offsets[e + 1]; l++) {
-      const c = vertices[l];
-      if (!pinned[c]) continue;
-      const jc = 3 * c, px = x[jc] + r[jc], py = x[jc + 1] + r[jc + 1], pz = x[jc + 2] + r[jc + 2];
-      for (let k = offsets[e]; k < offsets[e + 1]; k++) {
-        const a = vertices[k];
-        if (pinned[a]) continue;
-        const v = weights[k] * weights[l] * ke, q = 3 * row[a];
-        b[q] -= v * px; b[q + 1] -= v * py; b[q + 2] -= v * pz;
-      }
-    }
-  }
+  for (let j = 0; j < 3 * n; j++) target[j] = x[j] + r[j];
+  system.inertiaTerms(pinned, target, h);
+  system.pinnedStencilTerms(pinned, target);
   // damping: the free particles pulled towards the stencils' shapes at the substep's start, + P·x_prev (in the solve)
   const { start } = system;
   if (system.damped) {
@@ -264,7 +273,7 @@ export function solveGlobalBending(
   }
   const g = system.grabbed(state);
   solver.solve3(chol, b, system.damped ? system.pullMatrix : undefined, start);
-  if (g >= 0) system.hold(g, x[3 * g] + r[3 * g], x[3 * g + 1] + r[3 * g + 1], x[3 * g + 2] + r[3 * g + 2]);
+  if (g >= 0) system.hold(g, target[3 * g], target[3 * g + 1], target[3 * g + 2]);
   for (let i = 0; i < n; i++) {
     if (pinned[i] || i === g) continue;
     const q = 3 * row[i], j = 3 * i;

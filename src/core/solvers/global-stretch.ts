@@ -143,14 +143,9 @@ export function solveGlobalStretch(
     previous[j] = xp[j] + rp[j];
   }
   const g = system.grabbed(state);
-  const inertia = 1 / (h * h);
   for (let pass = 0; pass < passes; pass++) {
     // right-hand side: inertia, pinned rows, then each spring's projection d_s (local step) and pinned neighbours
-    for (let i = 0; i < n; i++) {
-      const q = 3 * row[i], j = 3 * i;
-      const w = pinned[i] ? 1 : mass[i] * inertia;
-      b[q] = w * y[j]; b[q + 1] = w * y[j + 1]; b[q + 2] = w * y[j + 2];
-    }
+    system.inertiaTerms(pinned, y, h);
     addSpringTerms(b, row, system, pinned, y, previous, cur, h);
     solver.solve3(chol, b);
     // hold the grabbed particle where the grab put it (the unconstrained solution corrected along z)

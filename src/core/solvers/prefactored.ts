@@ -53,6 +53,18 @@ export class PrefactoredSystem {
     for (let i = 0; i < mass.length; i++) chol.add(row[i], row[i], pinned[i] ? 1 : mass[i] * inertia);
   }
 
+  /**
+   * Sets b to the inertia's part of the right-hand side for substep h: M/h²·t on a free particle's rows, t on a pinned
+   * one's (its row is the identity); t by particle, xyz [m].
+   */
+  inertiaTerms(pinned: Uint8Array, t: ArrayLike<number>, h: number): void {
+    const { b, row, mass } = this, inertia = 1 / (h * h);
+    for (let i = 0; i < mass.length; i++) {
+      const q = 3 * row[i], j = 3 * i, w = pinned[i] ? 1 : mass[i] * inertia;
+      b[q] = w * t[j]; b[q + 1] = w * t[j + 1]; b[q + 2] = w * t[j + 2];
+    }
+  }
+
   /** Whether the factor is for these pins and this h. */
   current(pinned: Uint8Array, h: number): boolean {
     if (h !== this.h) return false;
