@@ -30,7 +30,8 @@
 // and kinetic energy, and ms per frame; then the reading every 0.5 s over the last 3 s.
 //   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick|hanging|fall]
 //     [--fabric F] [--resolution R] [--substeps S] [--set path=value ...] [--no-pedestal (cusick without its pedestal collider: the clamp
-//     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [options of the mode]
+//     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [--newton N (then Newton
+//     on the model's static energy from the end state, as drape-equilibrium.mjs: the nearest equilibrium)] [options of the mode]
 import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
 import { bendingStencils } from '../dist/core/model.js';
 import { REFERENCE } from '../dist/core/reference.js';
@@ -39,6 +40,7 @@ import { BendingSystem, solveGlobalBending } from '../dist/core/solvers/global-b
 import { addSpringTerms, StretchSystem, solveGlobalStretch } from '../dist/core/solvers/global-stretch.js';
 import { PrefactoredSystem } from '../dist/core/solvers/prefactored.js';
 import { REFERENCE_SOLVER } from '../dist/core/solvers/sparse.js';
+import { solveDistanceConstraints } from '../dist/core/solvers/xpbd.js';
 import { hangingScene, hangingTheory, measureHanging } from './solver-study-common.mjs';
 
 const arg = (name, fallback) => {
@@ -48,7 +50,7 @@ const arg = (name, fallback) => {
 const flag = (name) => process.argv.includes(`--${name}`);
 const mode = arg('mode', 'admm');
 if (!['prev', 'y', 'xi'].includes(arg('from', 'xi'))) throw new Error(`--from: prev, y or xi, got ${arg('from')}`);
-if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced or corrected, got ${mode}`);
+if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected', 'sweep-pd'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced, corrected or sweep-pd, got ${mode}`);
 const SHARE = Number(arg('a', '0.5')), PENALTY = Number(arg('c', '10')), ITERATIONS = Number(arg('iterations', '3'));
 const RELAX = Number(arg('relax', '1')), CARRY = Number(arg('carry', '0')), PASSES = Number(arg('passes', '1')), DIR = arg('dir', 'y');
 
@@ -180,7 +182,7 @@ function workFor(model, params, pinned, h) {
     work.bias.fill(0);
   }
   if (!work.bending.current(pinned, h)) work.bending.factor(work.bendingParams, pinned, h);
-  if (mode === 'corrected') {
+  if (mode === 'corrected' || mode === 'sweep-pd') {
     work.both ??= new CombinedSystem(model, params, work.stretch, work.bending);
     if (!work.both.current(pinned, h)) work.both.factor(pinned, h);
   }
@@ -271,6 +273,18 @@ function coupledStep(model, state, params, frame) {
     for (let j = 0; j < n3; j++) t[j] = free(j) ? x[j] + f[j] / (w.bending.mass[(j / 3) | 0] * inertia) : x[j];
     bendingStep(w.bending, pinned, t, prev, z, h);
     result = z;
+  } else if (mode === 'sweep-pd') {
+    // the springs swept one at a time (XPBD) and the stencils' global step (from the prediction, or with --dir xi from
+    // it without gravity), then the passes of both in one matrix from the prediction, the springs' directions from
+    // where those left the cloth
+    if (DIR === 'xi') for (let j = 0; j < n3; j++) if (free(j)) { p[j] = Math.fround(xi[j]); r[j] = xi[j] - p[j]; }
+    solveDistanceConstraints(model, state, params, h, false);
+    if (!flag('no-bend')) solveGlobalBending(model, state, params, h);
+    for (let j = 0; j < n3; j++) z[j] = p[j] + r[j];
+    for (let pass = 0; pass < PASSES; pass++) {
+      bothStep(w.both, pinned, y, prev, z, x, h);
+      z.set(x);
+    }
   } else {
     // corrected: the library's split, then the passes of both from the prediction, the directions from its result
     const { split, bias } = w;
@@ -380,8 +394,23 @@ const ms = (performance.now() - t0) / frames;
 const { test, energy } = sim.report();
 const options = { 'admm-q': `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX}${flag('reset') ? ' reset' : ''}`, admm: `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} relax ${RELAX} from ${arg('from', 'xi')}${flag('reset') ? ' reset' : ''}`, balanced: `dir ${DIR} passes ${PASSES}`, corrected: `passes ${PASSES} carry ${CARRY}` }[mode] ?? '';
 console.log(`${mode} ${options} | ${sceneName} ${fabric} ${scene.cloth.resolution} faces, ${scene.solver.substeps} substeps: ${reading(test)}, ` +
-  `elastic ${energy.elastic.toExponential(3)} J, kinetic ${energy.kinetic.toExponential(1)} J, ${ms.toFixed(1)} ms/frame`);
+  `elastic ${energy.elastic.toExponential(3)} J (bending ${energy.bending.toExponential(3)}), largest strain ${(100 * sim.report().maxStrain).toFixed(2)} %, kinetic ${energy.kinetic.toExponential(1)} J, ${ms.toFixed(1)} ms/frame`);
 console.log((flag("trace") ? trace : trace.slice(-6)).join(" | "));
+if (arg('newton')) {
+  // Newton's method on the model's static energy (no contact, the pins fixed) from where the run left the cloth: the
+  // nearest equilibrium (as scripts/drape-equilibrium.mjs)
+  const { PDSolver, newtonStatic, withHeldHinges } = await import('./pd-solver.mjs');
+  const { measureTest, resolveParams, scenePins } = await import('../dist/core/index.js');
+  const model = sim.model, pinned = new Uint8Array(model.particleCount);
+  for (const i of scenePins(model, scene)) pinned[i] = 1;
+  const pd = new PDSolver(model, withHeldHinges(model, resolveParams(model, scene), pinned), pinned, sim.state.positions, { substeps: 1, iterations: 1 });
+  const start = Float64Array.from(pd.x), r = newtonStatic(pd, Number(arg('newton')));
+  let moved = 0;
+  for (let j = 0; j < start.length; j += 3) moved = Math.max(moved, Math.hypot(pd.x[j] - start[j], pd.x[j + 1] - start[j + 1], pd.x[j + 2] - start[j + 2]));
+  const t = measureTest(model, { positions: pd.x, pinned }, scene);
+  console.log(`Newton (${r.iterations} iterations, energy ${r.energy.toExponential(5)} J, gradient ${r.gnorm.toExponential(1)}): ` +
+    `${cusick ? `DC ${t.drapeCoefficient.toFixed(3)} folds ${t.folds}` : `c/c_theory ${(t.bendingLength / cTheory).toFixed(3)}`}, moved by up to ${(1000 * moved).toFixed(1)} mm`);
+}
 if (flag('where')) {
   // the fastest particles at the end: radius from the axis, height, speed
   const v = sim.state.velocities, x = sim.state.positions, speeds = [];
