@@ -19,9 +19,8 @@
 //   npx tsc -p tsconfig.build.json && node scripts/hanging-strain.mjs
 //   options: --fabrics rubber,cotton  --faces 16,32,64,128  --settings 20x1,20x5,100x1 (more: 20x20,100x4,200x1)
 //            --budget 8 (seconds per case; the defaults run ~3 min)  --kernel wasm|ts  --bending springs|hinges
-//            --stretch gauss-seidel|global|hybrid (solver.stretch)  --bending-solve gauss-seidel|global (solver.bendingSolve,
-//            with --bending hinges|laplacian)
-import { setScenePath, Simulation, validateScene } from '../dist/core/index.js';
+//            --stretch gauss-seidel|global (solver.stretch)
+import { Simulation } from '../dist/core/index.js';
 import { arg, hangingScene, hangingTheory, measureHanging, pct } from './solver-study-common.mjs';
 
 const fabrics = arg('fabrics', 'rubber,cotton').split(',');
@@ -31,9 +30,8 @@ const budget = Number(arg('budget', '8')) * 1000;
 const kernel = arg('kernel', 'wasm');
 const bending = arg('bending', 'springs');
 const stretch = arg('stretch', 'gauss-seidel');
-const bendingSolve = arg('bending-solve', 'gauss-seidel');
 
-console.log(`XPBD hanging sheet, kernel ${kernel}, bending ${bending} (solved ${bendingSolve}), stretch ${stretch}; ratios are measured / theory (1.00 = as the fabric says)`);
+console.log(`XPBD hanging sheet, kernel ${kernel}, bending ${bending}, stretch ${stretch}; ratios are measured / theory (1.00 = as the fabric says)`);
 for (const fabric of fabrics) {
   const th = hangingTheory(fabric);
   console.log(`\n${fabric}: theory elongation ${(1000 * th.elongation).toFixed(3)} mm, middle strain ${pct(th.strainMid, 3)}, top strain ${pct(th.strainTop, 3)}`);
@@ -41,7 +39,7 @@ for (const fabric of fabrics) {
   console.log('|---|---|---|---|---|---|---|---|---|---|');
   for (const faces of facesList) {
     for (const [substeps, iterations] of settings) {
-      const scene = validateScene(setScenePath(hangingScene(fabric, faces, substeps, iterations, bending, stretch), 'solver.bendingSolve', bendingSolve));
+      const scene = hangingScene(fabric, faces, substeps, iterations, bending, stretch);
       const sim = new Simulation(scene, { kernel });
       const mgl = scene.material.mass * 9.81 * 1;
       const t0 = performance.now();

@@ -75,31 +75,27 @@ export const PHASE = {
   grab: 5,
   /** substep: the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system */
   globalStretch: 6,
-  /** substep: the prediction kept for the hybrid's pass in one matrix (solvers/joint.ts) */
-  keepPrediction: 7,
   /** substep: XPBD distance constraints, colour batch by colour batch */
-  distance: 8,
+  distance: 7,
   /** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
-  bending: 9,
+  bending: 8,
   /** substep: the bending stencils solved together: their backward-Euler step, one solve of the prefactored system */
-  globalBending: 10,
-  /** substep: a Projective Dynamics pass of the springs and the bending stencils in one prefactored matrix from the prediction, the springs' directions from where the sweep and the bending left the cloth (solvers/joint.ts) */
-  jointPass: 11,
+  globalBending: 9,
   /** substep: long-range attachments to the nearest pin */
-  tethers: 12,
+  tethers: 10,
   /** substep: stretch limiting of structural and shear springs */
-  stretchLimit: 13,
+  stretchLimit: 11,
   /** substep: the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts) */
-  selfContact: 14,
+  selfContact: 12,
   /** substep: particle contact with friction against every collider, in order */
-  contact: 15,
+  contact: 13,
   /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-  contactTriangles: 16,
+  contactTriangles: 14,
   /** frame-end: v = (x − x_prev)/h of the last substep */
-  velocities: 17,
+  velocities: 15,
 } as const;
 /** Phases in the schedule. */
-export const PHASE_COUNT = 18;
+export const PHASE_COUNT = 16;
 /** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */
 export const SCHEDULE = [
   { id: 0, name: 'begin', scope: 'frame-start', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v' },
@@ -109,20 +105,18 @@ export const SCHEDULE = [
   { id: 4, name: 'carry', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'carried', repeat: [], doc: 'particles pinned to a collider carried to where it is at the end of the substep' },
   { id: 5, name: 'grab', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'grab', repeat: [], doc: 'the grabbed particle carried part of the way to its target' },
   { id: 6, name: 'globalStretch', scope: 'substep', solvers: ['xpbd'], when: 'global', repeat: ['xpbd'], doc: 'the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system' },
-  { id: 7, name: 'keepPrediction', scope: 'substep', solvers: ['xpbd'], when: 'hybrid', repeat: [], doc: 'the prediction kept for the hybrid\'s pass in one matrix (solvers/joint.ts)' },
-  { id: 8, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'sweep', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
-  { id: 9, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'stencils', repeat: ['xpbd'], doc: 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch' },
-  { id: 10, name: 'globalBending', scope: 'substep', solvers: ['xpbd'], when: 'stencils-global', repeat: [], doc: 'the bending stencils solved together: their backward-Euler step, one solve of the prefactored system' },
-  { id: 11, name: 'jointPass', scope: 'substep', solvers: ['xpbd'], when: 'hybrid', repeat: [], doc: 'a Projective Dynamics pass of the springs and the bending stencils in one prefactored matrix from the prediction, the springs\' directions from where the sweep and the bending left the cloth (solvers/joint.ts)' },
-  { id: 12, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
-  { id: 13, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
-  { id: 14, name: 'selfContact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'self', repeat: [], doc: 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)' },
-  { id: 15, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
-  { id: 16, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
-  { id: 17, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
+  { id: 7, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'local', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
+  { id: 8, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'stencils', repeat: ['xpbd'], doc: 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch' },
+  { id: 9, name: 'globalBending', scope: 'substep', solvers: ['xpbd'], when: 'stencils-global', repeat: [], doc: 'the bending stencils solved together: their backward-Euler step, one solve of the prefactored system' },
+  { id: 10, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
+  { id: 11, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
+  { id: 12, name: 'selfContact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'self', repeat: [], doc: 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)' },
+  { id: 13, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
+  { id: 14, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
+  { id: 15, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
 ] as const;
 /** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */
-export const KERNEL_MAX_ITERATIONS = 63;
+export const KERNEL_MAX_ITERATIONS = 255;
 
 /** Byte offsets of the WebAssembly kernel's control block (see CONTROL in gen-layout.mjs). */
 export const CTRL = {
@@ -154,45 +148,45 @@ export const CTRL = {
   DESC: 48,
   /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
   TRACE_COUNT: 56,
-  /** i32 × 18: the ids of those phases, in the order thread 0 ran them */
+  /** i32 × 16: the ids of those phases, in the order thread 0 ran them */
   TRACE: 60,
   /** f64: substep length [s] */
-  H: 136,
+  H: 128,
   /** f64: ½ on the very first substep (Taylor start), else 1 */
-  TAYLOR: 144,
+  TAYLOR: 136,
   /** f64 × 3: gravitational acceleration [m/s²] */
-  GRAVITY: 152,
+  GRAVITY: 144,
   /** f64 × 3: where the grabbed particle is this substep [m] */
-  GRAB_AT: 176,
+  GRAB_AT: 168,
   /** f64: stretchFactor [-] */
-  STRETCH: 200,
+  STRETCH: 192,
   /** f64: damping β [N·s/m] */
-  DAMPING: 208,
+  DAMPING: 200,
   /** f64: contact thickness [m] */
-  THICKNESS: 216,
+  THICKNESS: 208,
   /** f64: kinetic friction coefficient [-] */
-  FRICTION: 224,
+  FRICTION: 216,
   /** f64: static friction coefficient [-] */
-  STATIC_FRICTION: 232,
+  STATIC_FRICTION: 224,
   /** f64: depenetrationSpeed [m/s] */
-  DEPENETRATION: 240,
+  DEPENETRATION: 232,
   /** f64: triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m] */
-  TRIANGLE_REACH: 248,
+  TRIANGLE_REACH: 240,
   /** f64: triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m] */
-  TRIANGLE_RECOVER: 256,
+  TRIANGLE_RECOVER: 248,
   /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-  COLLIDER_RECORDS: 264,
+  COLLIDER_RECORDS: 256,
   /** i32: sequence number of the open phase (grows by one per phase, wraps) */
-  PHASE: 15680,
+  PHASE: 15616,
   /** i32: chunks of the open phase completed and reported */
-  DONE: 15744,
+  DONE: 15680,
   /** i32: threads asleep waiting for a phase */
-  PHASE_SLEEPERS: 15808,
+  PHASE_SLEEPERS: 15744,
   /** i64 × 16: per thread, on its own line: (phase << 32) | next chunk of its run (stride RUN_STRIDE) */
-  RUNS: 15872,
+  RUNS: 15808,
 } as const;
 
 /** Bytes of the control block; the kernel's arrays follow it. */
-export const CTRL_BYTES = 16896;
+export const CTRL_BYTES = 16832;
 /** Bytes between the threads' run counters. */
 export const RUN_STRIDE = 64;

@@ -69,8 +69,8 @@ describe('substeps for self-contact (solver.selfContactSpeed)', () => {
 });
 
 describe('the solves together have a size limit (GLOBAL_SOLVE_MOST_PARTICLES)', () => {
-  const params = (res: number, stretch: 'global' | 'hybrid' = 'global') => {
-    const scene = validateScene({ cloth: { resolution: res }, solver: { bending: 'hinges', bendingSolve: 'global', stretch } });
+  const params = (res: number) => {
+    const scene = validateScene({ cloth: { resolution: res }, solver: { bending: 'hinges', bendingSolve: 'global', stretch: 'global' } });
     return resolveParams(modelFor(scene), scene);
   };
 
@@ -84,9 +84,5 @@ describe('the solves together have a size limit (GLOBAL_SOLVE_MOST_PARTICLES)', 
       'whose factor takes seconds to make on the CPU whenever a parameter or a pin changes, and a larger one far more time and memory — ' +
       "so this one is solved one constraint at a time ('gauss-seidel'); for the solve together, a coarser mesh (cloth.resolution)");
     expect(p.clamps[1]).toMatch(/^solver\.bendingSolve 'global' at 66,564 particles: /);
-    // the hybrid's pass in one matrix too
-    expect(params(256, 'hybrid')).toMatchObject({ stretch: 'hybrid', clamps: [] });
-    expect(params(257, 'hybrid')).toMatchObject({ stretch: 'gauss-seidel' });
-    expect(params(257, 'hybrid').clamps[0]).toMatch(/^solver\.stretch 'hybrid' at 66,564 particles: a cloth solved together has at most 66,049/);
   });
 });

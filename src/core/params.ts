@@ -323,9 +323,9 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
   let stretch = scene.solver.type === 'xpbd' ? scene.solver.stretch : 'gauss-seidel';
   let bendingSolve = bending !== 'springs' ? scene.solver.bendingSolve : 'gauss-seidel';
   for (const [path, asked] of [['solver.stretch', stretch], ['solver.bendingSolve', bendingSolve]] as const) {
-    if (asked === 'gauss-seidel' || !large) continue;
+    if (asked !== 'global' || !large) continue;
     clamps.push(
-      `${path} '${asked}' at ${n.toLocaleString('en')} particles: a cloth solved together has at most ` +
+      `${path} 'global' at ${n.toLocaleString('en')} particles: a cloth solved together has at most ` +
       `${GLOBAL_SOLVE_MOST_PARTICLES.toLocaleString('en')} (257 × 257), whose factor takes seconds to make on the CPU ` +
       'whenever a parameter or a pin changes, and a larger one far more time and memory — so this one is solved one ' +
       'constraint at a time (\'gauss-seidel\'); for the solve together, a coarser mesh (cloth.resolution)',

@@ -13,7 +13,6 @@ import { accumulateSpringForces } from './solvers/mass-spring.js';
 import { collideSelf } from './self-contact.js';
 import { solveGlobalBending } from './solvers/global-bending.js';
 import { solveGlobalStretch } from './solvers/global-stretch.js';
-import { keepPrediction, solveJointPass } from './solvers/joint.js';
 import { solveBending, solveDistanceConstraints } from './solvers/xpbd.js';
 import type { ClothState } from './state.js';
 import { solveTethers } from './tethers.js';
@@ -42,7 +41,6 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
   carry: (_model, state, params, frame) => carryPinned(state, params, state.time, state.time + frame.h),
   grab: (_model, state, _params, frame) => moveGrabbed(state, frame.grabFrom, frame.grabTo, (frame.sub + 1) / frame.substeps),
   globalStretch: (model, state, params, frame) => solveGlobalStretch(model, state, params, frame.h, phasePasses(PHASE.globalStretch, params)),
-  keepPrediction: (model, state, params, frame) => keepPrediction(model, state, params, frame.h),
   distance(model, state, params, frame) {
     const passes = phasePasses(PHASE.distance, params);
     // λ accumulates across the passes of a substep (it starts from zero in each)
@@ -57,7 +55,6 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
     for (let it = 0; it < passes; it++) solveBending(model, state, params, frame.h, accumulate);
   },
   globalBending: (model, state, params, frame) => solveGlobalBending(model, state, params, frame.h),
-  jointPass: (model, state, params, frame) => solveJointPass(model, state, params, frame.h),
   tethers: (_model, state, params) => solveTethers(state, params),
   stretchLimit(model, state, params) {
     const passes = phasePasses(PHASE.stretchLimit, params);

@@ -82,11 +82,8 @@ export type SceneTest =
 export type SolverType = 'xpbd' | 'mass-spring';
 /** `solver.bending`: the xpbd solver's bending model */
 export type BendingModel = 'springs' | StencilModel;
-/**
- * `solver.stretch`: how the xpbd solver solves its springs (one at a time; together: solvers/global-stretch.ts; one at
- * a time, then corrected by a pass in one matrix with the bending stencils: solvers/joint.ts)
- */
-export type StretchSolve = 'gauss-seidel' | 'global' | 'hybrid';
+/** `solver.stretch`: how the xpbd solver solves its springs (one at a time, or together: solvers/global-stretch.ts) */
+export type StretchSolve = 'gauss-seidel' | 'global';
 /** `solver.bendingSolve`: how the xpbd solver solves a stencil bending model (one stencil at a time, or together: solvers/global-bending.ts) */
 export type BendingSolve = 'gauss-seidel' | 'global';
 

@@ -21,7 +21,7 @@ function expected(solver: SolverType, substeps: number, wind: boolean, grabbed: 
   const runs = (name: PhaseName) => {
     const p = PHASES[PHASE[name]];
     // the scenes here solve their springs one at a time (solver.stretch 'gauss-seidel': the 'local' phases)
-    return p.solvers.includes(solver) && (p.when === 'always' || p.when === 'local' || p.when === 'sweep' || (p.when === 'wind' && wind) || (p.when === 'grab' && grabbed));
+    return p.solvers.includes(solver) && (p.when === 'always' || p.when === 'local' || (p.when === 'wind' && wind) || (p.when === 'grab' && grabbed));
   };
   const of = (scope: string) => PHASES.filter((p) => p.scope === scope && runs(p.name)).map((p) => p.name);
   return [...of('frame-start'), ...Array.from({ length: substeps }, () => of('substep')).flat(), ...of('frame-end')];
@@ -83,13 +83,6 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     const sim = new Simulation(windyScene('xpbd'), { kernel: 'wasm' });
     const log = loggedFrame(sim, true);
     const substep = ['wind (reference)', 'integrate', 'grab', 'distance', 'tethers', 'stretchLimit', 'contact'];
-    expect(log.names()).toEqual(['begin (reference)', ...substep, ...substep, ...substep, 'velocities (reference)']);
-  });
-
-  it('the kernel, solver.stretch "hybrid": the sweep and the pass in one matrix (with its solves) its own, the prediction kept in the reference', () => {
-    const sim = new Simulation(windyScene('xpbd', (s) => { s.solver.stretch = 'hybrid'; s.solver.bending = 'hinges'; s.solver.bendingSolve = 'global'; }), { kernel: 'wasm' });
-    const log = loggedFrame(sim, false);
-    const substep = ['wind (reference)', 'integrate', 'keepPrediction (reference)', 'distance', 'globalBending', 'jointPass', 'contact'];
     expect(log.names()).toEqual(['begin (reference)', ...substep, ...substep, ...substep, 'velocities (reference)']);
   });
 
@@ -165,19 +158,12 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     // self-contact (solver.selfContact false)
     expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
-        ~(1 << PHASE.bending) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.keepPrediction) &
-        ~(1 << PHASE.jointPass) & ~(1 << PHASE.selfContact));
+        ~(1 << PHASE.bending) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.selfContact));
     // with the springs solved together, the global step instead of the sweep, the tethers and the stretch limit
     const together = new Simulation(windyScene('xpbd', (s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
     expect(assignPhases({ ...remote, phases: all }, together.model, together.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
         ~(1 << PHASE.bending) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit) &
-        ~(1 << PHASE.keepPrediction) & ~(1 << PHASE.jointPass) & ~(1 << PHASE.selfContact));
-    // the hybrid: the prediction kept, the sweep, the stencils solved together, the pass in one matrix; no tethers or stretch limit
-    const hybrid = new Simulation(windyScene('xpbd', (s) => { s.solver.stretch = 'hybrid'; s.solver.bending = 'hinges'; s.solver.bendingSolve = 'global'; }), { kernel: 'ts' });
-    expect(assignPhases({ ...remote, phases: all }, hybrid.model, hybrid.params))
-      .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
-        ~(1 << PHASE.bending) & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit) &
         ~(1 << PHASE.selfContact));
     // with self-contact, its phase too: a backend without it that keeps the cloth elsewhere is refused by name
     const selfy = new Simulation(windyScene('xpbd', (s) => { s.solver.selfContact = true; }), { kernel: 'ts' });

@@ -25,10 +25,9 @@ export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
  * grabbed particle, pins a collider carries, a collider whose surface can poke between the cloth's vertices
  * (phases.ts needsTriangleContact), a stencil bending model (solver.bending 'hinges' or 'laplacian') solved one stencil at
  * a time (solver.bendingSolve 'gauss-seidel') or together ('global'), the springs solved together (solver.stretch
- * 'global'), swept one at a time ('gauss-seidel' or 'hybrid'), with the sweep's tethers and stretch limit
- * ('gauss-seidel'), or the sweep corrected by a pass in one matrix ('hybrid'), self-contact (solver.selfContact).
+ * 'global') or one at a time ('gauss-seidel'), self-contact (solver.selfContact).
  */
-export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'stencils-global' | 'global' | 'sweep' | 'local' | 'hybrid' | 'self';
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'stencils-global' | 'global' | 'local' | 'self';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -67,20 +66,12 @@ const TRIANGLE_PHASES = maskOf((p) => p.when === 'triangles');
 const STENCIL_PHASES = maskOf((p) => p.when === 'stencils');
 const GLOBAL_STENCIL_PHASES = maskOf((p) => p.when === 'stencils-global');
 const GLOBAL_PHASES = maskOf((p) => p.when === 'global');
-const SWEEP_PHASES = maskOf((p) => p.when === 'sweep');
 const LOCAL_PHASES = maskOf((p) => p.when === 'local');
-const HYBRID_PHASES = maskOf((p) => p.when === 'hybrid');
 const SELF_PHASES = maskOf((p) => p.when === 'self');
 
-/**
- * The phases the params' stretch solve leaves out: the global step ('gauss-seidel', 'hybrid'), the sweep with its
- * tethers and stretch limit ('global'), the tethers and the stretch limit ('hybrid': projecting after the pass in one
- * matrix would fight it, as after the global step), the hybrid's pass ('gauss-seidel', 'global').
- */
+/** The phases the params' stretch solve leaves out: the Gauss–Seidel distance pass or the global step. */
 function stretchExcluded(params: SimParams): number {
-  if (params.stretch === 'global') return SWEEP_PHASES | LOCAL_PHASES | HYBRID_PHASES;
-  if (params.stretch === 'hybrid') return GLOBAL_PHASES | LOCAL_PHASES;
-  return GLOBAL_PHASES | HYBRID_PHASES;
+  return params.stretch === 'global' ? LOCAL_PHASES : GLOBAL_PHASES;
 }
 
 /** The phases the params' bending leaves out: both stencil phases for the springs, else the solve not chosen. */

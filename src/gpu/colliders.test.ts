@@ -31,8 +31,6 @@ describe('sceneRefusal', () => {
     expect(sceneRefusal(validateScene({ solver: { stretch: 'global' } }))).toBeNull();
     expect(sceneRefusal(validateScene({ solver: { bending: 'hinges', bendingSolve: 'global' } }))).toBeNull();
     expect(sceneRefusal(validateScene({ solver: { bendingSolve: 'global' } }))).toBeNull();
-    // the hybrid's pass in one matrix does not (solvers/joint.ts): the app falls back to the CPU, saying why
-    expect(sceneRefusal(validateScene({ solver: { stretch: 'hybrid' } }))).toMatch(/^solver\.stretch 'hybrid' runs on the CPU only/);
     // self-contact runs on the GPU too
     expect(sceneRefusal(validateScene({ solver: { selfContact: true } }))).toBeNull();
   });

@@ -43,7 +43,6 @@ function contactRefusal(params: SimParams): string | null {
  */
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
-  if (scene.solver.stretch === 'hybrid') return "solver.stretch 'hybrid' runs on the CPU only (its pass in one matrix is not on the GPU yet)";
   const differs = differingClothField(scene);
   if (differs) return `cloths that differ in their contact or spring values run on the CPU only (${differs})`;
   return colliderRefusal(scene);

@@ -45,7 +45,7 @@ function expected(
     return p.solvers.includes('xpbd') && (p.when === 'always' || (p.when === 'wind' && wind) ||
       (p.when === 'grab' && grabbed) || (p.when === 'carried' && carried) || (p.when === 'triangles' && triangles) ||
       (p.when === 'stencils' && stencils) || (p.when === 'self' && self) ||
-      p.when === 'sweep' || p.when === 'local'); // springs one at a time (solver.stretch 'gauss-seidel')
+      p.when === 'local'); // springs one at a time (solver.stretch 'gauss-seidel')
   };
   const of = (scope: string) => PHASES.filter((p) => p.scope === scope && runs(p.name)).map((p) => p.name);
   return [...of('frame-start'), ...Array.from({ length: substeps }, () => of('substep')).flat(), ...of('frame-end')];
@@ -57,10 +57,8 @@ describe('what the GPU implements of the schedule', () => {
     // but carry, which a frame runs only for pins a collider carries (none here), triangle contact, only for a
     // collider that needs it at this mesh size (none here), and stencil bending, only for solver.bending 'hinges' or
     // 'laplacian' (one at a time or, with solver.bendingSolve 'global', together), self-contact, only for
-    // solver.selfContact (below), the global stretch step, which solver.stretch 'global' asks for: below, and the
-    // hybrid's two phases, which solver.stretch 'hybrid' asks for: below)
-    const xpbd = solverPhases('xpbd') & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.selfContact) &
-      ~(1 << PHASE.keepPrediction) & ~(1 << PHASE.jointPass);
+    // solver.selfContact (below), and the global stretch step, which solver.stretch 'global' asks for: below)
+    const xpbd = solverPhases('xpbd') & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.selfContact);
     const rare = (1 << PHASE.carry) | (1 << PHASE.contactTriangles) | (1 << PHASE.bending);
     expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(xpbd & ~rare);
     const coarse = new Simulation(windyScene((s) => { s.cloth.resolution = 1; s.colliders = [{ type: 'sphere', center: [0, 0, 0], radius: 0.3 }]; }), { kernel: 'ts' });
@@ -79,9 +77,6 @@ describe('what the GPU implements of the schedule', () => {
     const together = new Simulation(windyScene((s) => { s.solver.bending = 'hinges'; s.solver.bendingSolve = 'global'; }), { kernel: 'ts' });
     expect(assignPhases(GPU_PHASES, together.model, together.params))
       .toBe((xpbd | (1 << PHASE.globalBending)) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) & ~(1 << PHASE.bending));
-    // the hybrid (the sweep corrected by a pass in one matrix): not on the GPU, refused by name (its cloth is in GPU memory)
-    const hybrid = new Simulation(windyScene((s) => { s.solver.stretch = 'hybrid'; }), { kernel: 'ts' });
-    expect(() => assignPhases(GPU_PHASES, hybrid.model, hybrid.params)).toThrow(/it does not implement phase 'keepPrediction'/);
     // self-contact: by the GPU too
     const selfy = new Simulation(windyScene((s) => { s.solver.selfContact = true; }), { kernel: 'ts' });
     expect(assignPhases(GPU_PHASES, selfy.model, selfy.params)).toBe((xpbd | (1 << PHASE.selfContact)) & ~rare);

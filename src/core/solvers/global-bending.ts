@@ -30,7 +30,7 @@ import { bendingStencils, type BendingStencils, type ClothModel } from '../model
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
 import { PrefactoredSystem } from './prefactored.js';
-import { REFERENCE_SOLVER, type FactorSolver, type SparseCholesky, type SparseProduct } from './sparse.js';
+import { REFERENCE_SOLVER, type FactorSolver, type SparseProduct } from './sparse.js';
 
 /**
  * The ordered, factored system of one model and params (built on first use; refactored when h or the pins change).
@@ -157,16 +157,6 @@ export class BendingSystem extends PrefactoredSystem {
       for (let k = offsets[e]; k < offsets[e + 1]; k++) if (pinned[vertices[k]]) held++; else free++;
       if (held > 0 && free > 0) this.pinnedStencils[this.pinnedCount++] = e;
     }
-    this.addStencilMatrix(chol, row, pinned);
-    chol.factor();
-  }
-
-  /**
-   * Adds the stencils' part of the matrix, Σ (1 + τ/h)·K·Kᵀ/α over the free particles (the stiffness of the last
-   * factor), to a factor being assembled, by its rows: this system's, or another's over the same particles.
-   */
-  addStencilMatrix(chol: SparseCholesky, row: Int32Array, pinned: Uint8Array): void {
-    const { stiffness, stencils: { offsets, vertices, weights } } = this;
     for (let e = 0; e + 1 < offsets.length; e++) {
       if (stiffness[e] === 0) continue;
       for (let k = offsets[e]; k < offsets[e + 1]; k++) {
@@ -181,6 +171,7 @@ export class BendingSystem extends PrefactoredSystem {
         }
       }
     }
+    chol.factor();
   }
 
   /**

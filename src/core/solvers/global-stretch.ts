@@ -33,55 +33,10 @@ import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
 import { PrefactoredSystem } from './prefactored.js';
-import { REFERENCE_SOLVER, type FactorSolver, type SparseCholesky } from './sparse.js';
-
-/** The springs with stiffness of one model and params: their ends, stiffness k [N/m], rest length [m] and damping β [N·s/m]. */
-export interface SpringSet {
-  /** the two ends of each, by particle */
-  readonly springs: Int32Array;
-  readonly k: Float64Array;
-  readonly rest: Float64Array;
-  /** each spring's damping β [N·s/m] (params.springDamping: its cloth's material.damping) */
-  readonly damping: Float64Array;
-}
-
-/** The springs of `model` that have stiffness in `params` (params.stiffness > 0), in the model's order. */
-export function stiffSprings(model: ClothModel, params: SimParams): SpringSet {
-  const springCount = model.restLengths.length;
-  let m = 0;
-  for (let s = 0; s < springCount; s++) if (params.stiffness[s] > 0) m++;
-  const set = { springs: new Int32Array(2 * m), k: new Float64Array(m), rest: new Float64Array(m), damping: new Float64Array(m) };
-  m = 0;
-  for (let s = 0; s < springCount; s++) {
-    if (!(params.stiffness[s] > 0)) continue;
-    set.springs[2 * m] = model.springs[2 * s];
-    set.springs[2 * m + 1] = model.springs[2 * s + 1];
-    set.k[m] = params.stiffness[s];
-    set.rest[m] = model.restLengths[s];
-    set.damping[m] = params.springDamping[s];
-    m++;
-  }
-  return set;
-}
-
-/** The springs' graph over n particles in compressed rows (each spring joins its two ends). */
-export function springGraph(springs: Int32Array, n: number): { rowStart: Int32Array; cols: Int32Array } {
-  const m = springs.length / 2;
-  const rowStart = new Int32Array(n + 1);
-  for (let s = 0; s < 2 * m; s++) rowStart[springs[s] + 1]++;
-  for (let i = 0; i < n; i++) rowStart[i + 1] += rowStart[i];
-  const cols = new Int32Array(rowStart[n]);
-  const fill = rowStart.slice(0, n);
-  for (let s = 0; s < m; s++) {
-    const a = springs[2 * s], b = springs[2 * s + 1];
-    cols[fill[a]++] = b;
-    cols[fill[b]++] = a;
-  }
-  return { rowStart, cols };
-}
+import { REFERENCE_SOLVER, type FactorSolver } from './sparse.js';
 
 /** The ordered, factored system of one model and params (built on first use; refactored when h or the pins change). */
-export class StretchSystem extends PrefactoredSystem implements SpringSet {
+export class StretchSystem extends PrefactoredSystem {
   /** springs with stiffness, their ends and constants */
   readonly springs: Int32Array;
   readonly k: Float64Array;
@@ -97,14 +52,41 @@ export class StretchSystem extends PrefactoredSystem implements SpringSet {
 
   constructor(model: ClothModel, params: SimParams) {
     const n = model.particleCount;
-    const set = stiffSprings(model, params);
+    const springCount = model.restLengths.length;
+    let m = 0;
+    for (let s = 0; s < springCount; s++) if (params.stiffness[s] > 0) m++;
+    const springs = new Int32Array(2 * m);
+    m = 0;
+    for (let s = 0; s < springCount; s++) {
+      if (!(params.stiffness[s] > 0)) continue;
+      springs[2 * m] = model.springs[2 * s];
+      springs[2 * m + 1] = model.springs[2 * s + 1];
+      m++;
+    }
     // the graph of the springs, in compressed rows, for the ordering and the factor's pattern
-    const { rowStart, cols } = springGraph(set.springs, n);
+    const rowStart = new Int32Array(n + 1);
+    for (let s = 0; s < 2 * m; s++) rowStart[springs[s] + 1]++;
+    for (let i = 0; i < n; i++) rowStart[i + 1] += rowStart[i];
+    const cols = new Int32Array(rowStart[n]);
+    const fill = rowStart.slice(0, n);
+    for (let s = 0; s < m; s++) {
+      const a = springs[2 * s], b = springs[2 * s + 1];
+      cols[fill[a]++] = b;
+      cols[fill[b]++] = a;
+    }
     super(model, params.particleMass, rowStart, cols);
-    this.springs = set.springs;
-    this.k = set.k;
-    this.rest = set.rest;
-    this.damping = set.damping;
+    this.springs = springs;
+    this.k = new Float64Array(m);
+    this.rest = new Float64Array(m);
+    this.damping = new Float64Array(m);
+    m = 0;
+    for (let s = 0; s < springCount; s++) {
+      if (!(params.stiffness[s] > 0)) continue;
+      this.k[m] = params.stiffness[s];
+      this.rest[m] = model.restLengths[s];
+      this.damping[m] = params.springDamping[s];
+      m++;
+    }
     this.previous = new Float64Array(3 * n);
     this.y = new Float64Array(3 * n);
     this.x = new Float64Array(3 * n);
@@ -112,23 +94,15 @@ export class StretchSystem extends PrefactoredSystem implements SpringSet {
 
   /** Assembles and factors A for substep h and the pins of `pinned`. */
   factor(pinned: Uint8Array, h: number): void {
+    const { chol, row, springs, k, damping } = this;
     this.beginFactor(pinned, h);
-    addSpringMatrix(this.chol, this.row, this, pinned, h);
-    this.chol.factor();
-  }
-}
-
-/**
- * Adds the springs' part of the global step's matrix, Σ (k + β/h)·SᵀS over the free particles (a pinned end's terms
- * go to the right-hand side: addSpringTerms), to a factor being assembled, by its rows.
- */
-export function addSpringMatrix(chol: SparseCholesky, row: Int32Array, set: SpringSet, pinned: Uint8Array, h: number): void {
-  const { springs, k, damping } = set;
-  for (let s = 0; s < k.length; s++) {
-    const a = springs[2 * s], b = springs[2 * s + 1], w = k[s] + damping[s] / h;
-    if (!pinned[a]) chol.add(row[a], row[a], w);
-    if (!pinned[b]) chol.add(row[b], row[b], w);
-    if (!pinned[a] && !pinned[b]) chol.add(row[a], row[b], -w);
+    for (let s = 0; s < k.length; s++) {
+      const a = springs[2 * s], b = springs[2 * s + 1], w = k[s] + damping[s] / h;
+      if (!pinned[a]) chol.add(row[a], row[a], w);
+      if (!pinned[b]) chol.add(row[b], row[b], w);
+      if (!pinned[a] && !pinned[b]) chol.add(row[a], row[b], -w);
+    }
+    chol.factor();
   }
 }
 
@@ -196,7 +170,7 @@ export function solveGlobalStretch(
  * start (the damping's reference). By particle, xyz [m].
  */
 export function addSpringTerms(
-  b: Float64Array, row: Int32Array, system: SpringSet, pinned: Uint8Array,
+  b: Float64Array, row: Int32Array, system: StretchSystem, pinned: Uint8Array,
   target: Float64Array, previous: Float64Array, cur: Float64Array, h: number,
 ): void {
   const { springs, k, rest, damping } = system;

@@ -74,30 +74,26 @@ export const PHASE_CARRY: i32 = 4;
 export const PHASE_GRAB: i32 = 5;
 /** substep: the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system */
 export const PHASE_GLOBAL_STRETCH: i32 = 6;
-/** substep: the prediction kept for the hybrid's pass in one matrix (solvers/joint.ts) */
-export const PHASE_KEEP_PREDICTION: i32 = 7;
 /** substep: XPBD distance constraints, colour batch by colour batch */
-export const PHASE_DISTANCE: i32 = 8;
+export const PHASE_DISTANCE: i32 = 7;
 /** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
-export const PHASE_BENDING: i32 = 9;
+export const PHASE_BENDING: i32 = 8;
 /** substep: the bending stencils solved together: their backward-Euler step, one solve of the prefactored system */
-export const PHASE_GLOBAL_BENDING: i32 = 10;
-/** substep: a Projective Dynamics pass of the springs and the bending stencils in one prefactored matrix from the prediction, the springs' directions from where the sweep and the bending left the cloth (solvers/joint.ts) */
-export const PHASE_JOINT_PASS: i32 = 11;
+export const PHASE_GLOBAL_BENDING: i32 = 9;
 /** substep: long-range attachments to the nearest pin */
-export const PHASE_TETHERS: i32 = 12;
+export const PHASE_TETHERS: i32 = 10;
 /** substep: stretch limiting of structural and shear springs */
-export const PHASE_STRETCH_LIMIT: i32 = 13;
+export const PHASE_STRETCH_LIMIT: i32 = 11;
 /** substep: the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts) */
-export const PHASE_SELF_CONTACT: i32 = 14;
+export const PHASE_SELF_CONTACT: i32 = 12;
 /** substep: particle contact with friction against every collider, in order */
-export const PHASE_CONTACT: i32 = 15;
+export const PHASE_CONTACT: i32 = 13;
 /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-export const PHASE_CONTACT_TRIANGLES: i32 = 16;
+export const PHASE_CONTACT_TRIANGLES: i32 = 14;
 /** frame-end: v = (x − x_prev)/h of the last substep */
-export const PHASE_VELOCITIES: i32 = 17;
+export const PHASE_VELOCITIES: i32 = 15;
 /** Phases in the schedule. */
-export const PHASE_COUNT: i32 = 18;
+export const PHASE_COUNT: i32 = 16;
 
 // The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.
 /** sequence number of the substep's first phase: first bit */
@@ -106,16 +102,16 @@ export const DESC_SEQ_SHIFT: i64 = 0;
 export const DESC_SEQ_MASK: i64 = 4294967295;
 /** distance constraint passes: first bit */
 export const DESC_ITERATIONS_SHIFT: i64 = 32;
-/** distance constraint passes: mask after the shift (6 bits) */
-export const DESC_ITERATIONS_MASK: i64 = 63;
+/** distance constraint passes: mask after the shift (8 bits) */
+export const DESC_ITERATIONS_MASK: i64 = 255;
 /** T, the threads of the substep: first bit */
-export const DESC_THREADS_SHIFT: i64 = 38;
+export const DESC_THREADS_SHIFT: i64 = 40;
 /** T, the threads of the substep: mask after the shift (8 bits) */
 export const DESC_THREADS_MASK: i64 = 255;
 /** the phases it runs, a bit per phase id: first bit */
-export const DESC_PHASES_SHIFT: i64 = 46;
-/** the phases it runs, a bit per phase id: mask after the shift (18 bits) */
-export const DESC_PHASES_MASK: i64 = 262143;
+export const DESC_PHASES_SHIFT: i64 = 48;
+/** the phases it runs, a bit per phase id: mask after the shift (16 bits) */
+export const DESC_PHASES_MASK: i64 = 65535;
 
 // Byte offsets of the control block (from CTRL = 0).
 /** i32: bumped by thread 0 to start a substep on the helpers (they sleep on it) */
@@ -146,41 +142,41 @@ export const SPIN_LIMIT: usize = 44;
 export const DESC: usize = 48;
 /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
 export const TRACE_COUNT: usize = 56;
-/** i32 × 18: the ids of those phases, in the order thread 0 ran them */
+/** i32 × 16: the ids of those phases, in the order thread 0 ran them */
 export const TRACE: usize = 60;
 /** f64: substep length [s] */
-export const H: usize = 136;
+export const H: usize = 128;
 /** f64: ½ on the very first substep (Taylor start), else 1 */
-export const TAYLOR: usize = 144;
+export const TAYLOR: usize = 136;
 /** f64 × 3: gravitational acceleration [m/s²] */
-export const GRAVITY: usize = 152;
+export const GRAVITY: usize = 144;
 /** f64 × 3: where the grabbed particle is this substep [m] */
-export const GRAB_AT: usize = 176;
+export const GRAB_AT: usize = 168;
 /** f64: stretchFactor [-] */
-export const STRETCH: usize = 200;
+export const STRETCH: usize = 192;
 /** f64: damping β [N·s/m] */
-export const DAMPING: usize = 208;
+export const DAMPING: usize = 200;
 /** f64: contact thickness [m] */
-export const THICKNESS: usize = 216;
+export const THICKNESS: usize = 208;
 /** f64: kinetic friction coefficient [-] */
-export const FRICTION: usize = 224;
+export const FRICTION: usize = 216;
 /** f64: static friction coefficient [-] */
-export const STATIC_FRICTION: usize = 232;
+export const STATIC_FRICTION: usize = 224;
 /** f64: depenetrationSpeed [m/s] */
-export const DEPENETRATION: usize = 240;
+export const DEPENETRATION: usize = 232;
 /** f64: triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m] */
-export const TRIANGLE_REACH: usize = 248;
+export const TRIANGLE_REACH: usize = 240;
 /** f64: triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m] */
-export const TRIANGLE_RECOVER: usize = 256;
+export const TRIANGLE_RECOVER: usize = 248;
 /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-export const COLLIDER_RECORDS: usize = 264;
+export const COLLIDER_RECORDS: usize = 256;
 /** i32: sequence number of the open phase (grows by one per phase, wraps) */
-export const PHASE: usize = 15680;
+export const PHASE: usize = 15616;
 /** i32: chunks of the open phase completed and reported */
-export const DONE: usize = 15744;
+export const DONE: usize = 15680;
 /** i32: threads asleep waiting for a phase */
-export const PHASE_SLEEPERS: usize = 15808;
+export const PHASE_SLEEPERS: usize = 15744;
 /** i64 × 16: per thread, on its own line: (phase << 32) | next chunk of its run (stride RUN_STRIDE) */
-export const RUNS: usize = 15872;
+export const RUNS: usize = 15808;
 /** Bytes between the threads' run counters. */
 export const RUN_STRIDE: usize = 64;

@@ -24,7 +24,6 @@ import { SceneError } from '../scene.js';
 import { collideSelf } from '../self-contact.js';
 import { solveGlobalBending } from '../solvers/global-bending.js';
 import { solveGlobalStretch } from '../solvers/global-stretch.js';
-import { solveJointPass } from '../solvers/joint.js';
 import { createState, type ClothState } from '../state.js';
 import {
   CTRL, CTRL_BYTES, KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE,
@@ -67,7 +66,7 @@ export const KERNEL_PHASES: BackendPhases = {
   sharesMemory: true,
   solvers: ['xpbd'],
   phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.globalStretch) | (1 << PHASE.distance) | (1 << PHASE.bending) |
-    (1 << PHASE.globalBending) | (1 << PHASE.jointPass) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact) |
+    (1 << PHASE.globalBending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact) |
     (1 << PHASE.contactTriangles),
   // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
   // that read it to the reference (self-contact reads each particle's cloth: it takes any)
@@ -77,10 +76,10 @@ export const KERNEL_PHASES: BackendPhases = {
 };
 
 /**
- * The kernel's phases the host drives on the calling thread between two substep() calls: self-contact, the global
- * steps and the hybrid's pass in one matrix (their assembly in TypeScript, their triangular solves in the kernel's code).
+ * The kernel's phases the host drives on the calling thread between two substep() calls: self-contact, and the
+ * global steps (their assembly in TypeScript, their triangular solves in the kernel's code).
  */
-const HOSTED = (1 << PHASE.selfContact) | (1 << PHASE.globalStretch) | (1 << PHASE.globalBending) | (1 << PHASE.jointPass);
+const HOSTED = (1 << PHASE.selfContact) | (1 << PHASE.globalStretch) | (1 << PHASE.globalBending);
 
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
 const SPIN_LIMIT = 1 << 15;
@@ -198,7 +197,6 @@ export class XpbdKernel implements PhaseBackend {
   /** the global steps' triangular solves (made when a step first runs), one each: each keeps its factor in its memory */
   private stretchSolver: WasmFactorSolver | undefined;
   private bendingSolver: WasmFactorSolver | undefined;
-  private jointSolver: WasmFactorSolver | undefined;
   private readonly helpers: { terminate(): void }[] = [];
   private paramsSeen: SimParams | undefined;
   /** with helpers: whether a frame runs with them (thread-mode.ts) */
@@ -438,14 +436,10 @@ export class XpbdKernel implements PhaseBackend {
       this.stretchSolver ??= new WasmFactorSolver(this.instantiateSingle);
       solveGlobalStretch(model, state, params, frame.h, phasePasses(PHASE.globalStretch, params), this.stretchSolver);
       log?.push(PHASE.globalStretch, false);
-    } else if (bit === 1 << PHASE.globalBending) {
+    } else {
       this.bendingSolver ??= new WasmFactorSolver(this.instantiateSingle);
       solveGlobalBending(model, state, params, frame.h, this.bendingSolver);
       log?.push(PHASE.globalBending, false);
-    } else {
-      this.jointSolver ??= new WasmFactorSolver(this.instantiateSingle);
-      solveJointPass(model, state, params, frame.h, this.jointSolver);
-      log?.push(PHASE.jointPass, false);
     }
   }
 
