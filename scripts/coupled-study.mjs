@@ -24,11 +24,20 @@
 //   corrected  the split, then P passes of the springs and the stencils in one matrix (a third factor) from the
 //              prediction, the springs' directions from the split's result [--passes P] [--carry ω (directions from
 //              the split's result less b, b += ω·(the split's result − the corrected one − b) each substep; 0)]
+//   sweep-pd   the springs swept one at a time (XPBD), the stencils' global step, then P passes of both in one matrix
+//              from the prediction, the springs' directions from where those left the cloth [--passes P] [--carry ω (as
+//              above)]
+//              [--dir xi (the sweep and the bending from the prediction without gravity)] [--no-sweep] [--no-bend]
+//              [--spring-force (the springs' elastic force at the substep's start added, h²/m times it, before the
+//              bending step: exact at rest, explicit, and it blows up)] [--angles (the springs whose directions the
+//              sweep and the bending left farthest from the result's)]
 // and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds, the hanging
 // 1 m sheet's elongation and middle strain over theory, rubber or cotton, 32 faces; for `fall`, a free cloth's fall
-// over 0.5 s as a share of ½gt², 1 where the step keeps free motion), the elastic
+// over 0.5 s as a share of ½gt², 1 where the step keeps free motion; for `swing`, a sheet hung by one corner, the
+// centroid's height: it cannot rise above the 1.5 m of its start), the elastic
 // and kinetic energy, and ms per frame; then the reading every 0.5 s over the last 3 s.
-//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick|hanging|fall]
+//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick|hanging|fall|swing|
+//     any built-in scene (the reading: the centroid's height and the largest strain)]
 //     [--fabric F] [--resolution R] [--substeps S] [--set path=value ...] [--no-pedestal (cusick without its pedestal collider: the clamp
 //     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [--newton N (then Newton
 //     on the model's static energy from the end state, as drape-equilibrium.mjs: the nearest equilibrium)] [options of the mode]
@@ -278,13 +287,31 @@ function coupledStep(model, state, params, frame) {
     // it without gravity), then the passes of both in one matrix from the prediction, the springs' directions from
     // where those left the cloth
     if (DIR === 'xi') for (let j = 0; j < n3; j++) if (free(j)) { p[j] = Math.fround(xi[j]); r[j] = xi[j] - p[j]; }
-    solveDistanceConstraints(model, state, params, h, false);
+    if (!flag('no-sweep')) solveDistanceConstraints(model, state, params, h, false);
+    if (flag('spring-force')) {
+      // the springs' elastic force at the substep's start, h²/m times it added to what the bending step starts from:
+      // at rest (gravity, bending and springs in balance) the bending step then leaves the cloth where it was
+      const { springs, k, rest } = w.stretch, mass = params.particleMass;
+      f.fill(0);
+      for (let s2 = 0; s2 < k.length; s2++) {
+        const a = 3 * springs[2 * s2], b = 3 * springs[2 * s2 + 1];
+        const dx = prev[a] - prev[b], dy = prev[a + 1] - prev[b + 1], dz = prev[a + 2] - prev[b + 2], len = Math.hypot(dx, dy, dz);
+        const t = -k[s2] * (len - rest[s2]) / len;
+        f[a] += t * dx; f[a + 1] += t * dy; f[a + 2] += t * dz; f[b] -= t * dx; f[b + 1] -= t * dy; f[b + 2] -= t * dz;
+      }
+      for (let j = 0; j < n3; j++) if (free(j)) { const v = p[j] + r[j] + (h * h * f[j]) / mass[(j / 3) | 0]; p[j] = Math.fround(v); r[j] = v - p[j]; }
+    }
     if (!flag('no-bend')) solveGlobalBending(model, state, params, h);
-    for (let j = 0; j < n3; j++) z[j] = p[j] + r[j];
+    for (let k2 = 0; k2 < Number(arg('sweeps-after', '0')); k2++) solveDistanceConstraints(model, state, params, h, false);
+    if (flag('contact-before')) REFERENCE_CONTACT(model, state, params, frame);
+    const { split, bias } = w;
+    for (let j = 0; j < n3; j++) { split[j] = p[j] + r[j]; z[j] = split[j] - bias[j]; }
     for (let pass = 0; pass < PASSES; pass++) {
+      if (flag('angles') && pass === 0) (w.sb ??= new Float64Array(n3)).set(z);
       bothStep(w.both, pinned, y, prev, z, x, h);
       z.set(x);
     }
+    for (let j = 0; j < n3; j++) bias[j] += CARRY * (split[j] - x[j] - bias[j]);
   } else {
     // corrected: the library's split, then the passes of both from the prediction, the directions from its result
     const { split, bias } = w;
@@ -346,6 +373,7 @@ function carriedContact(model, state, params, frame) {
   }
 }
 if (flag('contact-carry')) REFERENCE[PHASE.contact] = carriedContact;
+const REFERENCE_CONTACT = REFERENCE[PHASE.contact];
 
 if (mode !== 'split' && mode !== 'sweep') {
   REFERENCE[PHASE.globalStretch] = coupledStep;
@@ -362,6 +390,9 @@ let scene = hanging
   ? setScenePath(hangingScene(fabric, 32, 20, 1, 'hinges', 'global'), 'solver.bendingSolve', 'global')
   : fall
     ? { cloth: { resolution: 8, position: [0, 1.2, 0] }, colliders: [], pins: [], material: { fabric }, solver: { bending: 'hinges', bendingSolve: 'global' }, duration: 0.5 }
+    : sceneName === 'swing'
+      // a 1 m sheet (32 faces) hung by one corner 1.5 m up, let go turned 60° out of the vertical: a fast, large turn
+      ? { cloth: { orientation: 'hanging', resolution: 32, position: [0, 1.5, 0], rotation: [60, 0, 0] }, colliders: [], pins: ['top-left'], material: { fabric }, solver: { bending: 'hinges', bendingSolve: 'global' }, duration: 2 }
     : setScenePath(builtinScene(sceneName), 'material.fabric', fabric);
 scene = setScenePath(scene, 'solver.stretch', mode === 'sweep' ? 'gauss-seidel' : 'global');
 if (arg('resolution')) scene = setScenePath(scene, 'cloth.resolution', Number(arg('resolution')));
@@ -380,6 +411,7 @@ const reading = (test) => {
     const m = measureHanging(sim.state.positions, scene.cloth.resolution), th = hangingTheory(fabric);
     return `elongation / theory ${(m.elongation / th.elongation).toFixed(3)}, middle strain / theory ${(m.strainMid / th.strainMid).toFixed(3)}`;
   }
+  if (!test) return `centroid height ${sim.report().centroid[1].toFixed(3)} m, largest strain ${(100 * sim.report().maxStrain).toFixed(1)} %`;
   return cusick ? `DC ${test.drapeCoefficient.toFixed(3)} folds ${test.folds}` : `c/c_theory ${(test.bendingLength / cTheory).toFixed(3)}`;
 };
 const frames = Math.round((scene.duration ?? 6) * 60), trace = [];
@@ -396,6 +428,19 @@ const options = { 'admm-q': `a ${SHARE} c ${PENALTY} iterations ${ITERATIONS} re
 console.log(`${mode} ${options} | ${sceneName} ${fabric} ${scene.cloth.resolution} faces, ${scene.solver.substeps} substeps: ${reading(test)}, ` +
   `elastic ${energy.elastic.toExponential(3)} J (bending ${energy.bending.toExponential(3)}), largest strain ${(100 * sim.report().maxStrain).toFixed(2)} %, kinetic ${energy.kinetic.toExponential(1)} J, ${ms.toFixed(1)} ms/frame`);
 console.log((flag("trace") ? trace : trace.slice(-6)).join(" | "));
+if (flag('angles') && work?.sb) {
+  // the springs whose directions the sweep and the bending step left farthest from the result's, in the last substep
+  const { springs, k } = work.stretch, zb = work.sb, xo = work.x, rows = [];
+  for (let s = 0; s < k.length; s++) {
+    const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+    const u = [0, 1, 2].map((c) => zb[a + c] - zb[b + c]), v = [0, 1, 2].map((c) => xo[a + c] - xo[b + c]);
+    const cos = (u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (Math.hypot(...u) * Math.hypot(...v));
+    const side = u[0] * v[1] - u[1] * v[0];
+    rows.push([Math.acos(Math.min(1, cos)) * Math.sign(side || 1), xo[a], xo[a + 1], s]);
+  }
+  rows.sort((p, q) => Math.abs(q[0]) - Math.abs(p[0]));
+  console.log(rows.slice(0, 8).map(([ang, x0, y0]) => `${(1e3 * ang).toFixed(3)} mrad at x ${(100 * x0).toFixed(2)} cm y ${(100 * y0).toFixed(2)} cm`).join('; '));
+}
 if (arg('newton')) {
   // Newton's method on the model's static energy (no contact, the pins fixed) from where the run left the cloth: the
   // nearest equilibrium (as scripts/drape-equilibrium.mjs)
