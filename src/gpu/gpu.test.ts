@@ -334,9 +334,10 @@ describe.skipIf(!gpu)('GPU physics', () => {
   });
 
   // as physics.test.ts: a step must not add energy to a cloth in fast motion (a 1 m sheet of 16 faces hung by one
-  // corner, let go 60° out of the vertical); read every 10 frames over its first half second, the fastest part of
-  // the swing (where a step that adds energy showed it: 11 J of a start of 1.8 J by 0.4 s), its kinetic + gravitational energy stays below its start, for each way the GPU solves springs and stencils
-  // (one at a time, together, both together; the CPU's test holds every setting for 2 s)
+  // corner, let go 60° out of the vertical). Read every 10 frames over its first half second, the fastest part of the
+  // swing (where a step that adds energy showed it: 11 J of a start of 1.8 J by 0.4 s), its kinetic + gravitational
+  // energy stays below its start, for each way the GPU solves springs and stencils (one at a time, together, both
+  // together; the CPU's test holds every setting for 2 s)
   test.each([
     ['gauss-seidel', 'springs', 'gauss-seidel'], ['global', 'springs', 'gauss-seidel'], ['gauss-seidel', 'hinges', 'global'], ['global', 'hinges', 'global'],
   ])('a cloth swinging from one corner, stretch %s, bending %s solved %s: kinetic + gravitational energy never above its start', async (stretch, bending, bendingSolve) => {
