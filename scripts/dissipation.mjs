@@ -3,15 +3,17 @@
 // out of the vertical, swings as a pendulum with no damping, no air and no colliders for 10 s. The swing's amplitude
 // (half the range of the centroid's horizontal position within each 2 s, about two periods) is printed per 2 s; the
 // energy of a swing goes as its amplitude², so (A_last / A_first)² is the share of its energy the integrator keeps
-// over 8 s. Per solver and substep count. (Total energy cannot show it at the defaults: XPBD's unconverged stretch
-// is itself stored energy of the same size.) Needs `npm run build` (it reads dist/).   node scripts/dissipation.mjs
+// over 8 s. Per solver, substep count and, for xpbd, how the springs and the bending are solved (one at a time or
+// together: solver.stretch, solver.bending, solver.bendingSolve). (Total energy cannot show it at the defaults:
+// XPBD's unconverged stretch is itself stored energy of the same size.) Needs `npm run build` (it reads dist/).
+//   node scripts/dissipation.mjs
 import { Simulation, validateScene } from '../dist/core/index.js';
 
-function amplitudes(solver, substeps) {
+function amplitudes(solver, substeps, settings = {}) {
   const scene = validateScene({
     cloth: { orientation: 'hanging', resolution: 16, position: [0, 1.5, 0], rotation: [40, 0, 0] },
     material: { fabric: 'cotton', damping: 0 },
-    solver: { type: solver, substeps },
+    solver: { type: solver, substeps, ...settings },
     colliders: [],
     pins: ['top-edge'],
   });
@@ -29,9 +31,18 @@ function amplitudes(solver, substeps) {
   return out;
 }
 
-console.log('| solver | substeps | swing amplitude in each 2 s [cm] | energy kept after 8 s |');
-console.log('|---|---|---|---|');
-for (const [solver, substeps] of [['xpbd', 10], ['xpbd', 20], ['xpbd', 80], ['mass-spring', 20], ['mass-spring', 80]]) {
-  const a = amplitudes(solver, substeps);
-  console.log(`| ${solver} | ${substeps} | ${a.map((v) => (100 * v).toFixed(2)).join(', ')} | ${(100 * (a[4] / a[0]) ** 2).toFixed(0)} % |`);
+console.log('| solver | substeps | springs, bending | swing amplitude in each 2 s [cm] | energy kept after 8 s |');
+console.log('|---|---|---|---|---|');
+const SOLVES = [
+  ['one at a time, skip-one springs', {}],
+  ['together, skip-one springs', { stretch: 'global' }],
+  ['one at a time, hinges together', { bending: 'hinges', bendingSolve: 'global' }],
+  ['together, hinges together', { stretch: 'global', bending: 'hinges', bendingSolve: 'global' }],
+];
+for (const [solver, substeps, solves] of [['xpbd', 10, [0]], ['xpbd', 20, [0, 1, 2, 3]], ['xpbd', 80, [0, 1, 2, 3]], ['mass-spring', 20, [0]], ['mass-spring', 80, [0]]]) {
+  for (const k of solves) {
+    const [name, settings] = SOLVES[k];
+    const a = amplitudes(solver, substeps, settings);
+    console.log(`| ${solver} | ${substeps} | ${solver === 'xpbd' ? name : 'the seed\'s'} | ${a.map((v) => (100 * v).toFixed(2)).join(', ')} | ${(100 * (a[4] / a[0]) ** 2).toFixed(0)} % |`);
+  }
 }
