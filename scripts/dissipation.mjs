@@ -38,8 +38,10 @@ const SOLVES = [
   ['together, skip-one springs', { stretch: 'global' }],
   ['one at a time, hinges together', { bending: 'hinges', bendingSolve: 'global' }],
   ['together, hinges together', { stretch: 'global', bending: 'hinges', bendingSolve: 'global' }],
+  ['together (4 passes), skip-one springs', { stretch: 'global', iterations: 4 }],
+  ['together (16 passes), skip-one springs', { stretch: 'global', iterations: 16 }],
 ];
-for (const [solver, substeps, solves] of [['xpbd', 10, [0]], ['xpbd', 20, [0, 1, 2, 3]], ['xpbd', 80, [0, 1, 2, 3]], ['mass-spring', 20, [0]], ['mass-spring', 80, [0]]]) {
+for (const [solver, substeps, solves] of [['xpbd', 10, [0]], ['xpbd', 20, [0, 1, 4, 5, 2, 3]], ['xpbd', 80, [0, 1, 2, 3]], ['mass-spring', 20, [0]], ['mass-spring', 80, [0]]]) {
   for (const k of solves) {
     const [name, settings] = SOLVES[k];
     const a = amplitudes(solver, substeps, settings);
