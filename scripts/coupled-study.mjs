@@ -24,6 +24,9 @@
 //   corrected  the split, then P passes of the springs and the stencils in one matrix (a third factor) from the
 //              prediction, the springs' directions from the split's result [--passes P] [--carry ω (directions from
 //              the split's result less b, b += ω·(the split's result − the corrected one − b) each substep; 0)]
+//   cheb       the split with its P stretch passes accelerated by Chebyshev's semi-iterative method (Wang 2015,
+//              "A Chebyshev Semi-Iterative Approach for Accelerating Projective and Position-based Dynamics")
+//              [--passes P] [--rho ρ (the estimated spectral radius of one pass, 0.95)] [--gamma γ (under-relaxation, 0.9)]
 //   sweep-pd   the springs swept one at a time (XPBD), the stencils' global step, then P passes of both in one matrix
 //              from the prediction, the springs' directions from where those left the cloth [--passes P] [--carry ω (as
 //              above)]
@@ -34,9 +37,10 @@
 // and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds, the hanging
 // 1 m sheet's elongation and middle strain over theory, rubber or cotton, 32 faces; for `fall`, a free cloth's fall
 // over 0.5 s as a share of ½gt², 1 where the step keeps free motion; for `swing`, a sheet hung by one corner, the
-// centroid's height: it cannot rise above the 1.5 m of its start), the elastic
+// centroid's height: it cannot rise above the 1.5 m of its start; for `pendulum`, dissipation.mjs's swing without
+// damping, the share of its energy kept over 8 s), the elastic
 // and kinetic energy, and ms per frame; then the reading every 0.5 s over the last 3 s.
-//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick|hanging|fall|swing|
+//   npx tsc -p tsconfig.build.json && node scripts/coupled-study.mjs --mode M [--scene cantilever|cusick|hanging|fall|swing|pendulum|
 //     any built-in scene (the reading: the centroid's height and the largest strain)]
 //     [--fabric F] [--resolution R] [--substeps S] [--set path=value ...] [--no-pedestal (cusick without its pedestal collider: the clamp
 //     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [--newton N (then Newton
@@ -59,7 +63,7 @@ const arg = (name, fallback) => {
 const flag = (name) => process.argv.includes(`--${name}`);
 const mode = arg('mode', 'admm');
 if (!['prev', 'y', 'xi'].includes(arg('from', 'xi'))) throw new Error(`--from: prev, y or xi, got ${arg('from')}`);
-if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected', 'sweep-pd'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced, corrected or sweep-pd, got ${mode}`);
+if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected', 'sweep-pd', 'cheb'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced, corrected, sweep-pd or cheb, got ${mode}`);
 const SHARE = Number(arg('a', '0.5')), PENALTY = Number(arg('c', '10')), ITERATIONS = Number(arg('iterations', '3'));
 const RELAX = Number(arg('relax', '1')), CARRY = Number(arg('carry', '0')), PASSES = Number(arg('passes', '1')), DIR = arg('dir', 'y');
 
@@ -282,6 +286,25 @@ function coupledStep(model, state, params, frame) {
     for (let j = 0; j < n3; j++) t[j] = free(j) ? x[j] + f[j] / (w.bending.mass[(j / 3) | 0] * inertia) : x[j];
     bendingStep(w.bending, pinned, t, prev, z, h);
     result = z;
+  } else if (mode === 'cheb') {
+    // the split, its stretch passes accelerated by Chebyshev's semi-iterative method (Wang 2015): the estimated spectral
+    // radius ρ of one pass, under-relaxation γ
+    const rho = Number(arg('rho', '0.95')), gamma = Number(arg('gamma', '0.9'));
+    const { split: older, bias: hat } = w;
+    older.set(y); z.set(y);
+    let omega = 1;
+    for (let pass = 0; pass < PASSES; pass++) {
+      stretchStep(w.stretch, pinned, y, prev, z, hat, h);
+      omega = pass === 0 ? 1 : pass === 1 ? 2 / (2 - rho * rho) : 4 / (4 - rho * rho * omega);
+      for (let j = 0; j < n3; j++) {
+        const next = free(j) ? omega * (gamma * (hat[j] - z[j]) + z[j] - older[j]) + older[j] : y[j];
+        older[j] = z[j];
+        z[j] = next;
+      }
+    }
+    for (let j = 0; j < n3; j++) if (free(j)) { p[j] = Math.fround(z[j]); r[j] = z[j] - p[j]; }
+    solveGlobalBending(model, state, params, h);
+    for (let j = 0; j < n3; j++) x[j] = p[j] + r[j];
   } else if (mode === 'sweep-pd') {
     // the springs swept one at a time (XPBD) and the stencils' global step (from the prediction, or with --dir xi from
     // it without gravity), then the passes of both in one matrix from the prediction, the springs' directions from
@@ -390,6 +413,10 @@ let scene = hanging
   ? setScenePath(hangingScene(fabric, 32, 20, 1, 'hinges', 'global'), 'solver.bendingSolve', 'global')
   : fall
     ? { cloth: { resolution: 8, position: [0, 1.2, 0] }, colliders: [], pins: [], material: { fabric }, solver: { bending: 'hinges', bendingSolve: 'global' }, duration: 0.5 }
+    : sceneName === 'pendulum'
+      // scripts/dissipation.mjs's pendulum: a 1 m sheet (16 faces) pinned along its top edge, let go 40° out of the
+      // vertical, no damping, no air, 10 s; the reading is the share of the swing's energy kept over 8 s
+      ? { cloth: { orientation: 'hanging', resolution: 16, position: [0, 1.5, 0], rotation: [40, 0, 0] }, colliders: [], pins: ['top-edge'], material: { fabric, damping: 0 }, solver: { bending: 'hinges', bendingSolve: 'global' }, duration: 10 }
     : sceneName === 'swing'
       // a 1 m sheet (32 faces) hung by one corner 1.5 m up, let go turned 60° out of the vertical: a fast, large turn
       ? { cloth: { orientation: 'hanging', resolution: 32, position: [0, 1.5, 0], rotation: [60, 0, 0] }, colliders: [], pins: ['top-left'], material: { fabric }, solver: { bending: 'hinges', bendingSolve: 'global' }, duration: 2 }
@@ -405,7 +432,13 @@ if (flag('no-pedestal')) scene = { ...scene, colliders: scene.colliders.filter((
 scene = validateScene(scene);
 const sim = new Simulation(scene, { kernel: 'ts' });
 const startHeight = sim.state.positions[1] + sim.state.residuals[1];
+const swingZ = [];
 const reading = (test) => {
+  if (sceneName === 'pendulum') {
+    const amp = [];
+    for (let w = 0; w + 120 <= swingZ.length; w += 120) amp.push((Math.max(...swingZ.slice(w, w + 120)) - Math.min(...swingZ.slice(w, w + 120))) / 2);
+    return amp.length < 5 ? 'amplitude (not yet 10 s)' : `amplitude ${amp.map((a) => (100 * a).toFixed(2)).join(', ')} cm, energy kept over 8 s ${(100 * (amp[4] / amp[0]) ** 2).toFixed(0)} %`;
+  }
   if (fall) return `fallen / ½gt² ${((startHeight - sim.state.positions[1] - sim.state.residuals[1]) / (0.5 * 9.81 * sim.state.time ** 2)).toFixed(4)}`;
   if (hanging) {
     const m = measureHanging(sim.state.positions, scene.cloth.resolution), th = hangingTheory(fabric);
@@ -418,7 +451,8 @@ const frames = Math.round((scene.duration ?? 6) * 60), trace = [];
 const t0 = performance.now();
 const chunk = flag("trace") ? 3 : 30;
 for (let done = 0; done < frames; done += chunk) {
-  sim.advance(Math.min(chunk, frames - done));
+  if (sceneName === 'pendulum') for (let f = 0; f < Math.min(chunk, frames - done); f++) { sim.advance(1); swingZ.push(sim.report().centroid[2]); }
+  else sim.advance(Math.min(chunk, frames - done));
   const { test, energy } = sim.report();
   trace.push(`${((done + chunk) / 60).toFixed(1)} s ${reading(test)} KE ${energy.kinetic.toExponential(1)}`);
 }
