@@ -24,6 +24,9 @@
 //   corrected  the split, then P passes of the springs and the stencils in one matrix (a third factor) from the
 //              prediction, the springs' directions from the split's result [--passes P] [--carry ω (directions from
 //              the split's result less b, b += ω·(the split's result − the corrected one − b) each substep; 0)]
+//   joint      Projective Dynamics on the springs and the stencils in one matrix (the corrected split's factor): P
+//              passes from the prediction, each local step where the last pass left the cloth [--passes P] [--rho ρ
+//              (Chebyshev's acceleration, as cheb; 0: plain passes)] [--gamma γ]
 //   cheb       the split with its P stretch passes accelerated by Chebyshev's semi-iterative method (Wang 2015,
 //              "A Chebyshev Semi-Iterative Approach for Accelerating Projective and Position-based Dynamics")
 //              [--passes P] [--rho ρ (the estimated spectral radius of one pass, 0.95)] [--gamma γ (under-relaxation, 0.9)]
@@ -63,7 +66,7 @@ const arg = (name, fallback) => {
 const flag = (name) => process.argv.includes(`--${name}`);
 const mode = arg('mode', 'admm');
 if (!['prev', 'y', 'xi'].includes(arg('from', 'xi'))) throw new Error(`--from: prev, y or xi, got ${arg('from')}`);
-if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected', 'sweep-pd', 'cheb'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced, corrected, sweep-pd or cheb, got ${mode}`);
+if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected', 'sweep-pd', 'cheb', 'joint'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced, corrected, sweep-pd, cheb or joint, got ${mode}`);
 const SHARE = Number(arg('a', '0.5')), PENALTY = Number(arg('c', '10')), ITERATIONS = Number(arg('iterations', '3'));
 const RELAX = Number(arg('relax', '1')), CARRY = Number(arg('carry', '0')), PASSES = Number(arg('passes', '1')), DIR = arg('dir', 'y');
 
@@ -195,7 +198,7 @@ function workFor(model, params, pinned, h) {
     work.bias.fill(0);
   }
   if (!work.bending.current(pinned, h)) work.bending.factor(work.bendingParams, pinned, h);
-  if (mode === 'corrected' || mode === 'sweep-pd') {
+  if (mode === 'corrected' || mode === 'sweep-pd' || mode === 'joint') {
     work.both ??= new CombinedSystem(model, params, work.stretch, work.bending);
     if (!work.both.current(pinned, h)) work.both.factor(pinned, h);
   }
@@ -286,6 +289,24 @@ function coupledStep(model, state, params, frame) {
     for (let j = 0; j < n3; j++) t[j] = free(j) ? x[j] + f[j] / (w.bending.mass[(j / 3) | 0] * inertia) : x[j];
     bendingStep(w.bending, pinned, t, prev, z, h);
     result = z;
+  } else if (mode === 'joint') {
+    // Projective Dynamics on the springs and the stencils in one matrix (the corrected split's third factor), P passes
+    // from the prediction, each pass's local step where the last left the cloth, accelerated by Chebyshev's method
+    // (--rho ρ, --gamma γ; ρ = 0: plain passes)
+    const rho = Number(arg('rho', '0')), gamma = rho > 0 ? Number(arg('gamma', '0.9')) : 1;
+    const { split: older, bias: hat } = w;
+    older.set(y); z.set(y);
+    let omega = 1;
+    for (let pass = 0; pass < PASSES; pass++) {
+      bothStep(w.both, pinned, y, prev, z, hat, h);
+      omega = rho === 0 || pass === 0 ? 1 : pass === 1 ? 2 / (2 - rho * rho) : 4 / (4 - rho * rho * omega);
+      for (let j = 0; j < n3; j++) {
+        const next = free(j) ? omega * (gamma * (hat[j] - z[j]) + z[j] - older[j]) + older[j] : y[j];
+        older[j] = z[j];
+        z[j] = next;
+      }
+    }
+    x.set(z);
   } else if (mode === 'cheb') {
     // the split, its stretch passes accelerated by Chebyshev's semi-iterative method (Wang 2015): the estimated spectral
     // radius ρ of one pass, under-relaxation γ
