@@ -66,7 +66,7 @@ const arg = (name, fallback) => {
 const flag = (name) => process.argv.includes(`--${name}`);
 const mode = arg('mode', 'admm');
 if (!['prev', 'y', 'xi'].includes(arg('from', 'xi'))) throw new Error(`--from: prev, y or xi, got ${arg('from')}`);
-if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected', 'sweep-pd', 'cheb', 'joint'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced, corrected, sweep-pd, cheb or joint, got ${mode}`);
+if (!['split', 'sweep', 'admm', 'admm-q', 'balanced', 'corrected', 'sweep-pd', 'cheb', 'joint', 'two-level'].includes(mode)) throw new Error(`--mode: split, sweep, admm, admm-q, balanced, corrected, sweep-pd, cheb, joint or two-level, got ${mode}`);
 const SHARE = Number(arg('a', '0.5')), PENALTY = Number(arg('c', '10')), ITERATIONS = Number(arg('iterations', '3'));
 const RELAX = Number(arg('relax', '1')), CARRY = Number(arg('carry', '0')), PASSES = Number(arg('passes', '1')), DIR = arg('dir', 'y');
 
@@ -419,7 +419,38 @@ function carriedContact(model, state, params, frame) {
 if (flag('contact-carry')) REFERENCE[PHASE.contact] = carriedContact;
 const REFERENCE_CONTACT = REFERENCE[PHASE.contact];
 
-if (mode !== 'split' && mode !== 'sweep') {
+if (mode === 'two-level') {
+  // the sweep as the scene has it, with a coarse Gauss–Newton correction of the springs before it, after it or both
+  // (coarse-correction.mjs) [--grid G (nodes per side, 8)] [--order pre|post|both] [--coarse-damping]
+  // [--position-only (the correction moves the substep's start too, so it does not enter the velocity)] [--geometric
+  // (a stretched spring's transverse stiffness too)] [--line-search (the step kept only as far as it lowers the
+  // substep's energy)] [--omega ω (the step times ω, 1)]
+  // [--space dual [--bins B] (DualCoarse: the correction on the springs' multipliers, after the sweep)] [--every K (the
+  // dual correction in every K-th substep only, 1)]
+  const { CoarseCorrection, DualCoarse } = await import('./coarse-correction.mjs');
+  const dual = arg('space', 'primal') === 'dual';
+  const sweepPhase = REFERENCE[PHASE.distance], grid = Number(arg('grid', '8')), order = arg('order', 'pre');
+  let coarse = null, y = null;
+  REFERENCE[PHASE.distance] = (model, state, params, frame) => {
+    if (!coarse) {
+      coarse = dual ? new DualCoarse(model, grid, Number(arg('bins', '4'))) : new CoarseCorrection(model, grid);
+      y = new Float64Array(3 * model.particleCount);
+      coarse.positionOnly = flag('position-only');
+      coarse.omega = Number(arg('omega', '1'));
+    }
+    y.set(state.positions);
+    const apply = () => coarse.apply(model, state, params, frame.h, y, flag('coarse-damping'), flag('geometric'), flag('line-search'));
+    if (order !== 'post' && !dual) apply();
+    const every = Number(arg('every', '1'));
+    if (order !== 'post' && dual && (frame.sub % every) === every - 1) {
+      // the coarse multipliers first, from zero; the sweep goes on from them
+      state.lambdas.fill(0);
+      coarse.apply(model, state, params, frame.h);
+      solveDistanceConstraints(model, state, params, frame.h, true);
+    } else sweepPhase(model, state, params, frame);
+    if (order !== 'pre') apply();
+  };
+} else if (mode !== 'split' && mode !== 'sweep') {
   REFERENCE[PHASE.globalStretch] = coupledStep;
   REFERENCE[PHASE.globalBending] = () => {};
 }
@@ -442,7 +473,7 @@ let scene = hanging
       // a 1 m sheet (32 faces) hung by one corner 1.5 m up, let go turned 60° out of the vertical: a fast, large turn
       ? { cloth: { orientation: 'hanging', resolution: 32, position: [0, 1.5, 0], rotation: [60, 0, 0] }, colliders: [], pins: ['top-left'], material: { fabric }, solver: { bending: 'hinges', bendingSolve: 'global' }, duration: 2 }
     : setScenePath(builtinScene(sceneName), 'material.fabric', fabric);
-scene = setScenePath(scene, 'solver.stretch', mode === 'sweep' ? 'gauss-seidel' : 'global');
+scene = setScenePath(scene, 'solver.stretch', mode === 'sweep' || mode === 'two-level' ? 'gauss-seidel' : 'global');
 if (arg('resolution')) scene = setScenePath(scene, 'cloth.resolution', Number(arg('resolution')));
 if (arg('substeps')) scene = setScenePath(scene, 'solver.substeps', Number(arg('substeps')));
 for (let i = process.argv.indexOf('--set'); i >= 0; i = process.argv.indexOf('--set', i + 1)) {
@@ -510,6 +541,19 @@ if (arg('newton')) {
   const t = measureTest(model, { positions: pd.x, pinned }, scene);
   console.log(`Newton (${r.iterations} iterations, energy ${r.energy.toExponential(5)} J, gradient ${r.gnorm.toExponential(1)}): ` +
     `${cusick ? `DC ${t.drapeCoefficient.toFixed(3)} folds ${t.folds}` : `c/c_theory ${(t.bendingLength / cTheory).toFixed(3)}`}, moved by up to ${(1000 * moved).toFixed(1)} mm`);
+}
+if (flag('rows') && hanging) {
+  // the hanging sheet's vertical strain row by row (mean over the middle half of the columns), in 10⁻⁴
+  const x = sim.state.positions, F = scene.cloth.resolution, nx = F + 1, rows = [];
+  for (let j = 0; j < F; j++) {
+    let sum = 0, count = 0;
+    for (let i = Math.round(F / 4); i <= Math.round((3 * F) / 4); i++, count++) {
+      const a = 3 * (j * nx + i), b = 3 * ((j + 1) * nx + i);
+      sum += Math.hypot(x[a] - x[b], x[a + 1] - x[b + 1], x[a + 2] - x[b + 2]) * F - 1;
+    }
+    rows.push(`${j}: ${(1e4 * sum / count).toFixed(1)}`);
+  }
+  console.log(`vertical strain by row [1e-4] (theory at the top ${(1e4 * hangingTheory(fabric).strainTop).toFixed(2)}): ${rows.join(', ')}`);
 }
 if (flag('where')) {
   // the fastest particles at the end: radius from the axis, height, speed

@@ -6,7 +6,7 @@
 // over 8 s. Per solver, substep count and, for xpbd, how the springs and the bending are solved (one at a time or
 // together: solver.stretch, solver.bending, solver.bendingSolve). (Total energy cannot show it at the defaults:
 // XPBD's unconverged stretch is itself stored energy of the same size.) Needs `npm run build` (it reads dist/).
-//   node scripts/dissipation.mjs
+//   node scripts/dissipation.mjs [--only TEXT (the rows whose springs' setting names it, e.g. --only coarse)]
 import { Simulation, validateScene } from '../dist/core/index.js';
 
 function amplitudes(solver, substeps, settings = {}) {
@@ -40,10 +40,14 @@ const SOLVES = [
   ['together, hinges together', { stretch: 'global', bending: 'hinges', bendingSolve: 'global' }],
   ['together (4 passes), skip-one springs', { stretch: 'global', iterations: 4 }],
   ['together (16 passes), skip-one springs', { stretch: 'global', iterations: 16 }],
+  ['one at a time after the coarse correction, skip-one springs', { stretch: 'two-level' }],
+  ['one at a time after the coarse correction, hinges together', { stretch: 'two-level', bending: 'hinges', bendingSolve: 'global' }],
 ];
-for (const [solver, substeps, solves] of [['xpbd', 10, [0]], ['xpbd', 20, [0, 1, 4, 5, 2, 3]], ['xpbd', 80, [0, 1, 2, 3]], ['mass-spring', 20, [0]], ['mass-spring', 80, [0]]]) {
+const only = process.argv.includes('--only') ? process.argv[process.argv.indexOf('--only') + 1] : null;
+for (const [solver, substeps, solves] of [['xpbd', 10, [0]], ['xpbd', 20, [0, 1, 4, 5, 2, 3, 6, 7]], ['xpbd', 80, [0, 1, 2, 3]], ['mass-spring', 20, [0]], ['mass-spring', 80, [0]]]) {
   for (const k of solves) {
     const [name, settings] = SOLVES[k];
+    if (only && !(solver === 'xpbd' && name.includes(only))) continue;
     const a = amplitudes(solver, substeps, settings);
     console.log(`| ${solver} | ${substeps} | ${solver === 'xpbd' ? name : 'the seed\'s'} | ${a.map((v) => (100 * v).toFixed(2)).join(', ')} | ${(100 * (a[4] / a[0]) ** 2).toFixed(0)} % |`);
   }

@@ -166,11 +166,15 @@ describe('drape CLI', () => {
     expect(global.settledAt).toBeLessThan(2);
     expect(Math.abs(global.ratio - 1)).toBeLessThanOrEqual(0.25);
     expect(by(/^Drape default/)).toBeDefined();
+    // so does the sweep after the coarse correction
+    const coarse = by(/stretch two-level/);
+    expect(coarse.settledAt).toBeGreaterThan(0);
+    expect(Math.abs(coarse.ratio - 1)).toBeLessThanOrEqual(0.25);
     // Jolt, its counts tried in ascending order: 1 iteration overstretches for good, so the next is tried; 40 settles
     expect(by(/^Jolt, 1 iterations$/)).toMatchObject({ settledAt: null, wallSeconds: null });
     expect(by(/^Jolt, 1 iterations$/).ratio).toBeGreaterThan(1.25);
     expect(by(/^Jolt, 40 iterations$/).settledAt).toBeGreaterThan(0);
-    expect(row.runs).toHaveLength(4);
+    expect(row.runs).toHaveLength(5);
     const table = await run('bench', '--hanging', '--sizes', '4', '--fabrics', 'cotton', '--seconds', '3', '--no-peer');
     expect(table.out).toMatch(/^\| cotton \| 0\.068 \| Drape solver\.stretch global \| [\d.]+ \| [\d.]+ \| [\d.]+ \| [01]\.\d\d \|$/m);
     expect(table.out).toMatch(/^\| cotton \| 0\.068 \| Drape default \(xpbd, 20 substeps × 1, gauss-seidel\) \| (never \(3 s\)|[\d.]+) \|/m);

@@ -69,7 +69,7 @@ const BOTH = ['xpbd', 'mass-spring'];
  * The phase schedule of one frame, in order: [name, scope, solvers, when, repeat, what it does]. A phase's id is its
  * row (0, 1, …), so ascending ids are the order and a set of phases is a bit mask. `scope`: 'frame-start' (once,
  * before the substeps), 'substep' (every substep), 'frame-end' (once, after them). `solvers`: the solver types whose
- * frame has it. `when`: 'always', 'wind' (the wind blows), 'grab' (a particle is grabbed), 'carried' (a collider carries pins), 'triangles' (a collider needs triangle contact at this mesh size: phases.ts needsTriangleContact), 'global' or 'local' (solver.stretch is 'global' or 'gauss-seidel'), 'stencils' and 'stencils-global' (a stencil bending model, solver.bendingSolve 'gauss-seidel' or 'global'), 'self' (solver.selfContact). `repeat`: the solvers
+ * frame has it. `when`: 'always', 'wind' (the wind blows), 'grab' (a particle is grabbed), 'carried' (a collider carries pins), 'triangles' (a collider needs triangle contact at this mesh size: phases.ts needsTriangleContact), 'global' or 'local' (solver.stretch is 'global', or 'gauss-seidel' or 'two-level'), 'coarse' (solver.stretch is 'two-level'), 'stencils' and 'stencils-global' (a stencil bending model, solver.bendingSolve 'gauss-seidel' or 'global'), 'self' (solver.selfContact). `repeat`: the solvers
  * for which it runs solver.iterations passes per substep (else one). Every backend walks this list (core/frame.ts
  * runFrame); docs/architecture.md says where a new phase goes in each.
  */
@@ -81,6 +81,7 @@ export const PHASES = [
   ['carry', 'substep', BOTH, 'carried', [], 'particles pinned to a collider carried to where it is at the end of the substep'],
   ['grab', 'substep', BOTH, 'grab', [], 'the grabbed particle carried part of the way to its target'],
   ['globalStretch', 'substep', ['xpbd'], 'global', ['xpbd'], 'the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system'],
+  ['coarseStretch', 'substep', ['xpbd'], 'coarse', [], 'the springs\' multipliers from one coarse solve over aggregates of springs (cells of the cloth by direction), where the distance pass goes on from'],
   ['distance', 'substep', ['xpbd'], 'local', ['xpbd'], 'XPBD distance constraints, colour batch by colour batch'],
   ['bending', 'substep', ['xpbd'], 'stencils', ['xpbd'], 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch'],
   ['globalBending', 'substep', ['xpbd'], 'stencils-global', [], 'the bending stencils solved together: their backward-Euler step, one solve of the prefactored system'],
@@ -98,9 +99,9 @@ export const PHASES = [
  */
 export const DESC = [
   ['SEQ', 0, 32, 'sequence number of the substep\'s first phase'],
-  ['ITERATIONS', 32, 8, 'distance constraint passes'],
-  ['THREADS', 40, 8, 'T, the threads of the substep'],
-  ['PHASES', 48, 16, 'the phases it runs, a bit per phase id'],
+  ['ITERATIONS', 32, 6, 'distance constraint passes'],
+  ['THREADS', 38, 8, 'T, the threads of the substep'],
+  ['PHASES', 46, 18, 'the phases it runs, a bit per phase id'],
 ];
 if (PHASES.length > DESC.find(([name]) => name === 'PHASES')[2]) throw new Error('gen-layout: more phases than the descriptor has bits');
 const descBits = (field) => DESC.find(([name]) => name === field)[2];

@@ -75,27 +75,29 @@ export const PHASE = {
   grab: 5,
   /** substep: the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system */
   globalStretch: 6,
+  /** substep: the springs' multipliers from one coarse solve over aggregates of springs (cells of the cloth by direction), where the distance pass goes on from */
+  coarseStretch: 7,
   /** substep: XPBD distance constraints, colour batch by colour batch */
-  distance: 7,
+  distance: 8,
   /** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
-  bending: 8,
+  bending: 9,
   /** substep: the bending stencils solved together: their backward-Euler step, one solve of the prefactored system */
-  globalBending: 9,
+  globalBending: 10,
   /** substep: long-range attachments to the nearest pin */
-  tethers: 10,
+  tethers: 11,
   /** substep: stretch limiting of structural and shear springs */
-  stretchLimit: 11,
+  stretchLimit: 12,
   /** substep: the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts) */
-  selfContact: 12,
+  selfContact: 13,
   /** substep: particle contact with friction against every collider, in order */
-  contact: 13,
+  contact: 14,
   /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-  contactTriangles: 14,
+  contactTriangles: 15,
   /** frame-end: v = (x − x_prev)/h of the last substep */
-  velocities: 15,
+  velocities: 16,
 } as const;
 /** Phases in the schedule. */
-export const PHASE_COUNT = 16;
+export const PHASE_COUNT = 17;
 /** The phase schedule of one frame, in order (PHASES in gen-layout.mjs; core/schedule.ts gives it its types). */
 export const SCHEDULE = [
   { id: 0, name: 'begin', scope: 'frame-start', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'effective inverse masses (0 pinned or grabbed), tethers if the pins changed, x_prev = x − h·v' },
@@ -105,18 +107,19 @@ export const SCHEDULE = [
   { id: 4, name: 'carry', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'carried', repeat: [], doc: 'particles pinned to a collider carried to where it is at the end of the substep' },
   { id: 5, name: 'grab', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'grab', repeat: [], doc: 'the grabbed particle carried part of the way to its target' },
   { id: 6, name: 'globalStretch', scope: 'substep', solvers: ['xpbd'], when: 'global', repeat: ['xpbd'], doc: 'the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system' },
-  { id: 7, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'local', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
-  { id: 8, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'stencils', repeat: ['xpbd'], doc: 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch' },
-  { id: 9, name: 'globalBending', scope: 'substep', solvers: ['xpbd'], when: 'stencils-global', repeat: [], doc: 'the bending stencils solved together: their backward-Euler step, one solve of the prefactored system' },
-  { id: 10, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
-  { id: 11, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
-  { id: 12, name: 'selfContact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'self', repeat: [], doc: 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)' },
-  { id: 13, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
-  { id: 14, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
-  { id: 15, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
+  { id: 7, name: 'coarseStretch', scope: 'substep', solvers: ['xpbd'], when: 'coarse', repeat: [], doc: 'the springs\' multipliers from one coarse solve over aggregates of springs (cells of the cloth by direction), where the distance pass goes on from' },
+  { id: 8, name: 'distance', scope: 'substep', solvers: ['xpbd'], when: 'local', repeat: ['xpbd'], doc: 'XPBD distance constraints, colour batch by colour batch' },
+  { id: 9, name: 'bending', scope: 'substep', solvers: ['xpbd'], when: 'stencils', repeat: ['xpbd'], doc: 'XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch' },
+  { id: 10, name: 'globalBending', scope: 'substep', solvers: ['xpbd'], when: 'stencils-global', repeat: [], doc: 'the bending stencils solved together: their backward-Euler step, one solve of the prefactored system' },
+  { id: 11, name: 'tethers', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: [], doc: 'long-range attachments to the nearest pin' },
+  { id: 12, name: 'stretchLimit', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'local', repeat: ['mass-spring'], doc: 'stretch limiting of structural and shear springs' },
+  { id: 13, name: 'selfContact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'self', repeat: [], doc: 'the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts)' },
+  { id: 14, name: 'contact', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'particle contact with friction against every collider, in order' },
+  { id: 15, name: 'contactTriangles', scope: 'substep', solvers: ['xpbd', 'mass-spring'], when: 'triangles', repeat: [], doc: 'triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size' },
+  { id: 16, name: 'velocities', scope: 'frame-end', solvers: ['xpbd', 'mass-spring'], when: 'always', repeat: [], doc: 'v = (x − x_prev)/h of the last substep' },
 ] as const;
 /** Most distance passes per substep the kernel's substep descriptor holds (its ITERATIONS field). */
-export const KERNEL_MAX_ITERATIONS = 255;
+export const KERNEL_MAX_ITERATIONS = 63;
 
 /** Byte offsets of the WebAssembly kernel's control block (see CONTROL in gen-layout.mjs). */
 export const CTRL = {
@@ -148,7 +151,7 @@ export const CTRL = {
   DESC: 48,
   /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
   TRACE_COUNT: 56,
-  /** i32 × 16: the ids of those phases, in the order thread 0 ran them */
+  /** i32 × 17: the ids of those phases, in the order thread 0 ran them */
   TRACE: 60,
   /** f64: substep length [s] */
   H: 128,

@@ -331,7 +331,10 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
       'constraint at a time (\'gauss-seidel\'); for the solve together, a coarser mesh (cloth.resolution)',
     );
   }
-  if (large) { stretch = 'gauss-seidel'; bendingSolve = 'gauss-seidel'; }
+  if (large) {
+    if (stretch === 'global') stretch = 'gauss-seidel';
+    bendingSolve = 'gauss-seidel';
+  }
   if (bending !== 'springs') for (let s = 0; s < springCount; s++) if (model.springKinds[s] === BEND) stiffness[s] = 0;
   const compliance = new Float32Array(springCount);
   for (let s = 0; s < springCount; s++) compliance[s] = stiffness[s] > 0 ? 1 / stiffness[s] : Infinity;

@@ -11,6 +11,7 @@ import { accumulateWind, beginStep, carryPinned, collideParticles, collideTriang
 import { PHASE, PHASES, phasePasses, type PhaseName } from './schedule.js';
 import { accumulateSpringForces } from './solvers/mass-spring.js';
 import { collideSelf } from './self-contact.js';
+import { solveCoarseStretch } from './solvers/coarse-stretch.js';
 import { solveGlobalBending } from './solvers/global-bending.js';
 import { solveGlobalStretch } from './solvers/global-stretch.js';
 import { solveBending, solveDistanceConstraints } from './solvers/xpbd.js';
@@ -41,11 +42,12 @@ export const REFERENCE: readonly ReferencePhase[] = byId({
   carry: (_model, state, params, frame) => carryPinned(state, params, state.time, state.time + frame.h),
   grab: (_model, state, _params, frame) => moveGrabbed(state, frame.grabFrom, frame.grabTo, (frame.sub + 1) / frame.substeps),
   globalStretch: (model, state, params, frame) => solveGlobalStretch(model, state, params, frame.h, phasePasses(PHASE.globalStretch, params)),
+  coarseStretch: (model, state, params, frame) => solveCoarseStretch(model, state, params, frame.h, frame.sub === 0),
   distance(model, state, params, frame) {
     const passes = phasePasses(PHASE.distance, params);
-    // λ accumulates across the passes of a substep (it starts from zero in each)
-    const accumulate = passes > 1;
-    if (accumulate) state.lambdas.fill(0);
+    // λ accumulates across the passes of a substep: from zero in each, or from the coarse correction's
+    const coarse = params.stretch === 'two-level', accumulate = passes > 1 || coarse;
+    if (accumulate && !coarse) state.lambdas.fill(0);
     for (let it = 0; it < passes; it++) solveDistanceConstraints(model, state, params, frame.h, accumulate);
   },
   bending(model, state, params, frame) {

@@ -83,7 +83,7 @@ export type SolverType = 'xpbd' | 'mass-spring';
 /** `solver.bending`: the xpbd solver's bending model */
 export type BendingModel = 'springs' | StencilModel;
 /** `solver.stretch`: how the xpbd solver solves its springs (one at a time, or together: solvers/global-stretch.ts) */
-export type StretchSolve = 'gauss-seidel' | 'global';
+export type StretchSolve = 'gauss-seidel' | 'two-level' | 'global';
 /** `solver.bendingSolve`: how the xpbd solver solves a stencil bending model (one stencil at a time, or together: solvers/global-bending.ts) */
 export type BendingSolve = 'gauss-seidel' | 'global';
 

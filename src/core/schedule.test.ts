@@ -154,17 +154,23 @@ describe('a phase a backend does not implement runs in the TypeScript reference 
     expect(() => assignPhases({ ...remote, phases: all, refusal: () => 'no such shape' }, sim.model, sim.params)).toThrow(/remote: no such shape/);
     expect(() => assignPhases({ ...remote, solvers: ['mass-spring'] }, sim.model, sim.params)).toThrow(/remote: only the mass-spring solver runs remotely \(params.solver is 'xpbd'\)/);
     // not the phases these params never make a frame run: no carried pins, no collider that needs triangle contact,
-    // no stencil bending (solver.bending 'springs'), no global stretch step (solver.stretch 'gauss-seidel'), no
-    // self-contact (solver.selfContact false)
+    // no stencil bending (solver.bending 'springs'), no global stretch step and no coarse correction (solver.stretch
+    // 'gauss-seidel'), no self-contact (solver.selfContact false)
     expect(assignPhases({ ...remote, phases: all }, sim.model, sim.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
+        ~(1 << PHASE.bending) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.coarseStretch) & ~(1 << PHASE.selfContact));
+    // with the coarse correction (solver.stretch 'two-level'), its phase before the sweep, which stays
+    const coarse = new Simulation(windyScene('xpbd', (s) => { s.solver.stretch = 'two-level'; }), { kernel: 'ts' });
+    expect(assignPhases({ ...remote, phases: all }, coarse.model, coarse.params))
+      .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
         ~(1 << PHASE.bending) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.selfContact));
+    expect(() => assignPhases({ ...remote, phases: all & ~(1 << PHASE.coarseStretch) }, coarse.model, coarse.params)).toThrow(/remote: it does not implement phase 'coarseStretch'/);
     // with the springs solved together, the global step instead of the sweep, the tethers and the stretch limit
     const together = new Simulation(windyScene('xpbd', (s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
     expect(assignPhases({ ...remote, phases: all }, together.model, together.params))
       .toBe(all & ~(1 << PHASE.springForces) & ~(1 << PHASE.carry) & ~(1 << PHASE.contactTriangles) &
         ~(1 << PHASE.bending) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit) &
-        ~(1 << PHASE.selfContact));
+        ~(1 << PHASE.coarseStretch) & ~(1 << PHASE.selfContact));
     // with self-contact, its phase too: a backend without it that keeps the cloth elsewhere is refused by name
     const selfy = new Simulation(windyScene('xpbd', (s) => { s.solver.selfContact = true; }), { kernel: 'ts' });
     expect(() => assignPhases({ ...remote, phases: all & ~(1 << PHASE.selfContact) }, selfy.model, selfy.params))

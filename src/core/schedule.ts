@@ -25,9 +25,10 @@ export type PhaseScope = 'frame-start' | 'substep' | 'frame-end';
  * grabbed particle, pins a collider carries, a collider whose surface can poke between the cloth's vertices
  * (phases.ts needsTriangleContact), a stencil bending model (solver.bending 'hinges' or 'laplacian') solved one stencil at
  * a time (solver.bendingSolve 'gauss-seidel') or together ('global'), the springs solved together (solver.stretch
- * 'global') or one at a time ('gauss-seidel'), self-contact (solver.selfContact).
+ * 'global') or one at a time ('gauss-seidel', or 'two-level': one at a time after the coarse correction, whose phase
+ * is 'coarse'), self-contact (solver.selfContact).
  */
-export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'stencils-global' | 'global' | 'local' | 'self';
+export type PhaseCondition = 'always' | 'wind' | 'grab' | 'carried' | 'triangles' | 'stencils' | 'stencils-global' | 'global' | 'local' | 'coarse' | 'self';
 
 /** One row of the schedule (see PHASES in gen-layout.mjs). */
 export interface Phase {
@@ -67,11 +68,16 @@ const STENCIL_PHASES = maskOf((p) => p.when === 'stencils');
 const GLOBAL_STENCIL_PHASES = maskOf((p) => p.when === 'stencils-global');
 const GLOBAL_PHASES = maskOf((p) => p.when === 'global');
 const LOCAL_PHASES = maskOf((p) => p.when === 'local');
+const COARSE_PHASES = maskOf((p) => p.when === 'coarse');
 const SELF_PHASES = maskOf((p) => p.when === 'self');
 
-/** The phases the params' stretch solve leaves out: the Gauss–Seidel distance pass or the global step. */
+/**
+ * The phases the params' stretch solve leaves out: the Gauss–Seidel distance pass (and the coarse correction) for the
+ * global step, else the global step (and the coarse correction unless 'two-level').
+ */
 function stretchExcluded(params: SimParams): number {
-  return params.stretch === 'global' ? LOCAL_PHASES : GLOBAL_PHASES;
+  if (params.stretch === 'global') return LOCAL_PHASES | COARSE_PHASES;
+  return params.stretch === 'two-level' ? GLOBAL_PHASES : GLOBAL_PHASES | COARSE_PHASES;
 }
 
 /** The phases the params' bending leaves out: both stencil phases for the springs, else the solve not chosen. */

@@ -43,6 +43,7 @@ function contactRefusal(params: SimParams): string | null {
  */
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
+  if (scene.solver.stretch === 'two-level') return "solver.stretch 'two-level' runs on the CPU only (the GPU has no coarse correction yet)";
   const differs = differingClothField(scene);
   if (differs) return `cloths that differ in their contact or spring values run on the CPU only (${differs})`;
   return colliderRefusal(scene);

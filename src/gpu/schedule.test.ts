@@ -57,8 +57,9 @@ describe('what the GPU implements of the schedule', () => {
     // but carry, which a frame runs only for pins a collider carries (none here), triangle contact, only for a
     // collider that needs it at this mesh size (none here), and stencil bending, only for solver.bending 'hinges' or
     // 'laplacian' (one at a time or, with solver.bendingSolve 'global', together), self-contact, only for
-    // solver.selfContact (below), and the global stretch step, which solver.stretch 'global' asks for: below)
-    const xpbd = solverPhases('xpbd') & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.selfContact);
+    // solver.selfContact (below), the global stretch step, which solver.stretch 'global' asks for: below, and the
+    // coarse correction, which solver.stretch 'two-level' asks for and the GPU lacks: refused before, sceneRefusal)
+    const xpbd = solverPhases('xpbd') & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.selfContact) & ~(1 << PHASE.coarseStretch);
     const rare = (1 << PHASE.carry) | (1 << PHASE.contactTriangles) | (1 << PHASE.bending);
     expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(xpbd & ~rare);
     const coarse = new Simulation(windyScene((s) => { s.cloth.resolution = 1; s.colliders = [{ type: 'sphere', center: [0, 0, 0], radius: 0.3 }]; }), { kernel: 'ts' });

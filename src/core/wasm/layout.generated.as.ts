@@ -74,26 +74,28 @@ export const PHASE_CARRY: i32 = 4;
 export const PHASE_GRAB: i32 = 5;
 /** substep: the springs solved together: a local/global pass (Projective Dynamics) on the prefactored system */
 export const PHASE_GLOBAL_STRETCH: i32 = 6;
+/** substep: the springs' multipliers from one coarse solve over aggregates of springs (cells of the cloth by direction), where the distance pass goes on from */
+export const PHASE_COARSE_STRETCH: i32 = 7;
 /** substep: XPBD distance constraints, colour batch by colour batch */
-export const PHASE_DISTANCE: i32 = 7;
+export const PHASE_DISTANCE: i32 = 8;
 /** substep: XPBD bending on linear stencils (the hinges of Bergou et al. 2006 or the cotangent Laplacian at the vertices), colour batch by colour batch */
-export const PHASE_BENDING: i32 = 8;
+export const PHASE_BENDING: i32 = 9;
 /** substep: the bending stencils solved together: their backward-Euler step, one solve of the prefactored system */
-export const PHASE_GLOBAL_BENDING: i32 = 9;
+export const PHASE_GLOBAL_BENDING: i32 = 10;
 /** substep: long-range attachments to the nearest pin */
-export const PHASE_TETHERS: i32 = 10;
+export const PHASE_TETHERS: i32 = 11;
 /** substep: stretch limiting of structural and shear springs */
-export const PHASE_STRETCH_LIMIT: i32 = 11;
+export const PHASE_STRETCH_LIMIT: i32 = 12;
 /** substep: the cloth against itself: each particle against the triangles near it, side memory and friction (self-contact.ts) */
-export const PHASE_SELF_CONTACT: i32 = 12;
+export const PHASE_SELF_CONTACT: i32 = 13;
 /** substep: particle contact with friction against every collider, in order */
-export const PHASE_CONTACT: i32 = 13;
+export const PHASE_CONTACT: i32 = 14;
 /** substep: triangle contact with friction against every collider whose surface can poke between the vertices at this mesh size */
-export const PHASE_CONTACT_TRIANGLES: i32 = 14;
+export const PHASE_CONTACT_TRIANGLES: i32 = 15;
 /** frame-end: v = (x − x_prev)/h of the last substep */
-export const PHASE_VELOCITIES: i32 = 15;
+export const PHASE_VELOCITIES: i32 = 16;
 /** Phases in the schedule. */
-export const PHASE_COUNT: i32 = 16;
+export const PHASE_COUNT: i32 = 17;
 
 // The substep descriptor (DESC in gen-layout.mjs): first bit and mask of each field.
 /** sequence number of the substep's first phase: first bit */
@@ -102,16 +104,16 @@ export const DESC_SEQ_SHIFT: i64 = 0;
 export const DESC_SEQ_MASK: i64 = 4294967295;
 /** distance constraint passes: first bit */
 export const DESC_ITERATIONS_SHIFT: i64 = 32;
-/** distance constraint passes: mask after the shift (8 bits) */
-export const DESC_ITERATIONS_MASK: i64 = 255;
+/** distance constraint passes: mask after the shift (6 bits) */
+export const DESC_ITERATIONS_MASK: i64 = 63;
 /** T, the threads of the substep: first bit */
-export const DESC_THREADS_SHIFT: i64 = 40;
+export const DESC_THREADS_SHIFT: i64 = 38;
 /** T, the threads of the substep: mask after the shift (8 bits) */
 export const DESC_THREADS_MASK: i64 = 255;
 /** the phases it runs, a bit per phase id: first bit */
-export const DESC_PHASES_SHIFT: i64 = 48;
-/** the phases it runs, a bit per phase id: mask after the shift (16 bits) */
-export const DESC_PHASES_MASK: i64 = 65535;
+export const DESC_PHASES_SHIFT: i64 = 46;
+/** the phases it runs, a bit per phase id: mask after the shift (18 bits) */
+export const DESC_PHASES_MASK: i64 = 262143;
 
 // Byte offsets of the control block (from CTRL = 0).
 /** i32: bumped by thread 0 to start a substep on the helpers (they sleep on it) */
@@ -142,7 +144,7 @@ export const SPIN_LIMIT: usize = 44;
 export const DESC: usize = 48;
 /** i32: phases listed in TRACE by the last substep() with KERNEL_FLAG_TRACE */
 export const TRACE_COUNT: usize = 56;
-/** i32 × 16: the ids of those phases, in the order thread 0 ran them */
+/** i32 × 17: the ids of those phases, in the order thread 0 ran them */
 export const TRACE: usize = 60;
 /** f64: substep length [s] */
 export const H: usize = 128;

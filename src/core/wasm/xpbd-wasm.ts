@@ -453,9 +453,10 @@ export class XpbdKernel implements PhaseBackend {
   private substep(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
     const f = this.ctrlF64, i = this.ctrlI32;
     // (the distance and bending phases make as many passes: solver.iterations; KERNEL_FLAG_ACCUMULATE is both's)
-    const accumulate = phasePasses(PHASE.distance, params) > 1;
+    // (with the coarse correction, solver.stretch 'two-level', the distance pass goes on from the λ it set)
+    const coarse = params.stretch === 'two-level', accumulate = phasePasses(PHASE.distance, params) > 1 || coarse;
     // λ starts from zero in every substep where it accumulates across passes
-    if (accumulate && (mask & (1 << PHASE.distance)) !== 0) state.lambdas.fill(0);
+    if (accumulate && !coarse && (mask & (1 << PHASE.distance)) !== 0) state.lambdas.fill(0);
     if (accumulate && (mask & (1 << PHASE.bending)) !== 0) state.bendingLambdas.fill(0);
     // λ is kept only where it is read: across iterations, and after the frame (energy) from its last substep
     i[CTRL.FLAGS / 4] = (frame.forced ? KERNEL_FLAG_FORCES : 0) | (accumulate ? KERNEL_FLAG_ACCUMULATE | KERNEL_FLAG_STORE_LAMBDA : 0) |

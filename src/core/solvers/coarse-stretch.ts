@@ -1,0 +1,318 @@
+/**
+ * The springs' coarse correction (solver.stretch 'two-level', xpbd): each substep, one solve of the springs'
+ * multipliers over a coarse space, before XPBD's sweep, which goes on from them.
+ *
+ * XPBD's one Gauss–Seidel sweep per substep corrects a spring from its neighbours' state, so a load travels a spring or
+ * two per substep: a hanging sheet of n rows is left stretched by a residual that grows as n² (docs/physics.md,
+ * "Converged stretch"). Multigrid's answer (a two-level method: smooth, then correct on a coarse space; here the
+ * aggregation of algebraic multigrid, Vaněk, Mandel & Brezina 1996) is applied on XPBD's own side, the constraints'
+ * multipliers λ (Macklin, Müller & Chentanez 2016), whose substep system is
+ *
+ *   (J·M⁻¹·Jᵀ + α̃)·λ = −C(y),   x = y + M⁻¹·Jᵀ·λ,   α̃ = α/h²,
+ *
+ * J the springs' unit directions at their particles (±n_s), M the masses, α the compliances, y the prediction. The
+ * coarse space ties together the multipliers of the springs of one aggregate: the springs of one cloth whose midpoint
+ * lies in one cell of a G × G grid over its texture coordinates and whose rest direction (in those coordinates) falls
+ * in one of COARSE_DIRECTIONS directions, so a column's tension and a row's, and the two diagonals', are separate
+ * unknowns. G is about √(the cloth's particles)/COARSE_CELL_PARTICLES, at least COARSE_MIN_CELLS: cells about 8
+ * particles across. With R the springs' aggregates, the step from λ = 0 is
+ *
+ *   R·(J·M⁻¹·Jᵀ + α̃)·Rᵀ·μ = R·(−C(x)),   λ_s = Σ_k φ_k(s)·μ_k,   x ← x + M⁻¹·Jᵀ·λ,
+ *
+ * with the directions where the cloth is now, φ_k(s) the bilinear weights of the four aggregates of the spring's
+ * direction whose cells' centres surround its midpoint (λ piecewise constant, R·μ, left a sawtooth of ±0.4 % strain
+ * in a hanging cotton sheet at 64², one per cell, which one sweep cannot smooth). The matrix is banded (an aggregate
+ * meets those of the cells around its own), one block per cloth (no spring joins two cloths); it is assembled and
+ * factored (banded Cholesky) in the frame's first substep and whenever h or the params change, and each substep
+ * solves with that factor for its own right-hand side (the matrix changes only with the springs' directions; the
+ * right-hand side, which holds the strains, is always the substep's own). The sweep then starts each spring from its
+ * λ_s (the distance phase accumulates) and removes what the coarse space cannot hold.
+ *
+ * Measured (docs/physics.md, "A coarse correction of the multipliers"): a hanging sheet's static elongation within a
+ * few per cent of theory at the default 20 substeps × 1 pass from 16² to 128², where the sweep alone is 1.3–8 times
+ * too long; free fall exact (C = 0 leaves μ = 0); the swinging and falling cloths keep their energy as the sweep's
+ * do. A correction of the positions instead (one Gauss–Newton step of the same energy over the same cells) made stiff
+ * cloth gain energy in motion. The step is not damped: the springs' damping acts in the sweep after it.
+ */
+import type { ClothModel } from '../model.js';
+import type { SimParams } from '../params.js';
+import type { ClothState } from '../state.js';
+
+/** Rest directions told apart (in texture space, 180°/COARSE_DIRECTIONS apart) [-]. */
+export const COARSE_DIRECTIONS = 4;
+/** About how many particles across one cell of a cloth's grid of aggregates [-]. */
+export const COARSE_CELL_PARTICLES = 8;
+/** The fewest cells per side of a cloth's grid of aggregates [-]. */
+export const COARSE_MIN_CELLS = 4;
+
+/** Cells per side of the grid of aggregates of a cloth of `particles` particles [-]. */
+export function coarseCells(particles: number): number {
+  return Math.max(COARSE_MIN_CELLS, Math.round(Math.sqrt(particles) / COARSE_CELL_PARTICLES));
+}
+
+/** One model's aggregates, the springs at each particle, and the memory of its solves (made once per model). */
+interface CoarseSystem {
+  /** each spring's aggregate (global index) */
+  readonly aggregate: Int32Array;
+  /** each spring's four nearest aggregates of its direction and their bilinear weights (the λ it is given) */
+  readonly nearId: Int32Array;
+  readonly nearWeight: Float64Array;
+  /** the cloths' blocks of aggregates: cloth c has blockStart[c] … blockStart[c + 1] − 1 */
+  readonly blockStart: Int32Array;
+  /** each block's half bandwidth (entry (i, j) is zero where i − j exceeds it) */
+  readonly band: Int32Array;
+  /** where each block's rows start in `matrix`: row i of block c holds entries (i, i − band … i), band + 1 of them */
+  readonly matrixStart: Int32Array;
+  /** each aggregate's block (its cloth) */
+  readonly blockOf: Int32Array;
+  /** the springs at each particle: CSR offsets (particles + 1), spring ids, sign (+1 at a spring's first particle) */
+  readonly start: Int32Array;
+  readonly springAt: Int32Array;
+  readonly signAt: Float64Array;
+  /** the blocks' banded matrices (then their factors), the right-hand side, each spring's unit direction now (0 where it takes no part) */
+  readonly matrix: Float64Array;
+  readonly rhs: Float64Array;
+  readonly dir: Float64Array;
+  /** one particle's aggregates and their sums of ±n_s (scratch, the most springs a particle has) */
+  readonly touched: Int32Array;
+  readonly vec: Float64Array;
+  /** the params and substep length [s] the factor in `matrix` was made for */
+  factoredFor: SimParams | null;
+  factoredAt: number;
+}
+
+const systems = new WeakMap<ClothModel, CoarseSystem>();
+
+/** The aggregates of `model` (see the file's comment). */
+function coarseSystem(model: ClothModel): CoarseSystem {
+  const known = systems.get(model);
+  if (known) return known;
+  const n = model.particleCount, uv = model.uvs, springs = model.springs, ns = springs.length / 2;
+  const starts = model.clothStarts, cloths = starts.length - 1;
+  const clothOf = new Int32Array(n);
+  for (let c = 0; c < cloths; c++) clothOf.fill(c, starts[c], starts[c + 1]);
+  // each cloth's grid: its texture-coordinate bounds and cells per side
+  const bounds = new Float64Array(4 * cloths), cells = new Int32Array(cloths), first = new Int32Array(cloths + 1);
+  for (let c = 0; c < cloths; c++) {
+    bounds.set([Infinity, -Infinity, Infinity, -Infinity], 4 * c);
+    cells[c] = coarseCells(starts[c + 1] - starts[c]);
+    first[c + 1] = first[c] + cells[c] * cells[c] * COARSE_DIRECTIONS;
+  }
+  for (let i = 0; i < n; i++) {
+    const o = 4 * clothOf[i];
+    bounds[o] = Math.min(bounds[o], uv[2 * i]); bounds[o + 1] = Math.max(bounds[o + 1], uv[2 * i]);
+    bounds[o + 2] = Math.min(bounds[o + 2], uv[2 * i + 1]); bounds[o + 3] = Math.max(bounds[o + 3], uv[2 * i + 1]);
+  }
+  /** spring s's cloth, its midpoint in cell units (u, v) and its direction class */
+  const place = new Float64Array(2 * ns), direction = new Int32Array(ns);
+  // every (cloth, cell, direction) slot: then, numbered in order among those that hold a spring
+  const slot = new Int32Array(first[cloths]).fill(-1), slotOf = new Int32Array(ns);
+  for (let s = 0; s < ns; s++) {
+    const a = springs[2 * s], b = springs[2 * s + 1], c = clothOf[a], o = 4 * c, G = cells[c];
+    const du = bounds[o + 1] - bounds[o] || 1, dv = bounds[o + 3] - bounds[o + 2] || 1;
+    place[2 * s] = ((0.5 * (uv[2 * a] + uv[2 * b]) - bounds[o]) / du) * G;
+    place[2 * s + 1] = ((0.5 * (uv[2 * a + 1] + uv[2 * b + 1]) - bounds[o + 2]) / dv) * G;
+    const cu = Math.min(Math.max(Math.floor(place[2 * s]), 0), G - 1), cv = Math.min(Math.max(Math.floor(place[2 * s + 1]), 0), G - 1);
+    let angle = Math.atan2((uv[2 * b + 1] - uv[2 * a + 1]) / dv, (uv[2 * b] - uv[2 * a]) / du);
+    if (angle < 0) angle += Math.PI;
+    direction[s] = Math.round(angle / (Math.PI / COARSE_DIRECTIONS)) % COARSE_DIRECTIONS;
+    slotOf[s] = first[c] + (cu + G * cv) * COARSE_DIRECTIONS + direction[s];
+    slot[slotOf[s]] = 0;
+  }
+  let count = 0;
+  const blockStart = new Int32Array(cloths + 1);
+  for (let c = 0; c < cloths; c++) {
+    blockStart[c] = count;
+    for (let k = first[c]; k < first[c + 1]; k++) if (slot[k] === 0) slot[k] = count++;
+  }
+  blockStart[cloths] = count;
+  const aggregate = new Int32Array(ns), blockOf = new Int32Array(count);
+  for (let s = 0; s < ns; s++) aggregate[s] = slot[slotOf[s]];
+  for (let c = 0; c < cloths; c++) blockOf.fill(c, blockStart[c], blockStart[c + 1]);
+  // each spring's λ from the four aggregates of its direction around it: bilinear between the cells' centres
+  // (clamped at the cloth's border; a cell without springs of that direction gives its weight to the others)
+  const nearId = new Int32Array(4 * ns), nearWeight = new Float64Array(4 * ns);
+  for (let s = 0; s < ns; s++) {
+    const c = clothOf[springs[2 * s]], G = cells[c];
+    const gu = place[2 * s] - 0.5, gv = place[2 * s + 1] - 0.5;
+    const iu = Math.min(Math.max(Math.floor(gu), 0), G - 2), iv = Math.min(Math.max(Math.floor(gv), 0), G - 2);
+    const fu = Math.min(Math.max(gu - iu, 0), 1), fv = Math.min(Math.max(gv - iv, 0), 1);
+    let sum = 0;
+    for (let k = 0; k < 4; k++) {
+      const id = slot[first[c] + (iu + (k & 1) + G * (iv + (k >> 1))) * COARSE_DIRECTIONS + direction[s]];
+      const wk = ((k & 1) ? fu : 1 - fu) * ((k >> 1) ? fv : 1 - fv);
+      nearId[4 * s + k] = id >= 0 ? id : aggregate[s];
+      nearWeight[4 * s + k] = id >= 0 ? wk : 0;
+      sum += nearWeight[4 * s + k];
+    }
+    for (let k = 0; k < 4; k++) nearWeight[4 * s + k] = sum > 0 ? nearWeight[4 * s + k] / sum : k === 0 ? 1 : 0;
+    if (!(sum > 0)) nearId[4 * s] = aggregate[s];
+  }
+  // the springs at each particle
+  const start = new Int32Array(n + 1);
+  for (let s = 0; s < ns; s++) { start[springs[2 * s] + 1]++; start[springs[2 * s + 1] + 1]++; }
+  let mostAt = 0;
+  for (let i = 0; i < n; i++) { mostAt = Math.max(mostAt, start[i + 1]); start[i + 1] += start[i]; }
+  const springAt = new Int32Array(2 * ns), signAt = new Float64Array(2 * ns), fill = start.slice(0, n);
+  for (let s = 0; s < ns; s++) {
+    const a = springs[2 * s], b = springs[2 * s + 1];
+    springAt[fill[a]] = s; signAt[fill[a]++] = 1;
+    springAt[fill[b]] = s; signAt[fill[b]++] = -1;
+  }
+  // each block's bandwidth: the farthest apart two aggregates that meet at a particle
+  const band = new Int32Array(cloths);
+  for (let i = 0; i < n; i++) {
+    let lo = Infinity, hi = -Infinity;
+    for (let p = start[i]; p < start[i + 1]; p++) { lo = Math.min(lo, aggregate[springAt[p]]); hi = Math.max(hi, aggregate[springAt[p]]); }
+    if (hi >= lo) band[clothOf[i]] = Math.max(band[clothOf[i]], hi - lo);
+  }
+  const matrixStart = new Int32Array(cloths + 1);
+  for (let c = 0; c < cloths; c++) matrixStart[c + 1] = matrixStart[c] + (blockStart[c + 1] - blockStart[c]) * (band[c] + 1);
+  const system: CoarseSystem = {
+    aggregate, nearId, nearWeight, blockStart, band, matrixStart, blockOf, start, springAt, signAt,
+    matrix: new Float64Array(matrixStart[cloths]), rhs: new Float64Array(count), dir: new Float64Array(3 * ns),
+    touched: new Int32Array(mostAt), vec: new Float64Array(3 * mostAt), factoredFor: null, factoredAt: 0,
+  };
+  systems.set(model, system);
+  return system;
+}
+
+/** The number of coarse unknowns (aggregates) of `model`, over all its cloths (tests, docs). */
+export function coarseAggregates(model: ClothModel): number {
+  return coarseSystem(model).rhs.length;
+}
+
+/**
+ * The coarse correction of one substep of length h [s] (see the file's comment): sets state.lambdas (every spring's
+ * multiplier, 0 for a spring without stiffness) and moves the free particles by M⁻¹·Jᵀ·λ. `refactor`: assemble and
+ * factor the matrix from the springs' directions now (the frame's first substep); otherwise the last factor serves,
+ * unless h or the params changed. Allocates nothing.
+ */
+export function solveCoarseStretch(model: ClothModel, state: ClothState, params: SimParams, h: number, refactor: boolean): void {
+  const sys = coarseSystem(model);
+  const x = state.positions, w = state.invMass, lambdas = state.lambdas;
+  const springs = model.springs, rest = model.restLengths, compliance = params.compliance, ns = rest.length;
+  const { aggregate, nearId, nearWeight, blockStart, band, matrixStart, blockOf, start, springAt, signAt, matrix, rhs, dir } = sys;
+  const factor = refactor || sys.factoredFor !== params || sys.factoredAt !== h;
+  const invH2 = 1 / (h * h), cloths = blockStart.length - 1;
+  if (factor) matrix.fill(0);
+  rhs.fill(0);
+  // each spring's direction now, its residual −C (and, to factor, its compliance α̃) into its aggregate's row
+  for (let s = 0; s < ns; s++) {
+    const d = 3 * s;
+    dir[d] = 0; dir[d + 1] = 0; dir[d + 2] = 0;
+    const alpha = compliance[s], pa = springs[2 * s], pb = springs[2 * s + 1];
+    if (alpha === Infinity || w[pa] + w[pb] === 0) continue;
+    const a = 3 * pa, b = 3 * pb;
+    const dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+    const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(len > 1e-12)) continue;
+    dir[d] = dx / len; dir[d + 1] = dy / len; dir[d + 2] = dz / len;
+    const g = aggregate[s];
+    rhs[g] += rest[s] - len;
+    if (factor) {
+      const c = blockOf[g], bw = band[c];
+      matrix[matrixStart[c] + (g - blockStart[c]) * (bw + 1) + bw] += alpha * invH2;
+    }
+  }
+  if (factor) {
+    assemble(sys, model, w);
+    for (let c = 0; c < cloths; c++) factorBand(matrix, matrixStart[c], blockStart[c + 1] - blockStart[c], band[c]);
+    sys.factoredFor = params;
+    sys.factoredAt = h;
+  }
+  for (let c = 0; c < cloths; c++) solveBand(matrix, matrixStart[c], rhs, blockStart[c], blockStart[c + 1] - blockStart[c], band[c]);
+  // each spring's λ, interpolated between the aggregates of its direction; the particles move by M⁻¹·Jᵀ·λ
+  for (let s = 0; s < ns; s++) {
+    const d = 3 * s, k = 4 * s;
+    lambdas[s] = dir[d] === 0 && dir[d + 1] === 0 && dir[d + 2] === 0 ? 0
+      : nearWeight[k] * rhs[nearId[k]] + nearWeight[k + 1] * rhs[nearId[k + 1]] + nearWeight[k + 2] * rhs[nearId[k + 2]] + nearWeight[k + 3] * rhs[nearId[k + 3]];
+  }
+  for (let i = 0; i < model.particleCount; i++) {
+    const wi = w[i];
+    if (wi === 0) continue;
+    let mx = 0, my = 0, mz = 0;
+    for (let p = start[i]; p < start[i + 1]; p++) {
+      const s = springAt[p], l = signAt[p] * lambdas[s];
+      mx += l * dir[3 * s]; my += l * dir[3 * s + 1]; mz += l * dir[3 * s + 2];
+    }
+    x[3 * i] += wi * mx; x[3 * i + 1] += wi * my; x[3 * i + 2] += wi * mz;
+  }
+}
+
+/**
+ * Adds J·M⁻¹·Jᵀ of the springs' directions in sys.dir to the blocks' matrices. At each free particle i, the springs of
+ * each aggregate g it touches sum to v_g = Σ ±n_s (+ at a spring's first particle), and the particle adds w_i·v_g·v_h
+ * to entry (g, h): a handful of aggregates per particle instead of every pair of its springs (the lower triangle only).
+ */
+function assemble(sys: CoarseSystem, model: ClothModel, w: Float32Array): void {
+  const { aggregate, blockStart, band, matrixStart, blockOf, start, springAt, signAt, matrix, dir, touched, vec } = sys;
+  for (let i = 0; i < model.particleCount; i++) {
+    const wi = w[i];
+    if (wi === 0) continue;
+    let m = 0;
+    for (let p = start[i]; p < start[i + 1]; p++) {
+      const s = springAt[p], ds = 3 * s;
+      if (dir[ds] === 0 && dir[ds + 1] === 0 && dir[ds + 2] === 0) continue;
+      const g = aggregate[s], sign = signAt[p];
+      let k = 0;
+      while (k < m && touched[k] !== g) k++;
+      if (k === m) { touched[m] = g; vec[3 * m] = 0; vec[3 * m + 1] = 0; vec[3 * m + 2] = 0; m++; }
+      vec[3 * k] += sign * dir[ds]; vec[3 * k + 1] += sign * dir[ds + 1]; vec[3 * k + 2] += sign * dir[ds + 2];
+    }
+    if (m === 0) continue;
+    const c = blockOf[touched[0]], b0 = blockStart[c], bw = band[c], m0 = matrixStart[c];
+    for (let k = 0; k < m; k++) {
+      const gk = touched[k], vx = wi * vec[3 * k], vy = wi * vec[3 * k + 1], vz = wi * vec[3 * k + 2];
+      const row = m0 + (gk - b0) * (bw + 1) + bw - gk;
+      for (let l = 0; l < m; l++) {
+        const gl = touched[l];
+        if (gl <= gk) matrix[row + gl] += vx * vec[3 * l] + vy * vec[3 * l + 1] + vz * vec[3 * l + 2];
+      }
+    }
+  }
+}
+
+/**
+ * Factors one block in place by banded Cholesky: `size` rows at matrix[m…], row i holding entries (i, i − bw … i) in
+ * its bw + 1 places (the lower triangle; places before column 0 unused). An aggregate with no spring taking part (all
+ * without stiffness, or between pinned particles) has an empty row: its μ comes out 0. A block that is not positive
+ * definite (a non-finite cloth) is left a zero factor, which solveBand takes for no correction.
+ */
+function factorBand(matrix: Float64Array, m: number, size: number, bw: number): void {
+  const stride = bw + 1;
+  for (let j = 0; j < size; j++) if (matrix[m + j * stride + bw] === 0) matrix[m + j * stride + bw] = 1;
+  for (let j = 0; j < size; j++) {
+    const rj = m + j * stride + bw - j; // entry (j, k) at rj + k
+    const k0 = Math.max(0, j - bw);
+    let d = matrix[rj + j];
+    for (let k = k0; k < j; k++) d -= matrix[rj + k] * matrix[rj + k];
+    if (!(d > 0)) { matrix.fill(0, m, m + size * stride); return; }
+    d = Math.sqrt(d);
+    matrix[rj + j] = d;
+    for (let i = j + 1; i < Math.min(size, j + bw + 1); i++) {
+      const ri = m + i * stride + bw - i;
+      let v = matrix[ri + j];
+      for (let k = Math.max(k0, i - bw); k < j; k++) v -= matrix[ri + k] * matrix[rj + k];
+      matrix[ri + j] = v / d;
+    }
+  }
+}
+
+/** Solves one factored block (factorBand) for the right-hand side rhs[r…r + size), in place; 0 for a zero factor. */
+function solveBand(matrix: Float64Array, m: number, rhs: Float64Array, r: number, size: number, bw: number): void {
+  const stride = bw + 1;
+  if (size === 0) return;
+  if (matrix[m + bw] === 0) { rhs.fill(0, r, r + size); return; }
+  for (let i = 0; i < size; i++) {
+    const ri = m + i * stride + bw - i;
+    let v = rhs[r + i];
+    for (let k = Math.max(0, i - bw); k < i; k++) v -= matrix[ri + k] * rhs[r + k];
+    rhs[r + i] = v / matrix[ri + i];
+  }
+  for (let i = size - 1; i >= 0; i--) {
+    let v = rhs[r + i];
+    for (let k = i + 1; k < Math.min(size, i + bw + 1); k++) v -= matrix[m + k * stride + bw - k + i] * rhs[r + k];
+    rhs[r + i] = v / matrix[m + i * stride + bw - i + i];
+  }
+}
