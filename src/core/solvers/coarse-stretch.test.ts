@@ -8,12 +8,15 @@ import { mergeModels } from '../model.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
 import { COARSE_DIRECTIONS, coarseAggregates, coarseCells } from './coarse-stretch.js';
 
-/** A 1 m sheet pinned along its top edge, the scenes' bending (the hinges solved together), default substeps. */
-function hanging(fabric: { arealDensity: number; structuralStiffness: number; shearStiffness: number }, faces: number, stretch: string): Scene {
+/**
+ * A 1 m sheet pinned along its top edge, default substeps; bending as the scenes have it (the hinges solved together)
+ * or as the schema's default (the skip-one springs, which the correction holds in aggregates of their own).
+ */
+function hanging(fabric: { arealDensity: number; structuralStiffness: number; shearStiffness: number }, faces: number, stretch: string, bending = 'hinges'): Scene {
   return validateScene({
     cloth: { resolution: faces, width: 1, height: 1, orientation: 'hanging', position: [0, 1.5, 0] },
     material: { ...fabric, damping: 0.2 },
-    solver: { type: 'xpbd', stretch, bending: 'hinges', bendingSolve: 'global' },
+    solver: { type: 'xpbd', stretch, bending, ...(bending === 'hinges' ? { bendingSolve: 'global' } : {}) },
     colliders: [],
     pins: ['top-edge'],
   });
@@ -31,11 +34,12 @@ const RUBBER = { arealDensity: 0.38, structuralStiffness: 600, shearStiffness: 2
 const COTTON = { arealDensity: 0.12, structuralStiffness: 8600, shearStiffness: 56 };
 
 describe.each<CpuKernel>(['ts', 'wasm'])('solver.stretch "two-level" (xpbd), %s kernel', (kernel) => {
-  it.each([16, 32])('a rubber sheet hanging from its top edge at %i faces a side, 20 substeps × 1 pass: its length grows by ρ_A·g·L²/(2k), within 5 percent (the issue asks 25)', (faces) => {
-    const sim = new Simulation(hanging(RUBBER, faces, 'two-level'), { kernel });
+  it.each([[16, 'hinges'], [32, 'hinges'], [32, 'springs']])('a rubber sheet hanging from its top edge at %i faces a side, bending %s, 20 substeps × 1 pass: its length grows by ρ_A·g·L²/(2k), within 5 percent (the issue asks 25)', (faces, bending) => {
+    const sim = new Simulation(hanging(RUBBER, faces, 'two-level', bending), { kernel });
     sim.advance(240);
     const theory = (0.38 * 9.81) / (2 * 600);
-    // measured 0.96 at 16², 0.99 at 32²; the sweep alone at the same settings 1.26 and 2.26 (below)
+    // measured 0.96 at 16², 0.99 at 32² (0.98 with the skip-one springs); the sweep alone at the same settings 1.26 and
+    // 2.26 (below)
     const ratio = elongation(sim, faces) / theory;
     expect(ratio).toBeGreaterThan(0.95);
     expect(ratio).toBeLessThan(1.05);
@@ -49,14 +53,18 @@ describe.each<CpuKernel>(['ts', 'wasm'])('solver.stretch "two-level" (xpbd), %s 
     expect(elongation(sim, 32) / ((0.38 * 9.81) / (2 * 600))).toBeGreaterThan(2);
   });
 
-  it('a cotton sheet: its strain stays far below 0.5 % (the sweep alone: 1.6 %)', () => {
-    for (const [stretch, bound] of [['two-level', 0.002], ['gauss-seidel', Infinity]] as const) {
-      const sim = new Simulation(hanging(COTTON, 32, stretch), { kernel });
+  it.each(['hinges', 'springs'])('a cotton sheet, bending %s: its strain stays far below 0.5 %, its length near theory (the sweep alone: 45–50 times)', (bending) => {
+    const theory = (0.12 * 9.81) / (2 * 8600);
+    for (const stretch of ['two-level', 'gauss-seidel']) {
+      const sim = new Simulation(hanging(COTTON, 32, stretch, bending), { kernel });
       sim.advance(180);
-      const strain = sim.report().maxStrain;
-      // measured 0.07 % (two-level) and 1.6 % (gauss-seidel); theory 0.014 % at the top
-      if (bound < Infinity) expect(strain).toBeLessThan(bound);
-      else expect(strain).toBeGreaterThan(0.005);
+      const strain = sim.report().maxStrain, ratio = elongation(sim, 32) / theory;
+      // measured (both bendings): two-level 0.07 %, 1.58 times (the top rows, docs/physics.md); gauss-seidel 45–50
+      // times; theory 0.014 % at the top
+      if (stretch === 'two-level') {
+        expect(strain).toBeLessThan(0.002);
+        expect(ratio).toBeLessThan(2);
+      } else expect(ratio).toBeGreaterThan(20);
     }
   });
 
@@ -83,13 +91,16 @@ it('both CPU kernels run the correction on the same cloth alike (the wind flag, 
   wasm.dispose();
 });
 
-it('each cloth has its own aggregates: a cell of its grid and a direction, for the springs that are there', () => {
+it('each cloth has its own aggregates: a cell of its grid, a spring kind and a direction, for the springs that are there', () => {
   // cells about 8 particles across, at least 4 a side: 4 at 8 and 32 faces, 8 at 64
   expect([9, 33, 65, 129].map((side) => coarseCells(side * side))).toEqual([4, 4, 8, 16]);
   const one = new Simulation(hanging(RUBBER, 8, 'two-level'));
-  // a square grid's springs: the structural ones along u and v, the shear ones along both diagonals, in every cell
-  expect(coarseAggregates(one.model)).toBe(4 * 4 * COARSE_DIRECTIONS);
+  // a square grid's springs in every cell: structural along u and v, shear along both diagonals, skip-one bend along
+  // u and v (made with the model whatever the bending; without stiffness their aggregates take no part)
+  const perCell = 2 + 2 + 2;
+  expect(COARSE_DIRECTIONS).toBe(4);
+  expect(coarseAggregates(one.model)).toBe(4 * 4 * perCell);
   const two = mergeModels([one.model, one.model]);
-  expect(coarseAggregates(two)).toBe(2 * 4 * 4 * COARSE_DIRECTIONS);
+  expect(coarseAggregates(two)).toBe(2 * 4 * 4 * perCell);
   one.dispose();
 });

@@ -12,9 +12,12 @@
  *
  * J the springs' unit directions at their particles (±n_s), M the masses, α the compliances, y the prediction. The
  * coarse space ties together the multipliers of the springs of one aggregate: the springs of one cloth whose midpoint
- * lies in one cell of a G × G grid over its texture coordinates and whose rest direction (in those coordinates) falls
- * in one of COARSE_DIRECTIONS directions, so a column's tension and a row's, and the two diagonals', are separate
- * unknowns. G is about √(the cloth's particles)/COARSE_CELL_PARTICLES, at least COARSE_MIN_CELLS: cells about 8
+ * lies in one cell of a G × G grid over its texture coordinates, of one kind (structural, shear, bend), and whose rest
+ * direction (in those coordinates) falls in one of COARSE_DIRECTIONS directions, so a column's tension and a row's,
+ * and the two diagonals', are separate unknowns, and so are springs of very different stiffness (one multiplier, a
+ * force, shared by cotton's 8600 N/m structural springs and its skip-one bend springs of a few N/m would be held back
+ * by the soft ones' compliance: with the bend springs in the structural springs' aggregates a hanging cotton sheet
+ * read 45 times theory at 32², as without the correction). G is about √(the cloth's particles)/COARSE_CELL_PARTICLES, at least COARSE_MIN_CELLS: cells about 8
  * particles across. With R the springs' aggregates, the step from λ = 0 is
  *
  *   R·(J·M⁻¹·Jᵀ + α̃)·Rᵀ·μ = R·(−C(x)),   λ_s = Σ_k φ_k(s)·μ_k,   x ← x + M⁻¹·Jᵀ·λ,
@@ -34,12 +37,15 @@
  * do. A correction of the positions instead (one Gauss–Newton step of the same energy over the same cells) made stiff
  * cloth gain energy in motion. The step is not damped: the springs' damping acts in the sweep after it.
  */
+import { BEND } from '../layout.generated.js';
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
 
 /** Rest directions told apart (in texture space, 180°/COARSE_DIRECTIONS apart) [-]. */
 export const COARSE_DIRECTIONS = 4;
+/** Spring kinds told apart (structural, shear, bend: ids 0 … BEND of the layout table) [-]. */
+const KINDS = BEND + 1;
 /** About how many particles across one cell of a cloth's grid of aggregates [-]. */
 export const COARSE_CELL_PARTICLES = 8;
 /** The fewest cells per side of a cloth's grid of aggregates [-]. */
@@ -96,15 +102,15 @@ function coarseSystem(model: ClothModel): CoarseSystem {
   for (let c = 0; c < cloths; c++) {
     bounds.set([Infinity, -Infinity, Infinity, -Infinity], 4 * c);
     cells[c] = coarseCells(starts[c + 1] - starts[c]);
-    first[c + 1] = first[c] + cells[c] * cells[c] * COARSE_DIRECTIONS;
+    first[c + 1] = first[c] + cells[c] * cells[c] * KINDS * COARSE_DIRECTIONS;
   }
   for (let i = 0; i < n; i++) {
     const o = 4 * clothOf[i];
     bounds[o] = Math.min(bounds[o], uv[2 * i]); bounds[o + 1] = Math.max(bounds[o + 1], uv[2 * i]);
     bounds[o + 2] = Math.min(bounds[o + 2], uv[2 * i + 1]); bounds[o + 3] = Math.max(bounds[o + 3], uv[2 * i + 1]);
   }
-  /** spring s's cloth, its midpoint in cell units (u, v) and its direction class */
-  const place = new Float64Array(2 * ns), direction = new Int32Array(ns);
+  /** spring s's midpoint in cell units (u, v), and its kind and direction class as one number */
+  const place = new Float64Array(2 * ns), direction = new Int32Array(ns), kinds = model.springKinds;
   // every (cloth, cell, direction) slot: then, numbered in order among those that hold a spring
   const slot = new Int32Array(first[cloths]).fill(-1), slotOf = new Int32Array(ns);
   for (let s = 0; s < ns; s++) {
@@ -115,8 +121,8 @@ function coarseSystem(model: ClothModel): CoarseSystem {
     const cu = Math.min(Math.max(Math.floor(place[2 * s]), 0), G - 1), cv = Math.min(Math.max(Math.floor(place[2 * s + 1]), 0), G - 1);
     let angle = Math.atan2((uv[2 * b + 1] - uv[2 * a + 1]) / dv, (uv[2 * b] - uv[2 * a]) / du);
     if (angle < 0) angle += Math.PI;
-    direction[s] = Math.round(angle / (Math.PI / COARSE_DIRECTIONS)) % COARSE_DIRECTIONS;
-    slotOf[s] = first[c] + (cu + G * cv) * COARSE_DIRECTIONS + direction[s];
+    direction[s] = kinds[s] * COARSE_DIRECTIONS + (Math.round(angle / (Math.PI / COARSE_DIRECTIONS)) % COARSE_DIRECTIONS);
+    slotOf[s] = first[c] + (cu + G * cv) * KINDS * COARSE_DIRECTIONS + direction[s];
     slot[slotOf[s]] = 0;
   }
   let count = 0;
@@ -139,7 +145,7 @@ function coarseSystem(model: ClothModel): CoarseSystem {
     const fu = Math.min(Math.max(gu - iu, 0), 1), fv = Math.min(Math.max(gv - iv, 0), 1);
     let sum = 0;
     for (let k = 0; k < 4; k++) {
-      const id = slot[first[c] + (iu + (k & 1) + G * (iv + (k >> 1))) * COARSE_DIRECTIONS + direction[s]];
+      const id = slot[first[c] + (iu + (k & 1) + G * (iv + (k >> 1))) * KINDS * COARSE_DIRECTIONS + direction[s]];
       const wk = ((k & 1) ? fu : 1 - fu) * ((k >> 1) ? fv : 1 - fv);
       nearId[4 * s + k] = id >= 0 ? id : aggregate[s];
       nearWeight[4 * s + k] = id >= 0 ? wk : 0;
