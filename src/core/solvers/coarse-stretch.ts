@@ -57,7 +57,7 @@ export function coarseCells(particles: number): number {
 }
 
 /** One model's aggregates, the springs at each particle, and the memory of its solves (made once per model). */
-interface CoarseSystem {
+export interface CoarseSystem {
   /** each spring's aggregate (global index) */
   readonly aggregate: Int32Array;
   /** each spring's four nearest aggregates of its direction and their bilinear weights (the λ it is given) */
@@ -89,8 +89,8 @@ interface CoarseSystem {
 
 const systems = new WeakMap<ClothModel, CoarseSystem>();
 
-/** The aggregates of `model` (see the file's comment). */
-function coarseSystem(model: ClothModel): CoarseSystem {
+/** The aggregates of `model` (see the file's comment; the WebAssembly kernel copies them: wasm/coarse-wasm.ts). */
+export function coarseSystem(model: ClothModel): CoarseSystem {
   const known = systems.get(model);
   if (known) return known;
   const n = model.particleCount, uv = model.uvs, springs = model.springs, ns = springs.length / 2;

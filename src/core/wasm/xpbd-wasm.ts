@@ -30,6 +30,7 @@ import {
   KERNEL_MAX_ITERATIONS, KERNEL_MAX_THREADS, MAX_COLLIDERS, COLLIDER_RECORD_FLOATS, COLLIDER_BOX, COLLIDER_CAPSULE,
   COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_PLANE, COLLIDER_SPHERE,
 } from '../layout.generated.js';
+import { WasmCoarseStretch } from './coarse-wasm.js';
 import { WasmFactorSolver } from './factored-wasm.js';
 import { KernelSelfContact, layoutSelfContact, type ListedPairs, type SelfContactExports } from './self-contact-wasm.js';
 import { shownValue } from '../text.js';
@@ -58,14 +59,15 @@ function contactRefusal(params: SimParams): string | null {
  * The phases of the schedule the kernel implements (XPBD's substep but its wind, a per-triangle scatter; the bending
  * stencils as well, bit for bit as the reference: bending.as.ts; self-contact's candidate search and narrow phase, with the TypeScript search as the fallback where
  * a window overflows: self-contact-wasm.ts; the global steps, the reference's assembly around the kernel's
- * triangular solves, bit for bit as the reference: factored-wasm.ts).
+ * triangular solves, bit for bit as the reference: factored-wasm.ts; the springs' coarse correction, bit for bit as
+ * the reference: coarse-wasm.ts).
  */
 export const KERNEL_PHASES: BackendPhases = {
   name: 'WebAssembly kernel',
   where: 'in the WebAssembly kernel',
   sharesMemory: true,
   solvers: ['xpbd'],
-  phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.globalStretch) | (1 << PHASE.distance) | (1 << PHASE.bending) |
+  phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.globalStretch) | (1 << PHASE.coarseStretch) | (1 << PHASE.distance) | (1 << PHASE.bending) |
     (1 << PHASE.globalBending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact) |
     (1 << PHASE.contactTriangles),
   // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
@@ -76,10 +78,11 @@ export const KERNEL_PHASES: BackendPhases = {
 };
 
 /**
- * The kernel's phases the host drives on the calling thread between two substep() calls: self-contact, and the
- * global steps (their assembly in TypeScript, their triangular solves in the kernel's code).
+ * The kernel's phases the host drives on the calling thread between two substep() calls: self-contact, the global
+ * steps (their assembly in TypeScript, their triangular solves in the kernel's code) and the springs' coarse
+ * correction (in the kernel's code over a memory of its own).
  */
-const HOSTED = (1 << PHASE.selfContact) | (1 << PHASE.globalStretch) | (1 << PHASE.globalBending);
+const HOSTED = (1 << PHASE.selfContact) | (1 << PHASE.globalStretch) | (1 << PHASE.globalBending) | (1 << PHASE.coarseStretch);
 
 /** polls of a word before a kernel thread that waits sleeps (a phase usually opens sooner) */
 const SPIN_LIMIT = 1 << 15;
@@ -197,6 +200,8 @@ export class XpbdKernel implements PhaseBackend {
   /** the global steps' triangular solves (made when a step first runs), one each: each keeps its factor in its memory */
   private stretchSolver: WasmFactorSolver | undefined;
   private bendingSolver: WasmFactorSolver | undefined;
+  /** the springs' coarse correction (solver.stretch 'two-level'), over a memory of its own (coarse-wasm.ts) */
+  private coarse: WasmCoarseStretch | undefined;
   private readonly helpers: { terminate(): void }[] = [];
   private paramsSeen: SimParams | undefined;
   /** with helpers: whether a frame runs with them (thread-mode.ts) */
@@ -408,8 +413,9 @@ export class XpbdKernel implements PhaseBackend {
   /**
    * The kernel's phases of `mask` (of one substep: frame.sub, starting at state.time): each run of them between the
    * phases the host drives in one substep() call, and those on this thread in their place — self-contact
-   * (self-contact-wasm.ts: its search and passes in the kernel, called from here) and the global steps (the
-   * reference's code with the kernel's triangular solves, factored-wasm.ts); it lists what it ran for `log`.
+   * (self-contact-wasm.ts: its search and passes in the kernel, called from here), the global steps (the
+   * reference's code with the kernel's triangular solves, factored-wasm.ts) and the coarse correction (coarse-wasm.ts);
+   * it lists what it ran for `log`.
    */
   run(mask: number, model: ClothModel, state: ClothState, params: SimParams, frame: FrameVars, log: PhaseLog | undefined): void {
     let rest = mask;
@@ -432,6 +438,10 @@ export class XpbdKernel implements PhaseBackend {
       if (this.selfContact) this.selfContact.run(model, state, params, frame.h, frame.substeps - frame.sub);
       else collideSelf(model, state, params, frame.h, frame.substeps - frame.sub);
       log?.push(PHASE.selfContact, this.selfContact === null);
+    } else if (bit === 1 << PHASE.coarseStretch) {
+      this.coarse ??= new WasmCoarseStretch(this.instantiateSingle);
+      this.coarse.run(model, state, params, frame.h, frame.sub === 0);
+      log?.push(PHASE.coarseStretch, false);
     } else if (bit === 1 << PHASE.globalStretch) {
       this.stretchSolver ??= new WasmFactorSolver(this.instantiateSingle);
       solveGlobalStretch(model, state, params, frame.h, phasePasses(PHASE.globalStretch, params), this.stretchSolver);

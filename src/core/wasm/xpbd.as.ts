@@ -46,6 +46,7 @@ import {
 export { configure } from './arrays.as';
 export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfParticles, selfTriangleBoxes } from './self-contact.as';
 export { configureSearch, foundEdgePairs, foundPairs, selfSearch, selfUpdate } from './self-search.as';
+export { coarseStretch } from './coarse.as';
 export { productAdd3, solveFactored3 } from './factored.as';
 
 /**

@@ -1,0 +1,173 @@
+// The springs' coarse correction (solver.stretch 'two-level'; solvers/coarse-stretch.ts solveCoarseStretch is the
+// reference): the same operations in the same order, in f64 with the f32 arrays read and written as the reference
+// reads and writes its Float32Arrays, so both give the same positions and multipliers bit for bit. The arrays are not
+// the kernel's: the host (coarse-wasm.ts) runs this export over a memory of its own, laid out once per model, with the
+// positions and inverse masses copied in and the positions and multipliers out at each call. `header` holds the
+// arrays' byte offsets and counts as i32 words, in the order of the H_ constants.
+
+const H_N: i32 = 0, H_NS: i32 = 1, H_CLOTHS: i32 = 2;
+const H_X: i32 = 4, H_W: i32 = 5, H_LAMBDAS: i32 = 6, H_SPRINGS: i32 = 7, H_REST: i32 = 8, H_COMPLIANCE: i32 = 9;
+const H_AGGREGATE: i32 = 10, H_NEAR_ID: i32 = 11, H_NEAR_WEIGHT: i32 = 12, H_START: i32 = 13, H_SPRING_AT: i32 = 14;
+const H_SIGN_AT: i32 = 15, H_BLOCK_START: i32 = 16, H_BAND: i32 = 17, H_MATRIX_START: i32 = 18, H_BLOCK_OF: i32 = 19;
+const H_MATRIX: i32 = 20, H_RHS: i32 = 21, H_DIR: i32 = 22, H_TOUCHED: i32 = 23, H_VEC: i32 = 24;
+
+@inline function word(header: usize, k: i32): i32 {
+  return load<i32>(header + (<usize>k << 2));
+}
+@inline function at(header: usize, k: i32): usize {
+  return <usize>load<i32>(header + (<usize>k << 2));
+}
+@inline function i32At(base: usize, i: i32): i32 {
+  return load<i32>(base + (<usize>i << 2));
+}
+@inline function f64Ref(base: usize, i: i32): usize {
+  return base + (<usize>i << 3);
+}
+
+/** One substep's coarse correction of substep length h [s]; `factor`: assemble and factor the matrix first. */
+export function coarseStretch(header: usize, h: f64, factor: bool): void {
+  const n = word(header, H_N), ns = word(header, H_NS), cloths = word(header, H_CLOTHS);
+  const x = at(header, H_X), w = at(header, H_W), lambdas = at(header, H_LAMBDAS), springs = at(header, H_SPRINGS);
+  const rest = at(header, H_REST), compliance = at(header, H_COMPLIANCE), aggregate = at(header, H_AGGREGATE);
+  const nearId = at(header, H_NEAR_ID), nearWeight = at(header, H_NEAR_WEIGHT), start = at(header, H_START);
+  const springAt = at(header, H_SPRING_AT), signAt = at(header, H_SIGN_AT), blockStart = at(header, H_BLOCK_START);
+  const band = at(header, H_BAND), matrixStart = at(header, H_MATRIX_START), blockOf = at(header, H_BLOCK_OF);
+  const matrix = at(header, H_MATRIX), rhs = at(header, H_RHS), dir = at(header, H_DIR);
+  const invH2 = 1 / (h * h);
+  const count = i32At(blockStart, cloths);
+  if (factor) memory.fill(matrix, 0, <usize>i32At(matrixStart, cloths) << 3);
+  memory.fill(rhs, 0, <usize>count << 3);
+  for (let s = 0; s < ns; s++) {
+    const d = f64Ref(dir, 3 * s);
+    store<f64>(d, 0); store<f64>(d, 0, 8); store<f64>(d, 0, 16);
+    const alpha = <f64>load<f32>(compliance + (<usize>s << 2));
+    const pa = i32At(springs, 2 * s), pb = i32At(springs, 2 * s + 1);
+    if (alpha == Infinity || <f64>load<f32>(w + (<usize>pa << 2)) + <f64>load<f32>(w + (<usize>pb << 2)) == 0) continue;
+    const a = x + <usize>pa * 12, b = x + <usize>pb * 12;
+    const dx = <f64>load<f32>(a) - <f64>load<f32>(b), dy = <f64>load<f32>(a, 4) - <f64>load<f32>(b, 4), dz = <f64>load<f32>(a, 8) - <f64>load<f32>(b, 8);
+    const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(len > 1e-12)) continue;
+    store<f64>(d, dx / len); store<f64>(d, dy / len, 8); store<f64>(d, dz / len, 16);
+    const g = i32At(aggregate, s), r = f64Ref(rhs, g);
+    store<f64>(r, load<f64>(r) + (<f64>load<f32>(rest + (<usize>s << 2)) - len));
+    if (factor) {
+      const c = i32At(blockOf, g), bw = i32At(band, c);
+      const e = f64Ref(matrix, i32At(matrixStart, c) + (g - i32At(blockStart, c)) * (bw + 1) + bw);
+      store<f64>(e, load<f64>(e) + alpha * invH2);
+    }
+  }
+  if (factor) {
+    assemble(header, n);
+    for (let c = 0; c < cloths; c++) factorBand(matrix, i32At(matrixStart, c), i32At(blockStart, c + 1) - i32At(blockStart, c), i32At(band, c));
+  }
+  for (let c = 0; c < cloths; c++) solveBand(matrix, i32At(matrixStart, c), rhs, i32At(blockStart, c), i32At(blockStart, c + 1) - i32At(blockStart, c), i32At(band, c));
+  for (let s = 0; s < ns; s++) {
+    const d = f64Ref(dir, 3 * s), k = 4 * s;
+    let l: f64 = 0;
+    if (!(load<f64>(d) == 0 && load<f64>(d, 8) == 0 && load<f64>(d, 16) == 0)) {
+      l = load<f64>(f64Ref(nearWeight, k)) * load<f64>(f64Ref(rhs, i32At(nearId, k))) +
+        load<f64>(f64Ref(nearWeight, k + 1)) * load<f64>(f64Ref(rhs, i32At(nearId, k + 1))) +
+        load<f64>(f64Ref(nearWeight, k + 2)) * load<f64>(f64Ref(rhs, i32At(nearId, k + 2))) +
+        load<f64>(f64Ref(nearWeight, k + 3)) * load<f64>(f64Ref(rhs, i32At(nearId, k + 3)));
+    }
+    store<f32>(lambdas + (<usize>s << 2), <f32>l);
+  }
+  for (let i = 0; i < n; i++) {
+    const wi = <f64>load<f32>(w + (<usize>i << 2));
+    if (wi == 0) continue;
+    let mx: f64 = 0, my: f64 = 0, mz: f64 = 0;
+    const p1 = i32At(start, i + 1);
+    for (let p = i32At(start, i); p < p1; p++) {
+      const s = i32At(springAt, p), l = load<f64>(f64Ref(signAt, p)) * <f64>load<f32>(lambdas + (<usize>s << 2)), d = f64Ref(dir, 3 * s);
+      mx += l * load<f64>(d); my += l * load<f64>(d, 8); mz += l * load<f64>(d, 16);
+    }
+    const q = x + <usize>i * 12;
+    store<f32>(q, <f32>(<f64>load<f32>(q) + wi * mx));
+    store<f32>(q, <f32>(<f64>load<f32>(q, 4) + wi * my), 4);
+    store<f32>(q, <f32>(<f64>load<f32>(q, 8) + wi * mz), 8);
+  }
+}
+
+/** J·M⁻¹·Jᵀ into the blocks' banded matrices (the reference's assemble). */
+function assemble(header: usize, n: i32): void {
+  const w = at(header, H_W), aggregate = at(header, H_AGGREGATE), start = at(header, H_START), springAt = at(header, H_SPRING_AT);
+  const signAt = at(header, H_SIGN_AT), blockStart = at(header, H_BLOCK_START), band = at(header, H_BAND);
+  const matrixStart = at(header, H_MATRIX_START), blockOf = at(header, H_BLOCK_OF), matrix = at(header, H_MATRIX);
+  const dir = at(header, H_DIR), touched = at(header, H_TOUCHED), vec = at(header, H_VEC);
+  for (let i = 0; i < n; i++) {
+    const wi = <f64>load<f32>(w + (<usize>i << 2));
+    if (wi == 0) continue;
+    let m = 0;
+    const p1 = i32At(start, i + 1);
+    for (let p = i32At(start, i); p < p1; p++) {
+      const s = i32At(springAt, p), ds = f64Ref(dir, 3 * s);
+      if (load<f64>(ds) == 0 && load<f64>(ds, 8) == 0 && load<f64>(ds, 16) == 0) continue;
+      const g = i32At(aggregate, s), sign = load<f64>(f64Ref(signAt, p));
+      let k = 0;
+      while (k < m && i32At(touched, k) != g) k++;
+      const v = f64Ref(vec, 3 * k);
+      if (k == m) { store<i32>(touched + (<usize>m << 2), g); store<f64>(v, 0); store<f64>(v, 0, 8); store<f64>(v, 0, 16); m++; }
+      store<f64>(v, load<f64>(v) + sign * load<f64>(ds));
+      store<f64>(v, load<f64>(v, 8) + sign * load<f64>(ds, 8), 8);
+      store<f64>(v, load<f64>(v, 16) + sign * load<f64>(ds, 16), 16);
+    }
+    if (m == 0) continue;
+    const c = i32At(blockOf, i32At(touched, 0)), b0 = i32At(blockStart, c), bw = i32At(band, c), m0 = i32At(matrixStart, c);
+    for (let k = 0; k < m; k++) {
+      const gk = i32At(touched, k), vk = f64Ref(vec, 3 * k);
+      const vx = wi * load<f64>(vk), vy = wi * load<f64>(vk, 8), vz = wi * load<f64>(vk, 16);
+      const row = m0 + (gk - b0) * (bw + 1) + bw - gk;
+      for (let l = 0; l < m; l++) {
+        const gl = i32At(touched, l);
+        if (gl <= gk) {
+          const vl = f64Ref(vec, 3 * l), e = f64Ref(matrix, row + gl);
+          store<f64>(e, load<f64>(e) + (vx * load<f64>(vl) + vy * load<f64>(vl, 8) + vz * load<f64>(vl, 16)));
+        }
+      }
+    }
+  }
+}
+
+/** Banded Cholesky of one block in place (the reference's factorBand). */
+function factorBand(matrix: usize, m: i32, size: i32, bw: i32): void {
+  const stride = bw + 1;
+  for (let j = 0; j < size; j++) {
+    const e = f64Ref(matrix, m + j * stride + bw);
+    if (load<f64>(e) == 0) store<f64>(e, 1);
+  }
+  for (let j = 0; j < size; j++) {
+    const rj = m + j * stride + bw - j;
+    const k0 = max(0, j - bw);
+    let d = load<f64>(f64Ref(matrix, rj + j));
+    for (let k = k0; k < j; k++) { const v = load<f64>(f64Ref(matrix, rj + k)); d -= v * v; }
+    if (!(d > 0)) { memory.fill(f64Ref(matrix, m), 0, <usize>(size * stride) << 3); return; }
+    d = Math.sqrt(d);
+    store<f64>(f64Ref(matrix, rj + j), d);
+    const i1 = min(size, j + bw + 1);
+    for (let i = j + 1; i < i1; i++) {
+      const ri = m + i * stride + bw - i;
+      let v = load<f64>(f64Ref(matrix, ri + j));
+      for (let k = max(k0, i - bw); k < j; k++) v -= load<f64>(f64Ref(matrix, ri + k)) * load<f64>(f64Ref(matrix, rj + k));
+      store<f64>(f64Ref(matrix, ri + j), v / d);
+    }
+  }
+}
+
+/** Solves one factored block for rhs[r…r + size) in place (the reference's solveBand). */
+function solveBand(matrix: usize, m: i32, rhs: usize, r: i32, size: i32, bw: i32): void {
+  const stride = bw + 1;
+  if (size == 0) return;
+  if (load<f64>(f64Ref(matrix, m + bw)) == 0) { memory.fill(f64Ref(rhs, r), 0, <usize>size << 3); return; }
+  for (let i = 0; i < size; i++) {
+    const ri = m + i * stride + bw - i;
+    let v = load<f64>(f64Ref(rhs, r + i));
+    for (let k = max(0, i - bw); k < i; k++) v -= load<f64>(f64Ref(matrix, ri + k)) * load<f64>(f64Ref(rhs, r + k));
+    store<f64>(f64Ref(rhs, r + i), v / load<f64>(f64Ref(matrix, ri + i)));
+  }
+  for (let i = size - 1; i >= 0; i--) {
+    let v = load<f64>(f64Ref(rhs, r + i));
+    const k1 = min(size, i + bw + 1);
+    for (let k = i + 1; k < k1; k++) v -= load<f64>(f64Ref(matrix, m + k * stride + bw - k + i)) * load<f64>(f64Ref(rhs, r + k));
+    store<f64>(f64Ref(rhs, r + i), v / load<f64>(f64Ref(matrix, m + i * stride + bw)));
+  }
+}
