@@ -75,10 +75,12 @@ describe('the npm package', () => {
   // (sparse.ts: a pin change at 128² 76 ms instead of 335) and the bending stencils solved together
   // (global-bending.ts, prefactored.ts: the cantilever within 2 % of every fabric's bending length); then 341 kB, when
   // the WebGPU solver took the bending stencils solved together (gpu/global-bending.ts and its four kernels: the
-  // cantilever on the GPU as on the CPU); 348 kB by 2026-12-06, the README grown with the fabric tests' findings: the
-  // budget keeps about 10 kB above what ships
-  it('packs into at most 360 kB', () => {
-    expect(packed.size).toBeLessThanOrEqual(360_000);
+  // cantilever on the GPU as on the CPU); 348 kB by 2026-12-06, the README grown with the fabric tests' findings;
+  // 357 kB the same day with the springs' coarse correction (solvers/coarse-stretch.ts, its kernel coarse.as.ts in both
+  // builds, coarse-wasm.ts: a hanging sheet at the default substeps within 4 % of theory): the budget keeps about
+  // 10 kB above what ships
+  it('packs into at most 370 kB', () => {
+    expect(packed.size).toBeLessThanOrEqual(370_000);
   });
 
   it('declares its doc comments in the types and ships the code without them', () => {
