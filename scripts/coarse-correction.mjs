@@ -91,16 +91,12 @@ export class CoarseCorrection {
     }
     const springs = model.springs, rest = model.restLengths, compliance = params.compliance, beta = params.springDamping;
     const coef = this.coef, ids = this.ids;
+    const unit = this.unit ??= new Float64Array(3);
     for (let s = 0; s < rest.length; s++) {
-      const alpha = compliance[s];
-      if (!(alpha < Infinity)) continue;
-      const pa = springs[2 * s], pb = springs[2 * s + 1];
-      if (!(w[pa] > 0) && !(w[pb] > 0)) continue;
-      const ja = 3 * pa, jb = 3 * pb;
-      const dx = x[ja] - x[jb], dy = x[ja + 1] - x[jb + 1], dz = x[ja + 2] - x[jb + 2];
-      const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
-      if (len < 1e-12) continue;
-      const nx = dx / len, ny = dy / len, nz = dz / len;
+      const len = springDirection(springs, compliance, w, x, s, unit);
+      if (!(len > 0)) continue;
+      const alpha = compliance[s], pa = springs[2 * s], pb = springs[2 * s + 1], ja = 3 * pa, jb = 3 * pb;
+      const nx = unit[0], ny = unit[1], nz = unit[2];
       let k = 1 / alpha, force = k * (len - rest[s]);
       if (damping && beta[s] > 0) {
         // Rayleigh damping of the stretching rate, as XPBD's: force β·k·(dl/dt), stiffness β·k/h more along n
@@ -139,29 +135,7 @@ export class CoarseCorrection {
         }
       }
     }
-    // dense Cholesky, in place (lower triangle), then the two triangular solves
-    for (let j = 0; j < N; j++) {
-      let d = A[j * N + j];
-      for (let k = 0; k < j; k++) d -= A[j * N + k] * A[j * N + k];
-      if (!(d > 0)) return 0; // a node no free particle weighs: leave the cloth as it is
-      d = Math.sqrt(d);
-      A[j * N + j] = d;
-      for (let i = j + 1; i < N; i++) {
-        let v = A[i * N + j];
-        for (let k = 0; k < j; k++) v -= A[i * N + k] * A[j * N + k];
-        A[i * N + j] = v / d;
-      }
-    }
-    for (let i = 0; i < N; i++) {
-      let v = b[i];
-      for (let k = 0; k < i; k++) v -= A[i * N + k] * b[k];
-      b[i] = v / A[i * N + i];
-    }
-    for (let i = N - 1; i >= 0; i--) {
-      let v = b[i];
-      for (let k = i + 1; k < N; k++) v -= A[k * N + i] * b[k];
-      b[i] = v / A[i * N + i];
-    }
+    if (!solveDense(A, b, N)) return 0; // a node no free particle weighs: leave the cloth as it is
     let most = 0, step = 1;
     if (this.omega !== undefined && this.omega !== 1) for (let j = 0; j < N; j++) b[j] *= this.omega;
     if (search) {
@@ -248,18 +222,13 @@ export class DualCoarse {
     const A = this.A, b = this.b, N = this.count, agg = this.aggregate, dir = this.dir, start = this.start, list = this.list;
     A.fill(0); b.fill(0);
     const ih2 = 1 / (h * h);
+    const unit = this.unit ??= new Float64Array(3);
     for (let s = 0; s < ns; s++) {
       dir[3 * s] = 0; dir[3 * s + 1] = 0; dir[3 * s + 2] = 0;
-      const alpha = compliance[s];
-      if (!(alpha < Infinity)) continue;
-      const pa = springs[2 * s], pb = springs[2 * s + 1];
-      if (!(w[pa] > 0) && !(w[pb] > 0)) continue;
-      const ja = 3 * pa, jb = 3 * pb;
-      const dx = x[ja] - x[jb], dy = x[ja + 1] - x[jb + 1], dz = x[ja + 2] - x[jb + 2];
-      const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
-      if (len < 1e-12) continue;
-      dir[3 * s] = dx / len; dir[3 * s + 1] = dy / len; dir[3 * s + 2] = dz / len;
-      const at = alpha * ih2, a = agg[s];
+      const len = springDirection(springs, compliance, w, x, s, unit);
+      if (!(len > 0)) continue;
+      dir.set(unit, 3 * s);
+      const at = compliance[s] * ih2, a = agg[s];
       b[a] += -(len - rest[s]) - at * lambdas[s];
       A[a * N + a] += at;
     }
@@ -279,28 +248,7 @@ export class DualCoarse {
     }
     // an aggregate of springs without stiffness (the skip-one springs under a stencil bending model) has no row: μ = 0
     for (let j = 0; j < N; j++) if (A[j * N + j] === 0) A[j * N + j] = 1;
-    for (let j = 0; j < N; j++) {
-      let d = A[j * N + j];
-      for (let k = 0; k < j; k++) d -= A[j * N + k] * A[j * N + k];
-      if (!(d > 0)) return 0;
-      d = Math.sqrt(d);
-      A[j * N + j] = d;
-      for (let i = j + 1; i < N; i++) {
-        let v = A[i * N + j];
-        for (let k = 0; k < j; k++) v -= A[i * N + k] * A[j * N + k];
-        A[i * N + j] = v / d;
-      }
-    }
-    for (let i = 0; i < N; i++) {
-      let v = b[i];
-      for (let k = 0; k < i; k++) v -= A[i * N + k] * b[k];
-      b[i] = v / A[i * N + i];
-    }
-    for (let i = N - 1; i >= 0; i--) {
-      let v = b[i];
-      for (let k = i + 1; k < N; k++) v -= A[k * N + i] * b[k];
-      b[i] = v / A[i * N + i];
-    }
+    if (!solveDense(A, b, N)) return 0;
     let most = 0;
     for (let i = 0; i < n; i++) {
       const wi = w[i];
@@ -316,4 +264,47 @@ export class DualCoarse {
     for (let s = 0; s < ns; s++) lambdas[s] += this.omega * b[agg[s]];
     return most;
   }
+}
+
+/** Solves A·x = b for the N × N symmetric positive definite A (lower triangle read) by Cholesky, in place; false if not. */
+function solveDense(A, b, N) {
+  for (let j = 0; j < N; j++) {
+    let d = A[j * N + j];
+    for (let k = 0; k < j; k++) d -= A[j * N + k] * A[j * N + k];
+    if (!(d > 0)) return false;
+    d = Math.sqrt(d);
+    A[j * N + j] = d;
+    for (let i = j + 1; i < N; i++) {
+      let v = A[i * N + j];
+      for (let k = 0; k < j; k++) v -= A[i * N + k] * A[j * N + k];
+      A[i * N + j] = v / d;
+    }
+  }
+  for (let i = 0; i < N; i++) {
+    let v = b[i];
+    for (let k = 0; k < i; k++) v -= A[i * N + k] * b[k];
+    b[i] = v / A[i * N + i];
+  }
+  for (let i = N - 1; i >= 0; i--) {
+    let v = b[i];
+    for (let k = i + 1; k < N; k++) v -= A[k * N + i] * b[k];
+    b[i] = v / A[i * N + i];
+  }
+  return true;
+}
+
+/**
+ * Spring s's unit direction x_a − x_b into `out` and its length [m], or 0 where it takes no part: no stiffness (α
+ * infinite), both ends pinned, or its ends on one point.
+ */
+function springDirection(springs, compliance, w, x, s, out) {
+  if (!(compliance[s] < Infinity)) return 0;
+  const pa = springs[2 * s], pb = springs[2 * s + 1];
+  if (!(w[pa] > 0) && !(w[pb] > 0)) return 0;
+  const ja = 3 * pa, jb = 3 * pb;
+  const dx = x[ja] - x[jb], dy = x[ja + 1] - x[jb + 1], dz = x[ja + 2] - x[jb + 2];
+  const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
+  if (len < 1e-12) return 0;
+  out[0] = dx / len; out[1] = dy / len; out[2] = dz / len;
+  return len;
 }
