@@ -17,8 +17,9 @@
  * and the two diagonals', are separate unknowns, and so are springs of very different stiffness (one multiplier, a
  * force, shared by cotton's 8600 N/m structural springs and its skip-one bend springs of a few N/m would be held back
  * by the soft ones' compliance: with the bend springs in the structural springs' aggregates a hanging cotton sheet
- * read 45 times theory at 32², as without the correction). G is about √(the cloth's particles)/COARSE_CELL_PARTICLES, at least COARSE_MIN_CELLS: cells about 8
- * particles across. With R the springs' aggregates, the step from λ = 0 is
+ * read 45 times theory at 32², as without the correction). G is about √(the cloth's particles) /
+ * COARSE_CELL_PARTICLES, at least COARSE_MIN_CELLS: cells about 8 particles across. With R the springs' aggregates,
+ * the step from λ = 0 is
  *
  *   R·(J·M⁻¹·Jᵀ + α̃)·Rᵀ·μ = R·(−C(x)),   λ_s = Σ_k φ_k(s)·μ_k,   x ← x + M⁻¹·Jᵀ·λ,
  *
@@ -75,7 +76,10 @@ export interface CoarseSystem {
   readonly start: Int32Array;
   readonly springAt: Int32Array;
   readonly signAt: Float64Array;
-  /** the blocks' banded matrices (then their factors), the right-hand side, each spring's unit direction now (0 where it takes no part) */
+  /**
+   * the blocks' banded matrices (then their factors), the right-hand side, each spring's unit direction now (0 where
+   * it takes no part)
+   */
   readonly matrix: Float64Array;
   readonly rhs: Float64Array;
   readonly dir: Float64Array;
