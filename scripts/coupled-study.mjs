@@ -37,6 +37,8 @@
 //              [--spring-force (the springs' elastic force at the substep's start added, h²/m times it, before the
 //              bending step: exact at rest, explicit, and it blows up)] [--angles (the springs whose directions the
 //              sweep and the bending left farthest from the result's)]
+//   two-level  the sweep with a coarse correction over a grid of cells (coarse-correction.mjs): of the positions
+//              (--space primal, a Gauss–Newton step) or of the springs' multipliers (--space dual); options below
 // and prints the reading (the cantilever's c / c_theory, the Cusick disc's drape coefficient and folds, the hanging
 // 1 m sheet's elongation and middle strain over theory, rubber or cotton, 32 faces; for `fall`, a free cloth's fall
 // over 0.5 s as a share of ½gt², 1 where the step keeps free motion; for `swing`, a sheet hung by one corner, the
@@ -47,7 +49,8 @@
 //     any built-in scene (the reading: the centroid's height and the largest strain)]
 //     [--fabric F] [--resolution R] [--substeps S] [--set path=value ...] [--no-pedestal (cusick without its pedestal collider: the clamp
 //     only)] [--trace (the reading every 0.05 s)] [--where (the fastest particles at the end)] [--newton N (then Newton
-//     on the model's static energy from the end state, as drape-equilibrium.mjs: the nearest equilibrium)] [options of the mode]
+//     on the model's static energy from the end state, as drape-equilibrium.mjs: the nearest equilibrium)] [--rows (the
+//     hanging sheet's strain row by row)] [options of the mode]
 import { builtinScene, FABRICS, setScenePath, Simulation, validateScene } from '../dist/core/index.js';
 import { bendingStencils } from '../dist/core/model.js';
 import { REFERENCE } from '../dist/core/reference.js';
@@ -425,8 +428,9 @@ if (mode === 'two-level') {
   // [--position-only (the correction moves the substep's start too, so it does not enter the velocity)] [--geometric
   // (a stretched spring's transverse stiffness too)] [--line-search (the step kept only as far as it lowers the
   // substep's energy)] [--omega ω (the step times ω, 1)]
-  // [--space dual [--bins B] (DualCoarse: the correction on the springs' multipliers, after the sweep)] [--every K (the
-  // dual correction in every K-th substep only, 1)]
+  // [--space dual [--bins B] (DualCoarse: the correction on the springs' multipliers, piecewise constant: before the
+  // sweep with --order pre, the sweep accumulating from it; the core's phase is solver.stretch 'two-level')] [--every K
+  // (the dual correction in every K-th substep only, 1)]
   const { CoarseCorrection, DualCoarse } = await import('./coarse-correction.mjs');
   const dual = arg('space', 'primal') === 'dual';
   const sweepPhase = REFERENCE[PHASE.distance], grid = Number(arg('grid', '8')), order = arg('order', 'pre');
