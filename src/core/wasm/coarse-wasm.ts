@@ -41,11 +41,6 @@ export class WasmCoarseStretch {
     this.exports = instantiate(this.memory).exports as unknown as CoarseExports;
   }
 
-  /** The memory's size [bytes]. */
-  get bytes(): number {
-    return this.memory.buffer.byteLength;
-  }
-
   /** solveCoarseStretch(model, state, params, h, refactor), in the kernel (see the file's comment). */
   run(model: ClothModel, state: ClothState, params: SimParams, h: number, refactor: boolean): void {
     if (model !== this.model) this.layout(model);
