@@ -48,9 +48,9 @@ export const COARSE_DIRECTIONS = 4;
 /** Spring kinds told apart (structural, shear, bend: ids 0 … BEND of the layout table) [-]. */
 const KINDS = BEND + 1;
 /** About how many particles across one cell of a cloth's grid of aggregates [-]. */
-export const COARSE_CELL_PARTICLES = 8;
+const COARSE_CELL_PARTICLES = 8;
 /** The fewest cells per side of a cloth's grid of aggregates [-]. */
-export const COARSE_MIN_CELLS = 4;
+const COARSE_MIN_CELLS = 4;
 
 /** Cells per side of the grid of aggregates of a cloth of `particles` particles [-]. */
 export function coarseCells(particles: number): number {
@@ -156,7 +156,6 @@ export function coarseSystem(model: ClothModel): CoarseSystem {
       sum += nearWeight[4 * s + k];
     }
     for (let k = 0; k < 4; k++) nearWeight[4 * s + k] = sum > 0 ? nearWeight[4 * s + k] / sum : k === 0 ? 1 : 0;
-    if (!(sum > 0)) nearId[4 * s] = aggregate[s];
   }
   // the springs at each particle
   const start = new Int32Array(n + 1);
@@ -185,11 +184,6 @@ export function coarseSystem(model: ClothModel): CoarseSystem {
   };
   systems.set(model, system);
   return system;
-}
-
-/** The number of coarse unknowns (aggregates) of `model`, over all its cloths (tests, docs). */
-export function coarseAggregates(model: ClothModel): number {
-  return coarseSystem(model).rhs.length;
 }
 
 /**
