@@ -162,6 +162,29 @@ describe('GPU simulation backend', () => {
     expect(errors).toEqual([]);
   });
 
+  it('the springs\' coarse correction on the GPU: the stretch choice two-level keeps the GPU backend', async () => {
+    // (docs/gpu.md, "The springs' coarse correction"; before 2026-12-06 the GPU refused it and the page fell back to
+    // the CPU worker): the cloth hung from two corners, 30 frames, where the CLI puts it (`node bin/drape.js run custom
+    // --backend gpu --frames 30 --set cloth.resolution=12 --set solver.selfContact=false --set
+    // 'pins=["top-left","top-right"]' --set solver.stretch=two-level --json`: centroid y 0.845735, z −0.306517; the
+    // sweep alone 0.847324, −0.300194)
+    await onGpu(page);
+    await gpuScene(page, 'Custom Parameters', 12);
+    await setChecked(page, 'pin.top-left', true);
+    await setChecked(page, 'pin.top-right', true);
+    await choose(page, 'solver.stretch', 'two-level');
+    expect((await hook<any>(page, 'scene')).solver.stretch).toBe('two-level');
+    await gpuReady(page);
+    await page.waitForFunction(() => (window as any).drape.frame() === 0);
+    await step(page, 30);
+    expect(await hook(page, 'simBackend')).toBe('gpu');
+    const [, y, z] = await centroid(page);
+    expect(y).toBeCloseTo(0.8457, 3);
+    expect(z).toBeCloseTo(-0.3065, 3);
+    await expect.poll(() => byId(page, 'hud').innerText()).toContain('GPU');
+    expect(errors).toEqual([]);
+  });
+
   it('a GPU cloth that stops being finite is stopped at its last finite shape, with Reset; exports refuse', async () => {
     await onGpu(page);
     await gpuScene(page, 'Silk Drape', 8);

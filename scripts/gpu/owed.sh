@@ -1,7 +1,8 @@
 #!/bin/bash
 # The real-GPU measurements docs/performance.md records, in one call on the GPU machine (after `source
 # scripts/gpu/env.sh`): every size of `drape bench --backend gpu`, and 64²–256² with the bending stencils solved
-# together (the global bending step) and with the springs solved together (the global stretch step), the cantilever
+# together (the global bending step), with the springs solved together (the global stretch step) and with their coarse
+# correction (solver.stretch two-level), the cantilever
 # with the former, the mannequin scenes, fold at 256² with
 # self-contact on, off, and off at the substeps self-contact takes, and a 64² cloth on mesh colliders of about 1k, 10k
 # and 100k triangles (made by scripts/gpu/mesh-spheres.mjs). Each command has a time limit; what it printed goes to
@@ -14,6 +15,7 @@ node scripts/gpu/mesh-spheres.mjs /tmp/gpu-mesh
 t bench-gpu 180 node bin/drape.js bench --backend gpu --sizes 64,128,256,512,1024 --frames 120
 t bench-gpu-global 120 node bin/drape.js bench --backend gpu --sizes 64,128,256 --frames 60 --set solver.bending=hinges --set solver.bendingSolve=global
 t bench-gpu-stretch 90 node bin/drape.js bench --backend gpu --sizes 64,128,256 --frames 60 --set solver.stretch=global
+t bench-gpu-two-level 90 node bin/drape.js bench --backend gpu --sizes 64,128,256 --frames 60 --set solver.stretch=two-level
 t cantilever-gpu 60 node bin/drape.js run cantilever --backend gpu --set solver.bending=hinges --set solver.bendingSolve=global --json
 for s in cape skirt; do t "$s-gpu" 30 node bin/drape.js run "$s" --backend gpu --frames 300 --json; done
 t fold256-off 45 node bin/drape.js run fold --set cloth.resolution=256 --set solver.selfContact=false --backend gpu --frames 180 --json

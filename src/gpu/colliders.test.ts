@@ -26,9 +26,9 @@ describe('sceneRefusal', () => {
       expect(sceneRefusal(validateScene({ colliders: [{ ...c, motion, pins: ['top-left'] }] })), c.type).toBeNull();
     }
     expect(sceneRefusal(validateScene({ solver: { type: 'mass-spring' } }))).toBe('the mass-spring solver runs on the CPU only');
-    expect(sceneRefusal(validateScene({ solver: { stretch: 'two-level' } }))).toBe("solver.stretch 'two-level' runs on the CPU only (the GPU has no coarse correction yet)");
-    // the springs solved together run on the GPU (global-stretch.ts), the bending stencils too (global-bending.ts), as
-    // does the global bending step without stencils (nothing)
+    // the springs solved together run on the GPU (global-stretch.ts), and their coarse correction (coarse-stretch.ts),
+    // the bending stencils too (global-bending.ts), as does the global bending step without stencils (nothing)
+    expect(sceneRefusal(validateScene({ solver: { stretch: 'two-level' } }))).toBeNull();
     expect(sceneRefusal(validateScene({ solver: { stretch: 'global' } }))).toBeNull();
     expect(sceneRefusal(validateScene({ solver: { bending: 'hinges', bendingSolve: 'global' } }))).toBeNull();
     expect(sceneRefusal(validateScene({ solver: { bendingSolve: 'global' } }))).toBeNull();

@@ -15,6 +15,7 @@ import type { ClothBuffers } from './buffers.js';
 import { gpuCollider, type ColliderTables } from './colliders.js';
 import { GlobalBendingTables } from './global-bending.js';
 import { GlobalStretchTables } from './global-stretch.js';
+import { CoarseTables } from './coarse-stretch.js';
 import { meshRefusal } from './meshes.js';
 import { MAX_WORKGROUPS_X, RECORD_STRIDE, SCAN_BLOCK, SELF_EDGE_PASSES, WORKGROUP_SIZE, type KernelName } from './layout.js';
 import type { SelfRecords, UniformTables } from './uniforms.js';
@@ -43,7 +44,6 @@ function contactRefusal(params: SimParams): string | null {
  */
 export function sceneRefusal(scene: Scene): string | null {
   if (scene.solver.type !== 'xpbd') return `the ${scene.solver.type} solver runs on the CPU only`;
-  if (scene.solver.stretch === 'two-level') return "solver.stretch 'two-level' runs on the CPU only (the GPU has no coarse correction yet)";
   const differs = differingClothField(scene);
   if (differs) return `cloths that differ in their contact or spring values run on the CPU only (${differs})`;
   return colliderRefusal(scene);
@@ -62,7 +62,8 @@ export function colliderRefusal(scene: Scene): string | null {
 }
 
 /**
- * The phases of the schedule the GPU implements: every phase of XPBD, the springs solved one at a time or together,
+ * The phases of the schedule the GPU implements: every phase of XPBD, the springs solved one at a time (after a
+ * coarse correction or not) or together,
  * stencil bending (solver.bending 'hinges' or 'laplacian', one stencil at a time or together) and self-contact
  * included. Its cloth lives in GPU buffers, so it cannot leave a phase to the TypeScript reference: a frame that needs
  * one is refused (the mass-spring solver, a collider shape it does not know). Self-contact reads one thickness and
@@ -74,7 +75,7 @@ export const GPU_PHASES: BackendPhases = {
   sharesMemory: false,
   solvers: ['xpbd'],
   phases: (1 << PHASE.begin) | (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.carry) | (1 << PHASE.grab) |
-    (1 << PHASE.distance) | (1 << PHASE.globalStretch) | (1 << PHASE.bending) | (1 << PHASE.globalBending) | (1 << PHASE.tethers) |
+    (1 << PHASE.coarseStretch) | (1 << PHASE.distance) | (1 << PHASE.globalStretch) | (1 << PHASE.bending) | (1 << PHASE.globalBending) | (1 << PHASE.tethers) |
     (1 << PHASE.stretchLimit) |
     (1 << PHASE.selfContact) | (1 << PHASE.contact) | (1 << PHASE.contactTriangles) | (1 << PHASE.velocities),
   refusal: (id: PhaseId, _model: ClothModel, params: SimParams) =>
@@ -97,6 +98,8 @@ export class FrameEncoder implements PhaseBackend {
   readonly globalBending: GlobalBendingTables;
   /** the global stretch step's tables (the CPU's factor on the GPU; GpuClothSolver.step makes them current) */
   readonly globalStretch: GlobalStretchTables;
+  /** the coarse correction's tables (GpuClothSolver.step makes them on the first frame that needs them) */
+  readonly coarse: CoarseTables;
   /** the compute pass of the frame being encoded */
   private pass: GPUComputePassEncoder | undefined;
 
@@ -113,6 +116,7 @@ export class FrameEncoder implements PhaseBackend {
     this.colliders = colliders;
     this.globalBending = new GlobalBendingTables(device, model, buffers);
     this.globalStretch = new GlobalStretchTables(device, model, buffers);
+    this.coarse = new CoarseTables(device, model, buffers);
   }
 
   /**
@@ -174,10 +178,29 @@ export class FrameEncoder implements PhaseBackend {
           this.dispatch('grab', 1, so, 0);
           break;
         }
+        case PHASE.coarseStretch: {
+          // each spring's direction and residual, each aggregate's row; in the frame's first substep the matrix
+          // assembled, factored (a workgroup per cloth) and its diagonal blocks inverted; both triangular solves (a
+          // workgroup per cloth), each spring's λ, the particles moved
+          const t = this.coarse.layout!, springs = model.restLengths.length;
+          this.dispatch('coarseDirections', springs, so, 0);
+          this.dispatch('coarseRows', t.aggregates, so, 0);
+          if (frame.sub === 0) {
+            this.dispatch('coarseTouch', t.pairs, so, 0);
+            this.dispatch('coarseAssemble', t.aggregates, so, 0);
+            this.dispatchGroups('coarseFactor', t.cloths, so);
+            this.dispatch('coarseInvert', t.aggregates, so, 0);
+          }
+          this.dispatchGroups('coarseSolve', t.cloths, so);
+          this.dispatch('coarseLambda', springs, so, 0);
+          this.dispatch('coarseMove', particles, so, 0);
+          break;
+        }
         case PHASE.distance: {
-          const passes = phasePasses(PHASE.distance, params);
+          // λ from 0 in the first pass, unless the coarse correction has just set it
+          const passes = phasePasses(PHASE.distance, params), fromCoarse = params.stretch === 'two-level';
           for (let it = 0; it < passes; it++) {
-            for (const r of u.batchRecords) this.dispatch('solve', r.count, so, (it === 0 ? r.first : r.later) * RECORD_STRIDE);
+            for (const r of u.batchRecords) this.dispatch('solve', r.count, so, (it === 0 && !fromCoarse ? r.first : r.later) * RECORD_STRIDE);
           }
           break;
         }
@@ -287,6 +310,16 @@ export class FrameEncoder implements PhaseBackend {
     this.pass.end();
     this.pass = undefined;
     this.device.queue.submit([encoder.finish()]);
+  }
+
+  /** Dispatches `groups` workgroups of `kernel` (one per cloth) with the given Substep record. */
+  private dispatchGroups(kernel: KernelName, groups: number, substepOffset: number): void {
+    if (groups <= 0) return;
+    const pass = this.pass!;
+    pass.setPipeline(this.pipelines[kernel]);
+    pass.setBindGroup(0, this.uniforms.group, [substepOffset, 0]);
+    pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
+    pass.dispatchWorkgroups(groups);
   }
 
   /** Dispatches `kernel` over `count` threads with the given Substep and Pass records (spilling into y when large). */

@@ -301,6 +301,57 @@ export const BUFFERS = {
   stretchFactorValues: { type: 'f32', bytes: 4 },
   /** its z = A⁻¹·e_g, as grabColumn [m²/N] */
   stretchGrabColumn: { type: 'f32', bytes: 4 },
+  /**
+   * the springs' coarse correction (solver.stretch 'two-level'; core coarse-stretch.ts, coarse-stretch.ts here). Per
+   * spring: its unit direction now and its residual L − |x_a − x_b| [m], all 0 where it takes no part (no stiffness,
+   * both ends fixed, no length) (coarseDirections). This and the next thirteen are placeholders until params first
+   * correct the springs so (CoarseTables, made once per model)
+   */
+  coarseDir: { type: 'vec4f', bytes: 16 },
+  /**
+   * per aggregate: the right-hand side Σ (L − len) of its springs [m], then the forward solve's y, then μ [N·s²]
+   * (coarseSolve); and α̃ = Σ α/h² of its springs [1/kg] (coarseRows)
+   */
+  coarseRhs: { type: 'vec2f', bytes: 8 },
+  /** per aggregate: where its springs start and end in coarseMembers, its cloth, 0 */
+  coarseAggregates: { type: 'vec4u', bytes: 16 },
+  /** the springs of each aggregate, aggregate after aggregate */
+  coarseMembers: { type: 'u32', bytes: 4 },
+  /**
+   * per cloth, two rows: its first aggregate, its aggregates, its matrix's half bandwidth b and the rows of a block
+   * of its triangular solves (min(b + 1, FACTOR_WORKGROUP)); where its matrix starts in coarseMatrix and coarseFactor,
+   * where its blocks' inverses start in coarseInverse, 0, 0
+   */
+  coarseBlocks: { type: 'vec4u', bytes: 16 },
+  /**
+   * particle → its springs, each particle's sorted by aggregate: n + 1 starts (already offset by n + 1), then per
+   * spring 2s (its first end) or 2s + 1
+   */
+  coarseIncidence: { type: 'u32', bytes: 4 },
+  /**
+   * the (particle, aggregate) pairs, one per aggregate a particle's springs belong to: the particle, the aggregate,
+   * where its springs start and end in coarseIncidence
+   */
+  coarsePairs: { type: 'vec4u', bytes: 16 },
+  /** per pair: v = Σ ±n_s over its springs [-] and the particle's inverse mass [1/kg] (coarseTouch) */
+  coarsePairVec: { type: 'vec4f', bytes: 16 },
+  /** per entry of the banded matrices (coarseMatrix's order): where its pairs of pairs start in coarseEntryPairs; one more */
+  coarseEntryStart: { type: 'u32', bytes: 4 },
+  /** per entry, the pairs (i, g) and (i, h) of each particle i whose springs are in both aggregates g and h */
+  coarseEntryPairs: { type: 'vec2u', bytes: 8 },
+  /**
+   * the cloths' banded matrices R·(J·M⁻¹·Jᵀ + α̃)·Rᵀ, row i of a cloth's holding entries (i, i − b … i) [1/kg]
+   * (coarseAssemble), overwritten by the Schur complements of the factorisation (coarseFactor)
+   */
+  coarseMatrix: { type: 'f32', bytes: 4 },
+  /** their Cholesky factors L, laid out as coarseMatrix [1/√kg] (coarseFactor) */
+  coarseFactor: { type: 'f32', bytes: 4 },
+  /** the inverses of L's diagonal blocks (a block's rows by rows, packed lower triangles) [√kg] (coarseInvert) */
+  coarseInverse: { type: 'f32', bytes: 4 },
+  /** per spring: the four aggregates its multiplier is interpolated between */
+  coarseNear: { type: 'vec4u', bytes: 16 },
+  /** per spring: their bilinear weights [-] */
+  coarseWeights: { type: 'vec4f', bytes: 16 },
   /** per particle: nearest pin (−1: none) and the rest distance to it [m] */
   tethers: { type: 'Tether', bytes: 8 },
   /** triangle vertex indices, 3 per triangle (flat: `array<vec3u>` would have stride 16) */
@@ -500,6 +551,43 @@ export const KERNELS = {
       ['globalX', 'read'], ['grabColumn', 'read', 'stretchGrabColumn'],
     ],
     libs: ['heldCorrection'],
+  },
+  /** the springs' coarse correction (core solveCoarseStretch), 1: each spring's direction and residual */
+  coarseDirections: {
+    bindings: [['positions', 'read'], ['invMass', 'read'], ['springs', 'read'], ['springData', 'read'], ['coarseDir', 'read_write']],
+  },
+  /** 2: each aggregate's right-hand side and α̃, from its springs */
+  coarseRows: {
+    bindings: [['coarseAggregates', 'read'], ['coarseMembers', 'read'], ['coarseDir', 'read'], ['springData', 'read'], ['coarseRhs', 'read_write']],
+  },
+  /** 3 (a frame's first substep): each (particle, aggregate) pair's Σ ±n_s */
+  coarseTouch: {
+    bindings: [['coarsePairs', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['invMass', 'read'], ['coarsePairVec', 'read_write']],
+  },
+  /** 4 (a frame's first substep): each aggregate's row of its cloth's banded matrix */
+  coarseAssemble: {
+    bindings: [
+      ['coarseAggregates', 'read'], ['coarseBlocks', 'read'], ['coarseEntryStart', 'read'], ['coarseEntryPairs', 'read'],
+      ['coarsePairVec', 'read'], ['coarseRhs', 'read'], ['coarseMatrix', 'read_write'],
+    ],
+  },
+  /** 5 (a frame's first substep): banded Cholesky, one workgroup of FACTOR_WORKGROUP threads per cloth */
+  coarseFactor: { bindings: [['coarseBlocks', 'read'], ['coarseMatrix', 'read_write'], ['coarseFactor', 'read_write']] },
+  /** 6 (a frame's first substep): the inverses of the factors' diagonal blocks, a column per thread */
+  coarseInvert: {
+    bindings: [['coarseAggregates', 'read'], ['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseInverse', 'read_write']],
+  },
+  /** 7: both triangular solves by blocks, one workgroup of FACTOR_WORKGROUP threads per cloth: μ */
+  coarseSolve: {
+    bindings: [['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseInverse', 'read'], ['coarseRhs', 'read_write']],
+  },
+  /** 8: each spring's λ, interpolated between the aggregates around it */
+  coarseLambda: {
+    bindings: [['coarseDir', 'read'], ['coarseNear', 'read'], ['coarseWeights', 'read'], ['coarseRhs', 'read'], ['lambdas', 'read_write']],
+  },
+  /** 9: each free particle moved by M⁻¹·Jᵀ·λ */
+  coarseMove: {
+    bindings: [['positions', 'read_write'], ['invMass', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['lambdas', 'read']],
   },
   /** limitStretch (phases.ts), which XPBD runs after the tethers, for one structural or shear batch */
   limitStretch: {

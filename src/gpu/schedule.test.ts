@@ -57,8 +57,8 @@ describe('what the GPU implements of the schedule', () => {
     // but carry, which a frame runs only for pins a collider carries (none here), triangle contact, only for a
     // collider that needs it at this mesh size (none here), and stencil bending, only for solver.bending 'hinges' or
     // 'laplacian' (one at a time or, with solver.bendingSolve 'global', together), self-contact, only for
-    // solver.selfContact (below), the global stretch step, which solver.stretch 'global' asks for: below, and the
-    // coarse correction, which solver.stretch 'two-level' asks for and the GPU lacks: refused before, sceneRefusal)
+    // solver.selfContact (below), the global stretch step, which solver.stretch 'global' asks for, and the coarse
+    // correction, which solver.stretch 'two-level' asks for: below)
     const xpbd = solverPhases('xpbd') & ~(1 << PHASE.globalStretch) & ~(1 << PHASE.globalBending) & ~(1 << PHASE.selfContact) & ~(1 << PHASE.coarseStretch);
     const rare = (1 << PHASE.carry) | (1 << PHASE.contactTriangles) | (1 << PHASE.bending);
     expect(assignPhases(GPU_PHASES, sim.model, sim.params)).toBe(xpbd & ~rare);
@@ -74,6 +74,9 @@ describe('what the GPU implements of the schedule', () => {
     const global = new Simulation(windyScene((s) => { s.solver.stretch = 'global'; }), { kernel: 'ts' });
     expect(assignPhases(GPU_PHASES, global.model, global.params))
       .toBe((xpbd | (1 << PHASE.globalStretch)) & ~rare & ~(1 << PHASE.distance) & ~(1 << PHASE.tethers) & ~(1 << PHASE.stretchLimit));
+    // the springs' coarse correction: by the GPU, before the springs one at a time
+    const twoLevel = new Simulation(windyScene((s) => { s.solver.stretch = 'two-level'; }), { kernel: 'ts' });
+    expect(assignPhases(GPU_PHASES, twoLevel.model, twoLevel.params)).toBe((xpbd | (1 << PHASE.coarseStretch)) & ~rare);
     // the stencils solved together: by the GPU, in place of the stencils one at a time
     const together = new Simulation(windyScene((s) => { s.solver.bending = 'hinges'; s.solver.bendingSolve = 'global'; }), { kernel: 'ts' });
     expect(assignPhases(GPU_PHASES, together.model, together.params))

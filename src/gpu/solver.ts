@@ -231,6 +231,9 @@ export class GpuClothSolver {
     // the global steps' factors for this frame's pins and substep, before the frame is encoded (their tables may be
     // made anew; a buffer the device cannot make is said by the next step or read, as the params' are)
     const phases = framePhases(this.model, state, params);
+    if ((phases & (1 << PHASE.coarseStretch)) !== 0) {
+      this.watched("the coarse correction's tables", () => this.encoder.coarse.prepare());
+    }
     if ((phases & (1 << PHASE.globalStretch)) !== 0) {
       this.watched("the global stretch step's factor", () => this.encoder.globalStretch.prepare(state, params, dt / params.substeps));
     }
@@ -257,7 +260,7 @@ export class GpuClothSolver {
     if (!this.params) throw new Error('GPU solver: setParams first');
     return substepTraffic(
       this.model, this.params, this.uniforms.collidePasses, this.uniforms.selfRecords, this.buffers.hasTethers, this.encoder.globalBending.factorSize,
-      this.encoder.globalStretch.factorSize,
+      this.encoder.globalStretch.factorSize, this.encoder.coarse.layout,
     );
   }
 

@@ -4,6 +4,7 @@
  */
 import { bendingStencils, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
+import type { CoarseLayout } from './coarse-stretch.js';
 import { CARRY, COLLIDER, SCAN_BLOCK, SELF_EDGE_PASSES } from './layout.js';
 import type { BatchRecords, CollidePass, SelfRecords, StencilBatchRecords } from './uniforms.js';
 
@@ -17,11 +18,11 @@ export interface SubstepTraffic {
  * Bytes one substep moves, by kernel; `self`: the self-contact grid's records (null: none), `hasTethers`: whether the
  * tethers kernel has work, `factor` and `stretchFactor`: the global bending and stretch steps' factors as their solves
  * read them, L's entries outside the blocks and the values of the blocks' inverses (global-bending.ts FactorLayout; 0
- * without the step).
+ * without the step); `coarse`: the coarse correction's tables (null until a frame made them).
  */
 export function substepTraffic(
   model: ClothModel, params: SimParams, collidePasses: readonly CollidePass[], self: SelfRecords | null, hasTethers: boolean,
-  factor = { outside: 0, inverse: 0 }, stretchFactor = { outside: 0, inverse: 0 },
+  factor = { outside: 0, inverse: 0 }, stretchFactor = { outside: 0, inverse: 0 }, coarse: CoarseLayout | null = null,
 ): SubstepTraffic {
   const n = model.particleCount, T = model.triangles.length / 3, S = model.restLengths.length;
   const by: Record<string, number> = {};
@@ -44,11 +45,12 @@ export function substepTraffic(
     pass *= params.iterations;
     add('globalStretch', n * 32 + pass);
   } else {
+    if (params.stretch === 'two-level' && coarse) add('coarseStretch', coarseTraffic(model, params, coarse));
     let solve = S * (8 + 8 + 8 + 32 + 32); // springData, springs, w×2, x×2 in and out
     if (params.damping > 0) solve += S * 32; // previous×2
     solve += S * 4; // λ written
     solve *= params.iterations;
-    solve += S * 4 * (params.iterations - 1); // λ read after the first pass
+    solve += S * 4 * (params.iterations - (params.stretch === 'two-level' ? 0 : 1)); // λ read after the first pass, or the coarse correction
     add('solve', solve);
   }
   const stencils = bendingStencils(model, params.bending);
@@ -106,11 +108,38 @@ export function substepTraffic(
 }
 
 /**
+ * Bytes the coarse correction moves per substep (coarse-stretch.ts), its frame's assembly, factor and inverses spread
+ * over the substeps: A aggregates, P (particle, aggregate) pairs, C pairs of pairs, E entries of the bands, I values
+ * of their blocks' inverses.
+ */
+function coarseTraffic(model: ClothModel, params: SimParams, t: CoarseLayout): number {
+  const n = model.particleCount, S = model.restLengths.length, A = t.aggregates;
+  // directions: ends, data, w×2, x×2 in, the direction out; rows: per aggregate its range and row out, per spring its
+  // member entry, direction and compliance
+  let bytes = S * (8 + 8 + 8 + 32 + 16) + A * (16 + 8) + S * (4 + 16 + 8);
+  // both solves: each band entry and the row it names read twice (forward by rows, backward by columns), each
+  // inverse value with a gathered row twice, each row read and written four times
+  bytes += 2 * t.entries * 8 + 2 * t.inverse * 8 + 4 * A * 16;
+  // λ: direction, four aggregates, their weights and μ, λ out; the move: w, the incidence offsets, x in and out, per
+  // spring end its entry, λ and direction
+  bytes += S * (16 + 16 + 16 + 4 * 8 + 4) + n * (4 + 8 + 32) + 2 * S * (4 + 4 + 16);
+  // once a frame: the pairs (pair, w, out; per spring end its entry and direction), each row's entries (starts, pairs
+  // of pairs and their vectors, the entry out), the factor (per band entry read and written once, a trailing update
+  // of the ~b²/2 entries below each column: three read, one written), the inverses (a column's entries of L and of
+  // the inverse read, per value)
+  let frame = t.pairs * (16 + 4 + 16) + 2 * S * (4 + 16) + A * (16 + 32 + 8) + t.entries * (4 + 4 + 4) + t.couples * (8 + 32);
+  const band = t.entries / Math.max(A, 1);
+  frame += t.entries * 8 + A * ((band * band) / 2) * 16 + t.inverse * band * 8;
+  return bytes + frame / params.substeps;
+}
+
+/**
  * Dispatches one frame encodes with nothing grabbed (prepare, velocities and normals once; the rest per substep);
  * `stencilRecords` is empty unless params.bending is a stencil model (solved together: 4 dispatches per substep
  * instead of its batches), `self` null unless it has self-contact (then
  * per substep two grid builds of 6 dispatches, each followed by its candidates, their indirect arguments, the pairs
- * and the corrections applied, the edges' SELF_EDGE_PASSES times: 20 + 2 per edge pass past the first).
+ * and the corrections applied, the edges' SELF_EDGE_PASSES times: 20 + 2 per edge pass past the first); the coarse
+ * correction (solver.stretch 'two-level') adds 5 per substep and 4 once a frame.
  */
 export function dispatchesPerFrame(
   params: SimParams, batchRecords: readonly BatchRecords[], stencilRecords: readonly StencilBatchRecords[],
@@ -120,9 +149,10 @@ export function dispatchesPerFrame(
   // the springs one colour batch at a time, then the tethers and the stretch limit; or solved together: y kept, then
   // 4 dispatches a pass
   const springs = params.stretch === 'global' ? 1 + 4 * params.iterations
-    : params.iterations * batchRecords.length + stretchBatches + (hasTethers ? 1 : 0);
+    : params.iterations * batchRecords.length + stretchBatches + (hasTethers ? 1 : 0) + (params.stretch === 'two-level' ? 5 : 0);
   const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) + springs +
     (stencilRecords.length === 0 ? 0 : params.bendingSolve === 'global' ? 4 : params.iterations * stencilRecords.length) +
     collidePasses.length + (self ? 18 + 2 * SELF_EDGE_PASSES : 0);
-  return 3 + params.substeps * perSubstep;
+  // the coarse correction's assembly, factor and inverses in the frame's first substep
+  return 3 + (params.stretch === 'two-level' ? 4 : 0) + params.substeps * perSubstep;
 }
