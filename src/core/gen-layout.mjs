@@ -32,6 +32,7 @@ export const CONSTANTS = [
   ['MAX_COLLIDERS', 64, 'most colliders in a scene (schema) and in the kernel\'s control block'],
   ['TRIANGLE_SPREAD_MOST', 2, 'triangle contact: the most any corner moves, as a multiple of what the contact point is to move (phases.ts collideTriangles; on a grid of free particles the spread is at most 1.82, its inverse masses being 4 : 2 : 1 at a corner, an edge and inside, so only a point at or beside a pinned or grabbed corner is held to it)'],
   ['GOLDEN_ITERATIONS', 12, 'golden-section iterations of each of the two nested searches of triangle contact (colliders/convex.ts goldenDeepest, the GPU\'s triangleContact.wgsl)'],
+  ['COARSE_OVERSHOOT', 1.5, 'the springs\' coarse correction (solvers/coarse-stretch.ts overshoots, coarse.as.ts, the GPU\'s coarseCheck.wgsl): how far a step solved with an earlier substep\'s factor may overshoot, its Rayleigh quotient under the matrix of the springs\' directions now over the factor\'s, before the matrix is made anew; a step along one direction of a quadratic converges below 2, 1.5 leaves a margin [-]'],
   ['KERNEL_MAX_THREADS', 16, 'most threads one kernel runs (one run counter each in the control block)'],
   ['KERNEL_FLAG_FORCES', 1, 'kernel substep flag: external forces (wind) to integrate'],
   ['KERNEL_FLAG_ACCUMULATE', 2, 'kernel substep flag: λ accumulates across iterations'],
@@ -178,7 +179,7 @@ export function generateLayoutModules() {
   const as = [`// ${HEADER}`, ''];
   for (const [name, value, doc] of CONSTANTS) {
     ts.push(`/** ${doc} */`, `export const ${name} = ${value};`);
-    as.push(`/** ${doc} */`, `export const ${name}: i32 = ${value};`);
+    as.push(`/** ${doc} */`, `export const ${name}: ${Number.isInteger(value) ? 'i32' : 'f64'} = ${value};`);
   }
 
   ts.push('', '/** Phase ids, in schedule order (PHASES in gen-layout.mjs): a set of phases is a mask of `1 << id`. */', 'export const PHASE = {');

@@ -69,7 +69,7 @@ export class ClothBuffers {
       stretchCoefficients: 0, springForce: 0, springIncidence: 0, globalY: 0, stretchFactorIndex: 0, stretchFactorValues: 0,
       stretchGrabColumn: 0,
       // placeholders until params first correct the springs on a coarse space (coarse-stretch.ts)
-      coarseDir: 0, coarseRhs: 0, coarseAggregates: 0, coarseMembers: 0, coarseBlocks: 0, coarseIncidence: 0, coarsePairs: 0,
+      coarseDir: 0, coarseRhs: 0, coarseSpringAggregate: 0, coarseStale: 0, coarseAggregates: 0, coarseMembers: 0, coarseBlocks: 0, coarseIncidence: 0, coarsePairs: 0,
       coarsePairVec: 0, coarseEntryStart: 0, coarseEntryPairs: 0, coarseMatrix: 0, coarseFactor: 0, coarseInverse: 0, coarseNear: 0,
       coarseWeights: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,

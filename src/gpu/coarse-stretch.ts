@@ -9,13 +9,16 @@
  * (particle, aggregate) pair's Σ ±n_s; coarseAssemble: each row's entries from the pairs that meet at a particle),
  * factored by banded Cholesky (coarseFactor: one workgroup per cloth, a barrier per column) and its diagonal blocks
  * inverted (coarseInvert); then both triangular solves by blocks of rows (coarseSolve: one workgroup per cloth, two
- * barriers per block), each spring's λ interpolated (coarseLambda) and the particles moved (coarseMove). The GPU
+ * barriers per block). In the later substeps the solve comes first, with the last factor, and coarseCheck (one
+ * workgroup) asks whether its step overshoots under the matrix now, as the CPU does; the same five kernels then run
+ * again, each doing its work only where it does (PASS_COARSE_IF_STALE, coarseStale). Then each spring's λ
+ * interpolated (coarseLambda) and the particles moved (coarseMove). The GPU
  * computes in float32 where the CPU computes in double: the correction is a few millimetres at most, and the sweep
  * after it removes what it leaves.
  *
- * Memory, per model: per spring 60 B, per (particle, aggregate) pair 32 B and per pair of pairs at a particle 8 B
+ * Memory, per model: per spring 64 B, per (particle, aggregate) pair 32 B and per pair of pairs at a particle 8 B
  * (about 7 and 30 a particle on a grid), per entry of the bands about 14 B (the matrix, its factor, the entries'
- * starts, the inverses of its blocks): 0.9–1.1 kB a particle, 3.8 MB at 65², 16 MB at 129², 73 MB at 257²
+ * starts, the inverses of its blocks): 0.9–1.1 kB a particle, 3.9 MB at 65², 17 MB at 129², 75 MB at 257²
  * (scripts/coarse-sizes.mjs).
  */
 import type {} from 'webgpu';
@@ -104,9 +107,10 @@ export function coarseTables(model: ClothModel): CoarseLayout {
       coarseAggregates: aggregateRows, coarseMembers: members, coarseBlocks: blocks, coarseIncidence: incidence,
       coarsePairs: Uint32Array.from(pairRows), coarseEntryStart: entryStart, coarseEntryPairs: entryPairs,
       coarseNear: Uint32Array.from(sys.nearId), coarseWeights: Float32Array.from(sys.nearWeight),
+      coarseSpringAggregate: Uint32Array.from(sys.aggregate),
     },
     sizes: {
-      coarseDir: ns, coarseRhs: aggregates, coarseAggregates: aggregates, coarseMembers: ns, coarseBlocks: 2 * cloths,
+      coarseDir: ns, coarseRhs: aggregates, coarseSpringAggregate: ns, coarseStale: 1, coarseAggregates: aggregates, coarseMembers: ns, coarseBlocks: 2 * cloths,
       coarseIncidence: incidence.length, coarsePairs: pairs, coarsePairVec: pairs, coarseEntryStart: entries + 1,
       coarseEntryPairs: couples, coarseMatrix: entries, coarseFactor: entries, coarseInverse: inverse, coarseNear: ns, coarseWeights: ns,
     },

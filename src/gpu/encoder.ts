@@ -180,18 +180,23 @@ export class FrameEncoder implements PhaseBackend {
         }
         case PHASE.coarseStretch: {
           // each spring's direction and residual, each aggregate's row; in the frame's first substep the matrix
-          // assembled, factored (a workgroup per cloth) and its diagonal blocks inverted; both triangular solves (a
-          // workgroup per cloth), each spring's λ, the particles moved
-          const t = this.coarse.layout!, springs = model.restLengths.length;
+          // assembled, factored (a workgroup per cloth), its diagonal blocks inverted and both triangular solves made
+          // (a workgroup per cloth); in the later ones the solve with the last factor, the check of its step, and the
+          // same five kernels again where it overshoots (coarseStale); each spring's λ, the particles moved
+          const t = this.coarse.layout!, springs = model.restLengths.length, { always, ifStale } = u.coarseRecords;
           this.dispatch('coarseDirections', springs, so, 0);
           this.dispatch('coarseRows', t.aggregates, so, 0);
-          if (frame.sub === 0) {
-            this.dispatch('coarseTouch', t.pairs, so, 0);
-            this.dispatch('coarseAssemble', t.aggregates, so, 0);
-            this.dispatchGroups('coarseFactor', t.cloths, so);
-            this.dispatch('coarseInvert', t.aggregates, so, 0);
+          let record = always * RECORD_STRIDE;
+          if (frame.sub > 0) {
+            this.dispatchGroups('coarseSolve', t.cloths, so, record);
+            this.dispatchGroups('coarseCheck', 1, so, record);
+            record = ifStale * RECORD_STRIDE;
           }
-          this.dispatchGroups('coarseSolve', t.cloths, so);
+          this.dispatch('coarseTouch', t.pairs, so, record);
+          this.dispatch('coarseAssemble', t.aggregates, so, record);
+          this.dispatchGroups('coarseFactor', t.cloths, so, record);
+          this.dispatch('coarseInvert', t.aggregates, so, record);
+          this.dispatchGroups('coarseSolve', t.cloths, so, record);
           this.dispatch('coarseLambda', springs, so, 0);
           this.dispatch('coarseMove', particles, so, 0);
           break;
@@ -312,12 +317,12 @@ export class FrameEncoder implements PhaseBackend {
     this.device.queue.submit([encoder.finish()]);
   }
 
-  /** Dispatches `groups` workgroups of `kernel` (one per cloth) with the given Substep record. */
-  private dispatchGroups(kernel: KernelName, groups: number, substepOffset: number): void {
+  /** Dispatches `groups` workgroups of `kernel` (one per cloth, or one) with the given Substep and Pass records. */
+  private dispatchGroups(kernel: KernelName, groups: number, substepOffset: number, passOffset: number): void {
     if (groups <= 0) return;
     const pass = this.pass!;
     pass.setPipeline(this.pipelines[kernel]);
-    pass.setBindGroup(0, this.uniforms.group, [substepOffset, 0]);
+    pass.setBindGroup(0, this.uniforms.group, [substepOffset, passOffset]);
     pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
     pass.dispatchWorkgroups(groups);
   }

@@ -11,7 +11,7 @@
 import type { ClothModel } from '../core/model.js';
 import {
   COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_FLOOR, COLLIDER_MESH, COLLIDER_PLANE, COLLIDER_SPHERE,
-  GOLDEN_ITERATIONS, MESH_SHARP_EDGE, MESH_SIGNED, TRIANGLE_SPREAD_MOST,
+  COARSE_OVERSHOOT, GOLDEN_ITERATIONS, MESH_SHARP_EDGE, MESH_SIGNED, TRIANGLE_SPREAD_MOST,
 } from '../core/layout.generated.js';
 
 /**
@@ -105,6 +105,11 @@ export function selfGridSize(model: ClothModel, pairsPerPrimitive = SELF_PAIRS_P
 /** Flags of a solve or bending pass record. */
 export const PASS_CAP = 1; // apply the hard stretch cap (structural and shear batches; never set on a bending batch)
 export const PASS_READ_LAMBDA = 2; // start from the accumulated λ (second and later iterations)
+/**
+ * the coarse correction's kernels that make the matrix anew and solve again (coarseTouch … coarseSolve): run only where
+ * coarseCheck found the step of the last factor overshooting (`coarseStale`); without it they always run
+ */
+export const PASS_COARSE_IF_STALE = 4;
 
 /**
  * Structs, each one list of fields in declaration order: the WGSL declaration and the byte offsets the solver writes
@@ -304,15 +309,19 @@ export const BUFFERS = {
   /**
    * the springs' coarse correction (solver.stretch 'two-level'; core coarse-stretch.ts, coarse-stretch.ts here). Per
    * spring: its unit direction now and its residual L − |x_a − x_b| [m], all 0 where it takes no part (no stiffness,
-   * both ends fixed, no length) (coarseDirections). This and the next thirteen are placeholders until params first
+   * both ends fixed, no length) (coarseDirections). This and the next fifteen are placeholders until params first
    * correct the springs so (CoarseTables, made once per model)
    */
   coarseDir: { type: 'vec4f', bytes: 16 },
   /**
    * per aggregate: the right-hand side Σ (L − len) of its springs [m], then the forward solve's y, then μ [N·s²]
-   * (coarseSolve); and α̃ = Σ α/h² of its springs [1/kg] (coarseRows)
+   * (coarseSolve); α̃ = Σ α/h² of its springs [1/kg]; the right-hand side again, kept for a second solve (coarseRows); 0
    */
-  coarseRhs: { type: 'vec2f', bytes: 8 },
+  coarseRhs: { type: 'vec4f', bytes: 16 },
+  /** per spring: its aggregate */
+  coarseSpringAggregate: { type: 'u32', bytes: 4 },
+  /** 1 where the step of the last factor overshoots under the matrix now (coarseCheck), else 0 */
+  coarseStale: { type: 'u32', bytes: 4 },
   /** per aggregate: where its springs start and end in coarseMembers, its cloth, 0 */
   coarseAggregates: { type: 'vec4u', bytes: 16 },
   /** the springs of each aggregate, aggregate after aggregate */
@@ -560,32 +569,45 @@ export const KERNELS = {
   coarseRows: {
     bindings: [['coarseAggregates', 'read'], ['coarseMembers', 'read'], ['coarseDir', 'read'], ['springData', 'read'], ['coarseRhs', 'read_write']],
   },
-  /** 3 (a frame's first substep): each (particle, aggregate) pair's Σ ±n_s */
-  coarseTouch: {
-    bindings: [['coarsePairs', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['invMass', 'read'], ['coarsePairVec', 'read_write']],
+  /**
+   * 3, after a solve with the last factor (not in a frame's first substep): whether its step overshoots under the
+   * matrix now, its Rayleigh quotient past COARSE_OVERSHOOT (one workgroup)
+   */
+  coarseCheck: {
+    bindings: [
+      ['coarseRhs', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['coarseSpringAggregate', 'read'], ['invMass', 'read'],
+      ['coarseStale', 'read_write'],
+    ],
   },
-  /** 4 (a frame's first substep): each aggregate's row of its cloth's banded matrix */
+  /** 4 (a frame's first substep, or a stale factor): each (particle, aggregate) pair's Σ ±n_s */
+  coarseTouch: {
+    bindings: [
+      ['coarsePairs', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['invMass', 'read'], ['coarseStale', 'read'],
+      ['coarsePairVec', 'read_write'],
+    ],
+  },
+  /** 5 (the same): each aggregate's row of its cloth's banded matrix */
   coarseAssemble: {
     bindings: [
       ['coarseAggregates', 'read'], ['coarseBlocks', 'read'], ['coarseEntryStart', 'read'], ['coarseEntryPairs', 'read'],
-      ['coarsePairVec', 'read'], ['coarseRhs', 'read'], ['coarseMatrix', 'read_write'],
+      ['coarsePairVec', 'read'], ['coarseRhs', 'read'], ['coarseStale', 'read'], ['coarseMatrix', 'read_write'],
     ],
   },
-  /** 5 (a frame's first substep): banded Cholesky, one workgroup of FACTOR_WORKGROUP threads per cloth */
-  coarseFactor: { bindings: [['coarseBlocks', 'read'], ['coarseMatrix', 'read_write'], ['coarseFactor', 'read_write']] },
-  /** 6 (a frame's first substep): the inverses of the factors' diagonal blocks, a column per thread */
+  /** 6 (the same): banded Cholesky, one workgroup of FACTOR_WORKGROUP threads per cloth */
+  coarseFactor: { bindings: [['coarseBlocks', 'read'], ['coarseStale', 'read'], ['coarseMatrix', 'read_write'], ['coarseFactor', 'read_write']] },
+  /** 7 (the same): the inverses of the factors' diagonal blocks, a column per thread */
   coarseInvert: {
-    bindings: [['coarseAggregates', 'read'], ['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseInverse', 'read_write']],
+    bindings: [['coarseAggregates', 'read'], ['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseStale', 'read'], ['coarseInverse', 'read_write']],
   },
-  /** 7: both triangular solves by blocks, one workgroup of FACTOR_WORKGROUP threads per cloth: μ */
+  /** both triangular solves by blocks, one workgroup of FACTOR_WORKGROUP threads per cloth: μ (before coarseCheck and after 7) */
   coarseSolve: {
-    bindings: [['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseInverse', 'read'], ['coarseRhs', 'read_write']],
+    bindings: [['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseInverse', 'read'], ['coarseStale', 'read'], ['coarseRhs', 'read_write']],
   },
-  /** 8: each spring's λ, interpolated between the aggregates around it */
+  /** 9: each spring's λ, interpolated between the aggregates around it */
   coarseLambda: {
     bindings: [['coarseDir', 'read'], ['coarseNear', 'read'], ['coarseWeights', 'read'], ['coarseRhs', 'read'], ['lambdas', 'read_write']],
   },
-  /** 9: each free particle moved by M⁻¹·Jᵀ·λ */
+  /** 10: each free particle moved by M⁻¹·Jᵀ·λ */
   coarseMove: {
     bindings: [['positions', 'read_write'], ['invMass', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['lambdas', 'read']],
   },
@@ -778,6 +800,8 @@ const GOLDEN_ITERATIONS: u32 = ${GOLDEN_ITERATIONS}u;
 const TRIANGLE_SPREAD_MOST: f32 = ${wgslFloat(TRIANGLE_SPREAD_MOST)};
 const PASS_CAP: u32 = ${PASS_CAP}u;
 const PASS_READ_LAMBDA: u32 = ${PASS_READ_LAMBDA}u;
+const PASS_COARSE_IF_STALE: u32 = ${PASS_COARSE_IF_STALE}u;
+const COARSE_OVERSHOOT: f32 = ${wgslFloat(COARSE_OVERSHOOT)};
 const SELF_FIXED: f32 = ${wgslFloat(SELF_FIXED)};
 const SELF_CLAMP: f32 = ${wgslFloat(SELF_CLAMP)};
 const SCAN_BLOCK: u32 = ${SCAN_BLOCK}u;

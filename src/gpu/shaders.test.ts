@@ -29,7 +29,8 @@ describe('shaders', () => {
       expect(spec.bindings.length).toBeLessThanOrEqual(8);
       const src = kernelSource(kernel);
       // one workgroup per solve: a factor's triangular solves, the coarse correction's factor and solves (one per cloth)
-      const whole = ['factorSolve', 'coarseFactor', 'coarseSolve'].includes(file);
+      // and its check (one)
+      const whole = ['factorSolve', 'coarseFactor', 'coarseSolve', 'coarseCheck'].includes(file);
       expect(src).toMatch(whole ? /@compute @workgroup_size\(FACTOR_WORKGROUP\)\s*fn main/ : /@compute @workgroup_size\(WG\)\s*fn main/);
       // each bound buffer is used by the kernel body (or a library it includes)
       const body = src.slice(src.indexOf(`// ---- bindings of ${kernel} ----`));

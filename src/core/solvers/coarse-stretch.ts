@@ -38,7 +38,7 @@
  * do. A correction of the positions instead (one Gauss–Newton step of the same energy over the same cells) made stiff
  * cloth gain energy in motion. The step is not damped: the springs' damping acts in the sweep after it.
  */
-import { BEND } from '../layout.generated.js';
+import { BEND, COARSE_OVERSHOOT } from '../layout.generated.js';
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import type { ClothState } from '../state.js';
@@ -51,6 +51,7 @@ const KINDS = BEND + 1;
 const COARSE_CELL_PARTICLES = 8;
 /** The fewest cells per side of a cloth's grid of aggregates [-]. */
 const COARSE_MIN_CELLS = 4;
+
 
 /** Cells per side of the grid of aggregates of a cloth of `particles` particles [-]. */
 export function coarseCells(particles: number): number {
@@ -77,11 +78,12 @@ export interface CoarseSystem {
   readonly springAt: Int32Array;
   readonly signAt: Float64Array;
   /**
-   * the blocks' banded matrices (then their factors), the right-hand side, each spring's unit direction now (0 where
-   * it takes no part)
+   * the blocks' banded matrices (then their factors), the right-hand side (then μ) and a copy of it, each spring's
+   * unit direction now (0 where it takes no part)
    */
   readonly matrix: Float64Array;
   readonly rhs: Float64Array;
+  readonly residual: Float64Array;
   readonly dir: Float64Array;
   /** one particle's aggregates and their sums of ±n_s (scratch, the most springs a particle has) */
   readonly touched: Int32Array;
@@ -89,6 +91,8 @@ export interface CoarseSystem {
   /** the params and substep length [s] the factor in `matrix` was made for */
   factoredFor: SimParams | null;
   factoredAt: number;
+  /** the factors made so far (the reference's; scripts/coarse-factors.mjs counts them a frame) */
+  factors: number;
 }
 
 const systems = new WeakMap<ClothModel, CoarseSystem>();
@@ -179,8 +183,8 @@ export function coarseSystem(model: ClothModel): CoarseSystem {
   for (let c = 0; c < cloths; c++) matrixStart[c + 1] = matrixStart[c] + (blockStart[c + 1] - blockStart[c]) * (band[c] + 1);
   const system: CoarseSystem = {
     aggregate, nearId, nearWeight, blockStart, band, matrixStart, blockOf, start, springAt, signAt,
-    matrix: new Float64Array(matrixStart[cloths]), rhs: new Float64Array(count), dir: new Float64Array(3 * ns),
-    touched: new Int32Array(mostAt), vec: new Float64Array(3 * mostAt), factoredFor: null, factoredAt: 0,
+    matrix: new Float64Array(matrixStart[cloths]), rhs: new Float64Array(count), residual: new Float64Array(count), dir: new Float64Array(3 * ns),
+    touched: new Int32Array(mostAt), vec: new Float64Array(3 * mostAt), factoredFor: null, factoredAt: 0, factors: 0,
   };
   systems.set(model, system);
   return system;
@@ -190,18 +194,19 @@ export function coarseSystem(model: ClothModel): CoarseSystem {
  * The coarse correction of one substep of length h [s] (see the file's comment): sets state.lambdas (every spring's
  * multiplier, 0 for a spring without stiffness) and moves the free particles by M⁻¹·Jᵀ·λ. `refactor`: assemble and
  * factor the matrix from the springs' directions now (the frame's first substep); otherwise the last factor serves,
- * unless h or the params changed. Allocates nothing.
+ * unless h or the params changed, or the step it gives overshoots under the matrix now (`overshoots`: cloth that
+ * crumples within a frame, its springs' chains no longer straight, is stiffer than the factor says), when the matrix
+ * is made anew and the step solved again. Allocates nothing.
  */
 export function solveCoarseStretch(model: ClothModel, state: ClothState, params: SimParams, h: number, refactor: boolean): void {
   const sys = coarseSystem(model);
   const x = state.positions, w = state.invMass, lambdas = state.lambdas;
   const springs = model.springs, rest = model.restLengths, compliance = params.compliance, ns = rest.length;
-  const { aggregate, nearId, nearWeight, blockStart, band, matrixStart, blockOf, start, springAt, signAt, matrix, rhs, dir } = sys;
+  const { aggregate, nearId, nearWeight, blockStart, band, matrixStart, start, springAt, signAt, matrix, rhs, residual, dir } = sys;
   const factor = refactor || sys.factoredFor !== params || sys.factoredAt !== h;
   const invH2 = 1 / (h * h), cloths = blockStart.length - 1;
-  if (factor) matrix.fill(0);
   rhs.fill(0);
-  // each spring's direction now, its residual −C (and, to factor, its compliance α̃) into its aggregate's row
+  // each spring's direction now, its residual −C into its aggregate's row
   for (let s = 0; s < ns; s++) {
     const d = 3 * s;
     dir[d] = 0; dir[d + 1] = 0; dir[d + 2] = 0;
@@ -212,20 +217,16 @@ export function solveCoarseStretch(model: ClothModel, state: ClothState, params:
     const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
     if (!(len > 1e-12)) continue;
     dir[d] = dx / len; dir[d + 1] = dy / len; dir[d + 2] = dz / len;
-    const g = aggregate[s];
-    rhs[g] += rest[s] - len;
-    if (factor) {
-      const c = blockOf[g], bw = band[c];
-      matrix[matrixStart[c] + (g - blockStart[c]) * (bw + 1) + bw] += alpha * invH2;
-    }
+    rhs[aggregate[s]] += rest[s] - len;
   }
-  if (factor) {
-    assemble(sys, model, w);
-    for (let c = 0; c < cloths; c++) factorBand(matrix, matrixStart[c], blockStart[c + 1] - blockStart[c], band[c]);
-    sys.factoredFor = params;
-    sys.factoredAt = h;
-  }
+  if (factor) factorNow(sys, model, params, h, w);
+  else residual.set(rhs);
   for (let c = 0; c < cloths; c++) solveBand(matrix, matrixStart[c], rhs, blockStart[c], blockStart[c + 1] - blockStart[c], band[c]);
+  if (!factor && overshoots(sys, model, w, compliance, invH2)) {
+    rhs.set(residual);
+    factorNow(sys, model, params, h, w);
+    for (let c = 0; c < cloths; c++) solveBand(matrix, matrixStart[c], rhs, blockStart[c], blockStart[c + 1] - blockStart[c], band[c]);
+  }
   // each spring's λ, interpolated between the aggregates of its direction; the particles move by M⁻¹·Jᵀ·λ
   for (let s = 0; s < ns; s++) {
     const d = 3 * s, k = 4 * s;
@@ -242,6 +243,56 @@ export function solveCoarseStretch(model: ClothModel, state: ClothState, params:
     }
     x[3 * i] += wi * mx; x[3 * i + 1] += wi * my; x[3 * i + 2] += wi * mz;
   }
+}
+
+/**
+ * The blocks' matrices made from the springs' directions in sys.dir (α̃ on the diagonal of each spring's aggregate,
+ * then J·M⁻¹·Jᵀ) and factored, for `params` and substep h [s].
+ */
+function factorNow(sys: CoarseSystem, model: ClothModel, params: SimParams, h: number, w: Float32Array): void {
+  const { aggregate, blockStart, band, matrixStart, blockOf, matrix, dir } = sys;
+  const compliance = params.compliance, invH2 = 1 / (h * h), cloths = blockStart.length - 1;
+  matrix.fill(0);
+  for (let s = 0; s < compliance.length; s++) {
+    if (dir[3 * s] === 0 && dir[3 * s + 1] === 0 && dir[3 * s + 2] === 0) continue;
+    const g = aggregate[s], c = blockOf[g], bw = band[c];
+    matrix[matrixStart[c] + (g - blockStart[c]) * (bw + 1) + bw] += compliance[s] * invH2;
+  }
+  assemble(sys, model, w);
+  for (let c = 0; c < cloths; c++) factorBand(matrix, matrixStart[c], blockStart[c + 1] - blockStart[c], band[c]);
+  sys.factoredFor = params;
+  sys.factoredAt = h;
+  sys.factors++;
+}
+
+/**
+ * Whether the step μ (sys.rhs) just solved for with a factor of an earlier substep, A₀, overshoots under the matrix
+ * of the springs' directions now, A: its Rayleigh quotient μᵀ·A·μ / μᵀ·A₀·μ past COARSE_OVERSHOOT, where
+ * μᵀ·A₀·μ = μᵀ·r (sys.residual, the right-hand side it was solved for) and μᵀ·A·μ = Σ_s α̃_s·μ_g(s)² + Σ_i w_i·|Σ ±μ_g(s)·n_s|²
+ * over the springs at each particle, with each spring's own aggregate's μ (the matrix's).
+ */
+function overshoots(sys: CoarseSystem, model: ClothModel, w: Float32Array, compliance: Float32Array, invH2: number): boolean {
+  const { aggregate, start, springAt, signAt, rhs, residual, dir } = sys;
+  let before = 0;
+  for (let g = 0; g < rhs.length; g++) before += rhs[g] * residual[g];
+  if (!(before > 0)) return false;
+  let now = 0;
+  for (let s = 0; s < compliance.length; s++) {
+    if (dir[3 * s] === 0 && dir[3 * s + 1] === 0 && dir[3 * s + 2] === 0) continue;
+    const mu = rhs[aggregate[s]];
+    now += compliance[s] * invH2 * mu * mu;
+  }
+  for (let i = 0; i < model.particleCount; i++) {
+    const wi = w[i];
+    if (wi === 0) continue;
+    let mx = 0, my = 0, mz = 0;
+    for (let p = start[i]; p < start[i + 1]; p++) {
+      const s = springAt[p], l = signAt[p] * rhs[aggregate[s]];
+      mx += l * dir[3 * s]; my += l * dir[3 * s + 1]; mz += l * dir[3 * s + 2];
+    }
+    now += wi * (mx * mx + my * my + mz * mz);
+  }
+  return now > COARSE_OVERSHOOT * before;
 }
 
 /**

@@ -21,7 +21,7 @@ interface CoarseExports {
 /** bytes of the memory left unused below the arrays (the module's own static data, if any, lies there) */
 const BASE = 65536;
 /** the header's words (coarse.as.ts, H_ constants) */
-const HEADER_WORDS = 25;
+const HEADER_WORDS = 26;
 
 export class WasmCoarseStretch {
   private readonly memory = new WebAssembly.Memory({ initial: 1 });
@@ -70,7 +70,7 @@ export class WasmCoarseStretch {
     const offsets = [
       take(12 * n), take(4 * n), take(4 * ns), take(8 * ns), take(4 * ns), take(4 * ns), take(4 * ns), take(16 * ns), take(32 * ns),
       take(4 * (n + 1)), take(8 * ns), take(16 * ns), take(4 * (cloths + 1)), take(4 * cloths), take(4 * (cloths + 1)), take(4 * count),
-      take(8 * sys.matrix.length), take(8 * count), take(24 * ns), take(4 * most), take(24 * most),
+      take(8 * sys.matrix.length), take(8 * count), take(24 * ns), take(4 * most), take(24 * most), take(8 * count),
     ];
     const pages = Math.ceil(next / 65536) - this.memory.buffer.byteLength / 65536;
     if (pages > 0) this.memory.grow(pages);

@@ -5,11 +5,13 @@
 // positions and inverse masses copied in and the positions and multipliers out at each call. `header` holds the
 // arrays' byte offsets and counts as i32 words, in the order of the H_ constants.
 
+import { COARSE_OVERSHOOT } from './layout.generated.as';
+
 const H_N: i32 = 0, H_NS: i32 = 1, H_CLOTHS: i32 = 2;
 const H_X: i32 = 4, H_W: i32 = 5, H_LAMBDAS: i32 = 6, H_SPRINGS: i32 = 7, H_REST: i32 = 8, H_COMPLIANCE: i32 = 9;
 const H_AGGREGATE: i32 = 10, H_NEAR_ID: i32 = 11, H_NEAR_WEIGHT: i32 = 12, H_START: i32 = 13, H_SPRING_AT: i32 = 14;
 const H_SIGN_AT: i32 = 15, H_BLOCK_START: i32 = 16, H_BAND: i32 = 17, H_MATRIX_START: i32 = 18, H_BLOCK_OF: i32 = 19;
-const H_MATRIX: i32 = 20, H_RHS: i32 = 21, H_DIR: i32 = 22, H_TOUCHED: i32 = 23, H_VEC: i32 = 24;
+const H_MATRIX: i32 = 20, H_RHS: i32 = 21, H_DIR: i32 = 22, H_TOUCHED: i32 = 23, H_VEC: i32 = 24, H_RESIDUAL: i32 = 25;
 
 @inline function word(header: usize, k: i32): i32 {
   return load<i32>(header + (<usize>k << 2));
@@ -24,18 +26,20 @@ const H_MATRIX: i32 = 20, H_RHS: i32 = 21, H_DIR: i32 = 22, H_TOUCHED: i32 = 23,
   return base + (<usize>i << 3);
 }
 
-/** One substep's coarse correction of substep length h [s]; `factor`: assemble and factor the matrix first. */
+/**
+ * One substep's coarse correction of substep length h [s]; `factor`: assemble and factor the matrix first (else the
+ * last factor serves unless its step overshoots under the matrix now).
+ */
 export function coarseStretch(header: usize, h: f64, factor: bool): void {
   const n = word(header, H_N), ns = word(header, H_NS), cloths = word(header, H_CLOTHS);
   const x = at(header, H_X), w = at(header, H_W), lambdas = at(header, H_LAMBDAS), springs = at(header, H_SPRINGS);
   const rest = at(header, H_REST), compliance = at(header, H_COMPLIANCE), aggregate = at(header, H_AGGREGATE);
   const nearId = at(header, H_NEAR_ID), nearWeight = at(header, H_NEAR_WEIGHT), start = at(header, H_START);
   const springAt = at(header, H_SPRING_AT), signAt = at(header, H_SIGN_AT), blockStart = at(header, H_BLOCK_START);
-  const band = at(header, H_BAND), matrixStart = at(header, H_MATRIX_START), blockOf = at(header, H_BLOCK_OF);
-  const matrix = at(header, H_MATRIX), rhs = at(header, H_RHS), dir = at(header, H_DIR);
+  const band = at(header, H_BAND), matrixStart = at(header, H_MATRIX_START);
+  const matrix = at(header, H_MATRIX), rhs = at(header, H_RHS), dir = at(header, H_DIR), residual = at(header, H_RESIDUAL);
   const invH2 = 1 / (h * h);
   const count = i32At(blockStart, cloths);
-  if (factor) memory.fill(matrix, 0, <usize>i32At(matrixStart, cloths) << 3);
   memory.fill(rhs, 0, <usize>count << 3);
   for (let s = 0; s < ns; s++) {
     const d = f64Ref(dir, 3 * s);
@@ -48,19 +52,17 @@ export function coarseStretch(header: usize, h: f64, factor: bool): void {
     const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
     if (!(len > 1e-12)) continue;
     store<f64>(d, dx / len); store<f64>(d, dy / len, 8); store<f64>(d, dz / len, 16);
-    const g = i32At(aggregate, s), r = f64Ref(rhs, g);
+    const r = f64Ref(rhs, i32At(aggregate, s));
     store<f64>(r, load<f64>(r) + (<f64>load<f32>(rest + (<usize>s << 2)) - len));
-    if (factor) {
-      const c = i32At(blockOf, g), bw = i32At(band, c);
-      const e = f64Ref(matrix, i32At(matrixStart, c) + (g - i32At(blockStart, c)) * (bw + 1) + bw);
-      store<f64>(e, load<f64>(e) + alpha * invH2);
-    }
   }
-  if (factor) {
-    assemble(header, n);
-    for (let c = 0; c < cloths; c++) factorBand(matrix, i32At(matrixStart, c), i32At(blockStart, c + 1) - i32At(blockStart, c), i32At(band, c));
-  }
+  if (factor) factorNow(header, n, ns, cloths, invH2);
+  else memory.copy(residual, rhs, <usize>count << 3);
   for (let c = 0; c < cloths; c++) solveBand(matrix, i32At(matrixStart, c), rhs, i32At(blockStart, c), i32At(blockStart, c + 1) - i32At(blockStart, c), i32At(band, c));
+  if (!factor && overshoots(header, n, ns, count, invH2)) {
+    memory.copy(rhs, residual, <usize>count << 3);
+    factorNow(header, n, ns, cloths, invH2);
+    for (let c = 0; c < cloths; c++) solveBand(matrix, i32At(matrixStart, c), rhs, i32At(blockStart, c), i32At(blockStart, c + 1) - i32At(blockStart, c), i32At(band, c));
+  }
   for (let s = 0; s < ns; s++) {
     const d = f64Ref(dir, 3 * s), k = 4 * s;
     let l: f64 = 0;
@@ -86,6 +88,54 @@ export function coarseStretch(header: usize, h: f64, factor: bool): void {
     store<f32>(q, <f32>(<f64>load<f32>(q, 4) + wi * my), 4);
     store<f32>(q, <f32>(<f64>load<f32>(q, 8) + wi * mz), 8);
   }
+}
+
+@inline function isZero(d: usize): bool {
+  return load<f64>(d) == 0 && load<f64>(d, 8) == 0 && load<f64>(d, 16) == 0;
+}
+
+/** The matrices made from the directions now and factored (the reference's factorNow). */
+function factorNow(header: usize, n: i32, ns: i32, cloths: i32, invH2: f64): void {
+  const compliance = at(header, H_COMPLIANCE), aggregate = at(header, H_AGGREGATE), blockStart = at(header, H_BLOCK_START);
+  const band = at(header, H_BAND), matrixStart = at(header, H_MATRIX_START), blockOf = at(header, H_BLOCK_OF);
+  const matrix = at(header, H_MATRIX), dir = at(header, H_DIR);
+  memory.fill(matrix, 0, <usize>i32At(matrixStart, cloths) << 3);
+  for (let s = 0; s < ns; s++) {
+    if (isZero(f64Ref(dir, 3 * s))) continue;
+    const g = i32At(aggregate, s), c = i32At(blockOf, g), bw = i32At(band, c);
+    const e = f64Ref(matrix, i32At(matrixStart, c) + (g - i32At(blockStart, c)) * (bw + 1) + bw);
+    store<f64>(e, load<f64>(e) + <f64>load<f32>(compliance + (<usize>s << 2)) * invH2);
+  }
+  assemble(header, n);
+  for (let c = 0; c < cloths; c++) factorBand(matrix, i32At(matrixStart, c), i32At(blockStart, c + 1) - i32At(blockStart, c), i32At(band, c));
+}
+
+/** Whether the step μ solved with an earlier factor overshoots under the matrix now (the reference's overshoots). */
+function overshoots(header: usize, n: i32, ns: i32, count: i32, invH2: f64): bool {
+  const w = at(header, H_W), compliance = at(header, H_COMPLIANCE), aggregate = at(header, H_AGGREGATE);
+  const start = at(header, H_START), springAt = at(header, H_SPRING_AT), signAt = at(header, H_SIGN_AT);
+  const rhs = at(header, H_RHS), residual = at(header, H_RESIDUAL), dir = at(header, H_DIR);
+  let before: f64 = 0;
+  for (let g = 0; g < count; g++) before += load<f64>(f64Ref(rhs, g)) * load<f64>(f64Ref(residual, g));
+  if (!(before > 0)) return false;
+  let now: f64 = 0;
+  for (let s = 0; s < ns; s++) {
+    if (isZero(f64Ref(dir, 3 * s))) continue;
+    const mu = load<f64>(f64Ref(rhs, i32At(aggregate, s)));
+    now += <f64>load<f32>(compliance + (<usize>s << 2)) * invH2 * mu * mu;
+  }
+  for (let i = 0; i < n; i++) {
+    const wi = <f64>load<f32>(w + (<usize>i << 2));
+    if (wi == 0) continue;
+    let mx: f64 = 0, my: f64 = 0, mz: f64 = 0;
+    const p1 = i32At(start, i + 1);
+    for (let p = i32At(start, i); p < p1; p++) {
+      const s = i32At(springAt, p), l = load<f64>(f64Ref(signAt, p)) * load<f64>(f64Ref(rhs, i32At(aggregate, s))), d = f64Ref(dir, 3 * s);
+      mx += l * load<f64>(d); my += l * load<f64>(d, 8); mz += l * load<f64>(d, 16);
+    }
+    now += wi * (mx * mx + my * my + mz * mz);
+  }
+  return now > COARSE_OVERSHOOT * before;
 }
 
 /** J·M⁻¹·Jᵀ into the blocks' banded matrices (the reference's assemble). */

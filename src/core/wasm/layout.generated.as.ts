@@ -30,6 +30,8 @@ export const MAX_COLLIDERS: i32 = 64;
 export const TRIANGLE_SPREAD_MOST: i32 = 2;
 /** golden-section iterations of each of the two nested searches of triangle contact (colliders/convex.ts goldenDeepest, the GPU's triangleContact.wgsl) */
 export const GOLDEN_ITERATIONS: i32 = 12;
+/** the springs' coarse correction (solvers/coarse-stretch.ts overshoots, coarse.as.ts, the GPU's coarseCheck.wgsl): how far a step solved with an earlier substep's factor may overshoot, its Rayleigh quotient under the matrix of the springs' directions now over the factor's, before the matrix is made anew; a step along one direction of a quadratic converges below 2, 1.5 leaves a margin [-] */
+export const COARSE_OVERSHOOT: f64 = 1.5;
 /** most threads one kernel runs (one run counter each in the control block) */
 export const KERNEL_MAX_THREADS: i32 = 16;
 /** kernel substep flag: external forces (wind) to integrate */

@@ -1,4 +1,4 @@
-// The springs' coarse correction, a frame's first substep, 4 of 7, per aggregate g: row g of its cloth's banded matrix
+// The springs' coarse correction, 5 (as coarseTouch), per aggregate g: row g of its cloth's banded matrix
 // R·(J·M⁻¹·Jᵀ + α̃)·Rᵀ, entries (g, g − b … g): Σ w_i·v_g·v_h over the particles i whose springs are in both
 // aggregates (coarseEntryPairs), and α̃ on the diagonal. A row without a spring taking part gets 1 there (its μ is 0).
 
@@ -6,6 +6,7 @@
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
   let g = flatIndex(gid, nwg);
   if (g >= arrayLength(&coarseRhs)) { return; }
+  if ((batch.flags & PASS_COARSE_IF_STALE) != 0u && coarseStale[0] == 0u) { return; }
   let c = coarseAggregates[g].z;
   let block = coarseBlocks[2u * c];
   let bw = block.z;

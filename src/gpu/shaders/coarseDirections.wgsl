@@ -1,4 +1,4 @@
-// The springs' coarse correction (core solvers/coarse-stretch.ts solveCoarseStretch), 1 of 7, per spring s: its unit
+// The springs' coarse correction (core solvers/coarse-stretch.ts solveCoarseStretch), 1, per spring s: its unit
 // direction n = (x_a − x_b)/|x_a − x_b| now and its residual L − |x_a − x_b| [m], or all 0 where it takes no part in the
 // correction (no stiffness, both ends fixed, no length), as the CPU's `dir` and right-hand side.
 

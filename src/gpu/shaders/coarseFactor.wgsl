@@ -1,4 +1,4 @@
-// The springs' coarse correction, a frame's first substep, 5 of 7: each cloth's banded matrix A factored, A = L·Lᵀ, by
+// The springs' coarse correction, 6 (as coarseTouch): each cloth's banded matrix A factored, A = L·Lᵀ, by
 // one workgroup (workgroup c: cloth c), column by column (right-looking Cholesky): column j of L is A's column j over
 // √A_jj (into coarseFactor), and the entries (i, k) of the trailing triangle the column reaches, j < k ≤ i ≤ j + b,
 // lose A_ij·A_kj/A_jj (in coarseMatrix, in place); a barrier ends each column. A matrix that is not positive definite
@@ -17,10 +17,12 @@ fn at(m: u32, b: u32, i: u32, j: u32) -> u32 {
 fn main(@builtin(workgroup_id) wid: vec3u, @builtin(local_invocation_index) t: u32) {
   if (t == 0u) {
     let block = coarseBlocks[2u * wid.x];
-    shape = vec4u(block.y, block.z, coarseBlocks[2u * wid.x + 1u].x, 0u);
+    let skip = (batch.flags & PASS_COARSE_IF_STALE) != 0u && coarseStale[0] == 0u;
+    shape = vec4u(select(block.y, 0u, skip), block.z, coarseBlocks[2u * wid.x + 1u].x, select(0u, 1u, skip));
     atomicStore(&failed, 0u);
   }
   let s = workgroupUniformLoad(&shape);
+  if (s.w != 0u) { return; }
   let size = s.x;
   let b = s.y;
   let m = s.z;

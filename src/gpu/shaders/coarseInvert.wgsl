@@ -1,4 +1,4 @@
-// The springs' coarse correction, a frame's first substep, 6 of 7, per aggregate: one column of the inverse of the
+// The springs' coarse correction, 7 (as coarseTouch), per aggregate: one column of the inverse of the
 // diagonal block of its cloth's factor L that holds it, the blocks being runs of B = min(b + 1, FACTOR_WORKGROUP)
 // rows. Column c of block S by forward substitution, v_r = (δ_rc − Σ_{c ≤ q < r} L_rq·v_q)/L_rr for r = c … |S| − 1,
 // into the block's packed lower triangle (row r's entries (r, 0) … (r, r) from r·(r + 1)/2): coarseSolve then takes
@@ -8,6 +8,7 @@
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
   let g = flatIndex(gid, nwg);
   if (g >= arrayLength(&coarseAggregates)) { return; }
+  if ((batch.flags & PASS_COARSE_IF_STALE) != 0u && coarseStale[0] == 0u) { return; }
   let cloth = coarseAggregates[g].z;
   let block = coarseBlocks[2u * cloth];
   let place = coarseBlocks[2u * cloth + 1u];

@@ -1,4 +1,4 @@
-// The springs' coarse correction, 7b of 7, per spring s: its multiplier λ_s = Σ_k φ_k·μ_k, bilinear between the four
+// The springs' coarse correction, 9, per spring s: its multiplier λ_s = Σ_k φ_k·μ_k, bilinear between the four
 // aggregates of its kind and direction around it (0 where it takes no part), from which the sweep goes on.
 
 @compute @workgroup_size(WG)

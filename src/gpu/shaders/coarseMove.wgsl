@@ -1,4 +1,4 @@
-// The springs' coarse correction, 7c of 7, per free particle i: x_i += w_i·Σ ±λ_s·n_s over its springs (M⁻¹·Jᵀ·λ with
+// The springs' coarse correction, 10, per free particle i: x_i += w_i·Σ ±λ_s·n_s over its springs (M⁻¹·Jᵀ·λ with
 // the directions the step began with; + where i is a spring's first end).
 
 @compute @workgroup_size(WG)

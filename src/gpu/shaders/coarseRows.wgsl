@@ -1,5 +1,6 @@
-// The springs' coarse correction, 2 of 7, per aggregate g: its row of the right-hand side, Σ (L − len) over its springs
-// that take part [m], and its part of the matrix's diagonal, α̃ = Σ α/h² over them [1/kg].
+// The springs' coarse correction, 2, per aggregate g: its row of the right-hand side, Σ (L − len) over its springs that
+// take part [m], and its part of the matrix's diagonal, α̃ = Σ α/h² over them [1/kg]; the right-hand side again in z,
+// for coarseSolve to start from (twice where the last factor's step overshoots).
 
 @compute @workgroup_size(WG)
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
@@ -16,5 +17,5 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
       alpha += springData[s].y;
     }
   }
-  coarseRhs[g] = vec2f(rhs, alpha * sub.invH2);
+  coarseRhs[g] = vec4f(rhs, alpha * sub.invH2, rhs, 0.0);
 }
