@@ -217,14 +217,15 @@ describe('WebGPU page', () => {
     expect(silk.solver.bending).toBe('hinges');
     await step(page, 30);
     expect((await centroid(page)).every(Number.isFinite)).toBe(true);
-    // the sweep after a coarse correction: a choice of the stretch solve, on the CPU worker
-    await choose(page, 'solver.stretch', 'two-level');
+    // the stretch solve is a choice: the sweep after a coarse correction (the default), the sweep alone, on the CPU worker
     expect((await hook<any>(page, 'scene')).solver.stretch).toBe('two-level');
+    await choose(page, 'solver.stretch', 'gauss-seidel');
+    expect((await hook<any>(page, 'scene')).solver.stretch).toBe('gauss-seidel');
     await step(page, 30);
     expect((await centroid(page)).every(Number.isFinite)).toBe(true);
     await expect.poll(() => byId(page, 'hud').innerText()).toContain('CPU (worker, WebAssembly SIMD)');
-    await expect.poll(() => page.evaluate(() => location.hash)).toContain('solver.stretch=two-level');
-    await choose(page, 'solver.stretch', 'gauss-seidel');
+    await expect.poll(() => page.evaluate(() => location.hash)).toContain('solver.stretch=gauss-seidel');
+    await choose(page, 'solver.stretch', 'two-level');
     // self-contact is a switch (on in the built-in scenes), live, and a change goes into the link
     await setChecked(page, 'solver.selfContact', true);
     expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);

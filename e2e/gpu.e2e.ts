@@ -162,7 +162,7 @@ describe('GPU simulation backend', () => {
     expect(errors).toEqual([]);
   });
 
-  it('the springs\' coarse correction on the GPU: the stretch choice two-level keeps the GPU backend', async () => {
+  it('the springs\' coarse correction on the GPU: the stretch choice two-level (the default) keeps the GPU backend', async () => {
     // (docs/gpu.md, "The springs' coarse correction"; before 2026-12-06 the GPU refused it and the page fell back to
     // the CPU worker): the cloth hung from two corners, 30 frames, where the CLI puts it (`node bin/drape.js run custom
     // --backend gpu --frames 30 --set cloth.resolution=12 --set solver.selfContact=false --set
@@ -172,6 +172,8 @@ describe('GPU simulation backend', () => {
     await gpuScene(page, 'Custom Parameters', 12);
     await setChecked(page, 'pin.top-left', true);
     await setChecked(page, 'pin.top-right', true);
+    // (chosen away and back: the choice, not only the default)
+    await choose(page, 'solver.stretch', 'gauss-seidel');
     await choose(page, 'solver.stretch', 'two-level');
     expect((await hook<any>(page, 'scene')).solver.stretch).toBe('two-level');
     await gpuReady(page);

@@ -135,7 +135,7 @@ describe('the CLI runs a garment scene', () => {
     const j = JSON.parse(r.out);
     expect(j).toMatchObject({ scene: 'tshirt', particles: 1258, triangles: 2432, finite: true, exported: out });
     expect(j.resolvedScene.cloth).toMatchObject({ shape: 'mesh', mesh: 'tshirt.obj', scale: 1, position: [0, 1, 0], rotation: [-90, 0, 0], thickness: 0.005 });
-    expect(j.resolvedScene.solver).toEqual({ type: 'xpbd', substeps: 20, iterations: 1, bending: 'springs', stretch: 'gauss-seidel', bendingSolve: 'gauss-seidel', selfContact: false, selfContactSpeed: 6, depenetrationSpeed: 0.25 });
+    expect(j.resolvedScene.solver).toEqual({ type: 'xpbd', substeps: 20, iterations: 1, bending: 'springs', stretch: 'two-level', bendingSolve: 'gauss-seidel', selfContact: false, selfContactSpeed: 6, depenetrationSpeed: 0.25 });
     const text = readFileSync(out, 'utf8');
     expect(text.match(/^v /gm)).toHaveLength(1258);
     expect(text.match(/^f /gm)).toHaveLength(2432);

@@ -141,10 +141,11 @@ describe('the standard fabric tests as the scenes set them up', () => {
 });
 
 describe('the Cusick scene, as it is set up', () => {
-  // the woven disc clamped on the pedestal, the hinges solved together: cotton at rest by 2 s (kinetic energy
-  // 4·10⁻¹⁰ J), 0.466 at 48 cells (the scene's) and 0.441 at 96; silk, lighter, still sinking then (0.435 at 2 s,
-  // 0.386 at 3 s, 0.335 at 6 s); leather 0.967 (docs/physics.md, "The standard fabric tests"). Unclamped on a disc
-  // of rings (before 2026-12-06) cotton read 0.51 at 24 cells and 0.39 at 48.
+  // the woven disc clamped on the pedestal, the hinges solved together, the springs' coarse correction (the default
+  // since 2026-12-06): cotton at rest by 2 s (kinetic energy 3·10⁻¹⁰ J), 0.476 at 48 cells (the scene's) and 0.489
+  // at 96; silk, lighter, still sinking then (0.451 at 2 s, 0.429 at 3 s, 0.377 at 4 s, 0.353 at 6 s); leather 0.983
+  // (docs/physics.md, "The standard fabric tests"). The sweep alone read 0.466, 0.441; silk 0.435, 0.386 at 2 and 3 s;
+  // leather 0.967. Unclamped on a disc of rings (before 2026-12-06) cotton read 0.51 at 24 cells and 0.39 at 48.
   const drape = (fabric: string, resolution: number, frames = 120) => {
     const scene = validateScene({ ...builtinScene('cusick'), material: { fabric }, cloth: { ...builtinScene('cusick').cloth, resolution } });
     const sim = new Simulation(scene);
@@ -156,7 +157,7 @@ describe('the Cusick scene, as it is set up', () => {
   it('reads the same drape coefficient at 48 and 96 cells across (within 0.05), and orders silk < cotton < leather', () => {
     const cotton = drape('cotton', 48);
     expect(Math.abs(drape('cotton', 96) - cotton)).toBeLessThan(0.05);
-    expect(drape('silk', 48, 180)).toBeLessThan(cotton - 0.05);
+    expect(drape('silk', 48, 240)).toBeLessThan(cotton - 0.05);
     expect(drape('leather', 48)).toBeGreaterThan(cotton + 0.3);
   });
 });
