@@ -3,14 +3,13 @@
  * CPU kernels (the WebAssembly kernel runs the reference's phase on its memory, then its own sweep from the λ it set).
  */
 import { describe, expect, it } from 'vitest';
-import { builtinScene } from '../scenes.js';
 import { validateScene, type Scene } from '../scene.js';
 import { FRAME_DT } from '../params.js';
 import { copyState, createState } from '../state.js';
 import { mergeModels } from '../model.js';
 import { Simulation, type CpuKernel } from '../simulation.js';
 import { COARSE_DIRECTIONS, coarseCells, coarseSystem, solveCoarseStretch } from './coarse-stretch.js';
-import { elongation, freeFallError, hangingRatio, hangingSheet, kernelsApart, type SheetFabric } from './test-sheets.js';
+import { crumplingTablecloth, elongation, freeFallError, hangingRatio, hangingSheet, kernelsApart, type SheetFabric } from './test-sheets.js';
 
 /**
  * A 1 m sheet pinned along its top edge, default substeps; bending as the scenes have it (the hinges solved together)
@@ -64,16 +63,7 @@ describe.each<CpuKernel>(['ts', 'wasm'])('solver.stretch "two-level" (xpbd), %s 
   // off in 30 frames; the step checked against the matrix now, and the matrix made anew where it overshoots, it
   // stays where it was (seen 0.54 of its size from its start, both kernels).
   it('a cloth crumpling within a frame: the factor made anew where its step overshoots, the cloth stays', () => {
-    const sc = builtinScene('tablecloth');
-    sc.cloth.resolution = 6;
-    sc.gravity = [-9.65, 9.62, -1.47];
-    sc.wind = { ...sc.wind, enabled: true, strength: 24.85, direction: [0.406, -0.609, 0.758] };
-    sc.material = {
-      structuralStiffness: 289760, shearStiffness: 375.3, bendingRigidity: 0.5347, damping: 1.168, mass: 7.966e-4,
-      stretchFactor: 1.715, friction: 2.59e-4, staticFriction: 0.903, scaleWithResolution: false,
-    };
-    sc.solver = { ...sc.solver, substeps: 39, iterations: 1, selfContact: false, stretch: 'two-level', bending: 'springs' };
-    const sim = new Simulation(validateScene(sc), { kernel });
+    const sim = new Simulation(crumplingTablecloth(), { kernel });
     const start = sim.report().centroid;
     sim.advance(30);
     const r = sim.report();

@@ -27,9 +27,10 @@
  * direction whose cells' centres surround its midpoint (λ piecewise constant, R·μ, left a sawtooth of ±0.4 % strain
  * in a hanging cotton sheet at 64², one per cell, which one sweep cannot smooth). The matrix is banded (an aggregate
  * meets those of the cells around its own), one block per cloth (no spring joins two cloths); it is assembled and
- * factored (banded Cholesky) in the frame's first substep and whenever h or the params change, and each substep
- * solves with that factor for its own right-hand side (the matrix changes only with the springs' directions; the
- * right-hand side, which holds the strains, is always the substep's own). The sweep then starts each spring from its
+ * factored (banded Cholesky) in the frame's first substep and whenever h or the params change (and within the frame
+ * where the factor's step would overshoot: `overshoots`), and each substep solves with that factor for its own
+ * right-hand side (the matrix changes only with the springs' directions; the right-hand side, which holds the
+ * strains, is always the substep's own). The sweep then starts each spring from its
  * λ_s (the distance phase accumulates) and removes what the coarse space cannot hold.
  *
  * Measured (docs/physics.md, "A coarse correction of the multipliers"): a hanging sheet's static elongation within a
@@ -51,7 +52,6 @@ const KINDS = BEND + 1;
 const COARSE_CELL_PARTICLES = 8;
 /** The fewest cells per side of a cloth's grid of aggregates [-]. */
 const COARSE_MIN_CELLS = 4;
-
 
 /** Cells per side of the grid of aggregates of a cloth of `particles` particles [-]. */
 export function coarseCells(particles: number): number {
