@@ -136,8 +136,8 @@ export class CoarseTables {
    * The buffers made and written, before the first frame that corrects the springs so is encoded. Throws, making
    * nothing, where one of them is larger than the device binds.
    */
-  prepare(): CoarseLayout {
-    if (this.layout) return this.layout;
+  prepare(): void {
+    if (this.layout) return;
     const layout = coarseTables(this.model);
     const limit = this.device.limits.maxStorageBufferBindingSize;
     for (const [name, size] of Object.entries(layout.sizes) as [BufferName, number][]) {
@@ -150,6 +150,5 @@ export class CoarseTables {
       if (data.length) this.device.queue.writeBuffer(this.buffers.buffers[name], 0, data as Uint32Array<ArrayBuffer>);
     }
     this.layout = layout;
-    return layout;
   }
 }

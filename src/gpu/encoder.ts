@@ -297,12 +297,8 @@ export class FrameEncoder implements PhaseBackend {
    */
   private resolveSelfPairs(kernel: 'selfPoints' | 'selfEdges', so: number, passes: number): void {
     this.dispatch('selfPairArgs', 1, so, 0);
-    const pass = this.pass!;
     for (let k = 0; k < passes; k++) {
-      pass.setPipeline(this.pipelines[kernel]);
-      pass.setBindGroup(0, this.uniforms.group, [so, 0]);
-      pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
-      pass.dispatchWorkgroupsIndirect(this.buffers.buffers.selfArgs, 0);
+      this.bind(kernel, so, 0).dispatchWorkgroupsIndirect(this.buffers.buffers.selfArgs, 0);
       this.dispatch('selfApply', this.model.particleCount, so, 0);
     }
   }
@@ -317,23 +313,24 @@ export class FrameEncoder implements PhaseBackend {
     this.device.queue.submit([encoder.finish()]);
   }
 
-  /** Dispatches `groups` workgroups of `kernel` (one per cloth, or one) with the given Substep and Pass records. */
-  private dispatchGroups(kernel: KernelName, groups: number, substepOffset: number, passOffset: number): void {
-    if (groups <= 0) return;
+  /** The frame's pass with `kernel`'s pipeline and its bind groups set, at the given Substep and Pass records. */
+  private bind(kernel: KernelName, substepOffset: number, passOffset: number): GPUComputePassEncoder {
     const pass = this.pass!;
     pass.setPipeline(this.pipelines[kernel]);
     pass.setBindGroup(0, this.uniforms.group, [substepOffset, passOffset]);
     pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
-    pass.dispatchWorkgroups(groups);
+    return pass;
+  }
+
+  /** Dispatches `groups` workgroups of `kernel` (one per cloth, or one) with the given Substep and Pass records. */
+  private dispatchGroups(kernel: KernelName, groups: number, substepOffset: number, passOffset: number): void {
+    if (groups > 0) this.bind(kernel, substepOffset, passOffset).dispatchWorkgroups(groups);
   }
 
   /** Dispatches `kernel` over `count` threads with the given Substep and Pass records (spilling into y when large). */
   private dispatch(kernel: KernelName, count: number, substepOffset: number, passOffset: number): void {
     if (count <= 0) return;
-    const pass = this.pass!;
-    pass.setPipeline(this.pipelines[kernel]);
-    pass.setBindGroup(0, this.uniforms.group, [substepOffset, passOffset]);
-    pass.setBindGroup(1, this.buffers.storageGroups[kernel]);
+    const pass = this.bind(kernel, substepOffset, passOffset);
     const groups = Math.ceil(count / WORKGROUP_SIZE);
     if (groups <= MAX_WORKGROUPS_X) pass.dispatchWorkgroups(groups);
     else pass.dispatchWorkgroups(MAX_WORKGROUPS_X, Math.ceil(groups / MAX_WORKGROUPS_X));

@@ -231,7 +231,8 @@ export class GpuClothSolver {
     // the global steps' factors for this frame's pins and substep, before the frame is encoded (their tables may be
     // made anew; a buffer the device cannot make is said by the next step or read, as the params' are)
     const phases = framePhases(this.model, state, params);
-    if ((phases & (1 << PHASE.coarseStretch)) !== 0) {
+    // (made once per model: watched only on the frame that makes them)
+    if ((phases & (1 << PHASE.coarseStretch)) !== 0 && !this.encoder.coarse.layout) {
       this.watched("the coarse correction's tables", () => this.encoder.coarse.prepare());
     }
     if ((phases & (1 << PHASE.globalStretch)) !== 0) {
