@@ -50,7 +50,7 @@ export function coarseBlockRows(band: number): number {
 /** The tables of `model`'s coarse correction (see the file's comment), from the CPU's coarseSystem. */
 export function coarseTables(model: ClothModel): CoarseLayout {
   const sys = coarseSystem(model);
-  const n = model.particleCount, ns = model.restLengths.length, { aggregate, blockStart, band, matrixStart, start, springAt, signAt } = sys;
+  const n = model.particleCount, ns = model.restLengths.length, { aggregate, blockStart, band, matrixStart, start } = sys;
   const aggregates = blockStart[blockStart.length - 1], cloths = blockStart.length - 1;
   // the aggregates' springs, and their cloths
   const aggregateRows = new Uint32Array(4 * aggregates), members = new Uint32Array(ns);
@@ -72,13 +72,13 @@ export function coarseTables(model: ClothModel): CoarseLayout {
   const order: number[] = [];
   for (let i = 0; i < n; i++) {
     order.length = 0;
-    for (let p = start[i]; p < start[i + 1]; p++) order.push(p);
-    order.sort((a, b) => aggregate[springAt[a]] - aggregate[springAt[b]] || a - b);
+    for (let p = start[i]; p < start[i + 1]; p++) order.push(sys.incidence[p]);
+    order.sort((a, b) => aggregate[a >> 1] - aggregate[b >> 1] || a - b);
     let at = incidence[i];
-    for (const p of order) {
-      const s = springAt[p], g = aggregate[s];
+    for (const code of order) {
+      const g = aggregate[code >> 1];
       if (at === incidence[i] || g !== aggregate[incidence[at - 1] >> 1]) pairRows.push(i, g, at, at);
-      incidence[at++] = 2 * s + (signAt[p] > 0 ? 0 : 1);
+      incidence[at++] = code;
       pairRows[pairRows.length - 1] = at;
     }
     incidence[i + 1] = at;

@@ -64,7 +64,7 @@ export interface CoarseSystem {
   readonly aggregate: Int32Array;
   /** each spring's four nearest aggregates of its direction and their bilinear weights (the λ it is given) */
   readonly nearId: Int32Array;
-  readonly nearWeight: Float64Array;
+  readonly nearWeight: Float32Array;
   /** the cloths' blocks of aggregates: cloth c has blockStart[c] … blockStart[c + 1] − 1 */
   readonly blockStart: Int32Array;
   /** each block's half bandwidth (entry (i, j) is zero where i − j exceeds it) */
@@ -73,10 +73,12 @@ export interface CoarseSystem {
   readonly matrixStart: Int32Array;
   /** each aggregate's block (its cloth) */
   readonly blockOf: Int32Array;
-  /** the springs at each particle: CSR offsets (particles + 1), spring ids, sign (+1 at a spring's first particle) */
+  /**
+   * the springs at each particle: CSR offsets (particles + 1), and 2·s + side per spring s (side 0 at the spring's
+   * first particle, where its direction n_s counts +, 1 at its second, where it counts −)
+   */
   readonly start: Int32Array;
-  readonly springAt: Int32Array;
-  readonly signAt: Float64Array;
+  readonly incidence: Int32Array;
   /**
    * the blocks' banded matrices (then their factors), the right-hand side (then μ) and a copy of it, each spring's
    * unit direction now (0 where it takes no part)
@@ -85,6 +87,12 @@ export interface CoarseSystem {
   readonly rhs: Float64Array;
   readonly residual: Float64Array;
   readonly dir: Float64Array;
+  /**
+   * per particle (3 each), Jᵀ·λ [N·s²], made before the particles move by M⁻¹·Jᵀ·λ, and, where the step is checked,
+   * Jᵀ·R ᵀ·μ with each spring's own aggregate's μ (`overshoots`)
+   */
+  readonly move: Float64Array;
+  readonly own: Float64Array;
   /** one particle's aggregates and their sums of ±n_s (scratch, the most springs a particle has) */
   readonly touched: Int32Array;
   readonly vec: Float64Array;
@@ -145,7 +153,7 @@ export function coarseSystem(model: ClothModel): CoarseSystem {
   for (let c = 0; c < cloths; c++) blockOf.fill(c, blockStart[c], blockStart[c + 1]);
   // each spring's λ from the four aggregates of its direction around it: bilinear between the cells' centres
   // (clamped at the cloth's border; a cell without springs of that direction gives its weight to the others)
-  const nearId = new Int32Array(4 * ns), nearWeight = new Float64Array(4 * ns);
+  const nearId = new Int32Array(4 * ns), nearWeight = new Float32Array(4 * ns), weight = new Float64Array(4);
   for (let s = 0; s < ns; s++) {
     const c = clothOf[springs[2 * s]], G = cells[c];
     const gu = place[2 * s] - 0.5, gv = place[2 * s + 1] - 0.5;
@@ -156,34 +164,34 @@ export function coarseSystem(model: ClothModel): CoarseSystem {
       const id = slot[first[c] + (iu + (k & 1) + G * (iv + (k >> 1))) * KINDS * COARSE_DIRECTIONS + direction[s]];
       const wk = ((k & 1) ? fu : 1 - fu) * ((k >> 1) ? fv : 1 - fv);
       nearId[4 * s + k] = id >= 0 ? id : aggregate[s];
-      nearWeight[4 * s + k] = id >= 0 ? wk : 0;
-      sum += nearWeight[4 * s + k];
+      weight[k] = id >= 0 ? wk : 0;
+      sum += weight[k];
     }
-    for (let k = 0; k < 4; k++) nearWeight[4 * s + k] = sum > 0 ? nearWeight[4 * s + k] / sum : k === 0 ? 1 : 0;
+    for (let k = 0; k < 4; k++) nearWeight[4 * s + k] = sum > 0 ? weight[k] / sum : k === 0 ? 1 : 0;
   }
   // the springs at each particle
   const start = new Int32Array(n + 1);
   for (let s = 0; s < ns; s++) { start[springs[2 * s] + 1]++; start[springs[2 * s + 1] + 1]++; }
   let mostAt = 0;
   for (let i = 0; i < n; i++) { mostAt = Math.max(mostAt, start[i + 1]); start[i + 1] += start[i]; }
-  const springAt = new Int32Array(2 * ns), signAt = new Float64Array(2 * ns), fill = start.slice(0, n);
+  const incidence = new Int32Array(2 * ns), fill = start.slice(0, n);
   for (let s = 0; s < ns; s++) {
-    const a = springs[2 * s], b = springs[2 * s + 1];
-    springAt[fill[a]] = s; signAt[fill[a]++] = 1;
-    springAt[fill[b]] = s; signAt[fill[b]++] = -1;
+    incidence[fill[springs[2 * s]]++] = 2 * s;
+    incidence[fill[springs[2 * s + 1]]++] = 2 * s + 1;
   }
   // each block's bandwidth: the farthest apart two aggregates that meet at a particle
   const band = new Int32Array(cloths);
   for (let i = 0; i < n; i++) {
     let lo = Infinity, hi = -Infinity;
-    for (let p = start[i]; p < start[i + 1]; p++) { lo = Math.min(lo, aggregate[springAt[p]]); hi = Math.max(hi, aggregate[springAt[p]]); }
+    for (let p = start[i]; p < start[i + 1]; p++) { lo = Math.min(lo, aggregate[incidence[p] >> 1]); hi = Math.max(hi, aggregate[incidence[p] >> 1]); }
     if (hi >= lo) band[clothOf[i]] = Math.max(band[clothOf[i]], hi - lo);
   }
   const matrixStart = new Int32Array(cloths + 1);
   for (let c = 0; c < cloths; c++) matrixStart[c + 1] = matrixStart[c] + (blockStart[c + 1] - blockStart[c]) * (band[c] + 1);
   const system: CoarseSystem = {
-    aggregate, nearId, nearWeight, blockStart, band, matrixStart, blockOf, start, springAt, signAt,
+    aggregate, nearId, nearWeight, blockStart, band, matrixStart, blockOf, start, incidence,
     matrix: new Float64Array(matrixStart[cloths]), rhs: new Float64Array(count), residual: new Float64Array(count), dir: new Float64Array(3 * ns),
+    move: new Float64Array(3 * n), own: new Float64Array(3 * n),
     touched: new Int32Array(mostAt), vec: new Float64Array(3 * mostAt), factoredFor: null, factoredAt: 0, factors: 0,
   };
   systems.set(model, system);
@@ -200,14 +208,30 @@ export function coarseSystem(model: ClothModel): CoarseSystem {
  */
 export function solveCoarseStretch(model: ClothModel, state: ClothState, params: SimParams, h: number, refactor: boolean): void {
   const sys = coarseSystem(model);
-  const x = state.positions, w = state.invMass, lambdas = state.lambdas;
-  const springs = model.springs, rest = model.restLengths, compliance = params.compliance, ns = rest.length;
-  const { aggregate, nearId, nearWeight, blockStart, band, matrixStart, start, springAt, signAt, matrix, rhs, residual, dir } = sys;
+  const w = state.invMass, lambdas = state.lambdas, compliance = params.compliance, { rhs, residual } = sys;
   const factor = refactor || sys.factoredFor !== params || sys.factoredAt !== h;
-  const invH2 = 1 / (h * h), cloths = blockStart.length - 1;
+  const invH2 = 1 / (h * h);
+  // (the loops live in functions of their own: in one function with the branches around them, V8 compiled the first
+  // loop on the stack and dropped back to the interpreter at the branch after it, every substep, at 8 times the cost)
+  directions(sys, model, state.positions, w, compliance);
+  if (factor) factorNow(sys, model, params, h, w);
+  else residual.set(rhs);
+  solveBlocks(sys);
+  if (factor) spread(sys, model, lambdas, compliance, invH2, false);
+  else if (overshoots(sys, spread(sys, model, lambdas, compliance, invH2, true) + ownEnergy(sys, w))) {
+    rhs.set(residual);
+    factorNow(sys, model, params, h, w);
+    solveBlocks(sys);
+    spread(sys, model, lambdas, compliance, invH2, false);
+  }
+  apply(sys, state.positions, w);
+}
+
+/** Each spring's unit direction now into sys.dir (0 where it takes no part), its residual −C into its aggregate's row. */
+function directions(sys: CoarseSystem, model: ClothModel, x: Float32Array, w: Float32Array, compliance: Float32Array): void {
+  const { aggregate, rhs, dir } = sys, springs = model.springs, rest = model.restLengths;
   rhs.fill(0);
-  // each spring's direction now, its residual −C into its aggregate's row
-  for (let s = 0; s < ns; s++) {
+  for (let s = 0; s < rest.length; s++) {
     const d = 3 * s;
     dir[d] = 0; dir[d + 1] = 0; dir[d + 2] = 0;
     const alpha = compliance[s], pa = springs[2 * s], pb = springs[2 * s + 1];
@@ -216,33 +240,68 @@ export function solveCoarseStretch(model: ClothModel, state: ClothState, params:
     const dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
     const len = Math.sqrt(dx * dx + dy * dy + dz * dz);
     if (!(len > 1e-12)) continue;
-    dir[d] = dx / len; dir[d + 1] = dy / len; dir[d + 2] = dz / len;
+    const inv = 1 / len;
+    dir[d] = dx * inv; dir[d + 1] = dy * inv; dir[d + 2] = dz * inv;
     rhs[aggregate[s]] += rest[s] - len;
   }
-  if (factor) factorNow(sys, model, params, h, w);
-  else residual.set(rhs);
-  for (let c = 0; c < cloths; c++) solveBand(matrix, matrixStart[c], rhs, blockStart[c], blockStart[c + 1] - blockStart[c], band[c]);
-  if (!factor && overshoots(sys, model, w, compliance, invH2)) {
-    rhs.set(residual);
-    factorNow(sys, model, params, h, w);
-    for (let c = 0; c < cloths; c++) solveBand(matrix, matrixStart[c], rhs, blockStart[c], blockStart[c + 1] - blockStart[c], band[c]);
-  }
-  // each spring's λ, interpolated between the aggregates of its direction; the particles move by M⁻¹·Jᵀ·λ
-  for (let s = 0; s < ns; s++) {
-    const d = 3 * s, k = 4 * s;
-    lambdas[s] = dir[d] === 0 && dir[d + 1] === 0 && dir[d + 2] === 0 ? 0
-      : nearWeight[k] * rhs[nearId[k]] + nearWeight[k + 1] * rhs[nearId[k + 1]] + nearWeight[k + 2] * rhs[nearId[k + 2]] + nearWeight[k + 3] * rhs[nearId[k + 3]];
-  }
-  for (let i = 0; i < model.particleCount; i++) {
+}
+
+/** The free particles moved by M⁻¹·Jᵀ·λ (sys.move). */
+function apply(sys: CoarseSystem, x: Float32Array, w: Float32Array): void {
+  const move = sys.move;
+  for (let i = 0; i < w.length; i++) {
     const wi = w[i];
     if (wi === 0) continue;
-    let mx = 0, my = 0, mz = 0;
-    for (let p = start[i]; p < start[i + 1]; p++) {
-      const s = springAt[p], l = signAt[p] * lambdas[s];
-      mx += l * dir[3 * s]; my += l * dir[3 * s + 1]; mz += l * dir[3 * s + 2];
-    }
-    x[3 * i] += wi * mx; x[3 * i + 1] += wi * my; x[3 * i + 2] += wi * mz;
+    x[3 * i] += wi * move[3 * i]; x[3 * i + 1] += wi * move[3 * i + 1]; x[3 * i + 2] += wi * move[3 * i + 2];
   }
+}
+
+/** Solves every block for sys.rhs with its factor (μ in place of the right-hand side). */
+function solveBlocks(sys: CoarseSystem): void {
+  const { blockStart, band, matrixStart, matrix, rhs } = sys;
+  for (let c = 0; c + 1 < blockStart.length; c++) solveBand(matrix, matrixStart[c], rhs, blockStart[c], blockStart[c + 1] - blockStart[c], band[c]);
+}
+
+/**
+ * Each spring's λ, interpolated between the aggregates of its direction (0 for a spring that takes no part), and
+ * Jᵀ·λ into sys.move: +λ_s·n_s at the spring's first particle, −λ_s·n_s at its second. `check`: also Jᵀ·Rᵀ·μ into
+ * sys.own, and returns Σ_s α̃_s·μ_g(s)² over the springs that take part (the compliance's share of μᵀ·A·μ,
+ * `overshoots`); else 0.
+ */
+function spread(sys: CoarseSystem, model: ClothModel, lambdas: Float32Array, compliance: Float32Array, invH2: number, check: boolean): number {
+  const { aggregate, nearId, nearWeight, rhs, dir, move, own } = sys, springs = model.springs;
+  move.fill(0);
+  if (check) own.fill(0);
+  let energy = 0;
+  for (let s = 0; s < lambdas.length; s++) {
+    const d = 3 * s, k = 4 * s;
+    const nx = dir[d], ny = dir[d + 1], nz = dir[d + 2];
+    if (nx === 0 && ny === 0 && nz === 0) { lambdas[s] = 0; continue; }
+    const l = Math.fround(nearWeight[k] * rhs[nearId[k]] + nearWeight[k + 1] * rhs[nearId[k + 1]] + nearWeight[k + 2] * rhs[nearId[k + 2]] + nearWeight[k + 3] * rhs[nearId[k + 3]]);
+    lambdas[s] = l;
+    const a = 3 * springs[2 * s], b = 3 * springs[2 * s + 1];
+    move[a] += l * nx; move[a + 1] += l * ny; move[a + 2] += l * nz;
+    move[b] -= l * nx; move[b + 1] -= l * ny; move[b + 2] -= l * nz;
+    if (check) {
+      const mu = rhs[aggregate[s]];
+      energy += compliance[s] * invH2 * mu * mu;
+      own[a] += mu * nx; own[a + 1] += mu * ny; own[a + 2] += mu * nz;
+      own[b] -= mu * nx; own[b + 1] -= mu * ny; own[b + 2] -= mu * nz;
+    }
+  }
+  return energy;
+}
+
+/** Σ_i w_i·|(Jᵀ·Rᵀ·μ)_i|² over the free particles (sys.own; the masses' share of μᵀ·A·μ, `overshoots`). */
+function ownEnergy(sys: CoarseSystem, w: Float32Array): number {
+  const own = sys.own;
+  let energy = 0;
+  for (let i = 0; i < w.length; i++) {
+    const wi = w[i];
+    if (wi === 0) continue;
+    energy += wi * (own[3 * i] * own[3 * i] + own[3 * i + 1] * own[3 * i + 1] + own[3 * i + 2] * own[3 * i + 2]);
+  }
+  return energy;
 }
 
 /**
@@ -268,31 +327,15 @@ function factorNow(sys: CoarseSystem, model: ClothModel, params: SimParams, h: n
 /**
  * Whether the step μ (sys.rhs) just solved for with a factor of an earlier substep, A₀, overshoots under the matrix
  * of the springs' directions now, A: its Rayleigh quotient μᵀ·A·μ / μᵀ·A₀·μ past COARSE_OVERSHOOT, where
- * μᵀ·A₀·μ = μᵀ·r (sys.residual, the right-hand side it was solved for) and μᵀ·A·μ = Σ_s α̃_s·μ_g(s)² + Σ_i w_i·|Σ ±μ_g(s)·n_s|²
- * over the springs at each particle, with each spring's own aggregate's μ (the matrix's).
+ * μᵀ·A₀·μ = μᵀ·r (sys.residual, the right-hand side it was solved for) and `energy`, μᵀ·A·μ =
+ * Σ_s α̃_s·μ_g(s)² + Σ_i w_i·|Σ ±μ_g(s)·n_s|² over the springs at each particle, with each spring's own aggregate's μ
+ * (the matrix's), made by spread and ownEnergy beside the step's λ and move.
  */
-function overshoots(sys: CoarseSystem, model: ClothModel, w: Float32Array, compliance: Float32Array, invH2: number): boolean {
-  const { aggregate, start, springAt, signAt, rhs, residual, dir } = sys;
+function overshoots(sys: CoarseSystem, energy: number): boolean {
+  const { rhs, residual } = sys;
   let before = 0;
   for (let g = 0; g < rhs.length; g++) before += rhs[g] * residual[g];
-  if (!(before > 0)) return false;
-  let now = 0;
-  for (let s = 0; s < compliance.length; s++) {
-    if (dir[3 * s] === 0 && dir[3 * s + 1] === 0 && dir[3 * s + 2] === 0) continue;
-    const mu = rhs[aggregate[s]];
-    now += compliance[s] * invH2 * mu * mu;
-  }
-  for (let i = 0; i < model.particleCount; i++) {
-    const wi = w[i];
-    if (wi === 0) continue;
-    let mx = 0, my = 0, mz = 0;
-    for (let p = start[i]; p < start[i + 1]; p++) {
-      const s = springAt[p], l = signAt[p] * rhs[aggregate[s]];
-      mx += l * dir[3 * s]; my += l * dir[3 * s + 1]; mz += l * dir[3 * s + 2];
-    }
-    now += wi * (mx * mx + my * my + mz * mz);
-  }
-  return now > COARSE_OVERSHOOT * before;
+  return before > 0 && energy > COARSE_OVERSHOOT * before;
 }
 
 /**
@@ -301,19 +344,20 @@ function overshoots(sys: CoarseSystem, model: ClothModel, w: Float32Array, compl
  * to entry (g, h): a handful of aggregates per particle instead of every pair of its springs (the lower triangle only).
  */
 function assemble(sys: CoarseSystem, model: ClothModel, w: Float32Array): void {
-  const { aggregate, blockStart, band, matrixStart, blockOf, start, springAt, signAt, matrix, dir, touched, vec } = sys;
+  const { aggregate, blockStart, band, matrixStart, blockOf, start, incidence, matrix, dir, touched, vec } = sys;
   for (let i = 0; i < model.particleCount; i++) {
     const wi = w[i];
     if (wi === 0) continue;
     let m = 0;
     for (let p = start[i]; p < start[i + 1]; p++) {
-      const s = springAt[p], ds = 3 * s;
+      const code = incidence[p], s = code >> 1, ds = 3 * s;
       if (dir[ds] === 0 && dir[ds + 1] === 0 && dir[ds + 2] === 0) continue;
-      const g = aggregate[s], sign = signAt[p];
+      const g = aggregate[s];
       let k = 0;
       while (k < m && touched[k] !== g) k++;
       if (k === m) { touched[m] = g; vec[3 * m] = 0; vec[3 * m + 1] = 0; vec[3 * m + 2] = 0; m++; }
-      vec[3 * k] += sign * dir[ds]; vec[3 * k + 1] += sign * dir[ds + 1]; vec[3 * k + 2] += sign * dir[ds + 2];
+      if (code & 1) { vec[3 * k] -= dir[ds]; vec[3 * k + 1] -= dir[ds + 1]; vec[3 * k + 2] -= dir[ds + 2]; }
+      else { vec[3 * k] += dir[ds]; vec[3 * k + 1] += dir[ds + 1]; vec[3 * k + 2] += dir[ds + 2]; }
     }
     if (m === 0) continue;
     const c = blockOf[touched[0]], b0 = blockStart[c], bw = band[c], m0 = matrixStart[c];

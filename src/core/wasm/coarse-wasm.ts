@@ -21,7 +21,7 @@ interface CoarseExports {
 /** bytes of the memory left unused below the arrays (the module's own static data, if any, lies there) */
 const BASE = 65536;
 /** the header's words (coarse.as.ts, H_ constants) */
-const HEADER_WORDS = 26;
+const HEADER_WORDS = 27;
 
 export class WasmCoarseStretch {
   private readonly memory = new WebAssembly.Memory({ initial: 1 });
@@ -68,15 +68,15 @@ export class WasmCoarseStretch {
     const take = (bytes: number) => { next = Math.ceil(next / 16) * 16; const p = next; next += bytes; return p; };
     // in the order of the header's words (coarse.as.ts)
     const offsets = [
-      take(12 * n), take(4 * n), take(4 * ns), take(8 * ns), take(4 * ns), take(4 * ns), take(4 * ns), take(16 * ns), take(32 * ns),
-      take(4 * (n + 1)), take(8 * ns), take(16 * ns), take(4 * (cloths + 1)), take(4 * cloths), take(4 * (cloths + 1)), take(4 * count),
-      take(8 * sys.matrix.length), take(8 * count), take(24 * ns), take(4 * most), take(24 * most), take(8 * count),
+      take(12 * n), take(4 * n), take(4 * ns), take(8 * ns), take(4 * ns), take(4 * ns), take(4 * ns), take(16 * ns), take(16 * ns),
+      take(4 * (n + 1)), take(8 * ns), take(24 * n), take(4 * (cloths + 1)), take(4 * cloths), take(4 * (cloths + 1)), take(4 * count),
+      take(8 * sys.matrix.length), take(8 * count), take(24 * ns), take(4 * most), take(24 * most), take(8 * count), take(24 * n),
     ];
     const pages = Math.ceil(next / 65536) - this.memory.buffer.byteLength / 65536;
     if (pages > 0) this.memory.grow(pages);
     const buf = this.memory.buffer;
     new Int32Array(buf, BASE, HEADER_WORDS).set([n, ns, cloths, count, ...offsets]);
-    const [x, w, lambdas, springs, rest, compliance, aggregate, nearId, nearWeight, start, springAt, signAt, blockStart, band, matrixStart, blockOf] = offsets;
+    const [x, w, lambdas, springs, rest, compliance, aggregate, nearId, nearWeight, start, incidence, , blockStart, band, matrixStart, blockOf] = offsets;
     this.x = new Float32Array(buf, x, 3 * n);
     this.w = new Float32Array(buf, w, n);
     this.lambdas = new Float32Array(buf, lambdas, ns);
@@ -85,10 +85,9 @@ export class WasmCoarseStretch {
     new Float32Array(buf, rest, ns).set(model.restLengths);
     new Int32Array(buf, aggregate, ns).set(sys.aggregate);
     new Int32Array(buf, nearId, 4 * ns).set(sys.nearId);
-    new Float64Array(buf, nearWeight, 4 * ns).set(sys.nearWeight);
+    new Float32Array(buf, nearWeight, 4 * ns).set(sys.nearWeight);
     new Int32Array(buf, start, n + 1).set(sys.start);
-    new Int32Array(buf, springAt, 2 * ns).set(sys.springAt);
-    new Float64Array(buf, signAt, 2 * ns).set(sys.signAt);
+    new Int32Array(buf, incidence, 2 * ns).set(sys.incidence);
     new Int32Array(buf, blockStart, cloths + 1).set(sys.blockStart);
     new Int32Array(buf, band, cloths).set(sys.band);
     new Int32Array(buf, matrixStart, cloths + 1).set(sys.matrixStart);
