@@ -21,8 +21,13 @@ afterAll(() => {
   for (const s of sims) s.dispose();
 });
 
-/** A Simulation of `scene` on the GPU (its state read back by `sync`), on the test's device or `device`. */
+/**
+ * A Simulation of `scene` on the GPU (its state read back by `sync`), on the test's device or `device`. Its springs
+ * are swept alone (solver.stretch 'gauss-seidel', the default when these were measured): the coarse correction has
+ * its own tests (coarse-stretch.test.ts), and its ten more dispatches a substep doubled these frames on SwiftShader.
+ */
 async function onGpu(scene: Scene, options?: GpuSolverOptions, device: GPUDevice = gpu!.device): Promise<Simulation> {
+  scene.solver.stretch = 'gauss-seidel';
   expect(sceneRefusal(scene)).toBeNull();
   const sim = new Simulation(scene, { kernel: 'ts' });
   sim.useBackend(await GpuBackend.create(device, sim.model, options));
