@@ -21,6 +21,8 @@ const STENCIL_BUFFERS = ['stencilOffsets', 'stencilVertices', 'stencilWeights', 
 const SELF_BUFFERS = [
   'edges', 'selfBoxes', 'selfRanks', 'selfCounts', 'selfStarts', 'selfBlocks', 'selfEntries', 'selfPairs', 'selfArgs', 'selfDelta',
 ] as const;
+/** The buffers dispatches read their workgroup counts from (INDIRECT usage). */
+const INDIRECT_BUFFERS: readonly BufferName[] = ['selfArgs', 'coarseArgs'];
 
 /** The storage buffers of one cloth and the kernels' bind groups over them. */
 export class ClothBuffers {
@@ -69,7 +71,7 @@ export class ClothBuffers {
       stretchCoefficients: 0, springForce: 0, springIncidence: 0, globalY: 0, stretchFactorIndex: 0, stretchFactorValues: 0,
       stretchGrabColumn: 0,
       // placeholders until params first correct the springs on a coarse space (coarse-stretch.ts)
-      coarseDir: 0, coarseRhs: 0, coarseSpringAggregate: 0, coarseStale: 0, coarseAggregates: 0, coarseMembers: 0, coarseBlocks: 0, coarseIncidence: 0, coarsePairs: 0,
+      coarseDir: 0, coarseRhs: 0, coarseSpringAggregate: 0, coarseArgs: 0, coarseAggregates: 0, coarseMembers: 0, coarseBlocks: 0, coarseIncidence: 0, coarsePairs: 0,
       coarsePairVec: 0, coarseEntryStart: 0, coarseEntryPairs: 0, coarseMatrix: 0, coarseFactor: 0, coarseInverse: 0, coarseNear: 0,
       coarseWeights: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
@@ -112,7 +114,7 @@ export class ClothBuffers {
     return this.device.createBuffer({
       label: `drape ${name}`,
       size: Math.max(16, Math.ceil((count * BUFFERS[name].bytes) / 4) * 4),
-      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST | extraUsage,
+      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST | extraUsage | (INDIRECT_BUFFERS.includes(name) ? GPUBufferUsage.INDIRECT : 0),
     });
   }
 
@@ -199,7 +201,7 @@ export class ClothBuffers {
     this.selfPairRoom = pairs;
     for (const name of SELF_BUFFERS) {
       this.buffers[name].destroy();
-      this.buffers[name] = this.createBuffer(name, sizes[name], name === 'selfArgs' ? GPUBufferUsage.INDIRECT | GPUBufferUsage.COPY_SRC : 0);
+      this.buffers[name] = this.createBuffer(name, sizes[name], name === 'selfArgs' ? GPUBufferUsage.COPY_SRC : 0);
     }
     if (this.model.edges.length) this.device.queue.writeBuffer(this.buffers.edges, 0, bytes(this.model.edges));
     this.regroup(SELF_BUFFERS);

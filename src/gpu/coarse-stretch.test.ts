@@ -11,6 +11,7 @@ import {
 import { coarseSystem } from '../core/solvers/coarse-stretch.js';
 import { crumplingTablecloth } from '../core/solvers/test-sheets.js';
 import { coarseBlockRows, coarseTables } from './coarse-stretch.js';
+import { WORKGROUP_SIZE } from './layout.js';
 import { GpuClothSolver } from './solver.js';
 import { centroidDistance, gpuPair, maxDistance, pinAndGrabChanges, testDevice, type Pair } from './test-device.js';
 
@@ -41,7 +42,7 @@ function drop(x: Float32Array, faces: number): number {
 }
 
 describe('the coarse correction\'s tables', () => {
-  test('each (particle, aggregate) pair holds that particle\'s springs of that aggregate, and each entry of the bands the pairs that meet there', () => {
+  test('each (particle, aggregate) pair holds that particle\'s springs of that aggregate, each entry of the bands the pairs that meet there, and the dispatches that remake the factor their sizes', () => {
     const model = modelFor(swinging('cotton', 12, 'springs'));
     const sys = coarseSystem(model), t = coarseTables(model), d = t.data;
     const pairs = d.coarsePairs!, incidence = d.coarseIncidence!, n = model.particleCount;
@@ -75,6 +76,12 @@ describe('the coarse correction\'s tables', () => {
     // the blocks of the solves: the band's width plus one, the last one shorter
     expect(blocks[3]).toBe(coarseBlockRows(bw));
     expect(t.inverse).toBe(Math.ceil(t.aggregates / blocks[3]) * (blocks[3] * (blocks[3] + 1)) / 2);
+    // the indirect dispatches of the kernels that remake the factor: none until coarseCheck sets them, then the
+    // encoder's own for the pairs, the aggregates and the cloth
+    expect([...d.coarseArgs!]).toEqual([
+      ...new Array(15).fill(0), Math.ceil(t.pairs / WORKGROUP_SIZE), 1, 1, Math.ceil(t.aggregates / WORKGROUP_SIZE), 1, 1, 1, 1, 1,
+      Math.ceil(t.aggregates / WORKGROUP_SIZE), 1, 1, 1, 1, 1,
+    ]);
   });
 });
 

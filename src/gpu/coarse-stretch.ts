@@ -11,8 +11,11 @@
  * inverted (coarseInvert); then both triangular solves by blocks of rows (coarseSolve: one workgroup per cloth, two
  * barriers per block). In the later substeps the solve comes first, with the last factor, and coarseCheck (one
  * workgroup) asks whether its step overshoots under the matrix now, as the CPU does; the same five kernels then run
- * again, each doing its work only where it does (PASS_COARSE_IF_STALE, coarseStale). Then each spring's λ
- * interpolated (coarseLambda) and the particles moved (coarseMove). The GPU
+ * again as indirect dispatches it sets (coarseArgs): their full size where it does, no workgroups where it does not
+ * (dispatched whole, each workgroup returning at once, they made a 16² frame 73 ms on SwiftShader here, 65 ms now,
+ * the sweep alone 35: `drape run cotton-basic --frames 60 --backend gpu --set cloth.resolution=16 --set
+ * solver.selfContact=false`, 2026-12-06). Then each spring's λ interpolated (coarseLambda) and the particles moved
+ * (coarseMove). The GPU
  * computes in float32 where the CPU computes in double: the correction is a few millimetres at most, and the sweep
  * after it removes what it leaves.
  *
@@ -25,7 +28,7 @@ import type {} from 'webgpu';
 import type { ClothModel } from '../core/model.js';
 import { coarseSystem } from '../core/solvers/coarse-stretch.js';
 import type { ClothBuffers } from './buffers.js';
-import { BUFFERS, FACTOR_WORKGROUP, type BufferName } from './layout.js';
+import { BUFFERS, FACTOR_WORKGROUP, workgroupsFor, type BufferName } from './layout.js';
 
 /** The coarse correction's tables of one model, as its kernels read them (coarseTables). */
 export interface CoarseLayout {
@@ -108,9 +111,15 @@ export function coarseTables(model: ClothModel): CoarseLayout {
       coarsePairs: Uint32Array.from(pairRows), coarseEntryStart: entryStart, coarseEntryPairs: entryPairs,
       coarseNear: Uint32Array.from(sys.nearId), coarseWeights: Float32Array.from(sys.nearWeight),
       coarseSpringAggregate: Uint32Array.from(sys.aggregate),
+      // the five dispatches coarseCheck sets (none until it does), then their full sizes: coarseTouch over the pairs,
+      // coarseAssemble over the aggregates, coarseFactor a workgroup per cloth, coarseInvert, coarseSolve
+      coarseArgs: Uint32Array.from([
+        ...new Array<number>(15).fill(0), ...workgroupsFor(pairs), 1, ...workgroupsFor(aggregates), 1, cloths, 1, 1,
+        ...workgroupsFor(aggregates), 1, cloths, 1, 1,
+      ]),
     },
     sizes: {
-      coarseDir: ns, coarseRhs: aggregates, coarseSpringAggregate: ns, coarseStale: 1, coarseAggregates: aggregates, coarseMembers: ns, coarseBlocks: 2 * cloths,
+      coarseDir: ns, coarseRhs: aggregates, coarseSpringAggregate: ns, coarseArgs: 30, coarseAggregates: aggregates, coarseMembers: ns, coarseBlocks: 2 * cloths,
       coarseIncidence: incidence.length, coarsePairs: pairs, coarsePairVec: pairs, coarseEntryStart: entries + 1,
       coarseEntryPairs: couples, coarseMatrix: entries, coarseFactor: entries, coarseInverse: inverse, coarseNear: ns, coarseWeights: ns,
     },

@@ -17,8 +17,11 @@ import { GlobalBendingTables } from './global-bending.js';
 import { GlobalStretchTables } from './global-stretch.js';
 import { CoarseTables } from './coarse-stretch.js';
 import { meshRefusal } from './meshes.js';
-import { MAX_WORKGROUPS_X, RECORD_STRIDE, SCAN_BLOCK, SELF_EDGE_PASSES, WORKGROUP_SIZE, type KernelName } from './layout.js';
+import { RECORD_STRIDE, SCAN_BLOCK, SELF_EDGE_PASSES, WORKGROUP_SIZE, workgroupsFor, type KernelName } from './layout.js';
 import type { SelfRecords, UniformTables } from './uniforms.js';
+
+/** The coarse correction's kernels that make the matrix anew and solve again, in coarseArgs' order (coarse-stretch.ts). */
+const COARSE_REMAKE = ['coarseTouch', 'coarseAssemble', 'coarseFactor', 'coarseInvert', 'coarseSolve'] as const;
 
 /** The shapes the GPU has, for its refusals. */
 const GPU_SHAPES = 'sphere, floor, plane, box, capsule, cylinder and mesh';
@@ -182,21 +185,22 @@ export class FrameEncoder implements PhaseBackend {
           // each spring's direction and residual, each aggregate's row; in the frame's first substep the matrix
           // assembled, factored (a workgroup per cloth), its diagonal blocks inverted and both triangular solves made
           // (a workgroup per cloth); in the later ones the solve with the last factor, the check of its step, and the
-          // same five kernels again where it overshoots (coarseStale); each spring's λ, the particles moved
-          const t = this.coarse.layout!, springs = model.restLengths.length, { always, ifStale } = u.coarseRecords;
+          // same five kernels again, dispatched indirectly: no workgroups unless it overshoots (coarseArgs); each
+          // spring's λ, the particles moved
+          const t = this.coarse.layout!, springs = model.restLengths.length;
           this.dispatch('coarseDirections', springs, so, 0);
           this.dispatch('coarseRows', t.aggregates, so, 0);
-          let record = always * RECORD_STRIDE;
           if (frame.sub > 0) {
-            this.dispatchGroups('coarseSolve', t.cloths, so, record);
-            this.dispatchGroups('coarseCheck', 1, so, record);
-            record = ifStale * RECORD_STRIDE;
+            this.dispatchGroups('coarseSolve', t.cloths, so, 0);
+            this.dispatchGroups('coarseCheck', 1, so, 0);
+            for (let k = 0; k < COARSE_REMAKE.length; k++) this.bind(COARSE_REMAKE[k], so, 0).dispatchWorkgroupsIndirect(this.buffers.buffers.coarseArgs, 12 * k);
+          } else {
+            this.dispatch('coarseTouch', t.pairs, so, 0);
+            this.dispatch('coarseAssemble', t.aggregates, so, 0);
+            this.dispatchGroups('coarseFactor', t.cloths, so, 0);
+            this.dispatch('coarseInvert', t.aggregates, so, 0);
+            this.dispatchGroups('coarseSolve', t.cloths, so, 0);
           }
-          this.dispatch('coarseTouch', t.pairs, so, record);
-          this.dispatch('coarseAssemble', t.aggregates, so, record);
-          this.dispatchGroups('coarseFactor', t.cloths, so, record);
-          this.dispatch('coarseInvert', t.aggregates, so, record);
-          this.dispatchGroups('coarseSolve', t.cloths, so, record);
           this.dispatch('coarseLambda', springs, so, 0);
           this.dispatch('coarseMove', particles, so, 0);
           break;
@@ -331,8 +335,7 @@ export class FrameEncoder implements PhaseBackend {
   private dispatch(kernel: KernelName, count: number, substepOffset: number, passOffset: number): void {
     if (count <= 0) return;
     const pass = this.bind(kernel, substepOffset, passOffset);
-    const groups = Math.ceil(count / WORKGROUP_SIZE);
-    if (groups <= MAX_WORKGROUPS_X) pass.dispatchWorkgroups(groups);
-    else pass.dispatchWorkgroups(MAX_WORKGROUPS_X, Math.ceil(groups / MAX_WORKGROUPS_X));
+    const [x, y] = workgroupsFor(count);
+    pass.dispatchWorkgroups(x, y);
   }
 }

@@ -43,6 +43,12 @@ export const FACTOR_SLOTS = {
 export const FACTOR_HEADER = 16;
 /** Most workgroups along x in one dispatch; bigger dispatches spill into y (see `flatIndex` in the preamble). */
 export const MAX_WORKGROUPS_X = 65535;
+
+/** The workgroups (x, y) of a dispatch over `count` threads, spilling into y past MAX_WORKGROUPS_X. */
+export function workgroupsFor(count: number): [number, number] {
+  const groups = Math.ceil(count / WORKGROUP_SIZE);
+  return groups <= MAX_WORKGROUPS_X ? [groups, 1] : [MAX_WORKGROUPS_X, Math.ceil(groups / MAX_WORKGROUPS_X)];
+}
 /** Floats per vec3 element on the GPU. */
 export const VEC4 = 4;
 /** Byte stride of the dynamic-offset uniform records (minUniformBufferOffsetAlignment is at most 256). */
@@ -105,11 +111,6 @@ export function selfGridSize(model: ClothModel, pairsPerPrimitive = SELF_PAIRS_P
 /** Flags of a solve or bending pass record. */
 export const PASS_CAP = 1; // apply the hard stretch cap (structural and shear batches; never set on a bending batch)
 export const PASS_READ_LAMBDA = 2; // start from the accumulated λ (second and later iterations)
-/**
- * the coarse correction's kernels that make the matrix anew and solve again (coarseTouch … coarseSolve): run only where
- * coarseCheck found the step of the last factor overshooting (`coarseStale`); without it they always run
- */
-export const PASS_COARSE_IF_STALE = 4;
 
 /**
  * Structs, each one list of fields in declaration order: the WGSL declaration and the byte offsets the solver writes
@@ -320,8 +321,13 @@ export const BUFFERS = {
   coarseRhs: { type: 'vec4f', bytes: 16 },
   /** per spring: its aggregate */
   coarseSpringAggregate: { type: 'u32', bytes: 4 },
-  /** 1 where the step of the last factor overshoots under the matrix now (coarseCheck), else 0 */
-  coarseStale: { type: 'u32', bytes: 4 },
+  /**
+   * the indirect dispatches (workgroups x, y, z) of the five kernels that make the matrix anew and solve again
+   * (coarseTouch, coarseAssemble, coarseFactor, coarseInvert, coarseSolve) in a substep after the frame's first:
+   * coarseCheck copies the next fifteen words (their full dispatches, written once per model) where the step of the
+   * last factor overshoots under the matrix now, else zeroes; INDIRECT usage
+   */
+  coarseArgs: { type: 'u32', bytes: 4 },
   /** per aggregate: where its springs start and end in coarseMembers, its cloth, 0 */
   coarseAggregates: { type: 'vec4u', bytes: 16 },
   /** the springs of each aggregate, aggregate after aggregate */
@@ -576,32 +582,31 @@ export const KERNELS = {
   coarseCheck: {
     bindings: [
       ['coarseRhs', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['coarseSpringAggregate', 'read'], ['invMass', 'read'],
-      ['coarseStale', 'read_write'],
+      ['coarseArgs', 'read_write'],
     ],
   },
   /** 4 (a frame's first substep, or a stale factor): each (particle, aggregate) pair's Σ ±n_s */
   coarseTouch: {
     bindings: [
-      ['coarsePairs', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['invMass', 'read'], ['coarseStale', 'read'],
-      ['coarsePairVec', 'read_write'],
+      ['coarsePairs', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['invMass', 'read'], ['coarsePairVec', 'read_write'],
     ],
   },
   /** 5 (the same): each aggregate's row of its cloth's banded matrix */
   coarseAssemble: {
     bindings: [
       ['coarseAggregates', 'read'], ['coarseBlocks', 'read'], ['coarseEntryStart', 'read'], ['coarseEntryPairs', 'read'],
-      ['coarsePairVec', 'read'], ['coarseRhs', 'read'], ['coarseStale', 'read'], ['coarseMatrix', 'read_write'],
+      ['coarsePairVec', 'read'], ['coarseRhs', 'read'], ['coarseMatrix', 'read_write'],
     ],
   },
   /** 6 (the same): banded Cholesky, one workgroup of FACTOR_WORKGROUP threads per cloth */
-  coarseFactor: { bindings: [['coarseBlocks', 'read'], ['coarseStale', 'read'], ['coarseMatrix', 'read_write'], ['coarseFactor', 'read_write']] },
+  coarseFactor: { bindings: [['coarseBlocks', 'read'], ['coarseMatrix', 'read_write'], ['coarseFactor', 'read_write']] },
   /** 7 (the same): the inverses of the factors' diagonal blocks, a column per thread */
   coarseInvert: {
-    bindings: [['coarseAggregates', 'read'], ['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseStale', 'read'], ['coarseInverse', 'read_write']],
+    bindings: [['coarseAggregates', 'read'], ['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseInverse', 'read_write']],
   },
   /** both triangular solves by blocks, one workgroup of FACTOR_WORKGROUP threads per cloth: μ (before coarseCheck and after 7) */
   coarseSolve: {
-    bindings: [['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseInverse', 'read'], ['coarseStale', 'read'], ['coarseRhs', 'read_write']],
+    bindings: [['coarseBlocks', 'read'], ['coarseFactor', 'read'], ['coarseInverse', 'read'], ['coarseRhs', 'read_write']],
   },
   /** 9: each spring's λ, interpolated between the aggregates around it */
   coarseLambda: {
@@ -800,7 +805,6 @@ const GOLDEN_ITERATIONS: u32 = ${GOLDEN_ITERATIONS}u;
 const TRIANGLE_SPREAD_MOST: f32 = ${wgslFloat(TRIANGLE_SPREAD_MOST)};
 const PASS_CAP: u32 = ${PASS_CAP}u;
 const PASS_READ_LAMBDA: u32 = ${PASS_READ_LAMBDA}u;
-const PASS_COARSE_IF_STALE: u32 = ${PASS_COARSE_IF_STALE}u;
 const COARSE_OVERSHOOT: f32 = ${wgslFloat(COARSE_OVERSHOOT)};
 const SELF_FIXED: f32 = ${wgslFloat(SELF_FIXED)};
 const SELF_CLAMP: f32 = ${wgslFloat(SELF_CLAMP)};

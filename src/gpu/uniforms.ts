@@ -12,7 +12,7 @@ import { selfContactDistance } from '../core/self-contact.js';
 import type { ClothState } from '../core/state.js';
 import { windVelocity } from '../core/wind.js';
 import {
-  COLLIDER_MESH, GLOBALS, PASS, PASS_CAP, PASS_COARSE_IF_STALE, PASS_READ_LAMBDA, RECORD_STRIDE, SELF_EDGES, SELF_TRIANGLES, SUBSTEP, SELF_PAIRS_PER_PRIMITIVE, selfGridSize,
+  COLLIDER_MESH, GLOBALS, PASS, PASS_CAP, PASS_READ_LAMBDA, RECORD_STRIDE, SELF_EDGES, SELF_TRIANGLES, SUBSTEP, SELF_PAIRS_PER_PRIMITIVE, selfGridSize,
 } from './layout.js';
 
 /**
@@ -71,11 +71,6 @@ export class UniformTables {
   stencilRecords: StencilBatchRecords[] = [];
   /** the contact passes of a substep, in order */
   collidePasses: CollidePass[] = [];
-  /**
-   * the coarse correction's Pass records: its kernels that make the matrix and solve, always (a frame's first
-   * substep, the solve with the last factor) or only where coarseCheck found the last factor stale
-   */
-  coarseRecords = { always: 0, ifStale: 0 };
   /**
    * the self-contact grid's build records, or null when the params have no self-contact or its distance is 0 (a
    * thickness of 0: nothing to keep apart, as on the CPU)
@@ -203,8 +198,6 @@ export class UniformTables {
         records.push([b.start, b.end, 0, k]);
       }
     }
-    this.coarseRecords = { always: records.length, ifStale: records.length + 1 };
-    records.push([0, 0, 0, 0], [0, 0, 0, PASS_COARSE_IF_STALE]);
     // self-contact: the grid's two builds, each record naming its primitives and how many
     this.selfRecords = null;
     if (selfDistance > 0) {

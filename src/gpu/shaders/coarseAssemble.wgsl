@@ -6,7 +6,6 @@
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
   let g = flatIndex(gid, nwg);
   if (g >= arrayLength(&coarseRhs)) { return; }
-  if ((batch.flags & PASS_COARSE_IF_STALE) != 0u && coarseStale[0] == 0u) { return; }
   let c = coarseAggregates[g].z;
   let block = coarseBlocks[2u * c];
   let bw = block.z;

@@ -1,8 +1,9 @@
 // The springs' coarse correction, 3 (after a solve with the factor of an earlier substep), one workgroup: whether that
 // step μ overshoots under the matrix of the springs' directions now (core coarse-stretch.ts overshoots): its Rayleigh
 // quotient μᵀ·A·μ / μᵀ·r past COARSE_OVERSHOOT, μᵀ·r being μᵀ·A₀·μ under the factor's matrix and
-// μᵀ·A·μ = Σ_g α̃_g·μ_g² + Σ_i w_i·|Σ ±μ_g(s)·n_s|² over the springs at each particle. Writes coarseStale[0], which the
-// kernels of PASS_COARSE_IF_STALE read.
+// μᵀ·A·μ = Σ_g α̃_g·μ_g² + Σ_i w_i·|Σ ±μ_g(s)·n_s|² over the springs at each particle. Sets the indirect dispatches
+// of the five kernels that make the matrix anew and solve again (coarseArgs[0 … 14]): their full dispatches
+// (coarseArgs[15 … 29]) where it overshoots, else none.
 
 var<workgroup> before: array<f32, FACTOR_WORKGROUP>;
 var<workgroup> now: array<f32, FACTOR_WORKGROUP>;
@@ -38,7 +39,8 @@ fn main(@builtin(local_invocation_index) t: u32) {
     }
     workgroupBarrier();
   }
-  if (t == 0u) {
-    coarseStale[0] = select(0u, 1u, before[0] > 0.0 && now[0] > COARSE_OVERSHOOT * before[0]);
+  if (t < 15u) {
+    let stale = before[0] > 0.0 && now[0] > COARSE_OVERSHOOT * before[0];
+    coarseArgs[t] = select(0u, coarseArgs[15u + t], stale);
   }
 }

@@ -17,12 +17,10 @@ fn at(m: u32, b: u32, i: u32, j: u32) -> u32 {
 fn main(@builtin(workgroup_id) wid: vec3u, @builtin(local_invocation_index) t: u32) {
   if (t == 0u) {
     let block = coarseBlocks[2u * wid.x];
-    let skip = (batch.flags & PASS_COARSE_IF_STALE) != 0u && coarseStale[0] == 0u;
-    shape = vec4u(select(block.y, 0u, skip), block.z, coarseBlocks[2u * wid.x + 1u].x, select(0u, 1u, skip));
+    shape = vec4u(block.y, block.z, coarseBlocks[2u * wid.x + 1u].x, 0u);
     atomicStore(&failed, 0u);
   }
   let s = workgroupUniformLoad(&shape);
-  if (s.w != 0u) { return; }
   let size = s.x;
   let b = s.y;
   let m = s.z;

@@ -8,7 +8,6 @@
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
   let g = flatIndex(gid, nwg);
   if (g >= arrayLength(&coarseAggregates)) { return; }
-  if ((batch.flags & PASS_COARSE_IF_STALE) != 0u && coarseStale[0] == 0u) { return; }
   let cloth = coarseAggregates[g].z;
   let block = coarseBlocks[2u * cloth];
   let place = coarseBlocks[2u * cloth + 1u];

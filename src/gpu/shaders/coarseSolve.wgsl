@@ -1,6 +1,6 @@
 // The springs' coarse correction: each cloth's L·Lᵀ·μ = r (coarseRhs.x takes r from .z, then holds y, then μ), by one
-// workgroup (workgroup c: cloth c), B rows at a time (coarseInvert's blocks); with PASS_COARSE_IF_STALE only where
-// coarseCheck found the last factor stale (then with the factor made anew). Forward, L·y = r, block S after block:
+// workgroup (workgroup c: cloth c), B rows at a time (coarseInvert's blocks); again, with the factor made anew, where
+// coarseCheck found the last factor stale (an indirect dispatch of coarseArgs). Forward, L·y = r, block S after block:
 // its rows gather t_i = r_i − Σ_{j before S} L_ij·y_j, then y_S = L_SS⁻¹·t_S. Backward, Lᵀ·μ = y, from the last block:
 // t_m = y_m − Σ_{i after S} L_im·μ_i, then μ_S = L_SS⁻ᵀ·t_S. A zero factor (coarseFactor) gives μ = 0.
 
@@ -13,8 +13,7 @@ fn main(@builtin(workgroup_id) wid: vec3u, @builtin(local_invocation_index) t: u
   if (t == 0u) {
     let block = coarseBlocks[2u * wid.x];
     let place = coarseBlocks[2u * wid.x + 1u];
-    let skip = (batch.flags & PASS_COARSE_IF_STALE) != 0u && coarseStale[0] == 0u;
-    shape = vec4u(block.x, select(block.y, 0u, skip), block.z, block.w);
+    shape = block;
     zero = select(0u, 1u, block.y > 0u && coarseFactor[place.x + block.z] == 0.0);
   }
   let s = workgroupUniformLoad(&shape);

@@ -1,5 +1,5 @@
 // The springs' coarse correction, 4 (in a frame's first substep, or where coarseCheck found the last factor stale:
-// PASS_COARSE_IF_STALE), per (particle i, aggregate g) pair: v = Σ ±n_s over
+// an indirect dispatch of coarseArgs), per (particle i, aggregate g) pair: v = Σ ±n_s over
 // i's springs in g (+ where i is a spring's first end), and i's inverse mass, from which coarseAssemble adds
 // w_i·v_g·v_h to entry (g, h) of J·M⁻¹·Jᵀ aggregated.
 
@@ -7,7 +7,6 @@
 fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg: vec3u) {
   let p = flatIndex(gid, nwg);
   if (p >= arrayLength(&coarsePairVec)) { return; }
-  if ((batch.flags & PASS_COARSE_IF_STALE) != 0u && coarseStale[0] == 0u) { return; }
   let pair = coarsePairs[p];
   var v = vec3f(0.0);
   for (var k = pair.z; k < pair.w; k++) {
