@@ -384,18 +384,30 @@ function factorBand(matrix: Float64Array, m: number, size: number, bw: number): 
   for (let j = 0; j < size; j++) {
     const rj = m + j * stride + bw - j; // entry (j, k) at rj + k
     const k0 = Math.max(0, j - bw);
-    let d = matrix[rj + j];
-    for (let k = k0; k < j; k++) d -= matrix[rj + k] * matrix[rj + k];
+    let d = matrix[rj + j] - dot(matrix, rj + k0, rj + k0, j - k0);
     if (!(d > 0)) { matrix.fill(0, m, m + size * stride); return; }
     d = Math.sqrt(d);
     matrix[rj + j] = d;
     for (let i = j + 1; i < Math.min(size, j + bw + 1); i++) {
-      const ri = m + i * stride + bw - i;
-      let v = matrix[ri + j];
-      for (let k = Math.max(k0, i - bw); k < j; k++) v -= matrix[ri + k] * matrix[rj + k];
-      matrix[ri + j] = v / d;
+      const ri = m + i * stride + bw - i, k = Math.max(k0, i - bw);
+      matrix[ri + j] = (matrix[ri + j] - dot(matrix, ri + k, rj + k, j - k)) / d;
     }
   }
+}
+
+/**
+ * Σ a[p + t]·a[q + t] over t < len, in four running sums (t mod 4; the last len mod 4 terms into the first), added as
+ * (s0 + s2) + (s1 + s3): the order the kernel's two f64x2 lanes take (coarse.as.ts dot), which a single running sum
+ * would make wait on each addition.
+ */
+function dot(a: Float64Array, p: number, q: number, len: number): number {
+  let s0 = 0, s1 = 0, s2 = 0, s3 = 0, t = 0;
+  for (; t + 4 <= len; t += 4) {
+    s0 += a[p + t] * a[q + t]; s1 += a[p + t + 1] * a[q + t + 1];
+    s2 += a[p + t + 2] * a[q + t + 2]; s3 += a[p + t + 3] * a[q + t + 3];
+  }
+  for (; t < len; t++) s0 += a[p + t] * a[q + t];
+  return (s0 + s2) + (s1 + s3);
 }
 
 /** Solves one factored block (factorBand) for the right-hand side rhs[r…r + size), in place; 0 for a zero factor. */

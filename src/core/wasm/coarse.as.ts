@@ -208,19 +208,29 @@ function factorBand(matrix: usize, m: i32, size: i32, bw: i32): void {
   for (let j = 0; j < size; j++) {
     const rj = m + j * stride + bw - j;
     const k0 = max(0, j - bw);
-    let d = load<f64>(f64Ref(matrix, rj + j));
-    for (let k = k0; k < j; k++) { const v = load<f64>(f64Ref(matrix, rj + k)); d -= v * v; }
+    let d = load<f64>(f64Ref(matrix, rj + j)) - dot(f64Ref(matrix, rj + k0), f64Ref(matrix, rj + k0), j - k0);
     if (!(d > 0)) { memory.fill(f64Ref(matrix, m), 0, <usize>(size * stride) << 3); return; }
     d = Math.sqrt(d);
     store<f64>(f64Ref(matrix, rj + j), d);
     const i1 = min(size, j + bw + 1);
     for (let i = j + 1; i < i1; i++) {
-      const ri = m + i * stride + bw - i;
-      let v = load<f64>(f64Ref(matrix, ri + j));
-      for (let k = max(k0, i - bw); k < j; k++) v -= load<f64>(f64Ref(matrix, ri + k)) * load<f64>(f64Ref(matrix, rj + k));
-      store<f64>(f64Ref(matrix, ri + j), v / d);
+      const ri = m + i * stride + bw - i, k = max(k0, i - bw);
+      store<f64>(f64Ref(matrix, ri + j), (load<f64>(f64Ref(matrix, ri + j)) - dot(f64Ref(matrix, ri + k), f64Ref(matrix, rj + k), j - k)) / d);
     }
   }
+}
+
+/** Σ p[t]·q[t] over t < len as the reference's dot: four running sums in two f64x2, the tail into the first. */
+@inline function dot(p: usize, q: usize, len: i32): f64 {
+  let a = f64x2.splat(0), b = f64x2.splat(0), t = 0;
+  for (; t + 4 <= len; t += 4) {
+    const o = <usize>t << 3;
+    a = f64x2.add(a, f64x2.mul(v128.load(p + o), v128.load(q + o)));
+    b = f64x2.add(b, f64x2.mul(v128.load(p + o, 16), v128.load(q + o, 16)));
+  }
+  let s0 = f64x2.extract_lane(a, 0);
+  for (; t < len; t++) s0 += load<f64>(p + (<usize>t << 3)) * load<f64>(q + (<usize>t << 3));
+  return (s0 + f64x2.extract_lane(b, 0)) + (f64x2.extract_lane(a, 1) + f64x2.extract_lane(b, 1));
 }
 
 /** Solves one factored block for rhs[r…r + size) in place (the reference's solveBand). */
