@@ -89,7 +89,7 @@ export interface CoarseSystem {
   readonly dir: Float64Array;
   /**
    * per particle (3 each), Jᵀ·λ [N·s²], made before the particles move by M⁻¹·Jᵀ·λ, and, where the step is checked,
-   * Jᵀ·R ᵀ·μ with each spring's own aggregate's μ (`overshoots`)
+   * Jᵀ·Rᵀ·μ with each spring's own aggregate's μ (`overshoots`)
    */
   readonly move: Float64Array;
   readonly own: Float64Array;
@@ -212,7 +212,7 @@ export function solveCoarseStretch(model: ClothModel, state: ClothState, params:
   const factor = refactor || sys.factoredFor !== params || sys.factoredAt !== h;
   const invH2 = 1 / (h * h);
   // (the loops live in functions of their own: in one function with the branches around them, V8 compiled the first
-  // loop on the stack and dropped back to the interpreter at the branch after it, every substep, at 8 times the cost)
+  // loop on the stack and dropped back to the interpreter at the branch after it, every substep: node --trace-deopt)
   directions(sys, model, state.positions, w, compliance);
   if (factor) factorNow(sys, model, params, h, w);
   else residual.set(rhs);
