@@ -384,29 +384,29 @@ function factorBand(matrix: Float64Array, m: number, size: number, bw: number): 
   for (let j = 0; j < size; j++) {
     const rj = m + j * stride + bw - j; // entry (j, k) at rj + k
     const k0 = Math.max(0, j - bw);
-    let d = matrix[rj + j] - dot(matrix, rj + k0, rj + k0, j - k0);
+    let d = matrix[rj + j] - dot(matrix, rj + k0, matrix, rj + k0, j - k0);
     if (!(d > 0)) { matrix.fill(0, m, m + size * stride); return; }
     d = Math.sqrt(d);
     matrix[rj + j] = d;
     for (let i = j + 1; i < Math.min(size, j + bw + 1); i++) {
       const ri = m + i * stride + bw - i, k = Math.max(k0, i - bw);
-      matrix[ri + j] = (matrix[ri + j] - dot(matrix, ri + k, rj + k, j - k)) / d;
+      matrix[ri + j] = (matrix[ri + j] - dot(matrix, ri + k, matrix, rj + k, j - k)) / d;
     }
   }
 }
 
 /**
- * Σ a[p + t]·a[q + t] over t < len, in four running sums (t mod 4; the last len mod 4 terms into the first), added as
+ * Σ a[p + t]·b[q + t] over t < len, in four running sums (t mod 4; the last len mod 4 terms into the first), added as
  * (s0 + s2) + (s1 + s3): the order the kernel's two f64x2 lanes take (coarse.as.ts dot), which a single running sum
  * would make wait on each addition.
  */
-function dot(a: Float64Array, p: number, q: number, len: number): number {
+function dot(a: Float64Array, p: number, b: Float64Array, q: number, len: number): number {
   let s0 = 0, s1 = 0, s2 = 0, s3 = 0, t = 0;
   for (; t + 4 <= len; t += 4) {
-    s0 += a[p + t] * a[q + t]; s1 += a[p + t + 1] * a[q + t + 1];
-    s2 += a[p + t + 2] * a[q + t + 2]; s3 += a[p + t + 3] * a[q + t + 3];
+    s0 += a[p + t] * b[q + t]; s1 += a[p + t + 1] * b[q + t + 1];
+    s2 += a[p + t + 2] * b[q + t + 2]; s3 += a[p + t + 3] * b[q + t + 3];
   }
-  for (; t < len; t++) s0 += a[p + t] * a[q + t];
+  for (; t < len; t++) s0 += a[p + t] * b[q + t];
   return (s0 + s2) + (s1 + s3);
 }
 
@@ -415,15 +415,15 @@ function solveBand(matrix: Float64Array, m: number, rhs: Float64Array, r: number
   const stride = bw + 1;
   if (size === 0) return;
   if (matrix[m + bw] === 0) { rhs.fill(0, r, r + size); return; }
+  // forward, L·y = b, each row's dot product with the solved y before it; backward, Lᵀ·x = y, from the last row up:
+  // x_i, then row i of L (contiguous) times x_i off the rows above it, which lie within its band
   for (let i = 0; i < size; i++) {
-    const ri = m + i * stride + bw - i;
-    let v = rhs[r + i];
-    for (let k = Math.max(0, i - bw); k < i; k++) v -= matrix[ri + k] * rhs[r + k];
-    rhs[r + i] = v / matrix[ri + i];
+    const ri = m + i * stride + bw - i, k = Math.max(0, i - bw);
+    rhs[r + i] = (rhs[r + i] - dot(matrix, ri + k, rhs, r + k, i - k)) / matrix[ri + i];
   }
   for (let i = size - 1; i >= 0; i--) {
-    let v = rhs[r + i];
-    for (let k = i + 1; k < Math.min(size, i + bw + 1); k++) v -= matrix[m + k * stride + bw - k + i] * rhs[r + k];
-    rhs[r + i] = v / matrix[m + i * stride + bw - i + i];
+    const ri = m + i * stride + bw - i, xi = rhs[r + i] / matrix[ri + i];
+    rhs[r + i] = xi;
+    for (let k = Math.max(0, i - bw); k < i; k++) rhs[r + k] -= matrix[ri + k] * xi;
   }
 }

@@ -239,15 +239,20 @@ function solveBand(matrix: usize, m: i32, rhs: usize, r: i32, size: i32, bw: i32
   if (size == 0) return;
   if (load<f64>(f64Ref(matrix, m + bw)) == 0) { memory.fill(f64Ref(rhs, r), 0, <usize>size << 3); return; }
   for (let i = 0; i < size; i++) {
-    const ri = m + i * stride + bw - i;
-    let v = load<f64>(f64Ref(rhs, r + i));
-    for (let k = max(0, i - bw); k < i; k++) v -= load<f64>(f64Ref(matrix, ri + k)) * load<f64>(f64Ref(rhs, r + k));
+    const ri = m + i * stride + bw - i, k = max(0, i - bw);
+    const v = load<f64>(f64Ref(rhs, r + i)) - dot(f64Ref(matrix, ri + k), f64Ref(rhs, r + k), i - k);
     store<f64>(f64Ref(rhs, r + i), v / load<f64>(f64Ref(matrix, ri + i)));
   }
+  // backward: x_i, then row i of L times x_i off the rows above it (two at a time: each lane the reference's)
   for (let i = size - 1; i >= 0; i--) {
-    let v = load<f64>(f64Ref(rhs, r + i));
-    const k1 = min(size, i + bw + 1);
-    for (let k = i + 1; k < k1; k++) v -= load<f64>(f64Ref(matrix, m + k * stride + bw - k + i)) * load<f64>(f64Ref(rhs, r + k));
-    store<f64>(f64Ref(rhs, r + i), v / load<f64>(f64Ref(matrix, m + i * stride + bw)));
+    const ri = m + i * stride + bw - i, xi = load<f64>(f64Ref(rhs, r + i)) / load<f64>(f64Ref(matrix, ri + i));
+    store<f64>(f64Ref(rhs, r + i), xi);
+    const x2 = f64x2.splat(xi);
+    let k = max(0, i - bw);
+    for (; k + 2 <= i; k += 2) {
+      const q = f64Ref(rhs, r + k);
+      v128.store(q, f64x2.sub(v128.load(q), f64x2.mul(v128.load(f64Ref(matrix, ri + k)), x2)));
+    }
+    for (; k < i; k++) store<f64>(f64Ref(rhs, r + k), load<f64>(f64Ref(rhs, r + k)) - load<f64>(f64Ref(matrix, ri + k)) * xi);
   }
 }
