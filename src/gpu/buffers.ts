@@ -21,8 +21,19 @@ const STENCIL_BUFFERS = ['stencilOffsets', 'stencilVertices', 'stencilWeights', 
 const SELF_BUFFERS = [
   'edges', 'selfBoxes', 'selfRanks', 'selfCounts', 'selfStarts', 'selfBlocks', 'selfEntries', 'selfPairs', 'selfArgs', 'selfDelta',
 ] as const;
-/** The buffers dispatches read their workgroup counts from (INDIRECT usage). */
-const INDIRECT_BUFFERS: readonly BufferName[] = ['selfArgs', 'coarseArgs'];
+/**
+ * Usages a buffer has besides STORAGE and COPY_DST: drawn (VERTEX, INDEX), read back (COPY_SRC: the state; the
+ * self-contact counts; the coarse correction's check, which its tests read), read by indirect dispatches (INDIRECT).
+ */
+function extraUsage(name: BufferName): number {
+  switch (name) {
+    case 'positions': case 'normals': return GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC;
+    case 'previous': case 'velocities': case 'lambdas': case 'coarseRhs': case 'coarseDir': case 'coarsePartials': return GPUBufferUsage.COPY_SRC;
+    case 'triangles': return GPUBufferUsage.INDEX;
+    case 'selfArgs': case 'coarseArgs': return GPUBufferUsage.INDIRECT | GPUBufferUsage.COPY_SRC;
+    default: return 0;
+  }
+}
 
 /** The storage buffers of one cloth and the kernels' bind groups over them. */
 export class ClothBuffers {
@@ -71,7 +82,7 @@ export class ClothBuffers {
       stretchCoefficients: 0, springForce: 0, springIncidence: 0, globalY: 0, stretchFactorIndex: 0, stretchFactorValues: 0,
       stretchGrabColumn: 0,
       // placeholders until params first correct the springs on a coarse space (coarse-stretch.ts)
-      coarseDir: 0, coarseRhs: 0, coarseSpringAggregate: 0, coarseArgs: 0, coarseAggregates: 0, coarseMembers: 0, coarseBlocks: 0, coarseIncidence: 0, coarsePairs: 0,
+      coarseDir: 0, coarseRhs: 0, coarseSpringAggregate: 0, coarseArgs: 0, coarsePartials: 0, coarseAggregates: 0, coarseMembers: 0, coarseBlocks: 0, coarseIncidence: 0, coarsePairs: 0,
       coarsePairVec: 0, coarseEntryStart: 0, coarseEntryPairs: 0, coarseMatrix: 0, coarseFactor: 0, coarseInverse: 0, coarseNear: 0,
       coarseWeights: 0,
       triangles: 3 * triangleCount, triForces: triangleCount, adjacency: adjacency.length,
@@ -80,18 +91,8 @@ export class ClothBuffers {
       edges: 0, selfBoxes: 0, selfRanks: 0, selfCounts: 0, selfStarts: 0, selfBlocks: 0, selfEntries: 0, selfPairs: 0, selfArgs: 0,
       selfDelta: 0,
     };
-    const extraUsage: Partial<Record<BufferName, number>> = {
-      positions: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC,
-      previous: GPUBufferUsage.COPY_SRC,
-      velocities: GPUBufferUsage.COPY_SRC,
-      normals: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_SRC,
-      lambdas: GPUBufferUsage.COPY_SRC,
-      triangles: GPUBufferUsage.INDEX,
-    };
     const buffers = {} as Record<BufferName, GPUBuffer>;
-    for (const name of Object.keys(BUFFERS) as BufferName[]) {
-      buffers[name] = this.createBuffer(name, counts[name], extraUsage[name] ?? 0);
-    }
+    for (const name of Object.keys(BUFFERS) as BufferName[]) buffers[name] = this.createBuffer(name, counts[name]);
     this.buffers = buffers;
 
     // static model data
@@ -110,11 +111,11 @@ export class ClothBuffers {
     for (const kernel of Object.keys(KERNELS) as KernelName[]) this.storageGroups[kernel] = this.makeGroup(kernel);
   }
 
-  private createBuffer(name: BufferName, count: number, extraUsage: number): GPUBuffer {
+  private createBuffer(name: BufferName, count: number): GPUBuffer {
     return this.device.createBuffer({
       label: `drape ${name}`,
       size: Math.max(16, Math.ceil((count * BUFFERS[name].bytes) / 4) * 4),
-      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST | extraUsage | (INDIRECT_BUFFERS.includes(name) ? GPUBufferUsage.INDIRECT : 0),
+      usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_DST | extraUsage(name),
     });
   }
 
@@ -134,7 +135,7 @@ export class ClothBuffers {
   reserve(name: 'colliders' | 'carried' | 'meshNodes' | 'meshTriangles', count: number): void {
     if (count * BUFFERS[name].bytes <= this.buffers[name].size) return;
     this.buffers[name].destroy();
-    this.buffers[name] = this.createBuffer(name, count, 0);
+    this.buffers[name] = this.createBuffer(name, count);
     this.regroup([name]);
   }
 
@@ -147,7 +148,7 @@ export class ClothBuffers {
     const names = Object.keys(sizes) as BufferName[];
     for (const name of names) {
       this.buffers[name].destroy();
-      this.buffers[name] = this.createBuffer(name, sizes[name]!, 0);
+      this.buffers[name] = this.createBuffer(name, sizes[name]!);
     }
     this.regroup(names);
   }
@@ -176,7 +177,7 @@ export class ClothBuffers {
     };
     for (const name of STENCIL_BUFFERS) {
       this.buffers[name].destroy();
-      this.buffers[name] = this.createBuffer(name, sizes[name], 0);
+      this.buffers[name] = this.createBuffer(name, sizes[name]);
     }
     const q = this.device.queue;
     q.writeBuffer(this.buffers.stencilOffsets, 0, bytes(stencils.offsets));
@@ -201,7 +202,7 @@ export class ClothBuffers {
     this.selfPairRoom = pairs;
     for (const name of SELF_BUFFERS) {
       this.buffers[name].destroy();
-      this.buffers[name] = this.createBuffer(name, sizes[name], name === 'selfArgs' ? GPUBufferUsage.COPY_SRC : 0);
+      this.buffers[name] = this.createBuffer(name, sizes[name]);
     }
     if (this.model.edges.length) this.device.queue.writeBuffer(this.buffers.edges, 0, bytes(this.model.edges));
     this.regroup(SELF_BUFFERS);
@@ -218,7 +219,7 @@ export class ClothBuffers {
     const room = Math.min(pairs, this.selfPairMost);
     if (room <= this.selfPairRoom) return this.selfPairRoom;
     this.buffers.selfPairs.destroy();
-    this.buffers.selfPairs = this.createBuffer('selfPairs', 1 + 2 * room, 0);
+    this.buffers.selfPairs = this.createBuffer('selfPairs', 1 + 2 * room);
     this.regroup(['selfPairs']);
     this.selfPairRoom = room;
     return room;

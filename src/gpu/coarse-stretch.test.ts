@@ -80,7 +80,7 @@ describe('the coarse correction\'s tables', () => {
     // encoder's own for the pairs, the aggregates and the cloth
     expect([...d.coarseArgs!]).toEqual([
       ...new Array(15).fill(0), Math.ceil(t.pairs / WORKGROUP_SIZE), 1, 1, Math.ceil(t.aggregates / WORKGROUP_SIZE), 1, 1, 1, 1, 1,
-      Math.ceil(t.aggregates / WORKGROUP_SIZE), 1, 1, 1, 1, 1,
+      Math.ceil(t.aggregates / WORKGROUP_SIZE), 1, 1, 1, 1, 1, 0, 0,
     ]);
   });
 });
@@ -102,6 +102,18 @@ function lambdaGap(p: Pair): number {
     most = Math.max(most, Math.abs(p.cpu.lambdas[s]));
   }
   return worst / most;
+}
+
+/** The first `count` floats of a GPU buffer. */
+async function readFloats(buffer: GPUBuffer, count: number): Promise<Float32Array> {
+  const device = gpu!.device, staging = device.createBuffer({ size: 4 * count, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+  const encoder = device.createCommandEncoder();
+  encoder.copyBufferToBuffer(buffer, 0, staging, 0, 4 * count);
+  device.queue.submit([encoder.finish()]);
+  await staging.mapAsync(GPUMapMode.READ);
+  const out = new Float32Array(staging.getMappedRange().slice(0));
+  staging.destroy();
+  return out;
 }
 
 /** `sc` on the GPU alone for `frames` frames from its start: the positions. */
@@ -135,6 +147,48 @@ describe.skipIf(!gpu)('the coarse correction on the GPU', () => {
 
   // What the correction is for: a 24² rubber sheet hung from its top edge lengthens as on the CPU (seen 1.0003 of its
   // length), 0.86 of ρ_A·g·L²/(2k) at frame 60, where the sweep alone has made it 1.74 times as long.
+  // The check's sums: coarseCheckParts' terms, summed 64 at a time (10 sums at 24²), against the same sums made in double on the CPU
+  // from what the GPU's last substep left (its μ, α̃ and right-hand side, coarseRhs; its springs' directions,
+  // coarseDir; the inverse masses), and coarseCheck's totals (coarseArgs[30], [31]) against all the terms' sums.
+  // μᵀ·r agrees to 1e-8 here; μᵀ·A·μ to 3 % (each particle's Σ ±μ·n in float32 nearly cancels along a straight
+  // chain of springs), far from the factor 1.5 the check looks for.
+  test('the check of a step of the last factor sums every aggregate and every particle', async () => {
+    const p = await pair(swinging('rubber', 24, 'springs'));
+    await p.advance(1);
+    const t = coarseTables(p.model), n = p.model.particleCount, ns = p.model.restLengths.length;
+    const buffers = p.solver['buffers'].buffers;
+    const groups = Math.ceil(Math.max(n, t.aggregates) / WORKGROUP_SIZE);
+    expect(groups).toBeGreaterThan(2);
+    const [terms, rhs, dir, args] = await Promise.all([
+      readFloats(buffers.coarsePartials, 2 * Math.max(n, t.aggregates)), readFloats(buffers.coarseRhs, 4 * t.aggregates), readFloats(buffers.coarseDir, 4 * ns),
+      readFloats(buffers.coarseArgs, 32),
+    ]);
+    const w = p.cpu.invMass, incidence = t.data.coarseIncidence!, aggregate = t.data.coarseSpringAggregate!;
+    const before = new Float64Array(groups), now = new Float64Array(groups);
+    for (let g = 0; g < t.aggregates; g++) {
+      before[Math.floor(g / WORKGROUP_SIZE)] += rhs[4 * g] * rhs[4 * g + 2];
+      now[Math.floor(g / WORKGROUP_SIZE)] += rhs[4 * g + 1] * rhs[4 * g] ** 2;
+    }
+    for (let i = 0; i < n; i++) {
+      const m = [0, 0, 0];
+      for (let q = incidence[i]; q < incidence[i + 1]; q++) {
+        const s = incidence[q] >> 1, mu = (incidence[q] & 1 ? -1 : 1) * rhs[4 * aggregate[s]];
+        for (let k = 0; k < 3; k++) m[k] += mu * dir[4 * s + k];
+      }
+      now[Math.floor(i / WORKGROUP_SIZE)] += w[i] * (m[0] ** 2 + m[1] ** 2 + m[2] ** 2);
+    }
+    const partials = new Float64Array(2 * groups);
+    for (let k = 0; k < terms.length / 2; k++) { partials[2 * Math.floor(k / WORKGROUP_SIZE)] += terms[2 * k]; partials[2 * Math.floor(k / WORKGROUP_SIZE) + 1] += terms[2 * k + 1]; }
+    const sum = (a: ArrayLike<number>, from: number) => { let x = 0; for (let k = from; k < a.length; k += 2) x += a[k]; return x; };
+    const total = before.reduce((a, b) => a + b, 0);
+    expect(total).toBeGreaterThan(0);
+    expect(Math.abs(sum(partials, 0) / total - 1)).toBeLessThan(1e-6);
+    for (let k = 0; k < groups; k++) expect(Math.abs(partials[2 * k + 1] / now[k] - 1), `terms ${64 * k}…`).toBeLessThan(0.1);
+    const totals = new Float32Array(args.buffer, 30 * 4, 2);
+    expect(Math.abs(totals[0] / sum(partials, 0) - 1)).toBeLessThan(1e-6);
+    expect(Math.abs(totals[1] / sum(partials, 1) - 1)).toBeLessThan(1e-6);
+  });
+
   test('a hanging rubber sheet: the CPU\'s length, not the sweep\'s', async () => {
     const still = (stretch: Scene['solver']['stretch']) => {
       const s = swinging('rubber', 24, 'hinges', stretch);
@@ -194,7 +248,7 @@ describe.skipIf(!gpu)('the coarse correction on the GPU', () => {
     expect(lambdaGap(p)).toBeLessThan(1e-2);
   });
 
-  test('its traffic and dispatches are counted: nine dispatches in a frame\'s first substep and eleven in each later one more than the sweep alone', async () => {
+  test('its traffic and dispatches are counted: nine dispatches in a frame\'s first substep and twelve in each later one more than the sweep alone', async () => {
     const sc = swinging('cotton', 16, 'springs');
     const p = await pair(sc);
     await p.advance(1);
@@ -204,6 +258,6 @@ describe.skipIf(!gpu)('the coarse correction on the GPU', () => {
     const sweep = resolveParams(p.model, sc);
     p.solver.setParams(sweep);
     expect(p.solver.substepTraffic().byKernel.coarseStretch).toBeUndefined();
-    expect(coarse - p.solver.dispatchesPerFrame(sweep)).toBe(9 + 11 * (sc.solver.substeps - 1));
+    expect(coarse - p.solver.dispatchesPerFrame(sweep)).toBe(9 + 12 * (sc.solver.substeps - 1));
   });
 });

@@ -9,8 +9,9 @@
  * (particle, aggregate) pair's Σ ±n_s; coarseAssemble: each row's entries from the pairs that meet at a particle),
  * factored by banded Cholesky (coarseFactor: one workgroup per cloth, a barrier per column) and its diagonal blocks
  * inverted (coarseInvert); then both triangular solves by blocks of rows (coarseSolve: one workgroup per cloth, two
- * barriers per block). In the later substeps the solve comes first, with the last factor, and coarseCheck (one
- * workgroup) asks whether its step overshoots under the matrix now, as the CPU does; the same five kernels then run
+ * barriers per block). In the later substeps the solve comes first, with the last factor, and the check asks whether
+ * its step overshoots under the matrix now, as the CPU does (coarseCheckParts: each aggregate's and each particle's
+ * terms; coarseCheck, one workgroup: their sums); the same five kernels then run
  * again as indirect dispatches it sets (coarseArgs): their full size where it does, no workgroups where it does not
  * (dispatched whole, each workgroup returning at once, they made a 16² frame 73 ms on SwiftShader here, 65 ms now,
  * the sweep alone 35: `drape run cotton-basic --frames 60 --backend gpu --set cloth.resolution=16 --set
@@ -112,14 +113,15 @@ export function coarseTables(model: ClothModel): CoarseLayout {
       coarseNear: Uint32Array.from(sys.nearId), coarseWeights: Float32Array.from(sys.nearWeight),
       coarseSpringAggregate: Uint32Array.from(sys.aggregate),
       // the five dispatches coarseCheck sets (none until it does), then their full sizes: coarseTouch over the pairs,
-      // coarseAssemble over the aggregates, coarseFactor a workgroup per cloth, coarseInvert, coarseSolve
+      // coarseAssemble over the aggregates, coarseFactor a workgroup per cloth, coarseInvert, coarseSolve; then the
+      // check's two sums
       coarseArgs: Uint32Array.from([
         ...new Array<number>(15).fill(0), ...workgroupsFor(pairs), 1, ...workgroupsFor(aggregates), 1, cloths, 1, 1,
-        ...workgroupsFor(aggregates), 1, cloths, 1, 1,
+        ...workgroupsFor(aggregates), 1, cloths, 1, 1, 0, 0,
       ]),
     },
     sizes: {
-      coarseDir: ns, coarseRhs: aggregates, coarseSpringAggregate: ns, coarseArgs: 30, coarseAggregates: aggregates, coarseMembers: ns, coarseBlocks: 2 * cloths,
+      coarseDir: ns, coarseRhs: aggregates, coarseSpringAggregate: ns, coarseArgs: 32, coarsePartials: Math.max(n, aggregates), coarseAggregates: aggregates, coarseMembers: ns, coarseBlocks: 2 * cloths,
       coarseIncidence: incidence.length, coarsePairs: pairs, coarsePairVec: pairs, coarseEntryStart: entries + 1,
       coarseEntryPairs: couples, coarseMatrix: entries, coarseFactor: entries, coarseInverse: inverse, coarseNear: ns, coarseWeights: ns,
     },

@@ -192,6 +192,7 @@ export class FrameEncoder implements PhaseBackend {
           this.dispatch('coarseRows', t.aggregates, so, 0);
           if (frame.sub > 0) {
             this.dispatchGroups('coarseSolve', t.cloths, so, 0);
+            this.dispatch('coarseCheckParts', Math.max(particles, t.aggregates), so, 0);
             this.dispatchGroups('coarseCheck', 1, so, 0);
             for (let k = 0; k < COARSE_REMAKE.length; k++) this.bind(COARSE_REMAKE[k], so, 0).dispatchWorkgroupsIndirect(this.buffers.buffers.coarseArgs, 12 * k);
           } else {

@@ -310,7 +310,7 @@ export const BUFFERS = {
   /**
    * the springs' coarse correction (solver.stretch 'two-level'; core coarse-stretch.ts, coarse-stretch.ts here). Per
    * spring: its unit direction now and its residual L − |x_a − x_b| [m], all 0 where it takes no part (no stiffness,
-   * both ends fixed, no length) (coarseDirections). This and the next fifteen are placeholders until params first
+   * both ends fixed, no length) (coarseDirections). This and the next seventeen are placeholders until params first
    * correct the springs so (CoarseTables, made once per model)
    */
   coarseDir: { type: 'vec4f', bytes: 16 },
@@ -325,9 +325,15 @@ export const BUFFERS = {
    * the indirect dispatches (workgroups x, y, z) of the five kernels that make the matrix anew and solve again
    * (coarseTouch, coarseAssemble, coarseFactor, coarseInvert, coarseSolve) in a substep after the frame's first:
    * coarseCheck copies the next fifteen words (their full dispatches, written once per model) where the step of the
-   * last factor overshoots under the matrix now, else zeroes; INDIRECT usage
+   * last factor overshoots under the matrix now, else zeroes; then the check's two sums, μᵀ·r and μᵀ·A·μ (f32 bits),
+   * which the tests read; INDIRECT usage
    */
   coarseArgs: { type: 'u32', bytes: 4 },
+  /**
+   * per thread of coarseCheckParts (an aggregate and a particle): its terms of μᵀ·r and of μᵀ·A·μ (the check of a
+   * step of the last factor)
+   */
+  coarsePartials: { type: 'vec2f', bytes: 8 },
   /** per aggregate: where its springs start and end in coarseMembers, its cloth, 0 */
   coarseAggregates: { type: 'vec4u', bytes: 16 },
   /** the springs of each aggregate, aggregate after aggregate */
@@ -576,15 +582,17 @@ export const KERNELS = {
     bindings: [['coarseAggregates', 'read'], ['coarseMembers', 'read'], ['coarseDir', 'read'], ['springData', 'read'], ['coarseRhs', 'read_write']],
   },
   /**
-   * 3, after a solve with the last factor (not in a frame's first substep): whether its step overshoots under the
-   * matrix now, its Rayleigh quotient past COARSE_OVERSHOOT (one workgroup)
+   * 3a, after a solve with the last factor (not in a frame's first substep): the terms of whether its step overshoots
+   * under the matrix now, one aggregate's and one particle's per thread
    */
-  coarseCheck: {
+  coarseCheckParts: {
     bindings: [
       ['coarseRhs', 'read'], ['coarseIncidence', 'read'], ['coarseDir', 'read'], ['coarseSpringAggregate', 'read'], ['invMass', 'read'],
-      ['coarseArgs', 'read_write'],
+      ['coarsePartials', 'read_write'],
     ],
   },
+  /** 3b: their sum, the step's Rayleigh quotient past COARSE_OVERSHOOT or not, and the dispatches that follow (one workgroup) */
+  coarseCheck: { bindings: [['coarsePartials', 'read'], ['coarseArgs', 'read_write']] },
   /** 4 (a frame's first substep, or a stale factor): each (particle, aggregate) pair's Σ ±n_s */
   coarseTouch: {
     bindings: [

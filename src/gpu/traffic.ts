@@ -121,8 +121,8 @@ function coarseTraffic(model: ClothModel, params: SimParams, t: CoarseLayout): n
   // inverse value with a gathered row twice, each row read and written four times
   bytes += 2 * t.entries * 8 + 2 * t.inverse * 8 + 4 * A * 16;
   // the check of a step of the last factor: per aggregate its row, per particle w and its incidence offsets, per
-  // spring end its entry, aggregate, μ and direction
-  bytes += A * 16 + n * (4 + 8) + 2 * S * (4 + 4 + 16 + 16);
+  // spring end its entry, aggregate, μ and direction; each thread's two terms written and read
+  bytes += A * 16 + n * (4 + 8) + 2 * S * (4 + 4 + 16 + 16) + 2 * 8 * Math.max(n, A);
   // λ: direction, four aggregates, their weights and μ, λ out; the move: w, the incidence offsets, x in and out, per
   // spring end its entry, λ and direction
   bytes += S * (16 + 16 + 16 + 4 * 8 + 4) + n * (4 + 8 + 32) + 2 * S * (4 + 4 + 16);
@@ -142,8 +142,9 @@ function coarseTraffic(model: ClothModel, params: SimParams, t: CoarseLayout): n
  * instead of its batches), `self` null unless it has self-contact (then
  * per substep two grid builds of 6 dispatches, each followed by its candidates, their indirect arguments, the pairs
  * and the corrections applied, the edges' SELF_EDGE_PASSES times: 20 + 2 per edge pass past the first); the coarse
- * correction (solver.stretch 'two-level') adds 9 in a frame's first substep and 11 in each later one (a solve and
- * the check of its step, then the matrix's five kernels again, which do nothing unless its step overshoots).
+ * correction (solver.stretch 'two-level') adds 9 in a frame's first substep and 12 in each later one (a solve and
+ * the check of its step in two, then the matrix's five kernels again, dispatched with no workgroups unless its step
+ * overshoots).
  */
 export function dispatchesPerFrame(
   params: SimParams, batchRecords: readonly BatchRecords[], stencilRecords: readonly StencilBatchRecords[],
@@ -153,10 +154,10 @@ export function dispatchesPerFrame(
   // the springs one colour batch at a time, then the tethers and the stretch limit; or solved together: y kept, then
   // 4 dispatches a pass
   const springs = params.stretch === 'global' ? 1 + 4 * params.iterations
-    : params.iterations * batchRecords.length + stretchBatches + (hasTethers ? 1 : 0) + (params.stretch === 'two-level' ? 11 : 0);
+    : params.iterations * batchRecords.length + stretchBatches + (hasTethers ? 1 : 0) + (params.stretch === 'two-level' ? 12 : 0);
   const perSubstep = (params.wind.enabled ? 1 : 0) + 1 + (params.carried.particles.length > 0 ? 1 : 0) + springs +
     (stencilRecords.length === 0 ? 0 : params.bendingSolve === 'global' ? 4 : params.iterations * stencilRecords.length) +
     collidePasses.length + (self ? 18 + 2 * SELF_EDGE_PASSES : 0);
   // (the coarse correction's first substep has no solve with the last factor and no check)
-  return 3 - (params.stretch === 'two-level' ? 2 : 0) + params.substeps * perSubstep;
+  return 3 - (params.stretch === 'two-level' ? 3 : 0) + params.substeps * perSubstep;
 }
