@@ -163,6 +163,7 @@ describe.skipIf(!gpu)('the coarse correction on the GPU', () => {
       readFloats(buffers.coarsePartials, 2 * Math.max(n, t.aggregates)), readFloats(buffers.coarseRhs, 4 * t.aggregates), readFloats(buffers.coarseDir, 4 * ns),
       readFloats(buffers.coarseArgs, 32),
     ]);
+    // (the inverse masses the CPU's step computed: the GPU computes the same from the same pins, and keeps them there)
     const w = p.cpu.invMass, incidence = t.data.coarseIncidence!, aggregate = t.data.coarseSpringAggregate!;
     const before = new Float64Array(groups), now = new Float64Array(groups);
     for (let g = 0; g < t.aggregates; g++) {
