@@ -49,6 +49,7 @@ export function workgroupsFor(count: number): [number, number] {
   const groups = Math.ceil(count / WORKGROUP_SIZE);
   return groups <= MAX_WORKGROUPS_X ? [groups, 1] : [MAX_WORKGROUPS_X, Math.ceil(groups / MAX_WORKGROUPS_X)];
 }
+
 /** Floats per vec3 element on the GPU. */
 export const VEC4 = 4;
 /** Byte stride of the dynamic-offset uniform records (minUniformBufferOffsetAlignment is at most 256). */
