@@ -14,6 +14,7 @@ export {
 } from './mannequin.js';
 export * from './metrics.js';
 export * from './pins.js';
+export { perturbStart } from './perturbation.js';
 export * from './pick.js';
 export { plainText, safeJson, shownValue } from './text.js';
 export { fabricFor, exportCloths, LOOKS, type FabricKind, type LookMaterial } from './looks.js';

@@ -118,6 +118,16 @@ const clothSchema = {
     rotation: vec3('extra rotation about the centre, Euler XYZ [degrees]', -360, 360, [0, 0, 0]),
     thickness: { type: 'number', minimum: 0, maximum: 0.1, default: 0.005, description: 'contact thickness: how far the cloth surface is kept from colliders [m]' },
     imperfection: { type: 'number', minimum: 0, maximum: 0.1, default: 0, description: "how far a rectangle's start (and rest) shape bulges out of its plane: sin(πu)·sin(πv) across it times this, zero on its edges (not for other shapes). A real cloth is never flat; an exactly flat one in a plane that holds gravity and every other force (a flag on a pole with no wind) can never buckle out of it, and stays up on its in-plane stiffness [m]" },
+    perturbation: {
+      type: 'object',
+      additionalProperties: false,
+      default: {},
+      description: "a seeded smooth waviness of the start pose, not of the rest shape (any shape): a real specimen is never laid exactly flat, and the folds a flat disc forms otherwise follow its mesh. Seeds 1, 2, 3 are three specimens, as the Cusick test's (BS 5058) mean of three asks (perturbation.ts)",
+      properties: {
+        amplitude: { type: 'number', minimum: 0, maximum: 0.1, default: 0, description: 'root mean square of the waviness over the free particles, along each particle\'s normal (8 plane waves of wavelengths 1/4 to 1 of the cloth\'s size; pinned particles stay, and it grows from 0 at a pin over half the shortest wave); 0: none [m]' },
+        seed: { type: 'integer', minimum: 0, maximum: 2147483647, default: 1, description: 'random seed: the same seed gives the same waviness [-]' },
+      },
+    },
   },
 } as const;
 

@@ -63,6 +63,8 @@ export interface ClothSpec {
   thickness: number;
   /** a rectangle's out-of-plane bulge at the start, 0 for flat [m] */
   imperfection: number;
+  /** a seeded waviness of the start pose (perturbation.ts): its root mean square [m] (0: none) and its seed */
+  perturbation: { amplitude: number; seed: number };
 }
 
 /** One cloth of a scene: its shape and start pose, its material and its pins (pin indices count from its first particle). */

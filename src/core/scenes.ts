@@ -152,8 +152,9 @@ const BUILTIN: Record<string, object | (() => object)> = {
     name: 'cusick',
     description: 'BS 5058 / ISO 9073-9 Cusick drape: a 30 cm woven cotton disc clamped on an 18 cm pedestal; reports the drape coefficient and the folds',
     // the specimen cut from a woven lattice (threads along x and z, so that it shears as softly as the fabric does),
-    // clamped between two discs of the pedestal's size as the standard has it: every particle within its radius
-    cloth: { shape: 'disc', lattice: 'weave', width: 0.3, resolution: 48, position: [0, 0.506, 0] },
+    // clamped between two discs of the pedestal's size as the standard has it: every particle within its radius;
+    // laid as unevenly as a real specimen (1 mm RMS), seed 1 of the standard's three specimens
+    cloth: { shape: 'disc', lattice: 'weave', width: 0.3, resolution: 48, position: [0, 0.506, 0], perturbation: { amplitude: 0.001, seed: 1 } },
     material: { fabric: 'cotton' },
     pins: [{ center: [0, 0.506, 0], radius: 0.09 }],
     colliders: [{ type: 'cylinder', center: [0, 0.25, 0], axis: [0, 1, 0], radius: 0.09, height: 0.5 }, { type: 'floor', height: 0 }],

@@ -10,6 +10,7 @@ import type { ClothModel } from './model.js';
 import { modelFor, type MeshResolver } from './cloth-shape.js';
 import { bounds, centroid, energy, isFinite3, maxPenetration, maxStructuralStrain, type Bounds, type Energy } from './metrics.js';
 import { FRAME_DT, resolveParams, type SimParams } from './params.js';
+import { perturbStart } from './perturbation.js';
 import { applyPins, scenePins } from './pins.js';
 import { clothEntries, clothName, setScenePath, validateScene, type Scene, type SceneInput } from './scene.js';
 import { plainText, shownValue } from './text.js';
@@ -173,6 +174,7 @@ export class Simulation {
     checkTest(this.model, this.scene, sceneLabel(this.scene));
     this.backendNow = this.newBackend();
     applyPins(this.state, pins);
+    perturbStart(this.model, this.scene, this.state, pins);
   }
 
   /** the backend the frames run on */
@@ -276,7 +278,9 @@ export class Simulation {
   /** Back to the start pose with the scene's pins. */
   reset(): void {
     resetState(this.model, this.state);
-    applyPins(this.state, scenePins(this.model, this.scene));
+    const pins = scenePins(this.model, this.scene);
+    applyPins(this.state, pins);
+    perturbStart(this.model, this.scene, this.state, pins);
     for (const c of this.params.colliders) c.setDrive(0, null);
     this.backendNow.stateChanged('all');
     this.frame = 0;
@@ -321,6 +325,7 @@ export class Simulation {
       this.backendNow.dispose();
       this.model = model;
       this.backendNow = this.newBackend();
+      perturbStart(model, next, this.state, pins);
       if (kept) {
         kept.into(this.state);
       } else {

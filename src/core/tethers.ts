@@ -10,8 +10,8 @@ import type { ClothState } from './state.js';
 
 /**
  * Recomputes each particle's anchor: the pinned particle nearest along the structural and shear springs
- * (multi-source Dijkstra), and the rest distance to it (straight-line; exact for the flat rest shapes the grid
- * builder makes, and never longer than the path along the cloth).
+ * (pinDistances), and the rest distance to it (straight-line; exact for the flat rest shapes the grid builder
+ * makes, and never longer than the path along the cloth).
  */
 export function updateTethers(model: ClothModel, state: ClothState): void {
   state.tethersStale = false;
@@ -19,10 +19,23 @@ export function updateTethers(model: ClothModel, state: ClothState): void {
   const anchors = state.tetherAnchors, lengths = state.tetherLengths;
   anchors.fill(-1);
   lengths.fill(0);
-  let pins = 0;
-  for (let i = 0; i < n; i++) if (state.pinned[i]) pins++;
-  if (pins === 0) return;
+  if (!state.pinned.includes(1)) return;
+  pinDistances(model, state.pinned, anchors);
+  const x0 = model.restPositions;
+  for (let i = 0; i < n; i++) {
+    const a = anchors[i];
+    if (a < 0 || a === i) { anchors[i] = -1; continue; }
+    lengths[i] = Math.hypot(x0[3 * i] - x0[3 * a], x0[3 * i + 1] - x0[3 * a + 1], x0[3 * i + 2] - x0[3 * a + 2]);
+  }
+}
 
+/**
+ * Each particle's distance from the nearest pinned one (`pinned[i]` nonzero) along the structural and shear springs
+ * at their rest lengths [m] (Infinity where no pin is reached), by Dijkstra from every pin at once; `anchors`, if
+ * given, gets that nearest pin (-1 where none).
+ */
+export function pinDistances(model: ClothModel, pinned: ArrayLike<number>, anchors?: Int32Array): Float64Array {
+  const n = model.particleCount;
   // adjacency (CSR) over structural + shear springs
   const sp = model.springs, rest = model.restLengths, kinds = model.springKinds;
   const degree = new Uint32Array(n + 1);
@@ -42,7 +55,7 @@ export function updateTethers(model: ClothModel, state: ClothState): void {
     nbr[fill[b]] = a; len[fill[b]++] = rest[s];
   }
 
-  // Dijkstra from all pins at once, binary heap of (distance, particle) with lazy deletion
+  // binary heap of (distance, particle) with lazy deletion
   const dist = new Float64Array(n).fill(Infinity);
   const heapD = new Float64Array(degree[n] + n);
   const heapP = new Uint32Array(degree[n] + n);
@@ -71,7 +84,7 @@ export function updateTethers(model: ClothModel, state: ClothState): void {
     heapD[i] = d; heapP[i] = p;
   };
   for (let i = 0; i < n; i++) {
-    if (state.pinned[i]) { dist[i] = 0; anchors[i] = i; push(0, i); }
+    if (pinned[i]) { dist[i] = 0; if (anchors) anchors[i] = i; push(0, i); }
   }
   while (size > 0) {
     const d = heapD[0], p = heapP[0];
@@ -80,15 +93,10 @@ export function updateTethers(model: ClothModel, state: ClothState): void {
     for (let e = degree[p]; e < degree[p + 1]; e++) {
       const q = nbr[e];
       const nd = d + len[e];
-      if (nd < dist[q]) { dist[q] = nd; anchors[q] = anchors[p]; push(nd, q); }
+      if (nd < dist[q]) { dist[q] = nd; if (anchors) anchors[q] = anchors[p]; push(nd, q); }
     }
   }
-  const x0 = model.restPositions;
-  for (let i = 0; i < n; i++) {
-    const a = anchors[i];
-    if (a < 0 || a === i) { anchors[i] = -1; continue; }
-    lengths[i] = Math.hypot(x0[3 * i] - x0[3 * a], x0[3 * i + 1] - x0[3 * a + 1], x0[3 * i + 2] - x0[3 * a + 2]);
-  }
+  return dist;
 }
 
 /** Pulls every particle that is farther than stretchFactor × its tether length from its anchor back onto it. */

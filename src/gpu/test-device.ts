@@ -5,7 +5,7 @@
  */
 import type {} from 'webgpu';
 import {
-  FRAME_DT, applyPins, centroid, copyState, createState, grab, modelFor, release, resolveParams, scenePins, setPinned, step,
+  FRAME_DT, applyPins, centroid, perturbStart, copyState, createState, grab, modelFor, release, resolveParams, scenePins, setPinned, step,
   type ClothModel, type ClothState, type Scene, type SimParams, type StencilModel, type Vec3,
 } from '../core/index.js';
 import { createNodeDevice } from './node.js';
@@ -71,7 +71,9 @@ export async function gpuPair(device: GPUDevice, sc: Scene, made: GpuClothSolver
   const model = modelFor(sc);
   const params = resolveParams(model, sc);
   const cpu = createState(model);
-  applyPins(cpu, scenePins(model, sc));
+  const pins = scenePins(model, sc);
+  applyPins(cpu, pins);
+  perturbStart(model, sc, cpu, pins);
   const g = createState(model);
   copyState(cpu, g);
   const solver = await GpuClothSolver.create(device, model);
