@@ -133,12 +133,14 @@ export function selfSearch(
   RAW = EDGE_PAIRS; RAW_CAP = min(window, edgeWindow);
   const found = pairsWith(PARTICLE_TREE, TRIANGLE_TREE, REACH, TREACH);
   if (found < 0) return -1;
-  sortInto(found, N, PAIRS);
+  // the edge memo, free until the edge pairs are found, holds the pass by triangle
+  radixInto(found, NT, N, EDGE_MEMO, PAIRS);
   pairCount = found;
   RAW = EDGE_MEMO; RAW_CAP = edgeWindow;
   const foundEdges = pairsWithin(EDGE_TREE, EREACH);
   if (foundEdges < 0) return -1;
-  sortInto(foundEdges, NE, EDGE_PAIRS);
+  // the memo's second half (16 bytes a pair: RAW takes the first 8 of each) holds the pass by second edge
+  radixInto(foundEdges, NE, NE, EDGE_MEMO + (<usize>edgeWindow << 3), EDGE_PAIRS);
   edgePairCount = foundEdges;
   return 1;
 }
@@ -469,8 +471,11 @@ function pairsWith(A: Tree, B: Tree, mine: usize, theirs: usize): i32 {
     if (!overlap(A.boxes + <usize>a * 48, B.boxes + <usize>b * 48)) continue;
     const ra = i32At(A.right, a), rb = i32At(B.right, b);
     if (ra < 0 && rb < 0) {
+      const bBox = B.boxes + <usize>b * 48;
       for (let i = i32At(A.first, a), ie = i + i32At(A.size, a); i < ie; i++) {
         const p = i32At(A.order, i);
+        // b's box holds each of its primitives' boxes: a primitive that misses it meets none of them
+        if (!overlap(mine + <usize>p * 48, bBox)) continue;
         for (let j = i32At(B.first, b), je = j + i32At(B.size, b); j < je; j++) {
           const q = i32At(B.order, j);
           if (overlap(mine + <usize>p * 48, theirs + <usize>q * 48)) {
@@ -522,8 +527,10 @@ function pairsWithin(A: Tree, prims: usize): i32 {
     if (!overlap(A.boxes + <usize>a * 48, A.boxes + <usize>b * 48)) continue;
     const rb = i32At(A.right, b);
     if (ra < 0 && rb < 0) {
+      const bBox = A.boxes + <usize>b * 48;
       for (let i = i32At(A.first, a), ie = i + i32At(A.size, a); i < ie; i++) {
         const p = i32At(A.order, i);
+        if (!overlap(prims + <usize>p * 48, bBox)) continue;
         for (let j = i32At(A.first, b), je = j + i32At(A.size, b); j < je; j++) {
           const q = i32At(A.order, j);
           if (overlap(prims + <usize>p * 48, prims + <usize>q * 48)) {
@@ -544,8 +551,38 @@ function pairsWithin(A: Tree, prims: usize): i32 {
 }
 
 /**
- * The first `count` pairs of RAW (first entries below n) into `out` in the order they are resolved, ascending by
- * first then second entry (the reference's sortPairs: a counting sort by the first, then insertion by the second).
+ * The first `count` pairs of RAW (first entries below n, second below m) into `out` in the order they are resolved,
+ * ascending by first then second entry (the reference's sortPairs, which sorts by the first and then by insertion;
+ * no pair is listed twice, so the order is the same): a counting sort by the second entry into `temp` (8 bytes a
+ * pair), then a stable one by the first. A search's lists, where a particle or an edge has dozens of pairs, for which
+ * insertion costs as much as the rest of the sort.
+ */
+function radixInto(count: i32, m: i32, n: i32, temp: usize, out: usize): void {
+  countingSort(RAW, count, m, 4, temp);
+  countingSort(temp, count, n, 0, out);
+}
+
+/** The `count` pairs at `from` into `to` by the entry at byte `key` (0: first, 4: second; below `range`), stably. */
+function countingSort(from: usize, count: i32, range: i32, key: usize, to: usize): void {
+  memory.fill(BUCKET, 0, (<usize>range + 1) << 2);
+  for (let q = 0; q < count; q++) {
+    const at = BUCKET + ((<usize>load<i32>(from + (<usize>q << 3) + key) + 1) << 2);
+    store<i32>(at, load<i32>(at) + 1);
+  }
+  for (let i = 0; i < range; i++) {
+    const at = BUCKET + ((<usize>i + 1) << 2);
+    store<i32>(at, load<i32>(at) + i32At(BUCKET, i));
+  }
+  for (let q = 0; q < count; q++) {
+    const src = from + (<usize>q << 3), at = BUCKET + (<usize>load<i32>(src + key) << 2), k = load<i32>(at);
+    store<i32>(at, k + 1);
+    store<i64>(to + (<usize>k << 3), load<i64>(src));
+  }
+}
+
+/**
+ * The first `count` pairs of RAW (first entries below n) into `out` as radixInto does, for an update's few pairs:
+ * a counting sort by the first entry, then insertion by the second (the reference's sortPairs).
  */
 function sortInto(count: i32, n: i32, out: usize): void {
   memory.fill(BUCKET, 0, (<usize>n + 1) << 2);
