@@ -19,7 +19,7 @@ import type { ClothState } from './state.js';
 import { pinDistances } from './tethers.js';
 
 /** How many plane waves the waviness sums [-]. */
-export const WAVES = 8;
+const WAVES = 8;
 
 /**
  * Adds each cloth's `cloth.perturbation` (amplitude > 0) to the state's positions and previous positions (so it starts

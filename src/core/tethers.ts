@@ -57,6 +57,7 @@ export function pinDistances(model: ClothModel, pinned: ArrayLike<number>, ancho
 
   // binary heap of (distance, particle) with lazy deletion
   const dist = new Float64Array(n).fill(Infinity);
+  anchors?.fill(-1);
   const heapD = new Float64Array(degree[n] + n);
   const heapP = new Uint32Array(degree[n] + n);
   let size = 0;

@@ -585,20 +585,7 @@ function countingSort(from: usize, count: i32, range: i32, key: usize, to: usize
  * a counting sort by the first entry, then insertion by the second (the reference's sortPairs).
  */
 function sortInto(count: i32, n: i32, out: usize): void {
-  memory.fill(BUCKET, 0, (<usize>n + 1) << 2);
-  for (let q = 0; q < count; q++) {
-    const at = BUCKET + ((<usize>load<i32>(RAW + (<usize>q << 3)) + 1) << 2);
-    store<i32>(at, load<i32>(at) + 1);
-  }
-  for (let i = 0; i < n; i++) {
-    const at = BUCKET + ((<usize>i + 1) << 2);
-    store<i32>(at, load<i32>(at) + i32At(BUCKET, i));
-  }
-  for (let q = 0; q < count; q++) {
-    const src = RAW + (<usize>q << 3), first = load<i32>(src), at = BUCKET + (<usize>first << 2), k = load<i32>(at);
-    store<i32>(at, k + 1);
-    store<i64>(out + (<usize>k << 3), load<i64>(src));
-  }
+  countingSort(RAW, count, n, 0, out);
   // each bucket now ends where the next begins
   for (let i = 0, from = 0; i < n; i++) {
     const to = i32At(BUCKET, i);
