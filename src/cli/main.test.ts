@@ -50,6 +50,30 @@ describe('drape CLI', () => {
     expect(JSON.parse((await run('run', 'cantilever', '--set', 'cloth.resolution=8', '--frames', '0', '--json')).out).test.bendingLength).toBeNull();
   });
 
+  it('--specimens N reads a test on N specimens (seeds s … s + N − 1) and their mean; refused where they would not differ', async () => {
+    const r = await run('run', 'cusick', '--set', 'cloth.resolution=12', '--set', 'cloth.perturbation.seed=4', '--frames', '30', '--specimens', '3', '--json');
+    expect(r.code, r.err).toBe(0);
+    const j = JSON.parse(r.out);
+    expect(j.specimens.map((s: { seed: number }) => s.seed)).toEqual([4, 5, 6]);
+    expect(j.specimens[0].test).toEqual(j.test);
+    const dc = j.specimens.map((s: { test: { drapeCoefficient: number } }) => s.test.drapeCoefficient);
+    expect(new Set(dc).size).toBe(3);
+    expect(j.testMean.drapeCoefficient).toBeCloseTo((dc[0] + dc[1] + dc[2]) / 3, 5);
+    expect(j.testMean.type).toBe('cusick');
+    const text = await run('run', 'cusick', '--set', 'cloth.resolution=12', '--frames', '2', '--specimens', '2');
+    expect(text.out).toMatch(/\n  test +seed 1: type cusick, .*\n +seed 2: type cusick, .*\n  mean of 2 +type cusick, projectedArea [\d.]+, drapeCoefficient [\d.]+, folds [\d.]+/);
+    for (const [args, said] of [
+      [['cotton-basic'], /--specimens: reads a standard test's specimens .*'cotton-basic' has no test/],
+      [['cusick', '--set', 'cloth.perturbation.amplitude=0'], /--specimens: the specimens differ only in cloth\.perturbation, whose amplitude is 0 here/],
+      [['cusick', '--set', 'cloth.perturbation.seed=2147483647'], /--specimens: seeds 2147483647…2147483648 pass/],
+    ] as const) {
+      const bad = await run('run', ...args, '--specimens', '2', '--frames', '1');
+      expect(bad.code).toBe(2);
+      expect(bad.err).toMatch(said);
+    }
+    expect((await run('run', 'cusick', '--specimens', '0')).err).toMatch(/--specimens: must be an integer in 1…20, got '0'/);
+  });
+
   it('--kernel and --threads choose how the CPU steps XPBD, and the JSON says what ran', async () => {
     const args = ['run', 'cotton-basic', '--frames', '10', '--set', 'cloth.resolution=8', '--json'];
     const ts = JSON.parse((await run(...args, '--kernel', 'ts')).out);

@@ -48,6 +48,9 @@ Simulates a built-in scene (default: custom) or a scene file for N frames of 1/6
                         by the file's animation at the frames' times (needs --frames ≥ 1; CPU backend)
   --bake-stride K       bake every K-th frame (default 1; the last frame always): a bake is about
                         24 bytes per vertex per baked frame (a 64² cloth: 101 kB a frame)
+  --specimens N         a standard test read on N specimens, as the standards ask (BS 5058: three): the scene's,
+                        then cloth.perturbation.seed + 1 … + N − 1 (the cusick scene's 1 mm waviness; elsewhere
+                        set its amplitude); each specimen's test and their mean (--export, --bake: the first's)
 A scene with a resolutionSweep (e.g. 'resolution') runs once per resolution unless cloth.resolution is set.`,
   scenes: `drape scenes [--json]\n\nLists the built-in scenes with their descriptions.`,
   bench: `drape bench [options]
@@ -298,7 +301,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     frames: { type: 'string' }, solver: { type: 'string' }, backend: { type: 'string' },
     kernel: { type: 'string' }, threads: { type: 'string' },
     set: { type: 'string', multiple: true }, json: { type: 'boolean' }, export: { type: 'string' },
-    bake: { type: 'string' }, 'bake-stride': { type: 'string' }, help: { type: 'boolean', short: 'h' },
+    bake: { type: 'string' }, 'bake-stride': { type: 'string' }, specimens: { type: 'string' }, help: { type: 'boolean', short: 'h' },
   } as const;
   const { values, positionals } = parseArgs({
     args: negativeValues(argv, runOptions),
@@ -320,6 +323,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   }
   if (values['bake-stride'] !== undefined && values.bake === undefined) throw new UsageError('--bake-stride: bakes with --bake FILE.glb; give --bake too');
   const bakeStride = intArg('bake-stride', values['bake-stride'], 1, 1, 1_000_000);
+  const specimens = intArg('specimens', values.specimens, 1, 1, 20);
   if (values.bake !== undefined) {
     if (!/\.glb$/i.test(values.bake)) throw new UsageError(`--bake: writes a .glb file, got '${values.bake}'`);
     if (framesAsked === 0) throw new UsageError('--bake: --frames 0 runs no frame to bake; give --frames 1 or more');
@@ -346,6 +350,7 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     err(scene.cloths ? 'drape: note: resolutionSweep skipped: the scene has a list of cloths, each with its own resolution'
       : `drape: note: resolutionSweep skipped: the cloth is the mesh file ${plainText(scene.cloth.mesh ?? '', 200)}, which has its own resolution`);
   }
+  const specimenScenes = specimens > 1 ? specimenRuns(scene, specimens, !!sweep) : [];
   if (backend === 'gpu') {
     const why = await gpuRefusal(scene);
     if (why) throw new UsageError(why);
@@ -354,7 +359,9 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   const main = await simulate(scene, frames, gpu, options, values.bake === undefined ? undefined : bakeStride);
   const sweepRuns: RunResult[] = [];
   for (const resolution of sweep ?? []) sweepRuns.push(await simulate({ ...scene, cloth: { ...scene.cloth, resolution } }, frames, gpu, options));
-  const unstable = [main, ...sweepRuns].find((r) => !r.finite);
+  const others: RunResult[] = [];
+  for (const s of specimenScenes) others.push(await simulate(s, frames, gpu, options));
+  const unstable = [main, ...sweepRuns, ...others].find((r) => !r.finite);
   if (unstable) {
     const line = unstableLine(scene, unstable, frames, !!gpu);
     // --json still prints one object: what blew up and when, with no NaN in it
@@ -390,10 +397,13 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   const bakeSummary = bake && `frame 0 and ${bake.frames.length} more (stride ${bakeStride}), ${(bakeBytes(model.particleCount, bake.frames.length) / 1e6).toFixed(1)} MB of morph targets`;
   const exportError = errors.length ? errors.join('; ') : undefined;
   const { sim: _sim, resolution: _r, bake: _b, clamps, ...fields } = main;
+  const specimenTests = others.length ? [main, ...others].map((r) => ({ seed: r.sim.scene.cloth.perturbation.seed, test: r.test! })) : undefined;
+  const mean = specimenTests && meanTest(specimenTests.map((t) => t.test));
   if (values.json) {
     out(safeJson({
       scene: scene.name, solver: scene.solver.type, backend, frames, ...fields, clamps,
       ...(sweep ? { sweep: sweepRuns.map(({ sim: _s, ...r }) => ({ faces: r.triangles / 2, ...r })) } : {}),
+      ...(specimenTests ? { specimens: specimenTests, testMean: mean } : {}),
       ...(exported ? { exported: values.export } : {}),
       ...(baked ? { baked: values.bake, bakedFrames: bake!.frameNumbers.length + 1 } : {}),
       ...(exportError ? { exportError } : {}),
@@ -422,7 +432,14 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
     out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J (bending ${f(main.energy.bending)} J)`);
     // (a null is a measure the cloth does not give yet: the cantilever's bending length before its tip drops)
-    if (main.test) out(`  test         ${Object.entries(main.test).map(([k, v]) => `${k} ${typeof v === 'number' ? (Number.isInteger(v) ? v : f(v)) : v === null ? '— (not yet)' : plainText(String(v), 40)}`).join(', ')}`);
+    const fields = (t: Record<string, unknown>) => Object.entries(t)
+      .map(([k, v]) => `${k} ${typeof v === 'number' ? (Number.isInteger(v) ? v : f(v)) : v === null ? '— (not yet)' : plainText(String(v), 40)}`).join(', ');
+    if (specimenTests) {
+      specimenTests.forEach((t, k) => out(`  ${k ? '            ' : 'test        '} seed ${t.seed}: ${fields(t.test)}`));
+      out(`  mean of ${String(specimenTests.length).padEnd(4)} ${fields(mean!)}`);
+    } else if (main.test) {
+      out(`  test         ${fields(main.test)}`);
+    }
     if (sweep) {
       out(`  resolution sweep (triangles → resting height of the centroid):`);
       for (const r of sweepRuns) out(`    ${String(r.triangles).padStart(6)} triangles  centroid y ${r.centroid[1].toFixed(3)} m  penetration ${(r.maxPenetration * 1000).toFixed(2)} mm  ${r.msPerFrame.toFixed(3)} ms/frame`);
@@ -435,6 +452,31 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     return EXIT.exportFailed;
   }
   return 0;
+}
+
+/**
+ * --specimens N: the scene's specimens after its own (seed s of cloth.perturbation): seeds s + 1 … s + N − 1, each a
+ * copy of the scene with its seed; refused with a UsageError where the specimens would not differ or not be tested.
+ */
+function specimenRuns(scene: Scene, n: number, sweep: boolean): Scene[] {
+  if (!scene.test) throw new UsageError(`--specimens: reads a standard test's specimens (the cantilever, cusick scenes); scene '${plainText(scene.name, 100)}' has no test`);
+  if (scene.cloths) throw new UsageError('--specimens: a scene of one cloth (each specimen is its cloth.perturbation.seed)');
+  if (sweep) throw new UsageError('--specimens: not with a resolutionSweep; set cloth.resolution');
+  const { amplitude, seed } = scene.cloth.perturbation;
+  if (!(amplitude > 0)) throw new UsageError('--specimens: the specimens differ only in cloth.perturbation, whose amplitude is 0 here; give it one, e.g. --set cloth.perturbation.amplitude=0.001');
+  if (seed + n - 1 > 2147483647) throw new UsageError(`--specimens: seeds ${seed}…${seed + n - 1} pass cloth.perturbation.seed's most, 2147483647`);
+  return Array.from({ length: n - 1 }, (_, k) => ({ ...scene, cloth: { ...scene.cloth, perturbation: { amplitude, seed: seed + k + 1 } } }));
+}
+
+/** The mean of the specimens' tests, field by field: the numbers' mean, null where any is null, the rest as the first's. */
+function meanTest(tests: Record<string, string | number | null>[]): Record<string, string | number | null> {
+  const mean: Record<string, string | number | null> = {};
+  for (const [k, v] of Object.entries(tests[0])) {
+    const all = tests.map((t) => t[k]);
+    mean[k] = typeof v !== 'number' ? v : all.some((x) => typeof x !== 'number') ? null
+      : Number(((all as number[]).reduce((a, b) => a + b, 0) / all.length).toPrecision(6));
+  }
+  return mean;
 }
 
 function cmdScenes(argv: string[], out: (s: string) => void): number {

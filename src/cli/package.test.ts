@@ -77,10 +77,11 @@ describe('the npm package', () => {
   // the WebGPU solver took the bending stencils solved together (gpu/global-bending.ts and its four kernels: the
   // cantilever on the GPU as on the CPU); 348 kB by 2026-12-06, the README grown with the fabric tests' findings;
   // 357 kB the same day with the springs' coarse correction (solvers/coarse-stretch.ts, its kernel coarse.as.ts in both
-  // builds, coarse-wasm.ts: a hanging sheet at the default substeps within 4 % of theory): the budget keeps about
-  // 10 kB above what ships
-  it('packs into at most 370 kB', () => {
-    expect(packed.size).toBeLessThanOrEqual(370_000);
+  // builds, coarse-wasm.ts: a hanging sheet at the default substeps within 4 % of theory); 367 kB with the GPU's split
+  // check of the coarse factor, and 371 kB the same evening with the Cusick test's specimens (perturbation.ts, its
+  // schema in both places a cloth is described, `drape run --specimens`): the budget keeps about 10 kB above what ships
+  it('packs into at most 380 kB', () => {
+    expect(packed.size).toBeLessThanOrEqual(380_000);
   });
 
   it('declares its doc comments in the types and ships the code without them', () => {
