@@ -15,7 +15,8 @@ const arg = (name, fallback) => {
 const fabrics = arg('fabrics', FABRIC_NAMES.join(','));
 const resolutions = arg('resolutions', '48,96').map(Number);
 const seeds = arg('seeds', '1,2,3').map(Number);
-const amplitude = process.argv.includes('--amplitude') ? Number(arg('amplitude')[0]) : null;
+const amplitude = process.argv.includes('--amplitude') ? Number(arg('amplitude', 'none')[0]) : null;
+if (amplitude !== null && !(amplitude >= 0)) throw new Error('--amplitude: give the waviness in metres, e.g. --amplitude 0.0002');
 
 const specimen = (fabric, resolution, seed) => {
   let scene = setScenePath(builtinScene('cusick'), 'material.fabric', fabric);
