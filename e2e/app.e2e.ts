@@ -119,6 +119,13 @@ describe('WebGPU page', () => {
     await loadScene(page, 'Cusick Drape (BS 5058)');
     await choose(page, 'cloth.resolution', '24 faces across');
     await page.waitForFunction(() => (window as any).drape.frame() === 0);
+    // the specimen starts with the scene's seeded waviness (cloth.perturbation, 1 mm RMS): its free particles off the
+    // plane, the clamped ones in it
+    const held = new Set(await hook<number[]>(page, 'pinned'));
+    const heights = (await hook<number[][]>(page, 'positions')).map((p) => p[1]);
+    const free = heights.filter((_, i) => !held.has(i)), clamped = heights.filter((_, i) => held.has(i));
+    expect(Math.max(...free) - Math.min(...free)).toBeGreaterThan(0.002);
+    expect(Math.max(...clamped) - Math.min(...clamped)).toBeLessThan(1e-6);
     await step(page, 60);
     await expect.poll(() => byId(page, 'hud-test').innerText()).toMatch(/^Cusick drape: coefficient 0\.\d{3}, \d+ folds?$/);
     await shoot(page, 'scene-cusick');
