@@ -25,7 +25,7 @@ export interface ClothState {
   readonly invMass: Float32Array;
   /** external force accumulator [N], stride 3 (solver scratch) */
   readonly forces: Float32Array;
-  /** XPBD Lagrange multipliers (compliant part) of the last substep, one per spring [N·s²]; f = λ/h² */
+  /** XPBD Lagrange multipliers of the last substep (damping included, the stretch cap not), one per spring [N·s²]; f = λ/h² */
   readonly lambdas: Float32Array;
   /**
    * XPBD Lagrange multipliers of the bending stencils (solver.bending 'hinges' or 'laplacian'), 3 per stencil of

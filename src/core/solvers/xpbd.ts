@@ -21,8 +21,10 @@ import type { ClothState } from '../state.js';
 /**
  * One Gauss–Seidel pass over every distance constraint, batch by batch (colour order: springs of a batch share no
  * particle, which is what a parallel backend relies on; here it only fixes the order). With `accumulate`, λ is
- * read from state.lambdas (several iterations per substep); otherwise it starts from zero. The elastic part of
- * λ (not damping, not the hard stretch cap) is written back: the spring force applied, f = λ/h², used for energy.
+ * read from state.lambdas (several iterations per substep); otherwise it starts from zero. The whole Δλ, damping
+ * included, is added to λ (the paper's Eq. 26; not the hard stretch cap, which is no constraint force): with the
+ * damping left out of λ, each further pass of a substep applied it again against a λ that did not hold it, and a
+ * clamped cloth with the hinges blew up at 40 substeps × 16 passes (docs/physics.md, "Three specimens").
  */
 export function solveDistanceConstraints(
   model: ClothModel, state: ClothState, params: SimParams, h: number, accumulate: boolean,
@@ -52,15 +54,14 @@ export function solveDistanceConstraints(
       const D = (1 + gamma) * wsum + alphaT;
       const q = 1 / (len * D);
       const lambda = accumulate ? lambdas[s] : 0;
-      const dlElastic = (rest[s] - len - alphaT * lambda) * len * q;
-      let dl = dlElastic;
+      let dl = (rest[s] - len - alphaT * lambda) * len * q;
       if (gamma > 0) {
         dl -= gamma * q * (
           (x[a] - xp[a] - x[b] + xp[b]) * dx +
           (x[a + 1] - xp[a + 1] - x[b + 1] + xp[b + 1]) * dy +
           (x[a + 2] - xp[a + 2] - x[b + 2] + xp[b + 2]) * dz);
       }
-      lambdas[s] = lambda + dlElastic;
+      lambdas[s] = lambda + dl;
       // hard stretch limit: the new length len + wsum·dl may not exceed cap × rest
       const over = len + wsum * dl - cap * rest[s];
       if (over > 0) dl -= over / wsum;

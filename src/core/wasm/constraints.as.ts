@@ -6,7 +6,8 @@ import { dot3, gather, hi2, lanesXY0, lanesXY1, lo2, scatter, store4 } from './s
 
 /**
  * Distance constraints [s0, s1) of one batch, as solvers/xpbd.ts solveDistanceConstraints() in f32:
- * Δλ = (−C − α̃λ − γ∇C·(x − x_prev)) / ((1 + γ)(w_a + w_b) + α̃) with the hard cap at capFactor × rest.
+ * Δλ = (−C − α̃λ − γ∇C·(x − x_prev)) / ((1 + γ)(w_a + w_b) + α̃), added whole to λ, with the hard cap at capFactor
+ * × rest (not added to λ).
  * Four springs per step; the last 1–3 repeat the last spring in the spare lanes (same values written twice).
  * λ is read only when it accumulates and written only when `storeLambda` (several iterations, or the frame's last
  * substep: what is read of λ after a frame is that substep's).
@@ -58,8 +59,7 @@ export function solveDistance(
     const D = f32x4.add(f32x4.mul(f32x4.add(one, gamma), wsum), alphaT);
     const q = f32x4.div(one, f32x4.mul(len, D));
     const lam = accumulate ? lambda : zero;
-    const dlE = f32x4.mul(f32x4.mul(f32x4.sub(f32x4.sub(rest, len), f32x4.mul(alphaT, lam)), len), q);
-    let dl = dlE;
+    let dl = f32x4.mul(f32x4.mul(f32x4.sub(f32x4.sub(rest, len), f32x4.mul(alphaT, lam)), len), q);
     if (damped) {
       // x_prev of a and b, transposed as above: r = d − (x_prev,a − x_prev,b) is the relative motion
       const ea0 = v128.load(xp + a0), ea1 = v128.load(xp + a1), ea2 = v128.load(xp + a2), ea3 = v128.load(xp + a3);
@@ -71,7 +71,7 @@ export function solveDistance(
       dl = f32x4.sub(dl, f32x4.mul(f32x4.mul(gamma, q), dot3(rx, ry, rz, dx, dy, dz)));
     }
     if (storeLambda) {
-      const lamNew = v128.bitselect(f32x4.add(lam, dlE), lambda, valid);
+      const lamNew = v128.bitselect(f32x4.add(lam, dl), lambda, valid);
       if (full) v128.store(lamP + (<usize>s << 2), lamNew);
       else scatter(lamP, <usize>s << 2, <usize>k1 << 2, <usize>k2 << 2, <usize>k3 << 2, lamNew);
     }

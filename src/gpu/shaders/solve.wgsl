@@ -1,8 +1,8 @@
 // solveDistanceConstraints (solvers/xpbd.ts) for the springs of one colour batch [batch.start, batch.end):
 // springs of a batch share no particle, so each thread owns its two particles for the dispatch.
 //   α̃ = α/h², γ = α·β/h, D = 1/((1 + γ)·(w_a + w_b) + α̃),
-//   Δλ_elastic = (−C − α̃·λ)·D,  Δλ = Δλ_elastic − γ·D·∇C·(x − x_prev),
-// λ ← λ + Δλ_elastic (the spring force applied, for energy; λ starts from 0 unless PASS_READ_LAMBDA),
+//   Δλ = (−C − α̃·λ − γ·∇C·(x − x_prev))·D,
+// λ ← λ + Δλ (damping included, as in the paper; λ starts from 0 unless PASS_READ_LAMBDA),
 // then the hard stretch cap (structural and shear batches): the new length may not exceed cap × rest.
 
 @compute @workgroup_size(WG)
@@ -29,12 +29,11 @@ fn main(@builtin(global_invocation_id) gid: vec3u, @builtin(num_workgroups) nwg:
   var lambda = 0.0;
   if ((batch.flags & PASS_READ_LAMBDA) != 0u) { lambda = lambdas[s]; }
   let denom = 1.0 / ((1.0 + gamma) * wsum + alphaT);
-  let dlElastic = (rest - len - alphaT * lambda) * denom;
-  var dl = dlElastic;
+  var dl = (rest - len - alphaT * lambda) * denom;
   if (gamma > 0.0) {
     dl -= gamma * denom * dot((xa - previous[ab.x].xyz) - (xb - previous[ab.y].xyz), n);
   }
-  lambdas[s] = lambda + dlElastic;
+  lambdas[s] = lambda + dl;
   if ((batch.flags & PASS_CAP) != 0u) {
     let over = len + wsum * dl - batch.cap * rest;
     if (over > 0.0) { dl -= over / wsum; }
