@@ -432,13 +432,13 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
     out(`  centroid     [${main.centroid.map(f).join(', ')}] m`);
     out(`  energy       kinetic ${f(main.energy.kinetic)} J, gravitational ${f(main.energy.gravitational)} J, elastic ${f(main.energy.elastic)} J (bending ${f(main.energy.bending)} J)`);
     // (a null is a measure the cloth does not give yet: the cantilever's bending length before its tip drops)
-    const fields = (t: Record<string, unknown>) => Object.entries(t)
+    const testFields = (t: Record<string, unknown>) => Object.entries(t)
       .map(([k, v]) => `${k} ${typeof v === 'number' ? (Number.isInteger(v) ? v : f(v)) : v === null ? '— (not yet)' : plainText(String(v), 40)}`).join(', ');
     if (specimenTests) {
-      specimenTests.forEach((t, k) => out(`  ${k ? '            ' : 'test        '} seed ${t.seed}: ${fields(t.test)}`));
-      out(`  mean of ${String(specimenTests.length).padEnd(4)} ${fields(mean!)}`);
+      specimenTests.forEach((t, k) => out(`  ${k ? '            ' : 'test        '} seed ${t.seed}: ${testFields(t.test)}`));
+      out(`  mean of ${String(specimenTests.length).padEnd(4)} ${testFields(mean!)}`);
     } else if (main.test) {
-      out(`  test         ${fields(main.test)}`);
+      out(`  test         ${testFields(main.test)}`);
     }
     if (sweep) {
       out(`  resolution sweep (triangles → resting height of the centroid):`);

@@ -12,6 +12,7 @@
  * pin to its full size half the shortest wavelength away along the springs (tethers.ts pinDistances), so a
  * clamp holds its specimen flat and no spring starts more than a fraction of a percent long at the clamp's edge.
  */
+import { vertexNormals } from './mesh/normals.js';
 import type { ClothModel } from './model.js';
 import { mulberry32 } from './random.js';
 import { clothEntries, type Scene } from './scene.js';
@@ -31,7 +32,7 @@ export function perturbStart(model: ClothModel, scene: Scene, state: ClothState,
   if (!entries.some((e) => e.cloth.perturbation.amplitude > 0)) return;
   const pinned = new Uint8Array(model.particleCount);
   for (const i of pins) pinned[i] = 1;
-  const normals = vertexNormals(model);
+  const normals = vertexNormals(model.restPositions, model.triangles);
   const reach = pinDistances(model, pinned);
   entries.forEach((e, c) => {
     const { amplitude, seed } = e.cloth.perturbation;
@@ -40,7 +41,7 @@ export function perturbStart(model: ClothModel, scene: Scene, state: ClothState,
 }
 
 function perturbCloth(
-  model: ClothModel, state: ClothState, normals: Float64Array, reach: Float64Array,
+  model: ClothModel, state: ClothState, normals: Float32Array, reach: Float64Array,
   from: number, to: number, amplitude: number, seed: number,
 ): void {
   const x = model.restPositions;
@@ -88,22 +89,4 @@ function perturbCloth(
       q[3 * i + k] = p[3 * i + k];
     }
   }
-}
-
-/** Unit normal of each particle at the start pose: the sum of its triangles' area-weighted normals (0 where none). */
-function vertexNormals(model: ClothModel): Float64Array {
-  const x = model.restPositions, tri = model.triangles;
-  const n = new Float64Array(3 * model.particleCount);
-  for (let t = 0; t < tri.length; t += 3) {
-    const a = 3 * tri[t], b = 3 * tri[t + 1], c = 3 * tri[t + 2];
-    const ux = x[b] - x[a], uy = x[b + 1] - x[a + 1], uz = x[b + 2] - x[a + 2];
-    const vx = x[c] - x[a], vy = x[c + 1] - x[a + 1], vz = x[c + 2] - x[a + 2];
-    const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    for (const i of [a, b, c]) { n[i] += nx; n[i + 1] += ny; n[i + 2] += nz; }
-  }
-  for (let i = 0; i < n.length; i += 3) {
-    const len = Math.hypot(n[i], n[i + 1], n[i + 2]);
-    if (len > 0) { n[i] /= len; n[i + 1] /= len; n[i + 2] /= len; }
-  }
-  return n;
 }
