@@ -3,7 +3,9 @@
  * (wind), integration, the grab, stretch limiting, contact, velocity update. reference.ts maps the schedule's phases
  * (schedule.ts) onto them and the solvers' own. None of them allocates.
  */
-import type { ColliderShape } from './colliders/shape.js';
+import {
+  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, pointQuery, triangleQuery, type ColliderShape,
+} from './colliders/shape.js';
 import { TRIANGLE_SPREAD_MOST } from './layout.generated.js';
 import { BEND, type ClothModel } from './model.js';
 import type { SimParams } from './params.js';
@@ -14,6 +16,13 @@ import { windVelocity } from './wind.js';
 const wind = new Float64Array(3);
 const normal = new Float64Array(3);
 const bary = new Float64Array(3);
+/**
+ * the contact loops' queries of the colliders, made through records (distanceIn, triangleDeepestIn), not through
+ * signedDistance and triangleDeepest: a number passed to a call V8 does not inline is boxed, and whether it inlines
+ * them here depends on what it has seen before (colliders/shape.ts)
+ */
+const contactQuery = pointQuery();
+const contactTriangle = triangleQuery();
 const surface = new Float64Array(3);
 /** the cloth's bounding box this substep: min x, y, z, max x, y, z */
 const box = new Float64Array(6);
@@ -304,7 +313,10 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
     for (let i = 0; i < n; i++) {
       if (w[i] === 0) continue;
       const j = 3 * i, cloth = owner[i], th = thickness[cloth];
-      const d = shape.signedDistance(x[j], x[j + 1], x[j + 2], normal, th);
+      const q = contactQuery;
+      q[QUERY_X] = x[j]; q[QUERY_Y] = x[j + 1]; q[QUERY_Z] = x[j + 2]; q[QUERY_WITHIN] = th;
+      shape.distanceIn(q, normal);
+      const d = q[QUERY_D];
       if (d >= th) continue;
       // motion over the substep so far relative to the surface, its normal part, and the push-out
       let mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
@@ -379,9 +391,14 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       // shape, so is every point of the triangle
       const cx = (x[3 * a] + x[3 * b] + x[3 * c]) / 3, cy = (x[3 * a + 1] + x[3 * b + 1] + x[3 * c + 1]) / 3, cz = (x[3 * a + 2] + x[3 * b + 2] + x[3 * c + 2]) / 3;
       const r = Math.sqrt(Math.max(cornerDistance2(x, ja, cx, cy, cz), cornerDistance2(x, jb, cx, cy, cz), cornerDistance2(x, jc, cx, cy, cz)));
-      const far = th + r * (1 + 1e-9);
-      if (shape.signedDistance(cx, cy, cz, normal, far) >= far) continue;
-      const d = shape.triangleDeepest!(x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, th);
+      const far = th + r * (1 + 1e-9), q = contactQuery;
+      q[QUERY_X] = cx; q[QUERY_Y] = cy; q[QUERY_Z] = cz; q[QUERY_WITHIN] = far;
+      shape.distanceIn(q, normal);
+      if (q[QUERY_D] >= far) continue;
+      const tq = contactTriangle;
+      tq[TRIANGLE_WITHIN] = th;
+      shape.triangleDeepestIn!(x, 3 * a, x, 3 * b, x, 3 * c, bary, normal, tq);
+      const d = tq[TRIANGLE_D];
       if (d >= th) continue;
       const wa = w[a] * bary[0], wb = w[b] * bary[1], wc = w[c] * bary[2];
       const denom = wa * bary[0] + wb * bary[1] + wc * bary[2];

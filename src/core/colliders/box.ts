@@ -1,6 +1,8 @@
 import { eulerXYZ } from '../mesh/generators.js';
 import { goldenDeepest, segmentTriangleClosest, vertexDeepest } from './convex.js';
-import type { ColliderShape } from './shape.js';
+import {
+  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, deepestOf, distanceOf, pointQuery, type ColliderShape,
+} from './shape.js';
 
 /**
  * An oriented box: centre, half extents along its own axes, turned by Euler XYZ angles [degrees] as cloth.rotation
@@ -41,10 +43,15 @@ export class BoxCollider implements ColliderShape {
   }
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
-    const dx = px - this.center[0], dy = py - this.center[1], dz = pz - this.center[2];
+    return distanceOf(this, px, py, pz, normal, within);
+  }
+
+  distanceIn(q: Float64Array, normal: Float64Array): void {
+    const dx = q[QUERY_X] - this.center[0], dy = q[QUERY_Y] - this.center[1], dz = q[QUERY_Z] - this.center[2];
+    const within = q[QUERY_WITHIN];
     if (within !== Infinity) {
       const far = this.bound + within;
-      if (far > 0 && dx * dx + dy * dy + dz * dz >= far * far) return within;
+      if (far > 0 && dx * dx + dy * dy + dz * dz >= far * far) { q[QUERY_D] = within; return; }
     }
     const r = this.r, h = this.halfExtents, turned = this.turned;
     // local coordinates: Rᵀ·d
@@ -65,11 +72,11 @@ export class BoxCollider implements ColliderShape {
       else if (e1 >= e2) { d = e1; l1 = q1 < 0 ? -1 : 1; }
       else { d = e2; l2 = q2 < 0 ? -1 : 1; }
     }
-    if (!turned) { normal[0] = l0; normal[1] = l1; normal[2] = l2; return d; }
+    if (!turned) { normal[0] = l0; normal[1] = l1; normal[2] = l2; q[QUERY_D] = d; return; }
     normal[0] = r[0] * l0 + r[1] * l1 + r[2] * l2;
     normal[1] = r[3] * l0 + r[4] * l1 + r[5] * l2;
     normal[2] = r[6] * l0 + r[7] * l1 + r[8] * l2;
-    return d;
+    q[QUERY_D] = d;
   }
 
   /** Whether segment p–q meets the box (slabs in the box's frame). */
@@ -105,16 +112,27 @@ export class BoxCollider implements ColliderShape {
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
     bary: Float64Array, normal: Float64Array, within = Infinity,
   ): number {
-    const dv = vertexDeepest(this, a, ia, b, ib, c, ic, bary, normal, within);
-    if (!Number.isNaN(dv)) return dv;
+    return deepestOf(this, a, ia, b, ib, c, ic, bary, normal, within);
+  }
+
+  triangleDeepestIn(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, t: Float64Array,
+  ): void {
+    if (vertexDeepest(this, a, ia, b, ib, c, ic, bary, normal, t)) return;
     const ax = a[ia], ay = a[ia + 1], az = a[ia + 2], bx = b[ib], by = b[ib + 1], bz = b[ib + 2];
     const cx = c[ic], cy = c[ic + 1], cz = c[ic + 2];
     // the deepest vertex, as vertexDeepest left it
     const k = bary[0] === 1 ? 0 : bary[1] === 1 ? 1 : 2;
-    const vertex = k === 0 ? this.signedDistance(ax, ay, az, normal) : k === 1 ? this.signedDistance(bx, by, bz, normal) : this.signedDistance(cx, cy, cz, normal);
+    const r = boxQuery;
+    r[QUERY_X] = k === 0 ? ax : k === 1 ? bx : cx; r[QUERY_Y] = k === 0 ? ay : k === 1 ? by : cy; r[QUERY_Z] = k === 0 ? az : k === 1 ? bz : cz;
+    r[QUERY_WITHIN] = Infinity;
+    this.distanceIn(r, normal);
+    const vertex = r[QUERY_D];
     // crossing the box: a vertex in it, an edge of the triangle through it (or, below, an edge of the box through the triangle)
     if (vertex <= 0 || this.segmentHits(ax, ay, az, bx, by, bz) || this.segmentHits(bx, by, bz, cx, cy, cz) || this.segmentHits(cx, cy, cz, ax, ay, az)) {
-      return goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+      goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal, t);
+      return;
     }
     let best = vertex, found = false;
     const gx = (ax + bx + cx) / 3, gy = (ay + by + cy) / 3, gz = (az + bz + cz) / 3;
@@ -129,23 +147,25 @@ export class BoxCollider implements ColliderShape {
       // an edge farther from the triangle's centre than its reach plus the best so far cannot be nearer
       const ux = E[e + 3] - E[e], uy = E[e + 4] - E[e + 1], uz = E[e + 5] - E[e + 2];
       const uu = ux * ux + uy * uy + uz * uz;
-      const t = uu > 0 ? Math.min(Math.max(((gx - E[e]) * ux + (gy - E[e + 1]) * uy + (gz - E[e + 2]) * uz) / uu, 0), 1) : 0;
-      const qx = E[e] + t * ux - gx, qy = E[e + 1] + t * uy - gy, qz = E[e + 2] + t * uz - gz;
+      const s = uu > 0 ? Math.min(Math.max(((gx - E[e]) * ux + (gy - E[e + 1]) * uy + (gz - E[e + 2]) * uz) / uu, 0), 1) : 0;
+      const qx = E[e] + s * ux - gx, qy = E[e + 1] + s * uy - gy, qz = E[e + 2] + s * uz - gz;
       if (Math.sqrt(qx * qx + qy * qy + qz * qz) - reach >= best) continue;
       const d2 = segmentTriangleClosest(E[e], E[e + 1], E[e + 2], E[e + 3], E[e + 4], E[e + 5], ax, ay, az, bx, by, bz, cx, cy, cz, edgeBary, seg);
-      if (d2 <= 1e-24) return goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+      if (d2 <= 1e-24) { goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal, t); return; }
       if (d2 < best * best) {
         best = Math.sqrt(d2); found = true;
         bary[0] = edgeBary[0]; bary[1] = edgeBary[1]; bary[2] = edgeBary[2];
       }
     }
-    if (!found) return vertex;
-    return this.signedDistance(
-      bary[0] * ax + bary[1] * bx + bary[2] * cx, bary[0] * ay + bary[1] * by + bary[2] * cy, bary[0] * az + bary[1] * bz + bary[2] * cz,
-      normal,
-    );
+    if (!found) { t[TRIANGLE_D] = vertex; return; }
+    r[QUERY_X] = bary[0] * ax + bary[1] * bx + bary[2] * cx; r[QUERY_Y] = bary[0] * ay + bary[1] * by + bary[2] * cy;
+    r[QUERY_Z] = bary[0] * az + bary[1] * bz + bary[2] * cz; r[QUERY_WITHIN] = Infinity;
+    this.distanceIn(r, normal);
+    t[TRIANGLE_D] = r[QUERY_D];
   }
 }
 
 const edgeBary = new Float64Array(3);
+/** the point queries a box makes of itself: through the record, not signedDistance (shape.ts) */
+const boxQuery = pointQuery();
 const seg = new Float64Array(1);

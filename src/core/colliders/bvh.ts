@@ -214,6 +214,18 @@ export class TriangleBvh {
    * Ties go to the triangle met first. Nearer child first; a node no nearer than the best so far is skipped.
    */
   closest(px: number, py: number, pz: number, max2: number, bary: Float64Array): number {
+    // through an array, as closestPointOnTriangle (sphere.ts): a small wrapper V8 inlines, so no number is boxed
+    const q = this.query;
+    q[0] = px; q[1] = py; q[2] = pz; q[3] = max2;
+    return this.closestIn(bary);
+  }
+
+  /** closest's point and bound */
+  private readonly query = new Float64Array(4);
+
+  /** closest on the point and bound in this.query. */
+  private closestIn(bary: Float64Array): number {
+    const q = this.query, px = q[0], py = q[1], pz = q[2], max2 = q[3];
     const nodes = this.nodes, tri = this.triangles, p = this.positions, stack = this.stack, nrm = this.normals;
     let best2 = max2, best = -1, top = 0;
     let n = 0;

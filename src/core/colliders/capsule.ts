@@ -1,7 +1,11 @@
 import { axisCrossingNormal, closestPointOnSegment, segmentTriangleClosest } from './convex.js';
-import type { ColliderShape } from './shape.js';
+import {
+  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, deepestOf, distanceOf, pointQuery, type ColliderShape,
+} from './shape.js';
 
 const seg = new Float64Array(1);
+/** the point queries a capsule makes of itself: through the record, not signedDistance (shape.ts) */
+const capsuleQuery = pointQuery();
 
 /**
  * The points within `radius` of the segment from `a` to `b`. Its surface is round (curvature radius = radius), and
@@ -29,23 +33,35 @@ export class CapsuleCollider implements ColliderShape {
   }
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
+    return distanceOf(this, px, py, pz, normal, within);
+  }
+
+  distanceIn(q: Float64Array, normal: Float64Array): void {
+    const px = q[QUERY_X], py = q[QUERY_Y], pz = q[QUERY_Z], within = q[QUERY_WITHIN];
     const t = closestPointOnSegment(px, py, pz, this.a, this.b);
     const dx = px - (this.a[0] + t * (this.b[0] - this.a[0]));
     const dy = py - (this.a[1] + t * (this.b[1] - this.a[1]));
     const dz = pz - (this.a[2] + t * (this.b[2] - this.a[2]));
     const d2 = dx * dx + dy * dy + dz * dz;
     const far = this.radius + within;
-    if (far > 0 && d2 >= far * far) return within;
+    if (far > 0 && d2 >= far * far) { q[QUERY_D] = within; return; }
     const d = Math.sqrt(d2);
     if (d > 1e-12) { normal[0] = dx / d; normal[1] = dy / d; normal[2] = dz / d; }
     else { normal[0] = this.px; normal[1] = this.py; normal[2] = this.pz; }
-    return d - this.radius;
+    q[QUERY_D] = d - this.radius;
   }
 
   triangleDeepest(
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-    bary: Float64Array, normal: Float64Array,
+    bary: Float64Array, normal: Float64Array, within = Infinity,
   ): number {
+    return deepestOf(this, a, ia, b, ib, c, ic, bary, normal, within);
+  }
+
+  triangleDeepestIn(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, out: Float64Array,
+  ): void {
     const A = this.a, B = this.b;
     const d2 = segmentTriangleClosest(
       A[0], A[1], A[2], B[0], B[1], B[2],
@@ -55,8 +71,14 @@ export class CapsuleCollider implements ColliderShape {
     const qx = bary[0] * a[ia] + bary[1] * b[ib] + bary[2] * c[ic];
     const qy = bary[0] * a[ia + 1] + bary[1] * b[ib + 1] + bary[2] * c[ic + 1];
     const qz = bary[0] * a[ia + 2] + bary[1] * b[ib + 2] + bary[2] * c[ic + 2];
-    if (d2 > 1e-24) return this.signedDistance(qx, qy, qz, normal);
+    if (d2 > 1e-24) {
+      const r = capsuleQuery;
+      r[QUERY_X] = qx; r[QUERY_Y] = qy; r[QUERY_Z] = qz; r[QUERY_WITHIN] = Infinity;
+      this.distanceIn(r, normal);
+      out[TRIANGLE_D] = r[QUERY_D];
+      return;
+    }
     // the axis crosses the triangle: push it off sideways, along the triangle's normal made perpendicular to the axis
-    return axisCrossingNormal(a, ia, b, ib, c, ic, B[0] - A[0], B[1] - A[1], B[2] - A[2], normal, this.radius);
+    out[TRIANGLE_D] = axisCrossingNormal(a, ia, b, ib, c, ic, B[0] - A[0], B[1] - A[1], B[2] - A[2], normal, this.radius);
   }
 }

@@ -22,11 +22,13 @@
  */
 import { GOLDEN_ITERATIONS } from '../layout.generated.js';
 import { closestPointOnTriangle } from './sphere.js';
-import type { ColliderShape } from './shape.js';
+import { QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, pointQuery, type ColliderShape } from './shape.js';
 
 const scratchN = new Float64Array(3);
 const scratchB = new Float64Array(3);
 const segST = new Float64Array(2);
+/** the searches' point queries of their shape */
+const convexQuery = pointQuery();
 
 /**
  * Closest points of segments p1–q1 and p2–q2 (Ericson, Real-Time Collision Detection, §5.1.9): parameters s (on
@@ -158,15 +160,17 @@ function segmentTriangleIn(v: Float64Array, bary: Float64Array, seg: Float64Arra
 
 /**
  * The certificate above: if some vertex's tangent plane has the whole triangle on or above it, that vertex is the
- * deepest point: its weights go to `bary`, its normal to `normal`, and its signed distance is returned. If the
- * tangent planes show that the whole triangle is at least `within` away, that bound (≥ within) is returned.
- * Otherwise NaN (and `bary` holds the deepest vertex, `normal` its normal).
+ * deepest point: its weights go to `bary`, its normal to `normal`, its signed distance to t[TRIANGLE_D], and true is
+ * returned. If the tangent planes show that the whole triangle is at least t[TRIANGLE_WITHIN] away, that bound
+ * (≥ within) goes there and true is returned. Otherwise false (and `bary` holds the deepest vertex, `normal` its
+ * normal). Numbers in and out through the triangle query's record `t` (shape.ts: none boxed).
  */
 export function vertexDeepest(
   shape: ColliderShape,
   a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-  bary: Float64Array, normal: Float64Array, within = Infinity,
-): number {
+  bary: Float64Array, normal: Float64Array, t: Float64Array,
+): boolean {
+  const within = t[TRIANGLE_WITHIN];
   const ax = a[ia], ay = a[ia + 1], az = a[ia + 2];
   const bx = b[ib], by = b[ib + 1], bz = b[ib + 2];
   const cx = c[ic], cy = c[ic + 1], cz = c[ic + 2];
@@ -174,7 +178,10 @@ export function vertexDeepest(
   let n0 = 0, n1 = 0, n2 = 0;
   for (let k = 0; k < 3; k++) {
     const vx = k === 0 ? ax : k === 1 ? bx : cx, vy = k === 0 ? ay : k === 1 ? by : cy, vz = k === 0 ? az : k === 1 ? bz : cz;
-    const d = shape.signedDistance(vx, vy, vz, scratchN);
+    const q = convexQuery;
+    q[QUERY_X] = vx; q[QUERY_Y] = vy; q[QUERY_Z] = vz; q[QUERY_WITHIN] = Infinity;
+    shape.distanceIn(q, scratchN);
+    const d = q[QUERY_D];
     const nx = scratchN[0], ny = scratchN[1], nz = scratchN[2];
     const nv = nx * vx + ny * vy + nz * vz;
     // the other vertices' height above this vertex's tangent plane (0.1 µm of rounding allowed)
@@ -187,70 +194,75 @@ export function vertexDeepest(
   if (certified) {
     bary[0] = certK === 0 ? 1 : 0; bary[1] = certK === 1 ? 1 : 0; bary[2] = certK === 2 ? 1 : 0;
     normal[0] = n0; normal[1] = n1; normal[2] = n2;
-    return certD;
+    t[TRIANGLE_D] = certD;
+    return true;
   }
   bary[0] = bestK === 0 ? 1 : 0; bary[1] = bestK === 1 ? 1 : 0; bary[2] = bestK === 2 ? 1 : 0;
   // no point of the triangle is nearer than `within`: the caller needs no more
-  return bound >= within ? bound : NaN;
+  if (!(bound >= within)) return false;
+  t[TRIANGLE_D] = bound;
+  return true;
 }
 
 const GOLDEN = (Math.sqrt(5) - 1) / 2;
 
 /**
  * Minimises the convex signed distance over triangle (a, b, c) by nested golden-section searches (see the file's
- * comment): the best point found goes to `bary` and its normal to `normal`; returns its signed distance.
+ * comment): the best point found goes to `bary`, its normal to `normal` and its signed distance to t[TRIANGLE_D].
+ * The outer search over u ∈ [0, 1] evaluates F(u) = min over v ∈ [0, 1 − u] of f(u, v) at its two first points,
+ * one more each iteration, then at its ends; each F(u) is the inner search over v the same way, its range's ends
+ * last. Written as two loops with the one call of f in the inner: V8 inlines the shape's signedDistance there (its
+ * budget for inlining per function would run out before six copies of it), and no number crosses a call (shape.ts).
  */
 export function goldenDeepest(
   shape: ColliderShape,
   a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-  bary: Float64Array, normal: Float64Array,
-): number {
-  const g = golden;
-  g.shape = shape;
-  g.ax = a[ia]; g.ay = a[ia + 1]; g.az = a[ia + 2];
-  g.ux = b[ib] - g.ax; g.uy = b[ib + 1] - g.ay; g.uz = b[ib + 2] - g.az;
-  g.vx = c[ic] - g.ax; g.vy = c[ic + 1] - g.ay; g.vz = c[ic + 2] - g.az;
-  g.bestU = 0; g.bestV = 0; g.bestD = Infinity;
+  bary: Float64Array, normal: Float64Array, t: Float64Array,
+): void {
+  const ax = a[ia], ay = a[ia + 1], az = a[ia + 2];
+  const ux = b[ib] - ax, uy = b[ib + 1] - ay, uz = b[ib + 2] - az;
+  const vx = c[ic] - ax, vy = c[ic + 1] - ay, vz = c[ic + 2] - az;
+  let bestU = 0, bestV = 0, bestD = Infinity;
   let lo = 0, hi = 1;
-  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
-  let f1 = goldenInner(x1), f2 = goldenInner(x2);
-  for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
-    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = goldenInner(x1); }
-    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = goldenInner(x2); }
+  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo), f1 = 0, f2 = 0;
+  for (let k = -2; k < GOLDEN_ITERATIONS + 2; k++) {
+    // the outer search's next point: x1, x2, then the new one of each iteration, then the ends 0 and 1
+    let u: number, left = k === -2;
+    if (k === -2) u = x1;
+    else if (k === -1) u = x2;
+    else if (k >= GOLDEN_ITERATIONS) u = k - GOLDEN_ITERATIONS;
+    else if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); u = x1; left = true; }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); u = x2; }
+    // F(u): the inner search over v, the same way, the ends of its range 0 and 1 − u last
+    let vlo = 0, vhi = 1 - u;
+    let y1 = vhi - GOLDEN * (vhi - vlo), y2 = vlo + GOLDEN * (vhi - vlo), g1 = 0, g2 = 0, g3 = 0, g4 = 0;
+    for (let j = -2; j < GOLDEN_ITERATIONS + 2; j++) {
+      let v: number, low = j === -2;
+      if (j === -2) v = y1;
+      else if (j === -1) v = y2;
+      else if (j === GOLDEN_ITERATIONS) v = 0;
+      else if (j > GOLDEN_ITERATIONS) v = 1 - u;
+      else if (g1 <= g2) { vhi = y2; y2 = y1; g2 = g1; y1 = vhi - GOLDEN * (vhi - vlo); v = y1; low = true; }
+      else { vlo = y1; y1 = y2; g1 = g2; y2 = vlo + GOLDEN * (vhi - vlo); v = y2; }
+      const q = convexQuery;
+      q[QUERY_X] = ax + u * ux + v * vx; q[QUERY_Y] = ay + u * uy + v * vy; q[QUERY_Z] = az + u * uz + v * vz; q[QUERY_WITHIN] = Infinity;
+      shape.distanceIn(q, scratchN);
+      const d = q[QUERY_D];
+      if (d < bestD) { bestD = d; bestU = u; bestV = v; }
+      if (j >= GOLDEN_ITERATIONS) { if (j === GOLDEN_ITERATIONS) g3 = d; else g4 = d; }
+      else if (low) g1 = d;
+      else g2 = d;
+    }
+    // (the minimum over the range: a minimum on the triangle's boundary is found exactly)
+    const F = Math.min(g1, g2, g3, g4);
+    if (k < GOLDEN_ITERATIONS) { if (left) f1 = F; else f2 = F; }
   }
-  goldenInner(0); goldenInner(1);
-  const u = g.bestU, v = g.bestV;
-  g.shape = null;
-  bary[0] = 1 - u - v; bary[1] = u; bary[2] = v;
-  return shape.signedDistance(g.ax + u * g.ux + v * g.vx, g.ay + u * g.uy + v * g.vy, g.az + u * g.uz + v * g.vz, normal);
-}
-
-/** The search's triangle (a + u·(b − a) + v·(c − a)), shape and best point so far: module state, no closure per call. */
-const golden = {
-  shape: null as ColliderShape | null,
-  ax: 0, ay: 0, az: 0, ux: 0, uy: 0, uz: 0, vx: 0, vy: 0, vz: 0,
-  bestU: 0, bestV: 0, bestD: Infinity,
-};
-
-/** f(u, v): the signed distance at (u, v), remembered if it is the best so far. */
-function goldenF(u: number, v: number): number {
-  const g = golden;
-  const d = g.shape!.signedDistance(g.ax + u * g.ux + v * g.vx, g.ay + u * g.uy + v * g.vy, g.az + u * g.uz + v * g.vz, scratchN);
-  if (d < g.bestD) { g.bestD = d; g.bestU = u; g.bestV = v; }
-  return d;
-}
-
-/** F(u) = min over v ∈ [0, 1 − u] of f(u, v), by golden-section search, the ends of the range included. */
-function goldenInner(u: number): number {
-  let lo = 0, hi = 1 - u;
-  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
-  let f1 = goldenF(u, x1), f2 = goldenF(u, x2);
-  for (let k = 0; k < GOLDEN_ITERATIONS; k++) {
-    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = goldenF(u, x1); }
-    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = goldenF(u, x2); }
-  }
-  // the ends of the range: a minimum on the triangle's boundary is found exactly
-  return Math.min(f1, f2, goldenF(u, 0), goldenF(u, 1 - u));
+  bary[0] = 1 - bestU - bestV; bary[1] = bestU; bary[2] = bestV;
+  const q = convexQuery;
+  q[QUERY_X] = ax + bestU * ux + bestV * vx; q[QUERY_Y] = ay + bestU * uy + bestV * vy; q[QUERY_Z] = az + bestU * uz + bestV * vz;
+  q[QUERY_WITHIN] = Infinity;
+  shape.distanceIn(q, normal);
+  t[TRIANGLE_D] = q[QUERY_D];
 }
 
 /** A convex shape with a support mapping: the point of the shape farthest in a direction. */
@@ -264,38 +276,39 @@ const scratchQ2 = new Float64Array(3);
 
 /**
  * Minimum of the convex signed distance along edge a + s·(b − a), s ∈ [0, 1], by golden-section search
- * (EDGE_ITERATIONS: the bracket shrinks to 0.618²⁰ ≈ 7·10⁻⁵ of the edge), the ends included. Returns the
- * distance; the parameter of the best point to `at[0]`.
+ * (EDGE_ITERATIONS: the bracket shrinks to 0.618²⁰ ≈ 7·10⁻⁵ of the edge), the ends first: the parameter of the best
+ * point to `at[0]`, the distance there to `at[1]`. The edge comes in `edge` (supportDeepest's), no number passed;
+ * one call of the distance, as in goldenDeepest.
  */
-function edgeDeepest(
-  shape: ColliderShape, ax: number, ay: number, az: number, bx: number, by: number, bz: number, at: Float64Array,
-): number {
+function edgeDeepest(shape: ColliderShape, at: Float64Array): void {
   const e = edge;
-  e.shape = shape; e.ax = ax; e.ay = ay; e.az = az; e.ux = bx - ax; e.uy = by - ay; e.uz = bz - az;
-  let bestT = 0, best = edgeF(0);
-  const fb = edgeF(1);
-  if (fb < best) { best = fb; bestT = 1; }
-  let lo = 0, hi = 1;
-  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo);
-  let f1 = edgeF(x1), f2 = edgeF(x2);
-  for (let k = 0; k < EDGE_ITERATIONS; k++) {
-    if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); f1 = edgeF(x1); }
-    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); f2 = edgeF(x2); }
+  let bestT = 0, best = Infinity, lo = 0, hi = 1;
+  let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo), f1 = 0, f2 = 0;
+  for (let k = -4; k < EDGE_ITERATIONS; k++) {
+    // the ends 0 and 1, then x1, x2, then the new point of each iteration
+    let s: number, left = k === -2;
+    if (k < -2) s = k + 4;
+    else if (k === -2) s = x1;
+    else if (k === -1) s = x2;
+    else if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); s = x1; left = true; }
+    else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); s = x2; }
+    const q = convexQuery;
+    q[QUERY_X] = e.ax + s * e.ux; q[QUERY_Y] = e.ay + s * e.uy; q[QUERY_Z] = e.az + s * e.uz; q[QUERY_WITHIN] = Infinity;
+    shape.distanceIn(q, scratchN);
+    const d = q[QUERY_D];
+    if (k === -4) best = d;
+    else if (k === -3) { if (d < best) { best = d; bestT = 1; } }
+    else if (left) f1 = d;
+    else f2 = d;
   }
   if (f1 < best) { best = f1; bestT = x1; }
   if (f2 < best) { best = f2; bestT = x2; }
-  e.shape = null;
-  at[0] = bestT;
-  return best;
+  at[0] = bestT; at[1] = best;
 }
-/** The edge edgeDeepest searches (a + t·u) and its shape: module state, no closure per call. */
-const edge = { shape: null as ColliderShape | null, ax: 0, ay: 0, az: 0, ux: 0, uy: 0, uz: 0 };
-function edgeF(t: number): number {
-  const e = edge;
-  return e.shape!.signedDistance(e.ax + t * e.ux, e.ay + t * e.uy, e.az + t * e.uz, scratchN);
-}
+/** The edge edgeDeepest searches (a + s·u): module state, no closure per call. */
+const edge = { ax: 0, ay: 0, az: 0, ux: 0, uy: 0, uz: 0 };
 const EDGE_ITERATIONS = 20;
-const edgeAt = new Float64Array(1);
+const edgeAt = new Float64Array(2);
 /** supportDeepest's vertices: signed distance and normal of each */
 const boundary = new Float64Array(12);
 
@@ -307,20 +320,20 @@ const boundary = new Float64Array(12);
  * cuts C but C ∩ plane (a convex set: the support points' chord crosses the plane in it) misses T, the minimum of
  * the convex distance over T lies on T's boundary: the vertices and the three edges (edgeDeepest). If C ∩ plane
  * meets T, or an edge reaches into C, T crosses C and the golden-section search over the whole triangle decides.
- * `bary` and `normal` as triangleDeepest; returns the signed distance.
+ * `bary` and `normal` as triangleDeepest; the signed distance to t[TRIANGLE_D].
  */
 export function supportDeepest(
   shape: SupportShape,
   a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-  bary: Float64Array, normal: Float64Array,
-): number {
+  bary: Float64Array, normal: Float64Array, t: Float64Array,
+): void {
   const ax = a[ia], ay = a[ia + 1], az = a[ia + 2];
   const bx = b[ib], by = b[ib + 1], bz = b[ib + 2];
   const cx = c[ic], cy = c[ic + 1], cz = c[ic + 2];
   const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;
   const nx = aby * acz - abz * acy, ny = abz * acx - abx * acz, nz = abx * acy - aby * acx;
   const nn = nx * nx + ny * ny + nz * nz;
-  if (!(nn > 1e-30)) return goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal);
+  if (!(nn > 1e-30)) { goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal, t); return; }
   const hi = scratchQ, lo = scratchQ2;
   shape.support(nx, ny, nz, hi);
   shape.support(-nx, -ny, -nz, lo);
@@ -331,8 +344,8 @@ export function supportDeepest(
   let px: number, py: number, pz: number;
   const cuts = hLo <= 0 && hHi >= 0;
   if (cuts) {
-    const t = hHi > hLo ? -hLo / (hHi - hLo) : 0;
-    px = lo[0] + t * (hi[0] - lo[0]); py = lo[1] + t * (hi[1] - lo[1]); pz = lo[2] + t * (hi[2] - lo[2]);
+    const s = hHi > hLo ? -hLo / (hHi - hLo) : 0;
+    px = lo[0] + s * (hi[0] - lo[0]); py = lo[1] + s * (hi[1] - lo[1]); pz = lo[2] + s * (hi[2] - lo[2]);
   } else {
     const q = hLo > 0 ? lo : hi, h = (hLo > 0 ? hLo : hHi) / nn;
     px = q[0] - h * nx; py = q[1] - h * ny; pz = q[2] - h * nz;
@@ -343,16 +356,24 @@ export function supportDeepest(
   const v = (nx * (qy * acz - qz * acy) + ny * (qz * acx - qx * acz) + nz * (qx * acy - qy * acx)) / nn;
   const inside = v >= 0 && w >= 0 && v + w <= 1;
   if (inside) {
-    if (cuts) return goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal);
+    if (cuts) { goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal, t); return; }
     bary[0] = 1 - v - w; bary[1] = v; bary[2] = w;
-    return shape.signedDistance(px, py, pz, normal);
+    const q = convexQuery;
+    q[QUERY_X] = px; q[QUERY_Y] = py; q[QUERY_Z] = pz; q[QUERY_WITHIN] = Infinity;
+    shape.distanceIn(q, normal);
+    t[TRIANGLE_D] = q[QUERY_D];
+    return;
   }
   // on the boundary: the vertices, then the edges. Along an edge the distance is convex: where it does not fall
   // on leaving an end (n·(other end − end) ≥ 0) the edge's minimum is that end; and the tangent planes at the ends
   // bound it from below, so an edge that cannot beat the best so far is not searched
   const V = boundary;
   for (let k = 0; k < 3; k++) {
-    V[4 * k] = shape.signedDistance(k === 0 ? ax : k === 1 ? bx : cx, k === 0 ? ay : k === 1 ? by : cy, k === 0 ? az : k === 1 ? bz : cz, scratchN);
+    const q = convexQuery;
+    q[QUERY_X] = k === 0 ? ax : k === 1 ? bx : cx; q[QUERY_Y] = k === 0 ? ay : k === 1 ? by : cy; q[QUERY_Z] = k === 0 ? az : k === 1 ? bz : cz;
+    q[QUERY_WITHIN] = Infinity;
+    shape.distanceIn(q, scratchN);
+    V[4 * k] = q[QUERY_D];
     V[4 * k + 1] = scratchN[0]; V[4 * k + 2] = scratchN[1]; V[4 * k + 3] = scratchN[2];
   }
   let best = V[0], b0 = 1, b1 = 0, b2 = 0;
@@ -367,31 +388,28 @@ export function supportDeepest(
     const sj = -(V[4 * j + 1] * ex + V[4 * j + 2] * ey + V[4 * j + 3] * ez);
     if (si >= 0 || sj >= 0) continue;
     if (Math.max(V[4 * i] + si, V[4 * j] + sj) >= best) continue;
-    const d = e === 0 ? edgeDeepest(shape, ax, ay, az, bx, by, bz, edgeAt)
-      : e === 1 ? edgeDeepest(shape, bx, by, bz, cx, cy, cz, edgeAt)
-        : edgeDeepest(shape, cx, cy, cz, ax, ay, az, edgeAt);
+    // the edge from corner e to corner e + 1
+    const g = edge;
+    g.ax = e === 0 ? ax : e === 1 ? bx : cx; g.ay = e === 0 ? ay : e === 1 ? by : cy; g.az = e === 0 ? az : e === 1 ? bz : cz;
+    g.ux = ex; g.uy = ey; g.uz = ez;
+    edgeDeepest(shape, edgeAt);
+    const d = edgeAt[1];
     if (d < best) {
       best = d;
-      const t = edgeAt[0];
-      b0 = e === 0 ? 1 - t : e === 1 ? 0 : t;
-      b1 = e === 0 ? t : e === 1 ? 1 - t : 0;
-      b2 = e === 0 ? 0 : e === 1 ? t : 1 - t;
+      const s = edgeAt[0];
+      b0 = e === 0 ? 1 - s : e === 1 ? 0 : s;
+      b1 = e === 0 ? s : e === 1 ? 1 - s : 0;
+      b2 = e === 0 ? 0 : e === 1 ? s : 1 - s;
     }
   }
   // a vertex or an edge reaching into C: T crosses it
-  if (best <= 0) return goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal);
+  if (best <= 0) { goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal, t); return; }
   bary[0] = b0; bary[1] = b1; bary[2] = b2;
-  return shape.signedDistance(b0 * ax + b1 * bx + b2 * cx, b0 * ay + b1 * by + b2 * cy, b0 * az + b1 * bz + b2 * cz, normal);
-}
-
-/** The deepest point of a triangle for a convex shape: the vertex certificate, else the golden-section search. */
-export function convexTriangleDeepest(
-  shape: ColliderShape,
-  a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-  bary: Float64Array, normal: Float64Array, within = Infinity,
-): number {
-  const d = vertexDeepest(shape, a, ia, b, ib, c, ic, bary, normal, within);
-  return Number.isNaN(d) ? goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal) : d;
+  const q = convexQuery;
+  q[QUERY_X] = b0 * ax + b1 * bx + b2 * cx; q[QUERY_Y] = b0 * ay + b1 * by + b2 * cy; q[QUERY_Z] = b0 * az + b1 * bz + b2 * cz;
+  q[QUERY_WITHIN] = Infinity;
+  shape.distanceIn(q, normal);
+  t[TRIANGLE_D] = q[QUERY_D];
 }
 
 /** Parameter in [0, 1] of the point of segment a–b closest to p. */

@@ -1,7 +1,10 @@
 import { axisCrossingNormal, segmentTriangleClosest, supportDeepest, vertexDeepest, type SupportShape } from './convex.js';
+import { QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, deepestOf, distanceOf, pointQuery } from './shape.js';
 
 const bary2 = new Float64Array(3);
 const seg = new Float64Array(1);
+/** the point queries a cylinder makes of itself: through the record, not signedDistance (shape.ts) */
+const cylinderQuery = pointQuery();
 
 /**
  * A closed cylinder: centre, axis direction, radius and height (caps included). Its rims are sharp
@@ -17,8 +20,11 @@ export class CylinderCollider implements SupportShape {
   readonly ux: number; readonly uy: number; readonly uz: number;
   /** half the height [m] */
   readonly halfHeight: number;
-  /** a unit vector perpendicular to the axis */
-  private readonly px: number; private readonly py: number; private readonly pz: number;
+  /**
+   * a unit vector perpendicular to the axis; in a Float64Array, not fields: a field holding a whole number (0, −1)
+   * is kept as an integer, and distanceIn's normal, that or a quotient, would then be boxed (16 bytes a call)
+   */
+  private readonly perp = new Float64Array(3);
   private readonly bound: number;
   constructor(
     readonly center: readonly [number, number, number],
@@ -37,22 +43,27 @@ export class CylinderCollider implements SupportShape {
     else if (ax <= az) { px = 0; py = uz; pz = -uy; }
     else { px = uy; py = -ux; pz = 0; }
     const pl = Math.hypot(px, py, pz);
-    this.px = px / pl; this.py = py / pl; this.pz = pz / pl;
+    this.perp[0] = px / pl; this.perp[1] = py / pl; this.perp[2] = pz / pl;
     this.bound = Math.hypot(radius, this.halfHeight);
   }
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
-    const dx = px - this.center[0], dy = py - this.center[1], dz = pz - this.center[2];
+    return distanceOf(this, px, py, pz, normal, within);
+  }
+
+  distanceIn(q: Float64Array, normal: Float64Array): void {
+    const dx = q[QUERY_X] - this.center[0], dy = q[QUERY_Y] - this.center[1], dz = q[QUERY_Z] - this.center[2];
+    const within = q[QUERY_WITHIN];
     if (within !== Infinity) {
       const far = this.bound + within;
-      if (far > 0 && dx * dx + dy * dy + dz * dz >= far * far) return within;
+      if (far > 0 && dx * dx + dy * dy + dz * dz >= far * far) { q[QUERY_D] = within; return; }
     }
     const y = dx * this.ux + dy * this.uy + dz * this.uz;
     const rx = dx - y * this.ux, ry = dy - y * this.uy, rz = dz - y * this.uz;
     const rho = Math.sqrt(rx * rx + ry * ry + rz * rz);
     let hx: number, hy: number, hz: number;
     if (rho > 1e-12) { hx = rx / rho; hy = ry / rho; hz = rz / rho; }
-    else { hx = this.px; hy = this.py; hz = this.pz; }
+    else { const p = this.perp; hx = p[0]; hy = p[1]; hz = p[2]; }
     const sy = y < 0 ? -1 : 1;
     const er = rho - this.radius, ey = Math.abs(y) - this.halfHeight;
     if (er > 0 || ey > 0) {
@@ -61,19 +72,26 @@ export class CylinderCollider implements SupportShape {
       normal[0] = (or * hx + oy * sy * this.ux) / d;
       normal[1] = (or * hy + oy * sy * this.uy) / d;
       normal[2] = (or * hz + oy * sy * this.uz) / d;
-      return d;
+      q[QUERY_D] = d;
+      return;
     }
-    if (er >= ey) { normal[0] = hx; normal[1] = hy; normal[2] = hz; return er; }
+    if (er >= ey) { normal[0] = hx; normal[1] = hy; normal[2] = hz; q[QUERY_D] = er; return; }
     normal[0] = sy * this.ux; normal[1] = sy * this.uy; normal[2] = sy * this.uz;
-    return ey;
+    q[QUERY_D] = ey;
   }
 
   triangleDeepest(
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
     bary: Float64Array, normal: Float64Array, within = Infinity,
   ): number {
-    const d = vertexDeepest(this, a, ia, b, ib, c, ic, bary, normal, within);
-    if (!Number.isNaN(d)) return d;
+    return deepestOf(this, a, ia, b, ib, c, ic, bary, normal, within);
+  }
+
+  triangleDeepestIn(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, t: Float64Array,
+  ): void {
+    if (vertexDeepest(this, a, ia, b, ib, c, ic, bary, normal, t)) return;
     // the triangle's point closest to the axis line (a segment reaching past every vertex's projection)
     const cx = this.center[0], cy = this.center[1], cz = this.center[2];
     // (square roots of the sums, not Math.hypot, whose compensated sum the WebAssembly kernel could not repeat)
@@ -96,10 +114,15 @@ export class CylinderCollider implements SupportShape {
     if (ey <= 0 && er >= ey) {
       // on the curved side: sd = ρ − r there, and ρ − r ≤ sd everywhere, so this is the deepest point
       bary[0] = bary2[0]; bary[1] = bary2[1]; bary[2] = bary2[2];
-      if (d2 > 1e-24) return this.signedDistance(qx, qy, qz, normal);
-      return axisCrossingNormal(a, ia, b, ib, c, ic, this.ux, this.uy, this.uz, normal, this.radius);
+      if (d2 > 1e-24) {
+        const r = cylinderQuery;
+        r[QUERY_X] = qx; r[QUERY_Y] = qy; r[QUERY_Z] = qz; r[QUERY_WITHIN] = Infinity;
+        this.distanceIn(r, normal);
+        t[TRIANGLE_D] = r[QUERY_D];
+      } else t[TRIANGLE_D] = axisCrossingNormal(a, ia, b, ib, c, ic, this.ux, this.uy, this.uz, normal, this.radius);
+      return;
     }
-    return supportDeepest(this, a, ia, b, ib, c, ic, bary, normal);
+    supportDeepest(this, a, ia, b, ib, c, ic, bary, normal, t);
   }
 
   /** The point farthest along d: on the cap d points to (either, for d ⊥ axis), at the rim's point towards d. */

@@ -1,4 +1,4 @@
-import type { ColliderShape } from './shape.js';
+import { QUERY_D, QUERY_Y, distanceOf, type ColliderShape } from './shape.js';
 
 /** The half-space y < height. A triangle's deepest point in a half-space is a vertex, so particle contact suffices. */
 export class FloorCollider implements ColliderShape {
@@ -6,8 +6,12 @@ export class FloorCollider implements ColliderShape {
   readonly minCurvatureRadius = Infinity;
   constructor(/** plane height [m] */ readonly height: number) {}
 
-  signedDistance(_px: number, py: number, _pz: number, normal: Float64Array): number {
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
+    return distanceOf(this, px, py, pz, normal, within);
+  }
+
+  distanceIn(q: Float64Array, normal: Float64Array): void {
     normal[0] = 0; normal[1] = 1; normal[2] = 0;
-    return py - this.height;
+    q[QUERY_D] = q[QUERY_Y] - this.height;
   }
 }

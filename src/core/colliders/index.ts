@@ -10,7 +10,10 @@ import { eulerXYZ } from '../mesh/generators.js';
 import { PosedCollider } from './pose.js';
 import { SphereCollider } from './sphere.js';
 
-export type { ColliderShape } from './shape.js';
+export {
+  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, pointQuery, triangleQuery,
+  type ColliderShape,
+} from './shape.js';
 export { PosedCollider, type ColliderPose, type ColliderMotion, type ColliderKeyframe } from './pose.js';
 export { SphereCollider, closestPointOnTriangle } from './sphere.js';
 export { FloorCollider } from './floor.js';

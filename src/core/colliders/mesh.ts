@@ -44,7 +44,9 @@ import { SceneError } from '../scene.js';
 import { plainText } from '../text.js';
 import { TriangleBvh } from './bvh.js';
 import { goldenDeepest, segmentTriangleClosest } from './convex.js';
-import type { ColliderShape } from './shape.js';
+import {
+  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, deepestOf, distanceOf, pointQuery, type ColliderShape,
+} from './shape.js';
 
 /** Most triangles a mesh collider may have (before dropping those without area): a million, ~1 s to build. */
 export const MAX_COLLIDER_TRIANGLES = 1_000_000;
@@ -59,6 +61,19 @@ const bary = new Float64Array(3);
 const vn = new Float64Array(3);
 const edgeBary = new Float64Array(3);
 const segT = new Float64Array(1);
+/** the cloth triangle's box (min xyz, max xyz) in triangleDeepestIn */
+const triBox = new Float64Array(6);
+/** the point queries a mesh makes of itself: through the record, not signedDistance (shape.ts) */
+const own = pointQuery();
+
+/** Squared gap between node k's box (of `bounds`) and the box `t` (min xyz, max xyz). */
+function gap2(bounds: Float32Array, k: number, t: Float64Array): number {
+  const o = 6 * k;
+  const gx = Math.max(bounds[o] - t[3], t[0] - bounds[o + 3], 0);
+  const gy = Math.max(bounds[o + 1] - t[4], t[1] - bounds[o + 4], 0);
+  const gz = Math.max(bounds[o + 2] - t[5], t[2] - bounds[o + 5], 0);
+  return gx * gx + gy * gy + gz * gz;
+}
 
 const fail = (source: string, why: string): never => {
   throw new SceneError(`${source}: ${why}`);
@@ -259,8 +274,9 @@ export class MeshCollider implements ColliderShape {
     this.cellReach = 0.5 * Math.hypot(...this.cell) * (1 + 1e-6) + 1e-9 * longest;
     this.grid = new Float32Array(cells[0] * cells[1] * cells[2]);
     for (let k = 0, g = 0; k < cells[2]; k++) for (let j = 0; j < cells[1]; j++) for (let i = 0; i < cells[0]; i++, g++) {
-      const t = this.bvh.closest(B[0] + (i + 0.5) * this.cell[0], B[1] + (j + 0.5) * this.cell[1], B[2] + (k + 0.5) * this.cell[2], Infinity, bary);
-      this.grid[g] = this.distanceTo(t, B[0] + (i + 0.5) * this.cell[0], B[1] + (j + 0.5) * this.cell[1], B[2] + (k + 0.5) * this.cell[2], vn);
+      own[QUERY_X] = B[0] + (i + 0.5) * this.cell[0]; own[QUERY_Y] = B[1] + (j + 0.5) * this.cell[1]; own[QUERY_Z] = B[2] + (k + 0.5) * this.cell[2];
+      this.distanceTo(this.bvh.closest(own[QUERY_X], own[QUERY_Y], own[QUERY_Z], Infinity, bary), own, vn);
+      this.grid[g] = own[QUERY_D];
     }
   }
 
@@ -270,6 +286,11 @@ export class MeshCollider implements ColliderShape {
   }
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
+    return distanceOf(this, px, py, pz, normal, within);
+  }
+
+  distanceIn(q: Float64Array, normal: Float64Array): void {
+    const px = q[QUERY_X], py = q[QUERY_Y], pz = q[QUERY_Z], within = q[QUERY_WITHIN];
     const bvh = this.bvh;
     let t: number;
     if (within > 0 && within !== Infinity) {
@@ -278,22 +299,26 @@ export class MeshCollider implements ColliderShape {
       const i = Math.floor((px - B[0]) / this.cell[0]), j = Math.floor((py - B[1]) / this.cell[1]), k = Math.floor((pz - B[2]) / this.cell[2]);
       const c = this.gridCells, inGrid = i >= 0 && j >= 0 && k >= 0 && i < c[0] && j < c[1] && k < c[2];
       const centre = inGrid ? this.grid[i + c[0] * (j + c[1] * k)] : 0;
-      if (inGrid && centre - this.cellReach >= within) return within;
+      if (inGrid && centre - this.cellReach >= within) { q[QUERY_D] = within; return; }
       t = bvh.closest(px, py, pz, within * within, bary);
       if (t < 0) {
         // nothing within reach: outside, unless the point may be inside a closed piece (in its box, and the grid
         // cannot say it is out)
-        if (this.closedPieces === 0 || !inGrid || centre > this.cellReach) return within;
+        if (this.closedPieces === 0 || !inGrid || centre > this.cellReach) { q[QUERY_D] = within; return; }
         t = bvh.closest(px, py, pz, Infinity, bary);
       }
     } else {
       t = bvh.closest(px, py, pz, Infinity, bary);
     }
-    return this.distanceTo(t, px, py, pz, normal);
+    this.distanceTo(t, q, normal);
   }
 
-  /** The signed distance and normal of p from its closest point: triangle t (leaf order) at weights `bary`. */
-  private distanceTo(t: number, px: number, py: number, pz: number, normal: Float64Array): number {
+  /**
+   * The signed distance (to q[QUERY_D]) and normal of the point q[QUERY_X…Z] from its closest point: triangle t
+   * (leaf order) at weights `bary`.
+   */
+  private distanceTo(t: number, q: Float64Array, normal: Float64Array): void {
+    const px = q[QUERY_X], py = q[QUERY_Y], pz = q[QUERY_Z];
     const p = this.bvh.positions, tri = this.bvh.triangles, fn = this.faceNormals;
     const ia = tri[3 * t], ib = tri[3 * t + 1], ic = tri[3 * t + 2];
     const u = bary[0], v = bary[1], w = bary[2];
@@ -306,7 +331,8 @@ export class MeshCollider implements ColliderShape {
       // an open shell: unsigned, away from the surface
       if (d > 1e-12) { normal[0] = vx / d; normal[1] = vy / d; normal[2] = vz / d; }
       else { normal[0] = nx; normal[1] = ny; normal[2] = nz; }
-      return d;
+      q[QUERY_D] = d;
+      return;
     }
     // the pseudo-normal of the feature the closest point lies on (closestPointOnTriangle gives exact 0 and 1)
     if (u === 1 || v === 1 || w === 1) {
@@ -325,19 +351,29 @@ export class MeshCollider implements ColliderShape {
       const l = Math.hypot(nx, ny, nz) || 1;
       normal[0] = nx / l; normal[1] = ny / l; normal[2] = nz / l;
     }
-    return sign * d;
+    q[QUERY_D] = sign * d;
+  }
+
+  triangleDeepest(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, within = Infinity,
+  ): number {
+    return deepestOf(this, a, ia, b, ib, c, ic, bary, normal, within);
   }
 
   /** See the file's comment: the point of the triangle nearest the mesh's sharp edges and corners. */
-  triangleDeepest(
+  triangleDeepestIn(
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-    baryOut: Float64Array, normal: Float64Array, within = Infinity,
-  ): number {
+    baryOut: Float64Array, normal: Float64Array, out: Float64Array,
+  ): void {
+    const within = out[TRIANGLE_WITHIN];
     const ax = a[ia], ay = a[ia + 1], az = a[ia + 2], bx = b[ib], by = b[ib + 1], bz = b[ib + 2];
     const cx = c[ic], cy = c[ic + 1], cz = c[ic + 2];
-    if (this.sharpEdges === 0) return this.vertexDeepest(a, ia, b, ib, c, ic, baryOut, normal);
+    if (this.sharpEdges === 0) { this.vertexDeepest(a, ia, b, ib, c, ic, baryOut, normal, out); return; }
     const lx = Math.min(ax, bx, cx), ly = Math.min(ay, by, cy), lz = Math.min(az, bz, cz);
     const hx = Math.max(ax, bx, cx), hy = Math.max(ay, by, cy), hz = Math.max(az, bz, cz);
+    const box = triBox;
+    box[0] = lx; box[1] = ly; box[2] = lz; box[3] = hx; box[4] = hy; box[5] = hz;
     // the triangle's unit normal and plane offset: an edge wholly farther than the best from its plane is skipped
     let tnx = (by - ay) * (cz - az) - (bz - az) * (cy - ay), tny = (bz - az) * (cx - ax) - (bx - ax) * (cz - az), tnz = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
     const tl = Math.hypot(tnx, tny, tnz);
@@ -347,15 +383,7 @@ export class MeshCollider implements ColliderShape {
     const flags = this.flags;
     const bound2 = within === Infinity ? Infinity : Math.max(within, 0) ** 2;
     let best2 = bound2, found = false, crossing = -1, top = 0, n = 0;
-    // squared gap between node k's box and the triangle's
-    const gap2 = (k: number): number => {
-      const o = 6 * k;
-      const gx = Math.max(bounds[o] - hx, lx - bounds[o + 3], 0);
-      const gy = Math.max(bounds[o + 1] - hy, ly - bounds[o + 4], 0);
-      const gz = Math.max(bounds[o + 2] - hz, lz - bounds[o + 5], 0);
-      return gx * gx + gy * gy + gz * gz;
-    };
-    if (gap2(0) > best2) return within;
+    if (gap2(bounds, 0, box) > best2) { out[TRIANGLE_D] = within; return; }
     walk: for (;;) {
       const count = nodes[2 * n + 1];
       if (count > 0) {
@@ -391,7 +419,7 @@ export class MeshCollider implements ColliderShape {
         }
       } else {
         const l = nodes[2 * n], r = l + 1;
-        const dl = gap2(l), dr = gap2(r);
+        const dl = gap2(bounds, l, box), dr = gap2(bounds, r, box);
         if (dl < dr) {
           if (dr <= best2) stack[top++] = r;
           if (dl <= best2) { n = l; continue; }
@@ -403,18 +431,19 @@ export class MeshCollider implements ColliderShape {
       let next = -1;
       while (top > 0) {
         const k = stack[--top];
-        if (gap2(k) <= best2) { next = k; break; }
+        if (gap2(bounds, k, box) <= best2) { next = k; break; }
       }
       if (next < 0) break;
       n = next;
     }
     if (crossing >= 0) {
-      if (flags[crossing] & SIGNED) return goldenDeepest(this, a, ia, b, ib, c, ic, baryOut, normal);
+      if (flags[crossing] & SIGNED) { goldenDeepest(this, a, ia, b, ib, c, ic, baryOut, normal, out); return; }
       // an open shell's sharp edge through the triangle: push the crossing point to the side its vertices are on
       let sx = 0, sy = 0, sz = 0;
       for (let k = 0; k < 3; k++) {
         const src = k === 0 ? a : k === 1 ? b : c, o = k === 0 ? ia : k === 1 ? ib : ic;
-        this.signedDistance(src[o], src[o + 1], src[o + 2], vn);
+        own[QUERY_X] = src[o]; own[QUERY_Y] = src[o + 1]; own[QUERY_Z] = src[o + 2]; own[QUERY_WITHIN] = Infinity;
+        this.distanceIn(own, vn);
         sx += vn[0]; sy += vn[1]; sz += vn[2];
       }
       let l = Math.hypot(sx, sy, sz);
@@ -424,31 +453,42 @@ export class MeshCollider implements ColliderShape {
         l = Math.hypot(sx, sy, sz) || 1;
       }
       normal[0] = sx / l; normal[1] = sy / l; normal[2] = sz / l;
-      return 0;
+      out[TRIANGLE_D] = 0;
+      return;
     }
-    if (!found) return within === Infinity ? this.vertexDeepest(a, ia, b, ib, c, ic, baryOut, normal) : within;
+    if (!found) {
+      if (within === Infinity) this.vertexDeepest(a, ia, b, ib, c, ic, baryOut, normal, out);
+      else out[TRIANGLE_D] = within;
+      return;
+    }
     const u = baryOut[0], v = baryOut[1], w = baryOut[2];
-    const d = this.signedDistance(u * ax + v * bx + w * cx, u * ay + v * by + w * cy, u * az + v * bz + w * cz, normal);
+    own[QUERY_X] = u * ax + v * bx + w * cx; own[QUERY_Y] = u * ay + v * by + w * cy; own[QUERY_Z] = u * az + v * bz + w * cz;
+    own[QUERY_WITHIN] = Infinity;
+    this.distanceIn(own, normal);
+    const d = own[QUERY_D];
     // inside a closed piece: the triangle crosses the surface
-    return d < 0 ? goldenDeepest(this, a, ia, b, ib, c, ic, baryOut, normal) : d;
+    if (d < 0) goldenDeepest(this, a, ia, b, ib, c, ic, baryOut, normal, out);
+    else out[TRIANGLE_D] = d;
   }
 
-  /** The deepest of the triangle's vertices (a mesh without sharp edges has no deeper point). */
+  /** The deepest of the triangle's vertices (a mesh without sharp edges has no deeper point): its distance to out[TRIANGLE_D]. */
   private vertexDeepest(
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-    baryOut: Float64Array, normal: Float64Array,
-  ): number {
+    baryOut: Float64Array, normal: Float64Array, out: Float64Array,
+  ): void {
     let best = Infinity;
     for (let k = 0; k < 3; k++) {
       const src = k === 0 ? a : k === 1 ? b : c, o = k === 0 ? ia : k === 1 ? ib : ic;
-      const d = this.signedDistance(src[o], src[o + 1], src[o + 2], vn);
+      own[QUERY_X] = src[o]; own[QUERY_Y] = src[o + 1]; own[QUERY_Z] = src[o + 2]; own[QUERY_WITHIN] = Infinity;
+      this.distanceIn(own, vn);
+      const d = own[QUERY_D];
       if (d < best) {
         best = d;
         baryOut[0] = k === 0 ? 1 : 0; baryOut[1] = k === 1 ? 1 : 0; baryOut[2] = k === 2 ? 1 : 0;
         normal[0] = vn[0]; normal[1] = vn[1]; normal[2] = vn[2];
       }
     }
-    return best;
+    out[TRIANGLE_D] = best;
   }
 }
 

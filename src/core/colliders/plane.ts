@@ -1,4 +1,4 @@
-import type { ColliderShape } from './shape.js';
+import { QUERY_D, QUERY_X, QUERY_Y, QUERY_Z, distanceOf, type ColliderShape } from './shape.js';
 
 /**
  * The half-space below a plane through `point` with outward unit normal `normal` (a ramp, a wall, a floor at any
@@ -18,8 +18,12 @@ export class PlaneCollider implements ColliderShape {
     this.offset = this.nx * point[0] + this.ny * point[1] + this.nz * point[2];
   }
 
-  signedDistance(px: number, py: number, pz: number, normal: Float64Array): number {
+  signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
+    return distanceOf(this, px, py, pz, normal, within);
+  }
+
+  distanceIn(q: Float64Array, normal: Float64Array): void {
     normal[0] = this.nx; normal[1] = this.ny; normal[2] = this.nz;
-    return this.nx * px + this.ny * py + this.nz * pz - this.offset;
+    q[QUERY_D] = this.nx * q[QUERY_X] + this.ny * q[QUERY_Y] + this.nz * q[QUERY_Z] - this.offset;
   }
 }

@@ -26,7 +26,9 @@ import { CylinderCollider } from './cylinder.js';
 import { MeshCollider } from './mesh.js';
 import { PlaneCollider } from './plane.js';
 import { eulerXYZInto } from '../mesh/generators.js';
-import type { ColliderShape } from './shape.js';
+import {
+  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, deepestOf, distanceOf, pointQuery, triangleQuery, type ColliderShape,
+} from './shape.js';
 import { FloorCollider } from './floor.js';
 import { SphereCollider } from './sphere.js';
 
@@ -98,6 +100,9 @@ const scratchR2 = new Float64Array(9);
 const scratchE = new Float64Array(3);
 const scratchT = new Float64Array(3);
 const scratchE9 = new Float64Array(9);
+/** the queries a posed collider makes of its shape in its own frame */
+const localQuery = pointQuery();
+const localTriangle = triangleQuery();
 
 /** The type id and numbers of a shape built in its own frame by createColliders (colliders/index.ts). */
 function kernelShape(l: ColliderShape): [number, [number, number, number]] {
@@ -168,7 +173,7 @@ export class PosedCollider implements ColliderShape {
     this.keyTimes = new Float64Array(keys.map((k) => k.time));
     this.keyValues = new Float64Array(keys.flatMap((k) => [...k.translation, ...k.rotation]));
     this.loop = (motion?.loop ?? false) && keys.length > 1 && keys[keys.length - 1].time > 0;
-    if (!local.triangleDeepest) this.triangleDeepest = undefined;
+    if (!local.triangleDeepestIn) { this.triangleDeepest = undefined; this.triangleDeepestIn = undefined; }
     this.poseAt(0, this.R, this.o);
   }
 
@@ -300,24 +305,37 @@ export class PosedCollider implements ColliderShape {
   }
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
-    const R = this.R;
-    const dx = px - this.o[0], dy = py - this.o[1], dz = pz - this.o[2];
-    const n = scratchN;
-    const d = this.local.signedDistance(
-      R[0] * dx + R[3] * dy + R[6] * dz, R[1] * dx + R[4] * dy + R[7] * dz, R[2] * dx + R[5] * dy + R[8] * dz, n, within,
-    );
+    return distanceOf(this, px, py, pz, normal, within);
+  }
+
+  distanceIn(q: Float64Array, normal: Float64Array): void {
+    const R = this.R, within = q[QUERY_WITHIN];
+    const dx = q[QUERY_X] - this.o[0], dy = q[QUERY_Y] - this.o[1], dz = q[QUERY_Z] - this.o[2];
+    const n = scratchN, l = localQuery;
+    l[QUERY_X] = R[0] * dx + R[3] * dy + R[6] * dz; l[QUERY_Y] = R[1] * dx + R[4] * dy + R[7] * dz; l[QUERY_Z] = R[2] * dx + R[5] * dy + R[8] * dz;
+    l[QUERY_WITHIN] = within;
+    this.local.distanceIn(l, n);
+    const d = l[QUERY_D];
     if (d < within) {
       normal[0] = R[0] * n[0] + R[1] * n[1] + R[2] * n[2];
       normal[1] = R[3] * n[0] + R[4] * n[1] + R[5] * n[2];
       normal[2] = R[6] * n[0] + R[7] * n[1] + R[8] * n[2];
     }
-    return d;
+    q[QUERY_D] = d;
   }
 
   triangleDeepest?(
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-    bary: Float64Array, normal: Float64Array, within?: number,
+    bary: Float64Array, normal: Float64Array, within = Infinity,
   ): number {
+    return deepestOf(this, a, ia, b, ib, c, ic, bary, normal, within);
+  }
+
+  triangleDeepestIn?(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, t: Float64Array,
+  ): void {
+    const within = t[TRIANGLE_WITHIN];
     const R = this.R, o = this.o, s = scratchTri;
     // the three corners in the shape's frame, written out here: as a call per corner (a helper) the numbers were
     // boxed, 144 bytes of garbage per triangle tested (node's sampling heap profiler, the default scene)
@@ -329,13 +347,16 @@ export class PosedCollider implements ColliderShape {
       s[at + 1] = R[1] * dx + R[4] * dy + R[7] * dz;
       s[at + 2] = R[2] * dx + R[5] * dy + R[8] * dz;
     }
-    const n = scratchN;
-    const d = this.local.triangleDeepest!(s, 0, s, 3, s, 6, bary, n, within);
-    if (within === undefined || d < within) {
+    const n = scratchN, l = localTriangle;
+    l[TRIANGLE_WITHIN] = within;
+    this.local.triangleDeepestIn!(s, 0, s, 3, s, 6, bary, n, l);
+    const d = l[TRIANGLE_D];
+    // (not d >= within: a NaN's normal is written, as it was with no bound)
+    if (!(d >= within)) {
       normal[0] = R[0] * n[0] + R[1] * n[1] + R[2] * n[2];
       normal[1] = R[3] * n[0] + R[4] * n[1] + R[5] * n[2];
       normal[2] = R[6] * n[0] + R[7] * n[1] + R[8] * n[2];
     }
-    return d;
+    t[TRIANGLE_D] = d;
   }
 }

@@ -1,6 +1,15 @@
 /**
  * A static collider as the contact phase sees it. Shapes (sphere, floor, plane, box, capsule, cylinder) implement this interface
  * and are built by createColliders in colliders/index.ts; the solvers never name a shape.
+ *
+ * **No number crosses a call boundary** (no allocation inside a step): V8 boxes every non-integer number passed to
+ * or returned from a call it does not inline, a heap allocation each (up to 28 MB a frame in the TypeScript kernel's
+ * contact, `node scripts/step-garbage.mjs --kernel ts`). The contact phases call shapes through calls V8 cannot
+ * inline (a shape of several kinds, a body too large), so each query has two forms: `distanceIn` and
+ * `triangleDeepestIn` take and give their numbers through a Float64Array record, and `signedDistance` and
+ * `triangleDeepest` are small wrappers over them (distanceOf, deepestOf below) that V8 inlines where they are
+ * called. A body reads its record's inputs before it makes any query of its own and writes its answer last, so the
+ * wrappers can share one record.
  */
 export interface ColliderShape {
   readonly type: string;
@@ -15,6 +24,8 @@ export interface ColliderShape {
    * without writing the normal when the point is at least that far away (the contact loop's early out).
    */
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within?: number): number;
+  /** signedDistance through a record: p from q[QUERY_X…Z], `within` from q[QUERY_WITHIN] (Infinity: none); the distance to q[QUERY_D]. */
+  distanceIn(q: Float64Array, normal: Float64Array): void;
   /**
    * Deepest point of triangle (a, b, c) with respect to this shape, for shapes whose surface can poke through a
    * triangle between its vertices (a sphere can; a half-space cannot, so it leaves this undefined).
@@ -26,4 +37,45 @@ export interface ColliderShape {
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
     bary: Float64Array, normal: Float64Array, within?: number,
   ): number;
+  /** triangleDeepest through a record: `within` from t[TRIANGLE_WITHIN] (Infinity: none); the distance to t[TRIANGLE_D]. */
+  triangleDeepestIn?(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, t: Float64Array,
+  ): void;
+}
+
+/** a point query's record (ColliderShape.distanceIn): the point [m], the bound `within` [m], the answer [m] */
+export const QUERY_X = 0, QUERY_Y = 1, QUERY_Z = 2, QUERY_WITHIN = 3, QUERY_D = 4;
+/** a triangle query's record (ColliderShape.triangleDeepestIn): the bound `within` [m], the answer [m] */
+export const TRIANGLE_WITHIN = 0, TRIANGLE_D = 1;
+
+/** a record for point queries: the wrappers' own (see the file's comment) */
+export function pointQuery(): Float64Array {
+  return new Float64Array(5);
+}
+/** a record for triangle queries */
+export function triangleQuery(): Float64Array {
+  return new Float64Array(2);
+}
+
+const query = pointQuery();
+const triangle = triangleQuery();
+
+/** shape.signedDistance(…) through the record: what every shape's signedDistance is. */
+export function distanceOf(shape: ColliderShape, px: number, py: number, pz: number, normal: Float64Array, within: number): number {
+  const q = query;
+  q[QUERY_X] = px; q[QUERY_Y] = py; q[QUERY_Z] = pz; q[QUERY_WITHIN] = within;
+  shape.distanceIn(q, normal);
+  return q[QUERY_D];
+}
+
+/** shape.triangleDeepest(…) through the record: what every shape's triangleDeepest is. */
+export function deepestOf(
+  shape: ColliderShape, a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+  bary: Float64Array, normal: Float64Array, within: number,
+): number {
+  const t = triangle;
+  t[TRIANGLE_WITHIN] = within;
+  shape.triangleDeepestIn!(a, ia, b, ib, c, ic, bary, normal, t);
+  return t[TRIANGLE_D];
 }

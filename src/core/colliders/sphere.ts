@@ -1,4 +1,6 @@
-import type { ColliderShape } from './shape.js';
+import {
+  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, deepestOf, distanceOf, pointQuery, type ColliderShape,
+} from './shape.js';
 
 /**
  * Closest point of triangle (a, b, c) to point p, as barycentric weights written to `bary`.
@@ -21,6 +23,9 @@ export function closestPointOnTriangle(
   v[6] = bx; v[7] = by; v[8] = bz; v[9] = cx; v[10] = cy; v[11] = cz;
   closestPointIn(v, bary);
 }
+
+/** the point queries a sphere makes of itself: through the record, not signedDistance (shape.ts) */
+const sphereQuery = pointQuery();
 
 /** closestPointOnTriangle's arguments p, a, b, c */
 const triangleArgs = new Float64Array(12);
@@ -85,23 +90,34 @@ export class SphereCollider implements ColliderShape {
   ) {}
 
   signedDistance(px: number, py: number, pz: number, normal: Float64Array, within = Infinity): number {
-    const dx = px - this.cx, dy = py - this.cy, dz = pz - this.cz;
+    return distanceOf(this, px, py, pz, normal, within);
+  }
+
+  distanceIn(q: Float64Array, normal: Float64Array): void {
+    const dx = q[QUERY_X] - this.cx, dy = q[QUERY_Y] - this.cy, dz = q[QUERY_Z] - this.cz, within = q[QUERY_WITHIN];
     const d2 = dx * dx + dy * dy + dz * dz;
     const far = this.radius + within;
-    if (far > 0 && d2 >= far * far) return within;
+    if (far > 0 && d2 >= far * far) { q[QUERY_D] = within; return; }
     const d = Math.sqrt(d2);
     if (d > 1e-12) {
       normal[0] = dx / d; normal[1] = dy / d; normal[2] = dz / d;
     } else {
       normal[0] = 0; normal[1] = 1; normal[2] = 0;
     }
-    return d - this.radius;
+    q[QUERY_D] = d - this.radius;
   }
 
   triangleDeepest(
     a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
-    bary: Float64Array, normal: Float64Array,
+    bary: Float64Array, normal: Float64Array, within = Infinity,
   ): number {
+    return deepestOf(this, a, ia, b, ib, c, ic, bary, normal, within);
+  }
+
+  triangleDeepestIn(
+    a: Float32Array, ia: number, b: Float32Array, ib: number, c: Float32Array, ic: number,
+    bary: Float64Array, normal: Float64Array, t: Float64Array,
+  ): void {
     closestPointOnTriangle(
       this.cx, this.cy, this.cz,
       a[ia], a[ia + 1], a[ia + 2], b[ib], b[ib + 1], b[ib + 2], c[ic], c[ic + 1], c[ic + 2],
@@ -110,6 +126,9 @@ export class SphereCollider implements ColliderShape {
     const qx = bary[0] * a[ia] + bary[1] * b[ib] + bary[2] * c[ic];
     const qy = bary[0] * a[ia + 1] + bary[1] * b[ib + 1] + bary[2] * c[ic + 1];
     const qz = bary[0] * a[ia + 2] + bary[1] * b[ib + 2] + bary[2] * c[ic + 2];
-    return this.signedDistance(qx, qy, qz, normal);
+    const r = sphereQuery;
+    r[QUERY_X] = qx; r[QUERY_Y] = qy; r[QUERY_Z] = qz; r[QUERY_WITHIN] = Infinity;
+    this.distanceIn(r, normal);
+    t[TRIANGLE_D] = r[QUERY_D];
   }
 }
