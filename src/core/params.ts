@@ -49,14 +49,25 @@ function carriedBy(model: ClothModel, scene: Scene, colliders: readonly PosedCol
  * stretch limit the stretch limit.
  */
 export function perClothRefusal(id: number, params: SimParams): string | null {
-  const { thickness, friction, staticFriction, damping, stretchFactor } = params.perCloth;
-  const varies = (v: Float64Array) => v.some((x) => x !== v[0]);
-  const reads = id === PHASE.contact || id === PHASE.contactTriangles ? [['cloth.thickness', thickness], ['material.friction', friction], ['material.staticFriction', staticFriction]] as const
-    : id === PHASE.distance ? [['material.damping', damping], ['material.stretchFactor', stretchFactor]] as const
-    : id === PHASE.tethers || id === PHASE.stretchLimit ? [['material.stretchFactor', stretchFactor]] as const
-    : [];
-  const field = reads.find(([, v]) => varies(v));
-  return field ? `the scene's cloths differ in ${field[0]}` : null;
+  // (called every frame for each phase: constant strings and no closure, so that it allocates nothing)
+  const p = params.perCloth;
+  if (id === PHASE.contact || id === PHASE.contactTriangles) {
+    if (varies(p.thickness)) return "the scene's cloths differ in cloth.thickness";
+    if (varies(p.friction)) return "the scene's cloths differ in material.friction";
+    if (varies(p.staticFriction)) return "the scene's cloths differ in material.staticFriction";
+  } else if (id === PHASE.distance) {
+    if (varies(p.damping)) return "the scene's cloths differ in material.damping";
+    if (varies(p.stretchFactor)) return "the scene's cloths differ in material.stretchFactor";
+  } else if (id === PHASE.tethers || id === PHASE.stretchLimit) {
+    if (varies(p.stretchFactor)) return "the scene's cloths differ in material.stretchFactor";
+  }
+  return null;
+}
+
+/** Whether the cloths' values differ. */
+function varies(v: Float64Array): boolean {
+  for (let i = 1; i < v.length; i++) if (v[i] !== v[0]) return true;
+  return false;
 }
 
 /** Length of one simulated frame [s]: frames are 1/60 s everywhere (CLI, app, benchmarks). */

@@ -3,15 +3,18 @@
  * (wind), integration, the grab, stretch limiting, contact, velocity update. reference.ts maps the schedule's phases
  * (schedule.ts) onto them and the solvers' own. None of them allocates.
  */
-import {
-  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, pointQuery, triangleQuery, type ColliderShape,
-} from './colliders/shape.js';
+import { QUERY, TRIANGLE, pointQuery, triangleQuery, type ColliderShape } from './colliders/shape.js';
 import { TRIANGLE_SPREAD_MOST } from './layout.generated.js';
 import { BEND, type ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
 import { updateTethers } from './tethers.js';
 import { windVelocity } from './wind.js';
+
+// (module constants: see shape.ts QUERY)
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
+const { WITHIN: TRIANGLE_WITHIN, D: TRIANGLE_D } = TRIANGLE;
+const SPREAD_MOST = TRIANGLE_SPREAD_MOST;
 
 const wind = new Float64Array(3);
 const normal = new Float64Array(3);
@@ -219,31 +222,32 @@ function place(state: ClothState, j: number, p: number): void {
   state.residuals[j] = p - q;
 }
 
+/** frictionScale's record: the tangential motion, the overlap, what moved in, the recovery [m]; the scale [-] */
+const friction = new Float64Array(5);
+const F_TANGENTIAL = 0, F_OVERLAP = 1, F_MOVED_IN = 2, F_RECOVER = 3, F_SCALE = 4;
+
 /**
  * Position-based Coulomb friction (Macklin et al. 2014, "Unified Particle Physics for Real-Time Applications",
  * §6.1): the tangential displacement `d` of a contact over this substep is removed while it is within the static
- * cone (|d| < μs·depth), else reduced by μk·depth (`cloth`'s coefficients: params.perCloth). Returns the scale
- * to apply to d (subtract scale·d).
+ * cone (|d| < μs·depth), else reduced by μk·depth (`cloth`'s coefficients: params.perCloth). Writes the scale to
+ * apply to d (subtract scale·d) to f[F_SCALE]. Its numbers come and go through the record `f` (none is boxed:
+ * colliders/shape.ts).
+ *
+ * The depth is the part of the push-out that presses (the pressed depth): of an overlap f[F_OVERLAP] (contact
+ * thickness less distance), f[F_MOVED_IN] is what the point moved into the surface this substep, the rest was there
+ * before it, undone at most f[F_RECOVER] a substep. What the point moved into presses on the surface (the normal
+ * impulse, times h²/m), and so does a leftover the push closes within this substep (over ≤ recover: the cloth
+ * resting in contact, as before). A deeper overlap, one the push takes more than two substeps to undo, is a
+ * depenetration: it moves the cloth without pressing it and gives no friction (between the two, linearly less).
+ * Counted as pressure, it let static friction hold a cloth on a collider grown under it while the cloth stretched,
+ * a slingshot released when the overlap closed (docs/physics.md, "Overlaps").
  */
-function frictionScale(tangential: number, depth: number, params: SimParams, cloth: number): number {
-  if (tangential < 1e-12) return 0;
-  if (tangential < params.perCloth.staticFriction[cloth] * depth) return 1;
-  return Math.min((params.perCloth.friction[cloth] * depth) / tangential, 1);
-}
-
-/**
- * The part of a push-out that bounds friction [m]: of an overlap of `overlap` [m] (contact thickness less distance),
- * `movedIn` [m] is what the point moved into the surface this substep, the rest was there before it, undone at most
- * `recover` [m] a substep. What the point moved into presses on the surface (the normal impulse, times h²/m), and
- * so does a leftover the push closes within this substep (over ≤ recover: the cloth resting in contact, as before).
- * A deeper overlap, one the push takes more than two substeps to undo, is a depenetration: it moves the cloth
- * without pressing it and gives no friction (between the two, linearly less). Counted as pressure, it let static
- * friction hold a cloth on a collider grown under it while the cloth stretched, a slingshot released when the
- * overlap closed (docs/physics.md, "Overlaps").
- */
-function pressedDepth(overlap: number, movedIn: number, recover: number): number {
+function frictionScale(f: Float64Array, params: SimParams, cloth: number): void {
+  const tangential = f[F_TANGENTIAL], overlap = f[F_OVERLAP], movedIn = f[F_MOVED_IN], recover = f[F_RECOVER];
   const over = overlap - movedIn;
-  return over <= 0 ? overlap : movedIn + Math.max(0, Math.min(over, 2 * recover - over));
+  const depth = over <= 0 ? overlap : movedIn + Math.max(0, Math.min(over, 2 * recover - over));
+  f[F_SCALE] = tangential < 1e-12 ? 0 : tangential < params.perCloth.staticFriction[cloth] * depth ? 1
+    : Math.min((params.perCloth.friction[cloth] * depth) / tangential, 1);
 }
 
 /**
@@ -255,12 +259,6 @@ export function needsTriangleContact(model: ClothModel, shape: ColliderShape, th
   if (!shape.triangleDeepest) return false;
   const e = 2 * model.maxTriangleEdge;
   return (e * e) / (8 * (shape.minCurvatureRadius + thickness)) > 0.5 * thickness;
-}
-
-/** Squared distance [m²] from the point (cx, cy, cz) to particle j/3 of x. */
-function cornerDistance2(x: Float32Array, j: number, cx: number, cy: number, cz: number): number {
-  const dx = x[j] - cx, dy = x[j + 1] - cy, dz = x[j + 2] - cz;
-  return dx * dx + dy * dy + dz * dz;
 }
 
 /** The box of the first n particles of x [m] into `box` (min xyz, max xyz). */
@@ -288,7 +286,7 @@ function clothBox(x: Float32Array, n: number): void {
  * triangles of a particle), so the constraints that follow drag the rest of the cloth along no faster. And of the
  * outward motion left after the push-out, the part the push-out made (at most its depth) also moves x_prev: it is
  * not velocity. A particle arriving from outside ends with zero normal velocity, as before. Friction is bounded by
- * the part of the push-out that presses on the surface (pressedDepth), not by a depenetration.
+ * the part of the push-out that presses on the surface (frictionScale's pressed depth), not by a depenetration.
  *
  * A moving collider is first put where it is at the substep's end (PosedCollider.moveTo), and every motion above is
  * taken relative to its surface (the surface point's own motion over the substep subtracted): a collider moving
@@ -328,7 +326,10 @@ export function collideParticles(model: ClothModel, state: ClothState, params: S
       const movedIn = Math.max(-mn, 0);
       const depth = Math.min(th - d, movedIn + recover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
-      const s = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), pressedDepth(th - d, movedIn, recover), params, cloth);
+      const f = friction;
+      f[F_TANGENTIAL] = Math.sqrt(tx * tx + ty * ty + tz * tz); f[F_OVERLAP] = th - d; f[F_MOVED_IN] = movedIn; f[F_RECOVER] = recover;
+      frictionScale(f, params, cloth);
+      const s = f[F_SCALE];
       x[j] += depth * normal[0] - s * tx;
       x[j + 1] += depth * normal[1] - s * ty;
       x[j + 2] += depth * normal[2] - s * tz;
@@ -390,7 +391,10 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       // the triangle's own ball (its centroid, its farthest corner from it): farther than the thickness from the
       // shape, so is every point of the triangle
       const cx = (x[3 * a] + x[3 * b] + x[3 * c]) / 3, cy = (x[3 * a + 1] + x[3 * b + 1] + x[3 * c + 1]) / 3, cz = (x[3 * a + 2] + x[3 * b + 2] + x[3 * c + 2]) / 3;
-      const r = Math.sqrt(Math.max(cornerDistance2(x, ja, cx, cy, cz), cornerDistance2(x, jb, cx, cy, cz), cornerDistance2(x, jc, cx, cy, cz)));
+      // (each corner's squared distance written out: a helper's numbers were boxed, colliders/shape.ts)
+      const ax0 = x[ja] - cx, ay0 = x[ja + 1] - cy, az0 = x[ja + 2] - cz, bx0 = x[jb] - cx, by0 = x[jb + 1] - cy, bz0 = x[jb + 2] - cz;
+      const cx0 = x[jc] - cx, cy0 = x[jc + 1] - cy, cz0 = x[jc + 2] - cz;
+      const r = Math.sqrt(Math.max(ax0 * ax0 + ay0 * ay0 + az0 * az0, bx0 * bx0 + by0 * by0 + bz0 * bz0, cx0 * cx0 + cy0 * cy0 + cz0 * cz0));
       const far = th + r * (1 + 1e-9), q = contactQuery;
       q[QUERY_X] = cx; q[QUERY_Y] = cy; q[QUERY_Z] = cz; q[QUERY_WITHIN] = far;
       shape.distanceIn(q, normal);
@@ -408,7 +412,7 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       // grabbed) leaves a free corner a small share and would throw it by Δ/share, across the cloth (5.6 cm in one
       // substep, a corner grabbed along a sphere): no corner moves more than TRIANGLE_SPREAD_MOST × Δ (a grid of free
       // particles spreads at most 1.82 Δ)
-      const spread = Math.max(wa, wb, wc) / denom, scale = spread > TRIANGLE_SPREAD_MOST ? TRIANGLE_SPREAD_MOST / spread : 1;
+      const spread = Math.max(wa, wb, wc) / denom, scale = spread > SPREAD_MOST ? SPREAD_MOST / spread : 1;
       // motion of the contact point over the substep so far, treated as a particle's above
       let mx = bary[0] * (x[3 * a] - xp[3 * a]) + bary[1] * (x[3 * b] - xp[3 * b]) + bary[2] * (x[3 * c] - xp[3 * c]);
       let my = bary[0] * (x[3 * a + 1] - xp[3 * a + 1]) + bary[1] * (x[3 * b + 1] - xp[3 * b + 1]) + bary[2] * (x[3 * c + 1] - xp[3 * c + 1]);
@@ -426,7 +430,10 @@ export function collideTriangles(model: ClothModel, state: ClothState, params: S
       const movedIn = Math.max(-mn, 0);
       const depth = Math.min(th - d, movedIn + triangleRecover);
       const tx = mx - mn * normal[0], ty = my - mn * normal[1], tz = mz - mn * normal[2];
-      const fs = frictionScale(Math.sqrt(tx * tx + ty * ty + tz * tz), pressedDepth(th - d, movedIn, triangleRecover), params, cloth);
+      const f = friction;
+      f[F_TANGENTIAL] = Math.sqrt(tx * tx + ty * ty + tz * tz); f[F_OVERLAP] = th - d; f[F_MOVED_IN] = movedIn; f[F_RECOVER] = triangleRecover;
+      frictionScale(f, params, cloth);
+      const fs = f[F_SCALE];
       // desired displacement of the contact point, spread so that Σ bary_i·Δx_i equals it; and what of it
       // moves x_prev likewise
       const made = Math.min(mn + depth, depth);

@@ -6,7 +6,7 @@
 import { cubeMesh, icosphereMesh, terrainMesh } from '../core/colliders/mesh-shapes.js';
 import { describe, expect, it } from 'vitest';
 import {
-  COLLIDER_TYPES, MeshCollider, PosedCollider, QUERY_D, QUERY_Y, Simulation, SphereCollider, createColliders, meshCollider, validateScene,
+  COLLIDER_TYPES, MeshCollider, PosedCollider, QUERY, Simulation, SphereCollider, createColliders, meshCollider, validateScene,
   type ColliderShape,
 } from '../core/index.js';
 import { assignPhases } from '../core/schedule.js';
@@ -58,7 +58,7 @@ describe('sceneRefusal', () => {
     const blob: ColliderShape = {
       type: 'blob', minCurvatureRadius: Infinity,
       signedDistance: (_x, y, _z, n) => { n[0] = 0; n[1] = 1; n[2] = 0; return y; },
-      distanceIn: (q, n) => { n[0] = 0; n[1] = 1; n[2] = 0; q[QUERY_D] = q[QUERY_Y]; },
+      distanceIn: (q, n) => { n[0] = 0; n[1] = 1; n[2] = 0; q[QUERY.D] = q[QUERY.Y]; },
     };
     const shape = new PosedCollider(blob, [1, 0, 0, 0, 1, 0, 0, 0, 1], [0, 0, 0]);
     expect(gpuCollider(shape)).toBeNull();

@@ -202,7 +202,7 @@ describe.skipIf(!gpu)('GPU vs CPU parity', () => {
   });
 
   // A sphere grown at once under a draped cloth (physics.test.ts, the slingshot): from the CPU's draped rubber, the
-  // GPU lifts it onto the new top as the CPU does, its friction bounded by what presses (pressedDepth), not thrown.
+  // GPU lifts it onto the new top as the CPU does, its friction bounded by what presses (frictionScale's pressed depth), not thrown.
   // Seen (SwiftShader): 3.2e-4 m apart after 30 frames, the top 5.4 mm over the new one (12² sags); with friction
   // from the whole push on the GPU alone, 0.36 m apart and 12 cm → 1e-3 m, 2.5 cm.
   test('a sphere grown at once under draped rubber: lifted onto its new top as on the CPU, not thrown', async () => {

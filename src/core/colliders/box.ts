@@ -1,8 +1,10 @@
 import { eulerXYZ } from '../mesh/generators.js';
 import { goldenDeepest, segmentTriangleClosest, vertexDeepest } from './convex.js';
-import {
-  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, deepestOf, distanceOf, pointQuery, type ColliderShape,
-} from './shape.js';
+import { QUERY, TRIANGLE, deepestOf, distanceOf, pointQuery, type ColliderShape } from './shape.js';
+
+// (module constants: see shape.ts QUERY)
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
+const { D: TRIANGLE_D } = TRIANGLE;
 
 /**
  * An oriented box: centre, half extents along its own axes, turned by Euler XYZ angles [degrees] as cloth.rotation

@@ -1,7 +1,9 @@
 import { axisCrossingNormal, closestPointOnSegment, segmentTriangleClosest } from './convex.js';
-import {
-  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, deepestOf, distanceOf, pointQuery, type ColliderShape,
-} from './shape.js';
+import { QUERY, TRIANGLE, deepestOf, distanceOf, pointQuery, type ColliderShape } from './shape.js';
+
+// (module constants: see shape.ts QUERY)
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
+const { D: TRIANGLE_D } = TRIANGLE;
 
 const seg = new Float64Array(1);
 /** the point queries a capsule makes of itself: through the record, not signedDistance (shape.ts) */

@@ -22,7 +22,13 @@
  */
 import { GOLDEN_ITERATIONS } from '../layout.generated.js';
 import { closestPointOnTriangle } from './sphere.js';
-import { QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, pointQuery, type ColliderShape } from './shape.js';
+import { QUERY, TRIANGLE, pointQuery, type ColliderShape } from './shape.js';
+
+// (module constants: see shape.ts QUERY)
+/** GOLDEN_ITERATIONS as a module constant (see shape.ts QUERY) */
+const ITERATIONS = GOLDEN_ITERATIONS;
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
+const { WITHIN: TRIANGLE_WITHIN, D: TRIANGLE_D } = TRIANGLE;
 
 const scratchN = new Float64Array(3);
 const scratchB = new Float64Array(3);
@@ -225,23 +231,23 @@ export function goldenDeepest(
   let bestU = 0, bestV = 0, bestD = Infinity;
   let lo = 0, hi = 1;
   let x1 = hi - GOLDEN * (hi - lo), x2 = lo + GOLDEN * (hi - lo), f1 = 0, f2 = 0;
-  for (let k = -2; k < GOLDEN_ITERATIONS + 2; k++) {
+  for (let k = -2; k < ITERATIONS + 2; k++) {
     // the outer search's next point: x1, x2, then the new one of each iteration, then the ends 0 and 1
     let u: number, left = k === -2;
     if (k === -2) u = x1;
     else if (k === -1) u = x2;
-    else if (k >= GOLDEN_ITERATIONS) u = k - GOLDEN_ITERATIONS;
+    else if (k >= ITERATIONS) u = k - ITERATIONS;
     else if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); u = x1; left = true; }
     else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); u = x2; }
     // F(u): the inner search over v, the same way, the ends of its range 0 and 1 − u last
     let vlo = 0, vhi = 1 - u;
     let y1 = vhi - GOLDEN * (vhi - vlo), y2 = vlo + GOLDEN * (vhi - vlo), g1 = 0, g2 = 0, g3 = 0, g4 = 0;
-    for (let j = -2; j < GOLDEN_ITERATIONS + 2; j++) {
+    for (let j = -2; j < ITERATIONS + 2; j++) {
       let v: number, low = j === -2;
       if (j === -2) v = y1;
       else if (j === -1) v = y2;
-      else if (j === GOLDEN_ITERATIONS) v = 0;
-      else if (j > GOLDEN_ITERATIONS) v = 1 - u;
+      else if (j === ITERATIONS) v = 0;
+      else if (j > ITERATIONS) v = 1 - u;
       else if (g1 <= g2) { vhi = y2; y2 = y1; g2 = g1; y1 = vhi - GOLDEN * (vhi - vlo); v = y1; low = true; }
       else { vlo = y1; y1 = y2; g1 = g2; y2 = vlo + GOLDEN * (vhi - vlo); v = y2; }
       const q = convexQuery;
@@ -249,13 +255,13 @@ export function goldenDeepest(
       shape.distanceIn(q, scratchN);
       const d = q[QUERY_D];
       if (d < bestD) { bestD = d; bestU = u; bestV = v; }
-      if (j >= GOLDEN_ITERATIONS) { if (j === GOLDEN_ITERATIONS) g3 = d; else g4 = d; }
+      if (j >= ITERATIONS) { if (j === ITERATIONS) g3 = d; else g4 = d; }
       else if (low) g1 = d;
       else g2 = d;
     }
     // (the minimum over the range: a minimum on the triangle's boundary is found exactly)
     const F = Math.min(g1, g2, g3, g4);
-    if (k < GOLDEN_ITERATIONS) { if (left) f1 = F; else f2 = F; }
+    if (k < ITERATIONS) { if (left) f1 = F; else f2 = F; }
   }
   bary[0] = 1 - bestU - bestV; bary[1] = bestU; bary[2] = bestV;
   const q = convexQuery;

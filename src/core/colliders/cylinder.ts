@@ -1,5 +1,9 @@
 import { axisCrossingNormal, segmentTriangleClosest, supportDeepest, vertexDeepest, type SupportShape } from './convex.js';
-import { QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, deepestOf, distanceOf, pointQuery } from './shape.js';
+import { QUERY, TRIANGLE, deepestOf, distanceOf, pointQuery } from './shape.js';
+
+// (module constants: see shape.ts QUERY)
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
+const { D: TRIANGLE_D } = TRIANGLE;
 
 const bary2 = new Float64Array(3);
 const seg = new Float64Array(1);

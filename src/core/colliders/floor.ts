@@ -1,4 +1,7 @@
-import { QUERY_D, QUERY_Y, distanceOf, type ColliderShape } from './shape.js';
+import { QUERY, distanceOf, type ColliderShape } from './shape.js';
+
+// (module constants: see shape.ts QUERY)
+const { Y: QUERY_Y, D: QUERY_D } = QUERY;
 
 /** The half-space y < height. A triangle's deepest point in a half-space is a vertex, so particle contact suffices. */
 export class FloorCollider implements ColliderShape {

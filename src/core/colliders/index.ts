@@ -11,7 +11,7 @@ import { PosedCollider } from './pose.js';
 import { SphereCollider } from './sphere.js';
 
 export {
-  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, pointQuery, triangleQuery,
+  QUERY, TRIANGLE, pointQuery, triangleQuery,
   type ColliderShape,
 } from './shape.js';
 export { PosedCollider, type ColliderPose, type ColliderMotion, type ColliderKeyframe } from './pose.js';

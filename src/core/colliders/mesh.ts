@@ -44,9 +44,11 @@ import { SceneError } from '../scene.js';
 import { plainText } from '../text.js';
 import { TriangleBvh } from './bvh.js';
 import { goldenDeepest, segmentTriangleClosest } from './convex.js';
-import {
-  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, deepestOf, distanceOf, pointQuery, type ColliderShape,
-} from './shape.js';
+import { QUERY, TRIANGLE, deepestOf, distanceOf, pointQuery, type ColliderShape } from './shape.js';
+
+// (module constants: see shape.ts QUERY)
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
+const { WITHIN: TRIANGLE_WITHIN, D: TRIANGLE_D } = TRIANGLE;
 
 /** Most triangles a mesh collider may have (before dropping those without area): a million, ~1 s to build. */
 export const MAX_COLLIDER_TRIANGLES = 1_000_000;

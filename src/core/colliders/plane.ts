@@ -1,4 +1,7 @@
-import { QUERY_D, QUERY_X, QUERY_Y, QUERY_Z, distanceOf, type ColliderShape } from './shape.js';
+import { QUERY, distanceOf, type ColliderShape } from './shape.js';
+
+// (module constants: see shape.ts QUERY)
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, D: QUERY_D } = QUERY;
 
 /**
  * The half-space below a plane through `point` with outward unit normal `normal` (a ramp, a wall, a floor at any

@@ -26,11 +26,13 @@ import { CylinderCollider } from './cylinder.js';
 import { MeshCollider } from './mesh.js';
 import { PlaneCollider } from './plane.js';
 import { eulerXYZInto } from '../mesh/generators.js';
-import {
-  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, TRIANGLE_WITHIN, deepestOf, distanceOf, pointQuery, triangleQuery, type ColliderShape,
-} from './shape.js';
+import { QUERY, TRIANGLE, deepestOf, distanceOf, pointQuery, triangleQuery, type ColliderShape } from './shape.js';
 import { FloorCollider } from './floor.js';
 import { SphereCollider } from './sphere.js';
+
+// (module constants: see shape.ts QUERY)
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
+const { WITHIN: TRIANGLE_WITHIN, D: TRIANGLE_D } = TRIANGLE;
 
 export type Vec3 = readonly [number, number, number];
 
@@ -212,7 +214,7 @@ export class PosedCollider implements ColliderShape {
       const dt = t - d.t0;
       for (let k = 0; k < 3; k++) tr[k] = d.translation[k] + d.velocity[k] * dt;
       axisAngle(d.angularVelocity[0], d.angularVelocity[1], d.angularVelocity[2], dt, scratchR2);
-      eulerXYZInto(d.rotation[0], d.rotation[1], d.rotation[2], scratchE9);
+      eulerXYZInto(d.rotation, scratchE9);
       mul3(scratchR2, scratchE9, rm);
       return;
     }
@@ -238,7 +240,7 @@ export class PosedCollider implements ColliderShape {
       tr[k] = vals[a + k] + f * (vals[b + k] - vals[a + k]);
       scratchE[k] = vals[a + 3 + k] + f * (vals[b + 3 + k] - vals[a + 3 + k]);
     }
-    eulerXYZInto(scratchE[0], scratchE[1], scratchE[2], rm);
+    eulerXYZInto(scratchE, rm);
   }
 
   /** The world transform of the shape's frame at time t: world = r·local + o. */

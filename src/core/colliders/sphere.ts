@@ -1,6 +1,8 @@
-import {
-  QUERY_D, QUERY_WITHIN, QUERY_X, QUERY_Y, QUERY_Z, TRIANGLE_D, deepestOf, distanceOf, pointQuery, type ColliderShape,
-} from './shape.js';
+import { QUERY, TRIANGLE, deepestOf, distanceOf, pointQuery, type ColliderShape } from './shape.js';
+
+// (module constants: see shape.ts QUERY)
+const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
+const { D: TRIANGLE_D } = TRIANGLE;
 
 /**
  * Closest point of triangle (a, b, c) to point p, as barycentric weights written to `bary`.

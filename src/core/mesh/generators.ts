@@ -17,13 +17,16 @@ export interface Placement {
 /** Rotation matrix (row-major 3×3) for Euler XYZ angles in degrees: R = Rz·Ry·Rx (about x first). */
 export function eulerXYZ(deg: readonly [number, number, number]): number[] {
   const r = new Float64Array(9);
-  eulerXYZInto(deg[0], deg[1], deg[2], r);
+  eulerXYZInto(deg, r);
   return Array.from(r);
 }
 
-/** eulerXYZ into `r` (no allocation: per-substep collider motion). */
-export function eulerXYZInto(xDeg: number, yDeg: number, zDeg: number, r: Float64Array): void {
-  const x = (xDeg * Math.PI) / 180, y = (yDeg * Math.PI) / 180, z = (zDeg * Math.PI) / 180;
+/**
+ * eulerXYZ into `r` (no allocation: per-substep collider motion), the angles read from `deg` (an array, not three
+ * arguments: a number passed to a call V8 does not inline is boxed).
+ */
+export function eulerXYZInto(deg: ArrayLike<number>, r: Float64Array): void {
+  const x = (deg[0] * Math.PI) / 180, y = (deg[1] * Math.PI) / 180, z = (deg[2] * Math.PI) / 180;
   const cx = Math.cos(x), sx = Math.sin(x), cy = Math.cos(y), sy = Math.sin(y), cz = Math.cos(z), sz = Math.sin(z);
   r[0] = cy * cz; r[1] = sx * sy * cz - cx * sz; r[2] = cx * sy * cz + sx * sz;
   r[3] = cy * sz; r[4] = sx * sy * sz + cx * cz; r[5] = cx * sy * sz - sx * cz;

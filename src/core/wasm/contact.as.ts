@@ -33,7 +33,7 @@ function boundingRadius(type: i32, s0: f64, s1: f64, s2: f64): f64 {
   return min((load<f64>(FRICTION) * depth) / tangential, 1);
 }
 
-/** The push-out depth that bounds friction, as phases.ts pressedDepth(). */
+/** The push-out depth that bounds friction, as phases.ts frictionScale() computes it (its pressed depth). */
 @inline export function pressedDepth(overlap: f64, movedIn: f64, recover: f64): f64 {
   const over = overlap - movedIn;
   return over <= 0 ? overlap : movedIn + max(0, min(over, 2 * recover - over));

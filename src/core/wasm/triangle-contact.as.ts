@@ -548,7 +548,7 @@ function cylinderDeepest(within: f64): f64 {
   return supportDeepest();
 }
 
-/** Squared distance [m²] from (cx, cy, cz) to the particle at byte j of X (phases.ts cornerDistance2). */
+/** Squared distance [m²] from (cx, cy, cz) to the particle at byte j of X (phases.ts collideTriangles' corners). */
 @inline function cornerDistance2(j: usize, cx: f64, cy: f64, cz: f64): f64 {
   const dx = xAt(j) - cx, dy = xAt(j + 4) - cy, dz = xAt(j + 8) - cz;
   return dx * dx + dy * dy + dz * dz;

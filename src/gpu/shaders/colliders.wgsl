@@ -74,7 +74,7 @@ fn frictionScale(tangential: f32, depth: f32) -> f32 {
   return min(globals.friction * depth / tangential, 1.0);
 }
 
-// the push-out depth that bounds friction (phases.ts pressedDepth): an overlap of `overlap` [m] of which the point
+// the push-out depth that bounds friction (phases.ts frictionScale, its pressed depth): an overlap of `overlap` [m] of which the point
 // moved `movedIn` into the surface this substep, the rest undone at most `recover` a substep
 fn pressedDepth(overlap: f32, movedIn: f32, recover: f32) -> f32 {
   let over = overlap - movedIn;
