@@ -4,12 +4,12 @@
  *
  * **No number crosses a call boundary** (no allocation inside a step): V8 boxes every non-integer number passed to
  * or returned from a call it does not inline, a heap allocation each (up to 28 MB a frame in the TypeScript kernel's
- * contact, `node scripts/step-garbage.mjs --kernel ts`). The contact phases call shapes through calls V8 cannot
- * inline (a shape of several kinds, a body too large), so each query has two forms: `distanceIn` and
- * `triangleDeepestIn` take and give their numbers through a Float64Array record, and `signedDistance` and
- * `triangleDeepest` are small wrappers over them (distanceOf, deepestOf below) that V8 inlines where they are
- * called. A body reads its record's inputs before it makes any query of its own and writes its answer last, so the
- * wrappers can share one record.
+ * contact, `node scripts/step-garbage.mjs --kernel ts`), and which calls it inlines depends on the code's size and on
+ * what it has seen before. So each query has two forms: `distanceIn` and `triangleDeepestIn` take and give their
+ * numbers through a Float64Array record, and the contact loops (phases.ts) and the shapes' own queries of
+ * themselves and of each other fill and read records; `signedDistance` and `triangleDeepest` are wrappers over
+ * them (distanceOf, deepestOf below) for other callers. A body reads its record's inputs before it makes any query
+ * of its own and writes its answer last, so the wrappers can share one record.
  */
 export interface ColliderShape {
   readonly type: string;
@@ -55,7 +55,7 @@ export const TRIANGLE = Object.freeze({ WITHIN: 0, D: 1 });
 const { X: QUERY_X, Y: QUERY_Y, Z: QUERY_Z, WITHIN: QUERY_WITHIN, D: QUERY_D } = QUERY;
 const { WITHIN: TRIANGLE_WITHIN, D: TRIANGLE_D } = TRIANGLE;
 
-/** a record for point queries: the wrappers' own (see the file's comment) */
+/** a record for point queries (each module keeps its own) */
 export function pointQuery(): Float64Array {
   return new Float64Array(5);
 }
