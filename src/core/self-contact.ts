@@ -249,6 +249,14 @@ export function selfContactSubsteps(h: number, speed: number, dt: number): numbe
 /** scratch for one pair's correction: barycentric weights of the triangle's point, the direction */
 const bary = new Float64Array(3);
 const dir = new Float64Array(3);
+/**
+ * what the passes hand resolvePair and resolveEdges: the pair's distance h [m] and friction μ, μs [-]; and what
+ * closestPoint and segmentClosest answer, the distance [m]. Through arrays, not as arguments and return values: a
+ * number passed to or returned from a call V8 does not inline is boxed on the heap (colliders/shape.ts)
+ */
+const pairOf = new Float64Array(3);
+const PAIR_H = 0, PAIR_MU = 1, PAIR_MU_S = 2;
+const nearest = new Float64Array(1);
 
 /** how many times each model's candidates were found, by either CPU kernel (for the tests: about once a frame on a falling cloth) */
 const buildsOf = new WeakMap<ClothModel, number>();
@@ -347,12 +355,14 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
     // the pair's distance and friction: one cloth's own, or between two cloths the mean thickness and the
     // geometric mean of the coefficients
     const cp = owner[p], ct = owner[a];
+    const k = pairOf;
     if (cp === ct) {
-      resolvePair(s, x, xp, w, Math.min(thickness[cp], hMax), friction[cp], staticFriction[cp], p, t, a, b, c);
+      k[PAIR_H] = Math.min(thickness[cp], hMax); k[PAIR_MU] = friction[cp]; k[PAIR_MU_S] = staticFriction[cp];
     } else {
-      const hp = Math.min(0.5 * (thickness[cp] + thickness[ct]), hMax);
-      resolvePair(s, x, xp, w, hp, Math.sqrt(friction[cp] * friction[ct]), Math.sqrt(staticFriction[cp] * staticFriction[ct]), p, t, a, b, c);
+      k[PAIR_H] = Math.min(0.5 * (thickness[cp] + thickness[ct]), hMax);
+      k[PAIR_MU] = Math.sqrt(friction[cp] * friction[ct]); k[PAIR_MU_S] = Math.sqrt(staticFriction[cp] * staticFriction[ct]);
     }
+    resolvePair(s, x, xp, w, p, t, a, b, c);
   }
   // the particle pass may have pushed a particle out of its reach box: the edges' candidates must hold for where
   // the particles are now
@@ -657,7 +667,10 @@ function treesOf(model: ClothModel, s: SelfScratch): Trees {
     // apart: not within hMax of each other at any time while the candidates hold (every particle stays within
     // its reach radius of where it is now, and so every point of the triangle within its corners' largest)
     const R = s.reachRadius, near = s.builtFor + R[p] + Math.max(R[a], R[b], R[c]) + SKIP_MARGIN;
-    if (near < s.meanEdge && closestPoint(s.seen, 3 * p, 3 * a, 3 * b, 3 * c) > near) return;
+    if (near < s.meanEdge) {
+      closestPoint(s.seen, 3 * p, 3 * a, 3 * b, 3 * c);
+      if (nearest[0] > near) return;
+    }
     const n = s.pairCount;
     if (2 * n + 2 > s.pairs.length) s.pairs = grown(s.pairs, 2 * n + 2);
     s.pairs[2 * n] = p; s.pairs[2 * n + 1] = t;
@@ -668,7 +681,10 @@ function treesOf(model: ClothModel, s: SelfScratch): Trees {
     if (c === a || c === b || d === a || d === b) return;
     // apart, as a particle and a triangle above
     const R = s.reachRadius, near = s.builtFor + Math.max(R[a], R[b]) + Math.max(R[c], R[d]) + SKIP_MARGIN;
-    if (near < s.meanEdge && segmentClosest(s.seen, a, b, c, d, apart) > near) return;
+    if (near < s.meanEdge) {
+      segmentClosest(s.seen, a, b, c, d, apart);
+      if (nearest[0] > near) return;
+    }
     const n = s.edgePairCount;
     if (2 * n + 2 > s.edgePairs.length) s.edgePairs = grown(s.edgePairs, 2 * n + 2);
     s.edgePairs[2 * n] = e; s.edgePairs[2 * n + 1] = f;
@@ -749,9 +765,9 @@ function moved(s: SelfScratch, a: number, b: number, c: number, d: number): void
  * centroid exceeds the triangle's radius by h is not near it, and costs nothing more.
  */
 function resolvePair(
-  sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number,
-  p: number, t: number, a: number, b: number, c: number,
+  sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array, p: number, t: number, a: number, b: number, c: number,
 ): void {
+  const h = pairOf[PAIR_H], mu = pairOf[PAIR_MU], muS = pairOf[PAIR_MU_S];
   const jp = 3 * p, ja = 3 * a, jb = 3 * b, jc = 3 * c;
   const o = triangleFrame(sc, x, xp, t, ja, jb, jc), fr = sc.triFrame;
   // the side at the substep's start: the triangle's plane then
@@ -783,7 +799,8 @@ function resolvePair(
     C = side * s - h;
   } else {
     // on its side: nearer than h to the triangle's closest point?
-    const d = closestPoint(x, jp, ja, jb, jc);
+    closestPoint(x, jp, ja, jb, jc);
+    const d = nearest[0];
     if (d >= h) return;
     if (d > 1e-12) {
       const cx = bary[0] * x[ja] + bary[1] * x[jb] + bary[2] * x[jc];
@@ -854,8 +871,8 @@ function projectionInside(x: Float32Array, jp: number, ja: number, jb: number, j
   return bary[0] >= 0 && bary[1] >= 0 && bary[2] >= 0;
 }
 
-/** Distance from jp to the closest point of the triangle, whose weights go into `bary` (Ericson 2005, §5.1.5). */
-function closestPoint(x: Float32Array, jp: number, ja: number, jb: number, jc: number): number {
+/** Distance from jp to the closest point of the triangle, into nearest[0]; its weights go into `bary` (Ericson 2005, §5.1.5). */
+function closestPoint(x: Float32Array, jp: number, ja: number, jb: number, jc: number): void {
   const abx = x[jb] - x[ja], aby = x[jb + 1] - x[ja + 1], abz = x[jb + 2] - x[ja + 2];
   const acx = x[jc] - x[ja], acy = x[jc + 1] - x[ja + 1], acz = x[jc + 2] - x[ja + 2];
   const apx = x[jp] - x[ja], apy = x[jp + 1] - x[ja + 1], apz = x[jp + 2] - x[ja + 2];
@@ -877,7 +894,7 @@ function closestPoint(x: Float32Array, jp: number, ja: number, jb: number, jc: n
   bary[0] = 1 - u - v; bary[1] = u; bary[2] = v;
   const cx = x[ja] + u * abx + v * acx, cy = x[ja + 1] + u * aby + v * acy, cz = x[ja + 2] + u * abz + v * acz;
   const ex = x[jp] - cx, ey = x[jp + 1] - cy, ez = x[jp + 2] - cz;
-  return Math.sqrt(ex * ex + ey * ey + ez * ez);
+  nearest[0] = Math.sqrt(ex * ex + ey * ey + ez * ez);
 }
 
 /**
@@ -911,12 +928,14 @@ function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s
     if (!overlap(boxes, 6 * e, boxes, 6 * f)) continue;
     const a = edges[2 * e], b = edges[2 * e + 1], c = edges[2 * f], d = edges[2 * f + 1];
     const ca = owner[a], cc = owner[c];
+    const k = pairOf;
     if (ca === cc) {
-      resolveEdges(s, x, xp, w, Math.min(thickness[ca], hMax), friction[ca], staticFriction[ca], q, e, f, a, b, c, d);
+      k[PAIR_H] = Math.min(thickness[ca], hMax); k[PAIR_MU] = friction[ca]; k[PAIR_MU_S] = staticFriction[ca];
     } else {
-      const h = Math.min(0.5 * (thickness[ca] + thickness[cc]), hMax);
-      resolveEdges(s, x, xp, w, h, Math.sqrt(friction[ca] * friction[cc]), Math.sqrt(staticFriction[ca] * staticFriction[cc]), q, e, f, a, b, c, d);
+      k[PAIR_H] = Math.min(0.5 * (thickness[ca] + thickness[cc]), hMax);
+      k[PAIR_MU] = Math.sqrt(friction[ca] * friction[cc]); k[PAIR_MU_S] = Math.sqrt(staticFriction[ca] * staticFriction[cc]);
     }
+    resolveEdges(s, x, xp, w, q, e, f, a, b, c, d);
   }
 }
 
@@ -928,9 +947,9 @@ const gap0 = new Float64Array(3);
 
 /**
  * Closest points of segments a–b and c–d of array x (Ericson 2005, §5.1.9): their parameters into `st` (p = a +
- * s(b − a), q = c + t(d − c)), the vector p − q into `out`; returns its length.
+ * s(b − a), q = c + t(d − c)), the vector p − q into `out`, its length into nearest[0].
  */
-function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: number, out: Float64Array): number {
+function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: number, out: Float64Array): void {
   const ja = 3 * a, jb = 3 * b, jc = 3 * c, jd = 3 * d;
   const ux = x[jb] - x[ja], uy = x[jb + 1] - x[ja + 1], uz = x[jb + 2] - x[ja + 2];
   const vx = x[jd] - x[jc], vy = x[jd + 1] - x[jc + 1], vz = x[jd + 2] - x[jc + 2];
@@ -948,11 +967,13 @@ function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: num
   }
   st[0] = s; st[1] = t;
   out[0] = rx + s * ux - t * vx; out[1] = ry + s * uy - t * vy; out[2] = rz + s * uz - t * vz;
-  return Math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
+  nearest[0] = Math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
 }
 
 /** Whether a closest point's parameter lies inside its edge (not at an end). */
-const inside = (v: number) => v > 1e-6 && v < 1 - 1e-6;
+function inside(v: number): boolean {
+  return v > 1e-6 && v < 1 - 1e-6;
+}
 
 /**
  * Edge e = (a, b)'s frame (SelfScratch.edgeFrame: its midpoint now and half its vector), computed unless it is
@@ -979,9 +1000,10 @@ function edgeFrame(s: SelfScratch, x: Float32Array, e: number, a: number, b: num
  * along that line (the separation of the two projections); and the closest points now, measured.
  */
 function resolveEdges(
-  sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array, h: number, mu: number, muS: number,
+  sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array,
   q: number, e: number, f: number, a: number, b: number, c: number, d: number,
 ): void {
+  const h = pairOf[PAIR_H], mu = pairOf[PAIR_MU], muS = pairOf[PAIR_MU_S];
   const move = sc.move, travel = sc.travel, memo = sc.edgeMemo;
   const apart = Math.max(h, Math.max(move[a], move[b]) + Math.max(move[c], move[d])) + SKIP_MARGIN;
   const travelled = travel[a] + travel[b] + travel[c] + travel[d];
@@ -996,11 +1018,13 @@ function resolveEdges(
     memo[2 * q] = (m2 - extent) / ml;
     return;
   }
-  const len = segmentClosest(x, a, b, c, d, gap);
+  segmentClosest(x, a, b, c, d, gap);
+  const len = nearest[0];
   memo[2 * q] = len;
   if (len >= apart) return;
   const s = st[0], t = st[1];
-  const len0 = segmentClosest(xp, a, b, c, d, gap0);
+  segmentClosest(xp, a, b, c, d, gap0);
+  const len0 = nearest[0];
   const in0 = inside(st[0]) && inside(st[1]);
   if (!Number.isFinite(len) || !Number.isFinite(len0)) return;
   let C: number;
