@@ -6,9 +6,11 @@
 //
 //   npx tsc -p tsconfig.build.json && node scripts/step-garbage.mjs
 //   options: --scenes cotton-basic,cape  --kernel wasm|ts
+//            --scenes mesh-cube,mesh-ball: a 24² cloth dropped on a mesh collider (mesh-drop.test.ts's cube, icosphere)
 import inspector from 'node:inspector/promises';
 import { PerformanceObserver } from 'node:perf_hooks';
 import { Simulation, builtinScene, validateScene } from '../dist/core/index.js';
+import { cubeMesh, icosphereMesh } from '../dist/core/colliders/mesh-shapes.js';
 import { arg } from './solver-study-common.mjs';
 
 const kernel = arg('kernel', 'wasm');
@@ -16,7 +18,7 @@ const session = new inspector.Session();
 session.connect();
 await session.post('HeapProfiler.enable');
 for (const name of arg('scenes', 'cotton-basic,cape').split(',')) {
-  const sim = new Simulation(validateScene(builtinScene(name)), { kernel, threads: 1 });
+  const sim = name.startsWith('mesh-') ? meshDrop(name) : new Simulation(validateScene(builtinScene(name)), { kernel, threads: 1 });
   sim.advance(60);
   await session.post('HeapProfiler.startSampling', { samplingInterval: 1024, includeObjectsCollectedByMajorGC: true, includeObjectsCollectedByMinorGC: true });
   sim.advance(100);
@@ -43,4 +45,13 @@ for (const name of arg('scenes', 'cotton-basic,cape').split(',')) {
   console.log(`${name}, ${kernel}: ${(total / 100 / 1024).toFixed(1)} kB allocated a frame; ${collections} collections in 300 frames`);
   for (const [key, bytes] of [...sites].sort((a, b) => b[1] - a[1]).slice(0, 5)) console.log(`  ${(bytes / 100 / 1024).toFixed(1)} kB/frame  ${key}`);
   sim.dispose();
+}
+
+/** A 24² cloth dropped on a mesh collider: mesh-cube (sharp edges, turned 30°) or mesh-ball (an icosphere). */
+function meshDrop(name) {
+  const files = { 'cube.obj': cubeMesh([0, 0, 0], 0.25), 'ball.obj': icosphereMesh(2, 0.3, [0, 0.35, 0]) };
+  const collider = name === 'mesh-cube' ? { type: 'mesh', mesh: 'cube.obj', scale: 1, position: [0, 0.25, 0], rotation: [0, 30, 0] }
+    : { type: 'mesh', mesh: 'ball.obj', scale: 1 };
+  const scene = validateScene({ cloth: { resolution: 24, position: [0, 0.9, 0] }, colliders: [collider, { type: 'floor', height: 0 }] });
+  return new Simulation(scene, { kernel, threads: 1, meshes: (path) => files[path] });
 }

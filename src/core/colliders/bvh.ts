@@ -14,7 +14,7 @@
  * centroids all coincide is cut in half by index. Queries use a stack sized from the tree's depth and allocate
  * nothing.
  */
-import { closestPointOnTriangle } from './sphere.js';
+import { closestPointIn } from './sphere.js';
 
 /** Centroid bins per axis of the SAH build. */
 export const BVH_BINS = 16;
@@ -199,13 +199,16 @@ export class TriangleBvh {
     this.stack = new Uint32Array(depth + 2);
   }
 
-  /** Squared distance from point p to node `n`'s box (0 inside it). */
-  boxDistance2(n: number, px: number, py: number, pz: number): number {
-    const b = this.bounds, o = 6 * n;
+  /**
+   * Squared distance from the point in this.query to node `n`'s box (0 inside it), into query[4]: through the
+   * array, as closest's numbers (none boxed: colliders/shape.ts).
+   */
+  private boxDistance2(n: number): void {
+    const b = this.bounds, o = 6 * n, q = this.query, px = q[0], py = q[1], pz = q[2];
     const dx = px < b[o] ? b[o] - px : px > b[o + 3] ? px - b[o + 3] : 0;
     const dy = py < b[o + 1] ? b[o + 1] - py : py > b[o + 4] ? py - b[o + 4] : 0;
     const dz = pz < b[o + 2] ? b[o + 2] - pz : pz > b[o + 5] ? pz - b[o + 5] : 0;
-    return dx * dx + dy * dy + dz * dz;
+    q[4] = dx * dx + dy * dy + dz * dz;
   }
 
   /**
@@ -220,8 +223,10 @@ export class TriangleBvh {
     return this.closestIn(bary);
   }
 
-  /** closest's point and bound */
-  private readonly query = new Float64Array(4);
+  /** closest's point and bound; boxDistance2's answer */
+  private readonly query = new Float64Array(5);
+  /** closestPointIn's point and triangle */
+  private readonly triangleArgs = new Float64Array(12);
 
   /** closest on the point and bound in this.query. */
   private closestIn(bary: Float64Array): number {
@@ -229,7 +234,10 @@ export class TriangleBvh {
     const nodes = this.nodes, tri = this.triangles, p = this.positions, stack = this.stack, nrm = this.normals;
     let best2 = max2, best = -1, top = 0;
     let n = 0;
-    if (this.boxDistance2(0, px, py, pz) >= best2) return -1;
+    this.boxDistance2(0);
+    if (q[4] >= best2) return -1;
+    const tv = this.triangleArgs;
+    tv[0] = px; tv[1] = py; tv[2] = pz;
     for (;;) {
       const count = nodes[2 * n + 1];
       if (count > 0) {
@@ -240,7 +248,9 @@ export class TriangleBvh {
             const h = nrm[3 * t] * (px - p[a]) + nrm[3 * t + 1] * (py - p[a + 1]) + nrm[3 * t + 2] * (pz - p[a + 2]);
             if (h * h >= best2) continue;
           }
-          closestPointOnTriangle(px, py, pz, p[a], p[a + 1], p[a + 2], p[b], p[b + 1], p[b + 2], p[c], p[c + 1], p[c + 2], scratchBary);
+          tv[3] = p[a]; tv[4] = p[a + 1]; tv[5] = p[a + 2]; tv[6] = p[b]; tv[7] = p[b + 1]; tv[8] = p[b + 2];
+          tv[9] = p[c]; tv[10] = p[c + 1]; tv[11] = p[c + 2];
+          closestPointIn(tv, scratchBary);
           const u = scratchBary[0], v = scratchBary[1], w = scratchBary[2];
           const dx = u * p[a] + v * p[b] + w * p[c] - px;
           const dy = u * p[a + 1] + v * p[b + 1] + w * p[c + 1] - py;
@@ -250,7 +260,10 @@ export class TriangleBvh {
         }
       } else {
         const l = nodes[2 * n], r = l + 1;
-        const dl = this.boxDistance2(l, px, py, pz), dr = this.boxDistance2(r, px, py, pz);
+        this.boxDistance2(l);
+        const dl = q[4];
+        this.boxDistance2(r);
+        const dr = q[4];
         if (dl < dr) {
           if (dr < best2) stack[top++] = r;
           if (dl < best2) { n = l; continue; }
@@ -263,7 +276,8 @@ export class TriangleBvh {
       let next = -1;
       while (top > 0) {
         const k = stack[--top];
-        if (this.boxDistance2(k, px, py, pz) < best2) { next = k; break; }
+        this.boxDistance2(k);
+        if (q[4] < best2) { next = k; break; }
       }
       if (next < 0) break;
       n = next;

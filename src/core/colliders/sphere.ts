@@ -32,8 +32,8 @@ const sphereQuery = pointQuery();
 /** closestPointOnTriangle's arguments p, a, b, c */
 const triangleArgs = new Float64Array(12);
 
-/** closestPointOnTriangle on p, a, b, c in v[0…11]. */
-function closestPointIn(args: Float64Array, bary: Float64Array): void {
+/** closestPointOnTriangle on p, a, b, c in args[0…11] (for callers that fill the array themselves: no number passed). */
+export function closestPointIn(args: Float64Array, bary: Float64Array): void {
   const px = args[0], py = args[1], pz = args[2], ax = args[3], ay = args[4], az = args[5];
   const bx = args[6], by = args[7], bz = args[8], cx = args[9], cy = args[10], cz = args[11];
   const abx = bx - ax, aby = by - ay, abz = bz - az;
