@@ -217,19 +217,21 @@ export class TriangleBvh {
    * Ties go to the triangle met first. Nearer child first; a node no nearer than the best so far is skipped.
    */
   closest(px: number, py: number, pz: number, max2: number, bary: Float64Array): number {
-    // through an array, as closestPointOnTriangle (sphere.ts): a small wrapper V8 inlines, so no number is boxed
     const q = this.query;
     q[0] = px; q[1] = py; q[2] = pz; q[3] = max2;
     return this.closestIn(bary);
   }
 
-  /** closest's point and bound; boxDistance2's answer */
-  private readonly query = new Float64Array(5);
+  /**
+   * closestIn's point p [m] and bound max2 [m²] (slots 0–3; slot 4 is boxDistance2's answer): a caller in a step
+   * writes them here and calls closestIn, so that no number passes through a call (colliders/shape.ts)
+   */
+  readonly query = new Float64Array(5);
   /** closestPointIn's point and triangle */
   private readonly triangleArgs = new Float64Array(12);
 
   /** closest on the point and bound in this.query. */
-  private closestIn(bary: Float64Array): number {
+  closestIn(bary: Float64Array): number {
     const q = this.query, px = q[0], py = q[1], pz = q[2], max2 = q[3];
     const nodes = this.nodes, tri = this.triangles, p = this.positions, stack = this.stack, nrm = this.normals;
     let best2 = max2, best = -1, top = 0;

@@ -112,8 +112,11 @@ export function segmentTriangleClosest(
 /** segmentTriangleClosest's arguments p, q, a, b, c, and (v[15]) its answer */
 const segmentTriangleArgs = new Float64Array(16);
 
-/** segmentTriangleClosest on p, q, a, b, c in v[0…14]; the squared distance to v[15]. */
-function segmentTriangleIn(v: Float64Array, bary: Float64Array, seg: Float64Array): void {
+/**
+ * segmentTriangleClosest on p, q, a, b, c in v[0…14]; the squared distance to v[15] (a caller in a step fills its
+ * own record: colliders/shape.ts).
+ */
+export function segmentTriangleIn(v: Float64Array, bary: Float64Array, seg: Float64Array): void {
   const px = v[0], py = v[1], pz = v[2], qx = v[3], qy = v[4], qz = v[5];
   const ax = v[6], ay = v[7], az = v[8], bx = v[9], by = v[10], bz = v[11], cx = v[12], cy = v[13], cz = v[14];
   const abx = bx - ax, aby = by - ay, abz = bz - az, acx = cx - ax, acy = cy - ay, acz = cz - az;

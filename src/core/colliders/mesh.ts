@@ -43,7 +43,7 @@ import { NOT_A_MESH, isTriangleMesh, weldMap, weldTolerance, type TriangleMesh }
 import { SceneError } from '../scene.js';
 import { plainText } from '../text.js';
 import { TriangleBvh } from './bvh.js';
-import { goldenDeepest, segmentTriangleClosest } from './convex.js';
+import { goldenDeepest, segmentTriangleIn } from './convex.js';
 import { QUERY, TRIANGLE, deepestOf, distanceOf, pointQuery, type ColliderShape } from './shape.js';
 
 // (module constants: see shape.ts QUERY)
@@ -63,18 +63,21 @@ const bary = new Float64Array(3);
 const vn = new Float64Array(3);
 const edgeBary = new Float64Array(3);
 const segT = new Float64Array(1);
-/** the cloth triangle's box (min xyz, max xyz) in triangleDeepestIn */
-const triBox = new Float64Array(6);
+/** the cloth triangle's box (min xyz, max xyz) in triangleDeepestIn, and (slot 6) boxGap2's answer */
+const triBox = new Float64Array(7);
+const GAP = 6;
+/** segmentTriangleIn's record: a sharp edge p–q and the cloth triangle a, b, c, then the squared distance */
+const edgeTriangle = new Float64Array(16);
 /** the point queries a mesh makes of itself: through the record, not signedDistance (shape.ts) */
 const own = pointQuery();
 
-/** Squared gap between node k's box (of `bounds`) and the box `t` (min xyz, max xyz). */
-function gap2(bounds: Float32Array, k: number, t: Float64Array): number {
+/** Squared gap between node k's box (of `bounds`) and the box `t` (min xyz, max xyz), into t[GAP]. */
+function boxGap2(bounds: Float32Array, k: number, t: Float64Array): void {
   const o = 6 * k;
   const gx = Math.max(bounds[o] - t[3], t[0] - bounds[o + 3], 0);
   const gy = Math.max(bounds[o + 1] - t[4], t[1] - bounds[o + 4], 0);
   const gz = Math.max(bounds[o + 2] - t[5], t[2] - bounds[o + 5], 0);
-  return gx * gx + gy * gy + gz * gz;
+  t[GAP] = gx * gx + gy * gy + gz * gz;
 }
 
 const fail = (source: string, why: string): never => {
@@ -302,15 +305,20 @@ export class MeshCollider implements ColliderShape {
       const c = this.gridCells, inGrid = i >= 0 && j >= 0 && k >= 0 && i < c[0] && j < c[1] && k < c[2];
       const centre = inGrid ? this.grid[i + c[0] * (j + c[1] * k)] : 0;
       if (inGrid && centre - this.cellReach >= within) { q[QUERY_D] = within; return; }
-      t = bvh.closest(px, py, pz, within * within, bary);
+      const bq = bvh.query;
+      bq[0] = px; bq[1] = py; bq[2] = pz; bq[3] = within * within;
+      t = bvh.closestIn(bary);
       if (t < 0) {
         // nothing within reach: outside, unless the point may be inside a closed piece (in its box, and the grid
         // cannot say it is out)
         if (this.closedPieces === 0 || !inGrid || centre > this.cellReach) { q[QUERY_D] = within; return; }
-        t = bvh.closest(px, py, pz, Infinity, bary);
+        bq[3] = Infinity;
+        t = bvh.closestIn(bary);
       }
     } else {
-      t = bvh.closest(px, py, pz, Infinity, bary);
+      const bq = bvh.query;
+      bq[0] = px; bq[1] = py; bq[2] = pz; bq[3] = Infinity;
+      t = bvh.closestIn(bary);
     }
     this.distanceTo(t, q, normal);
   }
@@ -378,14 +386,17 @@ export class MeshCollider implements ColliderShape {
     box[0] = lx; box[1] = ly; box[2] = lz; box[3] = hx; box[4] = hy; box[5] = hz;
     // the triangle's unit normal and plane offset: an edge wholly farther than the best from its plane is skipped
     let tnx = (by - ay) * (cz - az) - (bz - az) * (cy - ay), tny = (bz - az) * (cx - ax) - (bx - ax) * (cz - az), tnz = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-    const tl = Math.hypot(tnx, tny, tnz);
+    const tl = Math.sqrt(tnx * tnx + tny * tny + tnz * tnz);
     if (tl > 0) { tnx /= tl; tny /= tl; tnz /= tl; }
     const toff = tnx * ax + tny * ay + tnz * az;
     const bvh = this.bvh, nodes = bvh.nodes, bounds = bvh.bounds, tri = bvh.triangles, p = bvh.positions, stack = bvh.stack;
     const flags = this.flags;
-    const bound2 = within === Infinity ? Infinity : Math.max(within, 0) ** 2;
+    const bound = Math.max(within, 0), bound2 = within === Infinity ? Infinity : bound * bound;
     let best2 = bound2, found = false, crossing = -1, top = 0, n = 0;
-    if (gap2(bounds, 0, box) > best2) { out[TRIANGLE_D] = within; return; }
+    boxGap2(bounds, 0, box);
+    if (box[GAP] > best2) { out[TRIANGLE_D] = within; return; }
+    const et = edgeTriangle;
+    et[6] = ax; et[7] = ay; et[8] = az; et[9] = bx; et[10] = by; et[11] = bz; et[12] = cx; et[13] = cy; et[14] = cz;
     walk: for (;;) {
       const count = nodes[2 * n + 1];
       if (count > 0) {
@@ -403,11 +414,12 @@ export class MeshCollider implements ColliderShape {
             if (gx * gx + gy * gy + gz * gz > best2) continue;
             if (tl > 0) {
               const hs = tnx * p[s] + tny * p[s + 1] + tnz * p[s + 2] - toff, hq = tnx * p[q] + tny * p[q + 1] + tnz * p[q + 2] - toff;
-              if ((hs > 0 && hq > 0 && Math.min(hs, hq) ** 2 > best2) || (hs < 0 && hq < 0 && Math.max(hs, hq) ** 2 > best2)) continue;
+              const near = hs > 0 && hq > 0 ? Math.min(hs, hq) : hs < 0 && hq < 0 ? -Math.max(hs, hq) : 0;
+              if (near * near > best2) continue;
             }
-            const d2 = segmentTriangleClosest(
-              p[s], p[s + 1], p[s + 2], p[q], p[q + 1], p[q + 2], ax, ay, az, bx, by, bz, cx, cy, cz, edgeBary, segT,
-            );
+            et[0] = p[s]; et[1] = p[s + 1]; et[2] = p[s + 2]; et[3] = p[q]; et[4] = p[q + 1]; et[5] = p[q + 2];
+            segmentTriangleIn(et, edgeBary, segT);
+            const d2 = et[15];
             if (d2 <= 1e-24) {
               crossing = t;
               baryOut[0] = edgeBary[0]; baryOut[1] = edgeBary[1]; baryOut[2] = edgeBary[2];
@@ -421,7 +433,10 @@ export class MeshCollider implements ColliderShape {
         }
       } else {
         const l = nodes[2 * n], r = l + 1;
-        const dl = gap2(bounds, l, box), dr = gap2(bounds, r, box);
+        boxGap2(bounds, l, box);
+        const dl = box[GAP];
+        boxGap2(bounds, r, box);
+        const dr = box[GAP];
         if (dl < dr) {
           if (dr <= best2) stack[top++] = r;
           if (dl <= best2) { n = l; continue; }
@@ -433,7 +448,8 @@ export class MeshCollider implements ColliderShape {
       let next = -1;
       while (top > 0) {
         const k = stack[--top];
-        if (gap2(bounds, k, box) <= best2) { next = k; break; }
+        boxGap2(bounds, k, box);
+        if (box[GAP] <= best2) { next = k; break; }
       }
       if (next < 0) break;
       n = next;
@@ -448,11 +464,11 @@ export class MeshCollider implements ColliderShape {
         this.distanceIn(own, vn);
         sx += vn[0]; sy += vn[1]; sz += vn[2];
       }
-      let l = Math.hypot(sx, sy, sz);
+      let l = Math.sqrt(sx * sx + sy * sy + sz * sz);
       if (l < 1e-9) {
         // vertices on both sides: the triangle's own normal
         sx = (by - ay) * (cz - az) - (bz - az) * (cy - ay); sy = (bz - az) * (cx - ax) - (bx - ax) * (cz - az); sz = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-        l = Math.hypot(sx, sy, sz) || 1;
+        l = Math.sqrt(sx * sx + sy * sy + sz * sz) || 1;
       }
       normal[0] = sx / l; normal[1] = sy / l; normal[2] = sz / l;
       out[TRIANGLE_D] = 0;
