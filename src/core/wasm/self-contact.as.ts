@@ -184,9 +184,14 @@ export function selfEdgeBoxes(hMax: f64): void {
   }
 }
 
-/** Whether point (x, y, z) [m] lies in the box at byte offset b. */
-@inline function inBox(b: usize, x: f64, y: f64, z: f64): bool {
-  return !(x < f64At(b, 0) || x > f64At(b, 3) || y < f64At(b, 1) || y > f64At(b, 4) || z < f64At(b, 2) || z > f64At(b, 5));
+/**
+ * Whether the point of f32 positions `base` at byte offset j lies in the box at byte offset b: the comparisons of
+ * !(x < min x || x > max x || …), x and y two lanes at a time, without branches.
+ */
+@inline function pointInBox(b: usize, base: usize, j: usize): bool {
+  const xy = f64x2.promote_low_f32x4(v128.load64_zero(base + j)), z = <f64>load<f32>(base + j, 8);
+  const out = v128.or(f64x2.lt(xy, v128.load(b)), f64x2.gt(xy, v128.load(b, 24)));
+  return !v128.any_true(out) & !(z < f64At(b, 2)) & !(z > f64At(b, 5));
 }
 
 /** Whether the boxes at byte offsets a and b meet. */
@@ -209,7 +214,7 @@ export function selfParticles(count: i32, hMax: f64): void {
     const pr = PAIRS + (<usize>q << 3);
     const p = load<i32>(pr), t = load<i32>(pr, 4);
     const jp = <usize>p * 12, bb = TBOX + <usize>t * 48;
-    if (!inBox(bb, xn(jp, 0), xn(jp, 1), xn(jp, 2)) && !inBox(bb, xs(jp, 0), xs(jp, 1), xs(jp, 2))) continue;
+    if (!(pointInBox(bb, X, jp) | pointInBox(bb, XP, jp))) continue;
     const tr = TRIS + <usize>t * 12;
     const a = load<u32>(tr), b = load<u32>(tr, 4), c = load<u32>(tr, 8);
     const cp = <i32>load<u8>(OWNER + <usize>p), ct = <i32>load<u8>(OWNER + <usize>a);
