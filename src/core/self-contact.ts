@@ -9,9 +9,10 @@
  *   meets) is tested against every triangle t not having it as a corner whose box — over the
  *   substep's start and end positions, widened by the self-contact distance h — meets p's own. The candidates are
  *   found ahead (findCandidates: bounding-box trees over boxes of where each particle can be until the frame's end,
- *   less the pairs too far apart to come within h by then), and found again only when some particle leaves its
- *   box — for those particles alone where they are few (updateCandidates), else whole: every pair that can come
- *   within h in a substep is among them; and they are resolved in
+ *   in a frame moving with the cloth where it moves as one (movingFrame), less the pairs too far apart to come
+ *   within h by then), and found again only when some particle leaves its box — for those particles alone where
+ *   they are few (updateCandidates), else whole: every pair that can come within h in a substep is among them; and
+ *   they are resolved in
  *   (particle, triangle) order, ascending, whenever they were found (so when they were found does not change their
  *   order). (Leaving out its whole
  *   neighbourhood, the triangles touching its one-ring, saved a tenth of the time and let 8× as many tight folds
@@ -117,6 +118,11 @@ interface SelfScratch {
   /** each particle's triangles and edges (compressed rows: particle p's are list[start[p]…start[p+1]−1]) */
   particleTriangles: { start: Int32Array; list: Int32Array };
   particleEdges: { start: Int32Array; list: Int32Array };
+  /**
+   * the frame the reach boxes are made in (movingFrame): its motion per substep u [m] (x, y, z) and the substeps
+   * since the last search j [-]; a point x at the end of this substep is at x − j·u in it, at its start x − (j − 1)·u
+   */
+  frame: Float64Array;
   /** the particles out of their reach boxes at the last substepBoxes (the first escapedCount) */
   escaped: Int32Array;
   escapedCount: number;
@@ -198,6 +204,7 @@ function scratch(model: ClothModel): SelfScratch {
     builtFor: NaN,
     particleTriangles: rowsOf(model.triangles, 3, model.particleCount),
     particleEdges: rowsOf(model.edges, 2, model.particleCount),
+    frame: new Float64Array(4),
     escaped: new Int32Array(model.particleCount),
     escapedCount: 0,
     touchedTriangles: new Int32Array(n),
@@ -285,8 +292,10 @@ export function countSelfSearch(model: ClothModel): void {
 
 /** Candidate pairs found ahead in TypeScript, as the WebAssembly kernel's self-contact takes them where its own search overflows (self-contact-wasm.ts). */
 export interface SelfCandidates {
-  /** each particle's reach box: min x, y, z, max x, y, z [m] */
+  /** each particle's reach box: min x, y, z, max x, y, z [m], in the frame of `frame` */
   readonly reach: Float64Array;
+  /** the frame the reach boxes are in (movingFrame): its motion per substep [m] (x, y, z), then 0 substeps since */
+  readonly frame: Float64Array;
   /** (particle, triangle) pairs, the first pairCount, in the order they are resolved */
   readonly pairs: Int32Array;
   readonly pairCount: number;
@@ -326,6 +335,7 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   const x = state.positions, xp = state.previousPositions, w = state.invMass;
 
   // the candidates hold while every particle's box over this substep is inside its reach box
+  s.frame[FRAME_J]++;
   const within = substepBoxes(s, x, xp, np, true);
   if (!(s.builtFor === hMax && within) && !updateCandidates(model, state, params, s, hMax, h, left) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
 
@@ -376,15 +386,16 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
  * a non-finite position is not inside); whether there are none.
  */
 function substepBoxes(s: SelfScratch, x: Float32Array, xp: Float32Array, np: number, start: boolean): boolean {
-  const reach = s.reach, pb = s.particleBoxes;
+  const reach = s.reach, pb = s.particleBoxes, f = s.frame, j = f[FRAME_J];
   let out = 0;
   for (let p = 0; p < np; p++) {
     const jp = 3 * p, r = 6 * p;
     let inside = true;
     for (let c = 0; c < 3; c++) {
-      const lo = Math.min(x[jp + c], xp[jp + c]), hi = Math.max(x[jp + c], xp[jp + c]);
-      pb[r + c] = lo; pb[r + 3 + c] = hi;
-      if (!(lo >= reach[r + c] && hi <= reach[r + 3 + c])) inside = false;
+      pb[r + c] = Math.min(x[jp + c], xp[jp + c]); pb[r + 3 + c] = Math.max(x[jp + c], xp[jp + c]);
+      // in the frame of the reach boxes
+      const now = x[jp + c] - j * f[c], then = xp[jp + c] - (j - 1) * f[c];
+      if (!(Math.min(now, then) >= reach[r + c] && Math.max(now, then) <= reach[r + 3 + c])) inside = false;
     }
     if (!inside) s.escaped[out++] = p;
     if (start) track(s, x, xp, p);
@@ -433,6 +444,7 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
   const x = state.positions, xp = state.previousPositions, g = params.gravity;
   const reach = s.reach, T = left * h;
   const span = REACH_SPAN * s.meanEdge;
+  movingFrame(s.frame, x, xp, np);
   for (let p = 0; p < np; p++) reachBox(s, x, xp, g, p, left, T, span, hMax);
   const tr = s.triangleReach;
   for (let t = 0; t < nt; t++) unionOf(reach, tri, 3 * t, 3, tr, 6 * t, hMax);
@@ -466,24 +478,54 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
  * at least hMax/4 [m].
  */
 function reachBox(s: SelfScratch, x: Float32Array, xp: Float32Array, g: Float64Array, p: number, left: number, T: number, span: number, hMax: number): void {
-  const reach = s.reach, jp = 3 * p, r = 6 * p;
-  const dx = (x[jp] - xp[jp]) * left + 0.5 * g[0] * T * T;
-  const dy = (x[jp + 1] - xp[jp + 1]) * left + 0.5 * g[1] * T * T;
-  const dz = (x[jp + 2] - xp[jp + 2]) * left + 0.5 * g[2] * T * T;
+  const reach = s.reach, jp = 3 * p, r = 6 * p, f = s.frame, j = f[FRAME_J];
+  // where it is and was in the frame of the boxes
+  const x0 = x[jp] - j * f[0], x1 = x[jp + 1] - j * f[1], x2 = x[jp + 2] - j * f[2];
+  const q0 = xp[jp] - (j - 1) * f[0], q1 = xp[jp + 1] - (j - 1) * f[1], q2 = xp[jp + 2] - (j - 1) * f[2];
+  const dx = (x0 - q0) * left + 0.5 * g[0] * T * T;
+  const dy = (x1 - q1) * left + 0.5 * g[1] * T * T;
+  const dz = (x2 - q2) * left + 0.5 * g[2] * T * T;
   const dl = Math.sqrt(dx * dx + dy * dy + dz * dz), k = dl > span ? span / dl : 1;
-  for (let c = 0; c < 3; c++) {
-    const d = (c === 0 ? dx : c === 1 ? dy : dz) * k;
-    reach[r + c] = Math.min(xp[jp + c], x[jp + c], x[jp + c] + d);
-    reach[r + 3 + c] = Math.max(xp[jp + c], x[jp + c], x[jp + c] + d);
-  }
   const margin = Math.max(0.5 * dl * k, 0.25 * hMax);
-  let r2 = 0;
-  for (let c = 0; c < 3; c++) {
-    reach[r + c] -= margin; reach[r + 3 + c] += margin;
-    const far = Math.max(x[jp + c] - reach[r + c], reach[r + 3 + c] - x[jp + c]);
-    r2 += far * far;
+  const e0 = reachAxis(reach, r, 0, q0, x0, dx * k, margin), e1 = reachAxis(reach, r, 1, q1, x1, dy * k, margin);
+  const e2 = reachAxis(reach, r, 2, q2, x2, dz * k, margin);
+  s.reachRadius[p] = Math.sqrt(e0 * e0 + e1 * e1 + e2 * e2);
+}
+
+/**
+ * Axis c of the reach box at r: from min(x_prev, x, x + d) to max(…), each widened by the margin [m]; returns the
+ * farther of its ends from x [m].
+ */
+function reachAxis(reach: Float64Array, r: number, c: number, q: number, x: number, d: number, margin: number): number {
+  const lo = Math.min(q, x, x + d) - margin, hi = Math.max(q, x, x + d) + margin;
+  reach[r + c] = lo; reach[r + 3 + c] = hi;
+  return Math.max(x - lo, hi - x);
+}
+
+/** slot of SelfScratch.frame holding the substeps since the search */
+const FRAME_J = 3;
+
+/**
+ * The frame a search makes its reach boxes in (into `frame`: the motion u per substep [m], and 0 substeps since):
+ * the cloth's mean motion over this substep where its particles move less relative to it than they do at all (the
+ * sums of the lengths), else at rest. In a frame moving with a cloth that falls or flies as one, its particles'
+ * reach boxes stay small, as at rest, and so do the lists of pairs; the distances of two particles at one instant are
+ * the same in either frame, and a particle's path through a substep, straight in the world, is straight in it too,
+ * so every pair that comes within reach of the other in a substep still has reach boxes that meet.
+ */
+function movingFrame(frame: Float64Array, x: Float32Array, xp: Float32Array, np: number): void {
+  let mx = 0, my = 0, mz = 0;
+  for (let j = 0; j < 3 * np; j += 3) { mx += x[j] - xp[j]; my += x[j + 1] - xp[j + 1]; mz += x[j + 2] - xp[j + 2]; }
+  mx /= np; my /= np; mz /= np;
+  let still = 0, along = 0;
+  for (let j = 0; j < 3 * np; j += 3) {
+    const vx = x[j] - xp[j], vy = x[j + 1] - xp[j + 1], vz = x[j + 2] - xp[j + 2];
+    still += Math.sqrt(vx * vx + vy * vy + vz * vz);
+    along += Math.sqrt((vx - mx) * (vx - mx) + (vy - my) * (vy - my) + (vz - mz) * (vz - mz));
   }
-  s.reachRadius[p] = Math.sqrt(r2);
+  const moving = along < 0.5 * still;
+  frame[0] = moving ? mx : 0; frame[1] = moving ? my : 0; frame[2] = moving ? mz : 0;
+  frame[FRAME_J] = 0;
 }
 
 /** The most particles out of their reach boxes that updateCandidates takes (and the kernel's), as a share of the cloth's [-]. */
@@ -531,12 +573,13 @@ function updateCandidates(model: ClothModel, state: ClothState, params: SimParam
   const trees = treesOf(model, s);
   const refitted = trees.particles.refit(reach) && trees.triangles.refit(tr) && trees.edges.refit(er);
   if (refitted) {
+    const f = s.frame, since = f[FRAME_J];
     for (let p = 0; p < np; p++) {
       if (escapedMark[p]) continue;
       const r = 6 * p, j = 3 * p;
       let r2 = 0;
       for (let c = 0; c < 3; c++) {
-        const far = Math.max(x[j + c] - reach[r + c], reach[r + 3 + c] - x[j + c]);
+        const at = x[j + c] - since * f[c], far = Math.max(at - reach[r + c], reach[r + 3 + c] - at);
         r2 += far * far;
       }
       s.reachRadius[p] = Math.sqrt(r2);

@@ -26,6 +26,7 @@ import type { ClothState } from '../state.js';
 export interface SelfContactExports {
   configureSelf(...layout: number[]): void;
   selfBoxes(start: boolean): number;
+  selfFrame(ux: number, uy: number, uz: number): void;
   selfFound(edgePairs: number): void;
   selfTriangleBoxes(hMax: number): void;
   selfParticles(count: number, hMax: number): void;
@@ -281,6 +282,7 @@ export class KernelSelfContact {
       return false;
     }
     this.reach.set(c.reach);
+    ex.selfFrame(c.frame[0], c.frame[1], c.frame[2]);
     this.pairs.take(c.pairs, c.pairCount);
     this.edgePairs.take(c.edgePairs, c.edgePairCount);
     this.exports.selfFound(this.edgePairs.resident ? c.edgePairCount : 0);

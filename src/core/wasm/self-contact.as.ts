@@ -61,6 +61,23 @@ let NE: i32 = 0;
 let clock: i32 = 0;
 let substepAt: i32 = 0;
 
+/**
+ * The frame the reach boxes are made in (self-contact.ts movingFrame): its motion per substep [m] and the substeps
+ * since the last search (a point x at the end of this substep is at x − J·U in it, at its start x − (J − 1)·U).
+ */
+export let FRAME_UX: f64 = 0;
+export let FRAME_UY: f64 = 0;
+export let FRAME_UZ: f64 = 0;
+export let FRAME_J: f64 = 0;
+
+/** Sets the frame of reach boxes found in TypeScript (self-contact-wasm.ts), 0 substeps since. */
+export function selfFrame(ux: f64, uy: f64, uz: f64): void {
+  FRAME_UX = ux; FRAME_UY = uy; FRAME_UZ = uz; FRAME_J = 0;
+}
+
+/** Component k of the frame's motion per substep [m]. */
+@inline export function frameU(k: usize): f64 { return k == 0 ? FRAME_UX : k == 1 ? FRAME_UY : FRAME_UZ; }
+
 /** How far beyond h [m] a bound must say a pair is before it is skipped (self-contact.ts SKIP_MARGIN). */
 export const SKIP_MARGIN: f64 = 1e-7;
 
@@ -100,21 +117,24 @@ function resetClock(): void {
 @inline function f64At(base: usize, k: usize): f64 { return load<f64>(base + (k << 3)); }
 
 /**
- * Each particle's box over the substep (x_prev to x) into PBOX, and (`start`: the phase's start) its travel and move
- * (track); the particles whose box does not lie inside their reach box (a non-finite position's does not) into
- * ESCAPED, and how many they are (0: the candidates hold): self-contact.ts substepBoxes().
+ * Each particle's box over the substep (x_prev to x) into PBOX, and (`start`: the phase's start, a new substep in the
+ * reach boxes' frame) its travel and move (track); the particles whose box, in the frame of the reach boxes, does not
+ * lie inside their reach box (a non-finite position's does not) into ESCAPED, and how many they are (0: the
+ * candidates hold): self-contact.ts substepBoxes().
  */
 export function selfBoxes(start: bool): i32 {
+  if (start) FRAME_J += 1;
+  const J = FRAME_J;
   let out = 0;
   for (let p = 0; p < N; p++) {
     const j = <usize>p * 12, r = <usize>p * 48;
     let inside = true;
     for (let k: usize = 0; k < 3; k++) {
-      const a = xn(j, k), b = xs(j, k);
-      const lo = min(a, b), hi = max(a, b);
-      store<f64>(PBOX + r + (k << 3), lo);
-      store<f64>(PBOX + r + 24 + (k << 3), hi);
-      if (!(lo >= f64At(REACH + r, k) && hi <= f64At(REACH + r, k + 3))) inside = false;
+      const a = xn(j, k), b = xs(j, k), u = frameU(k);
+      store<f64>(PBOX + r + (k << 3), min(a, b));
+      store<f64>(PBOX + r + 24 + (k << 3), max(a, b));
+      const now = a - J * u, then = b - (J - 1) * u;
+      if (!(min(now, then) >= f64At(REACH + r, k) && max(now, then) <= f64At(REACH + r, k + 3))) inside = false;
     }
     if (!inside) store<i32>(ESCAPED + (<usize>(out++) << 2), p);
     if (start) track(p);

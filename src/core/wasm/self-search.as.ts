@@ -1,5 +1,6 @@
 // Self-contact's candidate search in the kernel (the reference is self-contact.ts findCandidates, which says what
-// it finds and why): each particle's reach box and radius, the triangles' and edges' reach boxes, the three
+// it finds and why): the frame the boxes are made in (movingFrame), each particle's reach box and radius, the
+// triangles' and edges' reach boxes, the three
 // bounding-box trees refitted to them (box-tree.ts refit; their structure is the host's, built once from the rest
 // positions and copied here), the (particle, triangle) pairs of one tree against another and the (edge, edge) pairs
 // of one tree with itself (BoxTree.pairsWith, pairsWithin), less those that cannot come within h before the next
@@ -10,7 +11,7 @@
 // triangles' and edges' and the trees' nodes above them are made again, and only their pairs are found again and
 // merged into the lists (the reference's pairs, in its order).
 import { N, X, XP } from './arrays.as';
-import { EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, PAIRS, REACH, SKIP_MARGIN, TRIS, closestPoint, overlap, segmentClosest } from './self-contact.as';
+import { EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, FRAME_J, PAIRS, REACH, SKIP_MARGIN, TRIS, closestPoint, frameU, overlap, segmentClosest, selfFrame } from './self-contact.as';
 
 /** A tree's arrays (byte offsets) and node count, as the host writes them (self-contact-wasm.ts, TREE_FIELDS). */
 @unmanaged class Tree {
@@ -121,6 +122,7 @@ export function selfSearch(
   hMax: f64, left: f64, h: f64, gx: f64, gy: f64, gz: f64, span: f64, edge: f64, window: i32, edgeWindow: i32,
 ): i32 {
   const T = left * h;
+  movingFrame();
   for (let p = 0; p < N; p++) reachOf(p, left, T, gx, gy, gz, span, hMax);
   for (let t = 0; t < NT; t++) unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
   const half = 0.5 * hMax;
@@ -185,13 +187,15 @@ export function selfUpdate(
   if (!refitAbove(PARTICLE_TREE, REACH, ESCAPED, count) || !refitAbove(TRIANGLE_TREE, TREACH, TOUCHED_T, nt) || !refitAbove(EDGE_TREE, EREACH, TOUCHED_E, ne)) {
     result = 0;
   } else {
-    // the others keep their boxes, which still hold them; their radii are measured from where they are now
+    // the others keep their boxes, which still hold them; their radii are measured from where they are now (in the
+    // boxes' frame)
+    const J = FRAME_J;
     for (let p = 0; p < N; p++) {
       if (load<u8>(PMARK + <usize>p) != 0) continue;
       const j = <usize>p * 12, r = REACH + <usize>p * 48;
       let r2: f64 = 0;
       for (let c: usize = 0; c < 3; c++) {
-        const x = <f64>load<f32>(X + j + (c << 2));
+        const x = <f64>load<f32>(X + j + (c << 2)) - J * frameU(c);
         const far = max(x - load<f64>(r + (c << 3)), load<f64>(r + 24 + (c << 3)) - x);
         r2 += far * far;
       }
@@ -326,6 +330,28 @@ function query(A: Tree, box: usize, prims: usize, id: i32, kind: i32, n: i32): i
   return n;
 }
 
+/** The frame a search makes its reach boxes in (the reference's movingFrame), 0 substeps since: selfFrame. */
+function movingFrame(): void {
+  let mx: f64 = 0, my: f64 = 0, mz: f64 = 0;
+  for (let p = 0; p < N; p++) {
+    const j = <usize>p * 12;
+    mx += <f64>load<f32>(X + j) - <f64>load<f32>(XP + j);
+    my += <f64>load<f32>(X + j, 4) - <f64>load<f32>(XP + j, 4);
+    mz += <f64>load<f32>(X + j, 8) - <f64>load<f32>(XP + j, 8);
+  }
+  mx /= <f64>N; my /= <f64>N; mz /= <f64>N;
+  let still: f64 = 0, along: f64 = 0;
+  for (let p = 0; p < N; p++) {
+    const j = <usize>p * 12;
+    const vx = <f64>load<f32>(X + j) - <f64>load<f32>(XP + j), vy = <f64>load<f32>(X + j, 4) - <f64>load<f32>(XP + j, 4);
+    const vz = <f64>load<f32>(X + j, 8) - <f64>load<f32>(XP + j, 8);
+    still += Math.sqrt(vx * vx + vy * vy + vz * vz);
+    along += Math.sqrt((vx - mx) * (vx - mx) + (vy - my) * (vy - my) + (vz - mz) * (vz - mz));
+  }
+  const moving = along < 0.5 * still;
+  selfFrame(moving ? mx : 0, moving ? my : 0, moving ? mz : 0);
+}
+
 /**
  * Particle p's reach box and radius (the reference's reachBox): its box over this substep carried on over the `left`
  * substeps (T [s] in all) at its motion so far and gravity (gx, gy, gz) [m/s²], no farther than `span` [m], with a
@@ -333,8 +359,10 @@ function query(A: Tree, box: usize, prims: usize, id: i32, kind: i32, n: i32): i
  */
 @inline function reachOf(p: i32, left: f64, T: f64, gx: f64, gy: f64, gz: f64, span: f64, hMax: f64): void {
   const j = <usize>p * 12, r = REACH + <usize>p * 48;
-  const x0 = <f64>load<f32>(X + j), x1 = <f64>load<f32>(X + j, 4), x2 = <f64>load<f32>(X + j, 8);
-  const q0 = <f64>load<f32>(XP + j), q1 = <f64>load<f32>(XP + j, 4), q2 = <f64>load<f32>(XP + j, 8);
+  // where it is and was in the frame of the boxes
+  const J = FRAME_J, J1 = J - 1;
+  const x0 = <f64>load<f32>(X + j) - J * frameU(0), x1 = <f64>load<f32>(X + j, 4) - J * frameU(1), x2 = <f64>load<f32>(X + j, 8) - J * frameU(2);
+  const q0 = <f64>load<f32>(XP + j) - J1 * frameU(0), q1 = <f64>load<f32>(XP + j, 4) - J1 * frameU(1), q2 = <f64>load<f32>(XP + j, 8) - J1 * frameU(2);
   const dx = (x0 - q0) * left + 0.5 * gx * T * T;
   const dy = (x1 - q1) * left + 0.5 * gy * T * T;
   const dz = (x2 - q2) * left + 0.5 * gz * T * T;
