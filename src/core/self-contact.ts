@@ -42,6 +42,7 @@
  * more pairs than ever before.
  */
 import { BoxTree } from './box-tree.js';
+import { SELF_FRAME_SHARE, SELF_REACH_MARGIN, SELF_SKIP_MARGIN } from './layout.generated.js';
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
@@ -486,7 +487,7 @@ function reachBox(s: SelfScratch, x: Float32Array, xp: Float32Array, g: Float64A
   const dy = (x1 - q1) * left + 0.5 * g[1] * T * T;
   const dz = (x2 - q2) * left + 0.5 * g[2] * T * T;
   const dl = Math.sqrt(dx * dx + dy * dy + dz * dz), k = dl > span ? span / dl : 1;
-  const margin = Math.max(0.5 * dl * k, 0.25 * hMax);
+  const margin = Math.max(0.5 * dl * k, REACH_MARGIN * hMax);
   const e0 = reachAxis(reach, r, 0, q0, x0, dx * k, margin), e1 = reachAxis(reach, r, 1, q1, x1, dy * k, margin);
   const e2 = reachAxis(reach, r, 2, q2, x2, dz * k, margin);
   s.reachRadius[p] = Math.sqrt(e0 * e0 + e1 * e1 + e2 * e2);
@@ -523,7 +524,7 @@ function movingFrame(frame: Float64Array, x: Float32Array, xp: Float32Array, np:
     still += Math.sqrt(vx * vx + vy * vy + vz * vz);
     along += Math.sqrt((vx - mx) * (vx - mx) + (vy - my) * (vy - my) + (vz - mz) * (vz - mz));
   }
-  const moving = along < 0.5 * still;
+  const moving = along < FRAME_SHARE * still;
   frame[0] = moving ? mx : 0; frame[1] = moving ? my : 0; frame[2] = moving ? mz : 0;
   frame[FRAME_J] = 0;
 }
@@ -771,9 +772,10 @@ function grown(list: Int32Array, need: number): Int32Array {
 
 /**
  * How far beyond h [m] a bound must say a pair is before it is skipped: the bounds are exact, the tests they stand
- * for are rounded (by far less).
+ * for are rounded (by far less). The generated table's constants, read once (an imported name is read through a
+ * getter under vitest's module loader: colliders/shape.ts)
  */
-const SKIP_MARGIN = 1e-7;
+const SKIP_MARGIN = SELF_SKIP_MARGIN, REACH_MARGIN = SELF_REACH_MARGIN, FRAME_SHARE = SELF_FRAME_SHARE;
 
 /**
  * Triangle t's frame (SelfScratch.triFrame: the unit normals now and at the substep's start, the centroid now and

@@ -32,6 +32,12 @@ export const TRIANGLE_SPREAD_MOST: i32 = 2;
 export const GOLDEN_ITERATIONS: i32 = 12;
 /** the springs' coarse correction (solvers/coarse-stretch.ts overshoots, coarse.as.ts, the GPU's coarseCheck.wgsl): how far a step solved with an earlier substep's factor may overshoot, its Rayleigh quotient under the matrix of the springs' directions now over the factor's, before the matrix is made anew; a step along one direction of a quadratic converges below 2, 1.5 leaves a margin [-] */
 export const COARSE_OVERSHOOT: f64 = 1.5;
+/** self-contact: how far beyond the contact distance a bound must say a pair is before the pair is skipped [m] (self-contact.ts, self-contact.as.ts) */
+export const SELF_SKIP_MARGIN: f64 = 1e-7;
+/** self-contact: the least margin of a particle's reach box, as a share of the contact distance h [-] (self-contact.ts reachBox, self-search.as.ts reachOf) */
+export const SELF_REACH_MARGIN: f64 = 0.25;
+/** self-contact: a search makes its reach boxes in a frame moving with the cloth where its particles move less than this share as much relative to it as they do at all [-] (self-contact.ts movingFrame, self-search.as.ts) */
+export const SELF_FRAME_SHARE: f64 = 0.5;
 /** most threads one kernel runs (one run counter each in the control block) */
 export const KERNEL_MAX_THREADS: i32 = 16;
 /** kernel substep flag: external forces (wind) to integrate */

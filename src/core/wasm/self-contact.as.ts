@@ -5,6 +5,7 @@
 // the same cloth bit for bit. One thread, a Gauss–Seidel pass in the pairs' order: the host calls these on thread 0
 // between two substep() calls (the helpers wait for the next dispatch).
 import { N, W, X, XP } from './arrays.as';
+import { SELF_SKIP_MARGIN as SKIP_MARGIN } from './layout.generated.as';
 
 // The arrays (byte offsets, laid out by the host: self-contact-wasm.ts) and counts, set by configureSelf().
 /** the triangles' particles, u32 × 3 per triangle */
@@ -78,8 +79,6 @@ export function selfFrame(ux: f64, uy: f64, uz: f64): void {
 /** Component k of the frame's motion per substep [m]. */
 @inline export function frameU(k: usize): f64 { return k == 0 ? FRAME_UX : k == 1 ? FRAME_UY : FRAME_UZ; }
 
-/** How far beyond h [m] a bound must say a pair is before it is skipped (self-contact.ts SKIP_MARGIN). */
-export const SKIP_MARGIN: f64 = 1e-7;
 
 /** Sets the arrays' byte offsets and the counts (the host's layout). */
 export function configureSelf(

@@ -11,7 +11,8 @@
 // triangles' and edges' and the trees' nodes above them are made again, and only their pairs are found again and
 // merged into the lists (the reference's pairs, in its order).
 import { N, X, XP } from './arrays.as';
-import { EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, FRAME_J, PAIRS, REACH, SKIP_MARGIN, TRIS, closestPoint, frameU, overlap, segmentClosest, selfFrame } from './self-contact.as';
+import { SELF_FRAME_SHARE, SELF_REACH_MARGIN, SELF_SKIP_MARGIN as SKIP_MARGIN } from './layout.generated.as';
+import { EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, FRAME_J, PAIRS, REACH, TRIS, closestPoint, frameU, overlap, segmentClosest, selfFrame } from './self-contact.as';
 
 /** A tree's arrays (byte offsets) and node count, as the host writes them (self-contact-wasm.ts, TREE_FIELDS). */
 @unmanaged class Tree {
@@ -348,7 +349,7 @@ function movingFrame(): void {
     still += Math.sqrt(vx * vx + vy * vy + vz * vz);
     along += Math.sqrt((vx - mx) * (vx - mx) + (vy - my) * (vy - my) + (vz - mz) * (vz - mz));
   }
-  const moving = along < 0.5 * still;
+  const moving = along < SELF_FRAME_SHARE * still;
   selfFrame(moving ? mx : 0, moving ? my : 0, moving ? mz : 0);
 }
 
@@ -367,7 +368,7 @@ function movingFrame(): void {
   const dy = (x1 - q1) * left + 0.5 * gy * T * T;
   const dz = (x2 - q2) * left + 0.5 * gz * T * T;
   const dl = Math.sqrt(dx * dx + dy * dy + dz * dz), k = dl > span ? span / dl : 1;
-  const margin = max(0.5 * dl * k, 0.25 * hMax);
+  const margin = max(0.5 * dl * k, SELF_REACH_MARGIN * hMax);
   // per axis: the box over x_prev, x and x + the predicted motion, widened by the margin; the farthest corner
   const e0 = reachAxis(r, 0, q0, x0, dx * k, margin), e1 = reachAxis(r, 1, q1, x1, dy * k, margin), e2 = reachAxis(r, 2, q2, x2, dz * k, margin);
   let r2: f64 = 0;
