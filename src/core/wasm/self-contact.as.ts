@@ -79,7 +79,6 @@ export function selfFrame(ux: f64, uy: f64, uz: f64): void {
 /** Component k of the frame's motion per substep [m]. */
 @inline export function frameU(k: usize): f64 { return k == 0 ? FRAME_UX : k == 1 ? FRAME_UY : FRAME_UZ; }
 
-
 /** Sets the arrays' byte offsets and the counts (the host's layout). */
 export function configureSelf(
   tris: usize, edges: usize, owner: usize, cloth: usize, reach: usize, pbox: usize, tbox: usize, ebox: usize,
