@@ -645,7 +645,8 @@ function sortPairs(s: SelfScratch, list: Int32Array, count: number, n: number): 
     }
     from = to;
   }
-  list.set(out.subarray(0, 2 * count));
+  // (copied by hand: a subarray to set from would be an object made at every sort)
+  for (let i = 0; i < 2 * count; i++) list[i] = out[i];
   return count;
 }
 
@@ -1015,10 +1016,16 @@ function segmentClosest(x: Float32Array, a: number, b: number, c: number, d: num
   nearest[0] = Math.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
 }
 
-/** Whether a closest point's parameter lies inside its edge (not at an end). */
-function inside(v: number): boolean {
-  return v > 1e-6 && v < 1 - 1e-6;
+/**
+ * Whether the closest point's parameter params[i] lies inside its edge (not at an end): read from the array, not
+ * passed (a number passed to a call V8 does not inline is boxed: colliders/shape.ts).
+ */
+function inside(params: Float64Array, i: number): boolean {
+  return params[i] > 1e-6 && params[i] < 1 - 1e-6;
 }
+
+/** resolveEdges' closest points' parameters now, kept while segmentClosest measures them at the substep's start */
+const stNow = new Float64Array(2);
 
 /**
  * Edge e = (a, b)'s frame (SelfScratch.edgeFrame: its midpoint now and half its vector), computed unless it is
@@ -1068,12 +1075,13 @@ function resolveEdges(
   memo[2 * q] = len;
   if (len >= apart) return;
   const s = st[0], t = st[1];
+  stNow[0] = s; stNow[1] = t;
   segmentClosest(xp, a, b, c, d, gap0);
   const len0 = nearest[0];
-  const in0 = inside(st[0]) && inside(st[1]);
+  const in0 = inside(st, 0) && inside(st, 1);
   if (!Number.isFinite(len) || !Number.isFinite(len0)) return;
   let C: number;
-  if (in0 && inside(s) && inside(t) && len0 > 1e-12 && gap[0] * gap0[0] + gap[1] * gap0[1] + gap[2] * gap0[2] < 0) {
+  if (in0 && inside(stNow, 0) && inside(stNow, 1) && len0 > 1e-12 && gap[0] * gap0[0] + gap[1] * gap0[1] + gap[2] * gap0[2] < 0) {
     // passed through: back to the side of then, h along that direction
     dir[0] = gap0[0] / len0; dir[1] = gap0[1] / len0; dir[2] = gap0[2] / len0;
     C = gap[0] * dir[0] + gap[1] * dir[1] + gap[2] * dir[2] - h;

@@ -1,5 +1,5 @@
 import { eulerXYZ } from '../mesh/generators.js';
-import { goldenDeepest, segmentTriangleClosest, vertexDeepest } from './convex.js';
+import { goldenDeepest, segmentTriangleIn, vertexDeepest } from './convex.js';
 import { QUERY, TRIANGLE, deepestOf, distanceOf, pointQuery, type ColliderShape } from './shape.js';
 
 // (module constants: see shape.ts QUERY)
@@ -83,6 +83,14 @@ export class BoxCollider implements ColliderShape {
 
   /** Whether segment p–q meets the box (slabs in the box's frame). */
   segmentHits(px: number, py: number, pz: number, qx: number, qy: number, qz: number): boolean {
+    const s = segmentArgs;
+    s[0] = px; s[1] = py; s[2] = pz; s[3] = qx; s[4] = qy; s[5] = qz;
+    return this.segmentHitsIn(s);
+  }
+
+  /** segmentHits on the segment p–q in s[0..5]: no number passed (triangleDeepestIn, in a step: colliders/shape.ts). */
+  private segmentHitsIn(s: Float64Array): boolean {
+    const px = s[0], py = s[1], pz = s[2], qx = s[3], qy = s[4], qz = s[5];
     const r = this.r, h = this.halfExtents;
     const dx = px - this.center[0], dy = py - this.center[1], dz = pz - this.center[2];
     const ex = qx - px, ey = qy - py, ez = qz - pz;
@@ -132,7 +140,15 @@ export class BoxCollider implements ColliderShape {
     this.distanceIn(r, normal);
     const vertex = r[QUERY_D];
     // crossing the box: a vertex in it, an edge of the triangle through it (or, below, an edge of the box through the triangle)
-    if (vertex <= 0 || this.segmentHits(ax, ay, az, bx, by, bz) || this.segmentHits(bx, by, bz, cx, cy, cz) || this.segmentHits(cx, cy, cz, ax, ay, az)) {
+    // its edges a–b, b–c, c–a in that order (as the kernel's)
+    const sg = segmentArgs;
+    sg[0] = ax; sg[1] = ay; sg[2] = az; sg[3] = bx; sg[4] = by; sg[5] = bz;
+    let crosses = vertex <= 0 || this.segmentHitsIn(sg);
+    sg[0] = bx; sg[1] = by; sg[2] = bz; sg[3] = cx; sg[4] = cy; sg[5] = cz;
+    crosses ||= this.segmentHitsIn(sg);
+    sg[0] = cx; sg[1] = cy; sg[2] = cz; sg[3] = ax; sg[4] = ay; sg[5] = az;
+    crosses ||= this.segmentHitsIn(sg);
+    if (crosses) {
       goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal, t);
       return;
     }
@@ -144,7 +160,8 @@ export class BoxCollider implements ColliderShape {
     const reach = Math.sqrt(Math.max(
       ax1 * ax1 + ay1 * ay1 + az1 * az1, bx1 * bx1 + by1 * by1 + bz1 * bz1, cx1 * cx1 + cy1 * cy1 + cz1 * cz1,
     ));
-    const E = this.edges;
+    const E = this.edges, et = edgeTriangle;
+    et[6] = ax; et[7] = ay; et[8] = az; et[9] = bx; et[10] = by; et[11] = bz; et[12] = cx; et[13] = cy; et[14] = cz;
     for (let e = 0; e < 72; e += 6) {
       // an edge farther from the triangle's centre than its reach plus the best so far cannot be nearer
       const ux = E[e + 3] - E[e], uy = E[e + 4] - E[e + 1], uz = E[e + 5] - E[e + 2];
@@ -152,7 +169,9 @@ export class BoxCollider implements ColliderShape {
       const s = uu > 0 ? Math.min(Math.max(((gx - E[e]) * ux + (gy - E[e + 1]) * uy + (gz - E[e + 2]) * uz) / uu, 0), 1) : 0;
       const qx = E[e] + s * ux - gx, qy = E[e + 1] + s * uy - gy, qz = E[e + 2] + s * uz - gz;
       if (Math.sqrt(qx * qx + qy * qy + qz * qz) - reach >= best) continue;
-      const d2 = segmentTriangleClosest(E[e], E[e + 1], E[e + 2], E[e + 3], E[e + 4], E[e + 5], ax, ay, az, bx, by, bz, cx, cy, cz, edgeBary, seg);
+      et[0] = E[e]; et[1] = E[e + 1]; et[2] = E[e + 2]; et[3] = E[e + 3]; et[4] = E[e + 4]; et[5] = E[e + 5];
+      segmentTriangleIn(et, edgeBary, seg);
+      const d2 = et[15];
       if (d2 <= 1e-24) { goldenDeepest(this, a, ia, b, ib, c, ic, bary, normal, t); return; }
       if (d2 < best * best) {
         best = Math.sqrt(d2); found = true;
@@ -168,6 +187,10 @@ export class BoxCollider implements ColliderShape {
 }
 
 const edgeBary = new Float64Array(3);
+/** segmentHitsIn's segment p–q */
+const segmentArgs = new Float64Array(6);
+/** segmentTriangleIn's record: a box edge p–q and the cloth triangle a, b, c, then the squared distance */
+const edgeTriangle = new Float64Array(16);
 /** the point queries a box makes of itself: through the record, not signedDistance (shape.ts) */
 const boxQuery = pointQuery();
 const seg = new Float64Array(1);

@@ -276,12 +276,18 @@ export function goldenDeepest(
 
 /** A convex shape with a support mapping: the point of the shape farthest in a direction. */
 export interface SupportShape extends ColliderShape {
-  /** The shape's point farthest along (dx, dy, dz) (any one where several are) to `out[0..2]`. */
-  support(dx: number, dy: number, dz: number, out: Float64Array): void;
+  /**
+   * The shape's points farthest along the direction d[0..2] and along −d (any one where several are) to `hi[0..2]`
+   * and `lo[0..2]`: the direction in an array, not as numbers, and both in one call (no number passes through a
+   * call in a step, and V8 inlines one call where it may not inline two: colliders/shape.ts).
+   */
+  support(d: Float64Array, hi: Float64Array, lo: Float64Array): void;
 }
 
 const scratchQ = new Float64Array(3);
 const scratchQ2 = new Float64Array(3);
+/** supportDeepest's direction for the support mapping */
+const supportDirection = new Float64Array(3);
 
 /**
  * Minimum of the convex signed distance along edge a + s·(b − a), s ∈ [0, 1], by golden-section search
@@ -302,7 +308,7 @@ function edgeDeepest(shape: ColliderShape, at: Float64Array): void {
     else if (f1 <= f2) { hi = x2; x2 = x1; f2 = f1; x1 = hi - GOLDEN * (hi - lo); s = x1; left = true; }
     else { lo = x1; x1 = x2; f1 = f2; x2 = lo + GOLDEN * (hi - lo); s = x2; }
     const q = convexQuery;
-    q[QUERY_X] = e.ax + s * e.ux; q[QUERY_Y] = e.ay + s * e.uy; q[QUERY_Z] = e.az + s * e.uz; q[QUERY_WITHIN] = Infinity;
+    q[QUERY_X] = e[0] + s * e[3]; q[QUERY_Y] = e[1] + s * e[4]; q[QUERY_Z] = e[2] + s * e[5]; q[QUERY_WITHIN] = Infinity;
     shape.distanceIn(q, scratchN);
     const d = q[QUERY_D];
     if (k === -4) best = d;
@@ -314,8 +320,8 @@ function edgeDeepest(shape: ColliderShape, at: Float64Array): void {
   if (f2 < best) { best = f2; bestT = x2; }
   at[0] = bestT; at[1] = best;
 }
-/** The edge edgeDeepest searches (a + s·u): module state, no closure per call. */
-const edge = { ax: 0, ay: 0, az: 0, ux: 0, uy: 0, uz: 0 };
+/** The edge edgeDeepest searches (a + s·u): a, then u (a record: colliders/shape.ts). */
+const edge = new Float64Array(6);
 const EDGE_ITERATIONS = 20;
 const edgeAt = new Float64Array(2);
 /** supportDeepest's vertices: signed distance and normal of each */
@@ -344,8 +350,9 @@ export function supportDeepest(
   const nn = nx * nx + ny * ny + nz * nz;
   if (!(nn > 1e-30)) { goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal, t); return; }
   const hi = scratchQ, lo = scratchQ2;
-  shape.support(nx, ny, nz, hi);
-  shape.support(-nx, -ny, -nz, lo);
+  const d = supportDirection;
+  d[0] = nx; d[1] = ny; d[2] = nz;
+  shape.support(d, hi, lo);
   // heights above the plane, in units of |n|
   const hHi = nx * (hi[0] - ax) + ny * (hi[1] - ay) + nz * (hi[2] - az);
   const hLo = nx * (lo[0] - ax) + ny * (lo[1] - ay) + nz * (lo[2] - az);
@@ -385,9 +392,12 @@ export function supportDeepest(
     V[4 * k] = q[QUERY_D];
     V[4 * k + 1] = scratchN[0]; V[4 * k + 2] = scratchN[1]; V[4 * k + 3] = scratchN[2];
   }
-  let best = V[0], b0 = 1, b1 = 0, b2 = 0;
-  if (V[4] < best) { best = V[4]; b0 = 0; b1 = 1; }
-  if (V[8] < best) { best = V[8]; b0 = 0; b1 = 0; b2 = 1; }
+  // the weights of the best so far go straight into bary (locals that start as the integers 1 and 0 and take
+  // fractions later are boxed at every assignment: colliders/shape.ts)
+  let best = V[0];
+  bary[0] = 1; bary[1] = 0; bary[2] = 0;
+  if (V[4] < best) { best = V[4]; bary[0] = 0; bary[1] = 1; }
+  if (V[8] < best) { best = V[8]; bary[0] = 0; bary[1] = 0; bary[2] = 1; }
   for (let e = 0; e < 3; e++) {
     const i = e, j = (e + 1) % 3;
     const ex = (j === 0 ? ax : j === 1 ? bx : cx) - (i === 0 ? ax : i === 1 ? bx : cx);
@@ -399,21 +409,21 @@ export function supportDeepest(
     if (Math.max(V[4 * i] + si, V[4 * j] + sj) >= best) continue;
     // the edge from corner e to corner e + 1
     const g = edge;
-    g.ax = e === 0 ? ax : e === 1 ? bx : cx; g.ay = e === 0 ? ay : e === 1 ? by : cy; g.az = e === 0 ? az : e === 1 ? bz : cz;
-    g.ux = ex; g.uy = ey; g.uz = ez;
+    g[0] = e === 0 ? ax : e === 1 ? bx : cx; g[1] = e === 0 ? ay : e === 1 ? by : cy; g[2] = e === 0 ? az : e === 1 ? bz : cz;
+    g[3] = ex; g[4] = ey; g[5] = ez;
     edgeDeepest(shape, edgeAt);
     const d = edgeAt[1];
     if (d < best) {
       best = d;
       const s = edgeAt[0];
-      b0 = e === 0 ? 1 - s : e === 1 ? 0 : s;
-      b1 = e === 0 ? s : e === 1 ? 1 - s : 0;
-      b2 = e === 0 ? 0 : e === 1 ? s : 1 - s;
+      bary[0] = e === 0 ? 1 - s : e === 1 ? 0 : s;
+      bary[1] = e === 0 ? s : e === 1 ? 1 - s : 0;
+      bary[2] = e === 0 ? 0 : e === 1 ? s : 1 - s;
     }
   }
   // a vertex or an edge reaching into C: T crosses it
   if (best <= 0) { goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal, t); return; }
-  bary[0] = b0; bary[1] = b1; bary[2] = b2;
+  const b0 = bary[0], b1 = bary[1], b2 = bary[2];
   const q = convexQuery;
   q[QUERY_X] = b0 * ax + b1 * bx + b2 * cx; q[QUERY_Y] = b0 * ay + b1 * by + b2 * cy; q[QUERY_Z] = b0 * az + b1 * bz + b2 * cz;
   q[QUERY_WITHIN] = Infinity;

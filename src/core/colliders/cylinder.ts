@@ -129,14 +129,24 @@ export class CylinderCollider implements SupportShape {
     supportDeepest(this, a, ia, b, ib, c, ic, bary, normal, t);
   }
 
-  /** The point farthest along d: on the cap d points to (either, for d ⊥ axis), at the rim's point towards d. */
-  support(dx: number, dy: number, dz: number, out: Float64Array): void {
+  /**
+   * The points farthest along d and −d: on the cap each points to (either, for d ⊥ axis: the same cap for both), at
+   * the rim's point towards it.
+   */
+  support(d: Float64Array, hi: Float64Array, lo: Float64Array): void {
+    const dx = d[0], dy = d[1], dz = d[2];
     const y = dx * this.ux + dy * this.uy + dz * this.uz;
     const rx = dx - y * this.ux, ry = dy - y * this.uy, rz = dz - y * this.uz;
     const rho = Math.sqrt(rx * rx + ry * ry + rz * rz);
-    const s = (y < 0 ? -this.halfHeight : this.halfHeight), r = rho > 1e-12 * Math.sqrt(dx * dx + dy * dy + dz * dz) ? this.radius / rho : 0;
-    out[0] = this.center[0] + s * this.ux + r * rx;
-    out[1] = this.center[1] + s * this.uy + r * ry;
-    out[2] = this.center[2] + s * this.uz + r * rz;
+    const r = rho > 1e-12 * Math.sqrt(dx * dx + dy * dy + dz * dz) ? this.radius / rho : 0;
+    // along −d: the height −y, the radial part −(rx, ry, rz) (negation is exact), the same rho and r. (The caps'
+    // heights as ±1 × the half height: a field read merged with its negation is boxed at every call.)
+    const hh = this.halfHeight, s = (y < 0 ? -1 : 1) * hh, t = (-y < 0 ? -1 : 1) * hh;
+    hi[0] = this.center[0] + s * this.ux + r * rx;
+    hi[1] = this.center[1] + s * this.uy + r * ry;
+    hi[2] = this.center[2] + s * this.uz + r * rz;
+    lo[0] = this.center[0] + t * this.ux + r * -rx;
+    lo[1] = this.center[1] + t * this.uy + r * -ry;
+    lo[2] = this.center[2] + t * this.uz + r * -rz;
   }
 }
