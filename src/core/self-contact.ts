@@ -509,10 +509,11 @@ const FRAME_J = 3;
 /**
  * The frame a search makes its reach boxes in (into `frame`: the motion u per substep [m], and 0 substeps since):
  * the cloth's mean motion over this substep where its particles move less than SELF_FRAME_SHARE (half) as much
- * relative to it as they do at all (the sums of the lengths), else at rest. In a frame moving with a cloth that falls or flies as one, its particles'
- * reach boxes stay small, as at rest, and so do the lists of pairs; the distances of two particles at one instant are
- * the same in either frame, and a particle's path through a substep, straight in the world, is straight in it too,
- * so every pair that comes within reach of the other in a substep still has reach boxes that meet.
+ * relative to it as they do at all (the sums of the lengths), else at rest. In a frame moving with a cloth that
+ * falls or flies as one, its particles' reach boxes stay small, as at rest, and so do the lists of pairs; the
+ * distances of two particles at one instant are the same in either frame, and a particle's path through a substep,
+ * straight in the world, is straight in it too, so every pair that comes within reach of the other in a substep
+ * still has reach boxes that meet.
  */
 function movingFrame(frame: Float64Array, x: Float32Array, xp: Float32Array, np: number): void {
   let mx = 0, my = 0, mz = 0;

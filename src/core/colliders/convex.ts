@@ -278,8 +278,8 @@ export function goldenDeepest(
 export interface SupportShape extends ColliderShape {
   /**
    * The shape's points farthest along the direction d[0..2] and along −d (any one where several are) to `hi[0..2]`
-   * and `lo[0..2]`: the direction in an array, not as numbers, and both in one call (no number passes through a
-   * call in a step, and V8 inlines one call where it may not inline two: colliders/shape.ts).
+   * and `lo[0..2]`: the direction in an array, not as numbers (no number passes through a call in a step:
+   * colliders/shape.ts).
    */
   support(d: Float64Array, hi: Float64Array, lo: Float64Array): void;
 }
@@ -392,12 +392,9 @@ export function supportDeepest(
     V[4 * k] = q[QUERY_D];
     V[4 * k + 1] = scratchN[0]; V[4 * k + 2] = scratchN[1]; V[4 * k + 3] = scratchN[2];
   }
-  // the weights of the best so far go straight into bary (locals that start as the integers 1 and 0 and take
-  // fractions later are boxed at every assignment: colliders/shape.ts)
-  let best = V[0];
-  bary[0] = 1; bary[1] = 0; bary[2] = 0;
-  if (V[4] < best) { best = V[4]; bary[0] = 0; bary[1] = 1; }
-  if (V[8] < best) { best = V[8]; bary[0] = 0; bary[1] = 0; bary[2] = 1; }
+  let best = V[0], b0 = 1, b1 = 0, b2 = 0;
+  if (V[4] < best) { best = V[4]; b0 = 0; b1 = 1; }
+  if (V[8] < best) { best = V[8]; b0 = 0; b1 = 0; b2 = 1; }
   for (let e = 0; e < 3; e++) {
     const i = e, j = (e + 1) % 3;
     const ex = (j === 0 ? ax : j === 1 ? bx : cx) - (i === 0 ? ax : i === 1 ? bx : cx);
@@ -416,14 +413,14 @@ export function supportDeepest(
     if (d < best) {
       best = d;
       const s = edgeAt[0];
-      bary[0] = e === 0 ? 1 - s : e === 1 ? 0 : s;
-      bary[1] = e === 0 ? s : e === 1 ? 1 - s : 0;
-      bary[2] = e === 0 ? 0 : e === 1 ? s : 1 - s;
+      b0 = e === 0 ? 1 - s : e === 1 ? 0 : s;
+      b1 = e === 0 ? s : e === 1 ? 1 - s : 0;
+      b2 = e === 0 ? 0 : e === 1 ? s : 1 - s;
     }
   }
   // a vertex or an edge reaching into C: T crosses it
   if (best <= 0) { goldenDeepest(shape, a, ia, b, ib, c, ic, bary, normal, t); return; }
-  const b0 = bary[0], b1 = bary[1], b2 = bary[2];
+  bary[0] = b0; bary[1] = b1; bary[2] = b2;
   const q = convexQuery;
   q[QUERY_X] = b0 * ax + b1 * bx + b2 * cx; q[QUERY_Y] = b0 * ay + b1 * by + b2 * cy; q[QUERY_Z] = b0 * az + b1 * bz + b2 * cz;
   q[QUERY_WITHIN] = Infinity;
