@@ -81,14 +81,10 @@ export class BoxCollider implements ColliderShape {
     q[QUERY_D] = d;
   }
 
-  /** Whether segment p–q meets the box (slabs in the box's frame). */
-  segmentHits(px: number, py: number, pz: number, qx: number, qy: number, qz: number): boolean {
-    const s = segmentArgs;
-    s[0] = px; s[1] = py; s[2] = pz; s[3] = qx; s[4] = qy; s[5] = qz;
-    return this.segmentHitsIn(s);
-  }
-
-  /** segmentHits on the segment p–q in s[0..5]: no number passed (triangleDeepestIn, in a step: colliders/shape.ts). */
+  /**
+   * Whether the segment p–q in s[0..5] meets the box (slabs in the box's frame): through the array, no number passed
+   * (triangleDeepestIn, in a step: colliders/shape.ts).
+   */
   private segmentHitsIn(s: Float64Array): boolean {
     const px = s[0], py = s[1], pz = s[2], qx = s[3], qy = s[4], qz = s[5];
     const r = this.r, h = this.halfExtents;

@@ -455,7 +455,7 @@ function axisCrossing(ux: f64, uy: f64, uz: f64, radius: f64): f64 {
   return -radius;
 }
 
-/** BoxCollider.segmentHits in the box's frame: whether segment p–q meets the box (slabs). */
+/** BoxCollider.segmentHitsIn in the box's frame: whether segment p–q meets the box (slabs). */
 function segmentHits(px: f64, py: f64, pz: f64, qx: f64, qy: f64, qz: f64): bool {
   const dx = px - 0, dy = py - 0, dz = pz - 0;
   const ex = qx - px, ey = qy - py, ez = qz - pz;

@@ -68,7 +68,7 @@ fn axisCrossingNormal(a: vec3f, b: vec3f, c: vec3f, u: vec3f) -> vec3f {
   return n / select(l, 1.0, l == 0.0);
 }
 
-/** Whether segment p–q meets the box of half extents h (box.ts segmentHits, slabs). */
+/** Whether segment p–q meets the box of half extents h (box.ts segmentHitsIn, slabs). */
 fn segmentHitsBox(h: vec3f, p: vec3f, q: vec3f) -> bool {
   let e = q - p;
   var lo = 0.0;
