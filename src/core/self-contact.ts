@@ -163,7 +163,7 @@ function restMeasures(model: ClothModel): { minAltitude: number; meanEdge: numbe
 }
 
 /** For each of `np` particles, the primitives (of `k` particles each, in `ids`) it is one of, as compressed rows. */
-function rowsOf(ids: Uint32Array, k: number, np: number): { start: Int32Array; list: Int32Array } {
+export function rowsOf(ids: Uint32Array, k: number, np: number): { start: Int32Array; list: Int32Array } {
   const start = new Int32Array(np + 1), list = new Int32Array(ids.length);
   for (let i = 0; i < ids.length; i++) start[ids[i] + 1]++;
   for (let p = 0; p < np; p++) start[p + 1] += start[p];
@@ -1059,7 +1059,8 @@ function resolveEdges(
   const h = pairOf[PAIR_H], mu = pairOf[PAIR_MU], muS = pairOf[PAIR_MU_S];
   const move = sc.move, travel = sc.travel, memo = sc.edgeMemo;
   const apart = Math.max(h, Math.max(move[a], move[b]) + Math.max(move[c], move[d])) + SKIP_MARGIN;
-  const travelled = travel[a] + travel[b] + travel[c] + travel[d];
+  // each edge's ends summed first (the kernel keeps them so, per edge)
+  const travelled = (travel[a] + travel[b]) + (travel[c] + travel[d]);
   if (memo[2 * q] - (travelled - memo[2 * q + 1]) >= apart) return;
   memo[2 * q + 1] = travelled;
   const oe = edgeFrame(sc, x, e, a, b), of = edgeFrame(sc, x, f, c, d), fr = sc.edgeFrame;

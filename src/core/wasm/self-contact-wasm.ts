@@ -16,8 +16,8 @@
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import {
-  UPDATE_MOST, countSelfSearch, countSelfUpdate, findSelfCandidates, selfContactDistance, selfContactTrees, selfSearchLengths,
-  type SelfCandidates,
+  UPDATE_MOST, countSelfSearch, countSelfUpdate, findSelfCandidates, rowsOf, selfContactDistance, selfContactTrees,
+  selfSearchLengths, type SelfCandidates,
 } from '../self-contact.js';
 import type { BoxTree } from '../box-tree.js';
 import type { ClothState } from '../state.js';
@@ -32,6 +32,7 @@ export interface SelfContactExports {
   selfParticles(count: number, hMax: number): void;
   selfEdgeBoxes(hMax: number): void;
   selfEdges(count: number, hMax: number, memo: boolean): void;
+  selfStaleEdges(): number;
   configureSearch(...layout: number[]): void;
   selfSearch(hMax: number, left: number, h: number, gx: number, gy: number, gz: number, span: number, edge: number, window: number, edgeWindow: number): number;
   selfUpdate(count: number, hMax: number, left: number, h: number, gx: number, gy: number, gz: number, span: number, window: number, edgeWindow: number): number;
@@ -63,6 +64,8 @@ export interface SelfContactLayout {
   tris: number; edges: number; owner: number; cloth: number; reach: number; pbox: number; tbox: number; ebox: number;
   tframe: number; eframe: number; tframeAt: number; eframeAt: number; movedAt: number; pairs: number; edgePairs: number;
   travel: number; seen: number; move: number; edgeMemo: number; window: number; edgeWindow: number;
+  /** each particle's edges, as rows (self-contact.ts rowsOf): where each particle's start, and the list */
+  edgeStart: number; edgeList: number;
   /** the search's: the three trees' descriptors and arrays, the reach radii and boxes, its scratch */
   trees: number; tree: { order: number; first: number; size: number; right: number; boxes: number; parent: number; leaf: number }[];
   radius: number; treach: number; ereach: number; bucket: number; stack: number;
@@ -88,10 +91,11 @@ export function layoutSelfContact(model: ClothModel, take: (bytes: number) => nu
     bucket: take(4 * (Math.max(n, ne) + 1)), stack: take(8 * STACK_PAIRS),
     escaped: take(4 * n), marks: take(n + nt + ne), touched: take(4 * (nt + ne)), fresh: take(16 * freshCap), freshCap,
     tris: take(12 * nt), edges: take(8 * ne), owner: take(n), cloth: take(24 * (model.clothStarts.length - 1)),
-    reach: take(48 * n), pbox: take(48 * n), tbox: take(48 * nt), ebox: take(48 * ne),
+    // the edges' records a cache line each, on a cache line's boundary (take gives 16-byte ones)
+    reach: take(48 * n), pbox: take(48 * n), tbox: take(48 * nt), ebox: Math.ceil(take(64 * ne + 48) / 64) * 64,
     tframe: take(80 * nt), eframe: take(48 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
     pairs: take(8 * w), edgePairs: take(8 * we), travel: take(8 * n), seen: take(12 * n), move: take(8 * n), edgeMemo: take(16 * we),
-    window: w, edgeWindow: we,
+    window: w, edgeWindow: we, edgeStart: take(4 * (n + 1)), edgeList: take(8 * ne),
   };
 }
 
@@ -189,7 +193,11 @@ export class KernelSelfContact {
     this.exports = exports;
     const l = layout;
     exports.configureSelf(l.tris, l.edges, l.owner, l.cloth, l.reach, l.pbox, l.tbox, l.ebox, l.tframe, l.eframe,
-      l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, l.escaped, nt, ne);
+      l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, l.escaped, l.edgeStart,
+      l.edgeList, nt, ne);
+    const rows = rowsOf(model.edges, 2, n);
+    new Int32Array(memory, l.edgeStart, n + 1).set(rows.start);
+    new Int32Array(memory, l.edgeList, 2 * ne).set(rows.list);
     // the trees' structure (the reference's, built once), and where each tree lies
     const trees = selfContactTrees(model), descriptors = new Int32Array(memory, l.trees, TREE_FIELDS * 3);
     [trees.particles, trees.triangles, trees.edges].forEach((t, k) => {
@@ -289,6 +297,11 @@ export class KernelSelfContact {
     this.builtFor = hMax;
     this.foundBy = 'typescript';
     return true;
+  }
+
+  /** How many edges' records for the edge pass are not current (tests: none between two substeps). */
+  staleEdgeRecords(): number {
+    return this.exports.selfStaleEdges();
   }
 
   /** The candidates as the last search left them (tests), or null before the first. */

@@ -20,9 +20,17 @@ let CLOTH: usize = 0;
 export let REACH: usize = 0;
 /** each particle's box over the substep, f64 × 6 [m] */
 let PBOX: usize = 0;
-/** each triangle's box over the substep widened by h, and each edge's widened by h/2, f64 × 6 [m] */
+/** each triangle's box over the substep widened by h, f64 × 6 [m] */
 let TBOX: usize = 0;
+/**
+ * each edge's record for the edge pass, 64 bytes (a cache line): its box over the substep widened by h/2, f64 × 6
+ * [m]; its ends' travel summed [m] and their larger move over the substep [m], f64 each (selfEdgeBoxes, and kept so
+ * through the pass: edgesOf)
+ */
 let EBOX: usize = 0;
+/** the edges of each particle, as rows: where each particle's start (i32 × (particles + 1)) in the list (i32) */
+let PEDGE_START: usize = 0;
+let PEDGE_LIST: usize = 0;
 /**
  * each triangle's frame, f64 × 10: the unit normal now and at the substep's start, the centroid now [m], the
  * largest distance of a corner from it [m]; each edge's, f64 × 6: its midpoint now [m], half its vector b − a now [m]
@@ -83,12 +91,13 @@ export function selfFrame(ux: f64, uy: f64, uz: f64): void {
 export function configureSelf(
   tris: usize, edges: usize, owner: usize, cloth: usize, reach: usize, pbox: usize, tbox: usize, ebox: usize,
   tframe: usize, eframe: usize, tframeAt: usize, eframeAt: usize, movedAt: usize, pairs: usize, edgePairs: usize,
-  travel: usize, seen: usize, move: usize, edgeMemo: usize, escaped: usize, triangles: i32, edgeCount: i32,
+  travel: usize, seen: usize, move: usize, edgeMemo: usize, escaped: usize, edgeStart: usize, edgeList: usize,
+  triangles: i32, edgeCount: i32,
 ): void {
   TRIS = tris; EDGES = edges; OWNER = owner; CLOTH = cloth; REACH = reach; PBOX = pbox; TBOX = tbox; EBOX = ebox;
   TFRAME = tframe; EFRAME = eframe; TFRAME_AT = tframeAt; EFRAME_AT = eframeAt; MOVED_AT = movedAt;
   PAIRS = pairs; EDGE_PAIRS = edgePairs; TRAVEL = travel; SEEN = seen; MOVE = move; EDGE_MEMO = edgeMemo;
-  ESCAPED = escaped;
+  ESCAPED = escaped; PEDGE_START = edgeStart; PEDGE_LIST = edgeList;
   NT = triangles; NE = edgeCount;
   resetClock();
 }
@@ -187,18 +196,48 @@ export function selfTriangleBoxes(hMax: f64): void {
   substepAt = ++clock;
 }
 
-/** The edges' boxes over the substep (their ends' PBOX), widened by hMax/2 [m]: the start of collideEdges. */
+/**
+ * The edges' records (EBOX): their boxes over the substep (their ends' PBOX), widened by hMax/2 [m], and their ends'
+ * travel and move: the start of collideEdges.
+ */
 export function selfEdgeBoxes(hMax: f64): void {
   const r = 0.5 * hMax;
   const lo = f64x2.splat(-r), hi = f64x2.splat(r), mixed = f64x2.replace_lane(hi, 0, -r), low = i64x2(-1, 0);
   for (let e = 0; e < NE; e++) {
-    const b = EBOX + <usize>e * 48, ed = EDGES + <usize>e * 8;
+    const b = EBOX + (<usize>e << 6), ed = EDGES + <usize>e * 8;
+    edgeEnds(e);
     const i = PBOX + <usize>load<u32>(ed) * 48, j = PBOX + <usize>load<u32>(ed, 4) * 48;
     // as selfTriangleBoxes
     const i1 = v128.load(i, 16), j1 = v128.load(j, 16);
     v128.store(b, f64x2.add(f64x2.pmin(v128.load(i), v128.load(j)), lo));
     v128.store(b, f64x2.add(v128.bitselect(f64x2.pmin(i1, j1), f64x2.pmax(i1, j1), low), mixed), 16);
     v128.store(b, f64x2.add(f64x2.pmax(v128.load(i, 32), v128.load(j, 32)), hi), 32);
+  }
+}
+
+/** Edge e's record's travel and move (EBOX): its ends' travel summed and the larger of their moves [m]. */
+@inline function edgeEnds(e: i32): void {
+  const b = EBOX + (<usize>e << 6), ed = EDGES + <usize>e * 8;
+  const a = load<u32>(ed), c = load<u32>(ed, 4);
+  store<f64>(b, perParticle(TRAVEL, a) + perParticle(TRAVEL, c), 48);
+  store<f64>(b, max(perParticle(MOVE, a), perParticle(MOVE, c)), 56);
+}
+
+/** How many edges' records (EBOX) do not hold their ends' travel and move as they are now (tests: none, after a pass). */
+export function selfStaleEdges(): i32 {
+  let stale = 0;
+  for (let e = 0; e < NE; e++) {
+    const b = EBOX + (<usize>e << 6), ed = EDGES + <usize>e * 8;
+    const a = load<u32>(ed), c = load<u32>(ed, 4);
+    if (load<f64>(b, 48) != perParticle(TRAVEL, a) + perParticle(TRAVEL, c) || load<f64>(b, 56) != max(perParticle(MOVE, a), perParticle(MOVE, c))) stale++;
+  }
+  return stale;
+}
+
+/** The records of the edges of particle p, after it moved (edgeEnds). */
+function edgesOf(p: u32): void {
+  for (let i = load<i32>(PEDGE_START + (<usize>p << 2)), end = load<i32>(PEDGE_START + ((<usize>p + 1) << 2)); i < end; i++) {
+    edgeEnds(load<i32>(PEDGE_LIST + (<usize>i << 2)));
   }
 }
 
@@ -420,7 +459,15 @@ export function selfEdges(count: i32, hMax: f64, memo: bool): void {
   for (let q = 0; q < count; q++) {
     const pr = EDGE_PAIRS + (<usize>q << 3);
     const e = load<i32>(pr), f = load<i32>(pr, 4);
-    if (!overlap(EBOX + <usize>e * 48, EBOX + <usize>f * 48)) continue;
+    const be = EBOX + (<usize>e << 6), bf = EBOX + (<usize>f << 6);
+    if (!overlap(be, bf)) continue;
+    // resolveEdges' first skip from the two records alone, with hMax for the pair's h (at least it): a pair it skips,
+    // that skips too (the same numbers)
+    if (memo) {
+      const m = EDGE_MEMO + (<usize>q << 4);
+      const apart = max(hMax, load<f64>(be, 56) + load<f64>(bf, 56)) + SKIP_MARGIN;
+      if (load<f64>(m) - ((load<f64>(be, 48) + load<f64>(bf, 48)) - load<f64>(m, 8)) >= apart) continue;
+    }
     const ea = EDGES + <usize>e * 8, fa = EDGES + <usize>f * 8;
     const a = load<u32>(ea), b = load<u32>(ea, 4), c = load<u32>(fa), d = load<u32>(fa, 4);
     const ca = <i32>load<u8>(OWNER + <usize>a), cc = <i32>load<u8>(OWNER + <usize>c);
@@ -487,8 +534,9 @@ export function segmentClosest(base: usize, ja: usize, jb: usize, jc: usize, jd:
  * pair's EDGE_MEMO entry, or 0 for none.
  */
 function resolveEdges(h: f64, mu: f64, muS: f64, memo: usize, e: i32, f: i32, a: u32, b: u32, c: u32, d: u32): void {
-  const apart = max(h, max(perParticle(MOVE, a), perParticle(MOVE, b)) + max(perParticle(MOVE, c), perParticle(MOVE, d))) + SKIP_MARGIN;
-  const travelled = perParticle(TRAVEL, a) + perParticle(TRAVEL, b) + perParticle(TRAVEL, c) + perParticle(TRAVEL, d);
+  const be = EBOX + (<usize>e << 6), bf = EBOX + (<usize>f << 6);
+  const apart = max(h, load<f64>(be, 56) + load<f64>(bf, 56)) + SKIP_MARGIN;
+  const travelled = load<f64>(be, 48) + load<f64>(bf, 48);
   if (memo != 0) {
     if (load<f64>(memo) - (travelled - load<f64>(memo, 8)) >= apart) return;
     store<f64>(memo, travelled, 8);
@@ -539,4 +587,5 @@ function resolveEdges(h: f64, mu: f64, muS: f64, memo: usize, e: i32, f: i32, a:
   addX(jc, 0, -(wc * kc * kx)); addX(jc, 1, -(wc * kc * ky)); addX(jc, 2, -(wc * kc * kz));
   addX(jd, 0, -(wd * kd * kx)); addX(jd, 1, -(wd * kd * ky)); addX(jd, 2, -(wd * kd * kz));
   track(a); track(b); track(c); track(d);
+  edgesOf(a); edgesOf(b); edgesOf(c); edgesOf(d);
 }

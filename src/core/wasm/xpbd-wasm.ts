@@ -306,6 +306,11 @@ export class XpbdKernel implements PhaseBackend {
     return this.selfContact?.listed() ?? null;
   }
 
+  /** How many of self-contact's edge records are not current (self-contact-wasm.ts staleEdgeRecords), or null without self-contact. */
+  selfStaleEdges(): number | null {
+    return this.selfContact?.staleEdgeRecords() ?? null;
+  }
+
   /** the kernel's memory [bytes] */
   get bytes(): number {
     return this.memory.buffer.byteLength;
