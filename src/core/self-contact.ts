@@ -390,6 +390,9 @@ function substepBoxes(s: SelfScratch, x: Float32Array, xp: Float32Array, np: num
   const reach = s.reach, pb = s.particleBoxes, f = s.frame, j = f[FRAME_J];
   let out = 0;
   for (let p = 0; p < np; p++) {
+    // after the particle pass, only those it moved can have left their boxes (the others were inside them, or were
+    // given boxes around where they are, and have not moved)
+    if (!start && s.movedAt[p] <= s.substepAt) continue;
     const jp = 3 * p, r = 6 * p;
     let inside = true;
     for (let c = 0; c < 3; c++) {

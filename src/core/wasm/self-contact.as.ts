@@ -134,6 +134,9 @@ export function selfBoxes(start: bool): i32 {
   const J = FRAME_J;
   let out = 0;
   for (let p = 0; p < N; p++) {
+    // after the particle pass, only those it moved can have left their boxes (the others were inside them, or were
+    // given boxes around where they are, and have not moved)
+    if (!start && load<i32>(MOVED_AT + (<usize>p << 2)) <= substepAt) continue;
     const j = <usize>p * 12, r = <usize>p * 48;
     let inside = true;
     for (let k: usize = 0; k < 3; k++) {
