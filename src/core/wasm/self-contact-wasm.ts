@@ -68,7 +68,7 @@ export interface SelfContactLayout {
   edgeStart: number; edgeList: number;
   /** the search's: the three trees' descriptors and arrays, the reach radii and boxes, its scratch */
   trees: number; tree: { order: number; first: number; size: number; right: number; boxes: number; parent: number; leaf: number }[];
-  radius: number; treach: number; ereach: number; bucket: number; stack: number;
+  radius: number; treach: number; ereach: number; bucket: number; stack: number; tradius: number; eradius: number;
   /** the update's: the particles out of their boxes, marks, the triangles and edges it does, its fresh pairs (freshCap) */
   escaped: number; marks: number; touched: number; fresh: number; freshCap: number;
 }
@@ -87,7 +87,7 @@ export function layoutSelfContact(model: ClothModel, take: (bytes: number) => nu
   }));
   const freshCap = Math.max(1 << 12, FRESH_PER_UPDATED * Math.ceil(UPDATE_MOST * n));
   return {
-    trees: take(4 * TREE_FIELDS * 3), tree, radius: take(8 * n), treach: take(48 * nt), ereach: take(48 * ne),
+    trees: take(4 * TREE_FIELDS * 3), tree, radius: take(8 * n), treach: take(48 * nt), ereach: take(48 * ne), tradius: take(8 * nt), eradius: take(8 * ne),
     bucket: take(4 * (Math.max(n, ne) + 1)), stack: take(8 * STACK_PAIRS),
     escaped: take(4 * n), marks: take(n + nt + ne), touched: take(4 * (nt + ne)), fresh: take(16 * freshCap), freshCap,
     tris: take(12 * nt), edges: take(8 * ne), owner: take(n), cloth: take(24 * (model.clothStarts.length - 1)),
@@ -208,7 +208,7 @@ export class KernelSelfContact {
       new Int32Array(memory, at.right, nodes).set(t.right.subarray(0, nodes));
       descriptors.set([at.order, at.first, at.size, at.right, at.boxes, nodes, at.parent, at.leaf], TREE_FIELDS * k);
     });
-    exports.configureSearch(l.trees, l.radius, l.treach, l.ereach, l.bucket, l.stack, STACK_PAIRS, nt, ne, l.marks, l.touched, l.fresh, l.freshCap);
+    exports.configureSearch(l.trees, l.radius, l.treach, l.ereach, l.bucket, l.stack, STACK_PAIRS, nt, ne, l.marks, l.touched, l.fresh, l.freshCap, l.tradius, l.eradius);
     this.lengths = selfSearchLengths(model);
     this.windows = [l.window, l.edgeWindow];
     this.particles = (count, hMax) => exports.selfParticles(count, hMax);

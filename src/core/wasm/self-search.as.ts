@@ -36,6 +36,14 @@ let TRIANGLE_TREE: Tree = changetype<Tree>(0);
 let EDGE_TREE: Tree = changetype<Tree>(0);
 /** each particle's reach radius [m], f64 */
 let RADIUS: usize = 0;
+/**
+ * each triangle's and each edge's largest reach radius of its corners [m], f64 (radiiOf: what a search's pair filters
+ * read); whether they are those of the radii now (a search made them; an update, which changes every radius and finds
+ * few pairs, reads the corners' own)
+ */
+let TRADIUS: usize = 0;
+let ERADIUS: usize = 0;
+let radiiMade = false;
 /** each triangle's and each edge's reach box (its corners' reach boxes widened by h and h/2), f64 × 6 */
 let TREACH: usize = 0;
 let EREACH: usize = 0;
@@ -78,12 +86,12 @@ let meanEdge: f64 = 0;
  */
 export function configureSearch(
   trees: usize, radius: usize, treach: usize, ereach: usize, bucket: usize, stack: usize, stackCap: i32, triangles: i32, edgeCount: i32,
-  marks: usize, touched: usize, fresh: usize, freshCap: i32,
+  marks: usize, touched: usize, fresh: usize, freshCap: i32, tradius: usize, eradius: usize,
 ): void {
   PARTICLE_TREE = changetype<Tree>(trees);
   TRIANGLE_TREE = changetype<Tree>(trees + offsetof<Tree>());
   EDGE_TREE = changetype<Tree>(trees + 2 * offsetof<Tree>());
-  RADIUS = radius; TREACH = treach; EREACH = ereach; BUCKET = bucket;
+  RADIUS = radius; TREACH = treach; EREACH = ereach; BUCKET = bucket; TRADIUS = tradius; ERADIUS = eradius;
   STACK = stack; STACK_CAP = stackCap; NT = triangles; NE = edgeCount;
   PMARK = marks; TMARK = marks + <usize>N; EMARK = TMARK + <usize>triangles;
   memory.fill(marks, 0, <usize>N + <usize>triangles + <usize>edgeCount);
@@ -129,6 +137,7 @@ export function selfSearch(
   const half = 0.5 * hMax;
   for (let e = 0; e < NE; e++) unionOf(REACH, EDGES + <usize>e * 8, 0, 2, EREACH + <usize>e * 48, half);
   if (!refit(PARTICLE_TREE, REACH, N) || !refit(TRIANGLE_TREE, TREACH, NT) || !refit(EDGE_TREE, EREACH, NE)) return 0;
+  radiiOf();
   hFor = hMax;
   meanEdge = edge;
 
@@ -202,6 +211,7 @@ export function selfUpdate(
       }
       store<f64>(RADIUS + (<usize>p << 3), Math.sqrt(r2));
     }
+    radiiMade = false;
     result = updatePairs(count, nt, window) && updateEdgePairs(ne, edgeWindow) ? 1 : -1;
   }
   for (let i = 0; i < count; i++) store<u8>(PMARK + <usize>i32At(ESCAPED, i), 0);
@@ -453,6 +463,19 @@ function refitAbove(t: Tree, prims: usize, ids: usize, count: i32): bool {
   return true;
 }
 
+/** Each triangle's and edge's largest reach radius of its corners (TRADIUS, ERADIUS), from the particles' (RADIUS). */
+function radiiOf(): void {
+  for (let t = 0; t < NT; t++) {
+    const tr = TRIS + <usize>t * 12;
+    store<f64>(TRADIUS + (<usize>t << 3), max(max(radius(load<u32>(tr)), radius(load<u32>(tr, 4))), radius(load<u32>(tr, 8))));
+  }
+  for (let e = 0; e < NE; e++) {
+    const ed = EDGES + <usize>e * 8;
+    store<f64>(ERADIUS + (<usize>e << 3), max(radius(load<u32>(ed)), radius(load<u32>(ed, 4))));
+  }
+  radiiMade = true;
+}
+
 /**
  * Adds (particle p, triangle t) to RAW as the `n`th pair unless p is a corner of t or the two are apart (the
  * reference's Trees.addPair); returns the pairs in RAW after it, −1 when RAW is full.
@@ -461,7 +484,7 @@ function refitAbove(t: Tree, prims: usize, ids: usize, count: i32): bool {
   const tr = TRIS + <usize>t * 12;
   const a = load<u32>(tr), b = load<u32>(tr, 4), c = load<u32>(tr, 8);
   if (a == <u32>p || b == <u32>p || c == <u32>p) return n;
-  const near = hFor + radius(<u32>p) + max(max(radius(a), radius(b)), radius(c)) + SKIP_MARGIN;
+  const near = hFor + radius(<u32>p) + (radiiMade ? load<f64>(TRADIUS + (<usize>t << 3)) : max(max(radius(a), radius(b)), radius(c))) + SKIP_MARGIN;
   if (near < meanEdge && closestPoint(<usize>p * 12, <usize>a * 12, <usize>b * 12, <usize>c * 12) > near) return n;
   if (n >= RAW_CAP) return -1;
   const at = RAW + (<usize>n << 3);
@@ -474,7 +497,7 @@ function refitAbove(t: Tree, prims: usize, ids: usize, count: i32): bool {
   const ea = EDGES + <usize>e * 8, fa = EDGES + <usize>f * 8;
   const a = load<u32>(ea), b = load<u32>(ea, 4), c = load<u32>(fa), d = load<u32>(fa, 4);
   if (c == a || c == b || d == a || d == b) return n;
-  const near = hFor + max(radius(a), radius(b)) + max(radius(c), radius(d)) + SKIP_MARGIN;
+  const near = hFor + (radiiMade ? load<f64>(ERADIUS + (<usize>e << 3)) + load<f64>(ERADIUS + (<usize>f << 3)) : max(radius(a), radius(b)) + max(radius(c), radius(d))) + SKIP_MARGIN;
   if (near < meanEdge && segmentClosest(X, <usize>a * 12, <usize>b * 12, <usize>c * 12, <usize>d * 12) > near) return n;
   if (n >= RAW_CAP) return -1;
   const at = RAW + (<usize>n << 3);
