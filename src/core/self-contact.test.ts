@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { countIntersections } from './intersections.js';
 import { builtinScene } from './scenes.js';
-import { findSelfCandidates, selfContactBuilds, selfContactDistance } from './self-contact.js';
+import { findSelfCandidates, searchAhead, selfContactBuilds, selfContactDistance } from './self-contact.js';
 import { Simulation } from './simulation.js';
 import { validateScene } from './scene.js';
 import { copyState, grab } from './state.js';
@@ -127,6 +127,14 @@ describe('self-contact (solver.selfContact)', () => {
     expect(lowest).toBeGreaterThan(0.25);
     expect(highest).toBeLessThan(0.33); // below where it started: it fell and stopped on the lower strip
     sim.dispose();
+  });
+
+  it('looks ahead the frame\'s rest at first and where the lists held that long, else as far as the last lists held (at least 2 substeps)', () => {
+    expect(searchAhead(20, Infinity)).toBe(20);
+    expect(searchAhead(7, 40)).toBe(7);
+    expect(searchAhead(20, 5)).toBe(5);
+    expect(searchAhead(20, 0)).toBe(2);
+    expect(searchAhead(1, 0)).toBe(1);
   });
 
   it('resolves the pairs in one order however the candidates were found: a cloth that found them frames ago steps as one that finds them now', () => {

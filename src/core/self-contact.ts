@@ -124,6 +124,9 @@ interface SelfScratch {
    * since the last search j [-]; a point x at the end of this substep is at x − j·u in it, at its start x − (j − 1)·u
    */
   frame: Float64Array;
+  /** substeps since the last whole search (this one included), and how many the one before it held (∞: none yet) */
+  since: number;
+  lasted: number;
   /** the particles out of their reach boxes at the last substepBoxes (the first escapedCount) */
   escaped: Int32Array;
   escapedCount: number;
@@ -206,6 +209,8 @@ function scratch(model: ClothModel): SelfScratch {
     particleTriangles: rowsOf(model.triangles, 3, model.particleCount),
     particleEdges: rowsOf(model.edges, 2, model.particleCount),
     frame: new Float64Array(4),
+    since: Infinity,
+    lasted: Infinity,
     escaped: new Int32Array(model.particleCount),
     escapedCount: 0,
     touchedTriangles: new Int32Array(n),
@@ -337,8 +342,10 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
 
   // the candidates hold while every particle's box over this substep is inside its reach box
   s.frame[FRAME_J]++;
+  s.since++;
+  const ahead = searchAhead(left, s.lasted);
   const within = substepBoxes(s, x, xp, np, true);
-  if (!(s.builtFor === hMax && within) && !updateCandidates(model, state, params, s, hMax, h, left) && !findCandidates(model, state, params, s, hMax, h, left)) return; // an unstable cloth: nothing to keep apart
+  if (!(s.builtFor === hMax && within) && !updateCandidates(model, state, params, s, hMax, h, ahead) && !searchWhole(model, state, params, s, hMax, h, ahead)) return; // an unstable cloth: nothing to keep apart
 
   // triangle boxes over the substep (their corners'), widened by h
   const boxes = s.boxes, pb = s.particleBoxes;
@@ -377,8 +384,16 @@ export function collideSelf(model: ClothModel, state: ClothState, params: SimPar
   }
   // the particle pass may have pushed a particle out of its reach box: the edges' candidates must hold for where
   // the particles are now
-  if (!substepBoxes(s, x, xp, np, false) && !updateCandidates(model, state, params, s, hMax, h, left) && !findCandidates(model, state, params, s, hMax, h, left)) return;
+  if (!substepBoxes(s, x, xp, np, false) && !updateCandidates(model, state, params, s, hMax, h, ahead) && !searchWhole(model, state, params, s, hMax, h, ahead)) return;
   collideEdges(model, state, params, s, hMax);
+}
+
+/** collideSelf's whole search (findCandidates), which then counts how long the lists before it held (searchAhead). */
+function searchWhole(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number, h: number, left: number): boolean {
+  if (!findCandidates(model, state, params, s, hMax, h, left)) return false;
+  s.lasted = s.since;
+  s.since = 0;
+  return true;
 }
 
 /**
@@ -416,6 +431,21 @@ function track(s: SelfScratch, x: Float32Array, xp: Float32Array, p: number): vo
   seen[j] = x[j]; seen[j + 1] = x[j + 1]; seen[j + 2] = x[j + 2];
   const mx = x[j] - xp[j], my = x[j + 1] - xp[j + 1], mz = x[j + 2] - xp[j + 2];
   s.move[p] = Math.sqrt(mx * mx + my * my + mz * mz);
+}
+
+/** The fewest substeps ahead a search looks (searchAhead). */
+const AHEAD_LEAST = 2;
+
+/**
+ * How many substeps ahead a search (or an update) makes its reach boxes for, where `left` substeps of the frame are
+ * left and the last whole search's candidates held `lasted` substeps (∞ before there was one): no more than they
+ * held, at least AHEAD_LEAST. Where the lists hold a frame or more (a cloth at rest, or falling as one) that is the
+ * frame's rest, as before; in a landing, searched every few substeps, the boxes look as far ahead as the last held —
+ * smaller for the particles that move slowly (a fast one's is capped at REACH_SPAN of an edge anyway), so fewer pairs
+ * are listed and passed over: fold at 64², frames 1–60, 103–105 → 93–97 ms a frame (docs/performance.md).
+ */
+export function searchAhead(left: number, lasted: number): number {
+  return Math.min(left, Math.max(AHEAD_LEAST, lasted));
 }
 
 /** How much of the mean rest edge length a reach box spans of predicted motion at most [-] (findCandidates). */

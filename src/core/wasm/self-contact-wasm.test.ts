@@ -25,22 +25,24 @@ function thickLayers(): Scene {
 /**
  * Runs `sim` (TypeScript) to each of `frames`, then the next substep's phases before self-contact on a copy of its
  * state, and self-contact on that copy twice: the reference's collideSelf, and the kernel's (window: its pair
- * windows' size). Returns, per frame, whether the two gave the same positions bit for bit, how many coordinates
- * self-contact moved, whether the two searches listed the same pairs in the same order, and who searched in the
- * kernel.
+ * windows' size), each new to the cloth (a model of its own, with no searches before: how far ahead a search looks
+ * follows how long the last held, searchAhead). Returns, per frame, whether the two gave the same positions bit for
+ * bit, how many coordinates self-contact moved, whether the two searches listed the same pairs in the same order, and
+ * who searched in the kernel.
  */
 function phaseParity(scene: Scene, frames: number[], window?: number): { same: boolean; moved: number; sameList: boolean; foundBy: string }[] {
   // the springs swept alone, as when the frames were chosen (the cloths land there, the passes move them)
   scene.solver.stretch = 'gauss-seidel';
   const sim = new Simulation(scene, { kernel: 'ts' });
-  const { model, params } = sim;
-  const kernel = XpbdKernel.create(model, 1, window)!;
-  const ts = createState(model);
   const out: { same: boolean; moved: number; sameList: boolean; foundBy: string }[] = [];
   let at = 0;
   for (const f of frames) {
     sim.advance(f - at);
     at = f;
+    const fresh = new Simulation(scene, { kernel: 'ts' });
+    const { model, params } = fresh;
+    const kernel = XpbdKernel.create(model, 1, window)!;
+    const ts = createState(model);
     copyState(sim.state, ts);
     const frame = { h: FRAME_DT / params.substeps, substeps: params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
     const phases = framePhases(model, ts, params);
@@ -63,8 +65,9 @@ function phaseParity(scene: Scene, frames: number[], window?: number): { same: b
       String(listed.pairs) === String(ref.pairs.subarray(0, 2 * ref.pairCount)) &&
       String(listed.edgePairs) === String(ref.edgePairs.subarray(0, 2 * ref.edgePairCount));
     out.push({ same, moved, sameList, foundBy: listed.foundBy });
+    kernel.dispose();
+    fresh.dispose();
   }
-  kernel.dispose();
   sim.dispose();
   return out;
 }

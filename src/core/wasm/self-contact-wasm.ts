@@ -16,8 +16,8 @@
 import type { ClothModel } from '../model.js';
 import type { SimParams } from '../params.js';
 import {
-  UPDATE_MOST, countSelfSearch, countSelfUpdate, findSelfCandidates, rowsOf, selfContactDistance, selfContactTrees,
-  selfSearchLengths, type SelfCandidates,
+  UPDATE_MOST, countSelfSearch, countSelfUpdate, findSelfCandidates, rowsOf, searchAhead, selfContactDistance,
+  selfContactTrees, selfSearchLengths, type SelfCandidates,
 } from '../self-contact.js';
 import type { BoxTree } from '../box-tree.js';
 import type { ClothState } from '../state.js';
@@ -171,6 +171,9 @@ export class KernelSelfContact {
   private readonly edgePairs: PairList;
   /** the distance h [m] the candidates in the kernel were found for (NaN: none) */
   private builtFor = NaN;
+  /** substeps since the last whole search (this one included), and how many the one before it held (∞: none yet): searchAhead */
+  private since = Infinity;
+  private lasted = Infinity;
   /** who found the candidates last */
   private foundBy: ListedPairs['foundBy'] | null = null;
   private paramsSeen: SimParams | undefined;
@@ -234,14 +237,16 @@ export class KernelSelfContact {
       this.paramsSeen = params;
     }
     const ex = this.exports;
+    this.since++;
+    const ahead = searchAhead(left, this.lasted);
     // the candidates hold while every particle's box over this substep is inside its reach box
     const out = ex.selfBoxes(true);
-    if (!(this.builtFor === hMax && out === 0) && !this.update(model, params, out, hMax, h, left) && !this.find(model, state, params, hMax, h, left)) return;
+    if (!(this.builtFor === hMax && out === 0) && !this.update(model, params, out, hMax, h, ahead) && !this.find(model, state, params, hMax, h, ahead)) return;
     ex.selfTriangleBoxes(hMax);
     this.pairs.run(this.particles, hMax);
     // the particle pass may have pushed a particle out of its reach box
     const pushed = ex.selfBoxes(false);
-    if (pushed !== 0 && !this.update(model, params, pushed, hMax, h, left) && !this.find(model, state, params, hMax, h, left)) return;
+    if (pushed !== 0 && !this.update(model, params, pushed, hMax, h, ahead) && !this.find(model, state, params, hMax, h, ahead)) return;
     ex.selfEdgeBoxes(hMax);
     this.edgePairs.run(this.edges, hMax);
   }
@@ -279,6 +284,7 @@ export class KernelSelfContact {
       this.pairs.found(ex.foundPairs());
       this.edgePairs.found(edgePairs);
       ex.selfFound(edgePairs);
+      this.searched();
       this.builtFor = hMax;
       this.foundBy = 'kernel';
       return true;
@@ -294,9 +300,16 @@ export class KernelSelfContact {
     this.pairs.take(c.pairs, c.pairCount);
     this.edgePairs.take(c.edgePairs, c.edgePairCount);
     this.exports.selfFound(this.edgePairs.resident ? c.edgePairCount : 0);
+    this.searched();
     this.builtFor = hMax;
     this.foundBy = 'typescript';
     return true;
+  }
+
+  /** A whole search was made: the lists before it held `since` substeps (searchAhead). */
+  private searched(): void {
+    this.lasted = this.since;
+    this.since = 0;
   }
 
   /** How many edges' records for the edge pass are not current (tests: none between two substeps). */
