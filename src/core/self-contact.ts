@@ -51,7 +51,7 @@ import type { ClothState } from './state.js';
 interface SelfScratch {
   /** the smallest altitude of the rest triangles [m]: the self-contact distance is at most half of it */
   minAltitude: number;
-  /** the mean rest edge length [m]: a reach box spans at most a third of it of predicted motion (findCandidates) */
+  /** the mean rest edge length [m]: a reach box spans at most REACH_SPAN of it of predicted motion (findCandidates) */
   meanEdge: number;
   /** triangle boxes over the substep (start ∪ end), widened by h: minx, miny, minz, maxx, maxy, maxz */
   boxes: Float64Array;
@@ -449,7 +449,7 @@ export function searchAhead(left: number, lasted: number): number {
 }
 
 /** How much of the mean rest edge length a reach box spans of predicted motion at most [-] (findCandidates). */
-const REACH_SPAN = 1 / 3;
+const REACH_SPAN = 1 / 2;
 
 /**
  * What a search on `model` reads besides the state, for a kernel that searches itself: the mean rest edge length
@@ -462,8 +462,8 @@ export function selfSearchLengths(model: ClothModel): { meanEdge: number; span: 
 
 /**
  * Finds the candidate pairs for the substeps left in the frame: each particle's reach box (its box over this
- * substep, carried on over the `left` substeps of length h at its motion so far and gravity — but no farther than a
- * third of the mean rest edge length — with a margin of half that motion and at least h/4), the triangles' and
+ * substep, carried on over the `left` substeps of length h at its motion so far and gravity — but no farther than
+ * REACH_SPAN of the mean rest edge length — with a margin of half that motion and at least h/4), the triangles' and
  * edges' from their corners', and the pairs whose boxes meet (box-tree.ts: a tree over the particles' boxes
  * against one over the triangles', and one over the edges' against itself; at 64² on fold a search took 20 ms at
  * rest and 39 ms in the fall, against 29 and 51 ms by the uniform grids before, the same pairs) less those farther
@@ -471,7 +471,9 @@ export function selfSearchLengths(model: ClothModel): { meanEdge: number; span: 
  * pairs listed instead of 27.0 k and 96.7 k). False when a box is not finite. (A fast cloth then finds them again
  * more often instead of listing every neighbour along a frame of its path: fold's fall at 64², frames 0–30,
  * searched 191 times instead of 168 and listed 95 k pairs instead of 143 k; frames 0–60 took 265 ms per frame
- * instead of 463. A third beat a half and a fifth.)
+ * instead of 463. A third beat a half and a fifth then; since a search looks ahead no farther than the last lists
+ * held, searchAhead, half an edge beats a third: fold at 64², frames 1–30 and 31–60, 96, 93 → 93, 88 ms a frame, and
+ * a quarter, two thirds, three quarters and one edge no better.)
  */
 function findCandidates(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number, h: number, left: number): boolean {
   const tri = model.triangles, nt = tri.length / 3, np = model.particleCount, edges = model.edges, ne = edges.length / 2;
