@@ -69,6 +69,9 @@ export interface SelfContactLayout {
   /** the search's: the three trees' descriptors and arrays, the reach radii and boxes, its scratch */
   trees: number; tree: { order: number; first: number; size: number; right: number; boxes: number; parent: number; leaf: number }[];
   radius: number; treach: number; ereach: number; bucket: number; stack: number; tradius: number; eradius: number;
+  radiusAt: number;
+  /** each particle's triangles, as rows (self-contact.ts rowsOf): where each particle's start, and the list */
+  triStart: number; triList: number;
   /** the update's: the particles out of their boxes, marks, the triangles and edges it does, its fresh pairs (freshCap) */
   escaped: number; marks: number; touched: number; fresh: number; freshCap: number;
 }
@@ -88,6 +91,7 @@ export function layoutSelfContact(model: ClothModel, take: (bytes: number) => nu
   const freshCap = Math.max(1 << 12, FRESH_PER_UPDATED * Math.ceil(UPDATE_MOST * n));
   return {
     trees: take(4 * TREE_FIELDS * 3), tree, radius: take(8 * n), treach: take(48 * nt), ereach: take(48 * ne), tradius: take(8 * nt), eradius: take(8 * ne),
+    radiusAt: take(4 * n), triStart: take(4 * (n + 1)), triList: take(12 * nt),
     bucket: take(4 * (Math.max(n, ne) + 1)), stack: take(8 * STACK_PAIRS),
     escaped: take(4 * n), marks: take(n + nt + ne), touched: take(4 * (nt + ne)), fresh: take(16 * freshCap), freshCap,
     tris: take(12 * nt), edges: take(8 * ne), owner: take(n), cloth: take(24 * (model.clothStarts.length - 1)),
@@ -198,9 +202,12 @@ export class KernelSelfContact {
     exports.configureSelf(l.tris, l.edges, l.owner, l.cloth, l.reach, l.pbox, l.tbox, l.ebox, l.tframe, l.eframe,
       l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, l.escaped, l.edgeStart,
       l.edgeList, nt, ne);
-    const rows = rowsOf(model.edges, 2, n);
+    // each particle's edges and triangles (the edge pass's records, the update's primitives)
+    const rows = rowsOf(model.edges, 2, n), triRows = rowsOf(model.triangles, 3, n);
     new Int32Array(memory, l.edgeStart, n + 1).set(rows.start);
     new Int32Array(memory, l.edgeList, 2 * ne).set(rows.list);
+    new Int32Array(memory, l.triStart, n + 1).set(triRows.start);
+    new Int32Array(memory, l.triList, 3 * nt).set(triRows.list);
     // the trees' structure (the reference's, built once), and where each tree lies
     const trees = selfContactTrees(model), descriptors = new Int32Array(memory, l.trees, TREE_FIELDS * 3);
     [trees.particles, trees.triangles, trees.edges].forEach((t, k) => {
@@ -211,7 +218,8 @@ export class KernelSelfContact {
       new Int32Array(memory, at.right, nodes).set(t.right.subarray(0, nodes));
       descriptors.set([at.order, at.first, at.size, at.right, at.boxes, nodes, at.parent, at.leaf], TREE_FIELDS * k);
     });
-    exports.configureSearch(l.trees, l.radius, l.treach, l.ereach, l.bucket, l.stack, STACK_PAIRS, nt, ne, l.marks, l.touched, l.fresh, l.freshCap, l.tradius, l.eradius);
+    exports.configureSearch(l.trees, l.radius, l.treach, l.ereach, l.bucket, l.stack, STACK_PAIRS, nt, ne, l.marks, l.touched, l.fresh, l.freshCap, l.tradius, l.eradius, l.radiusAt,
+      l.triStart, l.triList, l.edgeStart, l.edgeList);
     this.lengths = selfSearchLengths(model);
     this.windows = [l.window, l.edgeWindow];
     this.particles = (count, hMax) => exports.selfParticles(count, hMax);

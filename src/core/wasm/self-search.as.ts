@@ -34,8 +34,15 @@ import { EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, FRAME_J, PAIRS, REACH, TRIS, clo
 let PARTICLE_TREE: Tree = changetype<Tree>(0);
 let TRIANGLE_TREE: Tree = changetype<Tree>(0);
 let EDGE_TREE: Tree = changetype<Tree>(0);
-/** each particle's reach radius [m], f64 */
+/** each particle's reach radius [m], f64, and the search or update it was measured for (i32: radiusNow) */
 let RADIUS: usize = 0;
+let RADIUS_AT: usize = 0;
+let epoch: i32 = 0;
+/** each particle's triangles and edges, as rows (self-contact.ts rowsOf): where each particle's start (i32 × (particles + 1)), the list (i32) */
+let PTRI_START: usize = 0;
+let PTRI_LIST: usize = 0;
+let PEDGE_START: usize = 0;
+let PEDGE_LIST: usize = 0;
 /**
  * each triangle's and each edge's largest reach radius of its corners [m], f64 (radiiOf: what a search's pair filters
  * read); whether they are those of the radii now (a search made them; an update, which changes every radius and finds
@@ -86,12 +93,15 @@ let meanEdge: f64 = 0;
  */
 export function configureSearch(
   trees: usize, radius: usize, treach: usize, ereach: usize, bucket: usize, stack: usize, stackCap: i32, triangles: i32, edgeCount: i32,
-  marks: usize, touched: usize, fresh: usize, freshCap: i32, tradius: usize, eradius: usize,
+  marks: usize, touched: usize, fresh: usize, freshCap: i32, tradius: usize, eradius: usize, radiusAt: usize,
+  triStart: usize, triList: usize, edgeStart: usize, edgeList: usize,
 ): void {
   PARTICLE_TREE = changetype<Tree>(trees);
   TRIANGLE_TREE = changetype<Tree>(trees + offsetof<Tree>());
   EDGE_TREE = changetype<Tree>(trees + 2 * offsetof<Tree>());
   RADIUS = radius; TREACH = treach; EREACH = ereach; BUCKET = bucket; TRADIUS = tradius; ERADIUS = eradius;
+  RADIUS_AT = radiusAt; memory.fill(radiusAt, 0xff, <usize>N << 2);
+  PTRI_START = triStart; PTRI_LIST = triList; PEDGE_START = edgeStart; PEDGE_LIST = edgeList;
   STACK = stack; STACK_CAP = stackCap; NT = triangles; NE = edgeCount;
   PMARK = marks; TMARK = marks + <usize>N; EMARK = TMARK + <usize>triangles;
   memory.fill(marks, 0, <usize>N + <usize>triangles + <usize>edgeCount);
@@ -122,6 +132,26 @@ export function foundEdgePairs(): i32 { return edgePairCount; }
 @inline function radius(p: u32): f64 { return load<f64>(RADIUS + (<usize>p << 3)); }
 
 /**
+ * Particle p's reach radius for an update: its own (made by reachOf for this search or update), or else the others
+ * keep their boxes, which still hold them, and theirs is measured from where they are now in the boxes' frame, once.
+ */
+function radiusNow(p: u32): f64 {
+  const at = RADIUS_AT + (<usize>p << 2);
+  if (load<i32>(at) == epoch) return radius(p);
+  const j = <usize>p * 12, r = REACH + <usize>p * 48, J = FRAME_J;
+  let r2: f64 = 0;
+  for (let c: usize = 0; c < 3; c++) {
+    const x = <f64>load<f32>(X + j + (c << 2)) - J * frameU(c);
+    const far = max(x - load<f64>(r + (c << 3)), load<f64>(r + 24 + (c << 3)) - x);
+    r2 += far * far;
+  }
+  const v = Math.sqrt(r2);
+  store<f64>(RADIUS + (<usize>p << 3), v);
+  store<i32>(at, epoch);
+  return v;
+}
+
+/**
  * Finds the candidate pairs for the substeps left in the frame (`left` of length h [s]; distance hMax [m], gravity
  * (gx, gy, gz) [m/s²], `span` and `edge` from selfSearchLengths) into the pair windows of `window` and `edgeWindow`
  * pairs. Returns 1 when found, 0 when a box is not finite (an unstable cloth: the reference's false), −1 when the
@@ -132,6 +162,7 @@ export function selfSearch(
 ): i32 {
   const T = left * h;
   movingFrame();
+  epoch++;
   for (let p = 0; p < N; p++) reachOf(p, left, T, gx, gy, gz, span, hMax);
   for (let t = 0; t < NT; t++) unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
   const half = 0.5 * hMax;
@@ -171,46 +202,37 @@ export function selfUpdate(
   count: i32, hMax: f64, left: f64, h: f64, gx: f64, gy: f64, gz: f64, span: f64, window: i32, edgeWindow: i32,
 ): i32 {
   const T = left * h;
+  // the others' radii are measured again, from where they are now, when a pair filter reads them (radiusNow)
+  epoch++;
   for (let i = 0; i < count; i++) {
     const p = i32At(ESCAPED, i);
     reachOf(p, left, T, gx, gy, gz, span, hMax);
     store<u8>(PMARK + <usize>p, 1);
   }
-  // their triangles and edges (any order: the pairs are sorted after)
+  // their triangles and edges, each once (any order: the pairs are sorted after)
   let nt = 0, ne = 0;
-  for (let t = 0; t < NT; t++) {
-    const tr = TRIS + <usize>t * 12;
-    if ((load<u8>(PMARK + <usize>load<u32>(tr)) | load<u8>(PMARK + <usize>load<u32>(tr, 4)) | load<u8>(PMARK + <usize>load<u32>(tr, 8))) == 0) continue;
-    store<u8>(TMARK + <usize>t, 1);
-    store<i32>(TOUCHED_T + (<usize>(nt++) << 2), t);
-    unionOf(REACH, tr, 0, 3, TREACH + <usize>t * 48, hMax);
-  }
   const half = 0.5 * hMax;
-  for (let e = 0; e < NE; e++) {
-    const ed = EDGES + <usize>e * 8;
-    if ((load<u8>(PMARK + <usize>load<u32>(ed)) | load<u8>(PMARK + <usize>load<u32>(ed, 4))) == 0) continue;
-    store<u8>(EMARK + <usize>e, 1);
-    store<i32>(TOUCHED_E + (<usize>(ne++) << 2), e);
-    unionOf(REACH, ed, 0, 2, EREACH + <usize>e * 48, half);
+  for (let i = 0; i < count; i++) {
+    const p = i32At(ESCAPED, i);
+    for (let k = i32At(PTRI_START, p), end = i32At(PTRI_START, p + 1); k < end; k++) {
+      const t = i32At(PTRI_LIST, k);
+      if (load<u8>(TMARK + <usize>t) != 0) continue;
+      store<u8>(TMARK + <usize>t, 1);
+      store<i32>(TOUCHED_T + (<usize>(nt++) << 2), t);
+      unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
+    }
+    for (let k = i32At(PEDGE_START, p), end = i32At(PEDGE_START, p + 1); k < end; k++) {
+      const e = i32At(PEDGE_LIST, k);
+      if (load<u8>(EMARK + <usize>e) != 0) continue;
+      store<u8>(EMARK + <usize>e, 1);
+      store<i32>(TOUCHED_E + (<usize>(ne++) << 2), e);
+      unionOf(REACH, EDGES + <usize>e * 8, 0, 2, EREACH + <usize>e * 48, half);
+    }
   }
   let result = 1;
   if (!refitAbove(PARTICLE_TREE, REACH, ESCAPED, count) || !refitAbove(TRIANGLE_TREE, TREACH, TOUCHED_T, nt) || !refitAbove(EDGE_TREE, EREACH, TOUCHED_E, ne)) {
     result = 0;
   } else {
-    // the others keep their boxes, which still hold them; their radii are measured from where they are now (in the
-    // boxes' frame)
-    const J = FRAME_J;
-    for (let p = 0; p < N; p++) {
-      if (load<u8>(PMARK + <usize>p) != 0) continue;
-      const j = <usize>p * 12, r = REACH + <usize>p * 48;
-      let r2: f64 = 0;
-      for (let c: usize = 0; c < 3; c++) {
-        const x = <f64>load<f32>(X + j + (c << 2)) - J * frameU(c);
-        const far = max(x - load<f64>(r + (c << 3)), load<f64>(r + 24 + (c << 3)) - x);
-        r2 += far * far;
-      }
-      store<f64>(RADIUS + (<usize>p << 3), Math.sqrt(r2));
-    }
     radiiMade = false;
     result = updatePairs(count, nt, window) && updateEdgePairs(ne, edgeWindow) ? 1 : -1;
   }
@@ -384,6 +406,7 @@ function movingFrame(): void {
   let r2: f64 = 0;
   r2 += e0 * e0; r2 += e1 * e1; r2 += e2 * e2;
   store<f64>(RADIUS + (<usize>p << 3), Math.sqrt(r2));
+  store<i32>(RADIUS_AT + (<usize>p << 2), epoch);
 }
 
 /**
@@ -484,7 +507,8 @@ function radiiOf(): void {
   const tr = TRIS + <usize>t * 12;
   const a = load<u32>(tr), b = load<u32>(tr, 4), c = load<u32>(tr, 8);
   if (a == <u32>p || b == <u32>p || c == <u32>p) return n;
-  const near = hFor + radius(<u32>p) + (radiiMade ? load<f64>(TRADIUS + (<usize>t << 3)) : max(max(radius(a), radius(b)), radius(c))) + SKIP_MARGIN;
+  const rp = radiiMade ? radius(<u32>p) : radiusNow(<u32>p);
+  const near = hFor + rp + (radiiMade ? load<f64>(TRADIUS + (<usize>t << 3)) : max(max(radiusNow(a), radiusNow(b)), radiusNow(c))) + SKIP_MARGIN;
   if (near < meanEdge && closestPoint(<usize>p * 12, <usize>a * 12, <usize>b * 12, <usize>c * 12) > near) return n;
   if (n >= RAW_CAP) return -1;
   const at = RAW + (<usize>n << 3);
@@ -497,7 +521,7 @@ function radiiOf(): void {
   const ea = EDGES + <usize>e * 8, fa = EDGES + <usize>f * 8;
   const a = load<u32>(ea), b = load<u32>(ea, 4), c = load<u32>(fa), d = load<u32>(fa, 4);
   if (c == a || c == b || d == a || d == b) return n;
-  const near = hFor + (radiiMade ? load<f64>(ERADIUS + (<usize>e << 3)) + load<f64>(ERADIUS + (<usize>f << 3)) : max(radius(a), radius(b)) + max(radius(c), radius(d))) + SKIP_MARGIN;
+  const near = hFor + (radiiMade ? load<f64>(ERADIUS + (<usize>e << 3)) + load<f64>(ERADIUS + (<usize>f << 3)) : max(radiusNow(a), radiusNow(b)) + max(radiusNow(c), radiusNow(d))) + SKIP_MARGIN;
   if (near < meanEdge && segmentClosest(X, <usize>a * 12, <usize>b * 12, <usize>c * 12, <usize>d * 12) > near) return n;
   if (n >= RAW_CAP) return -1;
   const at = RAW + (<usize>n << 3);
