@@ -442,7 +442,8 @@ const AHEAD_LEAST = 2;
  * held, at least AHEAD_LEAST. Where the lists hold a frame or more (a cloth at rest, or falling as one) that is the
  * frame's rest, as before; in a landing, searched every few substeps, the boxes look as far ahead as the last held —
  * smaller for the particles that move slowly (a fast one's is capped at REACH_SPAN of an edge anyway), so fewer pairs
- * are listed and passed over: fold at 64², frames 1–60, 103–105 → 93–97 ms a frame (docs/performance.md).
+ * are listed and passed over: fold at 64², frames 1–30 and 31–60, 105, 103 → 98, 96 ms a frame (docs/physics.md,
+ * "Less of it").
  */
 export function searchAhead(left: number, lasted: number): number {
   return Math.min(left, Math.max(AHEAD_LEAST, lasted));

@@ -191,7 +191,8 @@ export function selfSearch(
 /**
  * The reference's updateCandidates, for the `count` particles in ESCAPED (out of their reach boxes; the host has
  * checked that they are few and that this kernel's own search found the lists): their reach boxes made again, their
- * triangles' and edges', the trees' nodes above them, every other particle's reach radius from where it is now; their
+ * triangles' and edges' (from each particle's rows), the trees' nodes above them, every other particle's reach radius
+ * from where it is now (when a pair filter reads it: radiusNow); their
  * pairs taken out of the lists, found again against the trees with the search's tests, sorted and merged in, so that
  * the lists are the reference's in its order. Unlike the reference it keeps the particles' travel and the edge pairs'
  * measured distances (carried with their pairs; the new pairs' unknown), which still bound them. Returns 1 when
