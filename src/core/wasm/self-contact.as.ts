@@ -218,21 +218,31 @@ export function selfEdgeBoxes(hMax: f64): void {
   }
 }
 
-/** Edge e's record's travel and move (EBOX): its ends' travel summed and the larger of their moves [m]. */
+/** Edge e's ends' travel summed [m] (what its record holds, EBOX). */
+@inline function edgeTravel(e: i32): f64 {
+  const ed = EDGES + <usize>e * 8;
+  return perParticle(TRAVEL, load<u32>(ed)) + perParticle(TRAVEL, load<u32>(ed, 4));
+}
+
+/** The larger of edge e's ends' moves over the substep [m] (what its record holds, EBOX). */
+@inline function edgeMove(e: i32): f64 {
+  const ed = EDGES + <usize>e * 8;
+  return max(perParticle(MOVE, load<u32>(ed)), perParticle(MOVE, load<u32>(ed, 4)));
+}
+
+/** Edge e's record's travel and move (EBOX), as they are now. */
 @inline function edgeEnds(e: i32): void {
-  const b = EBOX + (<usize>e << 6), ed = EDGES + <usize>e * 8;
-  const a = load<u32>(ed), c = load<u32>(ed, 4);
-  store<f64>(b, perParticle(TRAVEL, a) + perParticle(TRAVEL, c), 48);
-  store<f64>(b, max(perParticle(MOVE, a), perParticle(MOVE, c)), 56);
+  const b = EBOX + (<usize>e << 6);
+  store<f64>(b, edgeTravel(e), 48);
+  store<f64>(b, edgeMove(e), 56);
 }
 
 /** How many edges' records (EBOX) do not hold their ends' travel and move as they are now (tests: none, after a pass). */
 export function selfStaleEdges(): i32 {
   let stale = 0;
   for (let e = 0; e < NE; e++) {
-    const b = EBOX + (<usize>e << 6), ed = EDGES + <usize>e * 8;
-    const a = load<u32>(ed), c = load<u32>(ed, 4);
-    if (load<f64>(b, 48) != perParticle(TRAVEL, a) + perParticle(TRAVEL, c) || load<f64>(b, 56) != max(perParticle(MOVE, a), perParticle(MOVE, c))) stale++;
+    const b = EBOX + (<usize>e << 6);
+    if (load<f64>(b, 48) != edgeTravel(e) || load<f64>(b, 56) != edgeMove(e)) stale++;
   }
   return stale;
 }

@@ -110,6 +110,20 @@ export function configureSearch(
   links(PARTICLE_TREE); links(TRIANGLE_TREE); links(EDGE_TREE);
 }
 
+/**
+ * Adds particle p's primitives (rows `start`, `list`) not yet marked in `mark` (u8) to `touched` (i32, `n` there
+ * before), marking them; returns how many are there after.
+ */
+function touch(p: i32, start: usize, list: usize, mark: usize, touched: usize, n: i32): i32 {
+  for (let k = i32At(start, p), end = i32At(start, p + 1); k < end; k++) {
+    const q = i32At(list, k);
+    if (load<u8>(mark + <usize>q) != 0) continue;
+    store<u8>(mark + <usize>q, 1);
+    store<i32>(touched + (<usize>(n++) << 2), q);
+  }
+  return n;
+}
+
 /** Tree t's parents and leaves (nodes depth first: node i's left child is i + 1, its right child right[i]). */
 function links(t: Tree): void {
   store<i32>(t.parent, -1);
@@ -210,25 +224,21 @@ export function selfUpdate(
     reachOf(p, left, T, gx, gy, gz, span, hMax);
     store<u8>(PMARK + <usize>p, 1);
   }
-  // their triangles and edges, each once (any order: the pairs are sorted after)
+  // their triangles and edges, each once (any order: the pairs are sorted after), then their reach boxes
   let nt = 0, ne = 0;
-  const half = 0.5 * hMax;
   for (let i = 0; i < count; i++) {
     const p = i32At(ESCAPED, i);
-    for (let k = i32At(PTRI_START, p), end = i32At(PTRI_START, p + 1); k < end; k++) {
-      const t = i32At(PTRI_LIST, k);
-      if (load<u8>(TMARK + <usize>t) != 0) continue;
-      store<u8>(TMARK + <usize>t, 1);
-      store<i32>(TOUCHED_T + (<usize>(nt++) << 2), t);
-      unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
-    }
-    for (let k = i32At(PEDGE_START, p), end = i32At(PEDGE_START, p + 1); k < end; k++) {
-      const e = i32At(PEDGE_LIST, k);
-      if (load<u8>(EMARK + <usize>e) != 0) continue;
-      store<u8>(EMARK + <usize>e, 1);
-      store<i32>(TOUCHED_E + (<usize>(ne++) << 2), e);
-      unionOf(REACH, EDGES + <usize>e * 8, 0, 2, EREACH + <usize>e * 48, half);
-    }
+    nt = touch(p, PTRI_START, PTRI_LIST, TMARK, TOUCHED_T, nt);
+    ne = touch(p, PEDGE_START, PEDGE_LIST, EMARK, TOUCHED_E, ne);
+  }
+  for (let i = 0; i < nt; i++) {
+    const t = i32At(TOUCHED_T, i);
+    unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
+  }
+  const half = 0.5 * hMax;
+  for (let i = 0; i < ne; i++) {
+    const e = i32At(TOUCHED_E, i);
+    unionOf(REACH, EDGES + <usize>e * 8, 0, 2, EREACH + <usize>e * 48, half);
   }
   let result = 1;
   if (!refitAbove(PARTICLE_TREE, REACH, ESCAPED, count) || !refitAbove(TRIANGLE_TREE, TREACH, TOUCHED_T, nt) || !refitAbove(EDGE_TREE, EREACH, TOUCHED_E, ne)) {
