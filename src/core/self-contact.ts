@@ -821,10 +821,12 @@ const SKIP_MARGIN = SELF_SKIP_MARGIN, REACH_MARGIN = SELF_REACH_MARGIN, FRAME_SH
  */
 function triangleFrame(s: SelfScratch, x: Float32Array, xp: Float32Array, t: number, ja: number, jb: number, jc: number): number {
   const o = 10 * t, at = s.triFrameAt[t], moved = s.movedAt;
-  if (at >= s.substepAt && moved[ja / 3] <= at && moved[jb / 3] <= at && moved[jc / 3] <= at) return o;
+  const thisSubstep = at >= s.substepAt;
+  if (thisSubstep && moved[ja / 3] <= at && moved[jb / 3] <= at && moved[jc / 3] <= at) return o;
   const f = s.triFrame;
   unitNormal(x, ja, jb, jc, f, o);
-  unitNormal(xp, ja, jb, jc, f, o + 3);
+  // the start of the substep stays where it was through the pass: its normal, once made in this substep, holds
+  if (!thisSubstep) unitNormal(xp, ja, jb, jc, f, o + 3);
   const cx = (x[ja] + x[jb] + x[jc]) / 3, cy = (x[ja + 1] + x[jb + 1] + x[jc + 1]) / 3, cz = (x[ja + 2] + x[jb + 2] + x[jc + 2]) / 3;
   f[o + 6] = cx; f[o + 7] = cy; f[o + 8] = cz;
   const ax = x[ja] - cx, ay = x[ja + 1] - cy, az = x[ja + 2] - cz;

@@ -326,10 +326,12 @@ function unitNormal(base: usize, ja: usize, jb: usize, jc: usize, out: usize): v
 /** Triangle t's frame (TFRAME), computed unless it is current; returns its byte offset. */
 function triangleFrame(t: i32, a: u32, b: u32, c: u32): usize {
   const o = TFRAME + <usize>t * 80, atP = TFRAME_AT + (<usize>t << 2), at = load<i32>(atP);
-  if (at >= substepAt && stillSince(a, at) && stillSince(b, at) && stillSince(c, at)) return o;
+  const thisSubstep = at >= substepAt;
+  if (thisSubstep && stillSince(a, at) && stillSince(b, at) && stillSince(c, at)) return o;
   const ja = <usize>a * 12, jb = <usize>b * 12, jc = <usize>c * 12;
   unitNormal(X, ja, jb, jc, o);
-  unitNormal(XP, ja, jb, jc, o + 24);
+  // as the reference: the normal at the substep's start, once made in this substep, holds
+  if (!thisSubstep) unitNormal(XP, ja, jb, jc, o + 24);
   const cx = (xn(ja, 0) + xn(jb, 0) + xn(jc, 0)) / 3, cy = (xn(ja, 1) + xn(jb, 1) + xn(jc, 1)) / 3, cz = (xn(ja, 2) + xn(jb, 2) + xn(jc, 2)) / 3;
   store<f64>(o, cx, 48); store<f64>(o, cy, 56); store<f64>(o, cz, 64);
   const ax = xn(ja, 0) - cx, ay = xn(ja, 1) - cy, az = xn(ja, 2) - cz;
