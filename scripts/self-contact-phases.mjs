@@ -4,7 +4,8 @@
 // its whole phase, the whole searches (find) and the updates for a few escaped particles (update: how many a frame,
 // and how many particles each took), and the particle–triangle and edge–edge passes over the listed pairs; the
 // rest of the phase (the particles' boxes against their reach boxes, the triangles' and edges' boxes) is the
-// difference. One thread; the timer wraps each call, so the numbers are a little above an unwrapped run's.
+// difference; and the pairs each pass visits a substep. One thread; the timer wraps each call, so the numbers are a
+// little above an unwrapped run's.
 //
 //   npx tsc -p tsconfig.build.json && node scripts/self-contact-phases.mjs
 //   options: --scene fold  --faces 64  --blocks 0,30,60,90,180  (frame numbers where the blocks start and end)
@@ -39,11 +40,14 @@ self.update = timed('update', proto.update, (a, done) => {
   t.updates = (t.updates ?? 0) + 1;
   t.escaped = (t.escaped ?? 0) + a[2];
 });
-self.particles = timed('particles', self.particles);
-self.edges = timed('edges', self.edges);
+// each pass's first argument: the pairs it visits (all of the list, or a window of it)
+self.particles = timed('particles', self.particles, (a) => { t.particlePairs = (t.particlePairs ?? 0) + a[0]; });
+self.edges = timed('edges', self.edges, (a) => { t.edgePairs = (t.edgePairs ?? 0) + a[0]; });
 
 const ms = (v, f) => ((v ?? 0) / f).toFixed(1);
-console.log(`self-contact's time in the WebAssembly kernel (1 thread), ${arg('scene', 'fold')} at ${faces} faces per side, ${sim.model.particleCount} particles, ${sim.params.substeps} substeps; ms per frame (and per frame: whole searches; updates made, and the particles out of their boxes that each took)`);
+const pairs = (v, f) => `${((v ?? 0) / (f * sim.params.substeps) / 1000).toFixed(1)} k`;
+const substeps = sim.params.substeps;
+console.log(`self-contact's time in the WebAssembly kernel (1 thread), ${arg('scene', 'fold')} at ${faces} faces per side, ${sim.model.particleCount} particles, ${substeps} substeps; ms per frame (and per frame: whole searches; updates made, and the particles out of their boxes that each took; per substep: the pairs each pass visited)`);
 console.log('| frames | frame | self-contact | whole searches | updates | particle pass | edge pass | the rest |');
 console.log('|---|---|---|---|---|---|---|---|');
 for (let b = 0; b + 1 < blocks.length; b++) {
@@ -53,6 +57,6 @@ for (let b = 0; b + 1 < blocks.length; b++) {
   sim.advance(f);
   const frame = performance.now() - t0;
   const rest = (t.phase ?? 0) - (t.search ?? 0) - (t.update ?? 0) - (t.particles ?? 0) - (t.edges ?? 0);
-  console.log(`| ${blocks[b] + 1}–${blocks[b + 1]} | ${ms(frame, f)} | ${ms(t.phase, f)} | ${ms(t.search, f)} (${((t.searches ?? 0) / f).toFixed(2)}) | ${ms(t.update, f)} (${((t.updates ?? 0) / f).toFixed(1)}, ${((t.escaped ?? 0) / Math.max(1, t.updates ?? 0)).toFixed(0)}) | ${ms(t.particles, f)} | ${ms(t.edges, f)} | ${ms(rest, f)} |`);
+  console.log(`| ${blocks[b] + 1}–${blocks[b + 1]} | ${ms(frame, f)} | ${ms(t.phase, f)} | ${ms(t.search, f)} (${((t.searches ?? 0) / f).toFixed(2)}) | ${ms(t.update, f)} (${((t.updates ?? 0) / f).toFixed(1)}, ${((t.escaped ?? 0) / Math.max(1, t.updates ?? 0)).toFixed(0)}) | ${ms(t.particles, f)} (${pairs(t.particlePairs, f)}) | ${ms(t.edges, f)} (${pairs(t.edgePairs, f)}) | ${ms(rest, f)} |`);
 }
 sim.dispose();
