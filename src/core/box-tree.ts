@@ -10,9 +10,9 @@
  */
 
 /**
- * the most primitives in a leaf: 8 (leaves of 5–8) made fold's searches at 64² about a tenth faster than 4, and 12 or
- * 16 no faster still (scripts/self-contact-phases.mjs, frames 1–60: whole searches 54.5–56.7 against 60.2–63.3 ms a
- * frame, 2026-12-07); at 128² the same speed
+ * the most primitives in a leaf: with 8 (leaves of 5–8) fold's whole searches at 64² in its landing (frames 1–60)
+ * took 7 % less than with 4 (scripts/self-contact-ab.mjs, 2026-12-07: 54.5 → 50.5 ms a frame), 12
+ * and 16 no less than 8; at 128² the same as 4 (docs/performance.md, "Two builds in one process")
  */
 const LEAF = 8;
 
