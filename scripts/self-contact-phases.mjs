@@ -46,7 +46,10 @@ self.edges = timed('edges', self.edges, (a) => { t.edgePairs = (t.edgePairs ?? 0
 
 const ms = (v, f) => ((v ?? 0) / f).toFixed(1);
 const substeps = sim.params.substeps;
-const pairs = (v, f) => `${((v ?? 0) / (f * substeps) / 1000).toFixed(1)} k`;
+const pairs = (v, f) => {
+  const n = (v ?? 0) / (f * substeps);
+  return n < 1000 ? n.toFixed(0) : `${(n / 1000).toFixed(1)} k`;
+};
 console.log(`self-contact's time in the WebAssembly kernel (1 thread), ${arg('scene', 'fold')} at ${faces} faces per side, ${sim.model.particleCount} particles, ${substeps} substeps; ms per frame (and per frame: whole searches; updates made, and the particles out of their boxes that each took; per substep: the pairs each pass visited)`);
 console.log('| frames | frame | self-contact | whole searches | updates | particle pass | edge pass | the rest |');
 console.log('|---|---|---|---|---|---|---|---|');
