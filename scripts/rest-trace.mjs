@@ -3,7 +3,7 @@
 // --faces per side runs to --frame on --kernel (the defaults otherwise). Then:
 // 1. the fastest particle's motion (v = (x − x_prev)/h) is traced over one frame, phase by phase: the state moves
 //    onto the TypeScript reference (TsBackend), whose phases are wrapped to print the particle's displacement in
-//    each [µm, x y z] and the substep's net;
+//    each [µm, x y z] and the substep's net; and, over that frame, how far each phase moved the whole cloth;
 // 2. the next --frames frames: the particles over 1 cm/s at every 5th frame (with the fastest speed), and how many
 //    moved more than 1 mm from where they were at --frame (a pile still settling moves; one that jitters does not).
 //
@@ -45,13 +45,24 @@ for (let k = 0; k < restLengths.length; k++) {
 mine.sort((m, n) => n.strain - m.strain);
 console.log(`its springs: ${mine.map((m) => `→${m.q} ${(100 * m.strain).toFixed(1)} % (partner ${(1000 * m.dy).toFixed(1)} mm above)`).join(', ')}`);
 traced.useBackend(new TsBackend(traced.model));
-const names = PHASES.map((ph) => ph.name), own = REFERENCE.slice(), shown = ['integrate', 'distance', 'stretchLimit', 'selfContact', 'contact'];
+const names = PHASES.map((ph) => ph.name), own = REFERENCE.slice(), shown = ['integrate', 'coarseStretch', 'distance', 'stretchLimit', 'selfContact', 'contact'];
+// and the whole cloth's moves in each phase: how many particles it moved more than 10 µm, their mean and the most
+const n = traced.model.particleCount, before = new Float32Array(3 * n), cloth = {};
 const um = (d) => d.map((q) => (q * 1e6).toFixed(1).padStart(7)).join('');
 let row = {};
 REFERENCE.forEach((_, id) => {
   REFERENCE[id] = (model, state, params, frame) => {
     const x = state.positions, b = [x[3 * p], x[3 * p + 1], x[3 * p + 2]];
+    before.set(x);
     own[id](model, state, params, frame);
+    const c = (cloth[names[id]] ??= { runs: 0, over: 0, sum: 0, most: 0 });
+    c.runs++;
+    for (let i = 0; i < n; i++) {
+      const d = Math.hypot(x[3 * i] - before[3 * i], x[3 * i + 1] - before[3 * i + 1], x[3 * i + 2] - before[3 * i + 2]);
+      c.sum += d;
+      if (d > 1e-5) c.over++;
+      if (d > c.most) c.most = d;
+    }
     if (names[id] === shown[0]) row = { sub: frame.sub };
     row[names[id]] = [0, 1, 2].map((c) => x[3 * p + c] - b[c]);
     if (names[id] !== shown[shown.length - 1]) return;
@@ -61,6 +72,11 @@ REFERENCE.forEach((_, id) => {
 });
 traced.advance(1);
 own.forEach((f, id) => { REFERENCE[id] = f; });
+console.log('the whole cloth in each phase that moved it, per run (a substep\'s): particles moved more than 10 µm, the mean move of all [µm], the most [µm]');
+for (const [name, c] of Object.entries(cloth)) {
+  if (c.sum === 0) continue;
+  console.log(`  ${name.padEnd(14)} ${String(Math.round(c.over / c.runs)).padStart(5)} ${(1e6 * c.sum / (c.runs * n)).toFixed(1).padStart(7)} ${(1e6 * c.most).toFixed(0).padStart(6)}`);
+}
 traced.dispose();
 
 // 2. the next frames on the kernel asked for
