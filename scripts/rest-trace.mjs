@@ -46,7 +46,7 @@ mine.sort((m, n) => n.strain - m.strain);
 console.log(`its springs: ${mine.map((m) => `→${m.q} ${(100 * m.strain).toFixed(1)} % (partner ${(1000 * m.dy).toFixed(1)} mm above)`).join(', ')}`);
 traced.useBackend(new TsBackend(traced.model));
 const names = PHASES.map((ph) => ph.name), own = REFERENCE.slice(), shown = ['integrate', 'coarseStretch', 'distance', 'stretchLimit', 'selfContact', 'contact'];
-// and the whole cloth's moves in each phase: how many particles it moved more than 10 µm, their mean and the most
+// and the whole cloth's moves in each phase: how many particles it moved more than 10 µm, the mean move of all, the most
 const n = traced.model.particleCount, before = new Float32Array(3 * n), cloth = {};
 const um = (d) => d.map((q) => (q * 1e6).toFixed(1).padStart(7)).join('');
 let row = {};
@@ -55,13 +55,13 @@ REFERENCE.forEach((_, id) => {
     const x = state.positions, b = [x[3 * p], x[3 * p + 1], x[3 * p + 2]];
     before.set(x);
     own[id](model, state, params, frame);
-    const c = (cloth[names[id]] ??= { runs: 0, over: 0, sum: 0, most: 0 });
-    c.runs++;
+    const moves = (cloth[names[id]] ??= { runs: 0, over: 0, sum: 0, most: 0 });
+    moves.runs++;
     for (let i = 0; i < n; i++) {
       const d = Math.hypot(x[3 * i] - before[3 * i], x[3 * i + 1] - before[3 * i + 1], x[3 * i + 2] - before[3 * i + 2]);
-      c.sum += d;
-      if (d > 1e-5) c.over++;
-      if (d > c.most) c.most = d;
+      moves.sum += d;
+      if (d > 1e-5) moves.over++;
+      if (d > moves.most) moves.most = d;
     }
     if (names[id] === shown[0]) row = { sub: frame.sub };
     row[names[id]] = [0, 1, 2].map((c) => x[3 * p + c] - b[c]);
