@@ -218,8 +218,9 @@ export class KernelSelfContact {
       new Int32Array(memory, at.right, nodes).set(t.right.subarray(0, nodes));
       descriptors.set([at.order, at.first, at.size, at.right, at.boxes, nodes, at.parent, at.leaf], TREE_FIELDS * k);
     });
+    // after configureSelf: the search reads the particles' edge rows it set
     exports.configureSearch(l.trees, l.radius, l.treach, l.ereach, l.bucket, l.stack, STACK_PAIRS, nt, ne, l.marks, l.touched, l.fresh, l.freshCap, l.tradius, l.eradius, l.radiusAt,
-      l.triStart, l.triList, l.edgeStart, l.edgeList);
+      l.triStart, l.triList);
     this.lengths = selfSearchLengths(model);
     this.windows = [l.window, l.edgeWindow];
     this.particles = (count, hMax) => exports.selfParticles(count, hMax);

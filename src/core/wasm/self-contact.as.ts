@@ -29,8 +29,8 @@ let TBOX: usize = 0;
  */
 let EBOX: usize = 0;
 /** the edges of each particle, as rows: where each particle's start (i32 × (particles + 1)) in the list (i32) */
-let PEDGE_START: usize = 0;
-let PEDGE_LIST: usize = 0;
+export let PEDGE_START: usize = 0;
+export let PEDGE_LIST: usize = 0;
 /**
  * each triangle's frame, f64 × 10: the unit normal now and at the substep's start, the centroid now [m], the
  * largest distance of a corner from it [m]; each edge's, f64 × 6: its midpoint now [m], half its vector b − a now [m]

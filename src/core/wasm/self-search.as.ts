@@ -12,7 +12,10 @@
 // merged into the lists (the reference's pairs, in its order).
 import { N, X, XP } from './arrays.as';
 import { SELF_FRAME_SHARE, SELF_REACH_MARGIN, SELF_SKIP_MARGIN as SKIP_MARGIN } from './layout.generated.as';
-import { EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, FRAME_J, PAIRS, REACH, TRIS, closestPoint, frameU, overlap, segmentClosest, selfFrame } from './self-contact.as';
+import {
+  EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, FRAME_J, PAIRS, PEDGE_LIST, PEDGE_START, REACH, TRIS, closestPoint, frameU, overlap,
+  segmentClosest, selfFrame,
+} from './self-contact.as';
 
 /** A tree's arrays (byte offsets) and node count, as the host writes them (self-contact-wasm.ts, TREE_FIELDS). */
 @unmanaged class Tree {
@@ -38,11 +41,12 @@ let EDGE_TREE: Tree = changetype<Tree>(0);
 let RADIUS: usize = 0;
 let RADIUS_AT: usize = 0;
 let epoch: i32 = 0;
-/** each particle's triangles and edges, as rows (self-contact.ts rowsOf): where each particle's start (i32 × (particles + 1)), the list (i32) */
+/**
+ * each particle's triangles, as rows (self-contact.ts rowsOf): where each particle's start (i32 × (particles + 1)),
+ * the list (i32); its edges' rows are the edge pass's (self-contact.as.ts PEDGE_START, PEDGE_LIST)
+ */
 let PTRI_START: usize = 0;
 let PTRI_LIST: usize = 0;
-let PEDGE_START: usize = 0;
-let PEDGE_LIST: usize = 0;
 /**
  * each triangle's and each edge's largest reach radius of its corners [m], f64 (radiiOf: what a search's pair filters
  * read); whether they are those of the radii now (a search made them; an update, which changes every radius and finds
@@ -94,14 +98,14 @@ let meanEdge: f64 = 0;
 export function configureSearch(
   trees: usize, radius: usize, treach: usize, ereach: usize, bucket: usize, stack: usize, stackCap: i32, triangles: i32, edgeCount: i32,
   marks: usize, touched: usize, fresh: usize, freshCap: i32, tradius: usize, eradius: usize, radiusAt: usize,
-  triStart: usize, triList: usize, edgeStart: usize, edgeList: usize,
+  triStart: usize, triList: usize,
 ): void {
   PARTICLE_TREE = changetype<Tree>(trees);
   TRIANGLE_TREE = changetype<Tree>(trees + offsetof<Tree>());
   EDGE_TREE = changetype<Tree>(trees + 2 * offsetof<Tree>());
   RADIUS = radius; TREACH = treach; EREACH = ereach; BUCKET = bucket; TRADIUS = tradius; ERADIUS = eradius;
   RADIUS_AT = radiusAt; memory.fill(radiusAt, 0xff, <usize>N << 2);
-  PTRI_START = triStart; PTRI_LIST = triList; PEDGE_START = edgeStart; PEDGE_LIST = edgeList;
+  PTRI_START = triStart; PTRI_LIST = triList;
   STACK = stack; STACK_CAP = stackCap; NT = triangles; NE = edgeCount;
   PMARK = marks; TMARK = marks + <usize>N; EMARK = TMARK + <usize>triangles;
   memory.fill(marks, 0, <usize>N + <usize>triangles + <usize>edgeCount);

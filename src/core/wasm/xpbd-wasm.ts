@@ -278,8 +278,8 @@ export class XpbdKernel implements PhaseBackend {
    * A kernel and its state for `model`, or null where the runtime has no WebAssembly SIMD (or, with threads > 1,
    * no shared memory: then the caller may ask again with 1 thread). `selfWindow` [pairs]: the size of
    * self-contact's pair windows (tests: a small one; by default they grow with the cloth, self-contact-wasm.ts).
-   * `selfContact` false: no memory for self-contact's passes (about 4.1 kB a particle: a 256² cloth's kernel takes
-   * 28.1 MB instead of 298 MB); the phase, if asked for, then runs in the TypeScript reference (the same cloth, bit
+   * `selfContact` false: no memory for self-contact's passes (about 4.0 kB a particle: a 256² cloth's kernel takes
+   * 28.1 MB instead of 291 MB); the phase, if asked for, then runs in the TypeScript reference (the same cloth, bit
    * for bit). A cloth whose kernel with that memory would pass the 4 GiB one WebAssembly memory holds (about a million
    * particles) gets one without it; one too big even so is refused (a SceneError naming the TypeScript kernel).
    */
