@@ -73,6 +73,8 @@ describe('a scene of several cloths: the document', () => {
     expect(u.cloths![1].cloth.resolution).toBe(12);
     expect(() => setScenePath(s, 'material.friction', 0.1, '--set material.friction')).toThrow('--set material.friction: this scene has a list of cloths; name one: cloths[0].material.friction');
     expect(() => setScenePath(s, 'cloths[2].material.friction', 0.1, '--set x')).toThrow(/cloths has 2 items, no item 2/);
+    // and a one-cloth scene's paths are the cloth's own
+    expect(() => setScenePath(validateScene({}), 'cloths[0].material.mass', 1, '--set cloths.0.material.mass')).toThrow('--set cloths.0.material.mass: this scene has one cloth, not a list of cloths: material.mass');
   });
 });
 

@@ -511,8 +511,12 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     throw new SceneError(`${source}: not a scene path`);
   }
   const doc = structuredClone(sceneDocument(scene));
-  if (Array.isArray(doc.cloths) && (keys[0] === 'cloth' || keys[0] === 'material' || keys[0] === 'pins')) {
+  const clothPart = (k: string | undefined) => k === 'cloth' || k === 'material' || k === 'pins';
+  if (Array.isArray(doc.cloths) && clothPart(keys[0])) {
     throw new SceneError(`${source}: this scene has a list of cloths; name one: cloths[0].${keys.join('.')}`);
+  }
+  if (doc.cloths === undefined && keys[0] === 'cloths' && clothPart(keys[2])) {
+    throw new SceneError(`${source}: this scene has one cloth, not a list of cloths: ${keys.slice(2).join('.')}`);
   }
   let node: Record<string, unknown> | unknown[] = doc;
   for (let i = 0; i < keys.length; i++) {
