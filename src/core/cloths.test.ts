@@ -75,6 +75,7 @@ describe('a scene of several cloths: the document', () => {
     expect(() => setScenePath(s, 'cloths[2].material.friction', 0.1, '--set x')).toThrow(/cloths has 2 items, no item 2/);
     // and a one-cloth scene's paths are the cloth's own
     expect(() => setScenePath(validateScene({}), 'cloths[0].material.mass', 1, '--set cloths.0.material.mass')).toThrow('--set cloths.0.material.mass: this scene has one cloth, not a list of cloths: material.mass');
+    expect(() => setScenePath(validateScene({}), 'cloths[1]', {}, '--set cloths.1')).toThrow('--set cloths.1: this scene has one cloth, not a list of cloths: cloth.…, material.… and pins');
   });
 });
 

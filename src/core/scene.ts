@@ -511,12 +511,14 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     throw new SceneError(`${source}: not a scene path`);
   }
   const doc = structuredClone(sceneDocument(scene));
+  // the parts of a cloth: the top level's in a one-cloth scene, an entry of `cloths` in a scene of several
   const clothPart = (k: string | undefined) => k === 'cloth' || k === 'material' || k === 'pins';
   if (Array.isArray(doc.cloths) && clothPart(keys[0])) {
     throw new SceneError(`${source}: this scene has a list of cloths; name one: cloths[0].${keys.join('.')}`);
   }
-  if (doc.cloths === undefined && keys[0] === 'cloths' && clothPart(keys[2])) {
-    throw new SceneError(`${source}: this scene has one cloth, not a list of cloths: ${keys.slice(2).join('.')}`);
+  if (doc.cloths === undefined && keys[0] === 'cloths' && keys.length >= 2) {
+    const instead = clothPart(keys[2]) ? keys.slice(2).join('.') : 'cloth.…, material.… and pins';
+    throw new SceneError(`${source}: this scene has one cloth, not a list of cloths: ${instead}`);
   }
   let node: Record<string, unknown> | unknown[] = doc;
   for (let i = 0; i < keys.length; i++) {
