@@ -36,6 +36,8 @@ export const COARSE_OVERSHOOT = 1.5;
 export const SELF_SKIP_MARGIN = 1e-7;
 /** self-contact: the least margin of a particle's reach box, as a share of the contact distance h [-] (self-contact.ts reachBox, self-search.as.ts reachOf) */
 export const SELF_REACH_MARGIN = 0.25;
+/** self-contact: two edges' contact distance at rest, as a share of the contact distance h; in motion it grows by the sum of the two edges' largest end moves over the substep, up to h [-] (self-contact.ts resolveEdges and the search's edge boxes, self-contact.as.ts, self-search.as.ts, the GPU's selfEdges.wgsl) */
+export const SELF_EDGE_SHARE = 0.5;
 /** self-contact: a search makes its reach boxes in a frame moving with the cloth where its particles move less than this share as much relative to it as they do at all [-] (self-contact.ts movingFrame, self-search.as.ts) */
 export const SELF_FRAME_SHARE = 0.5;
 /** most threads one kernel runs (one run counter each in the control block) */

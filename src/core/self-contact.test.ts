@@ -1,10 +1,12 @@
 import { describe, expect, it } from 'vitest';
 import { countIntersections } from './intersections.js';
+import { SELF_EDGE_SHARE, SELF_REACH_MARGIN } from './layout.generated.js';
 import { builtinScene } from './scenes.js';
 import { findSelfCandidates, searchAhead, selfContactBuilds, selfContactDistance } from './self-contact.js';
 import { Simulation } from './simulation.js';
 import { validateScene } from './scene.js';
 import { copyState, grab } from './state.js';
+import { crossedStrips, stripGap } from './test-strips.js';
 
 /**
  * Rubber at 32² on the sphere, its springs swept alone (solver.stretch 'gauss-seidel'): without self-contact it folds
@@ -102,17 +104,8 @@ describe('self-contact (solver.selfContact)', () => {
 
   // two thin strips crossing like an X, the upper one falling on the pinned lower one: every vertex stays far outside
   // the other strip's triangles, so only the edges meet (the particle–triangle test alone lets it fall through)
-  it.each(['ts', 'wasm'] as const)('%s: edges that cross with no vertex near the other strip are kept apart (edge–edge contact)', (kernel) => {
-    const scene = validateScene({
-      name: 'crossed strips',
-      solver: { selfContact: true },
-      colliders: [{ type: 'floor', height: 0 }],
-      cloths: [
-        { cloth: { resolution: 1, width: 1, height: 0.02, position: [0, 0.3, 0] }, material: { fabric: 'cotton' }, pins: ['top-left', 'top-right', 'bottom-left', 'bottom-right'] },
-        { cloth: { resolution: 1, width: 1, height: 0.02, position: [0, 0.33, 0], rotation: [0, 90, 0] }, material: { fabric: 'cotton' } },
-      ],
-    });
-    const sim = new Simulation(scene, { kernel, threads: 1 });
+  it.each(['ts', 'wasm'] as const)('%s: edges that cross with no vertex near the other strip are kept apart (edge–edge contact), half the contact distance apart at rest', (kernel) => {
+    const sim = new Simulation(crossedStrips({ selfContact: true }), { kernel, threads: 1 });
     const h = selfContactDistance(sim.model, sim.params);
     expect(h).toBe(0.005);
     for (let f = 1; f <= 60; f++) {
@@ -126,6 +119,13 @@ describe('self-contact (solver.selfContact)', () => {
     for (let i = 4; i < 8; i++) { lowest = Math.min(lowest, x[3 * i + 1]); highest = Math.max(highest, x[3 * i + 1]); }
     expect(lowest).toBeGreaterThan(0.25);
     expect(highest).toBeLessThan(0.33); // below where it started: it fell and stopped on the lower strip
+    // at the edges' contact distance at rest, SELF_EDGE_SHARE (half) of h, and a substep's motion (gravity's g·Δt²,
+    // some 7 µm a particle), not h: nothing but the edges holds it up (measured: 2.516–2.522 mm; the whole h, 5.000
+    // mm, before SELF_EDGE_SHARE)
+    expect(SELF_EDGE_SHARE).toBe(0.5);
+    const gap = stripGap(sim.model.edges, x);
+    expect(gap).toBeGreaterThanOrEqual(SELF_EDGE_SHARE * h - 1e-6);
+    expect(gap).toBeLessThan(SELF_EDGE_SHARE * h + 1e-4);
     sim.dispose();
   });
 
@@ -164,25 +164,26 @@ describe('self-contact (solver.selfContact)', () => {
     expect([still.pairCount, still.edgePairCount]).toEqual([0, 0]);
     flat.dispose();
 
-    // the fold at 32² landing in layers (frame 40): every particle and triangle, and every two edges, that share
-    // no particle and are within 1.5 h of each other now are listed (brute force): each particle's reach box has a
-    // margin of at least h/4 along each axis, and a triangle's box is its corners' widened by h (an edge's by h/2), so
-    // such a pair's boxes meet, and it can come within h before the candidates are found again. (Up to 2026-12-06
+    // the fold at 32² landing in layers (frame 40): every particle and triangle that share no particle and are
+    // within 1.5 h of each other now, and every two such edges within h_e + h/2 (h_e their contact distance at rest,
+    // SELF_EDGE_SHARE of h), are listed (brute force): each particle's reach box has a margin of at least h/4
+    // (SELF_REACH_MARGIN) along each axis, and a triangle's box is its corners' widened by h (an edge's by h_e/2), so
+    // such a pair's boxes meet, and it can come within its distance before the candidates are found again. (Up to 2026-12-06
     // the test took 1.8 h, which the margins of motion covered in the sweep's fold; with the coarse correction, the
     // default since, a pair 1.8 h apart went unlisted: particle 705 and triangle 648.)
     const sim = new Simulation(builtinScene('fold'), { kernel: 'ts' });
     sim.advance(40);
     const x = sim.state.positions, tri = sim.model.triangles, edges = sim.model.edges;
-    const hf = 1.5 * selfContactDistance(sim.model, sim.params);
+    const hFold = selfContactDistance(sim.model, sim.params), hf = 1.5 * hFold, hfEdges = (SELF_EDGE_SHARE + 2 * SELF_REACH_MARGIN) * hFold;
     const c = findSelfCandidates(sim.model, sim.state, sim.params, FRAME_H, 20)!;
     const listed = new Set<string>(), listedEdges = new Set<string>();
     for (let q = 0; q < c.pairCount; q++) listed.add(`${c.pairs[2 * q]} ${c.pairs[2 * q + 1]}`);
     for (let q = 0; q < c.edgePairCount; q++) listedEdges.add(`${c.edgePairs[2 * q]} ${c.edgePairs[2 * q + 1]}`);
     const at = (i: number) => [x[3 * i], x[3 * i + 1], x[3 * i + 2]];
     // whether the boxes of particles `ids` are farther apart than hf along some axis (then so are they)
-    const apart = (i: number[], j: number[]) => [0, 1, 2].some((k) => {
+    const apart = (i: number[], j: number[], d = hf) => [0, 1, 2].some((k) => {
       const xi = i.map((v) => x[3 * v + k]), xj = j.map((v) => x[3 * v + k]);
-      return Math.min(...xi) - Math.max(...xj) > hf || Math.min(...xj) - Math.max(...xi) > hf;
+      return Math.min(...xi) - Math.max(...xj) > d || Math.min(...xj) - Math.max(...xi) > d;
     });
     let near = 0, nearEdges = 0;
     for (let t = 0; t < tri.length / 3; t++) {
@@ -197,13 +198,13 @@ describe('self-contact (solver.selfContact)', () => {
     for (let e = 0; e < ne; e++) {
       for (let f = e + 1; f < ne; f++) {
         const [a, b, d0, d1] = [edges[2 * e], edges[2 * e + 1], edges[2 * f], edges[2 * f + 1]];
-        if (a === d0 || a === d1 || b === d0 || b === d1 || apart([a, b], [d0, d1]) || segments(at(a), at(b), at(d0), at(d1)) >= hf) continue;
+        if (a === d0 || a === d1 || b === d0 || b === d1 || apart([a, b], [d0, d1], hfEdges) || segments(at(a), at(b), at(d0), at(d1)) >= hfEdges) continue;
         nearEdges++;
         expect(listedEdges.has(`${e} ${f}`), `edges ${e}, ${f}`).toBe(true);
       }
     }
-    // (near pairs there are: the layers lie on each other, 99 particle–triangle pairs and more than 100 edge pairs within
-    // 1.5 h; of the pairs listed, most are farther)
+    // (near pairs there are: the layers lie on each other, 96 particle–triangle pairs within 1.5 h and 68 edge pairs
+    // within h_e + h/2; of the pairs listed, most are farther)
     expect(near).toBeGreaterThan(50);
     expect(nearEdges).toBeGreaterThan(50);
     sim.dispose();

@@ -30,7 +30,7 @@
  * more than half the smallest altitude of the rest triangles, so a particle
  * at rest is never "too near" a triangle of its own neighbourhood (on a fine mesh the layers then keep closer than
  * the thickness). Then edge against edge (collideEdges): two edges crossing while every vertex stays outside the
- * other's triangles. Not handled: a particle or an edge that starts a substep already on the wrong side stays
+ * other's triangles, kept h/2 apart at rest and up to h in motion (SELF_EDGE_SHARE). Not handled: a particle or an edge that starts a substep already on the wrong side stays
  * there (side memory keeps, it does not untangle). Most listed pairs are neighbours that are not near: each
  * triangle's normals (now and at the substep's start), centroid and radius, and each edge's midpoint and half
  * vector, are computed once per substep (again only after a correction moved a corner), and the pairs they prove
@@ -42,7 +42,7 @@
  * more pairs than ever before.
  */
 import { BoxTree } from './box-tree.js';
-import { SELF_FRAME_SHARE, SELF_REACH_MARGIN, SELF_SKIP_MARGIN } from './layout.generated.js';
+import { SELF_EDGE_SHARE, SELF_FRAME_SHARE, SELF_REACH_MARGIN, SELF_SKIP_MARGIN } from './layout.generated.js';
 import type { ClothModel } from './model.js';
 import type { SimParams } from './params.js';
 import type { ClothState } from './state.js';
@@ -70,7 +70,7 @@ interface SelfScratch {
   reachRadius: Float64Array;
   /** each particle's box over the substep (x_prev to x, as of the last substepBoxes), as `boxes` */
   particleBoxes: Float64Array;
-  /** the triangles' and edges' reach boxes (their corners' reach boxes, widened by h and h/2) */
+  /** the triangles' and edges' reach boxes (their corners' reach boxes, widened by h and, an edge's, by SELF_EDGE_SHARE·h/2) */
   triangleReach: Float64Array;
   edgeReach: Float64Array;
   /** candidate pairs (particle, triangle) and (edge, edge) whose reach boxes meet, in the order they are resolved */
@@ -486,7 +486,7 @@ function findCandidates(model: ClothModel, state: ClothState, params: SimParams,
   const tr = s.triangleReach;
   for (let t = 0; t < nt; t++) unionOf(reach, tri, 3 * t, 3, tr, 6 * t, hMax);
   const er = s.edgeReach;
-  for (let e = 0; e < ne; e++) unionOf(reach, edges, 2 * e, 2, er, 6 * e, 0.5 * hMax);
+  for (let e = 0; e < ne; e++) unionOf(reach, edges, 2 * e, 2, er, 6 * e, 0.5 * (EDGE_SHARE * hMax));
   const trees = treesOf(model, s);
   if (!trees.particles.refit(reach) || !trees.triangles.refit(tr) || !trees.edges.refit(er)) { s.builtFor = NaN; return false; }
   countSelfSearch(model);
@@ -607,7 +607,7 @@ function updateCandidates(model: ClothModel, state: ClothState, params: SimParam
   }
   const tr = s.triangleReach, er = s.edgeReach;
   for (let i = 0; i < nt; i++) unionOf(reach, tri, 3 * touchedTriangles[i], 3, tr, 6 * touchedTriangles[i], hMax);
-  for (let i = 0; i < ne; i++) unionOf(reach, edges, 2 * touchedEdges[i], 2, er, 6 * touchedEdges[i], 0.5 * hMax);
+  for (let i = 0; i < ne; i++) unionOf(reach, edges, 2 * touchedEdges[i], 2, er, 6 * touchedEdges[i], 0.5 * (EDGE_SHARE * hMax));
   const trees = treesOf(model, s);
   const refitted = trees.particles.refit(reach) && trees.triangles.refit(tr) && trees.edges.refit(er);
   if (refitted) {
@@ -761,8 +761,9 @@ function treesOf(model: ClothModel, s: SelfScratch): Trees {
   const addEdgePair = (e: number, f: number): void => {
     const a = edges[2 * e], b = edges[2 * e + 1], c = edges[2 * f], d = edges[2 * f + 1];
     if (c === a || c === b || d === a || d === b) return;
-    // apart, as a particle and a triangle above
-    const R = s.reachRadius, near = s.builtFor + Math.max(R[a], R[b]) + Math.max(R[c], R[d]) + SKIP_MARGIN;
+    // apart, as a particle and a triangle above, with the edges' contact distance at rest (h/2, resolveEdges): a pair
+    // not listed stays farther apart than that while the lists hold; the margin for motion acts on the listed ones
+    const R = s.reachRadius, near = EDGE_SHARE * s.builtFor + Math.max(R[a], R[b]) + Math.max(R[c], R[d]) + SKIP_MARGIN;
     if (near < s.meanEdge) {
       segmentClosest(s.seen, a, b, c, d, apart);
       if (nearest[0] > near) return;
@@ -813,7 +814,7 @@ function grown(list: Int32Array, need: number): Int32Array {
  * for are rounded (by far less). The generated table's constants, read once (an imported name is read through a
  * getter under vitest's module loader: colliders/shape.ts)
  */
-const SKIP_MARGIN = SELF_SKIP_MARGIN, REACH_MARGIN = SELF_REACH_MARGIN, FRAME_SHARE = SELF_FRAME_SHARE;
+const SKIP_MARGIN = SELF_SKIP_MARGIN, REACH_MARGIN = SELF_REACH_MARGIN, FRAME_SHARE = SELF_FRAME_SHARE, EDGE_SHARE = SELF_EDGE_SHARE;
 
 /**
  * Triangle t's frame (SelfScratch.triFrame: the unit normals now and at the substep's start, the centroid now and
@@ -988,9 +989,12 @@ function closestPoint(x: Float32Array, jp: number, ja: number, jb: number, jc: n
  * no particle whose boxes over the substep (each widened by h/2) meet: the closest points p (on a–b, at s) and q (on
  * c–d, at t), now and at the substep's start. **Passed through**: both pairs of closest points inside their edges
  * and the vector q→p now against its direction then — the edges are moved apart, by inverse mass and the weights
- * (1 − s, s, 1 − t, t), until p is on its side again at distance h along that direction. **Too near**: apart to h
- * along q→p. Friction as for the particles (Bridson, Fedkiw & Anderson 2002, §7.2's edge–edge proximity,
- * position-based).
+ * (1 − s, s, 1 − t, t), until p is on its side again at the pair's distance h_e along that direction. **Too near**:
+ * apart to h_e along q→p. Friction as for the particles (Bridson, Fedkiw & Anderson 2002, §7.2's edge–edge
+ * proximity, position-based). h_e is SELF_EDGE_SHARE (half) of h at rest and grows by δ, the sum of the two edges'
+ * largest end moves over the substep, up to h: where layers lie on each other the particle pass already holds them
+ * h apart, and the edge pass is there for what that pass cannot see (edges crossing with no vertex near), which needs
+ * a margin for the motion, not the whole thickness (docs/physics.md, "Edge against edge").
  */
 function collideEdges(model: ClothModel, state: ClothState, params: SimParams, s: SelfScratch, hMax: number): void {
   const edges = model.edges, ne = edges.length / 2;
@@ -1081,11 +1085,12 @@ function edgeFrame(s: SelfScratch, x: Float32Array, e: number, a: number, b: num
 }
 
 /**
- * Edges e = a–b and f = c–d, pair q of the list: passed through, or too near (see collideEdges), kept h [m] apart
- * with friction mu, muS [-]. A pair at least h and δ apart now, δ the sum of the edges' largest end moves over the
- * substep, is neither too near nor passed through (passing through needs the distance now to be at most δ: q→p
- * then differs by at most δ from the vector between the points of the same parameters now, whose dot product with
- * q→p now is at least |q→p now|², the closest point of a convex set). Three lower bounds on the distance now say
+ * Edges e = a–b and f = c–d, pair q of the list: passed through, or too near (see collideEdges), kept h_e [m] apart
+ * (the pair's h, pairOf, made min(h, SELF_EDGE_SHARE·h + δ)) with friction mu, muS [-]. A pair at least h_e and δ
+ * apart now, δ the sum of the edges' largest end moves over the substep, is neither too near nor passed through
+ * (passing through needs the distance now to be at most δ: q→p then differs by at most δ from the vector between
+ * the points of the same parameters now, whose dot product with q→p now is at least |q→p now|², the closest point
+ * of a convex set). Three lower bounds on the distance now say
  * so before the closest points: the pair's last measured distance less what its particles travelled since (a
  * segment moves no farther than its ends); along the line through the midpoints each segment spans its extent
  * along that line (the separation of the two projections); and the closest points now, measured.
@@ -1094,9 +1099,10 @@ function resolveEdges(
   sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array,
   q: number, e: number, f: number, a: number, b: number, c: number, d: number,
 ): void {
-  const h = pairOf[PAIR_H], mu = pairOf[PAIR_MU], muS = pairOf[PAIR_MU_S];
   const move = sc.move, travel = sc.travel, memo = sc.edgeMemo;
-  const apart = Math.max(h, Math.max(move[a], move[b]) + Math.max(move[c], move[d])) + SKIP_MARGIN;
+  const motion = Math.max(move[a], move[b]) + Math.max(move[c], move[d]);
+  const h = Math.min(pairOf[PAIR_H], EDGE_SHARE * pairOf[PAIR_H] + motion), mu = pairOf[PAIR_MU], muS = pairOf[PAIR_MU_S];
+  const apart = Math.max(h, motion) + SKIP_MARGIN;
   // each edge's ends summed first (the kernel keeps them so, per edge)
   const travelled = (travel[a] + travel[b]) + (travel[c] + travel[d]);
   if (memo[2 * q] - (travelled - memo[2 * q + 1]) >= apart) return;

@@ -8,6 +8,8 @@ import { afterAll, describe, expect, test } from 'vitest';
 import type {} from 'webgpu';
 import { Simulation, builtinScene, countIntersections, grab, validateScene, type Scene } from '../core/index.js';
 import { selfContactDistance } from '../core/self-contact.js';
+import { SELF_EDGE_SHARE } from '../core/layout.generated.js';
+import { crossedStrips, stripGap } from '../core/test-strips.js';
 import { GpuBackend } from './backend.js';
 import type { GpuSolverOptions } from './solver.js';
 import { sceneRefusal } from './encoder.js';
@@ -226,17 +228,9 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
 
   // two thin strips crossing like an X, the upper one falling on the pinned lower one (self-contact.test.ts in core):
   // every vertex stays far outside the other strip's triangles, so only the edge pass can hold it
-  test('edges that cross with no vertex near the other strip are kept apart (edge–edge contact)', async () => {
-    const scene = (selfContact: boolean) => validateScene({
-      name: 'crossed strips',
-      // 10 substeps as asked (the strips fall 3 cm: under 1 m/s)
-      solver: { selfContact, substeps: 10, selfContactSpeed: 0 },
-      colliders: [{ type: 'floor', height: 0 }],
-      cloths: [
-        { cloth: { resolution: 1, width: 1, height: 0.02, position: [0, 0.3, 0] }, material: { fabric: 'cotton' }, pins: ['top-left', 'top-right', 'bottom-left', 'bottom-right'] },
-        { cloth: { resolution: 1, width: 1, height: 0.02, position: [0, 0.33, 0], rotation: [0, 90, 0] }, material: { fabric: 'cotton' } },
-      ],
-    });
+  test('edges that cross with no vertex near the other strip are kept apart (edge–edge contact), half the contact distance apart at rest', async () => {
+    // 10 substeps as asked (the strips fall 3 cm: under 1 m/s)
+    const scene = (selfContact: boolean) => crossedStrips({ selfContact, substeps: 10, selfContactSpeed: 0 });
     const heights = async (sim: Simulation) => {
       // read back every 4th frame (each readback waits for the GPU)
       for (let f = 4; f <= 40; f += 4) {
@@ -247,12 +241,16 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
       const x = sim.state.positions;
       let lowest = Infinity, highest = -Infinity;
       for (let i = 4; i < 8; i++) { lowest = Math.min(lowest, x[3 * i + 1]); highest = Math.max(highest, x[3 * i + 1]); }
-      return { lowest, highest };
+      return { lowest, highest, gap: stripGap(sim.model.edges, x), h: selfContactDistance(sim.model, sim.params) };
     };
-    // the upper strip lies across the lower one, below where it started
+    // the upper strip lies across the lower one, below where it started, the edges' contact distance at rest apart
+    // (SELF_EDGE_SHARE of h, and a substep's motion: the CPU's rule), not h
     const held = await heights(await onGpu(scene(true)));
     expect(held.lowest).toBeGreaterThan(0.25);
     expect(held.highest).toBeLessThan(0.33);
+    expect(held.h).toBe(0.005);
+    expect(held.gap).toBeGreaterThanOrEqual(SELF_EDGE_SHARE * held.h - 1e-5);
+    expect(held.gap).toBeLessThan(SELF_EDGE_SHARE * held.h + 2e-4);
     // without, it falls through to the floor
     const fell = await heights(await onGpu(scene(false)));
     expect(fell.highest).toBeLessThan(0.05);

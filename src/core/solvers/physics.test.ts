@@ -402,15 +402,22 @@ describe.each(CASES)('%s solver, %s kernel', (solver, kernel) => {
     const sim = drapedSim();
     sim.set(path, value);
     // pushed out (at 0.25 m/s: 27 cm sideways take 1 s), the cloth may slide off the sphere onto the floor before it
-    // rests (measured: by 3.2 s)
+    // rests: at rest again at some 10th frame from 3.5 s to 5 s after the push (measured: by 3.2 s; since edge pairs
+    // are kept h/2 apart at rest, docs/physics.md, the TypeScript kernel's cloth pushed sideways rests 2.5 s after the
+    // push, slides 3 mm further down the sphere 1 s later, 2.3 mJ at its peak, and rests again 0.2 s after that)
+    const rest = 1e-3 * 0.12 * 9.81;
     sim.advance(210);
-    const r = sim.report();
+    let r = sim.report();
+    for (let f = 210; f < 300 && !(r.energy.kinetic < rest); f += 10) {
+      sim.advance(10);
+      r = sim.report();
+    }
     expect(r.finite).toBe(true);
     for (let k = 0; k < 3; k++) {
       expect(r.bounds.min[k]).toBeGreaterThan(-1.5); // measured: within ±0.8 m; thrown cloths went kilometres
       expect(r.bounds.max[k]).toBeLessThan(1.5);
     }
-    expect(r.energy.kinetic).toBeLessThan(1e-3 * 0.12 * 9.81); // at rest again
+    expect(r.energy.kinetic).toBeLessThan(rest); // at rest again
     expect(r.maxStrain).toBeLessThanOrEqual(sim.scene.material.stretchFactor - 1 + 2e-3); // in one piece
   });
 

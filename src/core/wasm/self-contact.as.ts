@@ -5,7 +5,7 @@
 // the same cloth bit for bit. One thread, a Gauss–Seidel pass in the pairs' order: the host calls these on thread 0
 // between two substep() calls (the helpers wait for the next dispatch).
 import { N, W, X, XP } from './arrays.as';
-import { SELF_SKIP_MARGIN as SKIP_MARGIN } from './layout.generated.as';
+import { SELF_EDGE_SHARE, SELF_SKIP_MARGIN as SKIP_MARGIN } from './layout.generated.as';
 
 // The arrays (byte offsets, laid out by the host: self-contact-wasm.ts) and counts, set by configureSelf().
 /** the triangles' particles, u32 × 3 per triangle */
@@ -476,11 +476,11 @@ export function selfEdges(count: i32, hMax: f64, memo: bool): void {
     const e = load<i32>(pr), f = load<i32>(pr, 4);
     const be = EBOX + (<usize>e << 6), bf = EBOX + (<usize>f << 6);
     if (!overlap(be, bf)) continue;
-    // resolveEdges' first skip from the two records alone, with hMax for the pair's h (at least it): a pair it skips,
-    // that skips too (the same numbers)
+    // resolveEdges' first skip from the two records alone, with hMax for the pair's h (its h_e at least the pair's):
+    // a pair it skips, that skips too (the same numbers)
     if (memo) {
-      const m = EDGE_MEMO + (<usize>q << 4);
-      const apart = max(hMax, load<f64>(be, 56) + load<f64>(bf, 56)) + SKIP_MARGIN;
+      const m = EDGE_MEMO + (<usize>q << 4), motion = load<f64>(be, 56) + load<f64>(bf, 56);
+      const apart = max(min(hMax, SELF_EDGE_SHARE * hMax + motion), motion) + SKIP_MARGIN;
       if (load<f64>(m) - ((load<f64>(be, 48) + load<f64>(bf, 48)) - load<f64>(m, 8)) >= apart) continue;
     }
     const ea = EDGES + <usize>e * 8, fa = EDGES + <usize>f * 8;
@@ -544,13 +544,16 @@ export function segmentClosest(base: usize, ja: usize, jb: usize, jc: usize, jd:
 @inline function perParticle(base: usize, p: u32): f64 { return load<f64>(base + (<usize>p << 3)); }
 
 /**
- * Edges e = a–b and f = c–d: passed through, or too near, kept h [m] apart with friction mu, muS [-]
- * (self-contact.ts resolveEdges, operation for operation, with its three skips); `memo`: the byte offset of the
- * pair's EDGE_MEMO entry, or 0 for none.
+ * Edges e = a–b and f = c–d: passed through, or too near, kept h_e = min(hPair, SELF_EDGE_SHARE·hPair + δ) [m]
+ * apart (δ the two edges' largest end moves over the substep, summed) with friction mu, muS [-] (self-contact.ts
+ * resolveEdges, operation for operation, with its three skips); `memo`: the byte offset of the pair's EDGE_MEMO
+ * entry, or 0 for none.
  */
-function resolveEdges(h: f64, mu: f64, muS: f64, memo: usize, e: i32, f: i32, a: u32, b: u32, c: u32, d: u32): void {
+function resolveEdges(hPair: f64, mu: f64, muS: f64, memo: usize, e: i32, f: i32, a: u32, b: u32, c: u32, d: u32): void {
   const be = EBOX + (<usize>e << 6), bf = EBOX + (<usize>f << 6);
-  const apart = max(h, load<f64>(be, 56) + load<f64>(bf, 56)) + SKIP_MARGIN;
+  const motion = load<f64>(be, 56) + load<f64>(bf, 56);
+  const h = min(hPair, SELF_EDGE_SHARE * hPair + motion);
+  const apart = max(h, motion) + SKIP_MARGIN;
   const travelled = load<f64>(be, 48) + load<f64>(bf, 48);
   if (memo != 0) {
     if (load<f64>(memo) - (travelled - load<f64>(memo, 8)) >= apart) return;

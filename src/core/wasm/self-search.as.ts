@@ -11,7 +11,7 @@
 // triangles' and edges' and the trees' nodes above them are made again, and only their pairs are found again and
 // merged into the lists (the reference's pairs, in its order).
 import { N, X, XP } from './arrays.as';
-import { SELF_FRAME_SHARE, SELF_REACH_MARGIN, SELF_SKIP_MARGIN as SKIP_MARGIN } from './layout.generated.as';
+import { SELF_EDGE_SHARE, SELF_FRAME_SHARE, SELF_REACH_MARGIN, SELF_SKIP_MARGIN as SKIP_MARGIN } from './layout.generated.as';
 import {
   EDGE_MEMO, EDGE_PAIRS, EDGES, ESCAPED, FRAME_J, PAIRS, PEDGE_LIST, PEDGE_START, REACH, TRIS, closestPoint, frameU, overlap,
   segmentClosest, selfFrame,
@@ -55,7 +55,7 @@ let PTRI_LIST: usize = 0;
 let TRADIUS: usize = 0;
 let ERADIUS: usize = 0;
 let radiiMade = false;
-/** each triangle's and each edge's reach box (its corners' reach boxes widened by h and h/2), f64 × 6 */
+/** each triangle's and each edge's reach box (its corners' reach boxes widened by h and, an edge's, by SELF_EDGE_SHARE·h/2), f64 × 6 */
 let TREACH: usize = 0;
 let EREACH: usize = 0;
 /**
@@ -183,7 +183,7 @@ export function selfSearch(
   epoch++;
   for (let p = 0; p < N; p++) reachOf(p, left, T, gx, gy, gz, span, hMax);
   for (let t = 0; t < NT; t++) unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
-  const half = 0.5 * hMax;
+  const half = 0.5 * (SELF_EDGE_SHARE * hMax);
   for (let e = 0; e < NE; e++) unionOf(REACH, EDGES + <usize>e * 8, 0, 2, EREACH + <usize>e * 48, half);
   if (!refit(PARTICLE_TREE, REACH, N) || !refit(TRIANGLE_TREE, TREACH, NT) || !refit(EDGE_TREE, EREACH, NE)) return 0;
   radiiOf();
@@ -239,7 +239,7 @@ export function selfUpdate(
     const t = i32At(TOUCHED_T, i);
     unionOf(REACH, TRIS + <usize>t * 12, 0, 3, TREACH + <usize>t * 48, hMax);
   }
-  const half = 0.5 * hMax;
+  const half = 0.5 * (SELF_EDGE_SHARE * hMax);
   for (let i = 0; i < ne; i++) {
     const e = i32At(TOUCHED_E, i);
     unionOf(REACH, EDGES + <usize>e * 8, 0, 2, EREACH + <usize>e * 48, half);
@@ -536,7 +536,7 @@ function radiiOf(): void {
   const ea = EDGES + <usize>e * 8, fa = EDGES + <usize>f * 8;
   const a = load<u32>(ea), b = load<u32>(ea, 4), c = load<u32>(fa), d = load<u32>(fa, 4);
   if (c == a || c == b || d == a || d == b) return n;
-  const near = hFor + (radiiMade ? load<f64>(ERADIUS + (<usize>e << 3)) + load<f64>(ERADIUS + (<usize>f << 3)) : max(radiusNow(a), radiusNow(b)) + max(radiusNow(c), radiusNow(d))) + SKIP_MARGIN;
+  const near = SELF_EDGE_SHARE * hFor + (radiiMade ? load<f64>(ERADIUS + (<usize>e << 3)) + load<f64>(ERADIUS + (<usize>f << 3)) : max(radiusNow(a), radiusNow(b)) + max(radiusNow(c), radiusNow(d))) + SKIP_MARGIN;
   if (near < meanEdge && segmentClosest(X, <usize>a * 12, <usize>b * 12, <usize>c * 12, <usize>d * 12) > near) return n;
   if (n >= RAW_CAP) return -1;
   const at = RAW + (<usize>n << 3);

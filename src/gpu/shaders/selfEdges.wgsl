@@ -2,9 +2,10 @@
 // edge pairs selfFindEdges listed (selfPairs; how many in selfArgs[3]), one pair per thread (an indirect dispatch).
 // The closest points p (on a–b, at s) and q (on c–d, at t), now and at the substep's start: passed through (both
 // pairs inside their edges, q→p now against its direction then): apart along that direction until p is on its side,
-// h from q; else, nearer than h: apart to h along q→p. Shared by inverse mass and the weights (1 − s, s, 1 − t, t),
-// with friction; every correction from the positions at the pass's start, summed per particle (selfCorrect.wgsl)
-// for selfApply.
+// h_e from q; else, nearer than h_e: apart to h_e along q→p. h_e is SELF_EDGE_SHARE of the self-contact distance h,
+// more by the two edges' largest end moves over the substep (summed), up to h (self-contact.ts resolveEdges). Shared
+// by inverse mass and the weights (1 − s, s, 1 − t, t), with friction; every correction from the positions at the
+// pass's start, summed per particle (selfCorrect.wgsl) for selfApply.
 
 /**
  * Closest points of segments a–b and c–d [m] (Ericson 2005, §5.1.9; self-contact.ts segmentClosest): their
@@ -47,7 +48,6 @@ fn insideEdge(v: f32) -> bool {
 
 /** Edges a–b and c–d: the pair's corrections summed, if it needs any. */
 fn resolveEdges(a: u32, b: u32, c: u32, d: u32) {
-  let h = globals.selfDistance;
   let xa = positions[a].xyz;
   let xb = positions[b].xyz;
   let xc = positions[c].xyz;
@@ -56,6 +56,8 @@ fn resolveEdges(a: u32, b: u32, c: u32, d: u32) {
   let qb = previous[b].xyz;
   let qc = previous[c].xyz;
   let qd = previous[d].xyz;
+  let motion = max(length(xa - qa), length(xb - qb)) + max(length(xc - qc), length(xd - qd));
+  let h = min(globals.selfDistance, SELF_EDGE_SHARE * globals.selfDistance + motion);
   var st0: vec2f;
   let gap0 = segmentClosest(qa, qb, qc, qd, &st0);
   let len0 = length(gap0);
