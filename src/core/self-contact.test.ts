@@ -168,9 +168,9 @@ describe('self-contact (solver.selfContact)', () => {
     // within 1.5 h of each other now, and every two such edges within h_e + h/2 (h_e their contact distance at rest,
     // SELF_EDGE_SHARE of h), are listed (brute force): each particle's reach box has a margin of at least h/4
     // (SELF_REACH_MARGIN) along each axis, and a triangle's box is its corners' widened by h (an edge's by h_e/2), so
-    // such a pair's boxes meet, and it can come within its distance before the candidates are found again. (Up to 2026-12-06
-    // the test took 1.8 h, which the margins of motion covered in the sweep's fold; with the coarse correction, the
-    // default since, a pair 1.8 h apart went unlisted: particle 705 and triangle 648.)
+    // such a pair's boxes meet, and it can come within its distance before the candidates are found again. (Up to
+    // 2026-12-06 the test took 1.8 h, which the margins of motion covered in the sweep's fold; with the coarse
+    // correction, the default since, a pair 1.8 h apart went unlisted: particle 705 and triangle 648.)
     const sim = new Simulation(builtinScene('fold'), { kernel: 'ts' });
     sim.advance(40);
     const x = sim.state.positions, tri = sim.model.triangles, edges = sim.model.edges;

@@ -30,8 +30,9 @@
  * more than half the smallest altitude of the rest triangles, so a particle
  * at rest is never "too near" a triangle of its own neighbourhood (on a fine mesh the layers then keep closer than
  * the thickness). Then edge against edge (collideEdges): two edges crossing while every vertex stays outside the
- * other's triangles, kept h/2 apart at rest and up to h in motion (SELF_EDGE_SHARE). Not handled: a particle or an edge that starts a substep already on the wrong side stays
- * there (side memory keeps, it does not untangle). Most listed pairs are neighbours that are not near: each
+ * other's triangles, kept h/2 apart at rest and up to h in motion (SELF_EDGE_SHARE). Not handled: a particle or an
+ * edge that starts a substep already on the wrong side stays there (side memory keeps, it does not untangle). Most
+ * listed pairs are neighbours that are not near: each
  * triangle's normals (now and at the substep's start), centroid and radius, and each edge's midpoint and half
  * vector, are computed once per substep (again only after a correction moved a corner), and the pairs they prove
  * apart cost a few products each; an edge pair keeps its last measured distance, which bounds it until its particles
@@ -70,7 +71,7 @@ interface SelfScratch {
   reachRadius: Float64Array;
   /** each particle's box over the substep (x_prev to x, as of the last substepBoxes), as `boxes` */
   particleBoxes: Float64Array;
-  /** the triangles' and edges' reach boxes (their corners' reach boxes, widened by h and, an edge's, by SELF_EDGE_SHARE·h/2) */
+  /** the triangles' and edges' reach boxes (their corners' reach boxes, widened by h; an edge's by SELF_EDGE_SHARE·h/2) */
   triangleReach: Float64Array;
   edgeReach: Float64Array;
   /** candidate pairs (particle, triangle) and (edge, edge) whose reach boxes meet, in the order they are resolved */
