@@ -1,12 +1,15 @@
 import { describe, expect, it } from 'vitest';
 import { countIntersections } from './intersections.js';
 import { SELF_EDGE_SHARE, SELF_REACH_MARGIN } from './layout.generated.js';
+import { FRAME_DT } from './params.js';
 import { builtinScene } from './scenes.js';
-import { findSelfCandidates, searchAhead, selfContactBuilds, selfContactDistance } from './self-contact.js';
+import { PHASE } from './schedule.js';
+import { collideSelf, findSelfCandidates, searchAhead, selfContactBuilds, selfContactDistance } from './self-contact.js';
 import { Simulation } from './simulation.js';
 import { validateScene } from './scene.js';
-import { copyState, grab } from './state.js';
+import { copyState, createState, grab } from './state.js';
 import { crossedStrips, stripGap } from './test-strips.js';
+import { XpbdKernel } from './wasm/xpbd-wasm.js';
 
 /**
  * Rubber at 32² on the sphere, its springs swept alone (solver.stretch 'gauss-seidel'): without self-contact it folds
@@ -62,6 +65,43 @@ function segments(a: V, b: V, c: V, d: V): number {
     if (f(m1) < f(m2)) hi = m2; else lo = m1;
   }
   return Math.min(f(0), f(1), f((lo + hi) / 2));
+}
+
+/**
+ * One substep of self-contact alone, on a CPU kernel, from `start` (the substep's start, x_prev) to `now` (x): two
+ * squares of one face each way (triangles 0–2–3 and 0–3–1, 4–6–7 and 4–7–5), particles 0–3 0.5 mm thick and 4–7
+ * 10 mm (a pair of the two is 5.25 mm apart, the boxes are widened by 10), placed there. Returns the positions after.
+ */
+function selfSubstep(kernel: 'ts' | 'wasm', start: number[], now: number[]): Float32Array {
+  const scene = validateScene({
+    name: 'two squares', colliders: [],
+    cloths: [
+      { cloth: { resolution: 1, width: 0.04, height: 0.04, thickness: 0.0005 } },
+      { cloth: { resolution: 1, width: 0.04, height: 0.04, thickness: 0.01 } },
+    ],
+  });
+  const sim = new Simulation(scene, { kernel: 'ts' });
+  const { model, params } = sim;
+  const h = FRAME_DT / params.substeps;
+  const state = createState(model);
+  state.invMass.set(params.particleInvMass);
+  state.previousPositions.set(start);
+  state.positions.set(now);
+  let x: Float32Array;
+  if (kernel === 'ts') {
+    collideSelf(model, state, params, h, params.substeps);
+    x = state.positions;
+  } else {
+    const k = XpbdKernel.create(model, 1)!;
+    copyState(state, k.state);
+    k.state.invMass.set(state.invMass);
+    const frame = { h, substeps: params.substeps, sub: 0, forced: false, grabFrom: new Float64Array(3), grabTo: new Float64Array(3) };
+    k.run(1 << PHASE.selfContact, model, k.state, params, frame, undefined);
+    x = k.state.positions.slice();
+    k.dispose();
+  }
+  sim.dispose();
+  return x;
 }
 
 describe('self-contact (solver.selfContact)', () => {
@@ -282,6 +322,22 @@ describe('self-contact (solver.selfContact)', () => {
     expect(Math.hypot(x[3 * p] - to[0], x[3 * p + 1] - to[1], x[3 * p + 2] - to[2])).toBeLessThan(1e-6); // there by now
     expect(seen).toEqual(new Array(20).fill(0));
     sim.dispose();
+  });
+
+  it.each(['ts', 'wasm'] as const)('%s: a particle on the far side of a triangle that turned over in the substep, farther from it than the two moved, is not taken to have passed through', (kernel) => {
+    // triangle 0–2–3 in the plane y = 10 cm, a sliver whose corner 3 moves 2 mm across the edge 0–2, so that its
+    // normal turns over; particle 4 stays 8 mm below it, its projection inside the triangle now. Its side of the
+    // plane changed, but it is 8 mm from the triangle, and the two moved 2 mm: it cannot have passed through.
+    // (Particle 1 is far above, 5–7 far to the side in particle 4's plane.)
+    const mm = (v: number[]) => v.map((c) => c / 1000);
+    const start = mm([0, 100, 0, 20, 300, -300, 40, 100, 0, 20, 100, 1, 20, 92, -0.3, 500, 92, -0.3, 20, 92, 480, 500, 92, 480]);
+    const now = start.slice();
+    now[3 * 3 + 2] = -0.001;
+    expect(Array.from(selfSubstep(kernel, start, now))).toEqual(Array.from(Float32Array.from(now)));
+    // the same, the particle coming 7 mm along x to where it is: the two moved 9 mm, so it may have passed through,
+    // and is moved (the side memory's rule: back to its side)
+    start[3 * 4] = 0.013;
+    expect(selfSubstep(kernel, start, now)[3 * 4 + 1]).not.toBe(Math.fround(0.092));
   });
 
   it.each(['ts', 'wasm'] as const)('%s: where pins and a collider press two layers nearer than the contact distance, they win, and `squeezed` counts it', (kernel) => {

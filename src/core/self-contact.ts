@@ -849,7 +849,11 @@ function moved(s: SelfScratch, a: number, b: number, c: number, d: number): void
  * Particle p against triangle t = (a, b, c): passed through, or too near (see the file's comment), kept h [m]
  * apart with kinetic and static friction mu, muS [-]. The plane sides come from the triangle's frame (the same
  * numbers planes computed pair by pair give); a particle that did not cross the plane and whose distance from the
- * centroid exceeds the triangle's radius by h is not near it, and costs nothing more.
+ * centroid exceeds the triangle's radius by h is not near it, and costs nothing more. One that crossed it passed
+ * through only if it is nearer the triangle now than δ, its move over the substep and the largest of the corners'
+ * summed (it was on the triangle at some instant of the substep, and since then neither moved farther than that: a
+ * point of the triangle moves no farther than its farthest corner); farther, the side changed because the triangle
+ * turned over (a sliver whose corner crossed its opposite edge), and the pair is left as it is.
  */
 function resolvePair(
   sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array, p: number, t: number, a: number, b: number, c: number,
@@ -874,7 +878,15 @@ function resolvePair(
   let C: number; // constraint value along dir: negative when violated
   const inside = crossed && projectionInside(x, jp, ja, jb, jc);
   if (crossed && (inside || projectionInside(xp, jp, ja, jb, jc))) {
-    // passed through: back to its side, h from the plane (dir is the plane's normal, sign as then)
+    // passed through, if near enough now to have (the distance: from the plane where it projects inside)
+    const move = sc.move;
+    let d = Math.abs(s);
+    if (!inside) {
+      closestPoint(x, jp, ja, jb, jc);
+      d = nearest[0];
+    }
+    if (d >= Math.max(h, move[p] + Math.max(move[a], move[b], move[c])) + SKIP_MARGIN) return;
+    // back to its side, h from the plane (dir is the plane's normal, sign as then)
     const side = Math.sign(sPrev);
     if (!inside) {
       // through the triangle as it was, beside it as it is: the weights of the projection now, clamped to it

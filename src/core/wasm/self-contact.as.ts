@@ -397,8 +397,8 @@ export function closestPoint(jp: usize, ja: usize, jb: usize, jc: usize): f64 {
 }
 
 /**
- * Particle p against triangle t = (a, b, c): passed through, or too near, kept h [m] apart with kinetic and static
- * friction mu, muS [-] (self-contact.ts resolvePair, operation for operation).
+ * Particle p against triangle t = (a, b, c): passed through (if near enough now to have), or too near, kept h [m]
+ * apart with kinetic and static friction mu, muS [-] (self-contact.ts resolvePair, operation for operation).
  */
 function resolvePair(h: f64, mu: f64, muS: f64, p: i32, t: i32, a: u32, b: u32, c: u32): void {
   const jp = <usize>p * 12, ja = <usize>a * 12, jb = <usize>b * 12, jc = <usize>c * 12;
@@ -417,7 +417,11 @@ function resolvePair(h: f64, mu: f64, muS: f64, p: i32, t: i32, a: u32, b: u32, 
   let C: f64; // constraint value along the direction: negative when violated
   const inside = crossed && projectionInside(X, jp, ja, jb, jc);
   if (crossed && (inside || projectionInside(XP, jp, ja, jb, jc))) {
-    // passed through: back to its side, h from the plane
+    // passed through, if near enough now to have: nearer than its move and the triangle's largest corner move
+    const d = inside ? Math.abs(s) : closestPoint(jp, ja, jb, jc);
+    const motion = perParticle(MOVE, p) + max(max(perParticle(MOVE, a), perParticle(MOVE, b)), perParticle(MOVE, c));
+    if (d >= max(h, motion) + SKIP_MARGIN) return;
+    // back to its side, h from the plane
     const side = sign(sPrev);
     if (!inside) {
       barycentric(X, jp, ja, jb, jc);

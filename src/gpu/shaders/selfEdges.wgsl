@@ -65,6 +65,9 @@ fn resolveEdges(a: u32, b: u32, c: u32, d: u32) {
   let gap = segmentClosest(xa, xb, xc, xd, &st);
   let len = length(gap);
   if (!(len < 1e30) || !(len0 < 1e30)) { return; } // not finite
+  // at least h_e and δ apart now: neither too near nor passed through (passing through needs the distance now to be
+  // at most δ; self-contact.ts resolveEdges)
+  if (len >= max(h, motion)) { return; }
   var dir: vec3f;
   var C: f32; // the constraint along dir [m]: negative when violated
   if (insideEdge(st0.x) && insideEdge(st0.y) && insideEdge(st.x) && insideEdge(st.y) && len0 > 1e-12 && dot(gap, gap0) < 0.0) {
