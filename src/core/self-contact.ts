@@ -850,10 +850,11 @@ function moved(s: SelfScratch, a: number, b: number, c: number, d: number): void
  * apart with kinetic and static friction mu, muS [-]. The plane sides come from the triangle's frame (the same
  * numbers planes computed pair by pair give); a particle that did not cross the plane and whose distance from the
  * centroid exceeds the triangle's radius by h is not near it, and costs nothing more. One that crossed it passed
- * through only if it is nearer the triangle now than δ, its move over the substep and the largest of the corners'
- * summed (it was on the triangle at some instant of the substep, and since then neither moved farther than that: a
- * point of the triangle moves no farther than its farthest corner); farther, the side changed because the triangle
- * turned over (a sliver whose corner crossed its opposite edge), and the pair is left as it is.
+ * through only if it is nearer the triangle now than h or δ, whichever is larger, δ its move over the substep and
+ * the largest of the corners' summed (it was on the triangle at some instant of the substep, and since then neither
+ * moved farther than that: a point of the triangle moves no farther than its farthest corner); farther, the side
+ * changed because the triangle turned over (a sliver whose corner crossed its opposite edge), and the pair is left
+ * as it is.
  */
 function resolvePair(
   sc: SelfScratch, x: Float32Array, xp: Float32Array, w: Float32Array, p: number, t: number, a: number, b: number, c: number,

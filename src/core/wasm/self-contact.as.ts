@@ -417,7 +417,7 @@ function resolvePair(h: f64, mu: f64, muS: f64, p: i32, t: i32, a: u32, b: u32, 
   let C: f64; // constraint value along the direction: negative when violated
   const inside = crossed && projectionInside(X, jp, ja, jb, jc);
   if (crossed && (inside || projectionInside(XP, jp, ja, jb, jc))) {
-    // passed through, if near enough now to have: nearer than its move and the triangle's largest corner move
+    // passed through, if near enough now to have: nearer than h or its move and the triangle's largest corner move
     const d = inside ? Math.abs(s) : closestPoint(jp, ja, jb, jc);
     const motion = perParticle(MOVE, p) + max(max(perParticle(MOVE, a), perParticle(MOVE, b)), perParticle(MOVE, c));
     if (d >= max(h, motion) + SKIP_MARGIN) return;

@@ -2,8 +2,9 @@
 // listed (selfPairs; how many in selfArgs[3]), one pair per thread (an indirect dispatch: selfPairArgs). Each pair is
 // the CPU's:
 // - passed through (side memory): p on one side of the triangle's plane at the substep's start, on the other now,
-//   its projection inside the triangle (now or then), and nearer it now than p's move and the triangle's largest
-//   corner move summed (farther, it cannot have passed through in this substep): back to its side, h from the plane;
+//   its projection inside the triangle (now or then), and nearer it now than h or p's move and the triangle's
+//   largest corner move summed (farther, it cannot have passed through in this substep): back to its side, h from
+//   the plane;
 // - too near: on its side but nearer than h to the triangle's closest point: apart to h;
 // the correction shared by inverse mass and barycentric weight, with friction on the relative tangential motion.
 // Every correction is computed from the positions at the pass's start and summed per particle (selfCorrect.wgsl);
@@ -86,8 +87,8 @@ fn resolvePair(p: u32, wp: f32, a: u32, b: u32, c: u32) {
   var dir: vec3f;
   var C: f32; // the constraint along dir [m]: negative when violated
   if (sPrev != 0.0 && sign(s) != sign(sPrev) && (inside || all(planeWeights(q, qa, qb, qc) >= vec3f(0.0)))) {
-    // passed through, if near enough now to have: nearer than its move and the triangle's largest corner move summed
-    // (the distance from the plane where it projects inside, else from the closest point)
+    // passed through, if near enough now to have: nearer than h or its move and the triangle's largest corner move
+    // summed (the distance from the plane where it projects inside, else from the closest point)
     let motion = length(x - q) + max(max(length(xa - qa), length(xb - qb)), length(xc - qc));
     var d = abs(s);
     if (!inside) {
