@@ -18,8 +18,9 @@
  *   neighbourhood, the triangles touching its one-ring, saved a tenth of the time and let 8× as many tight folds
  *   through at 64²: not done.)
  * - **Passed through** (side memory): p was on one side of t's plane at the substep's start and is on the other
- *   now, and its projection onto the plane falls inside t (now or then): p and t's corners are moved, by inverse
- *   mass and barycentric weight, until p is back on its side at distance h.
+ *   now, its projection onto the plane falls inside t (now or then), and it is nearer t now than h or than the two
+ *   moved over the substep (resolvePair): p and t's corners are moved, by inverse mass and barycentric weight, until
+ *   p is back on its side at distance h.
  * - **Too near**: on its side but nearer t than h (closest point of t, Ericson 2005 §5.1.5): moved apart to h.
  * - **Friction**: the tangential motion of p relative to t's point over the substep is removed while within the
  *   static cone (|d_t| < μ_s·depth), else reduced by μ_k·depth — the cloth's own friction and static friction
