@@ -328,7 +328,7 @@ describe('self-contact (solver.selfContact)', () => {
     // triangle 0–2–3 in the plane y = 10 cm, a sliver whose corner 3 moves 2 mm across the edge 0–2, so that its
     // normal turns over; particle 4 stays 8 mm below it, its projection inside the triangle now. Its side of the
     // plane changed, but it is 8 mm from the triangle, and the two moved 2 mm: it cannot have passed through.
-    // (Particle 1 is far above, 5–7 far to the side in particle 4's plane.)
+    // (Particle 1 is far above; 4–7 are a square 48 cm across in the plane y = 9.2 cm, 8 mm under the triangle.)
     const mm = (v: number[]) => v.map((c) => c / 1000);
     const start = mm([0, 100, 0, 20, 300, -300, 40, 100, 0, 20, 100, 1, 20, 92, -0.3, 500, 92, -0.3, 20, 92, 480, 500, 92, 480]);
     const now = start.slice();
