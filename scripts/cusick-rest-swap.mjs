@@ -5,8 +5,7 @@
 // rest is the same as the other's keeps its reading; one that drifts has a rest of its own (docs/physics.md, "Not
 // the threads' strain, it turns out"). Needs `npx tsc -p tsconfig.build.json` (it reads dist/).
 //   node scripts/cusick-rest-swap.mjs [--first 40x16] [--second 20x1] [--fabric cotton]
-import { Simulation, builtinScene, measureTest, setScenePath, validateScene } from '../dist/core/index.js';
-import { copyState } from '../dist/core/state.js';
+import { Simulation, builtinScene, copyState, measureTest, setScenePath, validateScene } from '../dist/core/index.js';
 
 const arg = (name, fallback) => {
   const i = process.argv.indexOf(`--${name}`);
