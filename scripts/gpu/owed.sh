@@ -5,7 +5,9 @@
 # correction (solver.stretch two-level), the cantilever
 # with the former, the mannequin scenes, fold at 256² with
 # self-contact on, off, and off at the substeps self-contact takes, and a 64² cloth on mesh colliders of about 1k, 10k
-# and 100k triangles (made by scripts/gpu/mesh-spheres.mjs). Each command has a time limit; what it printed goes to
+# and 100k triangles (made by scripts/gpu/mesh-spheres.mjs), and last issue 12's scenes at 128² with self-contact, their
+# crossing pairs at every 10th frame (scripts/gpu-crossings.mjs: each row printed as its scene ends, so a run cut
+# short keeps the rows before). Each command has a time limit; what it printed goes to
 # $OUT/NAME.txt, and its last lines to the terminal.
 set -u
 OUT=${OUT:-/tmp/gpu-out}; mkdir -p "$OUT"
@@ -22,3 +24,4 @@ t fold256-off 45 node bin/drape.js run fold --set cloth.resolution=256 --set sol
 t fold256-off-73 45 node bin/drape.js run fold --set cloth.resolution=256 --set solver.selfContact=false --set solver.substeps=73 --backend gpu --frames 180 --json
 t fold256-on 75 node bin/drape.js run fold --set cloth.resolution=256 --set solver.selfContact=true --backend gpu --frames 180 --json
 for m in 1k 10k 100k; do t "mesh-$m-gpu" 30 node bin/drape.js run "/tmp/gpu-mesh/mesh-$m.json" --backend gpu --frames 120 --json; done
+t crossings-128 150 node scripts/gpu-crossings.mjs --faces 128 --frames 180

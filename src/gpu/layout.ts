@@ -86,15 +86,19 @@ export const SELF_EDGES = 1;
 export const SELF_PAIRS_PER_PRIMITIVE = 8;
 
 /**
- * Jacobi passes of the edge pairs per substep (selfEdges then selfApply, over the one list of candidates). Two, where
- * the CPU's Gauss–Seidel sweep is one: in a fold every edge pair of two vertices' fans measures the same
+ * Jacobi passes of the edge pairs per substep (selfEdges then selfApply, over the one list of candidates). Several,
+ * where the CPU's Gauss–Seidel sweep is one: in a fold every edge pair of two vertices' fans measures the same
  * vertex–vertex gap (up to 6 × 6 pairs), so a particle averages a pair that passed through with a dozen that only
  * ask for a fraction of a millimetre, and one pass closed 0.24 mm of the 4.3 mm the pair lacked. Measured on the
  * drag of docs/physics.md "A fast grab" (`node scripts/grab-drag.mjs --faces 24|40 --kernel gpu`), one pass: 1 then
  * 4 crossing pairs at 24² (frames 20–21), 8–26 at 40² from frame 19; two: none over 30 frames at either; a second
- * pass of the particle pairs instead: 1 at 24².
+ * pass of the particle pairs instead: 1 at 24². Four since 2026-12-07: with two, the built-in fold at 32² crossed
+ * itself at its landing corner (two triangles one apart, from frame 8 on, still at frame 300) once the coarse
+ * correction became the default stretch solve (a88a5a3; the sweep alone crossed nowhere); four edge passes keep it
+ * apart with either stretch solve, two particle passes only with the coarse correction (it then crossed with the
+ * sweep alone), three of each with both (SwiftShader, frames 8, 10 and 20).
  */
-export const SELF_EDGE_PASSES = 2;
+export const SELF_EDGE_PASSES = 4;
 
 /**
  * The sizes of a model's self-contact grid: `primitives` = the larger of its triangle and edge counts (one grid at a

@@ -106,6 +106,23 @@ describe.skipIf(!gpu)('self-contact on the GPU', () => {
     expect(again.state.positions).toEqual(at10);
   });
 
+  test('the built-in fold at 32², as it is (the coarse correction too): its landing corner crosses itself nowhere', async () => {
+    // with two Jacobi passes of the edge pairs two triangles one apart at the landing corner crossed from frame 8 on
+    // (SELF_EDGE_PASSES); read back at frames 8–10, where that was first seen
+    const s = builtinScene('fold');
+    s.cloth.resolution = 32;
+    const sim = new Simulation(validateScene(s), { kernel: 'ts' });
+    expect(sim.params.stretch).toBe('two-level');
+    sim.useBackend(await GpuBackend.create(gpu!.device, sim.model));
+    sims.push(sim);
+    sim.advance(7);
+    for (let f = 8; f <= 10; f++) {
+      sim.advance(1);
+      await sim.sync();
+      expect(countIntersections(sim.model.triangles, sim.state.positions), `frame ${f}`).toBe(0);
+    }
+  });
+
   test('two sheets dropped on a sphere stay layered, the upper one a contact distance above the lower', async () => {
     const sim = await onGpu(stacked(true));
     expect(await crossings(sim, 40)).toEqual(Array(4).fill(0));

@@ -141,7 +141,7 @@ function coarseTraffic(model: ClothModel, params: SimParams, t: CoarseLayout): n
  * `stencilRecords` is empty unless params.bending is a stencil model (solved together: 4 dispatches per substep
  * instead of its batches), `self` null unless it has self-contact (then
  * per substep two grid builds of 6 dispatches, each followed by its candidates, their indirect arguments, the pairs
- * and the corrections applied, the edges' SELF_EDGE_PASSES times: 20 + 2 per edge pass past the first); the coarse
+ * and the corrections applied, the edges' SELF_EDGE_PASSES times: 18 + 2 per edge pass); the coarse
  * correction (solver.stretch 'two-level') adds 9 in a frame's first substep and 12 in each later one (a solve and
  * the check of its step in two, then the matrix's five kernels again, dispatched with no workgroups unless its step
  * overshoots).
