@@ -79,9 +79,11 @@ describe('the npm package', () => {
   // 357 kB the same day with the springs' coarse correction (solvers/coarse-stretch.ts, its kernel coarse.as.ts in both
   // builds, coarse-wasm.ts: a hanging sheet at the default substeps within 4 % of theory); 367 kB with the GPU's split
   // check of the coarse factor, and 371 kB the same evening with the Cusick test's specimens (perturbation.ts, its
-  // schema in both places a cloth is described, `drape run --specimens`): the budget keeps about 10 kB above what ships
-  it('packs into at most 380 kB', () => {
-    expect(packed.size).toBeLessThanOrEqual(380_000);
+  // schema in both places a cloth is described, `drape run --specimens`); 379 kB by 2026-12-07 (the docs and the
+  // self-contact rules of two sessions), 381 kB the same day with the kernel's integrate in f64x2 lanes (both builds)
+  // and the README's bench re-measured: the budget keeps about 10 kB above what ships
+  it('packs into at most 390 kB', () => {
+    expect(packed.size).toBeLessThanOrEqual(390_000);
   });
 
   it('declares its doc comments in the types and ships the code without them', () => {
