@@ -28,17 +28,29 @@ function besideKernel(name) {
   }
 }
 
-async function compile(source, flags) {
+async function compile(source, flags, text = false) {
   const out = {};
   const stderr = [];
-  const { error } = await asc.main(['kernel.ts', '--outFile', 'kernel.wasm', ...flags], {
+  const { error } = await asc.main(['kernel.ts', '--outFile', 'kernel.wasm', ...(text ? ['--textFile', 'kernel.wat'] : []), ...flags], {
     readFile: (name) => (name === 'kernel.ts' ? source : name.endsWith('.as.ts') ? besideKernel(name) : null),
     writeFile: (name, contents) => { out[name] = contents; },
     listFiles: () => [],
     stderr: { write: (s) => { stderr.push(String(s)); return true; } },
   });
   if (error) throw new Error(`asc: ${error.message}\n${stderr.join('')}`);
+  if (text) return String(out['kernel.wat']);
   return Buffer.from(out['kernel.wasm']).toString('base64');
+}
+
+/**
+ * The one-thread kernel's function names by function index (imports first, as a profile's `wasm-function[i]`
+ * counts them), from its text form built with the same flags (scripts/frame-profile.mjs).
+ */
+export async function kernelFunctionNames(source = readFileSync(KERNEL_SOURCE, 'utf8')) {
+  const wat = await compile(source, VARIANTS.single, true);
+  const imported = [...wat.matchAll(/\(import "[^"]*" "[^"]*" \(func (\$\S+)/g)].map((m) => m[1]);
+  const own = [...wat.matchAll(/^ \(func (\$\S+)/gm)].map((m) => m[1]);
+  return [...imported, ...own];
 }
 
 /** The text xpbd-kernel.generated.ts must have for the kernel source. */

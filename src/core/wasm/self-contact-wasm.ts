@@ -28,11 +28,12 @@ export interface SelfContactExports {
   selfBoxes(start: boolean): number;
   selfFrame(ux: number, uy: number, uz: number): void;
   selfFound(edgePairs: number): void;
-  selfTriangleBoxes(hMax: number): void;
+  selfTriangleBoxes(hMax: number, pairs: number): void;
   selfParticles(count: number, hMax: number): void;
-  selfEdgeBoxes(hMax: number): void;
+  selfEdgeBoxes(hMax: number, pairs: number): void;
   selfEdges(count: number, hMax: number, memo: boolean): void;
   selfStaleEdges(): number;
+  selfEdgeRecords(): number;
   configureSearch(...layout: number[]): void;
   selfSearch(hMax: number, left: number, h: number, gx: number, gy: number, gz: number, span: number, edge: number, window: number, edgeWindow: number): number;
   selfUpdate(count: number, hMax: number, left: number, h: number, gx: number, gy: number, gz: number, span: number, window: number, edgeWindow: number): number;
@@ -63,6 +64,8 @@ const TREE_FIELDS = 8;
 export interface SelfContactLayout {
   tris: number; edges: number; owner: number; cloth: number; reach: number; pbox: number; tbox: number; ebox: number;
   tframe: number; eframe: number; tframeAt: number; eframeAt: number; movedAt: number; pairs: number; edgePairs: number;
+  /** the pass each triangle's box and each edge's record was made for */
+  tboxAt: number; eboxAt: number;
   travel: number; seen: number; move: number; edgeMemo: number; window: number; edgeWindow: number;
   /** each particle's edges, as rows (self-contact.ts rowsOf): where each particle's start, and the list */
   edgeStart: number; edgeList: number;
@@ -98,6 +101,7 @@ export function layoutSelfContact(model: ClothModel, take: (bytes: number) => nu
     // the edges' records a cache line each, on a cache line's boundary (take gives 16-byte ones)
     reach: take(48 * n), pbox: take(48 * n), tbox: take(48 * nt), ebox: Math.ceil(take(64 * ne + 48) / 64) * 64,
     tframe: take(80 * nt), eframe: take(48 * ne), tframeAt: take(4 * nt), eframeAt: take(4 * ne), movedAt: take(4 * n),
+    tboxAt: take(4 * nt), eboxAt: take(4 * ne),
     pairs: take(8 * w), edgePairs: take(8 * we), travel: take(8 * n), seen: take(12 * n), move: take(8 * n), edgeMemo: take(16 * we),
     window: w, edgeWindow: we, edgeStart: take(4 * (n + 1)), edgeList: take(8 * ne),
   };
@@ -201,7 +205,7 @@ export class KernelSelfContact {
     const l = layout;
     exports.configureSelf(l.tris, l.edges, l.owner, l.cloth, l.reach, l.pbox, l.tbox, l.ebox, l.tframe, l.eframe,
       l.tframeAt, l.eframeAt, l.movedAt, l.pairs, l.edgePairs, l.travel, l.seen, l.move, l.edgeMemo, l.escaped, l.edgeStart,
-      l.edgeList, nt, ne);
+      l.edgeList, nt, ne, l.tboxAt, l.eboxAt);
     // each particle's edges and triangles (the edge pass's records, the update's primitives)
     const rows = rowsOf(model.edges, 2, n), triRows = rowsOf(model.triangles, 3, n);
     new Int32Array(memory, l.edgeStart, n + 1).set(rows.start);
@@ -251,12 +255,12 @@ export class KernelSelfContact {
     // the candidates hold while every particle's box over this substep is inside its reach box
     const out = ex.selfBoxes(true);
     if (!(this.builtFor === hMax && out === 0) && !this.update(model, params, out, hMax, h, ahead) && !this.find(model, state, params, hMax, h, ahead)) return;
-    ex.selfTriangleBoxes(hMax);
+    ex.selfTriangleBoxes(hMax, this.pairs.count);
     this.pairs.run(this.particles, hMax);
     // the particle pass may have pushed a particle out of its reach box
     const pushed = ex.selfBoxes(false);
     if (pushed !== 0 && !this.update(model, params, pushed, hMax, h, ahead) && !this.find(model, state, params, hMax, h, ahead)) return;
-    ex.selfEdgeBoxes(hMax);
+    ex.selfEdgeBoxes(hMax, this.edgePairs.count);
     this.edgePairs.run(this.edges, hMax);
   }
 
@@ -321,9 +325,12 @@ export class KernelSelfContact {
     this.since = 0;
   }
 
-  /** How many edges' records for the edge pass are not current (tests: none between two substeps). */
-  staleEdgeRecords(): number {
-    return this.exports.selfStaleEdges();
+  /**
+   * How many of the last edge pass's records are not current (tests: none between two substeps), and how many it
+   * made (the pairs' edges: the rest are made when a pass reads them).
+   */
+  edgeRecords(): { stale: number; made: number } {
+    return { stale: this.exports.selfStaleEdges(), made: this.exports.selfEdgeRecords() };
   }
 
   /** The candidates as the last search left them (tests), or null before the first. */

@@ -20,14 +20,19 @@ let CLOTH: usize = 0;
 export let REACH: usize = 0;
 /** each particle's box over the substep, f64 × 6 [m] */
 let PBOX: usize = 0;
-/** each triangle's box over the substep widened by h, f64 × 6 [m] */
+/**
+ * each triangle's box over the substep widened by h, f64 × 6 [m], made when the particle pass first reads it
+ * (triangleBox), and the particle pass it was made for (i32: boxEpoch)
+ */
 let TBOX: usize = 0;
+let TBOX_AT: usize = 0;
 /**
  * each edge's record for the edge pass, 64 bytes (a cache line): its box over the substep widened by h/2, f64 × 6
- * [m]; its ends' travel summed [m] and their larger move over the substep [m], f64 each (selfEdgeBoxes, and kept so
- * through the pass: edgesOf)
+ * [m]; its ends' travel summed [m] and their larger move over the substep [m], f64 each (made when the edge pass
+ * first reads it, edgeRecord, and kept so through the pass: edgesOf), and the edge pass it was made for (i32: boxEpoch)
  */
 let EBOX: usize = 0;
+let EBOX_AT: usize = 0;
 /** the edges of each particle, as rows: where each particle's start (i32 × (particles + 1)) in the list (i32) */
 export let PEDGE_START: usize = 0;
 export let PEDGE_LIST: usize = 0;
@@ -69,6 +74,19 @@ let NE: i32 = 0;
  */
 let clock: i32 = 0;
 let substepAt: i32 = 0;
+/**
+ * counts the passes (two a substep): a triangle's box or an edge's record is this pass's where the pass made them all
+ * (allMade) or its stamp (TBOX_AT, EBOX_AT) is boxEpoch; and the distance h [m] the pass widens them by. A pass with
+ * fewer pairs than LAZY_SHARE of its primitives makes only those its pairs read, as they read them (a cloth at rest, its
+ * layers apart: the pass costs its pairs, not the cloth); one with more makes them all first, in order, which costs
+ * less than reading them scattered. Either way from the same numbers (the particles' boxes do not change during a
+ * pass), so the same boxes.
+ */
+let boxEpoch: i32 = 0;
+let boxH: f64 = 0;
+let allMade = false;
+/** pairs per primitive below which a pass makes only the boxes its pairs read */
+const LAZY_SHARE: f64 = 0.5;
 
 /**
  * The frame the reach boxes are made in (self-contact.ts movingFrame): its motion per substep [m] and the substeps
@@ -92,9 +110,10 @@ export function configureSelf(
   tris: usize, edges: usize, owner: usize, cloth: usize, reach: usize, pbox: usize, tbox: usize, ebox: usize,
   tframe: usize, eframe: usize, tframeAt: usize, eframeAt: usize, movedAt: usize, pairs: usize, edgePairs: usize,
   travel: usize, seen: usize, move: usize, edgeMemo: usize, escaped: usize, edgeStart: usize, edgeList: usize,
-  triangles: i32, edgeCount: i32,
+  triangles: i32, edgeCount: i32, tboxAt: usize, eboxAt: usize,
 ): void {
   TRIS = tris; EDGES = edges; OWNER = owner; CLOTH = cloth; REACH = reach; PBOX = pbox; TBOX = tbox; EBOX = ebox;
+  TBOX_AT = tboxAt; EBOX_AT = eboxAt;
   TFRAME = tframe; EFRAME = eframe; TFRAME_AT = tframeAt; EFRAME_AT = eframeAt; MOVED_AT = movedAt;
   PAIRS = pairs; EDGE_PAIRS = edgePairs; TRAVEL = travel; SEEN = seen; MOVE = move; EDGE_MEMO = edgeMemo;
   ESCAPED = escaped; PEDGE_START = edgeStart; PEDGE_LIST = edgeList;
@@ -108,6 +127,26 @@ function resetClock(): void {
   for (let e = 0; e < NE; e++) store<i32>(EFRAME_AT + (<usize>e << 2), -1);
   for (let p = 0; p < N; p++) store<i32>(MOVED_AT + (<usize>p << 2), 0);
   clock = 0;
+  resetBoxes();
+}
+
+/** Every triangle's box and edge's record stale, the passes' count back at 0. */
+function resetBoxes(): void {
+  memory.fill(TBOX_AT, 0xff, <usize>NT << 2);
+  memory.fill(EBOX_AT, 0xff, <usize>NE << 2);
+  boxEpoch = 0;
+}
+
+/**
+ * A new pass over `pairs` pairs of `primitives` triangles or edges: every box stale, to be made widened by `h` [m];
+ * whether the pass makes them all first (allMade).
+ */
+function nextPass(h: f64, pairs: i32, primitives: i32): bool {
+  if (boxEpoch > 1 << 30) resetBoxes();
+  boxEpoch++;
+  boxH = h;
+  allMade = <f64>pairs >= LAZY_SHARE * <f64>primitives;
+  return allMade;
 }
 
 /** Coordinate k (0, 1, 2) of particle byte offset j of the positions now / at the substep's start [m]. */
@@ -180,42 +219,69 @@ export function selfFound(edgePairs: i32): void {
 }
 
 /**
- * The triangles' boxes over the substep (their corners' PBOX), widened by hMax [m], and a new substep for the
- * frames: the start of collideSelf's particle pass.
+ * A new particle pass over `pairs` pairs, the start of collideSelf's: the triangles' boxes over the substep (their
+ * corners' PBOX), widened by hMax [m], made now or as the pass reads them (triangleBox), and a new substep for the
+ * frames.
  */
-export function selfTriangleBoxes(hMax: f64): void {
-  const lo = f64x2.splat(-hMax), hi = f64x2.splat(hMax), mixed = f64x2.replace_lane(hi, 0, -hMax), low = i64x2(-1, 0);
-  for (let t = 0; t < NT; t++) {
-    const b = TBOX + <usize>t * 48, tr = TRIS + <usize>t * 12;
-    const i = PBOX + <usize>load<u32>(tr) * 48, j = PBOX + <usize>load<u32>(tr, 4) * 48, k = PBOX + <usize>load<u32>(tr, 8) * 48;
-    // lanes (min x, min y), (min z, max x), (max y, max z): pmin/pmax, one instruction each (no NaN reaches here:
-    // a non-finite position fails the reach check first; ±0 give the same box once widened)
-    const i1 = v128.load(i, 16), j1 = v128.load(j, 16), k1 = v128.load(k, 16);
-    v128.store(b, f64x2.add(f64x2.pmin(f64x2.pmin(v128.load(i), v128.load(j)), v128.load(k)), lo));
-    v128.store(b, f64x2.add(v128.bitselect(f64x2.pmin(f64x2.pmin(i1, j1), k1), f64x2.pmax(f64x2.pmax(i1, j1), k1), low), mixed), 16);
-    v128.store(b, f64x2.add(f64x2.pmax(f64x2.pmax(v128.load(i, 32), v128.load(j, 32)), v128.load(k, 32)), hi), 32);
-  }
+export function selfTriangleBoxes(hMax: f64, pairs: i32): void {
+  if (nextPass(hMax, pairs, NT)) for (let t = 0; t < NT; t++) makeTriangleBox(t);
   if (clock > 1 << 30) resetClock();
   substepAt = ++clock;
 }
 
-/**
- * The edges' records (EBOX): their boxes over the substep (their ends' PBOX), widened by hMax/2 [m], and their ends'
- * travel and move: the start of collideEdges.
- */
-export function selfEdgeBoxes(hMax: f64): void {
-  const r = 0.5 * hMax;
+/** Triangle t's box over the substep widened by the pass's h (TBOX), made unless it is this pass's; its byte offset. */
+@inline function triangleBox(t: i32): usize {
+  const at = TBOX_AT + (<usize>t << 2);
+  if (allMade || load<i32>(at) == boxEpoch) return TBOX + <usize>t * 48;
+  store<i32>(at, boxEpoch);
+  return makeTriangleBox(t);
+}
+
+/** Makes triangle t's box over the substep widened by the pass's h (TBOX); its byte offset. */
+@inline function makeTriangleBox(t: i32): usize {
+  const b = TBOX + <usize>t * 48, tr = TRIS + <usize>t * 12, r = boxH;
   const lo = f64x2.splat(-r), hi = f64x2.splat(r), mixed = f64x2.replace_lane(hi, 0, -r), low = i64x2(-1, 0);
-  for (let e = 0; e < NE; e++) {
-    const b = EBOX + (<usize>e << 6), ed = EDGES + <usize>e * 8;
-    edgeEnds(e);
-    const i = PBOX + <usize>load<u32>(ed) * 48, j = PBOX + <usize>load<u32>(ed, 4) * 48;
-    // as selfTriangleBoxes
-    const i1 = v128.load(i, 16), j1 = v128.load(j, 16);
-    v128.store(b, f64x2.add(f64x2.pmin(v128.load(i), v128.load(j)), lo));
-    v128.store(b, f64x2.add(v128.bitselect(f64x2.pmin(i1, j1), f64x2.pmax(i1, j1), low), mixed), 16);
-    v128.store(b, f64x2.add(f64x2.pmax(v128.load(i, 32), v128.load(j, 32)), hi), 32);
-  }
+  const i = PBOX + <usize>load<u32>(tr) * 48, j = PBOX + <usize>load<u32>(tr, 4) * 48, k = PBOX + <usize>load<u32>(tr, 8) * 48;
+  // lanes (min x, min y), (min z, max x), (max y, max z): pmin/pmax, one instruction each (no NaN reaches here:
+  // a non-finite position fails the reach check first; ±0 give the same box once widened)
+  const i1 = v128.load(i, 16), j1 = v128.load(j, 16), k1 = v128.load(k, 16);
+  v128.store(b, f64x2.add(f64x2.pmin(f64x2.pmin(v128.load(i), v128.load(j)), v128.load(k)), lo));
+  v128.store(b, f64x2.add(v128.bitselect(f64x2.pmin(f64x2.pmin(i1, j1), k1), f64x2.pmax(f64x2.pmax(i1, j1), k1), low), mixed), 16);
+  v128.store(b, f64x2.add(f64x2.pmax(f64x2.pmax(v128.load(i, 32), v128.load(j, 32)), v128.load(k, 32)), hi), 32);
+  return b;
+}
+
+/**
+ * A new edge pass over `pairs` pairs, the start of collideEdges: the edges' records (EBOX), their boxes over the
+ * substep (their ends' PBOX) widened by hMax/2 [m] and their ends' travel and move, made now or as the pass reads
+ * them (edgeRecord).
+ */
+export function selfEdgeBoxes(hMax: f64, pairs: i32): void {
+  if (nextPass(0.5 * hMax, pairs, NE)) for (let e = 0; e < NE; e++) makeEdgeRecord(e);
+}
+
+/** Whether edge e's record is this pass's (then edgesOf keeps it current). */
+@inline function recordMade(e: i32): bool { return allMade || load<i32>(EBOX_AT + (<usize>e << 2)) == boxEpoch; }
+
+/** Edge e's record (EBOX), made unless it is this pass's; its byte offset. */
+@inline function edgeRecord(e: i32): usize {
+  if (recordMade(e)) return EBOX + (<usize>e << 6);
+  store<i32>(EBOX_AT + (<usize>e << 2), boxEpoch);
+  return makeEdgeRecord(e);
+}
+
+/** Makes edge e's record (EBOX): its box widened by the pass's h, its ends' travel and move; its byte offset. */
+@inline function makeEdgeRecord(e: i32): usize {
+  const b = EBOX + (<usize>e << 6), ed = EDGES + <usize>e * 8, r = boxH;
+  edgeEnds(e);
+  const lo = f64x2.splat(-r), hi = f64x2.splat(r), mixed = f64x2.replace_lane(hi, 0, -r), low = i64x2(-1, 0);
+  const i = PBOX + <usize>load<u32>(ed) * 48, j = PBOX + <usize>load<u32>(ed, 4) * 48;
+  // as triangleBox
+  const i1 = v128.load(i, 16), j1 = v128.load(j, 16);
+  v128.store(b, f64x2.add(f64x2.pmin(v128.load(i), v128.load(j)), lo));
+  v128.store(b, f64x2.add(v128.bitselect(f64x2.pmin(i1, j1), f64x2.pmax(i1, j1), low), mixed), 16);
+  v128.store(b, f64x2.add(f64x2.pmax(v128.load(i, 32), v128.load(j, 32)), hi), 32);
+  return b;
 }
 
 /** Edge e's ends' travel summed [m] (what its record holds, EBOX). */
@@ -237,20 +303,37 @@ export function selfEdgeBoxes(hMax: f64): void {
   store<f64>(b, edgeMove(e), 56);
 }
 
-/** How many edges' records (EBOX) do not hold their ends' travel and move as they are now (tests: none, after a pass). */
+/**
+ * How many of the last edge pass's records (EBOX) do not hold their ends' travel and move as they are now, or their
+ * box as their ends' boxes (PBOX) make it (tests: none, after a pass).
+ */
 export function selfStaleEdges(): i32 {
   let stale = 0;
   for (let e = 0; e < NE; e++) {
-    const b = EBOX + (<usize>e << 6);
-    if (load<f64>(b, 48) != edgeTravel(e) || load<f64>(b, 56) != edgeMove(e)) stale++;
+    if (!recordMade(e)) continue;
+    const b = EBOX + (<usize>e << 6), ed = EDGES + <usize>e * 8;
+    const i = PBOX + <usize>load<u32>(ed) * 48, j = PBOX + <usize>load<u32>(ed, 4) * 48;
+    let box = true;
+    for (let k: usize = 0; k < 3; k++) {
+      box = box && f64At(b, k) == min(f64At(i, k), f64At(j, k)) - boxH && f64At(b, k + 3) == max(f64At(i, k + 3), f64At(j, k + 3)) + boxH;
+    }
+    if (!box || load<f64>(b, 48) != edgeTravel(e) || load<f64>(b, 56) != edgeMove(e)) stale++;
   }
   return stale;
 }
 
-/** The records of the edges of particle p, after it moved (edgeEnds). */
+/** How many edges' records the last edge pass made (tests: the check above reads these). */
+export function selfEdgeRecords(): i32 {
+  let made = 0;
+  for (let e = 0; e < NE; e++) if (recordMade(e)) made++;
+  return made;
+}
+
+/** The records of the edges of particle p made in this pass, after it moved (edgeEnds; the others are made when read). */
 function edgesOf(p: u32): void {
   for (let i = load<i32>(PEDGE_START + (<usize>p << 2)), end = load<i32>(PEDGE_START + ((<usize>p + 1) << 2)); i < end; i++) {
-    edgeEnds(load<i32>(PEDGE_LIST + (<usize>i << 2)));
+    const e = load<i32>(PEDGE_LIST + (<usize>i << 2));
+    if (recordMade(e)) edgeEnds(e);
   }
 }
 
@@ -283,7 +366,7 @@ export function selfParticles(count: i32, hMax: f64): void {
   for (let q = 0; q < count; q++) {
     const pr = PAIRS + (<usize>q << 3);
     const p = load<i32>(pr), t = load<i32>(pr, 4);
-    const jp = <usize>p * 12, bb = TBOX + <usize>t * 48;
+    const jp = <usize>p * 12, bb = triangleBox(t);
     if (!(pointInBox(bb, X, jp) | pointInBox(bb, XP, jp))) continue;
     const tr = TRIS + <usize>t * 12;
     const a = load<u32>(tr), b = load<u32>(tr, 4), c = load<u32>(tr, 8);
@@ -478,7 +561,7 @@ export function selfEdges(count: i32, hMax: f64, memo: bool): void {
   for (let q = 0; q < count; q++) {
     const pr = EDGE_PAIRS + (<usize>q << 3);
     const e = load<i32>(pr), f = load<i32>(pr, 4);
-    const be = EBOX + (<usize>e << 6), bf = EBOX + (<usize>f << 6);
+    const be = edgeRecord(e), bf = edgeRecord(f);
     if (!overlap(be, bf)) continue;
     // resolveEdges' first skip from the two records alone, with hMax for the pair's h (its h_e at least the pair's):
     // a pair it skips, that skips too (the same numbers)

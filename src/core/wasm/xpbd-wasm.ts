@@ -306,9 +306,9 @@ export class XpbdKernel implements PhaseBackend {
     return this.selfContact?.listed() ?? null;
   }
 
-  /** How many of self-contact's edge records are not current (self-contact-wasm.ts staleEdgeRecords), or null without self-contact. */
-  selfStaleEdges(): number | null {
-    return this.selfContact?.staleEdgeRecords() ?? null;
+  /** Self-contact's edge records: how many of the last edge pass's are not current, and how many it made (self-contact-wasm.ts edgeRecords); null without self-contact. */
+  selfEdgeRecords(): { stale: number; made: number } | null {
+    return this.selfContact?.edgeRecords() ?? null;
   }
 
   /** the kernel's memory [bytes] */

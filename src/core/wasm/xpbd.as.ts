@@ -44,7 +44,7 @@ import {
 } from './threads.as';
 
 export { configure } from './arrays.as';
-export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfFrame, selfParticles, selfStaleEdges, selfTriangleBoxes } from './self-contact.as';
+export { configureSelf, selfBoxes, selfEdgeBoxes, selfEdges, selfFound, selfFrame, selfParticles, selfEdgeRecords, selfStaleEdges, selfTriangleBoxes } from './self-contact.as';
 export { configureSearch, foundEdgePairs, foundPairs, selfSearch, selfUpdate } from './self-search.as';
 export { coarseStretch } from './coarse.as';
 export { productAdd3, solveFactored3 } from './factored.as';
