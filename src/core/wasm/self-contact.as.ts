@@ -171,21 +171,27 @@ function nextPass(h: f64, pairs: i32, primitives: i32): bool {
 export function selfBoxes(start: bool): i32 {
   if (start) FRAME_J += 1;
   const J = FRAME_J;
+  // the frame's offsets at the substep's end and start (J·U, (J − 1)·U): x and y as two lanes, z alone; each
+  // particle's the same way below, the same IEEE operations as coordinate by coordinate
+  const u = f64x2.replace_lane(f64x2.splat(FRAME_UX), 1, FRAME_UY);
+  const nowU = f64x2.mul(f64x2.splat(J), u), thenU = f64x2.mul(f64x2.splat(J - 1), u);
+  const nowUZ = J * FRAME_UZ, thenUZ = (J - 1) * FRAME_UZ;
   let out = 0;
   for (let p = 0; p < N; p++) {
     // after the particle pass, only those it moved can have left their boxes (the others were inside them, or were
     // given boxes around where they are, and have not moved)
     if (!start && load<i32>(MOVED_AT + (<usize>p << 2)) <= substepAt) continue;
-    const j = <usize>p * 12, r = <usize>p * 48;
-    let inside = true;
-    for (let k: usize = 0; k < 3; k++) {
-      const a = xn(j, k), b = xs(j, k), u = frameU(k);
-      store<f64>(PBOX + r + (k << 3), min(a, b));
-      store<f64>(PBOX + r + 24 + (k << 3), max(a, b));
-      const now = a - J * u, then = b - (J - 1) * u;
-      if (!(min(now, then) >= f64At(REACH + r, k) && max(now, then) <= f64At(REACH + r, k + 3))) inside = false;
+    const j = <usize>p * 12, box = PBOX + <usize>p * 48, reach = REACH + <usize>p * 48;
+    const a = f64x2.promote_low_f32x4(v128.load64_zero(X + j)), b = f64x2.promote_low_f32x4(v128.load64_zero(XP + j));
+    const az = xn(j, 2), bz = xs(j, 2);
+    v128.store(box, f64x2.min(a, b)); store<f64>(box, min(az, bz), 16);
+    v128.store(box, f64x2.max(a, b), 24); store<f64>(box, max(az, bz), 40);
+    const now = f64x2.sub(a, nowU), then = f64x2.sub(b, thenU), nowZ = az - nowUZ, thenZ = bz - thenUZ;
+    // !(min ≥ reach min && max ≤ reach max) on any axis: out (a NaN compares false, so it is out)
+    const inXY = v128.and(f64x2.ge(f64x2.min(now, then), v128.load(reach)), f64x2.le(f64x2.max(now, then), v128.load(reach, 24)));
+    if (!(i64x2.all_true(inXY) & (min(nowZ, thenZ) >= f64At(reach, 2)) & (max(nowZ, thenZ) <= f64At(reach, 5)))) {
+      store<i32>(ESCAPED + (<usize>(out++) << 2), p);
     }
-    if (!inside) store<i32>(ESCAPED + (<usize>(out++) << 2), p);
     if (start) track(p);
   }
   return out;
@@ -194,12 +200,17 @@ export function selfBoxes(start: bool): i32 {
 /** Particle p's travel up to where it is now (TRAVEL, SEEN) and its move over the substep so far (MOVE). */
 function track(p: u32): void {
   const j = <usize>p * 12, seen = SEEN + j;
-  const dx = xn(j, 0) - <f64>load<f32>(seen), dy = xn(j, 1) - <f64>load<f32>(seen, 4), dz = xn(j, 2) - <f64>load<f32>(seen, 8);
+  // x and y as two lanes: (dx² + dy²) + dz² for the travel and the move, as the scalar sums, both roots at once
+  const x = f64x2.promote_low_f32x4(v128.load64_zero(X + j)), xz = xn(j, 2);
+  const d = f64x2.sub(x, f64x2.promote_low_f32x4(v128.load64_zero(seen))), dz = xz - <f64>load<f32>(seen, 8);
+  const m = f64x2.sub(x, f64x2.promote_low_f32x4(v128.load64_zero(XP + j))), mz = xz - xs(j, 2);
+  const d2 = f64x2.mul(d, d), m2 = f64x2.mul(m, m);
+  const xx = v128.shuffle<f64>(d2, m2, 0, 2), yy = v128.shuffle<f64>(d2, m2, 1, 3);
+  const roots = f64x2.sqrt(f64x2.add(f64x2.add(xx, yy), f64x2.replace_lane(f64x2.splat(dz * dz), 1, mz * mz)));
   const t = TRAVEL + (<usize>p << 3);
-  store<f64>(t, load<f64>(t) + Math.sqrt(dx * dx + dy * dy + dz * dz));
-  store<f32>(seen, load<f32>(X + j)); store<f32>(seen, load<f32>(X + j, 4), 4); store<f32>(seen, load<f32>(X + j, 8), 8);
-  const mx = xn(j, 0) - xs(j, 0), my = xn(j, 1) - xs(j, 1), mz = xn(j, 2) - xs(j, 2);
-  store<f64>(MOVE + (<usize>p << 3), Math.sqrt(mx * mx + my * my + mz * mz));
+  store<f64>(t, load<f64>(t) + f64x2.extract_lane(roots, 0));
+  store<i64>(seen, load<i64>(X + j)); store<f32>(seen, load<f32>(X + j, 8), 8);
+  store<f64>(MOVE + (<usize>p << 3), f64x2.extract_lane(roots, 1));
 }
 
 /**
