@@ -145,6 +145,8 @@ export const CONTROL = [
   ['FRICTION', 'f64', 1, 'kinetic friction coefficient [-]'],
   ['STATIC_FRICTION', 'f64', 1, 'static friction coefficient [-]'],
   ['DEPENETRATION', 'f64', 1, 'depenetrationSpeed [m/s]'],
+  ['WIND', 'f64', 3, 'the wind\'s velocity this substep [m/s] (wind.ts windVelocity at the substep\'s start)'],
+  ['AIR_K', 'f64', 1, 'the air\'s ¼ρ/3 [kg/m³] (accumulateWind: ½ρ·|v|·(v·n)·area shared by three particles, |N| = 2·area)'],
   ['TRIANGLE_REACH', 'f64', 1, 'triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m]'],
   ['TRIANGLE_RECOVER', 'f64', 1, 'triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m]'],
   ['COLLIDER_RECORDS', 'f64', C.MAX_COLLIDERS * C.COLLIDER_RECORD_FLOATS, 'MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep'],

@@ -183,23 +183,27 @@ export const CTRL = {
   STATIC_FRICTION: 224,
   /** f64: depenetrationSpeed [m/s] */
   DEPENETRATION: 232,
+  /** f64 × 3: the wind's velocity this substep [m/s] (wind.ts windVelocity at the substep's start) */
+  WIND: 240,
+  /** f64: the air's ¼ρ/3 [kg/m³] (accumulateWind: ½ρ·|v|·(v·n)·area shared by three particles, |N| = 2·area) */
+  AIR_K: 264,
   /** f64: triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m] */
-  TRIANGLE_REACH: 240,
+  TRIANGLE_REACH: 272,
   /** f64: triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m] */
-  TRIANGLE_RECOVER: 248,
+  TRIANGLE_RECOVER: 280,
   /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-  COLLIDER_RECORDS: 256,
+  COLLIDER_RECORDS: 288,
   /** i32: sequence number of the open phase (grows by one per phase, wraps) */
-  PHASE: 15616,
+  PHASE: 15680,
   /** i32: chunks of the open phase completed and reported */
-  DONE: 15680,
+  DONE: 15744,
   /** i32: threads asleep waiting for a phase */
-  PHASE_SLEEPERS: 15744,
+  PHASE_SLEEPERS: 15808,
   /** i64 × 16: per thread, on its own line: (phase << 32) | next chunk of its run (stride RUN_STRIDE) */
-  RUNS: 15808,
+  RUNS: 15872,
 } as const;
 
 /** Bytes of the control block; the kernel's arrays follow it. */
-export const CTRL_BYTES = 16832;
+export const CTRL_BYTES = 16896;
 /** Bytes between the threads' run counters. */
 export const RUN_STRIDE = 64;

@@ -60,6 +60,14 @@ export function refreshInverseMasses(state: ClothState, params: SimParams): void
 }
 
 /**
+ * The air's drag factor per particle share, ¼ρ/3 [kg/m³]: ½ρ·|v|·(v·n)·area with area = |N|/2, shared by a triangle's
+ * three particles (accumulateWind; the kernel's and the GPU's wind read the same).
+ */
+export function airFactor(params: SimParams): number {
+  return (0.25 * params.wind.airDensity) / 3;
+}
+
+/**
  * Wind forces [N] into state.forces (zeroed first). Per triangle, as in the seed but on the velocity of the air
  * relative to the triangle: F = ½ρ·|v|·(v·n)·area·n, shared equally by its three particles.
  * Being a drag on the relative velocity, the force is explicit and would overshoot for a light cloth in strong
@@ -74,7 +82,7 @@ export function accumulateWind(model: ClothModel, state: ClothState, params: Sim
   windVelocity(params, t, wind);
   const x = state.positions, xp = state.previousPositions, tri = model.triangles;
   const inv3h = 1 / (3 * h);
-  const k = (0.25 * params.wind.airDensity) / 3; // ½ρ·|v|·(v·n)·area, area = |N|/2, shared by 3 particles
+  const k = airFactor(params);
   const im = params.particleInvMass;
   // cap per particle share: m̄·|v·n|/(2h)/3 with m̄ ≈ 3/Σw (harmonic mean of the three masses)
   const capScale = 1 / (2 * h);

@@ -7,7 +7,7 @@
 import type {} from 'webgpu';
 import { BEND, bendingStencils, type ClothModel } from '../core/model.js';
 import type { SimParams } from '../core/params.js';
-import { needsTriangleContact } from '../core/phases.js';
+import { airFactor, needsTriangleContact } from '../core/phases.js';
 import { selfContactDistance } from '../core/self-contact.js';
 import type { ClothState } from '../core/state.js';
 import { windVelocity } from '../core/wind.js';
@@ -154,7 +154,7 @@ export class UniformTables {
     g.setFloat32(GLOBALS.staticFriction, params.staticFriction, true);
     g.setFloat32(GLOBALS.thickness, params.thickness, true);
     g.setFloat32(GLOBALS.reach, params.thickness + 2 * model.maxTriangleEdge, true);
-    g.setFloat32(GLOBALS.windK, (0.25 * params.wind.airDensity) / 3, true);
+    g.setFloat32(GLOBALS.windK, airFactor(params), true);
     g.setUint32(GLOBALS.colliderCount, params.colliders.length, true);
     g.setUint32(GLOBALS.carriedCount, params.carried.particles.length, true);
     const selfDistance = params.selfContact ? selfContactDistance(model, params) : 0;

@@ -13,6 +13,8 @@ export let XPR: usize = 0;
 export let W: usize = 0;
 /** forces, f32 × 3n */
 export let F: usize = 0;
+/** each particle's inverse mass when free (params.particleInvMass: the wind's cap), f32 × n */
+export let BASE_W: usize = 0;
 /** λ per spring, f32 */
 export let LAMBDA: usize = 0;
 /** tether anchor per particle, i32 */
@@ -58,7 +60,7 @@ export function configure(
   springs: usize, rest: usize, alpha: usize, batches: usize, batchCount: i32, particles: i32,
   hingeOffsets: usize, hingeVertices: usize, hingeWeights: usize, hingeBatches: usize, hingeBatchCount: i32,
   laplacianOffsets: usize, laplacianVertices: usize, laplacianWeights: usize, laplacianBatches: usize, laplacianBatchCount: i32,
-  stencilAlpha: usize, stencilLambda: usize, triangles: usize, triangleCount: i32,
+  stencilAlpha: usize, stencilLambda: usize, triangles: usize, triangleCount: i32, baseW: usize,
 ): void {
   X = x; XP = xp; XR = xr; XPR = xpr; W = w; F = f; LAMBDA = lambda; ANCHOR = anchor; TLEN = tlen;
   SPRINGS = springs; REST = rest; ALPHA = alpha; BATCHES = batches; BATCH_COUNT = batchCount; N = particles;
@@ -67,5 +69,5 @@ export function configure(
   LAPLACIAN_OFFSETS = laplacianOffsets; LAPLACIAN_VERTICES = laplacianVertices; LAPLACIAN_WEIGHTS = laplacianWeights;
   LAPLACIAN_BATCHES = laplacianBatches; LAPLACIAN_BATCH_COUNT = laplacianBatchCount;
   STENCIL_ALPHA = stencilAlpha; STENCIL_LAMBDA = stencilLambda;
-  TRIANGLES = triangles; TRIANGLE_COUNT = triangleCount;
+  TRIANGLES = triangles; TRIANGLE_COUNT = triangleCount; BASE_W = baseW;
 }

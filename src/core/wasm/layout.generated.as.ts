@@ -176,19 +176,23 @@ export const FRICTION: usize = 216;
 export const STATIC_FRICTION: usize = 224;
 /** f64: depenetrationSpeed [m/s] */
 export const DEPENETRATION: usize = 232;
+/** f64 × 3: the wind's velocity this substep [m/s] (wind.ts windVelocity at the substep's start) */
+export const WIND: usize = 240;
+/** f64: the air's ¼ρ/3 [kg/m³] (accumulateWind: ½ρ·|v|·(v·n)·area shared by three particles, |N| = 2·area) */
+export const AIR_K: usize = 264;
 /** f64: triangle contact: the thickness and two longest rest edges, the farthest a triangle point is from its first vertex [m] */
-export const TRIANGLE_REACH: usize = 240;
+export const TRIANGLE_REACH: usize = 272;
 /** f64: triangle contact: the most of an overlap a triangle undoes in a substep, depenetrationSpeed·h over the most triangles at a particle [m] */
-export const TRIANGLE_RECOVER: usize = 248;
+export const TRIANGLE_RECOVER: usize = 280;
 /** f64 × 1920: MAX_COLLIDERS records of COLLIDER_RECORD_FLOATS (COLLIDER_RECORD: type id, moving, shape numbers, R, O, RD, OD), written per substep */
-export const COLLIDER_RECORDS: usize = 256;
+export const COLLIDER_RECORDS: usize = 288;
 /** i32: sequence number of the open phase (grows by one per phase, wraps) */
-export const PHASE: usize = 15616;
+export const PHASE: usize = 15680;
 /** i32: chunks of the open phase completed and reported */
-export const DONE: usize = 15680;
+export const DONE: usize = 15744;
 /** i32: threads asleep waiting for a phase */
-export const PHASE_SLEEPERS: usize = 15744;
+export const PHASE_SLEEPERS: usize = 15808;
 /** i64 × 16: per thread, on its own line: (phase << 32) | next chunk of its run (stride RUN_STRIDE) */
-export const RUNS: usize = 15808;
+export const RUNS: usize = 15872;
 /** Bytes between the threads' run counters. */
 export const RUN_STRIDE: usize = 64;

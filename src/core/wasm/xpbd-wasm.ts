@@ -2,11 +2,11 @@
  * The XPBD solver's substep in WebAssembly (SIMD, optionally threads): a ClothState whose arrays live in the
  * kernel's memory, so the TypeScript reference (reference.ts) and the kernel work on the same arrays with no copy.
  * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
- * (KERNEL_PHASES: integration, the grab, the distance constraints, the bending stencils, tethers, stretch limiting, self-contact — its
+ * (KERNEL_PHASES: the wind, integration, the grab, the distance constraints, the bending stencils, tethers, stretch limiting, self-contact — its
  * candidate search and passes, self-contact-wasm.ts — the global stretch and bending steps — their triangular solves,
  * factored-wasm.ts — particle contact against every analytic collider, moving or not, and triangle contact with
  * spheres) and runs each substep's run of them in one call (more, around self-contact and the global steps, which
- * the host drives); the phases it lacks (the start and end of a frame, wind, carried pins, triangle contact with
+ * the host drives); the phases it lacks (the start and end of a frame, carried pins, triangle contact with
  * other shapes) run in TypeScript in their place in the schedule.
  *
  * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
@@ -18,7 +18,7 @@
 import { runFrame, type FrameVars, type PhaseBackend } from '../frame.js';
 import type { ClothModel } from '../model.js';
 import { perClothRefusal, type SimParams } from '../params.js';
-import { needsTriangleContact } from '../phases.js';
+import { airFactor, needsTriangleContact } from '../phases.js';
 import { PHASE, phasePasses, type BackendPhases, type PhaseId, type PhaseLog } from '../schedule.js';
 import { SceneError } from '../scene.js';
 import { collideSelf } from '../self-contact.js';
@@ -35,6 +35,7 @@ import { WasmFactorSolver } from './factored-wasm.js';
 import { KernelSelfContact, layoutSelfContact, type ListedPairs, type SelfContactExports } from './self-contact-wasm.js';
 import { shownValue } from '../text.js';
 import { ThreadModeChooser } from './thread-mode.js';
+import { windVelocity } from '../wind.js';
 import { XPBD_WASM_SINGLE, XPBD_WASM_THREADS } from './xpbd-kernel.generated.js';
 
 /** The collider types the kernel's localDistance knows (contact.as.ts): every analytic shape, not a mesh. */
@@ -67,7 +68,7 @@ export const KERNEL_PHASES: BackendPhases = {
   where: 'in the WebAssembly kernel',
   sharesMemory: true,
   solvers: ['xpbd'],
-  phases: (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.globalStretch) | (1 << PHASE.coarseStretch) | (1 << PHASE.distance) | (1 << PHASE.bending) |
+  phases: (1 << PHASE.wind) | (1 << PHASE.integrate) | (1 << PHASE.grab) | (1 << PHASE.globalStretch) | (1 << PHASE.coarseStretch) | (1 << PHASE.distance) | (1 << PHASE.bending) |
     (1 << PHASE.globalBending) | (1 << PHASE.tethers) | (1 << PHASE.stretchLimit) | (1 << PHASE.selfContact) | (1 << PHASE.contact) |
     (1 << PHASE.contactTriangles),
   // the kernel reads one thickness, friction, damping and stretch limit: cloths that differ in one leave the phases
@@ -195,6 +196,10 @@ export class XpbdKernel implements PhaseBackend {
   private readonly ctrlF64: Float64Array;
   private readonly alpha: Float32Array;
   private readonly stencilAlpha: Float32Array;
+  /** each particle's inverse mass when free (params.particleInvMass: the wind's cap) */
+  private readonly baseInvMass: Float32Array;
+  /** the wind's velocity of a substep [m/s] (windVelocity's scratch) */
+  private readonly wind = new Float64Array(3);
   /** self-contact's memory and passes in the kernel; null for a kernel made without (its phase then runs in the reference) */
   private readonly selfContact: KernelSelfContact | null;
   /** the global steps' triangular solves (made when a step first runs), one each: each keeps its factor in its memory */
@@ -226,7 +231,7 @@ export class XpbdKernel implements PhaseBackend {
       batches: take(8 * st.batches.length),
     }));
     const SALPHA = take(4 * stencilMost), SLAMBDA = take(12 * stencilMost);
-    const nt = model.triangles.length / 3, TRIANGLES = take(12 * nt);
+    const nt = model.triangles.length / 3, TRIANGLES = take(12 * nt), BASE_W = take(4 * n);
     const self = withSelfContact ? layoutSelfContact(model, take, selfWindow) : null;
     const pages = Math.ceil(at / 65536);
     if (pages > MAX_PAGES) throw new KernelMemoryError(n, at, withSelfContact);
@@ -235,7 +240,7 @@ export class XpbdKernel implements PhaseBackend {
       : new WebAssembly.Memory({ initial: pages });
     const buf = this.memory.buffer;
     this.layout = [X, XP, XR, XPR, W, F, LAMBDA, ANCHOR, TLEN, SPRINGS, REST, ALPHA, BATCHES, nb, n,
-      ...stencilArrays.flatMap((a) => [a.offsets, a.vertices, a.weights, a.batches, a.st.batches.length]), SALPHA, SLAMBDA, TRIANGLES, nt];
+      ...stencilArrays.flatMap((a) => [a.offsets, a.vertices, a.weights, a.batches, a.st.batches.length]), SALPHA, SLAMBDA, TRIANGLES, nt, BASE_W];
     this.exports = instantiateKernel(module, this.memory, this.layout);
     this.ctrlI32 = new Int32Array(buf, 0, CTRL_BYTES / 4);
     this.ctrlF64 = new Float64Array(buf, 0, CTRL_BYTES / 8);
@@ -253,6 +258,7 @@ export class XpbdKernel implements PhaseBackend {
       a.st.batches.forEach((r, k) => { b[2 * k] = r.start; b[2 * k + 1] = r.end; });
     }
     this.stencilAlpha = new Float32Array(buf, SALPHA, stencilMost);
+    this.baseInvMass = new Float32Array(buf, BASE_W, n);
     this.selfContact = self ? new KernelSelfContact(model, buf, self, this.exports) : null;
     this.ctrlI32[CTRL.THREADS / 4] = 1;
     this.ctrlI32[CTRL.SPIN_LIMIT / 4] = SPIN_LIMIT;
@@ -380,6 +386,7 @@ export class XpbdKernel implements PhaseBackend {
     if (params !== this.paramsSeen) {
       this.alpha.set(params.compliance);
       this.stencilAlpha.set(params.stencilCompliance);
+      this.baseInvMass.set(params.particleInvMass);
       this.ctrlI32[CTRL.STENCILS / 4] = params.bending === 'hinges' ? 1 : params.bending === 'laplacian' ? 2 : 0;
       this.paramsSeen = params;
     }
@@ -473,6 +480,15 @@ export class XpbdKernel implements PhaseBackend {
     // λ starts from zero in every substep where it accumulates across passes
     if (accumulate && !coarse && (mask & (1 << PHASE.distance)) !== 0) state.lambdas.fill(0);
     if (accumulate && (mask & (1 << PHASE.bending)) !== 0) state.bendingLambdas.fill(0);
+    if ((mask & (1 << PHASE.wind)) !== 0) {
+      // the air this substep (phases.ts accumulateWind's scalars); integrate then reads the forces
+      windVelocity(params, state.time, this.wind);
+      f[CTRL.WIND / 8] = this.wind[0];
+      f[CTRL.WIND / 8 + 1] = this.wind[1];
+      f[CTRL.WIND / 8 + 2] = this.wind[2];
+      f[CTRL.AIR_K / 8] = airFactor(params);
+      frame.forced = true;
+    }
     // λ is kept only where it is read: across iterations, and after the frame (energy) from its last substep
     i[CTRL.FLAGS / 4] = (frame.forced ? KERNEL_FLAG_FORCES : 0) | (accumulate ? KERNEL_FLAG_ACCUMULATE | KERNEL_FLAG_STORE_LAMBDA : 0) |
       (frame.sub === frame.substeps - 1 ? KERNEL_FLAG_STORE_LAMBDA : 0) | (log ? KERNEL_FLAG_TRACE : 0);

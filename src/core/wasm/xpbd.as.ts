@@ -2,9 +2,10 @@
 // xpbd-kernel.generated.ts): the kernel's entry points and its walk of the phase schedule. The host (xpbd-wasm.ts)
 // runs the frame loop (frame.ts) and hands the kernel, per substep, the run of the schedule's phases the kernel
 // implements (a mask of phase ids from the one table, gen-layout.mjs); the kernel runs them in schedule order, as
-// the TypeScript reference does (reference.ts): integrate, the grab, distance constraints batch by batch, bending
+// the TypeScript reference does (reference.ts): the wind, integrate, the grab, distance constraints batch by batch, bending
 // stencils batch by batch, tethers, stretch limiting batch by batch, particle contact, triangle contact. The phases themselves live
 // beside this file, one job each:
+//   wind.as.ts         the air's force on each triangle (one thread, in order)
 //   integrate.as.ts    integration and the grab
 //   constraints.as.ts  distance constraints, tethers, stretch limiting
 //   bending.as.ts      the bending stencils (hinges, Laplacian)
@@ -32,11 +33,12 @@ import { collideParticles } from './contact.as';
 import { collideTriangles } from './triangle-contact.as';
 import { limitStretch, solveDistance, solveTethers } from './constraints.as';
 import { integrate, moveGrabbed } from './integrate.as';
+import { accumulateWind } from './wind.as';
 import {
   BEND, COMMAND, DAMPING, DESC, DESC_ITERATIONS_MASK, DESC_ITERATIONS_SHIFT, DESC_PHASES_MASK, DESC_PHASES_SHIFT,
   DESC_SEQ_MASK, DESC_SEQ_SHIFT, DESC_THREADS_MASK, DESC_THREADS_SHIFT, DISPATCH, FLAGS, H, ITERATIONS,
   KERNEL_FLAG_ACCUMULATE, KERNEL_FLAG_FORCES, KERNEL_FLAG_STORE_LAMBDA, KERNEL_FLAG_TRACE, PHASE, PHASE_BENDING, PHASE_CONTACT, PHASE_CONTACT_TRIANGLES,
-  PHASE_COUNT, PHASE_DISTANCE, PHASE_GRAB, PHASE_INTEGRATE, PHASE_STRETCH_LIMIT, PHASE_TETHERS, READY, STRETCH,
+  PHASE_COUNT, PHASE_DISTANCE, PHASE_GRAB, PHASE_INTEGRATE, PHASE_STRETCH_LIMIT, PHASE_TETHERS, PHASE_WIND, READY, STRETCH,
   STENCILS, SUBSTEP_PHASES, THREADS, TRACE, TRACE_COUNT,
 } from './layout.generated.as';
 import {
@@ -128,9 +130,11 @@ function schedulePhase(t: i32, T: i32, seq: i32, alone: bool, id: i32, iteration
     case PHASE_CONTACT:
       seq = phase(t, T, seq, alone, id, 0, 0, N, CHUNK_PARTICLES);
       break;
+    case PHASE_WIND:
     case PHASE_GRAB:
     case PHASE_CONTACT_TRIANGLES:
-      // one item: one thread (triangle contact goes through the triangles in order, Gauss–Seidel)
+      // one item: one thread (the wind sums each particle's force over its triangles in their order; triangle
+      // contact goes through the triangles in order, Gauss–Seidel)
       seq = phase(t, T, seq, alone, id, 0, 0, 1, 1);
       break;
     case PHASE_DISTANCE:
@@ -196,6 +200,7 @@ function phase(t: i32, T: i32, seq: i32, alone: bool, id: i32, batch: i32, start
 function run(id: i32, batch: i32, i0: i32, i1: i32): void {
   const flags = load<i32>(FLAGS);
   switch (id) {
+    case PHASE_WIND: accumulateWind(); break;
     case PHASE_INTEGRATE: integrate(i0, i1, (flags & KERNEL_FLAG_FORCES) != 0); break;
     case PHASE_GRAB: moveGrabbed(); break;
     case PHASE_DISTANCE: {
