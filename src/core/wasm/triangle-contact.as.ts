@@ -8,7 +8,7 @@
 import { N, TRIANGLE_COUNT, TRIANGLES, W, X, XP } from './arrays.as';
 import { LX, LY, LZ, SMX, SMY, SMZ, field, frictionScale, localDistance, pressedDepth, surfaceMotion } from './contact.as';
 import {
-  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_RECORD_EXACT, GOLDEN_ITERATIONS, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
+  COLLIDER_BOX, COLLIDER_CAPSULE, COLLIDER_CYLINDER, COLLIDER_RECORD_EXACT, COLLIDER_SPHERE, GOLDEN_ITERATIONS, COLLIDER_RECORD_FLOATS, COLLIDER_RECORD_MOVING, COLLIDER_RECORD_O, COLLIDER_RECORD_R,
   COLLIDER_RECORD_SHAPE, COLLIDER_RECORD_TYPE, COLLIDER_RECORDS, COLLIDERS, THICKNESS, TRIANGLE_REACH, TRIANGLE_RECOVER,
   TRIANGLE_SPREAD_MOST,
 } from './layout.generated.as';
@@ -554,6 +554,12 @@ function cylinderDeepest(within: f64): f64 {
   return dx * dx + dy * dy + dz * dz;
 }
 
+/** Whether the point (x, y, z) is farther than √ball2 [m] from (o0, o1, o2). */
+@inline function outside(x: f64, y: f64, z: f64, o0: f64, o1: f64, o2: f64, ball2: f64): bool {
+  const ex = x - o0, ey = y - o1, ez = z - o2;
+  return ex * ex + ey * ey + ez * ez > ball2;
+}
+
 /** Adds w·(kx, ky, kz) [m] to the f32 point at byte j (the reference's `x[j] += w * k`). */
 function nudge(j: usize, w: f64, kx: f64, ky: f64, kz: f64): void {
   store<f32>(j, <f32>(xAt(j) + w * kx));
@@ -594,18 +600,23 @@ export function collideTriangles(): void {
     const h1 = Math.abs(r3) * e0 + Math.abs(r4) * e1 + Math.abs(r5) * e2;
     const h2 = Math.abs(r6) * e0 + Math.abs(r7) * e1 + Math.abs(r8) * e2;
     const lx = o0 - h0 - th, hx = o0 + h0 + th, ly = o1 - h1 - th, hy = o1 + h1 + th, lz = o2 - h2 - th, hz = o2 + h2 + th;
+    const ballFirst = type != COLLIDER_SPHERE;
     for (let t = 0; t < TRIANGLE_COUNT; t++) {
       const tr = TRIANGLES + <usize>t * 12;
       const a = load<u32>(tr), b = load<u32>(tr, 4), c = load<u32>(tr, 8);
       const ja = X + <usize>a * 12, jb = X + <usize>b * 12, jc = X + <usize>c * 12;
       const ax = xAt(ja), ay = xAt(ja + 4), az = xAt(ja + 8);
+      // the reference's two culls, the box and the first vertex's ball: both only skip, on the positions now, so
+      // either order skips the same triangles; the ball first (it needs one vertex) where the shape is small
+      // beside its reach, as a capsule limb is and a sphere is not (there most triangles pass it and the box is
+      // the tighter)
+      if (ballFirst && outside(ax, ay, az, o0, o1, o2, ball2)) continue;
       const bx = xAt(jb), by = xAt(jb + 4), bz = xAt(jb + 8);
       const cx0 = xAt(jc), cy0 = xAt(jc + 4), cz0 = xAt(jc + 8);
       if (max(max(ax, bx), cx0) < lx || min(min(ax, bx), cx0) > hx ||
         max(max(ay, by), cy0) < ly || min(min(ay, by), cy0) > hy ||
         max(max(az, bz), cz0) < lz || min(min(az, bz), cz0) > hz) continue;
-      const ex = ax - o0, ey = ay - o1, ez = az - o2;
-      if (ex * ex + ey * ey + ez * ez > ball2) continue;
+      if (!ballFirst && outside(ax, ay, az, o0, o1, o2, ball2)) continue;
       // the triangle's own ball against the thickness: the posed shape's signedDistance(centroid, within = far)
       const mx0 = (ax + bx + cx0) / 3, my0 = (ay + by + cy0) / 3, mz0 = (az + bz + cz0) / 3;
       const rr = Math.sqrt(max(max(cornerDistance2(ja, mx0, my0, mz0), cornerDistance2(jb, mx0, my0, mz0)), cornerDistance2(jc, mx0, my0, mz0)));
