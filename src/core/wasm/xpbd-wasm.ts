@@ -4,10 +4,10 @@
  * The kernel is a backend of the frame loop (frame.ts): it declares the phases of the schedule it implements
  * (KERNEL_PHASES: the wind, integration, the grab, the distance constraints, the bending stencils, tethers, stretch limiting, self-contact — its
  * candidate search and passes, self-contact-wasm.ts — the global stretch and bending steps — their triangular solves,
- * factored-wasm.ts — particle contact against every analytic collider, moving or not, and triangle contact with
- * spheres) and runs each substep's run of them in one call (more, around self-contact and the global steps, which
- * the host drives); the phases it lacks (the start and end of a frame, carried pins, triangle contact with
- * other shapes) run in TypeScript in their place in the schedule.
+ * factored-wasm.ts — and particle and triangle contact against every analytic collider, moving or not) and runs
+ * each substep's run of them in one call (more, around self-contact and the global steps, which the host drives);
+ * the phases it lacks or refuses (the start and end of a frame, carried pins, a mesh collider's contact) run in
+ * TypeScript in their place in the schedule.
  *
  * Threads: with `threads` > 1 (at most 16) the memory is shared and the caller's front end starts `threads − 1` helpers
  * (a Web Worker or a Node worker thread each) with helperInit(); until every helper has checked in, substeps run
