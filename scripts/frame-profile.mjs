@@ -5,7 +5,7 @@
 //
 //   npx tsc -p tsconfig.build.json && node scripts/frame-profile.mjs
 //   options: --scene cotton-basic  --from 150 (frames stepped first)  --frames 150 (profiled)
-//            --self-contact on|off (default: the scene's)  --top 15
+//            --self-contact on|off (default: the scene's)  --faces N (every cloth's; default: the scene's)  --top 15
 import { Session } from 'node:inspector/promises';
 import { Simulation, builtinScene, validateScene } from '../dist/core/index.js';
 import { kernelFunctionNames } from '../src/core/wasm/gen-wasm.mjs';
@@ -16,6 +16,8 @@ const from = Number(arg('from', '150')), frames = Number(arg('frames', '150')), 
 const scene = builtinScene(name);
 const self = arg('self-contact', '');
 if (self) scene.solver.selfContact = self === 'on';
+const faces = arg('faces', '');
+if (faces) for (const entry of scene.cloths ?? [scene]) entry.cloth.resolution = Number(faces);
 const sim = new Simulation(validateScene(scene), { kernel: 'wasm', threads: 1 });
 await sim.whenReady();
 sim.advance(from);
