@@ -351,7 +351,7 @@ describe('drape CLI', () => {
     [['bench', '--sizes', '64,x'], /--sizes: must be an integer/],
     [['bench', '--scenes', 'cape,nope'], /--scenes: unknown scene 'nope' \(built-in scenes: .*cape, skirt/],
     [['bench', '--scenes', 'cape', '--backend', 'gpu'], /--scenes: times the CPU solvers/],
-    [['bench', '--hanging', '--fabrics', 'tweed'], /^drape: --fabrics: unknown fabric 'tweed' \(named fabrics: cotton, silk, leather, rubber, denim\)$/],
+    [['bench', '--hanging', '--fabrics', 'tweed'], /^drape: --fabrics: unknown fabric 'tweed' \(named fabrics: cotton, silk, leather, rubber, denim, wool\)$/],
     [['bench', '--hanging', '--sizes', '32,64'], /^drape: --hanging: one size/],
     [['bench', '--set', 'solver.bending=folds'], /^drape: .*solver\.bending/],
     [['bench', '--hanging', '--set', 'solver.bending=hinges'], /^drape: --set: changes the fabric-model rows of the CPU bench/],

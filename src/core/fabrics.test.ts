@@ -61,7 +61,7 @@ describe('named fabrics', () => {
     expect(byMass.mass).toBe(0.5);
     expect(byMass.arealDensity).toBeUndefined();
     expect(setScenePath(s, 'material.bendStiffness', 0.74).material.bendingRigidity).toBeCloseTo(0.74 / BEND_SPRING_PER_RIGIDITY, 15);
-    expect(() => validateScene({ material: { fabric: 'tweed' } })).toThrow(/^scene: material\.fabric: must be one of "cotton", "silk", "leather", "rubber", "denim"$/);
+    expect(() => validateScene({ material: { fabric: 'tweed' } })).toThrow(/^scene: material\.fabric: must be one of "cotton", "silk", "leather", "rubber", "denim", "wool"$/);
   });
 
   it('a cloth weighs its areal density × its rest area; a mass given is the whole cloth\'s', () => {

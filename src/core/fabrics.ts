@@ -45,6 +45,8 @@ export const FABRICS = {
   rubber: { arealDensity: 0.38, structuralStiffness: 600, shearStiffness: 200, bendingRigidity: 8.0e-6, damping: 0.2, stretchFactor: 1.8, friction: 0.8, staticFriction: 1.0 },
   /** cotton denim, a heavy twill: Kawabata values measured on six denims (§3.5) */
   denim: { arealDensity: 0.4, structuralStiffness: 6800, shearStiffness: 138, bendingRigidity: 1.81e-5, damping: 0.3, stretchFactor: 1.06, friction: 0.35, staticFriction: 0.45 },
+  /** a wool-blend twill (75 % wool, 15 % polyester, 10 % elastane), 179 g/m², whose drape coefficient was measured too (§3.7) */
+  wool: { arealDensity: 0.1787, structuralStiffness: 445, shearStiffness: 50, bendingRigidity: 2.07e-6, damping: 0.15, stretchFactor: 1.1, friction: 0.35, staticFriction: 0.45 },
 } as const satisfies Record<string, FabricValues>;
 
 export type FabricName = keyof typeof FABRICS;

@@ -31,7 +31,7 @@ export const LOOKS: Readonly<Record<FabricKind, LookMaterial>> = {
   checker: { name: 'checker fabric', color: hex('#e9af8f'), roughness: 0.85 },
 };
 
-/** the fabrics (fabrics.ts) that have a look of their own; the others (denim) look like cotton */
+/** the fabrics (fabrics.ts) that have a look of their own; the others (denim, wool) look like cotton */
 const FABRIC_LOOKS: Partial<Record<string, FabricKind>> = { cotton: 'cotton', silk: 'silk', leather: 'leather', rubber: 'rubber' };
 
 /**

@@ -114,7 +114,7 @@ export interface DrapeClothOptions {
   scale?: number;
   /** how far the cloth keeps from colliders and other cloths [m], 0 … 0.1. Default 0.005 */
   thickness?: number;
-  /** the fabric whose measured values fill what `fabricValues` leaves out: 'cotton' (default), 'silk', 'denim', 'leather', 'rubber'… */
+  /** the fabric whose measured values fill what `fabricValues` leaves out: 'cotton' (default), 'silk', 'denim', 'wool', 'leather', 'rubber' */
   fabric?: FabricName;
   /** the fabric's values, each instead of the fabric's (units: docs/three.md, from the scene schema) */
   fabricValues?: {
