@@ -1,27 +1,42 @@
 #!/usr/bin/env node
-// The Cusick scene on six real fabrics whose areal density, stiffnesses and measured drape coefficient come from
-// one source (docs/materials.md source 17: Petrak et al., Sustainability 17(4):1388, 2025, read second-hand, as
-// transcribed from its tables 1, 2, 4 and 5 into `config/materials/kes-woven-fabrics-2025.v1.json` of the public
-// repository KAFKA2306/image2outfit, commit 1e4a63f). The paper gives the fabrics' KES-FB values converted to CLO3D's
-// inputs: stretch and shear in g/s² (×10⁻³ → N/m), bending in g·mm²/s² (×10⁻⁹ → N·m per unit width), warp and weft.
-// Drape's bending and tensile stiffness are isotropic: each specimen takes the geometric mean of the warp's and the
+// The Cusick scene on real fabrics whose areal density, bending rigidity and measured drape coefficient come from one
+// source each (docs/materials.md §3.6), both read second-hand:
+// - source 17, Petrak et al., Sustainability 17(4):1388, 2025, as transcribed from its tables 1, 2, 4 and 5 into
+//   `config/materials/kes-woven-fabrics-2025.v1.json` of the public repository KAFKA2306/image2outfit (commit
+//   1e4a63f): six fabrics, M1…M6, their KES-FB values as the paper converted them to CLO3D's inputs (stretch and
+//   shear in g/s², ×10⁻³ → N/m; bending in g·mm²/s², ×10⁻⁹ → N·m per unit width, warp and weft), and the drape
+//   coefficient CLO3D gave from them;
+// - source 16, Matsudaira, Masuda, Wada, Yokura, J. Textile Eng. 61(6):69–73, 2015, tables 1 and 2, as transcribed
+//   into `src/motion_engine/cloth/r6_setup.py` of the public repository antonbj3/3fold-motion-engine (commit
+//   72e280a): four fabrics, A, B, C, F, their KES-FB2 B [gf·cm²/cm, ×9.80665·10⁻⁵ → N·m] and weight W [mg/cm²,
+//   ×10⁻² → kg/m²]; no tensile or shear stiffness, so those are the scene's (cotton's).
+// Drape's bending and tensile stiffness are isotropic: a specimen takes the geometric mean of the warp's and the
 // weft's bending rigidity (`--bending warp|weft|mean` for the others) and the mean of their tensile stiffness; every
-// other material field is the scene's (cotton's damping and friction). Prints, per fabric, the drape coefficient
-// and folds of each specimen (`cloth.perturbation.seed`) and their mean, beside the measured one and CLO3D's.
-// Needs `npx tsc -p tsconfig.build.json` (it reads dist/).
-//   node scripts/cusick-measured.mjs [--fabrics M1,…] [--seeds 1,2,3] [--resolution 48]
+// field the source does not give is the scene's (cotton's damping and friction). Prints, per fabric, the drape
+// coefficient and folds of each specimen (`cloth.perturbation.seed`) and their mean, beside the measured one and
+// CLO3D's. Needs `npx tsc -p tsconfig.build.json` (it reads dist/).
+//   node scripts/cusick-measured.mjs [--fabrics M1,…,A,B,C,F] [--seeds 1,2,3] [--resolution 48]
 //       [--substeps S --iterations I (solver.substeps, solver.iterations: the defaults unless given)]
 //       [--bending geometric|mean|warp|weft]
-import { Simulation, builtinScene, setScenePath } from '../dist/core/index.js';
+import { builtinScene, setScenePath } from '../dist/core/index.js';
+import { mean, readSpecimen } from './cusick-common.mjs';
 
-/** id, what it is, g/m², stretch warp and weft [g/s²], shear [g/s²], bending warp and weft [g·mm²/s²], measured DC, CLO3D's DC */
+const GF_CM2_PER_CM = 9.80665e-5;
+/**
+ * id, what it is, areal density [kg/m²], tensile stiffness warp and weft [N/m] (null: the scene's), shear stiffness
+ * [N/m] (null: the scene's), bending rigidity warp and weft [N·m], the measured drape coefficient, CLO3D's (null: none)
+ */
 const FABRICS = [
-  ['M1', 'polyester, twill 3/1', 135.17, 477226, 458614, 41000, 1950, 610, 0.223, 0.349],
-  ['M2', 'polyester, plain', 83.66, 471944, 373515, 46000, 850, 330, 0.228, 0.313],
-  ['M3', 'wool 75 %, PES 15 %, elastane 10 %, twill 2/1', 178.7, 449656, 439815, 50000, 2140, 2000, 0.349, 0.404],
-  ['M4', 'PES 63 %, viscose 33 %, elastane 4 %, twill 2/1', 286.13, 403447, 401762, 61000, 2970, 2400, 0.286, 0.323],
-  ['M5', 'PES 97 %, elastane 3 %, plain', 242, 407166, 415023, 57000, 3220, 3880, 0.443, 0.438],
-  ['M6', 'cotton 65 %, PES 31 %, elastane 4 %, twill 2/1', 253.36, 473860, 404746, 126000, 7430, 3700, 0.549, 0.613],
+  ['M1', 'polyester, twill 3/1', 0.13517, [477.226, 458.614], 41, [1950e-9, 610e-9], 0.223, 0.349],
+  ['M2', 'polyester, plain', 0.08366, [471.944, 373.515], 46, [850e-9, 330e-9], 0.228, 0.313],
+  ['M3', 'wool 75 %, PES 15 %, elastane 10 %, twill 2/1', 0.1787, [449.656, 439.815], 50, [2140e-9, 2000e-9], 0.349, 0.404],
+  ['M4', 'PES 63 %, viscose 33 %, elastane 4 %, twill 2/1', 0.28613, [403.447, 401.762], 61, [2970e-9, 2400e-9], 0.286, 0.323],
+  ['M5', 'PES 97 %, elastane 3 %, plain', 0.242, [407.166, 415.023], 57, [3220e-9, 3880e-9], 0.443, 0.438],
+  ['M6', 'cotton 65 %, PES 31 %, elastane 4 %, twill 2/1', 0.25336, [473.86, 404.746], 126, [7430e-9, 3700e-9], 0.549, 0.613],
+  ['A', 'cotton broad, plain', 0.1238, null, null, [0.118 * GF_CM2_PER_CM, 0.118 * GF_CM2_PER_CM], 0.829, null],
+  ['B', 'wool tropical, plain', 0.1629, null, null, [0.067 * GF_CM2_PER_CM, 0.067 * GF_CM2_PER_CM], 0.498, null],
+  ['C', 'polyester tropical', 0.1165, null, null, [0.077 * GF_CM2_PER_CM, 0.077 * GF_CM2_PER_CM], 0.507, null],
+  ['F', 'polyester faille', 0.1043, null, null, [0.019 * GF_CM2_PER_CM, 0.019 * GF_CM2_PER_CM], 0.283, null],
 ];
 
 const arg = (name, fallback) => {
@@ -35,37 +50,32 @@ const substeps = arg('substeps', null), iterations = arg('iterations', null);
 const bendingRule = arg('bending', 'geometric');
 const rules = { geometric: (a, b) => Math.sqrt(a * b), mean: (a, b) => (a + b) / 2, warp: (a) => a, weft: (_a, b) => b };
 if (!rules[bendingRule]) throw new Error(`--bending: geometric, mean, warp or weft, got '${bendingRule}'`);
-for (const id of chosen) if (!FABRICS.some((f) => f[0] === id)) throw new Error(`--fabrics: unknown fabric '${id}' (M1…M6)`);
+for (const id of chosen) if (!FABRICS.some((f) => f[0] === id)) throw new Error(`--fabrics: unknown fabric '${id}' (${FABRICS.map((f) => f[0]).join(', ')})`);
 
 const specimen = (f, seed) => {
-  const [, , gsm, stretchWarp, stretchWeft, shear, bendWarp, bendWeft] = f;
+  const [, , rho, tensile, shear, [bendWarp, bendWeft]] = f;
   let scene = builtinScene('cusick');
   const set = (path, value) => { scene = setScenePath(scene, path, value); };
-  set('material.arealDensity', gsm * 1e-3);
-  set('material.structuralStiffness', ((stretchWarp + stretchWeft) / 2) * 1e-3);
-  set('material.shearStiffness', shear * 1e-3);
-  set('material.bendingRigidity', rules[bendingRule](bendWarp, bendWeft) * 1e-9);
+  set('material.arealDensity', rho);
+  if (tensile) set('material.structuralStiffness', (tensile[0] + tensile[1]) / 2);
+  if (shear !== null) set('material.shearStiffness', shear);
+  set('material.bendingRigidity', rules[bendingRule](bendWarp, bendWeft));
   set('cloth.resolution', resolution);
   set('cloth.perturbation.seed', seed);
   if (substeps !== null) set('solver.substeps', Number(substeps));
   if (iterations !== null) set('solver.iterations', Number(iterations));
-  const sim = new Simulation(scene);
-  sim.advance(Math.round(scene.duration * 60));
-  const t = sim.report().test;
-  sim.dispose();
-  return t;
+  return readSpecimen(scene);
 };
-const mean = (v) => v.reduce((a, b) => a + b, 0) / v.length;
 
 console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes, bending: ${bendingRule} of warp and weft; seeds ${seeds.join(', ')}`);
 console.log('| fabric | g/m² | B used [µN·m] | c [cm] | specimens: drape coefficient, folds → mean | measured | Drape − measured | CLO3D |');
 console.log('|---|---|---|---|---|---|---|---|');
 for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
-  const [id, what, gsm, , , , bendWarp, bendWeft, measured, clo] = f;
-  const B = rules[bendingRule](bendWarp, bendWeft) * 1e-9;
-  const c = Math.cbrt(B / (gsm * 1e-3 * 9.81));
+  const [id, what, rho, , , [bendWarp, bendWeft], measured, clo] = f;
+  const B = rules[bendingRule](bendWarp, bendWeft);
+  const c = Math.cbrt(B / (rho * 9.81));
   const runs = seeds.map((seed) => specimen(f, seed));
   const dc = mean(runs.map((t) => t.drapeCoefficient)), folds = mean(runs.map((t) => t.folds));
   const cells = `${runs.map((t) => `${t.drapeCoefficient.toFixed(3)}, ${t.folds}`).join('; ')} → ${dc.toFixed(3)}, ${folds.toFixed(2)}`;
-  console.log(`| ${id} (${what}) | ${gsm} | ${(B * 1e6).toFixed(2)} | ${(c * 100).toFixed(2)} | ${cells} | ${measured.toFixed(3)} | ${(dc - measured >= 0 ? '+' : '')}${(dc - measured).toFixed(3)} | ${clo.toFixed(3)} |`);
+  console.log(`| ${id} (${what}) | ${(rho * 1e3).toFixed(2)} | ${(B * 1e6).toFixed(2)} | ${(c * 100).toFixed(2)} | ${cells} | ${measured.toFixed(3)} | ${(dc - measured >= 0 ? '+' : '')}${(dc - measured).toFixed(3)} | ${clo === null ? '–' : clo.toFixed(3)} |`);
 }

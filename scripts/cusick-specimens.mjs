@@ -6,7 +6,8 @@
 // Needs `npx tsc -p tsconfig.build.json` (it reads dist/).
 //   node scripts/cusick-specimens.mjs [--fabrics cotton,silk,…] [--resolutions 48,96] [--seeds 1,2,3]
 //       [--amplitude A (cloth.perturbation.amplitude [m], instead of the scene's)]
-import { FABRIC_NAMES, Simulation, builtinScene, setScenePath } from '../dist/core/index.js';
+import { FABRIC_NAMES, builtinScene, setScenePath } from '../dist/core/index.js';
+import { mean, readSpecimen } from './cusick-common.mjs';
 
 const arg = (name, fallback) => {
   const i = process.argv.indexOf(`--${name}`);
@@ -23,13 +24,8 @@ const specimen = (fabric, resolution, seed) => {
   scene = setScenePath(scene, 'cloth.resolution', resolution);
   scene = setScenePath(scene, 'cloth.perturbation.seed', seed);
   if (amplitude !== null) scene = setScenePath(scene, 'cloth.perturbation.amplitude', amplitude);
-  const sim = new Simulation(scene);
-  sim.advance(Math.round(scene.duration * 60));
-  const t = sim.report().test;
-  sim.dispose();
-  return t;
+  return readSpecimen(scene);
 };
-const mean = (v) => v.reduce((a, b) => a + b, 0) / v.length;
 
 console.log(`seeds ${seeds.join(', ')}${amplitude !== null ? `, amplitude ${amplitude} m` : ''}; each cell: drape coefficient, folds per specimen → their mean`);
 console.log(`| fabric | ${resolutions.map((r) => `${r} cells across`).join(' | ')} | mean differs by (coefficient, folds) |`);
