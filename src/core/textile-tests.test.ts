@@ -157,9 +157,13 @@ describe('the Cusick scene, as it is set up', () => {
     sim.dispose();
     return t.drapeCoefficient;
   };
-  it('reads the same drape coefficient at 48 and 96 cells across (within 0.05), and orders silk < cotton < leather', () => {
-    const cotton = drape('cotton', 48);
-    expect(Math.abs(drape('cotton', 96) - cotton)).toBeLessThan(0.05);
+  // Source 16's polyester tropical has cotton's B and ρ_A within 4 % and measured 0.507 (docs/materials.md §3.6): the
+  // issue's ±0.10 of a real fabric of similar B and ρ_A, here at 2 s (the scene's 6 s reads 0.477 and 0.49 as the
+  // mean of three specimens).
+  it('reads the same drape coefficient at 48 and 96 cells across (within 0.05), and orders silk < cotton < leather; cotton within 0.10 of a measured fabric of its B and ρ_A', () => {
+    const cotton = drape('cotton', 48), fine = drape('cotton', 96);
+    expect(Math.abs(fine - cotton)).toBeLessThan(0.05);
+    for (const dc of [cotton, fine]) expect(Math.abs(dc - 0.507)).toBeLessThan(0.1);
     expect(drape('silk', 48, 240)).toBeLessThan(cotton - 0.05);
     expect(drape('leather', 48)).toBeGreaterThan(cotton + 0.3);
   });
