@@ -70,6 +70,7 @@ const specimen = (f, seed) => {
 console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes, bending: ${bendingRule} of warp and weft; seeds ${seeds.join(', ')}`);
 console.log('| fabric | g/m² | B used [µN·m] | c [cm] | specimens: drape coefficient, folds → mean | measured | Drape − measured | CLO3D |');
 console.log('|---|---|---|---|---|---|---|---|');
+const pairs = [];
 for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
   const [id, what, rho, , , [bendWarp, bendWeft], measured, clo] = f;
   const B = rules[bendingRule](bendWarp, bendWeft);
@@ -77,5 +78,14 @@ for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
   const runs = seeds.map((seed) => specimen(f, seed));
   const dc = mean(runs.map((t) => t.drapeCoefficient)), folds = mean(runs.map((t) => t.folds));
   const cells = `${runs.map((t) => `${t.drapeCoefficient.toFixed(3)}, ${t.folds}`).join('; ')} → ${dc.toFixed(3)}, ${folds.toFixed(2)}`;
+  pairs.push([measured, dc]);
   console.log(`| ${id} (${what}) | ${(rho * 1e3).toFixed(2)} | ${(B * 1e6).toFixed(2)} | ${(c * 100).toFixed(2)} | ${cells} | ${measured.toFixed(3)} | ${(dc - measured >= 0 ? '+' : '')}${(dc - measured).toFixed(3)} | ${clo === null ? '–' : clo.toFixed(3)} |`);
+}
+if (pairs.length > 2) {
+  // how Drape's means follow the measured coefficients: their mean and RMS difference, the correlation, and the
+  // least-squares slope of Drape's on the measured (1: Drape spreads the fabrics as far apart as they are)
+  const n = pairs.length, mx = mean(pairs.map((p) => p[0])), my = mean(pairs.map((p) => p[1]));
+  let sxx = 0, syy = 0, sxy = 0, sdd = 0;
+  for (const [x, y] of pairs) { sxx += (x - mx) ** 2; syy += (y - my) ** 2; sxy += (x - mx) * (y - my); sdd += (y - x) ** 2; }
+  console.log(`\n${n} fabrics: Drape − measured ${(my - mx).toFixed(3)} on average, RMS ${Math.sqrt(sdd / n).toFixed(3)}; correlation ${(sxy / Math.sqrt(sxx * syy)).toFixed(2)}; slope of Drape's on the measured ${(sxy / sxx).toFixed(2)}`);
 }
