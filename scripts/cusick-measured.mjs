@@ -17,7 +17,8 @@
 // CLO3D's. Needs `npx tsc -p tsconfig.build.json` (it reads dist/).
 //   node scripts/cusick-measured.mjs [--fabrics M1,…,A,B,C,F] [--seeds 1,2,3] [--resolution 48]
 //       [--substeps S --iterations I (solver.substeps, solver.iterations: the defaults unless given)]
-//       [--bending geometric|mean|warp|weft]
+//       [--bending geometric|mean|warp|weft] [--width W (the specimen's diameter [m], cloth.width: the scene's 0.3 unless
+//       given; the pedestal stays 18 cm)]
 import { builtinScene, setScenePath } from '../dist/core/index.js';
 import { mean, readSpecimen } from './cusick-common.mjs';
 
@@ -48,6 +49,7 @@ const seeds = arg('seeds', '1,2,3').split(',').map(Number);
 const resolution = Number(arg('resolution', '48'));
 const substeps = arg('substeps', null), iterations = arg('iterations', null);
 const bendingRule = arg('bending', 'geometric');
+const width = arg('width', null);
 const rules = { geometric: (a, b) => Math.sqrt(a * b), mean: (a, b) => (a + b) / 2, warp: (a) => a, weft: (_a, b) => b };
 if (!rules[bendingRule]) throw new Error(`--bending: geometric, mean, warp or weft, got '${bendingRule}'`);
 for (const id of chosen) if (!FABRICS.some((f) => f[0] === id)) throw new Error(`--fabrics: unknown fabric '${id}' (${FABRICS.map((f) => f[0]).join(', ')})`);
@@ -61,13 +63,14 @@ const specimen = (f, seed) => {
   if (shear !== null) set('material.shearStiffness', shear);
   set('material.bendingRigidity', rules[bendingRule](bendWarp, bendWeft));
   set('cloth.resolution', resolution);
+  if (width !== null) set('cloth.width', Number(width));
   set('cloth.perturbation.seed', seed);
   if (substeps !== null) set('solver.substeps', Number(substeps));
   if (iterations !== null) set('solver.iterations', Number(iterations));
   return readSpecimen(scene);
 };
 
-console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes, bending: ${bendingRule} of warp and weft; seeds ${seeds.join(', ')}`);
+console.log(`the cusick scene at ${resolution} cells${width !== null ? `, a ${width} m specimen` : ''}, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes, bending: ${bendingRule} of warp and weft; seeds ${seeds.join(', ')}`);
 console.log('| fabric | g/m² | B used [µN·m] | c [cm] | specimens: drape coefficient, folds → mean | measured | Drape − measured | CLO3D |');
 console.log('|---|---|---|---|---|---|---|---|');
 const pairs = [];
