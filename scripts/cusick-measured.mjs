@@ -21,6 +21,7 @@
 //       given; the pedestal stays 18 cm)]
 import { builtinScene, setScenePath } from '../dist/core/index.js';
 import { mean, readSpecimen } from './cusick-common.mjs';
+import { arg } from './solver-study-common.mjs';
 
 const GF_CM2_PER_CM = 9.80665e-5;
 /**
@@ -40,10 +41,6 @@ const FABRICS = [
   ['F', 'polyester faille', 0.1043, null, null, [0.019 * GF_CM2_PER_CM, 0.019 * GF_CM2_PER_CM], 0.283, null],
 ];
 
-const arg = (name, fallback) => {
-  const i = process.argv.indexOf(`--${name}`);
-  return i >= 0 && i + 1 < process.argv.length ? process.argv[i + 1] : fallback;
-};
 const chosen = arg('fabrics', FABRICS.map((f) => f[0]).join(',')).split(',');
 const seeds = arg('seeds', '1,2,3').split(',').map(Number);
 const resolution = Number(arg('resolution', '48'));
