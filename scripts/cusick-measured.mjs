@@ -19,27 +19,8 @@
 //       [--substeps S --iterations I (solver.substeps, solver.iterations: the defaults unless given)]
 //       [--bending geometric|mean|warp|weft] [--width W (the specimen's diameter [m], cloth.width: the scene's 0.3 unless
 //       given; the pedestal stays 18 cm)]
-import { builtinScene, setScenePath } from '../dist/core/index.js';
-import { mean, readSpecimen } from './cusick-common.mjs';
+import { FABRICS, mean, readSpecimen, specimenScene } from './cusick-common.mjs';
 import { arg } from './solver-study-common.mjs';
-
-const GF_CM2_PER_CM = 9.80665e-5;
-/**
- * id, what it is, areal density [kg/m²], tensile stiffness warp and weft [N/m] (null: the scene's), shear stiffness
- * [N/m] (null: the scene's), bending rigidity warp and weft [N·m], the measured drape coefficient, CLO3D's (null: none)
- */
-const FABRICS = [
-  ['M1', 'polyester, twill 3/1', 0.13517, [477.226, 458.614], 41, [1950e-9, 610e-9], 0.223, 0.349],
-  ['M2', 'polyester, plain', 0.08366, [471.944, 373.515], 46, [850e-9, 330e-9], 0.228, 0.313],
-  ['M3', 'wool 75 %, PES 15 %, elastane 10 %, twill 2/1', 0.1787, [449.656, 439.815], 50, [2140e-9, 2000e-9], 0.349, 0.404],
-  ['M4', 'PES 63 %, viscose 33 %, elastane 4 %, twill 2/1', 0.28613, [403.447, 401.762], 61, [2970e-9, 2400e-9], 0.286, 0.323],
-  ['M5', 'PES 97 %, elastane 3 %, plain', 0.242, [407.166, 415.023], 57, [3220e-9, 3880e-9], 0.443, 0.438],
-  ['M6', 'cotton 65 %, PES 31 %, elastane 4 %, twill 2/1', 0.25336, [473.86, 404.746], 126, [7430e-9, 3700e-9], 0.549, 0.613],
-  ['A', 'cotton broad, plain', 0.1238, null, null, [0.118 * GF_CM2_PER_CM, 0.118 * GF_CM2_PER_CM], 0.829, null],
-  ['B', 'wool tropical, plain', 0.1629, null, null, [0.067 * GF_CM2_PER_CM, 0.067 * GF_CM2_PER_CM], 0.498, null],
-  ['C', 'polyester tropical', 0.1165, null, null, [0.077 * GF_CM2_PER_CM, 0.077 * GF_CM2_PER_CM], 0.507, null],
-  ['F', 'polyester faille', 0.1043, null, null, [0.019 * GF_CM2_PER_CM, 0.019 * GF_CM2_PER_CM], 0.283, null],
-];
 
 const chosen = arg('fabrics', FABRICS.map((f) => f[0]).join(',')).split(',');
 const seeds = arg('seeds', '1,2,3').split(',').map(Number);
@@ -51,21 +32,7 @@ const rules = { geometric: (a, b) => Math.sqrt(a * b), mean: (a, b) => (a + b) /
 if (!rules[bendingRule]) throw new Error(`--bending: geometric, mean, warp or weft, got '${bendingRule}'`);
 for (const id of chosen) if (!FABRICS.some((f) => f[0] === id)) throw new Error(`--fabrics: unknown fabric '${id}' (${FABRICS.map((f) => f[0]).join(', ')})`);
 
-const specimen = (f, seed) => {
-  const [, , rho, tensile, shear, [bendWarp, bendWeft]] = f;
-  let scene = builtinScene('cusick');
-  const set = (path, value) => { scene = setScenePath(scene, path, value); };
-  set('material.arealDensity', rho);
-  if (tensile) set('material.structuralStiffness', (tensile[0] + tensile[1]) / 2);
-  if (shear !== null) set('material.shearStiffness', shear);
-  set('material.bendingRigidity', rules[bendingRule](bendWarp, bendWeft));
-  set('cloth.resolution', resolution);
-  if (width !== null) set('cloth.width', Number(width));
-  set('cloth.perturbation.seed', seed);
-  if (substeps !== null) set('solver.substeps', Number(substeps));
-  if (iterations !== null) set('solver.iterations', Number(iterations));
-  return readSpecimen(scene);
-};
+const specimen = (f, seed) => readSpecimen(specimenScene(f, seed, { resolution, substeps, iterations, bending: rules[bendingRule], width }));
 
 console.log(`the cusick scene at ${resolution} cells${width !== null ? `, a ${width} m specimen` : ''}, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes, bending: ${bendingRule} of warp and weft; seeds ${seeds.join(', ')}`);
 console.log('| fabric | g/m² | B used [µN·m] | c [cm] | specimens: drape coefficient, folds → mean | measured | Drape − measured | CLO3D |');
