@@ -18,10 +18,10 @@
 //
 //   npx tsc -p tsconfig.build.json && node scripts/bending-hysteresis.mjs [--fabrics A,B,C,F] [--seeds 1]
 //       [--resolution 48] [--passes 24] [--ratio 10] [--hysteresis 1 (a factor on each fabric's 2HB: 0 for none)]
-//       [--substeps S --iterations I]
+//       [--substeps S --iterations I] [--damping D (material.damping [N·s/m], the scene's cotton's 0.1 unless given)]
 // prints each specimen's drape coefficient and folds beside the measured ones. The reference runs every phase in
 // TypeScript (the WebAssembly kernel cannot be handed a phase from outside), so it reads what the kernel reads.
-import { PHASE, runFrame, TsBackend, Simulation, bendingStencils } from '../dist/core/index.js';
+import { PHASE, runFrame, setScenePath, TsBackend, Simulation, bendingStencils } from '../dist/core/index.js';
 import { REFERENCE } from '../dist/core/reference.js';
 import { FABRICS, mean, specimenScene } from './cusick-common.mjs';
 import { arg } from './solver-study-common.mjs';
@@ -33,7 +33,7 @@ const chosen = arg('fabrics', 'A,B,C,F').split(',');
 const seeds = arg('seeds', '1').split(',').map(Number);
 const resolution = Number(arg('resolution', '48'));
 const passes = Number(arg('passes', '24')), ratio = Number(arg('ratio', '10')), factor = Number(arg('hysteresis', '1'));
-const substeps = arg('substeps', null), iterations = arg('iterations', null);
+const substeps = arg('substeps', null), iterations = arg('iterations', null), damping = arg('damping', null);
 for (const id of chosen) {
   const f = FABRICS.find((x) => x[0] === id);
   if (!f || f[8] === null) throw new Error(`--fabrics: '${id}' has no measured 2HB (${FABRICS.filter((x) => x[8] !== null).map((x) => x[0]).join(', ')} have)`);
@@ -103,6 +103,30 @@ class BendingFriction {
   }
 }
 
+/**
+ * The friction's isotropy: Σ_v |C_v| over the Laplacian's stencils for the rest mesh bent, without stretching, into
+ * a cylinder of radius 10 cm whose axis lies at 0°, 22.5°, 45° and 90° to the lattice, each over the first.
+ */
+function isotropy(model) {
+  const { offsets, vertices, weights: K } = bendingStencils(model, 'laplacian'), p = model.restPositions, R = 0.1;
+  const x = new Float64Array(p.length);
+  const sums = [0, Math.PI / 8, Math.PI / 4, Math.PI / 2].map((angle) => {
+    const c = Math.cos(angle), sn = Math.sin(angle);
+    for (let i = 0; i < p.length; i += 3) {
+      const u = c * p[i] + sn * p[i + 2], v = -sn * p[i] + c * p[i + 2], bu = R * Math.sin(u / R);
+      x[i] = c * bu - sn * v; x[i + 1] = R * (1 - Math.cos(u / R)); x[i + 2] = sn * bu + c * v;
+    }
+    let sum = 0;
+    for (let e = 0; e + 1 < offsets.length; e++) {
+      let cx = 0, cy = 0, cz = 0;
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) { const at = 3 * vertices[k]; cx += K[k] * x[at]; cy += K[k] * x[at + 1]; cz += K[k] * x[at + 2]; }
+      sum += Math.hypot(cx, cy, cz);
+    }
+    return sum;
+  });
+  return sums.map((v) => (v / sums[0]).toFixed(5)).join(', ');
+}
+
 /** The TypeScript reference's frame, its global bending step followed by the friction's passes. */
 class HysteresisBackend extends TsBackend {
   constructor(model, friction) {
@@ -118,7 +142,12 @@ class HysteresisBackend extends TsBackend {
   frame(model, params, dt) { runFrame(model, this.state, params, dt, this.phaseBackend); }
 }
 
-console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes; bending hysteresis ${factor} × 2HB, ${passes} friction passes a substep, slider spring ${ratio} × B; seeds ${seeds.join(', ')}`);
+console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes${damping !== null ? `, material.damping ${damping}` : ''}; bending hysteresis ${factor} × 2HB, ${passes} friction passes a substep, slider spring ${ratio} × B; seeds ${seeds.join(', ')}`);
+{
+  const sim = new Simulation(specimenScene(FABRICS.find((x) => x[0] === chosen[0]), seeds[0], { resolution }), { kernel: 'ts' });
+  console.log(`Σ|C_v| on a cylinder at 0°, 22.5°, 45°, 90° to the lattice, over the first: ${isotropy(sim.model)}`);
+  sim.dispose();
+}
 console.log('| fabric | HB [mN] | HB/B [1/m] | specimens: drape coefficient, folds → mean | measured (folds) | Drape − measured |');
 console.log('|---|---|---|---|---|---|');
 const pairs = [];
@@ -126,7 +155,8 @@ for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
   const [id, what, , , , [B], measured, , twoHB] = f;
   const HB = factor * twoHB / 2;
   const runs = seeds.map((seed) => {
-    const scene = specimenScene(f, seed, { resolution, substeps, iterations });
+    let scene = specimenScene(f, seed, { resolution, substeps, iterations });
+    if (damping !== null) scene = setScenePath(scene, 'material.damping', Number(damping));
     const sim = new Simulation(scene, { kernel: 'ts' });
     if (sim.params.bending === 'springs' || sim.params.bendingSolve !== 'global') throw new Error('the cusick scene no longer solves bending stencils together, the phase the friction follows');
     sim.useBackend(new HysteresisBackend(sim.model, HB > 0 ? new BendingFriction(sim.model, HB, B) : null));
