@@ -11,16 +11,18 @@
 // stencil's 3-vector C_v ≈ A_v·(κ1 + κ2)·n along the vertex normal n_v (the area-weighted mean of its triangles'),
 // carries a slider position s_p and the force f = k_f·(s_v − s_p), |f| ≤ HB. The pair (s_v, f) does work f·ds_v =
 // f·A_v·dκ, so a cap of HB dissipates HB per unit area and unit curvature at any mesh and in any direction (the
-// hinges' Σ|s| is not the same across a 45° line, the Laplacian's is). k_f = ratio·B/A_v (the elastic stencil's
-// stiffness times `--ratio`, 10: the slider's spring is ten times the bending's). Solved after the substep's global
-// bending step as XPBD passes (Macklin et al. 2016) with λ accumulated over `--passes` passes and held to ±HB·h²;
-// after each stencil's update the slider follows so that |k_f·(s_v − s_p)| ≤ HB. A disc starts flat: s_p = 0.
+// first line printed: Σ|C_v| of the disc bent into cylinders at four angles to the lattice). k_f = ratio·B/A_v (the
+// elastic stencil's stiffness times `--ratio`, 10: the slider's spring is ten times the bending's). Solved after the
+// substep's global bending step as XPBD passes (Macklin et al. 2016) with λ accumulated over `--passes` passes and
+// held to ±HB·h²; after each stencil's update the slider follows so that |k_f·(s_v − s_p)| ≤ HB. A disc starts flat:
+// s_p = 0.
 //
 //   npx tsc -p tsconfig.build.json && node scripts/bending-hysteresis.mjs [--fabrics A,B,C,F] [--seeds 1]
 //       [--resolution 48] [--passes 24] [--ratio 10] [--hysteresis 1 (a factor on each fabric's 2HB: 0 for none)]
 //       [--substeps S --iterations I] [--damping D (material.damping [N·s/m], the scene's cotton's 0.1 unless given)]
 // prints each specimen's drape coefficient and folds beside the measured ones. The reference runs every phase in
-// TypeScript (the WebAssembly kernel cannot be handed a phase from outside), so it reads what the kernel reads.
+// TypeScript (the WebAssembly kernel cannot be handed a phase from outside); with `--hysteresis 0` it reads what
+// scripts/cusick-measured.mjs reads on the kernel (C, seed 1: 0.475 both).
 import { PHASE, runFrame, setScenePath, TsBackend, Simulation, bendingStencils } from '../dist/core/index.js';
 import { REFERENCE } from '../dist/core/reference.js';
 import { FABRICS, mean, specimenScene } from './cusick-common.mjs';
