@@ -12,14 +12,22 @@
 // carries a slider position s_p and the force f = k_f·(s_v − s_p), |f| ≤ HB. The pair (s_v, f) does work f·ds_v =
 // f·A_v·dκ, so a cap of HB dissipates HB per unit area and unit curvature at any mesh and in any direction (the
 // first line printed: Σ|C_v| of the disc bent into cylinders at four angles to the lattice). k_f = ratio·B/A_v (the
-// elastic stencil's stiffness times `--ratio`, 10: the slider's spring is ten times the bending's). Solved after the
-// substep's global bending step as XPBD passes (Macklin et al. 2016) with λ accumulated over `--passes` passes and
-// held to ±HB·h²; after each stencil's update the slider follows so that |k_f·(s_v − s_p)| ≤ HB. A disc starts flat:
-// s_p = 0.
+// elastic stencil's stiffness times `--ratio`, 10: the slider's spring is ten times the bending's). It runs after each
+// substep's global bending step, solved one of two ways (`--solve`):
+// - cg (the default): the springs' backward-Euler step solved together, by conjugate gradients, then each slider
+//   follows so that |k_f·(s_v − s_p)| ≤ HB (BendingFriction.solve);
+// - passes: `--passes` XPBD passes (Macklin et al. 2016), λ accumulated and held to ±HB·h², each slider following
+//   after its stencil's update. Not converged: the springs are stiff and overlap, and Gauss–Seidel passes over
+//   them hardly move a smooth bend (docs/materials.md §3.6, "Bending hysteresis").
+// A disc starts flat: s_p = 0.
 //
 //   npx tsc -p tsconfig.build.json && node scripts/bending-hysteresis.mjs [--fabrics A,B,C,F] [--seeds 1]
-//       [--resolution 48] [--passes 24] [--ratio 10] [--hysteresis 1 (a factor on each fabric's 2HB: 0 for none)]
+//       [--resolution 48] [--solve cg|passes] [--passes 24] [--ratio 10] [--hysteresis 1 (a factor on each fabric's
+//       2HB: 0 for none)]
 //       [--substeps S --iterations I] [--damping D (material.damping [N·s/m], the scene's cotton's 0.1 unless given)]
+//       [--lower T (the skirt laid on a support that is then lowered: a 40 cm square plate 1 cm thick whose top is the
+//       pedestal's, moved 30 cm down at constant speed over T [s], the scene then run T + 6 s; without it the skirt
+//       falls free from flat, as in the scene)]
 // prints each specimen's drape coefficient and folds beside the measured ones. The reference runs every phase in
 // TypeScript (the WebAssembly kernel cannot be handed a phase from outside); with `--hysteresis 0` it reads what
 // scripts/cusick-measured.mjs reads on the kernel (C, seed 1: 0.475 both).
@@ -36,6 +44,9 @@ const seeds = arg('seeds', '1').split(',').map(Number);
 const resolution = Number(arg('resolution', '48'));
 const passes = Number(arg('passes', '24')), ratio = Number(arg('ratio', '10')), factor = Number(arg('hysteresis', '1'));
 const substeps = arg('substeps', null), iterations = arg('iterations', null), damping = arg('damping', null);
+const lower = arg('lower', null);
+const method = arg('solve', 'cg');
+if (method !== 'cg' && method !== 'passes') throw new Error(`--solve: cg or passes, got '${method}'`);
 for (const id of chosen) {
   const f = FABRICS.find((x) => x[0] === id);
   if (!f || f[8] === null) throw new Error(`--fabrics: '${id}' has no measured 2HB (${FABRICS.filter((x) => x[8] !== null).map((x) => x[0]).join(', ')} have)`);
@@ -68,6 +79,99 @@ class BendingFriction {
       n[b] += nx; n[b + 1] += ny; n[b + 2] += nz;
       n[c] += nx; n[c + 1] += ny; n[c + 2] += nz;
     }
+  }
+
+  /**
+   * The friction's step solved implicitly: with the vertex normals of x* (the positions the elastic step left) held,
+   * the sliders' springs' backward-Euler step, min_d ½·|M^½·d|²/h² + Σ_v ½·k_f·(s_v(x* + d) − s_p)², i.e.
+   * (M/h² + k_f·Σ_v g_v·g_vᵀ)·d = k_f·Σ_v g_v·(s_p − s_v(x*)), g_v the gradient of s_v (K_k·n_v at particle k),
+   * pinned particles held; by conjugate gradients with a Jacobi preconditioner, to a relative residual of 10⁻⁸. Then
+   * each slider follows where its spring pulls harder than HB: a return mapping with the springs' stiffness held
+   * through the step (sticking everywhere within a step), which converges to the stick–slip law as h shrinks.
+   */
+  solve(state, h) {
+    const x = state.positions, w = state.invMass, { offsets, vertices, weights: K, areas } = this.stencils;
+    const m = areas.length, N3 = x.length, n = this.normals, sp = this.slider;
+    if (!this.cg) this.cg = { d: new Float64Array(N3), r: new Float64Array(N3), z: new Float64Array(N3), p: new Float64Array(N3), q: new Float64Array(N3), diag: new Float64Array(N3), s0: new Float64Array(m), kf: new Float64Array(m), nv: new Float64Array(3 * m), t: new Float64Array(m) };
+    const { d, r, z, p, q, diag, s0, kf, nv, t } = this.cg, h2 = h * h;
+    this.updateNormals(x);
+    for (let i = 0; i < N3; i += 3) diag[i] = diag[i + 1] = diag[i + 2] = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 1;
+    for (let e = 0; e < m; e++) {
+      const from = offsets[e], to = offsets[e + 1], v = 3 * vertices[from];
+      const len = Math.hypot(n[v], n[v + 1], n[v + 2]);
+      kf[e] = len > 0 ? ratio * this.B / areas[e] : 0;
+      const nx = len > 0 ? n[v] / len : 0, ny = len > 0 ? n[v + 1] / len : 0, nz = len > 0 ? n[v + 2] / len : 0;
+      nv[3 * e] = nx; nv[3 * e + 1] = ny; nv[3 * e + 2] = nz;
+      let sv = 0;
+      for (let k = from; k < to; k++) {
+        const i = vertices[k], at = 3 * i;
+        sv += K[k] * (x[at] * nx + x[at + 1] * ny + x[at + 2] * nz);
+        if (w[i] > 0) { diag[at] += kf[e] * K[k] * K[k] * nx * nx; diag[at + 1] += kf[e] * K[k] * K[k] * ny * ny; diag[at + 2] += kf[e] * K[k] * K[k] * nz * nz; }
+      }
+      s0[e] = sv;
+    }
+    // A·y into out: M/h²·y + Σ_v k_f·g_v·(g_vᵀ·y), pinned rows the identity
+    const apply = (y, out) => {
+      for (let i = 0; i < N3; i += 3) { const mi = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 1; out[i] = mi * y[i]; out[i + 1] = mi * y[i + 1]; out[i + 2] = mi * y[i + 2]; }
+      for (let e = 0; e < m; e++) {
+        if (kf[e] === 0) continue;
+        const from = offsets[e], to = offsets[e + 1], nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
+        let g = 0;
+        for (let k = from; k < to; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) g += K[k] * (y[at] * nx + y[at + 1] * ny + y[at + 2] * nz); }
+        t[e] = kf[e] * g;
+        for (let k = from; k < to; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) { const c = t[e] * K[k]; out[at] += c * nx; out[at + 1] += c * ny; out[at + 2] += c * nz; } }
+      }
+    };
+    // b = Σ_v k_f·g_v·(s_p − s_v(x*)), into r (d starts at 0, so r = b)
+    r.fill(0); d.fill(0);
+    for (let e = 0; e < m; e++) {
+      if (kf[e] === 0) continue;
+      const from = offsets[e], to = offsets[e + 1], c0 = kf[e] * (sp[e] - s0[e]), nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
+      for (let k = from; k < to; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) { const c = c0 * K[k]; r[at] += c * nx; r[at + 1] += c * ny; r[at + 2] += c * nz; } }
+    }
+    let rz = 0, bb = 0;
+    for (let i = 0; i < N3; i++) { z[i] = r[i] / diag[i]; p[i] = z[i]; rz += r[i] * z[i]; bb += r[i] * r[i]; }
+    let it = 0;
+    if (bb > 0) for (; it < 2000; it++) {
+      apply(p, q);
+      let pq = 0;
+      for (let i = 0; i < N3; i++) pq += p[i] * q[i];
+      const a = rz / pq;
+      let rr = 0;
+      for (let i = 0; i < N3; i++) { d[i] += a * p[i]; r[i] -= a * q[i]; rr += r[i] * r[i]; }
+      if (rr <= 1e-16 * bb) break;
+      let rz2 = 0;
+      for (let i = 0; i < N3; i++) { z[i] = r[i] / diag[i]; rz2 += r[i] * z[i]; }
+      const beta = rz2 / rz;
+      rz = rz2;
+      for (let i = 0; i < N3; i++) p[i] = z[i] + beta * p[i];
+    }
+    this.iterations = Math.max(this.iterations ?? 0, it);
+    for (let i = 0; i < N3; i++) if (w[(i / 3) | 0] > 0) x[i] += d[i];
+    // return mapping: s_v after the step, the slider within HB/k_f of it
+    for (let e = 0; e < m; e++) {
+      if (kf[e] === 0) continue;
+      const from = offsets[e], to = offsets[e + 1], nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
+      let sv = 0;
+      for (let k = from; k < to; k++) { const at = 3 * vertices[k]; sv += K[k] * (x[at] * nx + x[at + 1] * ny + x[at + 2] * nz); }
+      const reach = this.HB / kf[e];
+      if (sv - sp[e] > reach) sp[e] = sv - reach; else if (sv - sp[e] < -reach) sp[e] = sv + reach;
+    }
+  }
+
+  /** the largest |k_f·(s_v − s_p)| / HB over the stencils now: at most 1 where the friction is resolved */
+  worstForce(x) {
+    const { offsets, vertices, weights: K, areas } = this.stencils, n = this.normals;
+    this.updateNormals(x);
+    let worst = 0;
+    for (let e = 0; e < areas.length; e++) {
+      const v = 3 * vertices[offsets[e]], len = Math.hypot(n[v], n[v + 1], n[v + 2]);
+      if (!(len > 0)) continue;
+      let sv = 0;
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) { const at = 3 * vertices[k]; sv += K[k] * (x[at] * n[v] + x[at + 1] * n[v + 1] + x[at + 2] * n[v + 2]) / len; }
+      worst = Math.max(worst, Math.abs(ratio * this.B / areas[e] * (sv - this.slider[e])) / this.HB);
+    }
+    return worst;
   }
 
   /** one pass over the stencils, batch by batch; `first`: the substep's first pass (λ from zero) */
@@ -137,14 +241,15 @@ class HysteresisBackend extends TsBackend {
       phases: { name: 'bending hysteresis (study)', where: 'in this script', sharesMemory: true, solvers: ['xpbd'], phases: 1 << PHASE.globalBending },
       run: (_mask, m, state, params, frame) => {
         REFERENCE[PHASE.globalBending](m, state, params, frame);
-        if (friction) for (let p = 0; p < passes; p++) friction.pass(state, frame.h, p === 0);
+        if (friction && method === 'cg') friction.solve(state, frame.h);
+        else if (friction) for (let p = 0; p < passes; p++) friction.pass(state, frame.h, p === 0);
       },
     };
   }
   frame(model, params, dt) { runFrame(model, this.state, params, dt, this.phaseBackend); }
 }
 
-console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes${damping !== null ? `, material.damping ${damping}` : ''}; bending hysteresis ${factor} × 2HB, ${passes} friction passes a substep, slider spring ${ratio} × B; seeds ${seeds.join(', ')}`);
+console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes${damping !== null ? `, material.damping ${damping}` : ''}${lower !== null ? `, laid on a support lowered over ${lower} s` : ''}; bending hysteresis ${factor} × 2HB, ${method === 'cg' ? 'solved by conjugate gradients' : `${passes} friction passes a substep`}, slider spring ${ratio} × B; seeds ${seeds.join(', ')}`);
 {
   const sim = new Simulation(specimenScene(FABRICS.find((x) => x[0] === chosen[0]), seeds[0], { resolution }), { kernel: 'ts' });
   console.log(`Σ|C_v| on a cylinder at 0°, 22.5°, 45°, 90° to the lattice, over the first: ${isotropy(sim.model)}`);
@@ -153,17 +258,30 @@ console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default
 console.log('| fabric | HB [mN] | HB/B [1/m] | specimens: drape coefficient, folds → mean | measured (folds) | Drape − measured |');
 console.log('|---|---|---|---|---|---|');
 const pairs = [];
+let cgMost = 0;
+const worst = [];
 for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
   const [id, what, , , , [B], measured, , twoHB] = f;
   const HB = factor * twoHB / 2;
   const runs = seeds.map((seed) => {
     let scene = specimenScene(f, seed, { resolution, substeps, iterations });
     if (damping !== null) scene = setScenePath(scene, 'material.damping', Number(damping));
+    if (lower !== null) {
+      const T = Number(lower), pedestalTop = 0.5;
+      const support = {
+        type: 'box', center: [0, pedestalTop - 0.005, 0], halfExtents: [0.2, 0.005, 0.2],
+        motion: { keyframes: [{ time: 0, translation: [0, 0, 0] }, { time: T, translation: [0, -0.3, 0] }] },
+      };
+      scene = setScenePath(scene, 'colliders', [...scene.colliders, support]);
+      scene = setScenePath(scene, 'duration', T + 6);
+    }
     const sim = new Simulation(scene, { kernel: 'ts' });
     if (sim.params.bending === 'springs' || sim.params.bendingSolve !== 'global') throw new Error('the cusick scene no longer solves bending stencils together, the phase the friction follows');
-    sim.useBackend(new HysteresisBackend(sim.model, HB > 0 ? new BendingFriction(sim.model, HB, B) : null));
+    const friction = HB > 0 ? new BendingFriction(sim.model, HB, B) : null;
+    sim.useBackend(new HysteresisBackend(sim.model, friction));
     sim.advance(Math.round(scene.duration * 60));
     const t = sim.report().test;
+    if (friction) { cgMost = Math.max(cgMost, friction.iterations ?? 0); worst.push(`${id} seed ${seed}: ${friction.worstForce(sim.state.positions).toFixed(2)}`); }
     sim.dispose();
     return t;
   });
@@ -177,3 +295,5 @@ if (pairs.length > 1) {
   for (const [x, y] of pairs) { sxx += (x - mx) ** 2; sxy += (x - mx) * (y - my); sdd += (y - x) ** 2; }
   console.log(`\n${n} fabrics: Drape − measured ${(my - mx).toFixed(3)} on average, RMS ${Math.sqrt(sdd / n).toFixed(3)}; slope of Drape's on the measured ${(sxy / sxx).toFixed(2)}`);
 }
+if (worst.length) console.log(`the sliders' springs at the last frame, the largest |k_f·(s_v − s_p)| / HB (at most 1 where the friction is resolved): ${worst.join('; ')}`);
+if (method === 'cg' && cgMost > 0) console.log(`the friction's step took at most ${cgMost} conjugate-gradient iterations a substep`);
