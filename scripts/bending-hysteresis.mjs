@@ -17,8 +17,8 @@
 // - cg (the default): the springs' backward-Euler step solved together, by conjugate gradients, then each slider
 //   follows so that |k_f·(s_v − s_p)| ≤ HB (BendingFriction.solve);
 // - passes: `--passes` XPBD passes (Macklin et al. 2016), λ accumulated and held to ±HB·h², each slider following
-//   after its stencil's update. Not converged: the springs are stiff and overlap, and Gauss–Seidel passes over
-//   them hardly move a smooth bend (docs/materials.md §3.6, "Bending hysteresis").
+//   after its stencil's update (the first try: stiff, overlapping springs in Gauss–Seidel passes, whose
+//   convergence was not shown; docs/materials.md §3.6, "Bending hysteresis").
 // A disc starts flat: s_p = 0.
 //
 //   npx tsc -p tsconfig.build.json && node scripts/bending-hysteresis.mjs [--fabrics A,B,C,F] [--seeds 1]
@@ -64,6 +64,10 @@ class BendingFriction {
     this.slider = new Float64Array(m);
     this.lambda = new Float64Array(m);
     this.normals = new Float64Array(3 * model.particleCount);
+    // the implicit step's vectors (3 per particle) and per-stencil values
+    const N3 = 3 * model.particleCount;
+    this.cg = { d: new Float64Array(N3), r: new Float64Array(N3), z: new Float64Array(N3), p: new Float64Array(N3), q: new Float64Array(N3), diag: new Float64Array(N3), s0: new Float64Array(m), kf: new Float64Array(m), nv: new Float64Array(3 * m), t: new Float64Array(m) };
+    this.iterations = 0;
   }
 
   /** vertex normals: the sum of each vertex's triangles' (area-weighted) normals */
@@ -92,7 +96,6 @@ class BendingFriction {
   solve(state, h) {
     const x = state.positions, w = state.invMass, { offsets, vertices, weights: K, areas } = this.stencils;
     const m = areas.length, N3 = x.length, n = this.normals, sp = this.slider;
-    if (!this.cg) this.cg = { d: new Float64Array(N3), r: new Float64Array(N3), z: new Float64Array(N3), p: new Float64Array(N3), q: new Float64Array(N3), diag: new Float64Array(N3), s0: new Float64Array(m), kf: new Float64Array(m), nv: new Float64Array(3 * m), t: new Float64Array(m) };
     const { d, r, z, p, q, diag, s0, kf, nv, t } = this.cg, h2 = h * h;
     this.updateNormals(x);
     for (let i = 0; i < N3; i += 3) diag[i] = diag[i + 1] = diag[i + 2] = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 1;
@@ -110,18 +113,6 @@ class BendingFriction {
       }
       s0[e] = sv;
     }
-    // A·y into out: M/h²·y + Σ_v k_f·g_v·(g_vᵀ·y), pinned rows the identity
-    const apply = (y, out) => {
-      for (let i = 0; i < N3; i += 3) { const mi = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 1; out[i] = mi * y[i]; out[i + 1] = mi * y[i + 1]; out[i + 2] = mi * y[i + 2]; }
-      for (let e = 0; e < m; e++) {
-        if (kf[e] === 0) continue;
-        const from = offsets[e], to = offsets[e + 1], nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
-        let g = 0;
-        for (let k = from; k < to; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) g += K[k] * (y[at] * nx + y[at + 1] * ny + y[at + 2] * nz); }
-        t[e] = kf[e] * g;
-        for (let k = from; k < to; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) { const c = t[e] * K[k]; out[at] += c * nx; out[at + 1] += c * ny; out[at + 2] += c * nz; } }
-      }
-    };
     // b = Σ_v k_f·g_v·(s_p − s_v(x*)), into r (d starts at 0, so r = b)
     r.fill(0); d.fill(0);
     for (let e = 0; e < m; e++) {
@@ -133,7 +124,7 @@ class BendingFriction {
     for (let i = 0; i < N3; i++) { z[i] = r[i] / diag[i]; p[i] = z[i]; rz += r[i] * z[i]; bb += r[i] * r[i]; }
     let it = 0;
     if (bb > 0) for (; it < 2000; it++) {
-      apply(p, q);
+      this.apply(p, q, w, h2);
       let pq = 0;
       for (let i = 0; i < N3; i++) pq += p[i] * q[i];
       const a = rz / pq;
@@ -156,6 +147,20 @@ class BendingFriction {
       for (let k = from; k < to; k++) { const at = 3 * vertices[k]; sv += K[k] * (x[at] * nx + x[at + 1] * ny + x[at + 2] * nz); }
       const reach = this.HB / kf[e];
       if (sv - sp[e] > reach) sp[e] = sv - reach; else if (sv - sp[e] < -reach) sp[e] = sv + reach;
+    }
+  }
+
+  /** A·y into out: M/h²·y + Σ_v k_f·g_v·(g_vᵀ·y), pinned rows the identity (the step's kf, nv set by solve) */
+  apply(y, out, w, h2) {
+    const { offsets, vertices, weights: K, areas } = this.stencils, { kf, nv, t } = this.cg, m = areas.length, N3 = y.length;
+    for (let i = 0; i < N3; i += 3) { const mi = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 1; out[i] = mi * y[i]; out[i + 1] = mi * y[i + 1]; out[i + 2] = mi * y[i + 2]; }
+    for (let e = 0; e < m; e++) {
+      if (kf[e] === 0) continue;
+      const from = offsets[e], to = offsets[e + 1], nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
+      let g = 0;
+      for (let k = from; k < to; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) g += K[k] * (y[at] * nx + y[at + 1] * ny + y[at + 2] * nz); }
+      t[e] = kf[e] * g;
+      for (let k = from; k < to; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) { const c = t[e] * K[k]; out[at] += c * nx; out[at + 1] += c * ny; out[at + 2] += c * nz; } }
     }
   }
 
@@ -243,6 +248,8 @@ class HysteresisBackend extends TsBackend {
         REFERENCE[PHASE.globalBending](m, state, params, frame);
         if (friction && method === 'cg') friction.solve(state, frame.h);
         else if (friction) for (let p = 0; p < passes; p++) friction.pass(state, frame.h, p === 0);
+        // how well the step resolved the friction, right after it, in each frame's last substep
+        if (friction && frame.sub === frame.substeps - 1) friction.lastWorst = friction.worstForce(state.positions);
       },
     };
   }
@@ -281,7 +288,7 @@ for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
     sim.useBackend(new HysteresisBackend(sim.model, friction));
     sim.advance(Math.round(scene.duration * 60));
     const t = sim.report().test;
-    if (friction) { cgMost = Math.max(cgMost, friction.iterations ?? 0); worst.push(`${id} seed ${seed}: ${friction.worstForce(sim.state.positions).toFixed(2)}`); }
+    if (friction) { cgMost = Math.max(cgMost, friction.iterations ?? 0); worst.push(`${id} seed ${seed}: ${friction.lastWorst.toFixed(2)}`); }
     sim.dispose();
     return t;
   });
@@ -295,5 +302,5 @@ if (pairs.length > 1) {
   for (const [x, y] of pairs) { sxx += (x - mx) ** 2; sxy += (x - mx) * (y - my); sdd += (y - x) ** 2; }
   console.log(`\n${n} fabrics: Drape − measured ${(my - mx).toFixed(3)} on average, RMS ${Math.sqrt(sdd / n).toFixed(3)}; slope of Drape's on the measured ${(sxy / sxx).toFixed(2)}`);
 }
-if (worst.length) console.log(`the sliders' springs at the last frame, the largest |k_f·(s_v − s_p)| / HB (at most 1 where the friction is resolved): ${worst.join('; ')}`);
+if (worst.length) console.log(`the sliders' springs right after the friction's step in the last substep, the largest |k_f·(s_v − s_p)| / HB (at most 1 where it resolved the friction): ${worst.join('; ')}`);
 if (method === 'cg' && cgMost > 0) console.log(`the friction's step took at most ${cgMost} conjugate-gradient iterations a substep`);
