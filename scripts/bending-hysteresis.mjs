@@ -28,10 +28,12 @@
 //       [--lower T (the skirt laid on a support that is then lowered: a 40 cm square plate 1 cm thick whose top is the
 //       pedestal's, moved 30 cm down at constant speed over T [s], the scene then run T + 6 s; without it the skirt
 //       falls free from flat, as in the scene)]
+//       [--cantilever R (instead: the `cantilever` scene at cloth.resolution R with each fabric's ρ_A and B, its
+//       bending length with and without the friction)]
 // prints each specimen's drape coefficient and folds beside the measured ones. The reference runs every phase in
 // TypeScript (the WebAssembly kernel cannot be handed a phase from outside); with `--hysteresis 0` it reads what
 // scripts/cusick-measured.mjs reads on the kernel (C, seed 1: 0.475 both).
-import { PHASE, runFrame, setScenePath, TsBackend, Simulation, bendingStencils } from '../dist/core/index.js';
+import { builtinScene, PHASE, runFrame, setScenePath, TsBackend, Simulation, bendingStencils } from '../dist/core/index.js';
 import { REFERENCE } from '../dist/core/reference.js';
 import { FABRICS, mean, specimenScene } from './cusick-common.mjs';
 import { arg } from './solver-study-common.mjs';
@@ -46,6 +48,7 @@ const passes = Number(arg('passes', '24')), ratio = Number(arg('ratio', '10')), 
 const substeps = arg('substeps', null), iterations = arg('iterations', null), damping = arg('damping', null);
 const lower = arg('lower', null);
 const method = arg('solve', 'cg');
+const cantilever = arg('cantilever', null);
 if (method !== 'cg' && method !== 'passes') throw new Error(`--solve: cg or passes, got '${method}'`);
 for (const id of chosen) {
   const f = FABRICS.find((x) => x[0] === id);
@@ -257,6 +260,33 @@ class HysteresisBackend extends TsBackend {
 }
 
 console.log(`the cusick scene at ${resolution} cells, ${substeps ?? 'the default'} substeps × ${iterations ?? 'the default'} passes${damping !== null ? `, material.damping ${damping}` : ''}${lower !== null ? `, laid on a support lowered over ${lower} s` : ''}; bending hysteresis ${factor} × 2HB, ${method === 'cg' ? 'solved by conjugate gradients' : `${passes} friction passes a substep`}, slider spring ${ratio} × B; seeds ${seeds.join(', ')}`);
+if (cantilever !== null) {
+  // the Peirce cantilever (ASTM D1388) as the scene runs it, the strip pushed over the edge: with the friction a bend
+  // must overcome HB before it moves, so the strip should read a longer bending length than c = (B/(ρ_A·g))^(1/3)
+  console.log(`the cantilever scene at ${cantilever} faces, ${method === 'cg' ? 'the friction solved by conjugate gradients' : `${passes} friction passes a substep`}`);
+  console.log('| fabric | HB/B [1/m] | c [cm] | bending length without friction [cm] | with [cm] | most CG iterations a substep |');
+  console.log('|---|---|---|---|---|---|');
+  for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
+    const [id, what, rho, , , [B], , , twoHB] = f;
+    const HB = factor * twoHB / 2;
+    const read = (withFriction) => {
+      let scene = builtinScene('cantilever');
+      scene = setScenePath(scene, 'material.arealDensity', rho);
+      scene = setScenePath(scene, 'material.bendingRigidity', B);
+      scene = setScenePath(scene, 'cloth.resolution', Number(cantilever));
+      const sim = new Simulation(scene, { kernel: 'ts' });
+      const friction = withFriction ? new BendingFriction(sim.model, HB, B) : null;
+      sim.useBackend(new HysteresisBackend(sim.model, friction));
+      sim.advance(Math.round(scene.duration * 60));
+      const length = sim.report().test.bendingLength;
+      sim.dispose();
+      return [length, friction ? friction.iterations : 0];
+    };
+    const [without] = read(false), [withF, its] = read(true);
+    console.log(`| ${id} (${what}) | ${(HB / B).toFixed(1)} | ${(Math.cbrt(B / (rho * 9.81)) * 100).toFixed(2)} | ${(without * 100).toFixed(2)} | ${(withF * 100).toFixed(2)} | ${method === 'cg' ? its : '–'} |`);
+  }
+  process.exit(0);
+}
 {
   const sim = new Simulation(specimenScene(FABRICS.find((x) => x[0] === chosen[0]), seeds[0], { resolution }), { kernel: 'ts' });
   console.log(`Σ|C_v| on a cylinder at 0°, 22.5°, 45°, 90° to the lattice, over the first: ${isotropy(sim.model)}`);
