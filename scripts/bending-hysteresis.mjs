@@ -38,9 +38,6 @@ import { REFERENCE } from '../dist/core/reference.js';
 import { FABRICS, mean, specimenScene } from './cusick-common.mjs';
 import { arg } from './solver-study-common.mjs';
 
-/** source 16's folds (docs/materials.md §3.6) */
-const MEASURED_FOLDS = { A: 2, B: 5, C: 5, F: 7 };
-
 const chosen = arg('fabrics', 'A,B,C,F').split(',');
 const seeds = arg('seeds', '1').split(',').map(Number);
 const resolution = Number(arg('resolution', '48'));
@@ -298,7 +295,7 @@ const pairs = [];
 let cgMost = 0;
 const worst = [];
 for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
-  const [id, what, , , , [B], measured, , twoHB] = f;
+  const [id, what, , , , [B], measured, , twoHB, measuredFolds] = f;
   const HB = factor * twoHB / 2;
   const runs = seeds.map((seed) => {
     let scene = specimenScene(f, seed, { resolution, substeps, iterations });
@@ -324,7 +321,7 @@ for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
   });
   const dc = mean(runs.map((t) => t.drapeCoefficient));
   pairs.push([measured, dc]);
-  console.log(`| ${id} (${what}) | ${(HB * 1e3).toFixed(3)} | ${(HB / B).toFixed(1)} | ${runs.map((t) => `${t.drapeCoefficient.toFixed(3)}, ${t.folds}`).join('; ')} → ${dc.toFixed(3)} | ${measured.toFixed(3)} (${MEASURED_FOLDS[id]}) | ${(dc - measured >= 0 ? '+' : '')}${(dc - measured).toFixed(3)} |`);
+  console.log(`| ${id} (${what}) | ${(HB * 1e3).toFixed(3)} | ${(HB / B).toFixed(1)} | ${runs.map((t) => `${t.drapeCoefficient.toFixed(3)}, ${t.folds}`).join('; ')} → ${dc.toFixed(3)} | ${measured.toFixed(3)} (${measuredFolds}) | ${(dc - measured >= 0 ? '+' : '')}${(dc - measured).toFixed(3)} |`);
 }
 if (pairs.length > 1) {
   const n = pairs.length, mx = mean(pairs.map((p) => p[0])), my = mean(pairs.map((p) => p[1]));

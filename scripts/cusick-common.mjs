@@ -16,20 +16,21 @@ export const GF_CM2_PER_CM = 9.80665e-5, GF_CM_PER_CM = 9.80665e-3;
 /**
  * id, what it is, areal density [kg/m²], tensile stiffness warp and weft [N/m] (null: the scene's), shear stiffness
  * [N/m] (null: the scene's), bending rigidity warp and weft [N·m], the measured drape coefficient, CLO3D's (null: none),
- * the bending hysteresis 2HB [N] (KES-FB2; null: not given). Source 17's six (M1…M6) and source 16's four (A, B, C, F)
+ * the bending hysteresis 2HB [N] (KES-FB2; null: not given), the folds the measured specimen drape made (null: not
+ * given). Source 17's six (M1…M6) and source 16's four (A, B, C, F)
  * of docs/materials.md §3.6, as scripts/cusick-measured.mjs's header says where each was read.
  */
 export const FABRICS = [
-  ['M1', 'polyester, twill 3/1', 0.13517, [477.226, 458.614], 41, [1950e-9, 610e-9], 0.223, 0.349, null],
-  ['M2', 'polyester, plain', 0.08366, [471.944, 373.515], 46, [850e-9, 330e-9], 0.228, 0.313, null],
-  ['M3', 'wool 75 %, PES 15 %, elastane 10 %, twill 2/1', 0.1787, [449.656, 439.815], 50, [2140e-9, 2000e-9], 0.349, 0.404, null],
-  ['M4', 'PES 63 %, viscose 33 %, elastane 4 %, twill 2/1', 0.28613, [403.447, 401.762], 61, [2970e-9, 2400e-9], 0.286, 0.323, null],
-  ['M5', 'PES 97 %, elastane 3 %, plain', 0.242, [407.166, 415.023], 57, [3220e-9, 3880e-9], 0.443, 0.438, null],
-  ['M6', 'cotton 65 %, PES 31 %, elastane 4 %, twill 2/1', 0.25336, [473.86, 404.746], 126, [7430e-9, 3700e-9], 0.549, 0.613, null],
-  ['A', 'cotton broad, plain', 0.1238, null, null, [0.118 * GF_CM2_PER_CM, 0.118 * GF_CM2_PER_CM], 0.829, null, 0.124 * GF_CM_PER_CM],
-  ['B', 'wool tropical, plain', 0.1629, null, null, [0.067 * GF_CM2_PER_CM, 0.067 * GF_CM2_PER_CM], 0.498, null, 0.033 * GF_CM_PER_CM],
-  ['C', 'polyester tropical', 0.1165, null, null, [0.077 * GF_CM2_PER_CM, 0.077 * GF_CM2_PER_CM], 0.507, null, 0.029 * GF_CM_PER_CM],
-  ['F', 'polyester faille', 0.1043, null, null, [0.019 * GF_CM2_PER_CM, 0.019 * GF_CM2_PER_CM], 0.283, null, 0.007 * GF_CM_PER_CM],
+  ['M1', 'polyester, twill 3/1', 0.13517, [477.226, 458.614], 41, [1950e-9, 610e-9], 0.223, 0.349, null, null],
+  ['M2', 'polyester, plain', 0.08366, [471.944, 373.515], 46, [850e-9, 330e-9], 0.228, 0.313, null, null],
+  ['M3', 'wool 75 %, PES 15 %, elastane 10 %, twill 2/1', 0.1787, [449.656, 439.815], 50, [2140e-9, 2000e-9], 0.349, 0.404, null, null],
+  ['M4', 'PES 63 %, viscose 33 %, elastane 4 %, twill 2/1', 0.28613, [403.447, 401.762], 61, [2970e-9, 2400e-9], 0.286, 0.323, null, null],
+  ['M5', 'PES 97 %, elastane 3 %, plain', 0.242, [407.166, 415.023], 57, [3220e-9, 3880e-9], 0.443, 0.438, null, null],
+  ['M6', 'cotton 65 %, PES 31 %, elastane 4 %, twill 2/1', 0.25336, [473.86, 404.746], 126, [7430e-9, 3700e-9], 0.549, 0.613, null, null],
+  ['A', 'cotton broad, plain', 0.1238, null, null, [0.118 * GF_CM2_PER_CM, 0.118 * GF_CM2_PER_CM], 0.829, null, 0.124 * GF_CM_PER_CM, 2],
+  ['B', 'wool tropical, plain', 0.1629, null, null, [0.067 * GF_CM2_PER_CM, 0.067 * GF_CM2_PER_CM], 0.498, null, 0.033 * GF_CM_PER_CM, 5],
+  ['C', 'polyester tropical', 0.1165, null, null, [0.077 * GF_CM2_PER_CM, 0.077 * GF_CM2_PER_CM], 0.507, null, 0.029 * GF_CM_PER_CM, 5],
+  ['F', 'polyester faille', 0.1043, null, null, [0.019 * GF_CM2_PER_CM, 0.019 * GF_CM2_PER_CM], 0.283, null, 0.007 * GF_CM_PER_CM, 7],
 ];
 
 /**
