@@ -11,6 +11,6 @@ export const EXIT = {
   usage: 2,
   /** the simulation became unstable (positions not finite): nothing exported */
   unstable: 3,
-  /** the run finished and its results are printed, but the export could not be written */
+  /** the run finished and its results are printed, but the export could not be written (also: stdout could not be, bin/drape.js) */
   exportFailed: 4,
 } as const;

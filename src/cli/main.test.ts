@@ -425,6 +425,11 @@ describe('drape CLI', () => {
     // a reader that stops after one line (the sweep prints a line per run as it goes): quiet, exit 0, no stack trace
     const piped = spawnSync('bash', ['-c', `set -o pipefail; "${process.execPath}" "${bin}" run resolution --frames 1 | head -1`], { encoding: 'utf8' });
     expect([piped.status, piped.stderr, piped.stdout.split('\n').length]).toEqual([0, '', 2]);
+    // output that cannot be written (a full disk): one line and exit 4, not a stack trace and 1
+    for (const args of [['run', 'cotton-basic', '--frames', '2', '--set', 'cloth.resolution=4', '--json'], ['scenes']]) {
+      const full = spawnSync('bash', ['-c', `"${process.execPath}" "${bin}" ${args.join(' ')} > /dev/full`], { encoding: 'utf8' });
+      expect([full.status, full.stderr], args.join(' ')).toEqual([4, 'drape: could not write the output to standard output (ENOSPC)\n']);
+    }
   });
 
   it.each([

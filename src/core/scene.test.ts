@@ -39,6 +39,22 @@ describe('scenes', () => {
     // only the scene's own keys are paths
     expect(() => setScenePath(s, 'cloth.constructor.name', 1)).toThrow(/not a scene path/);
     expect(() => setScenePath(s, 'material.toString.x', 1)).toThrow(/material\.toString is not an object in this scene/);
+    // a list's item is named with its index in brackets, as the path is written
+    expect(() => setScenePath(s, 'colliders[0].motion.keyframes[0].time', 1)).toThrow(/^--set colliders\[0\]\.motion\.keyframes\[0\]\.time: colliders\[0\]\.motion is not an object in this scene$/);
+  });
+
+  it('a path names every key: empty keys are not a path (they used to be dropped)', () => {
+    const s = defaultScene();
+    for (const path of ['cloth..resolution', '.cloth.resolution', 'cloth.resolution.', '', '.', 'pins[0].']) {
+      expect(() => setScenePath(s, path, 6), path).toThrow(new RegExp(`^--set ${path.replace(/[.[\]]/g, '\\$&')}: not a scene path$`));
+    }
+    expect(setScenePath(s, 'cloth.resolution', 6).cloth.resolution).toBe(6);
+  });
+
+  it('the scene must be an object: a clear error, not a TypeError from inside', () => {
+    for (const scene of [null, undefined, 3, 'cotton-basic', [1]]) {
+      expect(() => setScenePath(scene as never, 'cloth.resolution', 6)).toThrow(/^setScenePath: the scene must be a scene object/);
+    }
   });
 
   it('a document nested absurdly deep is refused by name, not with a stack overflow', () => {

@@ -491,6 +491,11 @@ export function parseSetValue(raw: string): unknown {
   }
 }
 
+/** Path keys as a scene path reads: an item's index in brackets (`colliders[0].motion`). */
+function shownPath(keys: string[]): string {
+  return keys.reduce((path, k) => (/^\d+$/.test(k) ? `${path}[${k}]` : path ? `${path}.${k}` : k), '');
+}
+
 /**
  * Sets a dotted path (`material.bendStiffness`, `colliders[0].radius`, `colliders.0.radius`) on a plain scene
  * document and re-validates it. Unknown paths and invalid values throw SceneError naming the path, after `source`
@@ -506,9 +511,13 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
   } catch {
     throw new SceneError(`${source}: must be a JSON value (a number, string, boolean, null, list or object), got ${typeof value === 'object' ? 'an object holding something else' : `a ${typeof value}`}`);
   }
-  const keys = path.replace(/\[(\d+)\]/g, '.$1').split('.').filter(Boolean);
-  if (keys.length === 0 || keys.some((k) => k === '__proto__' || k === 'constructor' || k === 'prototype')) {
+  // every key named: 'cloth..resolution', '.cloth' and 'cloth.' are not paths (they read as one before)
+  const keys = path.replace(/\[(\d+)\]/g, '.$1').split('.');
+  if (path === '' || keys.some((k) => k === '' || k === '__proto__' || k === 'constructor' || k === 'prototype')) {
     throw new SceneError(`${source}: not a scene path`);
+  }
+  if (scene === null || typeof scene !== 'object' || Array.isArray(scene)) {
+    throw new SceneError(`setScenePath: the scene must be a scene object (a document or a validated scene), got ${shownValue(scene)}`);
   }
   const doc = structuredClone(sceneDocument(scene));
   // the parts of a cloth: the top level's in a one-cloth scene, an entry of `cloths` in a scene of several
@@ -524,7 +533,7 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
   for (let i = 0; i < keys.length; i++) {
     const last = i === keys.length - 1;
     if (Array.isArray(node)) {
-      const list = keys.slice(0, i).join('.');
+      const list = shownPath(keys.slice(0, i));
       // a plain index: '01' would name a property of the list, not an item
       if (!/^(0|[1-9]\d*)$/.test(keys[i])) throw new SceneError(`${source}: ${list} is a list; use an index such as ${list}[0]`);
       // an existing item, or (for the last key) one past the end to append: never a sparse array
@@ -537,7 +546,7 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
     const k = keys[i];
     const next = Object.hasOwn(node, k) ? (node as Record<string, unknown>)[k] : undefined;
     if (next === null || typeof next !== 'object') {
-      throw new SceneError(`${source}: ${keys.slice(0, i + 1).join('.')} is not an object in this scene`);
+      throw new SceneError(`${source}: ${shownPath(keys.slice(0, i + 1))} is not an object in this scene`);
     }
     node = next as Record<string, unknown>;
   }
