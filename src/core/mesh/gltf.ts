@@ -168,7 +168,6 @@ function readDocument(doc: Gltf, bin: Uint8Array | undefined, source: string, fa
     const width = COMPONENTS[acc.type], size = BYTES[acc.componentType];
     if (!size) fail(`accessor ${index} has component type ${acc.componentType}, which is not a glTF type`);
     if (!Number.isInteger(acc.count) || acc.count < 0) fail(`accessor ${index} has a count that is not a whole number`);
-    // an accessor without a buffer view is all zeros: as many as a file of the size cap could describe, at most
     // without a buffer view an accessor is all zeros (or sparse, refused above): no cloth is made of that
     if (acc.bufferView === undefined) return fail(`accessor ${index} has ${acc.count} elements and no data`);
     const bv = doc.bufferViews?.[acc.bufferView];
@@ -180,6 +179,10 @@ function readDocument(doc: Gltf, bin: Uint8Array | undefined, source: string, fa
     if (!whole(stride) || stride < width * size || !whole(bv.byteOffset ?? 0) || !whole(acc.byteOffset ?? 0) || !whole(bv.byteLength)) {
       fail(`accessor ${index} or its buffer view has an offset, length or stride that is not valid`);
     }
+    // a view lies within its buffer's byteLength (glTF 2.0 §3.6.2.3), not only within the bytes that happen to follow
+    const declared = doc.buffers?.[bv.buffer]?.byteLength;
+    if (!whole(declared)) fail(`buffer ${bv.buffer} has a byteLength that is not a whole number`);
+    if ((bv.byteOffset ?? 0) + bv.byteLength > (declared as number)) fail(`buffer view ${acc.bufferView} reaches past the end of buffer ${bv.buffer} (its byteLength ${declared})`);
     const last = base + (acc.count - 1) * stride + width * size;
     // checked before anything is allocated: the count is the file's word, the buffer's length is a fact
     if (acc.count > 0 && (last > (bv.byteOffset ?? 0) + bv.byteLength || last > buf.length)) fail(`accessor ${index} reads past the end of its buffer`);
@@ -233,6 +236,8 @@ function readDocument(doc: Gltf, bin: Uint8Array | undefined, source: string, fa
       for (let i = 0; i < idx.length; i++) {
         if (!Number.isInteger(idx[i]) || idx[i] < 0 || idx[i] >= p.count) fail(`mesh ${meshIndex} has an index ${idx[i]} outside its ${p.count} vertices`);
       }
+      // a triangle list's corners come in threes: a remainder is a broken file, not something to drop
+      if (mode === 4 && idx.length % 3 !== 0) fail(`a primitive of mesh ${meshIndex} has ${idx.length} ${prim.indices !== undefined ? 'indices' : 'vertices'}, not a multiple of 3 (a list of triangles)`);
       if (mode === 4) for (let i = 0; i + 2 < idx.length; i += 3) tri.push(base + idx[i], base + idx[i + 1], base + idx[i + 2]);
       else if (mode === 5) {
         for (let i = 0; i + 2 < idx.length; i++) {

@@ -268,6 +268,11 @@ describe('mesh files', () => {
   it.each([
     ['f 1 2 9', /^q\.obj:4: face uses vertex 9, but only 3 are defined above it$/],
     ['v 1 x 2', /^q\.obj:4: vertex coordinate 'x' is not a number$/],
+    // decimal only: Number() reads these as 1, 1 and 7
+    ['v 0x1 0 0', /^q\.obj:4: vertex coordinate '0x1' is not a number$/],
+    ['v 0 0b1 0', /^q\.obj:4: vertex coordinate '0b1' is not a number$/],
+    ['v 0 0 0o7', /^q\.obj:4: vertex coordinate '0o7' is not a number$/],
+    ['vt 0x1 0', /^q\.obj:4: a texture coordinate needs numbers u \[v\]$/],
     ['f 1 2', /^q\.obj:4: a face needs at least three corners$/],
     ['f a b c', /^q\.obj:4: face corner 'a' does not start with a vertex number$/],
   ])('OBJ errors name the file and the line: %s', (line, message) => {
@@ -332,6 +337,18 @@ describe('mesh files', () => {
   ])('glTF refuses %s, naming the file', (_what, extra, message) => {
     const { doc } = gltfDoc(quadPositions, undefined, extra);
     expect(error(() => parseGltf(enc(doc), 'bad.gltf'))).toMatch(new RegExp(`^bad\\.gltf: ${message.source}`));
+  });
+  it('glTF: a triangle list whose corners are not a multiple of 3, or a view past its buffer\'s byteLength, is refused', () => {
+    // five indices: the last two used to be dropped without a word
+    const five = gltfDoc(quadPositions, [0, 1, 2, 0, 2]).doc;
+    expect(error(() => parseGltf(enc(five), 'i.gltf'))).toBe('i.gltf: a primitive of mesh 0 has 5 indices, not a multiple of 3 (a list of triangles)');
+    const four = gltfDoc(quadPositions).doc;
+    expect(error(() => parseGltf(enc(four), 'v.gltf'))).toBe('v.gltf: a primitive of mesh 0 has 4 vertices, not a multiple of 3 (a list of triangles)');
+    // the buffer says it holds 1 byte; its data holds more, which the views read: refused, the file is inconsistent
+    const { doc } = gltfDoc(quadPositions, [0, 1, 2, 0, 2, 3]);
+    const short = { ...doc, buffers: [{ ...doc.buffers[0], byteLength: 1 }] };
+    expect(error(() => parseGltf(enc(short), 's.gltf'))).toBe('s.gltf: buffer view 0 reaches past the end of buffer 0 (its byteLength 1)');
+    expect(error(() => parseGltf(enc({ ...doc, buffers: [{ ...doc.buffers[0], byteLength: 'x' }] }), 's.gltf'))).toBe('s.gltf: buffer 0 has a byteLength that is not a whole number');
   });
   it('a file of another kind is refused by name', () => {
     expect(error(() => parseMeshFile(new Uint8Array(4), 'shirt.fbx'))).toBe('shirt.fbx: not a mesh file Drape reads (.obj, .gltf, .glb)');

@@ -20,18 +20,20 @@ export function parseObj(text: string, source: string): TriangleMesh {
   const fail = (line: number, why: string): never => {
     throw new SceneError(`${source}:${line}: ${why}`);
   };
+  // OBJ's numbers are decimal: Number() alone also reads '0x1', '0b1' and '0o7'
+  const decimal = (w: string | undefined): number => (w !== undefined && /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(w) ? Number(w) : NaN);
   for (let ln = 0; ln < lines.length; ln++) {
     const words = lines[ln].trim().split(/\s+/);
     const kind = words[0];
     if (kind === 'v') {
       if (words.length < 4) fail(ln + 1, 'a vertex needs x y z');
       for (let k = 1; k <= 3; k++) {
-        const x = Number(words[k]);
+        const x = decimal(words[k]);
         if (!Number.isFinite(x)) fail(ln + 1, `vertex coordinate '${words[k].slice(0, 20)}' is not a number`);
         pos.push(x);
       }
     } else if (kind === 'vt') {
-      const u = Number(words[1]), v = words.length > 2 ? Number(words[2]) : 0;
+      const u = decimal(words[1]), v = words.length > 2 ? decimal(words[2]) : 0;
       if (!Number.isFinite(u) || !Number.isFinite(v)) fail(ln + 1, 'a texture coordinate needs numbers u [v]');
       tex.push(u, v);
     } else if (kind === 'f') {
