@@ -14,8 +14,11 @@
 // first line printed: Σ|C_v| of the disc bent into cylinders at four angles to the lattice). k_f = ratio·B/A_v (the
 // elastic stencil's stiffness times `--ratio`, 10: the slider's spring is ten times the bending's). It runs after each
 // substep's global bending step, solved one of two ways (`--solve`):
-// - cg (the default): the springs' backward-Euler step solved together, by conjugate gradients, then each slider
-//   follows so that |k_f·(s_v − s_p)| ≤ HB (BendingFriction.solve);
+// - cg (the default): the backward-Euler step of the springs and their sliders together, a convex problem (the
+//   slider's energy Huber's function), by semi-smooth Newton with conjugate gradients, so that no spring pulls harder
+//   than HB within the step either (BendingFriction.solve; `--newton N`, the most Newton iterations a substep, 30).
+//   Until 2026-12-08 it solved the springs stuck and moved the sliders after, which let a spring pull up to 50 times
+//   HB within the step where the pedestal's contact moves the skirt (its rim, at 40 × 16);
 // - passes: `--passes` XPBD passes (Macklin et al. 2016), λ accumulated and held to ±HB·h², each slider following
 //   after its stencil's update (the first try: stiff, overlapping springs in Gauss–Seidel passes, whose
 //   convergence was not shown; docs/materials.md §3.6, "Bending hysteresis").
@@ -28,6 +31,7 @@
 //       [--lower T (the skirt laid on a support that is then lowered: a 40 cm square plate 1 cm thick whose top is the
 //       pedestal's, moved 30 cm down at constant speed over T [s], the scene then run T + 6 s; without it the skirt
 //       falls free from flat, as in the scene)]
+//       [--history S (each specimen's drape coefficient and folds every S seconds as it falls and settles)]
 //       [--cantilever R (instead: the `cantilever` scene at cloth.resolution R with each fabric's ρ_A and B, its
 //       bending length with and without the friction)]
 // prints each specimen's drape coefficient and folds beside the measured ones. The reference runs every phase in
@@ -41,9 +45,11 @@ import { arg } from './solver-study-common.mjs';
 const chosen = arg('fabrics', 'A,B,C,F').split(',');
 const seeds = arg('seeds', '1').split(',').map(Number);
 const resolution = Number(arg('resolution', '48'));
+const newtonMost = Number(arg('newton', '30'));
 const passes = Number(arg('passes', '24')), ratio = Number(arg('ratio', '10')), factor = Number(arg('hysteresis', '1'));
 const substeps = arg('substeps', null), iterations = arg('iterations', null), damping = arg('damping', null);
 const lower = arg('lower', null);
+const history = arg('history', null);
 const method = arg('solve', 'cg');
 const cantilever = arg('cantilever', null);
 if (method !== 'cg' && method !== 'passes') throw new Error(`--solve: cg or passes, got '${method}'`);
@@ -51,7 +57,7 @@ for (const id of chosen) {
   const f = FABRICS.find((x) => x[0] === id);
   if (!f || f[8] === null) throw new Error(`--fabrics: '${id}' has no measured 2HB (${FABRICS.filter((x) => x[8] !== null).map((x) => x[0]).join(', ')} have)`);
 }
-if (!(Number.isInteger(passes) && passes >= 1 && ratio > 0 && factor >= 0)) throw new Error('--passes: an integer ≥ 1; --ratio > 0; --hysteresis ≥ 0');
+if (!(Number.isInteger(passes) && passes >= 1 && ratio > 0 && factor >= 0 && (history === null || Number(history) > 0) && Number.isInteger(newtonMost) && newtonMost >= 1)) throw new Error('--passes, --newton: integers ≥ 1; --ratio > 0; --hysteresis ≥ 0; --history > 0');
 
 /** The friction's memory for one model: sliders, λ of the substep, vertex normals (made once, before the frames). */
 class BendingFriction {
@@ -66,8 +72,15 @@ class BendingFriction {
     this.normals = new Float64Array(3 * model.particleCount);
     // the implicit step's vectors (3 per particle) and per-stencil values
     const N3 = 3 * model.particleCount;
-    this.cg = { d: new Float64Array(N3), r: new Float64Array(N3), z: new Float64Array(N3), p: new Float64Array(N3), q: new Float64Array(N3), diag: new Float64Array(N3), s0: new Float64Array(m), kf: new Float64Array(m), nv: new Float64Array(3 * m), t: new Float64Array(m) };
+    this.cg = {
+      d: new Float64Array(N3), r: new Float64Array(N3), z: new Float64Array(N3), p: new Float64Array(N3), q: new Float64Array(N3), diag: new Float64Array(N3),
+      grad: new Float64Array(N3), step: new Float64Array(N3), trial: new Float64Array(N3),
+      s0: new Float64Array(m), kf: new Float64Array(m), ka: new Float64Array(m), u: new Float64Array(m), nv: new Float64Array(3 * m), t: new Float64Array(m),
+    };
+    // the most CG iterations of one Newton iteration, Newton iterations, and CG iterations of one step, over the run
     this.iterations = 0;
+    this.newton = 0;
+    this.cgPerStep = 0;
   }
 
   /** vertex normals: the sum of each vertex's triangles' (area-weighted) normals */
@@ -87,18 +100,21 @@ class BendingFriction {
 
   /**
    * The friction's step solved implicitly: with the vertex normals of x* (the positions the elastic step left) held,
-   * the sliders' springs' backward-Euler step, min_d ½·|M^½·d|²/h² + Σ_v ½·k_f·(s_v(x* + d) − s_p)², i.e.
-   * (M/h² + k_f·Σ_v g_v·g_vᵀ)·d = k_f·Σ_v g_v·(s_p − s_v(x*)), g_v the gradient of s_v (K_k·n_v at particle k),
-   * pinned particles held; by conjugate gradients with a Jacobi preconditioner, to a relative residual of 10⁻⁸. Then
-   * each slider follows where its spring pulls harder than HB: a return mapping with the springs' stiffness held
-   * through the step (sticking everywhere within a step), which converges to the stick–slip law as h shrinks.
+   * s_v(x* + d) = s_v(x*) + g_v·d is linear in the step d (g_v: K_k·n_v at particle k), and the backward-Euler step of
+   * the springs in series with their sliders is the convex problem
+   *   min_d ½·|M^½·d|²/h² + Σ_v φ_v(s_v(x* + d) − s_p),
+   * φ_v(u) = ½·k_f·u² for |u| ≤ r = HB/k_f and HB·|u| − ½·HB·r beyond (the slider gives: Huber's function, whose
+   * minimiser with the slider then moved to within r is the return mapping done inside the step, so no spring ever
+   * pulls harder than HB). Solved by semi-smooth Newton: each iteration a linear solve with the sticking stencils'
+   * stiffness (conjugate gradients, Jacobi-preconditioned, to a relative residual of 10⁻⁸), then a backtracking line
+   * search on the objective, until the gradient is 10⁻⁸ of the first one's (at most `newtonMost` iterations).
+   * Pinned particles held. Then each slider follows to within r of its spring's end.
    */
   solve(state, h) {
     const x = state.positions, w = state.invMass, { offsets, vertices, weights: K, areas } = this.stencils;
     const m = areas.length, N3 = x.length, n = this.normals, sp = this.slider;
-    const { d, r, z, p, q, diag, s0, kf, nv, t } = this.cg, h2 = h * h;
+    const { d, r, z, p, q, diag, s0, kf, nv, t, ka, u, grad, step, trial } = this.cg, h2 = h * h, HB = this.HB;
     this.updateNormals(x);
-    for (let i = 0; i < N3; i += 3) diag[i] = diag[i + 1] = diag[i + 2] = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 1;
     for (let e = 0; e < m; e++) {
       const from = offsets[e], to = offsets[e + 1], v = 3 * vertices[from];
       const len = Math.hypot(n[v], n[v + 1], n[v + 2]);
@@ -106,53 +122,98 @@ class BendingFriction {
       const nx = len > 0 ? n[v] / len : 0, ny = len > 0 ? n[v + 1] / len : 0, nz = len > 0 ? n[v + 2] / len : 0;
       nv[3 * e] = nx; nv[3 * e + 1] = ny; nv[3 * e + 2] = nz;
       let sv = 0;
-      for (let k = from; k < to; k++) {
-        const i = vertices[k], at = 3 * i;
-        sv += K[k] * (x[at] * nx + x[at + 1] * ny + x[at + 2] * nz);
-        if (w[i] > 0) { diag[at] += kf[e] * K[k] * K[k] * nx * nx; diag[at + 1] += kf[e] * K[k] * K[k] * ny * ny; diag[at + 2] += kf[e] * K[k] * K[k] * nz * nz; }
-      }
+      for (let k = from; k < to; k++) { const at = 3 * vertices[k]; sv += K[k] * (x[at] * nx + x[at + 1] * ny + x[at + 2] * nz); }
       s0[e] = sv;
     }
-    // b = Σ_v k_f·g_v·(s_p − s_v(x*)), into r (d starts at 0, so r = b)
-    r.fill(0); d.fill(0);
-    for (let e = 0; e < m; e++) {
-      if (kf[e] === 0) continue;
-      const from = offsets[e], to = offsets[e + 1], c0 = kf[e] * (sp[e] - s0[e]), nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
-      for (let k = from; k < to; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) { const c = c0 * K[k]; r[at] += c * nx; r[at + 1] += c * ny; r[at + 2] += c * nz; } }
+    // u_e = s_v(x* + d) − s_p, the objective, and (with `withGrad`) its gradient, for the step `y`
+    const gd = (y, e) => {
+      let g = 0;
+      const nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) g += K[k] * (y[at] * nx + y[at + 1] * ny + y[at + 2] * nz); }
+      return g;
+    };
+    const objective = (y, withGrad) => {
+      let phi = 0;
+      for (let i = 0; i < N3; i += 3) {
+        const mi = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 0;
+        phi += 0.5 * mi * (y[i] * y[i] + y[i + 1] * y[i + 1] + y[i + 2] * y[i + 2]);
+        if (withGrad) { grad[i] = mi * y[i]; grad[i + 1] = mi * y[i + 1]; grad[i + 2] = mi * y[i + 2]; }
+      }
+      for (let e = 0; e < m; e++) {
+        if (kf[e] === 0) continue;
+        const ue = s0[e] + gd(y, e) - sp[e], reach = HB / kf[e];
+        phi += Math.abs(ue) <= reach ? 0.5 * kf[e] * ue * ue : HB * Math.abs(ue) - 0.5 * HB * reach;
+        if (withGrad) {
+          u[e] = ue;
+          const f = Math.abs(ue) <= reach ? kf[e] * ue : Math.sign(ue) * HB;
+          const nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
+          for (let k = offsets[e]; k < offsets[e + 1]; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) { const c = f * K[k]; grad[at] += c * nx; grad[at + 1] += c * ny; grad[at + 2] += c * nz; } }
+        }
+      }
+      if (withGrad) for (let i = 0; i < N3; i += 3) if (!(w[i / 3] > 0)) grad[i] = grad[i + 1] = grad[i + 2] = 0;
+      return phi;
+    };
+    d.fill(0);
+    let phi = objective(d, true), g0 = 0, newton = 0, cgTotal = 0;
+    for (let i = 0; i < N3; i++) g0 += grad[i] * grad[i];
+    for (; newton < newtonMost && g0 > 0; newton++) {
+      let gg = 0;
+      for (let i = 0; i < N3; i++) gg += grad[i] * grad[i];
+      if (gg <= 1e-16 * g0) break;
+      // the sticking stencils' stiffness; the Newton system H·step = −grad
+      for (let i = 0; i < N3; i += 3) diag[i] = diag[i + 1] = diag[i + 2] = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 1;
+      for (let e = 0; e < m; e++) {
+        ka[e] = kf[e] > 0 && Math.abs(u[e]) <= HB / kf[e] ? kf[e] : 0;
+        if (ka[e] === 0) continue;
+        const nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
+        for (let k = offsets[e]; k < offsets[e + 1]; k++) { const i = vertices[k], at = 3 * i; if (w[i] > 0) { const c = ka[e] * K[k] * K[k]; diag[at] += c * nx * nx; diag[at + 1] += c * ny * ny; diag[at + 2] += c * nz * nz; } }
+      }
+      let rz = 0, bb = 0;
+      for (let i = 0; i < N3; i++) { step[i] = 0; r[i] = -grad[i]; z[i] = r[i] / diag[i]; p[i] = z[i]; rz += r[i] * z[i]; bb += r[i] * r[i]; }
+      let it = 0;
+      for (; it < 2000; it++) {
+        this.apply(p, q, w, h2);
+        let pq = 0;
+        for (let i = 0; i < N3; i++) pq += p[i] * q[i];
+        const a = rz / pq;
+        let rr = 0;
+        for (let i = 0; i < N3; i++) { step[i] += a * p[i]; r[i] -= a * q[i]; rr += r[i] * r[i]; }
+        if (rr <= 1e-16 * bb) break;
+        let rz2 = 0;
+        for (let i = 0; i < N3; i++) { z[i] = r[i] / diag[i]; rz2 += r[i] * z[i]; }
+        const beta = rz2 / rz;
+        rz = rz2;
+        for (let i = 0; i < N3; i++) p[i] = z[i] + beta * p[i];
+      }
+      cgTotal += it;
+      this.iterations = Math.max(this.iterations, it);
+      // backtracking (Armijo) on the convex objective
+      let slope = 0;
+      for (let i = 0; i < N3; i++) slope += grad[i] * step[i];
+      let a = 1, next = phi;
+      for (let tries = 0; tries < 40; tries++, a *= 0.5) {
+        for (let i = 0; i < N3; i++) trial[i] = d[i] + a * step[i];
+        next = objective(trial, false);
+        if (next <= phi + 1e-4 * a * slope) break;
+      }
+      if (!(next < phi)) break; // no descent left: at the minimum to rounding
+      d.set(trial);
+      phi = objective(d, true);
     }
-    let rz = 0, bb = 0;
-    for (let i = 0; i < N3; i++) { z[i] = r[i] / diag[i]; p[i] = z[i]; rz += r[i] * z[i]; bb += r[i] * r[i]; }
-    let it = 0;
-    if (bb > 0) for (; it < 2000; it++) {
-      this.apply(p, q, w, h2);
-      let pq = 0;
-      for (let i = 0; i < N3; i++) pq += p[i] * q[i];
-      const a = rz / pq;
-      let rr = 0;
-      for (let i = 0; i < N3; i++) { d[i] += a * p[i]; r[i] -= a * q[i]; rr += r[i] * r[i]; }
-      if (rr <= 1e-16 * bb) break;
-      let rz2 = 0;
-      for (let i = 0; i < N3; i++) { z[i] = r[i] / diag[i]; rz2 += r[i] * z[i]; }
-      const beta = rz2 / rz;
-      rz = rz2;
-      for (let i = 0; i < N3; i++) p[i] = z[i] + beta * p[i];
-    }
-    this.iterations = Math.max(this.iterations ?? 0, it);
+    this.newton = Math.max(this.newton, newton);
+    this.cgPerStep = Math.max(this.cgPerStep, cgTotal);
     for (let i = 0; i < N3; i++) if (w[(i / 3) | 0] > 0) x[i] += d[i];
-    // return mapping: s_v after the step, the slider within HB/k_f of it
+    // each slider to within r of its spring's end (u at the final d, from the last gradient's evaluation)
     for (let e = 0; e < m; e++) {
       if (kf[e] === 0) continue;
-      const from = offsets[e], to = offsets[e + 1], nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
-      let sv = 0;
-      for (let k = from; k < to; k++) { const at = 3 * vertices[k]; sv += K[k] * (x[at] * nx + x[at + 1] * ny + x[at + 2] * nz); }
-      const reach = this.HB / kf[e];
-      if (sv - sp[e] > reach) sp[e] = sv - reach; else if (sv - sp[e] < -reach) sp[e] = sv + reach;
+      const ue = s0[e] + gd(d, e) - sp[e], reach = HB / kf[e];
+      if (ue > reach) sp[e] += ue - reach; else if (ue < -reach) sp[e] += ue + reach;
     }
   }
 
-  /** A·y into out: M/h²·y + Σ_v k_f·g_v·(g_vᵀ·y), pinned rows the identity (the step's kf, nv set by solve) */
+  /** A·y into out: M/h²·y + Σ_v k_a·g_v·(g_vᵀ·y), k_a the sticking stencils' k_f (0 where the slider gives), pinned rows the identity (set by solve) */
   apply(y, out, w, h2) {
-    const { offsets, vertices, weights: K, areas } = this.stencils, { kf, nv, t } = this.cg, m = areas.length, N3 = y.length;
+    const { offsets, vertices, weights: K, areas } = this.stencils, { ka: kf, nv, t } = this.cg, m = areas.length, N3 = y.length;
     for (let i = 0; i < N3; i += 3) { const mi = w[i / 3] > 0 ? 1 / (w[i / 3] * h2) : 1; out[i] = mi * y[i]; out[i + 1] = mi * y[i + 1]; out[i + 2] = mi * y[i + 2]; }
     for (let e = 0; e < m; e++) {
       if (kf[e] === 0) continue;
@@ -292,7 +353,7 @@ if (cantilever !== null) {
 console.log('| fabric | HB [mN] | HB/B [1/m] | specimens: drape coefficient, folds → mean | measured (folds) | Drape − measured |');
 console.log('|---|---|---|---|---|---|');
 const pairs = [];
-let cgMost = 0;
+let cgMost = 0, newtonSeen = 0, cgStepMost = 0;
 const worst = [];
 for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
   const [id, what, , , , [B], measured, , twoHB, measuredFolds] = f;
@@ -313,9 +374,21 @@ for (const f of FABRICS.filter((x) => chosen.includes(x[0]))) {
     if (sim.params.bending === 'springs' || sim.params.bendingSolve !== 'global') throw new Error('the cusick scene no longer solves bending stencils together, the phase the friction follows');
     const friction = HB > 0 ? new BendingFriction(sim.model, HB, B) : null;
     sim.useBackend(new HysteresisBackend(sim.model, friction));
-    sim.advance(Math.round(scene.duration * 60));
+    const frames = Math.round(scene.duration * 60);
+    if (history !== null) {
+      // the reading as the skirt falls and settles: when its folds form, and whether they change
+      const every = Math.max(1, Math.round(Number(history) * 60)), trace = [];
+      for (let done = 0; done < frames;) {
+        const step = Math.min(every, frames - done);
+        sim.advance(step);
+        done += step;
+        const r = sim.report().test;
+        trace.push(`${(done / 60).toFixed(1)} s ${r.drapeCoefficient.toFixed(3)}, ${r.folds}`);
+      }
+      console.log(`${id} seed ${seed}, ${friction ? 'with' : 'without'} the friction: ${trace.join('; ')}`);
+    } else sim.advance(frames);
     const t = sim.report().test;
-    if (friction) { cgMost = Math.max(cgMost, friction.iterations ?? 0); worst.push(`${id} seed ${seed}: ${friction.lastWorst.toFixed(2)}`); }
+    if (friction) { cgMost = Math.max(cgMost, friction.iterations ?? 0); newtonSeen = Math.max(newtonSeen, friction.newton); cgStepMost = Math.max(cgStepMost, friction.cgPerStep); worst.push(`${id} seed ${seed}: ${friction.lastWorst.toFixed(2)}`); }
     sim.dispose();
     return t;
   });
@@ -330,4 +403,4 @@ if (pairs.length > 1) {
   console.log(`\n${n} fabrics: Drape − measured ${(my - mx).toFixed(3)} on average, RMS ${Math.sqrt(sdd / n).toFixed(3)}; slope of Drape's on the measured ${(sxy / sxx).toFixed(2)}`);
 }
 if (worst.length) console.log(`the sliders' springs right after the friction's step in the last substep, the largest |k_f·(s_v − s_p)| / HB (at most 1 where it resolved the friction): ${worst.join('; ')}`);
-if (method === 'cg' && cgMost > 0) console.log(`the friction's step took at most ${cgMost} conjugate-gradient iterations a substep`);
+if (method === 'cg' && cgMost > 0) console.log(`the friction's step took at most ${newtonSeen} Newton iterations a substep (${newtonMost} allowed), ${cgMost} conjugate-gradient iterations in one of them and ${cgStepMost} in one substep`);
