@@ -283,6 +283,11 @@ describe('drape CLI', () => {
     expect(text).toMatch(/^o mine\nusemtl cotton_fabric$/m);
     expect(readFileSync(join(dir, 'cloth.mtl'), 'utf8')).toMatch(/^newmtl cotton_fabric\nKd 0\.5882 0\.6627 0\.7725\n/m);
     expect(r.out).toContain(`exported     ${obj} and ${join(dir, 'cloth.mtl')}`);
+    // a name with a space: the MTL's name has none, so that the mtllib line (names end at white space) names it
+    const spaced = join(dir, 'my cloth.obj');
+    expect((await run('run', file, '--frames', '1', '--export', spaced)).code).toBe(0);
+    expect(readFileSync(spaced, 'utf8').split('\n')[1]).toBe('mtllib my_cloth.mtl');
+    expect(readFileSync(join(dir, 'my_cloth.mtl'), 'utf8')).toMatch(/^newmtl cotton_fabric$/m);
   });
 
   it('exports a .glb and bakes the run into one: its start and every stride-th frame, the last always', async () => {

@@ -184,7 +184,14 @@ interface RunResult {
 }
 
 /** The .mtl file an OBJ export writes beside it. */
-const mtlPath = (obj: string) => obj.replace(/\.obj$/i, '.mtl');
+/**
+ * The MTL file beside an OBJ: its name with `.mtl` for `.obj`, and white space and control characters as `_`, so
+ * that the OBJ's `mtllib` line (names end at white space) names the file that is written.
+ */
+const mtlPath = (obj: string) => {
+  const name = basename(obj);
+  return obj.slice(0, obj.length - name.length) + name.replace(/\.obj$/i, '.mtl').replace(/[\s\p{C}]/gu, '_');
+};
 
 /** Most bytes a bake may have: past this --bake is refused before the run, naming a stride that fits. */
 const MAX_BAKE_BYTES = 2 ** 30;

@@ -40,6 +40,16 @@ describe('the OBJ and MTL writers', () => {
     expect(Math.max(...used)).toBe(starts[2] - 1);
   });
 
+  it('object names: one line, no #, and a name for an empty one', () => {
+    const odd = validateScene({
+      cloths: ['', '   ', 'a b#c'].map((name, k) => ({ name, cloth: { resolution: 1, position: [0, 1 + k, 0] } })),
+    });
+    const s = new Simulation(odd, { kernel: 'ts' });
+    const text = toOBJ({ name: odd.name, cloths: modelCloths(s.model, s.state.positions, exportCloths(odd)) });
+    expect(text.match(/^o .*$/gm)).toEqual(['o cloth 1', 'o cloth 2', 'o a b_c']);
+    s.dispose();
+  });
+
   it('refuses what is not a finite number: positions (OBJ), a colour or roughness (MTL)', () => {
     const sim = new Simulation(validateScene({ cloth: { resolution: 2 } }), { kernel: 'ts' });
     const x = sim.state.positions.slice();

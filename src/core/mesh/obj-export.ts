@@ -19,6 +19,12 @@ export interface ObjInput {
 /** one word: OBJ and MTL names end at white space */
 const word = (s: string) => plainText(s, 60).replace(/\s+/g, '_') || 'material';
 
+/**
+ * An object's name (`o`): one line, no `#` (some readers take it for a comment's start), and `cloth N` for a name
+ * that is empty or white space.
+ */
+const objectName = (s: string, k: number) => plainText(s, 100).replace(/#/g, '_').trim() || `cloth ${k + 1}`;
+
 /** Each distinct material of the cloths with a name of its own (a repeated name gets a number). */
 function materialNames(input: ObjInput): Map<GlbMaterial, string> {
   const names = new Map<GlbMaterial, string>(), used = new Set<string>();
@@ -49,7 +55,7 @@ export function toOBJ(input: ObjInput): string {
   // one vertex list: cloth c's vertices follow the earlier cloths' (1-based)
   let first = 1;
   for (const c of cloths) {
-    lines.push(`o ${cloths.length > 1 ? plainText(c.name, 100) : safe}`);
+    lines.push(`o ${objectName(cloths.length > 1 ? c.name : input.name, cloths.indexOf(c))}`);
     if (input.mtllib !== undefined) lines.push(`usemtl ${materials.get(c.material)}`);
     const t = c.triangles;
     for (let k = 0; k < t.length; k += 3) {
