@@ -169,6 +169,15 @@ describe('the .glb writer', () => {
     expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, bad, dress) })).toThrow(/^glb: cloth 'cloth' has positions that are not finite \(vertex 2\)$/);
     expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress, [shapes[0], bad]), bake })).toThrow(/cloth 'cloth''s baked frame 2 has positions that are not finite/);
     expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress, shapes), bake: { ...bake, times: [0.1, 0.1] } })).toThrow(/times must increase/);
+    // what a file cannot hold: a time past float32 (written as Infinity before), frame numbers that are not counts
+    const cloths = modelCloths(sim.model, first, dress, shapes);
+    expect(() => toGLB({ name: 'x', cloths, bake: { ...bake, times: [0.1, 1e308] } })).toThrow(/^glb: the baked frames' times must increase from 0 \[s\], each a finite float32$/);
+    expect(() => toGLB({ name: 'x', cloths, bake: { ...bake, times: [0.1, 0.1 + 1e-12] } })).toThrow(/times must increase/); // one float32
+    for (const frameNumbers of [[1, NaN], [2, 1], [1, 1.5], [1, '\u001b[31m']]) {
+      expect(() => toGLB({ name: 'x', cloths, bake: { ...bake, frameNumbers: frameNumbers as number[] } })).toThrow(/^glb: the baked frames' numbers must be integers increasing from 1, got /);
+    }
+    for (const input of [null, {}, { name: 'x', cloths: 3 }]) expect(() => toGLB(input as never)).toThrow(/^glb: the input must be \{ name, cloths: \[\.\.\.\] \}/);
+    expect(() => toGLB({ name: 'x', cloths, bake: 5 as never })).toThrow(/^glb: bake must be/);
     expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress, shapes.slice(1)), bake })).toThrow(/has 1 baked frames for 2 times/);
     expect(() => toGLB({ name: 'x', cloths: modelCloths(sim.model, first, dress), bake })).toThrow(/has 0 baked frames for 2 times/);
     expect(() => modelCloths(sim.model, first, [])).toThrow(/0 cloths given for a model of 1/);

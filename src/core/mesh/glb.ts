@@ -149,14 +149,30 @@ export function checkMaterial(m: GlbMaterial, format: string): void {
   }
 }
 
+/** Throws TypeError unless `input` is a writer's input: `{ name, cloths: [...] }` (the library's callers pass anything). */
+export function checkInput(input: { name: string; cloths: readonly ExportCloth[] }, format: string): void {
+  if (input === null || typeof input !== 'object' || !Array.isArray(input.cloths)) {
+    throw new TypeError(`${format}: the input must be { name, cloths: [...] } (modelCloths makes the cloths), got ${shownValue(input)}`);
+  }
+}
+
 /** Throws RangeError naming what is wrong with `input`: non-finite positions, arrays of the wrong size, a bad bake. */
 function check(input: GlbInput): void {
+  checkInput(input, 'glb');
   const { bake } = input;
+  if (bake !== undefined && (bake === null || typeof bake !== 'object' || !Array.isArray(bake.times) || !Array.isArray(bake.frameNumbers))) {
+    throw new TypeError('glb: bake must be { times: [...], frameNumbers: [...] }');
+  }
   const targets = bake?.times.length ?? 0;
   if (bake) {
     if (targets < 1 || bake.frameNumbers.length !== targets) throw new RangeError('glb: a bake needs at least one frame, each with a time and a number');
+    // the times as the file holds them, float32: each finite and after the one before (1e308 was written as Infinity)
     bake.times.forEach((t, k) => {
-      if (!(t > (k ? bake.times[k - 1] : 0)) || !Number.isFinite(t)) throw new RangeError('glb: the baked frames\' times must increase from 0');
+      const f32 = typeof t === 'number' ? Math.fround(t) : NaN;
+      if (!(Number.isFinite(f32) && f32 > (k ? Math.fround(bake.times[k - 1]) : 0))) throw new RangeError('glb: the baked frames\' times must increase from 0 [s], each a finite float32');
+    });
+    bake.frameNumbers.forEach((f, k) => {
+      if (!(Number.isSafeInteger(f) && f > (k ? bake.frameNumbers[k - 1] : 0))) throw new RangeError(`glb: the baked frames' numbers must be integers increasing from 1, got ${shownValue(f)}`);
     });
   }
   for (const c of input.cloths) {

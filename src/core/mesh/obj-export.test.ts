@@ -59,6 +59,10 @@ describe('the OBJ and MTL writers', () => {
     const [c] = modelCloths(sim.model, sim.state.positions, exportCloths(sim.scene));
     expect(() => toMTL({ name: 'x', cloths: [{ ...c, material: { ...c.material, roughness: NaN } }] })).toThrow(/^mtl: material '.*' has a colour or roughness that is not a finite number$/);
     expect(toOBJ({ name: 'x', cloths: [c] })).not.toMatch(/NaN|Infinity/);
+    for (const input of [null, {}, { name: 'x' }]) {
+      expect(() => toOBJ(input as never)).toThrow(/^obj: the input must be \{ name, cloths: \[\.\.\.\] \}/);
+      expect(() => toMTL(input as never)).toThrow(/^mtl: the input must be/);
+    }
     sim.dispose();
   });
 

@@ -6,7 +6,7 @@
  * from the scene are written on one line each, without control characters: a name cannot add lines to the file.
  */
 import { plainText } from '../text.js';
-import { checkFinite, checkMaterial, type ExportCloth, type GlbMaterial } from './glb.js';
+import { checkFinite, checkInput, checkMaterial, type ExportCloth, type GlbMaterial } from './glb.js';
 import { vertexNormals } from './normals.js';
 
 /** What the OBJ writer takes: the scene's name, its cloths as the glb writer's; `mtllib` names the MTL file beside it. */
@@ -40,6 +40,7 @@ function materialNames(input: ObjInput): Map<GlbMaterial, string> {
 
 /** The OBJ text (see the module's comment). Throws RangeError on non-finite positions (a file never holds a NaN). */
 export function toOBJ(input: ObjInput): string {
+  checkInput(input, 'obj');
   const safe = plainText(input.name, 100), cloths = input.cloths;
   for (const c of cloths) checkFinite(c.positions, `cloth '${plainText(c.name, 40)}'`, 'obj');
   const materials = materialNames(input);
@@ -75,6 +76,7 @@ const channel = (v: number) => Math.min(1, Math.max(0, v)).toFixed(4);
  * RangeError on a colour or roughness that is not finite.
  */
 export function toMTL(input: ObjInput): string {
+  checkInput(input, 'mtl');
   const lines = [`# Drape materials of '${plainText(input.name, 100)}'`];
   for (const [m, name] of materialNames(input)) {
     checkMaterial(m, 'mtl');
