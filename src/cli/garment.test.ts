@@ -11,7 +11,7 @@ import { fileURLToPath } from 'node:url';
 import { afterAll, describe, expect, it } from 'vitest';
 import { FRAME_DT, Simulation, type Report, type SimulationOptions } from '../core/index.js';
 import { main } from './main.js';
-import { loadSceneFile } from './node.js';
+import { loadSceneFile, meshReader } from './node.js';
 import { spawnNodeHelper } from './threads.js';
 
 const SCENE = fileURLToPath(new URL('../../examples/tshirt.json', import.meta.url));
@@ -180,6 +180,10 @@ describe('the CLI runs a garment scene', () => {
     expect(JSON.parse(sweep.out).sweep).toBeUndefined();
   });
 
+  it('meshReader names a bad argument instead of failing inside node:path', () => {
+    expect(() => meshReader(42 as never)).toThrow(/^meshReader: the folder mesh files are read from must be a path \(a string\), got 42$/);
+    expect(() => meshReader()(7 as never)).toThrow(/^meshReader: a mesh file's path must be a string, got 7$/);
+  });
   it('the disc and the tube are shapes of the scene', async () => {
     const disc = JSON.parse((await run('run', '--set', 'cloth.shape=disc', '--set', 'cloth.resolution=8', '--frames', '5', '--json')).out);
     expect(disc).toMatchObject({ particles: 1 + 3 * 4 * 5, finite: true });

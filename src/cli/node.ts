@@ -4,7 +4,7 @@
  * .gltf's separate buffers relative to the .gltf.
  */
 import { dirname, isAbsolute, relative, resolve } from 'node:path';
-import { meshFormat, parseMeshFile, parseScene, type MeshResolver, type Scene, type TriangleMesh } from '../core/index.js';
+import { meshFormat, parseMeshFile, parseScene, shownValue, type MeshResolver, type Scene, type TriangleMesh } from '../core/index.js';
 import { readInputBytes, readInputFile } from './files.js';
 import { UsageError } from './errors.js';
 
@@ -13,8 +13,10 @@ import { UsageError } from './errors.js';
  * a path names, relative to `baseDir` (default: the working folder).
  */
 export function meshReader(baseDir = process.cwd()): MeshResolver {
+  if (typeof baseDir !== 'string') throw new TypeError(`meshReader: the folder mesh files are read from must be a path (a string), got ${shownValue(baseDir)}`);
   const cache = new Map<string, TriangleMesh>();
   return (path: string) => {
+    if (typeof path !== 'string') throw new TypeError(`meshReader: a mesh file's path must be a string, got ${shownValue(path)}`);
     const file = resolve(baseDir, path);
     let mesh = cache.get(file);
     if (!mesh) {

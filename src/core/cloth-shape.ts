@@ -10,7 +10,7 @@ import { parseGltf, type ExternalReader } from './mesh/gltf.js';
 import { parseObj } from './mesh/obj.js';
 import { extent, prepareMesh, type TriangleMesh } from './mesh/triangle-mesh.js';
 import { SceneError, clothEntries, type ClothSpec, type Scene } from './scene.js';
-import { plainText } from './text.js';
+import { plainText, shownValue } from './text.js';
 
 /** The cloth shapes a scene can name (`cloth.shape`). */
 export const CLOTH_SHAPES = ['rectangle', 'disc', 'tube', 'mesh'] as const;
@@ -27,7 +27,10 @@ export const MESH_EXTENSIONS = ['.obj', '.gltf', '.glb'] as const;
  * buffers. Throws SceneError naming the file. The mesh is checked when a model is built from it.
  */
 export function parseMeshFile(bytes: Uint8Array, name: string, readExternal?: ExternalReader): TriangleMesh {
+  if (typeof name !== 'string') throw new TypeError(`parseMeshFile: the file's name must be a string (its extension says the format), got ${shownValue(name)}`);
   const shown = plainText(name, 200);
+  // the file's bytes: a Uint8Array (a Node Buffer is one); an ArrayBuffer or anything else is refused by name
+  if (!(bytes instanceof Uint8Array)) throw new TypeError(`parseMeshFile: ${shown}: the file's contents must be a Uint8Array, got ${shownValue(bytes)}`);
   return meshFormat(name) === '.obj' ? parseObj(new TextDecoder().decode(bytes), shown) : parseGltf(bytes, shown, readExternal);
 }
 

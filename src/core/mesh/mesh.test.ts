@@ -350,6 +350,15 @@ describe('mesh files', () => {
     expect(error(() => parseGltf(enc(short), 's.gltf'))).toBe('s.gltf: buffer view 0 reaches past the end of buffer 0 (its byteLength 1)');
     expect(error(() => parseGltf(enc({ ...doc, buffers: [{ ...doc.buffers[0], byteLength: 'x' }] }), 's.gltf'))).toBe('s.gltf: buffer 0 has a byteLength that is not a whole number');
   });
+  it('parseMeshFile names a bad argument: contents that are not bytes, a name that is not a string', () => {
+    const obj = new TextEncoder().encode('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');
+    expect(parseMeshFile(obj, 't.obj').triangles.length).toBe(3);
+    // undefined used to read as an empty OBJ, and 42 or null as a TypeError from inside
+    for (const bytes of [undefined, null, 42, 'v 0 0 0', obj.buffer]) {
+      expect(() => parseMeshFile(bytes as never, 't.obj')).toThrow(/^parseMeshFile: t\.obj: the file's contents must be a Uint8Array, got /);
+    }
+    expect(() => parseMeshFile(obj, 7 as never)).toThrow(/^parseMeshFile: the file's name must be a string/);
+  });
   it('a file of another kind is refused by name', () => {
     expect(error(() => parseMeshFile(new Uint8Array(4), 'shirt.fbx'))).toBe('shirt.fbx: not a mesh file Drape reads (.obj, .gltf, .glb)');
   });
