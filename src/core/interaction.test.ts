@@ -3,6 +3,7 @@ import { pickParticle } from './pick.js';
 import { presetParticles, resolvePins } from './pins.js';
 import { modelFor } from './cloth-shape.js';
 import { builtinScene } from './scenes.js';
+import { validateScene } from './scene.js';
 import { Simulation } from './simulation.js';
 import { grab, setPinned } from './state.js';
 
@@ -36,6 +37,11 @@ describe('picking, pins and live changes', () => {
     const disc = modelFor(scene);
     expect(() => resolvePins(disc, ['center', 'top-edge'])).toThrow("pins[1]: pin preset 'top-edge' names a corner or an edge of a rectangle, and this cloth is not one; pin particles by index (in the app: click them with the pin tool)");
     expect(() => resolvePins(disc, ['top-edge'], 'colliders[2].pins')).toThrow("colliders[2].pins[0]: pin preset 'top-edge' names a corner or an edge of a rectangle, and this cloth is not one; give the collider's pins as particle indices or regions");
+    // a list of one cloth names its entry, as a list of two does (it said 'pins[0]')
+    for (const count of [1, 2]) {
+      const cloths = Array.from({ length: count }, (_, k) => ({ cloth: { resolution: 3, shape: 'disc', position: [0, 1 + k, 0] }, pins: ['top-left'] }));
+      expect(() => new Simulation(validateScene({ cloths }), { kernel: 'ts' })).toThrow(/^cloths\[0\]\.pins\[0\]: pin preset 'top-left' names a corner/);
+    }
   });
 
   // a pointer dragged into the sphere: the grabbed particle is kinematic (contact skips it), so the target itself is

@@ -107,8 +107,10 @@ export function scenePins(model: ClothModel, scene: Scene): number[] {
   const set = new Set<number>();
   clothEntries(scene).forEach((e, c) => {
     const part = model.clothParts?.[c];
-    if (!part) { for (const i of resolvePins(model, e.pins)) set.add(i); return; }
-    for (const i of resolvePins(part, e.pins, `cloths[${c}].pins`)) set.add(i + model.clothStarts[c]);
+    // named as the scene names them: 'pins' in a one-cloth scene, 'cloths[0].pins' in a list of one
+    const path = scene.cloths ? `cloths[${c}].pins` : 'pins';
+    if (!part) { for (const i of resolvePins(model, e.pins, path)) set.add(i); return; }
+    for (const i of resolvePins(part, e.pins, path)) set.add(i + model.clothStarts[c]);
   });
   scene.colliders.forEach((c, k) => { for (const i of resolvePins(model, c.pins ?? [], `colliders[${k}].pins`)) set.add(i); });
   return [...set].sort((a, b) => a - b);
