@@ -46,7 +46,7 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
   const cloths: HudCloth[] | undefined = entries.length > 1 && starts?.length === entries.length + 1
     ? entries.map((e, k) => ({ name: plainText(clothName(e, k), 40), shape: shapeWords(e.cloth), particles: starts[k + 1] - starts[k] }))
     : undefined;
-  const slow = !sim.paused && sim.stats.realTime < 0.9 ? slowCause(sim.stats.realTime, sim.stats.stepMs, fps) : null;
+  const slow = !sim.paused && sim.stats.measured && sim.stats.realTime < 0.9 ? slowCause(sim.stats.realTime, sim.stats.stepMs, fps) : null;
   const measured = scene.test && first && first.unstableAt < 0 ? measureTest(first.sim.model, first.sim.state, scene) : undefined;
   return {
     notes,
@@ -58,6 +58,7 @@ export function hudInfo(app: App, fps: number, idle: boolean): HudInfo {
       : `CPU (worker${sim.stats.kernel === 'wasm' ? ', WebAssembly SIMD' : sim.stats.kernel === 'ts' ? ', TypeScript' : ''})`,
     backendNote: app.backend.note,
     stepMs: sim.stats.stepMs,
+    measuring: !sim.stats.measured,
     slow: slow?.text ?? '',
     slowBy: slow?.by ?? '',
     paused: sim.paused,

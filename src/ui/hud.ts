@@ -28,6 +28,8 @@ export interface HudInfo {
   /** why it does not run where it was asked to ('' when it does) */
   backendNote: string;
   stepMs: number;
+  /** no frame of the cloth now has been timed yet (a scene just loaded or rebuilt): its speed is unknown */
+  measuring: boolean;
   /** why the page runs slower than real time, in words with the fix that fits ('' when it keeps up or is paused) */
   slow: string;
   /** what limits it: 'simulation' or 'drawing' ('' when nothing does) */
@@ -149,13 +151,14 @@ export class Hud {
     const ok = (t: string) => [h('span', 'ok', t)];
     const warn = (t: string) => [h('span', 'warn', t)];
     if (i.paused) status.push(ok('paused — space to run, “Step” for one frame'));
+    else if (i.measuring) status.push(ok('measuring the speed… (fixed 1/60 s frames)'));
     else if (slow) status.push(warn(i.slow));
     else status.push(ok('real time (fixed 1/60 s frames)'));
     for (const n of i.notes ?? []) status.push(warn(`⚠ ${n}`));
     if (i.backendNote) status.push(warn(i.backendNote));
     for (const c of i.clamps) status.push(warn(`⚠ ${c}`));
     setLines(this.status, status);
-    this.status.dataset.state = i.paused ? 'paused' : slow ? 'slow' : 'realtime';
+    this.status.dataset.state = i.paused ? 'paused' : i.measuring ? 'measuring' : slow ? 'slow' : 'realtime';
     this.status.dataset.slowBy = slow ? i.slowBy : '';
     this.legend.replaceChildren();
     if (i.view === 'springs') {

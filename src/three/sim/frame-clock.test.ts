@@ -44,9 +44,27 @@ describe('FrameClock: the fixed-step accumulator both drivers run on', () => {
     expect(stats.realTime).toBeGreaterThan(0.4);
     expect(stats.realTime).toBeLessThan(0.6);
     expect(stats.framesDone).toBe(60);
+    expect(stats.measured).toBe(true);
     // forgetting the accumulator: nothing is due at once after clear()
     clock.tick(15, 3000, false, 1);
     clock.clear();
     expect(clock.tick(5, 3005, false, 1)).toBe(0);
+  });
+
+  it('a new cloth is unmeasured until its frames have run for half a second: the HUD does not say real time before', () => {
+    const clock = new FrameClock();
+    const stats = newStats();
+    expect(stats.measured).toBe(false);
+    for (let k = 0; k < 60; k++) { clock.tick(FRAME_MS, k * FRAME_MS, false, 1); clock.account(stats, 1, 1, false); }
+    expect([stats.measured, stats.stepMs]).toEqual([true, 1]);
+    // a heavier cloth is loaded: its first frame takes 2 s, and until it is timed nothing is known
+    clock.restart(stats);
+    expect([stats.measured, stats.stepMs]).toEqual([false, 0]);
+    for (let k = 0; k < 120; k++) clock.tick(FRAME_MS, 1000 + k * FRAME_MS, true, stats.stepMs);
+    expect(stats.measured).toBe(false);
+    clock.account(stats, 1, 2000, false);
+    expect(stats.measured).toBe(true);
+    expect(stats.realTime).toBeLessThan(0.02); // one frame of 16.7 ms in the last second
+    expect(stats.stepMs).toBe(2000);
   });
 });

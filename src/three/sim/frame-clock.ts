@@ -18,7 +18,7 @@ const FRAME_BUDGET_MS = 14;
 
 /** Statistics of a driver before it has stepped anything. */
 export function newStats(): SimStats {
-  return { stepMs: 0, realTime: 1, energy: { kinetic: 0, gravitational: 0, elastic: 0, bending: 0 }, maxStrain: 0, clamps: [], framesDone: 0, kernel: '', threads: 0 };
+  return { stepMs: 0, realTime: 1, measured: false, energy: { kinetic: 0, gravitational: 0, elastic: 0, bending: 0 }, maxStrain: 0, clamps: [], framesDone: 0, kernel: '', threads: 0 };
 }
 
 export class FrameClock {
@@ -29,6 +29,16 @@ export class FrameClock {
   /** Forgets accumulated time (a new scene, a reset). */
   clear(): void {
     this.acc = 0;
+  }
+
+  /**
+   * A new cloth (a scene loaded, a cloth rebuilt): its speed is not known yet. Forgets the accumulated time, the
+   * real-time samples and the step time, and marks `stats` unmeasured until frames of the new cloth are timed.
+   */
+  restart(stats: SimStats): void {
+    this.idle();
+    stats.stepMs = 0;
+    stats.measured = false;
   }
 
   /** Paused (or not ready): no time accumulates and the real-time measurement starts over. */
@@ -71,6 +81,7 @@ export class FrameClock {
       let n = 0;
       for (let i = 1; i < h.length; i++) n += h[i][1];
       stats.realTime = (n * FRAME_MS) / span;
+      stats.measured = true;
     }
   }
 }

@@ -81,7 +81,7 @@ export class GpuSim implements SimDriver {
       this.slots.push({ backend: null, model: null, creating: null, stale: false, lastGood: sim.state.positions.slice() });
     }
     this.readGen++;
-    this.clock.clear();
+    this.clock.restart(this.stats);
     this.mirrors.forEach((_, k) => this.ensureSolver(k));
   }
 
@@ -128,6 +128,7 @@ export class GpuSim implements SimDriver {
       // (the Simulation let the old backend go when it rebuilt)
       s.backend = null; s.model = null;
       this.ensureSolver(slot);
+      this.clock.restart(this.stats);
     }
     return rebuilt;
   }

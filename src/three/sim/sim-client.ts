@@ -31,6 +31,8 @@ export interface SimStats {
   stepMs: number;
   /** simulated time / wall time over the last second while running (1 = real time) */
   realTime: number;
+  /** whether realTime and stepMs have been measured on the cloth now (false from a load or rebuild until they are) */
+  measured: boolean;
   energy: Energy;
   maxStrain: number;
   clamps: string[];
@@ -135,7 +137,7 @@ export class SimClient implements SimDriver {
     for (const sim of sims) this.mirrors.push({ sim, modelGen: gen, frame: 0, grabbed: -1, unstableAt: -1 });
     for (const sim of sims) this.sendMeshes(sim.scene);
     this.post({ type: 'load', gen, scenes: this.mirrors.map((m) => m.sim.scene) });
-    this.clock.clear();
+    this.clock.restart(this.stats);
   }
 
   /**
@@ -146,7 +148,7 @@ export class SimClient implements SimDriver {
     const m = this.mirrors[slot];
     const gen = ++this.gen;
     const rebuilt = m.sim.setScene(scene, carry);
-    if (rebuilt) { m.modelGen = gen; m.frame = carry.length ? m.frame : 0; m.grabbed = -1; m.unstableAt = -1; }
+    if (rebuilt) { m.modelGen = gen; m.frame = carry.length ? m.frame : 0; m.grabbed = -1; m.unstableAt = -1; this.clock.restart(this.stats); }
     this.sendMeshes(m.sim.scene);
     this.post({ type: 'setScene', gen, slot, scene: m.sim.scene, carry: [...carry] });
     return rebuilt;
