@@ -462,9 +462,9 @@ describe('WebGPU page', () => {
     await loadScene(page, 'Silk Drape', 4);
     const label = () => byId(page, 'record').textContent();
     await press(page, 'record');
-    expect(await label()).toContain('stop recording (0 frames, 0.0 MB)');
+    expect(await label()).toContain('stop recording (1 frame, animation 0.0 MB)');
     for (let f = 0; f < 6; f++) await step(page, 1);
-    expect(await label()).toContain('stop recording (6 frames');
+    expect(await label()).toContain('stop recording (7 frames, animation');
     const last = await hook<number[][]>(page, 'positions');
     const take = await download(page, 'record');
     expect(take.name).toBe('silk-drape-recording.glb');
@@ -527,6 +527,13 @@ describe('WebGPU page', () => {
     expect((await hook<any>(unknown.page, 'lastMessage')).text).toBe("link: view: must be one of shaded, wireframe, particles, springs, strain, contacts, got 'nope' (ignored); link: backend: must be one of auto, gpu, cpu, got 'tpu' (ignored)");
     await expect.poll(() => unknown.page.evaluate(() => location.hash)).toBe('#scene=silk-drape');
     await unknown.page.close();
+    // the same for the query's backend (it was ignored without a word), its value shown as text
+    const query = await openApp(browser.context, '#scene=silk-drape', '?lite&backend=%3Cb%3Etpu');
+    expect(await hook(query.page, 'sceneName')).toBe('silk-drape');
+    expect((await hook<any>(query.page, 'lastMessage')).text).toBe("?backend: must be one of auto, gpu, cpu, got '<b>tpu' (ignored)");
+    expect(await query.page.locator('[data-testid=message] b').count()).toBe(0);
+    expect(query.errors).toEqual([]);
+    await query.page.close();
     // a link that names no scene is the schema's defaults, and the hash then says so (an empty one would reload as
     // the default built-in scene instead)
     const bare = await openApp(browser.context, '#view=nope', CPU);

@@ -75,8 +75,15 @@ describe('GPU simulation backend', () => {
     expect(said.text).toMatch(/^Self-contact switched off: with it the simulation needs \d+ ms per 16\.7 ms frame here/);
     expect(said.kind).toBe('notice');
     expect(await byId(page, 'solver.selfContact').locator('input').isChecked()).toBe(false);
+    // the notice belongs to its scene: another scene (self-contact on again) takes it away; it stayed up to 6 s
+    expect(await byId(page, 'message').isVisible()).toBe(true);
+    await loadScene(page, 'Silk Drape', 8);
+    expect(await byId(page, 'message').isVisible()).toBe(false);
+    expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
     // set by hand it stays on
+    await setChecked(page, 'solver.selfContact', false);
     await setChecked(page, 'solver.selfContact', true);
+    await press(page, 'play');
     await page.waitForTimeout(4000);
     expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
   });

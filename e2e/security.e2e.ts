@@ -235,8 +235,11 @@ describe('a cloth that stops being finite', () => {
     page.on('download', () => downloads++);
     await press(page, 'exportObj');
     await expect.poll(async () => (await hook<{ text: string }>(page, 'lastMessage')).text, POLL).toContain('OBJ export refused: the cloth became unstable at frame 21');
+    // the refusal keeps the unstable message's Reset button (it had none: the way back was gone from the banner)
+    expect(await byId(page, 'message-action').innerText()).toBe('Reset');
     await press(page, 'exportGltf');
     await expect.poll(async () => (await hook<{ text: string }>(page, 'lastMessage')).text, POLL).toContain('glTF export refused');
+    expect(await byId(page, 'message-action').isVisible()).toBe(true);
     expect(downloads).toBe(0);
 
     // the panel's Reset starts again; so does the message's Reset button

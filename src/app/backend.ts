@@ -3,7 +3,7 @@
  * driver that runs it; moving the cloths from one backend to the other; and what happens when the WebGPU device is
  * lost or a cloth blows up.
  */
-import { SCENE_NAMES, SceneError, builtinScene } from '../core/index.js';
+import { SCENE_NAMES, SceneError, builtinScene, plainText } from '../core/index.js';
 import type { App } from './app.js';
 import { GpuSim } from '../three/sim/gpu-sim.js';
 import { capCloth } from './limits.js';
@@ -32,7 +32,10 @@ export class Backend {
 
   /** `?backend=`: the choice when the link names none (not written into the link); anything else is ignored. */
   setDefault(choice: string | null | undefined): void {
-    if (choice && (BACKEND_CHOICES as readonly string[]).includes(choice)) this.choice = this.defaultChoice = choice as BackendChoice;
+    if (choice === null || choice === undefined) return;
+    if ((BACKEND_CHOICES as readonly string[]).includes(choice)) this.choice = this.defaultChoice = choice as BackendChoice;
+    // as a link's bad backend is answered (url-sync.ts): named, shown as text, and the page goes on with auto
+    else this.app.overlay.message(`?backend: must be one of ${BACKEND_CHOICES.join(', ')}, got '${plainText(choice, 40)}' (ignored)`, 'error');
   }
   /** the choice when the link names none: `?backend=`'s, else auto */
   defaultChoice: BackendChoice = 'auto';

@@ -42,4 +42,9 @@ describe('the self-contact frame budget', () => {
     expect(ContactBudget.message(31.6)).toMatch(/^Self-contact switched off: with it the simulation needs 32 ms per 16\.7 ms frame/);
     expect(ContactBudget.message(NaN)).not.toMatch(/NaN/);
   });
+
+  it('knows its own message (it is taken away when another scene loads: slots.ts)', () => {
+    expect(ContactBudget.said(ContactBudget.message(24))).toBe(true);
+    expect(ContactBudget.said('Imported scene.json')).toBe(false);
+  });
 });

@@ -11,6 +11,8 @@ import { cannotKeepUp } from './slow-cause.js';
 /** how long the simulation must hold the page back before self-contact goes off [ms of running wall time] */
 export const OVER_MS = 2000;
 
+const SWITCHED_OFF = 'Self-contact switched off:';
+
 export class ContactBudget {
   /** self-contact was set by hand on this page (the panel): the budget leaves it alone until the next scene */
   chosen = false;
@@ -39,10 +41,15 @@ export class ContactBudget {
     return true;
   }
 
+  /** Whether `text` is the budget's message (it belongs to the scene it was said of). */
+  static said(text: string): boolean {
+    return text.startsWith(SWITCHED_OFF);
+  }
+
   /** What the page says when it switched self-contact off, from the simulation's time per frame [ms]. */
   static message(stepMs: number): string {
     const step = Number.isFinite(stepMs) ? stepMs.toFixed(0) : '?';
-    return `Self-contact switched off: with it the simulation needs ${step} ms per ${FRAME_MS.toFixed(1)} ms frame here. ` +
+    return `${SWITCHED_OFF} with it the simulation needs ${step} ms per ${FRAME_MS.toFixed(1)} ms frame here. ` +
       'Switch it on again under Solver (it then stays on), or lower the resolution.';
   }
 }

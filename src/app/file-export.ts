@@ -93,10 +93,18 @@ export class FileExport {
     return '';
   }
 
+  /**
+   * Says that `what` (an export, a recording) is refused for `problem` (exportProblem's): an unstable cloth, which
+   * Reset mends, so the message keeps the Reset button the unstable cloth's own message had.
+   */
+  refuse(what: string, problem: string): void {
+    this.app.overlay.message(`${what} refused: ${problem}.`, 'error', { label: 'Reset', run: () => this.app.commands.reset() });
+  }
+
   /** Downloads the cloths as OBJ (the core's writer, as `drape run --export`, without the MTL); refused while one is unstable. */
   exportObj(): void {
     const problem = this.exportProblem();
-    if (problem) { this.app.overlay.message(`OBJ export refused: ${problem}.`); return; }
+    if (problem) { this.refuse('OBJ export', problem); return; }
     const cloths = this.app.sim.mirrors.flatMap((m) => modelCloths(m.sim.model, m.sim.state.positions,
       this.dress(m.sim.scene).map(({ name, look }) => ({ name, material: LOOKS[look.kind] }))));
     const text = toOBJ({ name: this.app.scene.name, cloths });
@@ -151,7 +159,7 @@ export class FileExport {
   /** Downloads the cloths as binary glTF (.glb); refused while one is unstable. */
   exportGltf(): void {
     const problem = this.exportProblem();
-    if (problem) { this.app.overlay.message(`glTF export refused: ${problem}.`); return; }
+    if (problem) { this.refuse('glTF export', problem); return; }
     // the shapes now: the mirrors move on while the textures are encoded
     const mirrors = this.app.sim.mirrors;
     const shapes = mirrors.map((m) => m.sim.state.positions.slice());

@@ -17,7 +17,12 @@ function page(resolution = 2) {
   const app = {
     scene: sim.scene,
     sim: { mirrors: [mirror] },
-    fileExport: { exportProblem: () => problem, downloadTake: async (t: Take) => { downloads.push(t); } },
+    fileExport: {
+      exportProblem: () => problem,
+      downloadTake: async (t: Take) => { downloads.push(t); },
+      // (file-export.ts says it with a Reset button)
+      refuse: (what: string, why: string) => messages.push(`${what} refused: ${why}.`),
+    },
     overlay: { message: (m: string) => messages.push(m) },
     panel: { syncRecording: () => {} },
   };

@@ -83,7 +83,7 @@ export class Recorder {
   private start(): void {
     const app = this.app;
     const problem = app.fileExport.exportProblem();
-    if (problem) { app.overlay.message(`Recording refused: ${problem}.`); return; }
+    if (problem) { app.fileExport.refuse('Recording', problem); return; }
     const mirrors = app.sim.mirrors;
     this.take = {
       name: app.scene.name, scenes: mirrors.map((m) => m.sim.scene), models: mirrors.map((m) => m.sim.model),

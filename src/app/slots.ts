@@ -8,6 +8,7 @@ import { ClothView } from '../render/cloth-view.js';
 import { fabricLook, type FabricLook } from '../render/textures.js';
 import type { App } from './app.js';
 import { contactDistance } from './contact-meter.js';
+import { ContactBudget } from './contact-budget.js';
 import { emptyBounds, frameBounds } from './framing.js';
 
 /** The cloths on screen, made from the app's scene. */
@@ -47,8 +48,10 @@ export class Slots {
       this.restore();
       throw e;
     }
-    // a scene loaded: its self-contact is the scene's again until chosen by hand (contact-budget.ts)
+    // a scene loaded: its self-contact is the scene's again until chosen by hand (contact-budget.ts), and the
+    // notice that the last scene's was switched off goes with that scene
     app.contactBudget.reset();
+    if (ContactBudget.said(app.overlay.lastMessage)) app.overlay.clearMessage();
     // a scene loaded: whatever waited for mesh files is not what the page shows any more
     app.waiting = null;
     this.frameCamera(true);

@@ -371,7 +371,10 @@ export class Panel {
   /** The Record button and the frame cap say what a recording is doing and what a take of the cap would weigh. */
   syncRecording(): void {
     const r = this.host.recording, mb = (b: number) => `${(b / 1e6).toFixed(1)} MB`;
-    this.recordCtl.name(r.active ? `■ stop recording (${r.frames} frames, ${mb(r.bytes)})` : '● record glTF animation');
+    // the frames as the file will hold them: the first shape and those after it (as the message at the end counts);
+    // the size is the animation's, without the textures the file also carries
+    const held = r.frames + 1;
+    this.recordCtl.name(r.active ? `■ stop recording (${held} frame${held === 1 ? '' : 's'}, animation ${mb(r.bytes)})` : '● record glTF animation');
     this.recordCapCtl.name(`frame cap (${r.cap < (this.p['record.cap'] as number) ? `${r.cap} fit, ` : ''}${mb(r.capBytes)})`);
   }
 
