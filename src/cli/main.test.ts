@@ -352,6 +352,7 @@ describe('drape CLI', () => {
     [['run', '--bake', 'x.glb', '--export', './x.glb'], /^drape: --bake: x\.glb is the --export file too; give two names$/],
     [['run', '--bake', '/no/such/folder/x.glb'], /^drape: --bake \/no\/such\/folder\/x\.glb: the folder \/no\/such\/folder does not exist$/],
     [['run', '--backend', 'quantum'], /--backend: must be cpu or gpu/],
+    [['run', '--solver', 'foo', '--frames', '1'], /^drape: --solver: must be one of "xpbd", "mass-spring"$/],
     [['run', '--backend', 'gpu', '--solver', 'mass-spring', '--frames', '1'], /only the xpbd solver runs on the GPU/],
     [['bench', '--sizes', '64,x'], /--sizes: must be an integer/],
     [['bench', '--scenes', 'cape,nope'], /--scenes: unknown scene 'nope' \(built-in scenes: .*cape, skirt/],

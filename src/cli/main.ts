@@ -341,7 +341,8 @@ async function cmdRun(argv: string[], out: (s: string) => void, err: (s: string)
   let scene = loaded.scene;
   options.meshes = loaded.meshes;
   const sets = values.set ?? [];
-  if (values.solver !== undefined) sets.unshift(`solver.type=${values.solver}`);
+  // --solver is its own flag, and its errors say so (they named '--set solver.type', which the user never wrote)
+  if (values.solver !== undefined) scene = setScenePath(scene, 'solver.type', values.solver, '--solver');
   scene = applySets(scene, sets);
   // the flags the run does not use, or else the threads' clamp to the cores (not both: they would contradict)
   const ignored = ignoredFlags(values, scene, backend);
