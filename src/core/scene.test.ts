@@ -43,6 +43,12 @@ describe('scenes', () => {
     expect(() => setScenePath(s, 'colliders[0].motion.keyframes[0].time', 1)).toThrow(/^--set colliders\[0\]\.motion\.keyframes\[0\]\.time: colliders\[0\]\.motion is not an object in this scene$/);
   });
 
+  it('a scene file saved with a byte-order mark reads as without (it was refused as malformed JSON)', () => {
+    const text = JSON.stringify({ cloth: { resolution: 6 } });
+    expect(parseScene('\ufeff' + text, 'bom.json')).toEqual(parseScene(text, 'bom.json'));
+    expect(() => parseScene('\ufeff\ufeff' + text, 'bom.json')).toThrow(/^bom\.json: malformed JSON/);
+  });
+
   it('a path names every key: empty keys are not a path (they used to be dropped)', () => {
     const s = defaultScene();
     for (const path of ['cloth..resolution', '.cloth.resolution', 'cloth.resolution.', '', '.', 'pins[0].']) {

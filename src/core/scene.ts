@@ -464,11 +464,14 @@ function samePose(a: { translation: Vec3; rotation: Vec3 }, b: { translation: Ve
   return a.translation.every((v, i) => Math.abs(v - b.translation[i]) <= 1e-9 * size) && ra.every((v, i) => Math.abs(v - rb[i]) <= 1e-9);
 }
 
-/** Parses JSON text into a validated scene; malformed JSON gives a SceneError with the position. */
+/**
+ * Parses JSON text into a validated scene; malformed JSON gives a SceneError with the position. A leading byte-order
+ * mark (editors on Windows save one) is read past, as JSON readers may (RFC 8259 §8.1).
+ */
 export function parseScene(text: string, source = 'scene'): Scene {
   let doc: unknown;
   try {
-    doc = JSON.parse(text);
+    doc = JSON.parse(text.charCodeAt(0) === 0xfeff ? text.slice(1) : text);
   } catch (e) {
     throw new SceneError(`${source}: malformed JSON (${(e as Error).message.split('\n')[0]})`);
   }
