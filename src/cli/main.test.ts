@@ -252,8 +252,10 @@ describe('drape CLI', () => {
     expect(await notes('--kernel', 'wasm', '--threads', '1')).toEqual([]);
     // more threads than cores on a solver that takes none: one note, not a clamp to the cores beside it
     expect(await notes('--solver', 'mass-spring', '--threads', '64')).toEqual(['drape: note: --threads 64: not used: the mass-spring solver runs in TypeScript, on one thread']);
-    const j = JSON.parse((await run('run', 'resolution', '--frames', '1', '--set', 'cloth..resolution=2', '--json')).out);
+    const j = JSON.parse((await run('run', 'resolution', '--frames', '1', '--set', 'cloth={"resolution":2}', '--json')).out);
     expect([j.sweep, j.particles]).toEqual([undefined, 9]);
+    // (an empty key is no spelling of it: refused, not read as cloth.resolution)
+    expect((await run('run', 'resolution', '--frames', '1', '--set', 'cloth..resolution=2')).err.trim()).toBe('drape: --set cloth..resolution: not a scene path');
   });
 
   it('the sweep\'s runs report their own clamps: each run\'s in --json, and each new one once as a note', async () => {
