@@ -5,7 +5,7 @@
  * to the scene file; the app from an imported file.
  */
 import { buildGridModel, buildMeshModel, mergeModels, type ClothModel } from './model.js';
-import { discMesh, placeMesh, tubeMesh, wovenDiscCells, wovenDiscMesh } from './mesh/generators.js';
+import { discMesh, placeMesh, tubeFaces, tubeMesh, wovenDiscCells, wovenDiscMesh } from './mesh/generators.js';
 import { parseGltf, type ExternalReader } from './mesh/gltf.js';
 import { parseObj } from './mesh/obj.js';
 import { extent, prepareMesh, type TriangleMesh } from './mesh/triangle-mesh.js';
@@ -50,6 +50,26 @@ export function meshFormat(name: string): (typeof MESH_EXTENSIONS)[number] {
 export function modelFor(scene: Scene, meshes?: MeshResolver): ClothModel {
   const entries = clothEntries(scene);
   return mergeModels(entries.map((e, k) => clothModel(e.cloth, e.material.scaleWithResolution, meshes, scene.cloths ? `cloths[${k}].` : '')));
+}
+
+/**
+ * What a cloth's spec asks that its shape does not do (`at` prefixes the fields: '' or 'cloths[1].'), one line each
+ * for a run's clamps: a field of another shape (cloth.lattice is a disc's, cloth.imperfection a rectangle's), or a
+ * resolution below the shape's fewest faces (a disc of rings has 2 across, a woven one 4; a tube 3 around, 1 along).
+ */
+export function shapeNotes(c: ClothSpec, at = ''): string[] {
+  const notes: string[] = [];
+  if (c.lattice === 'weave' && c.shape !== 'disc') notes.push(`${at}cloth.lattice 'weave': a disc's lattice, and this cloth is a '${c.shape}': not used`);
+  if (c.imperfection > 0 && c.shape !== 'rectangle') notes.push(`${at}cloth.imperfection ${c.imperfection}: a rectangle's bulge, and this cloth is a '${c.shape}': not used`);
+  if (c.shape === 'disc') {
+    const fewest = c.lattice === 'weave' ? wovenDiscCells(1) : 2;
+    if (c.resolution < fewest) notes.push(`${at}cloth.resolution ${c.resolution}: a ${c.lattice === 'weave' ? 'woven disc' : 'disc of rings'} has at least ${fewest} faces across, so it has ${fewest}`);
+  }
+  if (c.shape === 'tube') {
+    const { around, along } = tubeFaces(c), cell = Math.max(Math.PI * c.width, c.height) / c.resolution;
+    if (around > Math.round((Math.PI * c.width) / cell) || along > Math.round(c.height / cell)) notes.push(`${at}cloth.resolution ${c.resolution}: a tube has at least 3 faces around and 1 along, so it has ${around} around and ${along} along`);
+  }
+  return notes;
 }
 
 /** The model of one cloth (`at` prefixes its fields in errors: '' or 'cloths[1].'). */

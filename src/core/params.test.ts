@@ -86,3 +86,23 @@ describe('the solves together have a size limit (GLOBAL_SOLVE_MOST_PARTICLES)', 
     expect(p.clamps[1]).toMatch(/^solver\.bendingSolve 'global' at 66,564 particles: /);
   });
 });
+
+describe('what a cloth asks that its shape does not do is said in the clamps, not dropped in silence', () => {
+  const clamps = (doc: object) => { const s = validateScene(doc); return resolveParams(modelFor(s), s).clamps; };
+  it('a field of another shape, and a resolution below the shape\'s fewest faces', () => {
+    expect(clamps({ cloth: { lattice: 'weave' } })).toEqual(["cloth.lattice 'weave': a disc's lattice, and this cloth is a 'rectangle': not used"]);
+    expect(clamps({ cloth: { shape: 'disc', imperfection: 0.05 } })).toEqual(["cloth.imperfection 0.05: a rectangle's bulge, and this cloth is a 'disc': not used"]);
+    expect(clamps({ cloth: { shape: 'disc', resolution: 1 } })).toEqual(['cloth.resolution 1: a disc of rings has at least 2 faces across, so it has 2']);
+    expect(clamps({ cloth: { shape: 'disc', lattice: 'weave', resolution: 3 } })).toEqual(['cloth.resolution 3: a woven disc has at least 4 faces across, so it has 4']);
+    // a 1 m tube is 3.14 m round: resolution 1 and 2 give the fewest, 3 around and 1 along; 3 is that, asked for
+    expect(clamps({ cloth: { shape: 'tube', resolution: 2 } })).toEqual(['cloth.resolution 2: a tube has at least 3 faces around and 1 along, so it has 3 around and 1 along']);
+    expect(clamps({ cloth: { shape: 'tube', resolution: 3 } })).toEqual([]);
+    // what a shape does take says nothing
+    for (const cloth of [{}, { imperfection: 0.01 }, { shape: 'disc', lattice: 'weave', resolution: 4 }, { shape: 'disc', resolution: 2 }, { shape: 'tube', resolution: 32 }]) {
+      expect(clamps({ cloth }), JSON.stringify(cloth)).toEqual([]);
+    }
+    // in a list of cloths, named by the entry
+    expect(clamps({ cloths: [{ cloth: {} }, { cloth: { shape: 'tube', imperfection: 0.01, position: [0, 3, 0] } }] }))
+      .toEqual(["cloths[1].cloth.imperfection 0.01: a rectangle's bulge, and this cloth is a 'tube': not used"]);
+  });
+});

@@ -1,4 +1,4 @@
-import type { MeshResolver } from './cloth-shape.js';
+import { shapeNotes, type MeshResolver } from './cloth-shape.js';
 import { createColliders, type PosedCollider } from './colliders/index.js';
 import { BEND_SPRING_PER_RIGIDITY } from './fabrics.js';
 import { BEND, SHEAR, SPRING_KINDS, STRUCTURAL, bendingStencils, type ClothModel } from './model.js';
@@ -259,7 +259,8 @@ export function resolveParams(model: ClothModel, scene: Scene, dt = FRAME_DT, me
   const kindK = kindKs[0];
   const clothMass = entries.map(({ material: mc }, c) => mc.mass ?? (mc.arealDensity ?? 0) * parts[c].area);
   const mass = clothMass.reduce((a, b) => a + b, 0);
-  const clamps: string[] = [];
+  // what a cloth's spec asks that its shape does not do: said, not done silently
+  const clamps: string[] = entries.flatMap((e, c) => shapeNotes(e.cloth, scene.cloths ? `cloths[${c}].` : ''));
   // the cloth of each particle
   const owner = new Uint8Array(n);
   for (let c = 1; c < parts.length; c++) owner.fill(c, model.clothStarts[c], model.clothStarts[c + 1]);

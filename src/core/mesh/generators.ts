@@ -152,16 +152,23 @@ export function discMesh(spec: ShapeSpec): TriangleMesh {
 }
 
 /**
+ * A tube's faces around and along (tubeMesh): `resolution` along the longer of circumference and length, the other
+ * in proportion, with at least 3 around and 1 along.
+ */
+export function tubeFaces(spec: Pick<ShapeSpec, 'width' | 'height' | 'resolution'>): { around: number; along: number } {
+  const circumference = Math.PI * spec.width;
+  const cell = Math.max(circumference, spec.height) / spec.resolution;
+  return { around: Math.max(3, Math.round(circumference / cell)), along: Math.max(1, Math.round(spec.height / cell)) };
+}
+
+/**
  * An open cylinder of diameter `width` and length `height`, its axis along the sheet's v (vertical when hanging,
  * along z when horizontal): rings of M vertices, row 0 at the top (hanging), cells about square, with
  * `resolution` faces along the longer of circumference and length. Faces point outwards.
  */
 export function tubeMesh(spec: ShapeSpec): TriangleMesh {
   checkSpec(spec, 'tubeMesh');
-  const circumference = Math.PI * spec.width;
-  const cell = Math.max(circumference, spec.height) / spec.resolution;
-  const M = Math.max(3, Math.round(circumference / cell));
-  const L = Math.max(1, Math.round(spec.height / cell));
+  const { around: M, along: L } = tubeFaces(spec);
   const R = spec.width / 2;
   const n = M * (L + 1);
   const local = new Float32Array(3 * n);
