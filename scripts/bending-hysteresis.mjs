@@ -31,6 +31,9 @@
 //       [--lower T (the skirt laid on a support that is then lowered: a 40 cm square plate 1 cm thick whose top is the
 //       pedestal's, moved 30 cm down at constant speed over T [s], the scene then run T + 6 s; without it the skirt
 //       falls free from flat, as in the scene)]
+//       [--direction normal|laplacian (what each slider acts along in the cg step: the vertex normal, s_v = C_v·n_v,
+//       or C_v's own direction signed by its normal part, s_v = ±|C_v|, which a turn of the normal alone leaves
+//       as it is)]
 //       [--history S (each specimen's drape coefficient and folds every S seconds as it falls and settles)]
 //       [--cantilever R (instead: the `cantilever` scene at cloth.resolution R with each fabric's ρ_A and B, its
 //       bending length with and without the friction)]
@@ -46,6 +49,8 @@ const chosen = arg('fabrics', 'A,B,C,F').split(',');
 const seeds = arg('seeds', '1').split(',').map(Number);
 const resolution = Number(arg('resolution', '48'));
 const newtonMost = Number(arg('newton', '30'));
+const along = arg('direction', 'normal');
+if (along !== 'normal' && along !== 'laplacian') throw new Error(`--direction: normal or laplacian, got '${along}'`);
 const passes = Number(arg('passes', '24')), ratio = Number(arg('ratio', '10')), factor = Number(arg('hysteresis', '1'));
 const substeps = arg('substeps', null), iterations = arg('iterations', null), damping = arg('damping', null);
 const lower = arg('lower', null);
@@ -119,8 +124,8 @@ class BendingFriction {
       const from = offsets[e], to = offsets[e + 1], v = 3 * vertices[from];
       const len = Math.hypot(n[v], n[v + 1], n[v + 2]);
       kf[e] = len > 0 ? ratio * this.B / areas[e] : 0;
-      const nx = len > 0 ? n[v] / len : 0, ny = len > 0 ? n[v + 1] / len : 0, nz = len > 0 ? n[v + 2] / len : 0;
-      nv[3 * e] = nx; nv[3 * e + 1] = ny; nv[3 * e + 2] = nz;
+      this.direction(x, e, len, nv);
+      const nx = nv[3 * e], ny = nv[3 * e + 1], nz = nv[3 * e + 2];
       let sv = 0;
       for (let k = from; k < to; k++) { const at = 3 * vertices[k]; sv += K[k] * (x[at] * nx + x[at + 1] * ny + x[at + 2] * nz); }
       s0[e] = sv;
@@ -211,6 +216,24 @@ class BendingFriction {
     }
   }
 
+  /**
+   * The direction stencil e's slider acts along at positions x, into out[3e…3e+2] (`len`: the length of the vertex
+   * normal's sum, 0 for none): the unit vertex normal (`--direction normal`), or C_v's own direction with the sign
+   * of its normal part (`--direction laplacian`: s_v = ±|C_v|, which a turn of the normal alone does not change), the
+   * normal where C_v is 0.
+   */
+  direction(x, e, len, out) {
+    const { offsets, vertices, weights: K } = this.stencils, n = this.normals, v = 3 * vertices[offsets[e]];
+    let dx = len > 0 ? n[v] / len : 0, dy = len > 0 ? n[v + 1] / len : 0, dz = len > 0 ? n[v + 2] / len : 0;
+    if (along === 'laplacian') {
+      let cx = 0, cy = 0, cz = 0;
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) { const at = 3 * vertices[k]; cx += K[k] * x[at]; cy += K[k] * x[at + 1]; cz += K[k] * x[at + 2]; }
+      const c = Math.hypot(cx, cy, cz), sign = cx * dx + cy * dy + cz * dz < 0 ? -1 : 1;
+      if (c > 0) { dx = sign * cx / c; dy = sign * cy / c; dz = sign * cz / c; }
+    }
+    out[3 * e] = dx; out[3 * e + 1] = dy; out[3 * e + 2] = dz;
+  }
+
   /** A·y into out: M/h²·y + Σ_v k_a·g_v·(g_vᵀ·y), k_a the sticking stencils' k_f (0 where the slider gives), pinned rows the identity (set by solve) */
   apply(y, out, w, h2) {
     const { offsets, vertices, weights: K, areas } = this.stencils, { ka: kf, nv, t } = this.cg, m = areas.length, N3 = y.length;
@@ -230,11 +253,13 @@ class BendingFriction {
     const { offsets, vertices, weights: K, areas } = this.stencils, n = this.normals;
     this.updateNormals(x);
     let worst = 0;
+    const dir = this.cg.nv;
     for (let e = 0; e < areas.length; e++) {
       const v = 3 * vertices[offsets[e]], len = Math.hypot(n[v], n[v + 1], n[v + 2]);
       if (!(len > 0)) continue;
+      this.direction(x, e, len, dir);
       let sv = 0;
-      for (let k = offsets[e]; k < offsets[e + 1]; k++) { const at = 3 * vertices[k]; sv += K[k] * (x[at] * n[v] + x[at + 1] * n[v + 1] + x[at + 2] * n[v + 2]) / len; }
+      for (let k = offsets[e]; k < offsets[e + 1]; k++) { const at = 3 * vertices[k]; sv += K[k] * (x[at] * dir[3 * e] + x[at + 1] * dir[3 * e + 1] + x[at + 2] * dir[3 * e + 2]); }
       worst = Math.max(worst, Math.abs(ratio * this.B / areas[e] * (sv - this.slider[e])) / this.HB);
     }
     return worst;

@@ -256,7 +256,9 @@ export class SimClient implements SimDriver {
       m.grabbed = f.grabbed;
     });
     const s = this.stats;
-    if (msg.frames > 0) this.clock.account(s, msg.frames, msg.stepMs, this.paused);
+    // frames of a cloth loaded or rebuilt since (still on their way) time that cloth, not this one
+    const current = msg.slots.every((f, k) => !this.mirrors[k] || f.gen >= this.mirrors[k].modelGen);
+    if (msg.frames > 0 && current) this.clock.account(s, msg.frames, msg.stepMs, this.paused);
     s.energy = msg.energy;
     s.maxStrain = msg.maxStrain;
     s.clamps = msg.clamps;
