@@ -7,9 +7,9 @@
 //
 // The model: internal friction in bending (Miguel et al. 2013, "Modeling and Estimation of Internal Friction in
 // Cloth", ACM TOG 32(6): a Dahl model in parallel with the elastic bending) in its stick–slip limit, a stiff spring in
-// series with a slider, per stencil of the cotangent Laplacian (Wardetzky et al. 2007; model.ts): s_v = C_v·n_v, the
-// stencil's 3-vector C_v ≈ A_v·(κ1 + κ2)·n along the vertex normal n_v (the area-weighted mean of its triangles'),
-// carries a slider position s_p and the force f = k_f·(s_v − s_p), |f| ≤ HB. The pair (s_v, f) does work f·ds_v =
+// series with a slider, per stencil of the cotangent Laplacian (Wardetzky et al. 2007; model.ts): s_v = ±|C_v| (the
+// stencil's 3-vector C_v ≈ A_v·(κ1 + κ2)·n, signed by its part along the vertex normal n_v, the area-weighted mean
+// of its triangles'; `--direction normal`: C_v·n_v) carries a slider position s_p and the force f = k_f·(s_v − s_p), |f| ≤ HB. The pair (s_v, f) does work f·ds_v =
 // f·A_v·dκ, so a cap of HB dissipates HB per unit area and unit curvature at any mesh and in any direction (the
 // first line printed: Σ|C_v| of the disc bent into cylinders at four angles to the lattice). k_f = ratio·B/A_v (the
 // elastic stencil's stiffness times `--ratio`, 10: the slider's spring is ten times the bending's). It runs after each
@@ -31,9 +31,10 @@
 //       [--lower T (the skirt laid on a support that is then lowered: a 40 cm square plate 1 cm thick whose top is the
 //       pedestal's, moved 30 cm down at constant speed over T [s], the scene then run T + 6 s; without it the skirt
 //       falls free from flat, as in the scene)]
-//       [--direction normal|laplacian (what each slider acts along in the cg step: the vertex normal, s_v = C_v·n_v,
-//       or C_v's own direction signed by its normal part, s_v = ±|C_v|, which a turn of the normal alone leaves
-//       as it is)]
+//       [--direction laplacian|normal (what each slider acts along in the cg step: C_v's own direction signed by its
+//       normal part, s_v = ±|C_v|, which a turn of the normal alone leaves as it is, the default since 2026-12-08;
+//       or the vertex normal, s_v = C_v·n_v, the first choice, under which a skirt solved closely crept down
+//       for as long as it ran: docs/materials.md §3.6)]
 //       [--history S (each specimen's drape coefficient and folds every S seconds as it falls and settles)]
 //       [--cantilever R (instead: the `cantilever` scene at cloth.resolution R with each fabric's ρ_A and B, its
 //       bending length with and without the friction)]
@@ -49,7 +50,7 @@ const chosen = arg('fabrics', 'A,B,C,F').split(',');
 const seeds = arg('seeds', '1').split(',').map(Number);
 const resolution = Number(arg('resolution', '48'));
 const newtonMost = Number(arg('newton', '30'));
-const along = arg('direction', 'normal');
+const along = arg('direction', 'laplacian');
 if (along !== 'normal' && along !== 'laplacian') throw new Error(`--direction: normal or laplacian, got '${along}'`);
 const passes = Number(arg('passes', '24')), ratio = Number(arg('ratio', '10')), factor = Number(arg('hysteresis', '1'));
 const substeps = arg('substeps', null), iterations = arg('iterations', null), damping = arg('damping', null);
