@@ -183,10 +183,9 @@ interface RunResult {
   bake?: GlbBake & { first: Float32Array; frames: Float32Array[] };
 }
 
-/** The .mtl file an OBJ export writes beside it. */
 /**
- * The MTL file beside an OBJ: its name with `.mtl` for `.obj`, and white space and control characters as `_`, so
- * that the OBJ's `mtllib` line (names end at white space) names the file that is written.
+ * The MTL file an OBJ export writes beside it: its name with `.mtl` for `.obj`, and white space and control
+ * characters as `_`, so that the OBJ's `mtllib` line (names end at white space) names the file that is written.
  */
 const mtlPath = (obj: string) => {
   const name = basename(obj);

@@ -516,7 +516,7 @@ export function setScenePath(scene: Scene | Record<string, unknown>, path: strin
   }
   // every key named: 'cloth..resolution', '.cloth' and 'cloth.' are not paths (they read as one before)
   const keys = path.replace(/\[(\d+)\]/g, '.$1').split('.');
-  if (path === '' || keys.some((k) => k === '' || k === '__proto__' || k === 'constructor' || k === 'prototype')) {
+  if (keys.some((k) => k === '' || k === '__proto__' || k === 'constructor' || k === 'prototype')) {
     throw new SceneError(`${source}: not a scene path`);
   }
   if (scene === null || typeof scene !== 'object' || Array.isArray(scene)) {
