@@ -76,7 +76,7 @@ describe('GPU simulation backend', () => {
     expect(said.kind).toBe('notice');
     expect(await byId(page, 'solver.selfContact').locator('input').isChecked()).toBe(false);
     // the notice belongs to its scene: another scene (self-contact on again) takes it away; it stayed up to 6 s
-    expect(await byId(page, 'message').isVisible()).toBe(true);
+    // (its 6 s from being said are not asserted here: on a busy machine they may pass before the next line)
     await loadScene(page, 'Silk Drape', 8);
     expect(await byId(page, 'message').isVisible()).toBe(false);
     expect((await hook<any>(page, 'scene')).solver.selfContact).toBe(true);
