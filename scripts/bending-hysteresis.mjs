@@ -105,8 +105,9 @@ class BendingFriction {
   }
 
   /**
-   * The friction's step solved implicitly: with the vertex normals of x* (the positions the elastic step left) held,
-   * s_v(x* + d) = s_v(x*) + g_v·d is linear in the step d (g_v: K_k·n_v at particle k), and the backward-Euler step of
+   * The friction's step solved implicitly: with each slider's direction at x* (the positions the elastic step left,
+   * `direction`) held, s_v(x* + d) = s_v(x*) + g_v·d is linear in the step d (g_v: K_k times that direction at
+   * particle k), and the backward-Euler step of
    * the springs in series with their sliders is the convex problem
    *   min_d ½·|M^½·d|²/h² + Σ_v φ_v(s_v(x* + d) − s_p),
    * φ_v(u) = ½·k_f·u² for |u| ≤ r = HB/k_f and HB·|u| − ½·HB·r beyond (the slider gives: Huber's function, whose
@@ -119,7 +120,7 @@ class BendingFriction {
   solve(state, h) {
     const x = state.positions, w = state.invMass, { offsets, vertices, weights: K, areas } = this.stencils;
     const m = areas.length, N3 = x.length, n = this.normals, sp = this.slider;
-    const { d, r, z, p, q, diag, s0, kf, nv, t, ka, u, grad, step, trial } = this.cg, h2 = h * h, HB = this.HB;
+    const { d, r, z, p, q, diag, s0, kf, nv, ka, u, grad, step, trial } = this.cg, h2 = h * h, HB = this.HB;
     this.updateNormals(x);
     for (let e = 0; e < m; e++) {
       const from = offsets[e], to = offsets[e + 1], v = 3 * vertices[from];

@@ -66,8 +66,8 @@ export function shapeNotes(c: ClothSpec, at = ''): string[] {
     if (c.resolution < fewest) notes.push(`${at}cloth.resolution ${c.resolution}: a ${c.lattice === 'weave' ? 'woven disc' : 'disc of rings'} has at least ${fewest} faces across, so it has ${fewest}`);
   }
   if (c.shape === 'tube') {
-    const { around, along } = tubeFaces(c), cell = Math.max(Math.PI * c.width, c.height) / c.resolution;
-    if (around > Math.round((Math.PI * c.width) / cell) || along > Math.round(c.height / cell)) notes.push(`${at}cloth.resolution ${c.resolution}: a tube has at least 3 faces around and 1 along, so it has ${around} around and ${along} along`);
+    const { around, along, raised } = tubeFaces(c);
+    if (raised) notes.push(`${at}cloth.resolution ${c.resolution}: a tube has at least 3 faces around and 1 along, so it has ${around} around and ${along} along`);
   }
   return notes;
 }

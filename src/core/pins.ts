@@ -1,3 +1,4 @@
+import { clothPath } from './cloth-paths.js';
 import type { ClothModel } from './model.js';
 import { SceneError, clothEntries, type PinEntry, type PinPreset, type Scene } from './scene.js';
 import type { ClothState } from './state.js';
@@ -108,7 +109,7 @@ export function scenePins(model: ClothModel, scene: Scene): number[] {
   clothEntries(scene).forEach((e, c) => {
     const part = model.clothParts?.[c];
     // named as the scene names them: 'pins' in a one-cloth scene, 'cloths[0].pins' in a list of one
-    const path = scene.cloths ? `cloths[${c}].pins` : 'pins';
+    const path = clothPath(scene, c, 'pins');
     if (!part) { for (const i of resolvePins(model, e.pins, path)) set.add(i); return; }
     for (const i of resolvePins(part, e.pins, path)) set.add(i + model.clothStarts[c]);
   });

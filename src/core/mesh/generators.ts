@@ -153,12 +153,13 @@ export function discMesh(spec: ShapeSpec): TriangleMesh {
 
 /**
  * A tube's faces around and along (tubeMesh): `resolution` along the longer of circumference and length, the other
- * in proportion, with at least 3 around and 1 along.
+ * in proportion, with at least 3 around and 1 along (`raised`: that minimum raised one of them).
  */
-export function tubeFaces(spec: Pick<ShapeSpec, 'width' | 'height' | 'resolution'>): { around: number; along: number } {
+export function tubeFaces(spec: Pick<ShapeSpec, 'width' | 'height' | 'resolution'>): { around: number; along: number; raised: boolean } {
   const circumference = Math.PI * spec.width;
   const cell = Math.max(circumference, spec.height) / spec.resolution;
-  return { around: Math.max(3, Math.round(circumference / cell)), along: Math.max(1, Math.round(spec.height / cell)) };
+  const around = Math.round(circumference / cell), along = Math.round(spec.height / cell);
+  return { around: Math.max(3, around), along: Math.max(1, along), raised: around < 3 || along < 1 };
 }
 
 /**
